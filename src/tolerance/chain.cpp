@@ -928,7 +928,9 @@ class ChainAnalysis {
       // session 49): every band bounded without them stays as it was, and a sub-box that composes
       // without them keeps that composition (carried on, a walk that failed before may end far
       // out and change which pair the case split takes as the widened one).
-      auto position_band = [&](bool far) -> bool {
+      // Where it is still unbounded (`far` 2), composed once more with the envelopes' driver ranges
+      // walked in pieces too (handover.cpp step 7, session 52), likewise.
+      auto position_band = [&](int far) -> bool {
         std::size_t failure_splits = 0, shared_splits = 0;
         // The parameter of sub-box b whose weight times its width is largest and above `floor`
         // (n if none): where a sub-box is bisected (both halves queued, breadth first).
@@ -972,8 +974,10 @@ class ChainAnalysis {
           std::size_t failed = stages_.size();
           bool composed =
               compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
-          if (!composed && far) {   // (a sub-box composed without the far walks keeps that composition)
+          if (!composed && far > 0) {   // (a sub-box composed without the far walks keeps that composition)
             FarWalk on;
+            std::optional<DriverPieces> pieces;
+            if (far > 1) pieces.emplace();
             composed =
                 compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
           }
@@ -1049,7 +1053,8 @@ class ChainAnalysis {
         ok[i] = 1;
         return true;
       };
-      if (!position_band(false) && handover_far_windows() > 1) position_band(true);
+      if (!position_band(0) && handover_far_windows() > 1 && !position_band(1) && handover_driver_pieces() > 1)
+        position_band(2);
     }, [&](std::size_t done) { bar_.units(done, positions()); });
     std::size_t uncertified = 0, split_positions = 0, most = 0;
     for (std::size_t i = 0; i < positions(); ++i) {

@@ -212,6 +212,17 @@ kernels::Validity<N> validity_of(const model_detail::EdgeValue<N>& ea, const Fea
 
 double end_of(const Interval& y, int sigma) { return sigma > 0 ? y.hi : y.lo; }
 
+// How deep in envelope calls this thread is (1: the composition's own envelope; more: a walk it
+// makes of its own, the driver's pieces, the bridge, the driver-monotone route), for step 7.
+thread_local int envelope_depth = 0;
+struct EnvelopeDepth {
+  int level;
+  EnvelopeDepth() : level(++envelope_depth) {}
+  ~EnvelopeDepth() { --envelope_depth; }
+  EnvelopeDepth(const EnvelopeDepth&) = delete;
+  EnvelopeDepth& operator=(const EnvelopeDepth&) = delete;
+};
+
 }  // namespace
 
 HandoverSearch::HandoverSearch(std::shared_ptr<const CurveSolver> solver, std::size_t fixed_part, std::size_t free_part)
@@ -325,6 +336,7 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
                                           const DriverForm* driver, bool monotone, double nominal_free) const {
   HandoverEnvelope out;
   out.chart = holder;
+  const EnvelopeDepth depth;
   if (disabled_) {
     out.bounded = true;
     return out;
@@ -971,6 +983,96 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     if (more.bounded) return bounded_to(more.edge);
     stuck = more.last;
   }
+  // 7. The driver's range walked in pieces (session 52), where neither the walk over box x T, the
+  // driver-monotone route nor the far walk bounded the envelope, the box holds the nominal vector
+  // and T the nominal driver t_n: where T is wider than the teeth's pitch, the next tooth pair
+  // really may hold the follower inside box x T and its zeros over the whole of T sweep every
+  // leaf. T is split into n equal pieces T_0 .. T_n-1 (adjacent pieces share their double end
+  // t_b), and the pieces are walked outward from the one holding t_n, each over box x T_j alone
+  // (an interval driver: the driver's form holds the actual driver on its graph over the box,
+  // which a piece of T does not leave connected):
+  //   - the piece T_c holding t_n: the nominal configuration (0, t_n) lies in box x T_c, its
+  //     follower at the holder's root, in Y_c (the holder's enclosure over box x T_c): the walk
+  //     from Y_c's sigma end is anchored as in 3., and ends at E_c;
+  //   - a piece T_j next to an already walked T_i (outward): every point (p, t_b) of box x {t_b}
+  //     lies in box x T_i, so y(p, t_b) is within E_i; the walk over box x T_j started at the
+  //     sigma end of hull(Y_j, E_i) has that anchor, and ends at E_j.
+  // For every p and t of T, y(p, t) lies in some piece's envelope [Y_j's -sigma end, E_j], so the
+  // envelope is the holder's enclosure Y widened to the sigma-most E_j (its -sigma end stays Y's:
+  // the follower is never on the -sigma side of the holder's root). Each piece's competitor zeros
+  // sweep a fraction of the window. n = 4, 8, ... up to handover_driver_pieces(); a piece not
+  // bounded ends that n. Only while a FarWalk and a DriverPieces live (chain.cpp: a position
+  // unbounded even with the far walk, composed once more), and only in the composition's own
+  // envelope (not in the pieces', the bridge's or the route's walks: `depth`).
+  if (!bounded && FarWalk::on() && DriverPieces::on() && depth.level == 1 && handover_driver_pieces() > 1 && curve.fixed_range &&
+      fixed.lo < fixed.hi && !away && std::isfinite(nominal_free)) {
+    const double t_n = curve.fixed_value.get_d();
+    std::vector<double> s;
+    double slope = 0;
+    bool anchored = t_n >= fixed.lo && t_n <= fixed.hi;
+    if (anchored) {
+      try {
+        CurveSlice at_nominal = curve;
+        at_nominal.fixed_range.reset();
+        double v = nominal_free;
+        s = solver_->sensitivities(at_nominal, v, &slope);
+      } catch (const Error&) {
+        anchored = false;
+      }
+    }
+    for (int n = 4; anchored && n <= handover_driver_pieces(); n *= 2) {
+      std::vector<double> ends(static_cast<std::size_t>(n) + 1);
+      for (int j = 0; j <= n; ++j)
+        ends[static_cast<std::size_t>(j)] =
+            j == n ? fixed.hi : std::max(fixed.lo, fixed.lo + fixed.width() * static_cast<double>(j) / static_cast<double>(n));
+      for (std::size_t j = 1; j < ends.size(); ++j) ends[j] = std::max(ends[j], ends[j - 1]);
+      std::size_t c = 0;
+      while (c + 1 < static_cast<std::size_t>(n) && !(t_n <= ends[c + 1])) ++c;
+      // the walk over box x T_j from the sigma end of hull(Y_j, previous): its envelope's sigma end
+      auto piece_walk = [&](std::size_t j, std::optional<double> previous) -> std::optional<double> {
+        CurveSlice piece = curve;
+        piece.fixed_range = Interval(ends[j], ends[j + 1]);
+        piece.fixed_spread = std::fabs(slope) * piece.fixed_range->width();
+        // Y_j: certified about the nominal root moved along the driver, as Y is, and met with Y
+        // (which holds the holder's root over box x T, so over box x T_j); Y itself where the two
+        // do not meet, or where T_c's would not hold the nominal follower (the anchor of T_c)
+        Interval y = holder;
+        try {
+          Interval own = solver_->certified_range(piece, box, nominal_free + slope * (centre(*piece.fixed_range) - t_n), s,
+                                                  relative_accuracy, absolute_accuracy, boxes);
+          Interval both(std::max(own.lo, holder.lo), std::min(own.hi, holder.hi));
+          if (both.lo <= both.hi && (previous || (both.lo < nominal_free && nominal_free < both.hi))) y = both;
+        } catch (const Error&) {
+        }
+        if (previous) y = kernels::hull(y, Interval::point(*previous));
+        try {
+          HandoverEnvelope e = envelope(piece, box, y, relative_accuracy, absolute_accuracy, boxes, sigma, nullptr,
+                                        false, nominal_free);
+          if (e.bounded && e.side == sigma) return end_of(e.chart, sigma);
+        } catch (const Error&) {
+        }
+        return std::nullopt;
+      };
+      std::optional<double> centre_edge = piece_walk(c, std::nullopt);
+      if (!centre_edge) continue;
+      double reached = *centre_edge;
+      bool all = true;
+      for (int direction : {1, -1}) {
+        std::optional<double> previous = centre_edge;
+        for (std::size_t j = c; all;) {
+          if (direction > 0 ? j + 1 >= static_cast<std::size_t>(n) : j == 0) break;
+          j = direction > 0 ? j + 1 : j - 1;
+          previous = piece_walk(j, previous);
+          if (!previous) {
+            all = false;
+            break;
+          }
+          reached = sigma > 0 ? std::max(reached, *previous) : std::min(reached, *previous);
+        }
+      }
+      if (all) return bounded_to(reached);
+    }
+  }
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
       const Part& part = m.parts[f.part];
@@ -996,17 +1098,14 @@ int& handover_sub_box_anchor() {
   return on;
 }
 
-namespace {
-thread_local int far_walks = 0;
-}
-
-FarWalk::FarWalk() { ++far_walks; }
-FarWalk::~FarWalk() { --far_walks; }
-bool FarWalk::on() { return far_walks > 0; }
-
 int& handover_far_windows() {
   static int windows = 2;
   return windows;
+}
+
+int& handover_driver_pieces() {
+  static int pieces = 16;
+  return pieces;
 }
 
 int& handover_taylor_partials() {

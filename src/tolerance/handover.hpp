@@ -157,17 +157,34 @@ int& handover_taylor_partials();
 /// 1: not at all (the envelopes of session 48).
 int& handover_far_windows();
 
+/// Session 52: where the envelope is still not bounded after the far walk (handover.cpp, step 7),
+/// the driver's range is split into 4, 8, ... up to this many pieces walked outward from the one
+/// holding the nominal driver; 1: not at all (the envelopes of session 51).
+int& handover_driver_pieces();
+
+/// A switch on this thread while an instance lives (one per Tag; instances nest).
+template <class Tag>
+class ThreadScope {
+ public:
+  ThreadScope() { ++count; }
+  ~ThreadScope() { --count; }
+  ThreadScope(const ThreadScope&) = delete;
+  ThreadScope& operator=(const ThreadScope&) = delete;
+  static bool on() { return count > 0; }
+
+ private:
+  static inline thread_local int count = 0;
+};
+
 /// While one lives on this thread, the envelope's walk may go on beyond its window
 /// (handover.cpp, step 6): chain.cpp composes a position whose band is unbounded without it again
 /// under one.
-class FarWalk {
- public:
-  FarWalk();
-  ~FarWalk();
-  FarWalk(const FarWalk&) = delete;
-  FarWalk& operator=(const FarWalk&) = delete;
-  static bool on();
-};
+using FarWalk = ThreadScope<struct FarWalkTag>;
+
+/// While one lives on this thread (with a FarWalk), the envelope may walk its driver's range in
+/// pieces (handover.cpp, step 7): chain.cpp composes a position whose band is unbounded even with
+/// the far walk once more under one.
+using DriverPieces = ThreadScope<struct DriverPiecesTag>;
 
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {

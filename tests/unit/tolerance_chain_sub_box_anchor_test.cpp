@@ -85,9 +85,10 @@ struct Count {
 };
 
 // Every exact value at the probes against every bounded band of the analysis of `text` (a chain
-// cam -> lifter1 -> lifter2 with parameters e and g; the anchor and the far walk, handover.cpp 0b
-// and 6, as given).
-Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows()) {
+// cam -> lifter1 -> lifter2 with parameters e and g; the anchor, the far walk and the driver's
+// pieces, handover.cpp 0b, 6 and 7, as given).
+Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
+                 int pieces = tolerance_detail::handover_driver_pieces()) {
   const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
   ToleranceOptions options;
   options.driver = "cam";
@@ -99,6 +100,7 @@ Count check_text(const std::string& text, int anchor, int far = tolerance_detail
   {
     test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
     test_band::ScopedSwitch windows(tolerance_detail::handover_far_windows(), far);
+    test_band::ScopedSwitch split(tolerance_detail::handover_driver_pieces(), pieces);
     r = analyze_tolerances_text(text, options);
   }
   Count count;
@@ -298,6 +300,71 @@ TEST(ChainSharedAnchor, SharedParameterSubBoxAwayFromNominalBandsHoldTheExactCha
     outside += c.outside;
   }
   std::printf("%zu exact values checked against bounded bands, %zu outside\n", values, outside);
+}
+
+// Session 52 (tol52): the driver's range walked in pieces (handover.cpp step 7; docs/tolerance.md
+// "The driver's range walked in pieces"). cam -> lifter1 -> lifter2: the cam's radius 20 + e (e in
+// [-E, E]) moves lifter1 sideways by e, so pair 2's driver range T is 2E wide; lifter2 rests under
+// its weight on lifter1's holder roller (radius 5 + g, under lifter2's flat underside) or on a
+// competitor roller (radius 2) under a slanted part of the underside, which lifts lifter2 more the
+// further left lifter1 is: at the driver's low end of T it holds lifter2 up to 0.7 mm above the
+// holder, at nominal it is 0.05-0.2 mm below. Over box x T the competitor's zeros sweep far more
+// than the walk's two windows (2 |Y| each, |Y| = 0.1 mm), and the failure split's halves and
+// quarters of e are too wide as well: before session 52 these positions were unbounded. In pieces
+// of T walked outward from the nominal driver's, each piece started at the previous piece's
+// envelope end, the walk passes the competitor's zeros a piece at a time. The exact chain at the
+// box's corners (e = -E: lifter1 furthest left, the competitor highest), g's ends and middle and
+// random vectors must lie in every bounded band, and the positions newly bounded are counted.
+// Mutant: each piece's walk started at its own holder's enclosure (the nominal holder's) instead
+// of the hull with the previous piece's envelope end: the walk's first leaf is free over the
+// pieces where the competitor holds lifter2 wholly above the holder, and the band is cut there.
+struct PiecesVariant {
+  const char *e, *x, *y;   // e's tolerance, the competitor's x, the slanted underside's left end's y
+};
+
+std::string driver_pieces_chain(const PiecesVariant& v) {
+  return std::string(R"({"hipair": 1, "name": "driver-pieces-chain", "units": {"length": "mm", "angle": "rad"},
+ "parameters": {"e": {"nominal": 0, "tolerance": )") +
+         v.e + R"(}, "g": {"nominal": 0, "tolerance": 0.05}},
+ "parts": [
+  {"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},
+   "loops": [{"circle": {"center": [5, 0], "radius": "20 + e"}}]},
+  {"name": "lifter1", "motion": {"translation": {"direction": [1, 0], "limits": [-40, 40]}}, "initial": {"offset": -10},
+   "loops": [{"start": [30, -30], "edges": [{"line_to": [50, -30]}, {"line_to": [50, 30]}, {"line_to": [30, 30]}, {"line_to": [30, -30]}]},
+             {"circle": {"center": [45, 40], "radius": "5 + g"}},
+             {"circle": {"center": [)" +
+         v.x + R"(, 40], "radius": 2}}],
+   "dynamics": {"mass": 0.1, "force": [-10, 0]}},
+  {"name": "lifter2", "motion": {"translation": {"direction": [0, 1], "limits": [-40, 40]}}, "initial": {"offset": 0},
+   "loops": [{"start": [5, )" +
+         v.y + R"(], "edges": [{"line_to": [30, 50]}, {"line_to": [60, 50]}, {"line_to": [60, 80]}, {"line_to": [5, 80]}, {"line_to": [5, )" +
+         v.y + R"(]}]}],
+   "dynamics": {"mass": 0.1, "force": [0, -10]}}],
+ "pairs": [{"parts": ["cam", "lifter1"]}, {"parts": ["lifter1", "lifter2"]}]})";
+}
+
+TEST(ChainDriverPieces, CompetitorOverPartOfTheDriversRangeBandsCoverItAndHoldTheExactChain) {
+  ASSERT_GT(tolerance_detail::handover_driver_pieces(), 1);
+  const std::vector<PiecesVariant> variants = {{"2", "35.27", "37.5"}, {"2.5", "36", "37.5"}, {"2", "34.8", "35"}};
+  std::size_t with_band = 0, without = 0, values = 0, outside = 0;
+  for (const PiecesVariant& v : variants) {
+    const std::string name = std::string("e in [-") + v.e + ", " + v.e + "], competitor at x " + v.x + ", underside from y " + v.y;
+    SCOPED_TRACE(name);
+    Count c = check_text(driver_pieces_chain(v), 1);
+    EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
+    // not vacuous: every position bounded, and some of them only through the driver's pieces
+    EXPECT_EQ(c.bounded, 6u);
+    std::size_t before = check_text(driver_pieces_chain(v), 1, tolerance_detail::handover_far_windows(), 1).bounded;
+    std::printf("%s: %zu of 6 positions bounded (session 51: %zu), %zu exact values checked, %zu outside (worst %.4f mm)\n",
+                name.c_str(), c.bounded, before, c.values, c.outside, c.worst);
+    with_band += c.bounded;
+    without += before;
+    values += c.values;
+    outside += c.outside;
+  }
+  EXPECT_EQ(with_band - without, 7u);
+  std::printf("%zu exact values checked against bounded bands, %zu outside; %zu positions newly bounded\n", values, outside,
+              with_band - without);
 }
 
 }  // namespace
