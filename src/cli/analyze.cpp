@@ -218,6 +218,7 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
 int run_analyze(const AnalyzeOptions& options) {
   // refused before the analysis when a file every run writes is the model; the whole list of
   // the run's files is checked again before anything is written
+  io::refuse_unusable_output_directory(options.out, "--out");
   if (!options.out.empty())
     for (const char* name : {"report.json", "kinematics.csv", "kinematics.svg"})
       if (!options.no_pictures || std::string(name) != "kinematics.svg")

@@ -485,14 +485,22 @@ int run_sweep(const SimulateOptions& options) {
   refuse_unknown_parameters(options.model, options.overrides, "--set");
   refuse_unknown_parameters(options.model, {options.sweep}, "--sweep");
   // every model is read (and checked) before any run starts: a bad value stops the sweep at once
+  // (a refusal names the sweep's value too: until session 52 it named only the model's pointer,
+  // `/parts/0/features/0/escape_wheel/teeth: must be at least 3`, with no word of --sweep)
   std::vector<Model> models;
-  for (const Rational& v : values) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
     std::vector<std::string> overrides = options.overrides;
-    overrides.push_back(name + "=" + v.get_str());
-    models.push_back(
-        read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
-    check_simulator_range(models.back());
-    check_own_frequency(models.back(), options);
+    overrides.push_back(name + "=" + values[i].get_str());
+    try {
+      models.push_back(
+          read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
+      check_simulator_range(models.back());
+      check_own_frequency(models.back(), options);
+    } catch (const ModelError& error) {
+      throw ModelError(error.pointer(), error.reason() + " (--sweep " + options.sweep + ": the model of run " +
+                                            std::to_string(i + 1) + " of " + std::to_string(values.size()) + ", " +
+                                            overrides.back() + " ; nothing was run)");
+    }
   }
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
@@ -932,6 +940,7 @@ void check_times(const SimulateOptions& options) {
 int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   check_times(options);
+  io::refuse_unusable_output_directory(options.out, "--out");   // before any run (hours, for a long one)
   if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");

@@ -152,6 +152,7 @@ const char* const kOutputNames[] = {"tolerance.json", "variation.csv", "sensitiv
 // Refuses, before a long computation, an --out whose files would replace the model.
 void refuse_overwriting_model(const ToleranceCliOptions& options) {
   if (options.out.empty()) return;
+  io::refuse_unusable_output_directory(options.out, "--out");
   std::vector<io::PlannedOutput> planned;
   for (const char* name : kOutputNames) planned.push_back({std::filesystem::path(options.out) / name, "--out"});
   io::refuse_overwriting_inputs(planned, {options.model});

@@ -44,6 +44,26 @@ void refuse_overwriting_inputs(const std::vector<PlannedOutput>& outputs,
   }
 }
 
+void refuse_unusable_output_directory(const std::filesystem::path& directory, const std::string& option) {
+  namespace fs = std::filesystem;
+  if (directory.empty()) return;
+  std::error_code ec;
+  fs::path target = fs::absolute(directory, ec).lexically_normal();
+  if (ec) return;   // left to the publication's own message
+  if (target.filename().empty()) target = target.parent_path();
+  for (fs::path at = target;; at = at.parent_path()) {
+    fs::file_status status = fs::status(at, ec);   // through symbolic links, as the publication goes
+    if (fs::exists(status)) {
+      if (fs::is_directory(status)) return;
+      if (at == target)
+        throw IoError(option + " " + quoted(directory) + ": it exists and is not a directory (nothing was run or written)");
+      throw IoError(option + " " + quoted(directory) + ": " + quoted(at) +
+                    " exists and is not a directory, so the output directory cannot be made (nothing was run or written)");
+    }
+    if (at == at.parent_path()) return;
+  }
+}
+
 void refuse_overwriting_input(const std::filesystem::path& output, const std::string& option,
                               const std::filesystem::path& input) {
   refuse_overwriting_inputs({PlannedOutput{output, option}}, {input});
