@@ -930,6 +930,12 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 void check_times(const SimulateOptions& options) {
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive finite number of time units");
+  // a subnormal T (below 2.2e-308) keeps a few digits only: the run's times and states were off
+  // in their 4th digit (--t-end 1e-320: v = -g t printed as -9.805e-317 for -9.81e-317; session 52)
+  if (options.t_end < std::numeric_limits<double>::min())
+    throw ModelError("", "--t-end " + number(options.t_end) +
+                             ": below the least normal double 2.2250738585072014e-308 the simulator's times lose "
+                             "their digits; give a larger --t-end (or smaller units)");
   const std::size_t budget = options.max_steps;
   if (options.max_step > 0 && options.t_end / options.max_step > static_cast<double>(budget))
     throw ModelError("", "--max-step " + number(options.max_step) + ": T / H = " + number(options.t_end / options.max_step) +
