@@ -144,6 +144,7 @@ int run(const CertifyArguments& arguments) {
   // named only its value, `--set 4.5=6` for `--set pin-radius=4.5=6`)
   ReadOptions options = parameter_overrides(arguments.overrides, false);
   io::refuse_overwriting_input(arguments.out, "--out", arguments.path);
+  io::refuse_unusable_output_files({{arguments.out, "--out"}});   // before the (possibly long) search
   refuse_unknown_parameters(arguments.path, arguments.overrides, "--set");
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};

@@ -244,6 +244,7 @@ int run(const CSpaceCommandOptions& options) {
   // Refused before the (possibly long) build when the paths are used as given; the suffixed
   // names of several pairs are checked again below, before anything is written.
   io::refuse_overwriting_inputs({{options.svg, "--svg"}, {options.json, "--json"}}, {options.model});
+  io::refuse_unusable_output_files({{options.svg, "--svg"}, {options.json, "--json"}});
   auto rounding = rounding_scope(options.rounding);
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");

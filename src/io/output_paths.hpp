@@ -35,4 +35,10 @@ void refuse_overwriting_input(const std::filesystem::path& output, const std::st
 /// whole analysis or simulation (hours for a long simulate, the results printed, then exit 3).
 void refuse_unusable_output_directory(const std::filesystem::path& directory, const std::string& option);
 
+/// Throws IoError, before a command computes anything, when an output file's directory cannot
+/// hold it: the directory, or one it would lie in, exists and is not a directory (`--json
+/// f.txt/x.json`). Until session 52 `cspace` of a 3-DOF or pin-slot pair and `certify` built
+/// everything first.
+void refuse_unusable_output_files(const std::vector<PlannedOutput>& outputs);
+
 }  // namespace hipair::io

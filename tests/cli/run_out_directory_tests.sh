@@ -7,6 +7,9 @@
 #   exit 3, nothing on stdout (until session 52 the whole analysis or simulation ran, its results
 #   were printed, and only the publication failed, exit 3: hours for a long simulate), the file
 #   unchanged, nothing created beside it;
+# - `cspace --json/--svg` of a 3-DOF and a pin-slot pair and `certify --out` with a file's
+#   directory being a regular file: refused before the build or search (until session 52 the
+#   whole C-space was built first), one line naming the option and the file in the way;
 # - an existing --out DIR with earlier files survives every failing run (a sweep value the model
 #   refuses, a run out of step budget) byte for byte;
 # - a sweep value the model refuses is named with the --sweep option, the run and the value
@@ -57,6 +60,20 @@ for round in $(seq 1 3); do
     command=($c)
     refused_out "$c --out FILE" "$f" "${command[@]}"
     refused_out "$c --out FILE/sub/dir" "$f/$(word)/$(word)" "${command[@]}"
+  done
+  for c in "cspace $m/peg-in-hole.json --json" "cspace $film --pair cam:follower --svg" "certify $m/lever-stop.json --claim jam --out"; do
+    # shellcheck disable=SC2206
+    command=($c)
+    target="$f/$(word).$( ((RANDOM % 2)) && echo json || echo svg)"
+    before=$(listing)
+    (cd "$work" && timeout 120 "$hipair" "${command[@]}" "$target" >"$work/run/bad.out" 2>"$work/run/bad.err")
+    status=$?
+    [ "$status" -eq 3 ] || fail "$c FILE/x: exit $status, not 3: $(head -c 300 "$work/run/bad.err")"
+    [ -s "$work/run/bad.out" ] && fail "$c FILE/x: wrote to stdout"
+    grep -qF -- "${command[-1]} '$target': '$work/$f' exists and is not a directory, so the file cannot be written there" \
+      "$work/run/bad.err" || fail "$c FILE/x: the message names not the option and the file in the way: $(head -c 300 "$work/run/bad.err")"
+    grep -qF "nothing was built or written" "$work/run/bad.err" || fail "$c FILE/x: refused after the build: $(head -c 300 "$work/run/bad.err")"
+    [ "$(listing)" = "$before" ] || fail "$c FILE/x: files changed"
   done
   refused_out "tolerance --out its own model" "$work/cam.json" tolerance "$work/cam.json" --positions 16 --quiet
   refused_out "analyze --out its own model" "$work/cam.json" analyze "$work/cam.json" --quiet
