@@ -7,10 +7,14 @@
 // - a disc off the free part's pivot grazing a fixed convex polygon's extreme vertex the same
 //   way (vertex–arc, a double root in u), and grazing a fixed disc (arc–arc: the centres'
 //   distance is R + r only at u*);
-// - the same motions ending exactly at the touch (u* = 1) and starting there (u* = 0).
+// - the same motions ending exactly at the touch (u* = 1) and starting there (u* = 0);
+// - point location where a vertex of the free part (turned by a rational tangent) lies exactly
+//   inside an edge of the fixed part, for non-convex star pairs: contact or blocked, as the exact
+//   overlap predicate says.
 // Oracles: u* exactly (first_crossing's u compared exactly), the exact overlap predicate at u*
 // (touching), at rational u either side (apart) and at `before`; point location at the touch
 // (contact) and beside it (free).
+#include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
 #include <hipair/sliced.hpp>
@@ -259,6 +263,48 @@ TEST(SlicedGrazing, AnOffPivotDiscGrazingAVertexOrADiscTouchesOnceAtTheClosedFor
     }
   }
   expect_every_kind(tally);
+}
+
+TEST(SlicedGrazing, AVertexExactlyInsideAnEdgeLocatesAsTheOverlapPredicate) {
+  Random random(5203);
+  int touching = 0, overlapping = 0;
+  for (int instance = 0; instance < 3; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    test_loops::Points a = test_loops::grid_star(random, 6 + static_cast<int>(random() % 4), 0, 0, 6, 8, 1);
+    test_loops::Points b = test_loops::grid_star(random, 4 + static_cast<int>(random() % 4), 1, 0, 3, 8, 1);
+    Model model;
+    try {
+      model = grazing_model(test_loops::loop_json(a), test_loops::loop_json(b));
+    } catch (const ModelError&) {
+      continue;   // rounding to the grid made a polygon not simple: not a case
+    }
+    SlicedBuildOptions options;
+    options.cell_structure = false;
+    SlicedSpace space = SlicedSpace::build(model, "fixed", "free", options);
+    for (int k = 0; k < 120; ++k) {
+      Rational t = k % 10 == 0 ? Rational(0) : ratio(random, -3, 3, 29);
+      Rotation rotation = rotation_of(t);
+      const auto& e0 = a[random() % a.size()];
+      std::size_t next = 0;
+      while (a[next] != e0) ++next;
+      const auto& e1 = a[(next + 1) % a.size()];
+      const auto& v = b[random() % b.size()];
+      Rational along = ratio(random, 0, 1, 31) * Rational(9, 10) + Rational(1, 20);   // strictly inside the edge
+      Point on{e0.first + along * (e1.first - e0.first), e0.second + along * (e1.second - e0.second)};
+      Point turned = rotation.apply(Point{v.first, v.second});
+      Point shift{on.x - turned.x, on.y - turned.y};
+      PartRelation relation = relation_at(model, rotation, shift);
+      ASSERT_NE(relation, PartRelation::apart);
+      SlicedLocation::Kind expected =
+          relation == PartRelation::touching ? SlicedLocation::Kind::contact : SlicedLocation::Kind::blocked;
+      EXPECT_EQ(space.locate(SlicedConfiguration{shift.x, shift.y, SlicedAngle{t, false}}).kind, expected)
+          << "vertex (" << v.first << ", " << v.second << ") at " << along << " of the edge from (" << e0.first << ", "
+          << e0.second << "), t = " << t;
+      ++(relation == PartRelation::touching ? touching : overlapping);
+    }
+  }
+  EXPECT_GT(touching, 20);
+  EXPECT_GT(overlapping, 20);
 }
 
 }  // namespace
