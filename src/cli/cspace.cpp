@@ -403,8 +403,10 @@ void register_cspace(CLI::App& app, Action& action) {
       "cspace", "Build the exact configuration space of a pair (or of every fixed-axis pair and 3-DOF pair) and write it as SVG/JSON");
   command->add_option("model", options->model, "Model file (JSON)")->required()->check(CLI::ExistingFile);
   command->add_option("--pair", options->pair, "The pair FIRST:SECOND (default: every fixed-axis pair and every 3-DOF pair)");
-  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair; 3-DOF pairs: a stack of slices)");
-  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices; 3-DOF pairs: critical angles, slices, free cells, crossings, components");
+  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair; 3-DOF pairs: a stack of slices)")
+      ->check(output_path());
+  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices; 3-DOF pairs: critical angles, slices, free cells, crossings, components")
+      ->check(output_path());
   command->add_flag("--stats", options->stats, "Print counts and times per stage");
   command->add_option("--full-slices", options->full_slices,
                       "3-DOF pairs: slices (indices, in order of the angle) drawn again at full size below the stack "

@@ -1116,7 +1116,8 @@ void register_simulate(CLI::App& app, Action& action) {
                       "and writes nothing (default 2000000; 1 to 1e9)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}));
   command->add_option("--out", options->out,
-                      "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg");
+                      "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg")
+      ->check(output_path());
   command->add_option("--region", options->region,
                       "full: whole C-spaces (default); operating: operating regions around the initial configuration")
       ->check(CLI::IsMember({"full", "operating"}));

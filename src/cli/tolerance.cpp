@@ -454,7 +454,8 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--threads", options->threads,
                       "threads for the Monte Carlo, the certified band and the zones (default 0: all cores; at most 256)")
       ->check(CLI::Range(0u, 256u));
-  command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
+  command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg")
+      ->check(output_path());
   command->add_flag("--quiet", options->quiet, "no progress bar");
   command->add_option("--set", options->overrides,
                       "change a parameter's nominal value: NAME=VALUE (exact literal in mm or rad; repeatable); its "

@@ -10,6 +10,9 @@
 # - `cspace --json/--svg` of a 3-DOF and a pin-slot pair and `certify --out` with a file's
 #   directory being a regular file: refused before the build or search (until session 52 the
 #   whole C-space was built first), one line naming the option and the file in the way;
+# - an empty output path (`--out ""`, an unset shell variable) refused by every command that
+#   writes, naming the option, exit 105 (until session 52 each took it as no output: exit 0,
+#   nothing written, `analyze` even suggesting --out);
 # - an existing --out DIR with earlier files survives every failing run (a sweep value the model
 #   refuses, a run out of step budget) byte for byte;
 # - a sweep value the model refuses is named with the --sweep option, the run and the value
@@ -107,6 +110,20 @@ for round in $(seq 1 3); do
     --sweep "drive-torque=-200:-300:2" --out "$d/$(word)/$(word)" >"$work/run/ok.out" 2>&1 ||
     fail "sweep into a new DIR: exit $?: $(tail -c 300 "$work/run/ok.out")"
   rm -rf "$d"
+done
+
+# an empty output path
+for c in "simulate $escapement --t-end 0.002 --allow-out-of-tolerance --out" "analyze $cam --quiet --out" \
+         "tolerance $cam --positions 16 --quiet --out" "cspace $m/lever-stop.json --json" "cspace $m/lever-stop.json --svg" \
+         "certify $m/lever-stop.json --claim jam --out" "show $m/lever-stop.json --svg"; do
+  # shellcheck disable=SC2206
+  command=($c)
+  timeout 120 "$hipair" "${command[@]}" "" >"$work/run/bad.out" 2>"$work/run/bad.err"
+  status=$?
+  [ "$status" -eq 105 ] || fail "$c '': exit $status, not 105"
+  [ -s "$work/run/bad.out" ] && fail "$c '': ran (stdout: $(head -c 100 "$work/run/bad.out"))"
+  grep -qF -- "hipair: error: ${command[-1]}: an empty path names no file or directory to write" "$work/run/bad.err" ||
+    fail "$c '': the message names not the option: $(head -c 300 "$work/run/bad.err")"
 done
 
 # a subnormal --t-end
