@@ -218,6 +218,7 @@ std::optional<CSpace> exact_space_for_picture(const Model& model, const PairPath
 int run_analyze(const AnalyzeOptions& options) {
   // refused before the analysis when a file every run writes is the model; the whole list of
   // the run's files is checked again before anything is written
+  io::refuse_unusable_output_directory(options.out, "--out");
   if (!options.out.empty())
     for (const char* name : {"report.json", "kinematics.csv", "kinematics.svg"})
       if (!options.no_pictures || std::string(name) != "kinematics.svg")
@@ -463,7 +464,8 @@ void register_analyze(CLI::App& app, Action& action) {
                                     "driver range A:B (angles in the model's unit or with a deg/rad suffix; mm)");
   command->add_option("--cycles", options->cycles, "full driver turns from the initial configuration (default 1)")
       ->excludes(range);
-  command->add_option("--out", options->out, "directory for report.json, kinematics.csv, kinematics.svg, cspace-*.svg");
+  command->add_option("--out", options->out, "directory for report.json, kinematics.csv, kinematics.svg, cspace-*.svg")
+      ->check(output_path());
   command->add_option("--steps", options->steps, "driver grid steps per turn (default 720)")->check(CLI::Range(16u, 100000u));
   command->add_option("--load", options->loads,
                       "load on a driven part: PART=none|+|-|cw|ccw|spring:REST (replaces the model's dynamics data)");

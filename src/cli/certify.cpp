@@ -144,6 +144,7 @@ int run(const CertifyArguments& arguments) {
   // named only its value, `--set 4.5=6` for `--set pin-radius=4.5=6`)
   ReadOptions options = parameter_overrides(arguments.overrides, false);
   io::refuse_overwriting_input(arguments.out, "--out", arguments.path);
+  io::refuse_unusable_output_files({{arguments.out, "--out"}});   // before the (possibly long) search
   refuse_unknown_parameters(arguments.path, arguments.overrides, "--set");
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};
@@ -343,7 +344,7 @@ void register_certify(CLI::App& app, Action& action) {
   CLI::App* command = app.add_subcommand("certify", "Produce a certificate of interference, clearance, jam or free passage");
   command->add_option("model", arguments->path, "model file")->required();
   command->add_option("--claim", arguments->claim, "interference | clearance | jam | free")->required();
-  command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required();
+  command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required()->check(output_path());
   command->add_option("--pair", arguments->pair, "A:B (default: the model's first pair)");
   command->add_option("--set", arguments->overrides, "override a parameter: NAME=VALUE (repeatable)");
   command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE; "

@@ -93,4 +93,8 @@ using console::shortened_message;
 /// names a range that seems to hold the value.
 CLI::Validator real_range(double lo, double hi);
 
+/// A path to write: refuses an empty one (`--out ""`, an unset shell variable), which each command
+/// took as no output at all — exit 0 and nothing written (until session 52).
+CLI::Validator output_path();
+
 }  // namespace hipair::cli

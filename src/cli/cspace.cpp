@@ -244,6 +244,7 @@ int run(const CSpaceCommandOptions& options) {
   // Refused before the (possibly long) build when the paths are used as given; the suffixed
   // names of several pairs are checked again below, before anything is written.
   io::refuse_overwriting_inputs({{options.svg, "--svg"}, {options.json, "--json"}}, {options.model});
+  io::refuse_unusable_output_files({{options.svg, "--svg"}, {options.json, "--json"}});
   auto rounding = rounding_scope(options.rounding);
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");
@@ -402,8 +403,10 @@ void register_cspace(CLI::App& app, Action& action) {
       "cspace", "Build the exact configuration space of a pair (or of every fixed-axis pair and 3-DOF pair) and write it as SVG/JSON");
   command->add_option("model", options->model, "Model file (JSON)")->required()->check(CLI::ExistingFile);
   command->add_option("--pair", options->pair, "The pair FIRST:SECOND (default: every fixed-axis pair and every 3-DOF pair)");
-  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair; 3-DOF pairs: a stack of slices)");
-  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices; 3-DOF pairs: critical angles, slices, free cells, crossings, components");
+  command->add_option("--svg", options->svg, "SVG picture (blocked shaded, contact curves coloured by feature pair; 3-DOF pairs: a stack of slices)")
+      ->check(output_path());
+  command->add_option("--json", options->json, "JSON: cells, edges (feature pair, exact polynomial), vertices; 3-DOF pairs: critical angles, slices, free cells, crossings, components")
+      ->check(output_path());
   command->add_flag("--stats", options->stats, "Print counts and times per stage");
   command->add_option("--full-slices", options->full_slices,
                       "3-DOF pairs: slices (indices, in order of the angle) drawn again at full size below the stack "

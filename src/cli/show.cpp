@@ -153,7 +153,7 @@ void register_show(CLI::App& app, Action& action) {
       ->required();
   add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
-  command->add_option("--svg", options->svg, "output SVG file (written atomically)")->required();
+  command->add_option("--svg", options->svg, "output SVG file (written atomically)")->required()->check(output_path());
   command->add_option("--config", options->configuration,
                       "part configuration: part=value (angle in the model's angle unit, or with "
                       "a deg/rad suffix; offset in mm), part.x=, part.y=, part.angle=; comma "

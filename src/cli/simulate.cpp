@@ -485,14 +485,22 @@ int run_sweep(const SimulateOptions& options) {
   refuse_unknown_parameters(options.model, options.overrides, "--set");
   refuse_unknown_parameters(options.model, {options.sweep}, "--sweep");
   // every model is read (and checked) before any run starts: a bad value stops the sweep at once
+  // (a refusal names the sweep's value too: until session 52 it named only the model's pointer,
+  // `/parts/0/features/0/escape_wheel/teeth: must be at least 3`, with no word of --sweep)
   std::vector<Model> models;
-  for (const Rational& v : values) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
     std::vector<std::string> overrides = options.overrides;
-    overrides.push_back(name + "=" + v.get_str());
-    models.push_back(
-        read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
-    check_simulator_range(models.back());
-    check_own_frequency(models.back(), options);
+    overrides.push_back(name + "=" + values[i].get_str());
+    try {
+      models.push_back(
+          read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
+      check_simulator_range(models.back());
+      check_own_frequency(models.back(), options);
+    } catch (const ModelError& error) {
+      throw ModelError(error.pointer(), error.reason() + " (--sweep " + options.sweep + ": the model of run " +
+                                            std::to_string(i + 1) + " of " + std::to_string(values.size()) + ", " +
+                                            overrides.back() + " ; nothing was run)");
+    }
   }
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
@@ -922,6 +930,12 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 void check_times(const SimulateOptions& options) {
   if (!(options.t_end > 0) || !std::isfinite(options.t_end))
     throw ModelError("", "--t-end must be a positive finite number of time units");
+  // a subnormal T (below 2.2e-308) keeps a few digits only: the run's times and states were off
+  // in their 4th digit (--t-end 1e-320: v = -g t printed as -9.805e-317 for -9.81e-317; session 52)
+  if (options.t_end < std::numeric_limits<double>::min())
+    throw ModelError("", "--t-end " + number(options.t_end) +
+                             ": below the least normal double 2.2250738585072014e-308 the simulator's times lose "
+                             "their digits; give a larger --t-end (or smaller units)");
   const std::size_t budget = options.max_steps;
   if (options.max_step > 0 && options.t_end / options.max_step > static_cast<double>(budget))
     throw ModelError("", "--max-step " + number(options.max_step) + ": T / H = " + number(options.t_end / options.max_step) +
@@ -932,6 +946,7 @@ void check_times(const SimulateOptions& options) {
 int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   check_times(options);
+  io::refuse_unusable_output_directory(options.out, "--out");   // before any run (hours, for a long one)
   if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
@@ -1101,7 +1116,8 @@ void register_simulate(CLI::App& app, Action& action) {
                       "and writes nothing (default 2000000; 1 to 1e9)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}));
   command->add_option("--out", options->out,
-                      "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg");
+                      "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg")
+      ->check(output_path());
   command->add_option("--region", options->region,
                       "full: whole C-spaces (default); operating: operating regions around the initial configuration")
       ->check(CLI::IsMember({"full", "operating"}));

@@ -152,6 +152,7 @@ const char* const kOutputNames[] = {"tolerance.json", "variation.csv", "sensitiv
 // Refuses, before a long computation, an --out whose files would replace the model.
 void refuse_overwriting_model(const ToleranceCliOptions& options) {
   if (options.out.empty()) return;
+  io::refuse_unusable_output_directory(options.out, "--out");
   std::vector<io::PlannedOutput> planned;
   for (const char* name : kOutputNames) planned.push_back({std::filesystem::path(options.out) / name, "--out"});
   io::refuse_overwriting_inputs(planned, {options.model});
@@ -453,7 +454,8 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_option("--threads", options->threads,
                       "threads for the Monte Carlo, the certified band and the zones (default 0: all cores; at most 256)")
       ->check(CLI::Range(0u, 256u));
-  command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg");
+  command->add_option("--out", options->out, "directory for tolerance.json, variation.csv, sensitivity.csv, variation.svg, contact-zone.svg")
+      ->check(output_path());
   command->add_flag("--quiet", options->quiet, "no progress bar");
   command->add_option("--set", options->overrides,
                       "change a parameter's nominal value: NAME=VALUE (exact literal in mm or rad; repeatable); its "

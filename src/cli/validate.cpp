@@ -227,6 +227,14 @@ ReadOptions parameter_overrides(const std::vector<std::string>& assignments, boo
   return options;
 }
 
+CLI::Validator output_path() {
+  return CLI::Validator(
+      [](std::string& input) -> std::string {
+        return input.empty() ? "an empty path names no file or directory to write (nothing was run or written)" : "";
+      },
+      "PATH");
+}
+
 CLI::Validator real_range(double lo, double hi) {
   auto text = [](double v) {
     std::ostringstream out;

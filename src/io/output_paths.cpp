@@ -2,10 +2,17 @@
 
 #include <hipair/error.hpp>
 
+#include <optional>
+
 namespace hipair::io {
 namespace {
 
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+std::string quoted(const std::filesystem::path& path) {
+  std::string out = "'";   // (appended, not '+': GCC 12's -Wrestrict misfires on "'" + string)
+  out += path.string();
+  out += "'";
+  return out;
+}
 
 }  // namespace
 
@@ -41,6 +48,47 @@ void refuse_overwriting_inputs(const std::vector<PlannedOutput>& outputs,
       if (!outputs[j].path.empty() && same_file(output.path, outputs[j].path))
         throw IoError(output.option + " " + quoted(output.path) + " is also the output of " + outputs[j].option +
                       " " + quoted(outputs[j].path) + ": refusing to write one file twice (nothing was written)");
+  }
+}
+
+namespace {
+
+// The nearest existing ancestor-or-self of `path` (made absolute), when it is not a directory;
+// none when that ancestor is a directory (or the path cannot be made absolute: left to the
+// writer's own message).
+std::optional<std::filesystem::path> existing_non_directory(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path target = fs::absolute(path, ec).lexically_normal();
+  if (ec) return std::nullopt;
+  if (target.filename().empty()) target = target.parent_path();
+  for (fs::path at = target;; at = at.parent_path()) {
+    fs::file_status status = fs::status(at, ec);   // through symbolic links, as the writers go
+    if (fs::exists(status)) return fs::is_directory(status) ? std::nullopt : std::optional<fs::path>(at);
+    if (at == at.parent_path()) return std::nullopt;
+  }
+}
+
+}  // namespace
+
+void refuse_unusable_output_directory(const std::filesystem::path& directory, const std::string& option) {
+  if (directory.empty()) return;
+  std::optional<std::filesystem::path> file = existing_non_directory(directory);
+  if (!file) return;
+  std::error_code ec;
+  if (std::filesystem::exists(directory, ec))   // DIR itself is that file
+    throw IoError(option + " " + quoted(directory) + ": it exists and is not a directory (nothing was run or written)");
+  throw IoError(option + " " + quoted(directory) + ": " + quoted(*file) +
+                " exists and is not a directory, so the output directory cannot be made (nothing was run or written)");
+}
+
+void refuse_unusable_output_files(const std::vector<PlannedOutput>& outputs) {
+  for (const PlannedOutput& output : outputs) {
+    if (output.path.empty()) continue;
+    std::filesystem::path parent = std::filesystem::absolute(output.path).lexically_normal().parent_path();
+    if (std::optional<std::filesystem::path> file = existing_non_directory(parent))
+      throw IoError(output.option + " " + quoted(output.path) + ": " + quoted(*file) +
+                    " exists and is not a directory, so the file cannot be written there (nothing was built or written)");
   }
 }
 

@@ -28,4 +28,17 @@ void refuse_overwriting_inputs(const std::vector<PlannedOutput>& outputs,
 void refuse_overwriting_input(const std::filesystem::path& output, const std::string& option,
                               const std::filesystem::path& input);
 
+/// Throws IoError, before a command computes anything, when `directory` (an `--out DIR`) cannot
+/// receive the run's files: it, or a directory it would lie in, exists and is not a directory (a
+/// regular file, the model file itself, a device). The message names `option` and the path.
+/// Until session 52 such a DIR was refused only when the run's files were published, after the
+/// whole analysis or simulation (hours for a long simulate, the results printed, then exit 3).
+void refuse_unusable_output_directory(const std::filesystem::path& directory, const std::string& option);
+
+/// Throws IoError, before a command computes anything, when an output file's directory cannot
+/// hold it: the directory, or one it would lie in, exists and is not a directory (`--json
+/// f.txt/x.json`). Until session 52 `cspace` of a 3-DOF or pin-slot pair and `certify` built
+/// everything first.
+void refuse_unusable_output_files(const std::vector<PlannedOutput>& outputs);
+
 }  // namespace hipair::io
