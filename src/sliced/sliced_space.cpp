@@ -357,9 +357,20 @@ struct SlicedSpace::Impl {
 
   // Does the free part at offset q stay apart from the fixed part while it turns through the
   // half-angle range [u_lo, u_hi] (chart about pi when `flip`)? Polygonal pairs: no contact
-  // line passes q (steady_along); pairs with arcs: the pure rotation is certified free (exact).
+  // line passes q (steady_along, cheap, sufficient), else — and for pairs with arcs — the pure
+  // rotation is certified free by the exact first-contact query (rotation_free). steady_along
+  // ignores the contact segments' extents, so at a critical angle where the parts' edges are
+  // parallel (a zero-clearance fit: the peg of side 10 in the hole of side 10 at theta = 0) some
+  // infinite contact line passes through every sample of the outer free cell, far from any
+  // actual contact: without the exact fallback the outer cell was not linked across such an
+  // angle (4 components for 1, session 53).
   bool steady(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
-    if (pair) return sliced::steady_along(*pair, q, u_lo, u_hi, flip);
+    if (pair && sliced::steady_along(*pair, q, u_lo, u_hi, flip)) return true;
+    return rotation_free(q, u_lo, u_hi, flip);
+  }
+
+  // The pure rotation at offset q (model units) over [u_lo, u_hi] is free, ends included (exact).
+  bool rotation_free(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
     sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, u_hi, flip, {}};
     for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
     sliced::MotionResult r = motion->first_contact(m);
@@ -370,8 +381,8 @@ struct SlicedSpace::Impl {
   // contact lines are the model's times k, so steady_along on it is the same exact test.
   bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
     if (!frame) return steady(q, u_lo, u_hi, flip);
-    if (frame_pair) return sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip);
-    return steady(Point{Rational(q.x / *frame), Rational(q.y / *frame)}, u_lo, u_hi, flip);
+    if (frame_pair && sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip)) return true;
+    return rotation_free(Point{Rational(q.x / *frame), Rational(q.y / *frame)}, u_lo, u_hi, flip);
   }
 
   // ------------------------------------------------------------ cells of a slice
