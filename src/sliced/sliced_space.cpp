@@ -751,19 +751,35 @@ struct SlicedSpace::Impl {
       std::size_t cell = no_index;
       if (classify(*space, q.x, q.y, &cell) != SlicedLocation::Kind::free) return {no_index, no_index};
     }
-    for (int round = 0; round < 40; ++round) {
-      Near nr = near(index, round);
-      Rational u_lo = nr.flip ? Rational(0) : q.angle.t;
-      if (steady(p, u_lo, nr.u_hi, nr.flip)) {
-        auto space = slice(nr.right);
-        std::size_t cell = no_index;
-        if (classify(*space, q.x, q.y, &cell) != SlicedLocation::Kind::free)
-          throw GeometryError("internal: a configuration steady off a critical angle is not free");
-        if (cell == no_index) cell = outer_cell(*space);
-        return {index, match(index, *space, cell)};
+    // The pure rotation at q from the critical angle towards the next interval (the chart range
+    // of near(): no other critical angle in it) is free up to its first contact, exactly: turn to
+    // half-way to it (a rational chart coordinate strictly before the contact, all of the turn
+    // certified free). A free configuration is at a positive distance from every contact, so the
+    // turn is never empty — also at a clearance of 1e-30 (session 53: the halvings of near()
+    // stopped at 2^-88 and threw "no certified free motion" in a hole 1e-30 wider than the peg).
+    Near nr = near(index, 0);
+    const Rational u_lo = nr.flip ? Rational(0) : q.angle.t;
+    Rational end = nr.u_hi;
+    if (!(pair && sliced::steady_along(*pair, p, u_lo, nr.u_hi, nr.flip))) {
+      sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, nr.u_hi, nr.flip, {}};
+      for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
+      sliced::MotionResult r = motion->first_contact(m);
+      if (!r.starts_apart) throw GeometryError("internal: a free configuration on a critical angle starts in contact");
+      if (r.found) {
+        Real u = r.u;
+        while (!u.exact && sgn(u.lower) <= 0) algebra::refine_dyadically(u, Rational((u.upper - u.lower) / 4));
+        if (sgn(u.lower) <= 0) throw GeometryError("internal: a free rotation touches at once");
+        end = u_lo + (nr.u_hi - u_lo) * u.lower / 2;
+        end.canonicalize();
       }
     }
-    throw GeometryError("3-DOF pair: no certified free motion off the critical angle at this configuration");
+    const SlicedAngle off = nr.flip ? SlicedAngle{Rational(-1 / end), false} : SlicedAngle{end, false};
+    auto space = slice(off);
+    std::size_t cell = no_index;
+    if (classify(*space, q.x, q.y, &cell) != SlicedLocation::Kind::free)
+      throw GeometryError("internal: a configuration steady off a critical angle is not free");
+    if (cell == no_index) cell = outer_cell(*space);
+    return {index, match(index, *space, cell)};
   }
 };
 
