@@ -126,6 +126,7 @@ void apply_configuration(const Model& model, const std::vector<std::string>& ite
 
 int run_show(const ShowOptions& options) {
   io::refuse_overwriting_input(options.svg, "--svg", options.model);
+  io::refuse_unusable_output_files({{options.svg, "--svg"}});   // before reading and drawing
   auto rounding = rounding_scope(options.rounding);
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");

@@ -672,9 +672,16 @@ std::vector<double> frame_times(const SimulateOptions& options, const std::strin
   playback = options.animation_duration > 0 ? options.animation_duration
                                             : std::max(1.0, options.t_end * seconds_per_unit(time_unit));
   double count = std::ceil(playback * options.fps);
-  if (count > 20000)
-    throw ModelError("", "the animation would have " + number(count) +
-                             " frames (more than 20000): lower --fps or --animation-duration");
+  if (count > 20000) {
+    // name the option that set the playback: --animation-duration, or --t-end (its default)
+    if (options.animation_duration > 0)
+      throw ModelError("", "the animation would have " + number(count) + " frames (more than 20000): --animation-duration " +
+                               number(options.animation_duration) + " s at --fps " + number(options.fps) +
+                               "; lower --animation-duration or --fps");
+    throw ModelError("", "the animation would have " + number(count) + " frames (more than 20000): its playback is --t-end " +
+                             number(options.t_end) + " " + time_unit + " (" + number(playback) + " s) at --fps " +
+                             number(options.fps) + "; give a shorter --t-end, or --animation-duration SECONDS (or --no-pictures)");
+  }
   auto frame_count = static_cast<std::size_t>(std::max(1.0, count));
   std::vector<double> times;
   for (std::size_t k = 1; k <= frame_count; ++k)
