@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Session 53 (hunt53): the 3-DOF `cspace` of a square peg in a square hole at zero and tiny
+# clearance, and hostile inputs on the 3-DOF path; output-option messages of show and simulate.
+#  1. the 10 mm peg of examples/models/peg-in-hole.json in a hole of side 10 (zero clearance:
+#     the peg only touches in the hole): 1 component in --stats, in --json ("components" and
+#     every free cell's "component") and in the --svg heading (main: 4); a hole of side
+#     10 + a random 10^-k (k in 20..40): 5;
+#  2. hostile 3-DOF models (a zero-length edge, a zero-area spike, a self-crossing loop, a part
+#     with no loops): one line "hipair: error: /parts/..." naming the place, exit 2, nothing written;
+#     a peg equal to the plate (coincident parts): 1 component (main: 4);
+#  3. `show --svg` under a regular file is refused before the model is read (a broken model
+#     file is not what the message names), nothing written;
+#  4. `simulate --t-end 1e300` with pictures: the too-many-frames message names --t-end.
+# usage: run_sliced_zero_clearance_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
+set -uo pipefail
+# shellcheck source=seeded_test.sh
+source "$(dirname "$0")/seeded_test.sh" "$@"
+peg="$source/examples/models/peg-in-hole.json"
+
+# 1. zero and tiny clearance
+sed 's/"hole-side": { "nominal": 12 }/"hole-side": { "nominal": 10 }/' "$peg" >"$work/peg10.json"
+"$hipair" cspace "$work/peg10.json" --stats --json "$work/peg10.cspace.json" --svg "$work/peg10.svg" >"$work/peg10.out" 2>&1 ||
+  fail "peg10: exit $?: $(head -c 300 "$work/peg10.out")"
+grep -q "components 1;" "$work/peg10.out" || fail "peg10: --stats: $(grep components "$work/peg10.out")"
+python3 - "$work/peg10.cspace.json" <<'PY' || fail "peg10: --json components"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["components"] == 1, d["components"]
+cells = [c for s in d["slices"] for c in s["free_cells"]]
+assert cells and all(c["component"] == 0 for c in cells), [c["component"] for c in cells]
+PY
+grep -q "1 free components" "$work/peg10.svg" || fail "peg10: the SVG heading does not say 1 component"
+k=$((20 + RANDOM % 21))
+sed "s/\"hole-side\": { \"nominal\": 12 }/\"hole-side\": { \"nominal\": 10.$(printf '%0*d' $((k - 1)) 0)1 }/" "$peg" >"$work/peg-tiny.json"
+"$hipair" cspace "$work/peg-tiny.json" --stats >"$work/peg-tiny.out" 2>&1 || fail "peg 10 + 1e-$k: exit $?"
+grep -q "components 5;" "$work/peg-tiny.out" || fail "peg 10 + 1e-$k: $(grep components "$work/peg-tiny.out")"
+
+# 2. hostile 3-DOF models
+model() { # NAME FIXED_LOOPS FREE_LOOPS
+  cat >"$work/$1.json" <<JSON
+{ "hipair": 1, "name": "$1", "parts": [
+  { "name": "plate", "motion": "fixed", "loops": [ $2 ] },
+  { "name": "peg", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ $3 ] } ] }
+JSON
+}
+square() { echo "{ \"start\": [-$1, -$1], \"edges\": [ {\"line_to\": [$1, -$1]}, {\"line_to\": [$1, $1]}, {\"line_to\": [-$1, $1]}, {\"line_to\": [-$1, -$1]} ] }"; }
+plate="$(square 20), $(square 6)"
+model zero-length "$plate" '{ "start": [-5, -5], "edges": [ {"line_to": [5, -5]}, {"line_to": [5, -5]}, {"line_to": [5, 5]}, {"line_to": [-5, -5]} ] }'
+model spike "$plate" '{ "start": [-5, 0], "edges": [ {"line_to": [5, 0]}, {"line_to": [-5, 0]} ] }'
+model bowtie "$plate" '{ "start": [-5, -5], "edges": [ {"line_to": [5, 5]}, {"line_to": [5, -5]}, {"line_to": [-5, 5]}, {"line_to": [-5, -5]} ] }'
+model no-loops "$plate" ''
+for name in zero-length spike bowtie no-loops; do
+  "$hipair" cspace "$work/$name.json" --json "$work/$name.out.json" >"$work/$name.out" 2>&1
+  code=$?
+  [ $code -eq 2 ] || fail "$name: exit $code"
+  [ "$(wc -l <"$work/$name.out")" -eq 1 ] && grep -q "^hipair: error: /parts/1" "$work/$name.out" ||
+    fail "$name: message: $(head -c 300 "$work/$name.out")"
+  [ ! -e "$work/$name.out.json" ] || fail "$name: wrote its --json"
+done
+model coincident "$(square 5)" "$(square 5)"
+"$hipair" cspace "$work/coincident.json" --stats >"$work/coincident.out" 2>&1 || fail "coincident: exit $?"
+grep -q "components 1;" "$work/coincident.out" || fail "coincident: $(grep components "$work/coincident.out")"
+
+# 3. show --svg under a regular file, before reading the model
+: >"$work/regular"
+printf '{ broken' >"$work/broken.json"
+"$hipair" show "$work/broken.json" --svg "$work/regular/picture.svg" >"$work/show.out" 2>&1
+code=$?
+[ $code -ne 0 ] || fail "show under a regular file: exit 0"
+grep -q -- "--svg .*regular.* exists and is not a directory" "$work/show.out" || fail "show: $(head -c 300 "$work/show.out")"
+[ -s "$work/regular" ] && fail "show: wrote into the regular file"
+
+# 4. simulate --t-end 1e300 names --t-end
+"$hipair" simulate "$source/examples/models/scotch-yoke.json" --t-end 1e300 --out "$work/sim" >"$work/sim.out" 2>&1
+code=$?
+[ $code -ne 0 ] || fail "simulate --t-end 1e300: exit 0"
+grep -q -- "--t-end" "$work/sim.out" || fail "simulate --t-end 1e300: $(head -c 300 "$work/sim.out")"
+[ ! -e "$work/sim" ] || fail "simulate --t-end 1e300: wrote $work/sim"
+
+[ $failures -eq 0 ] && echo "all zero-clearance CLI tests passed (seed $seed)"
+[ $failures -eq 0 ]
