@@ -364,8 +364,10 @@ struct SlicedSpace::Impl {
   // infinite contact line passes through every sample of the outer free cell, far from any
   // actual contact: without the exact fallback the outer cell was not linked across such an
   // angle (4 components for 1, session 53).
-  bool steady(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
+  // `exact_fallback` false: the line test alone for polygonal pairs (the crossings' first pass).
+  bool steady(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip, bool exact_fallback = true) const {
     if (pair && sliced::steady_along(*pair, q, u_lo, u_hi, flip)) return true;
+    if (pair && !exact_fallback) return false;
     return rotation_free(q, u_lo, u_hi, flip);
   }
 
@@ -379,9 +381,10 @@ struct SlicedSpace::Impl {
 
   // steady() for a point q of the crossings' frame (the model's q / k): the scaled pair's
   // contact lines are the model's times k, so steady_along on it is the same exact test.
-  bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
-    if (!frame) return steady(q, u_lo, u_hi, flip);
+  bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip, bool exact_fallback) const {
+    if (!frame) return steady(q, u_lo, u_hi, flip, exact_fallback);
     if (frame_pair && sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip)) return true;
+    if (frame_pair && !exact_fallback) return false;
     return rotation_free(Point{Rational(q.x / *frame), Rational(q.y / *frame)}, u_lo, u_hi, flip);
   }
 
@@ -658,7 +661,13 @@ struct SlicedSpace::Impl {
       std::map<std::pair<std::size_t, std::size_t>, SlicedConnection> links;
       const std::size_t left_count = intervals[crossing.left_interval].free_cells.size();
       const std::size_t right_count = intervals[crossing.right_interval].free_cells.size();
+      // Two passes: the line test alone (steady_along: cheap; the links and witnesses as before
+      // session 53), then, for polygonal pairs with a cell still without a link, the same rounds
+      // with the exact pure-rotation check where the line test refuses (steady()).
+      const bool polygonal = frame ? frame_pair.has_value() : pair.has_value();
+      for (int pass = 0; pass < (polygonal ? 2 : 1); ++pass)
       for (int round = 0; round < 4 && (left_done.size() < left_count || right_done.size() < right_count); ++round) {
+        const bool exact_fallback = pass == 1;
         Near nr = near(i, round);
         // A pair drawn at an extreme scale crosses in its scale-free frame (frame_slice: the
         // slices of the parts times `frame`, whose cells' samples are the simplest rationals of
@@ -695,7 +704,7 @@ struct SlicedSpace::Impl {
         for (const Point& q : samples) {
           std::size_t lc = no_index, rc = no_index;
           if (classify_in(*ls, box, q.x, q.y, &lc) != SlicedLocation::Kind::free) continue;
-          if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip)) continue;
+          if (!steady_in_frame(q, nr.u_lo, nr.u_hi, nr.flip, exact_fallback)) continue;
           if (classify_in(*rs, box, q.x, q.y, &rc) != SlicedLocation::Kind::free)
             throw GeometryError("internal: a configuration steady across a critical angle is not free on both sides");
           if (lc == no_index) lc = outer_cell_in(*ls, nudge);
