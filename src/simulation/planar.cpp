@@ -322,6 +322,20 @@ kernels::Pose<Rational> pose_of(const Point& pivot, const SlicedConfiguration& c
   return pose;
 }
 
+// A feature pair near (not at) contact whose vertex lies strictly behind its segment's line (the
+// exact gap < 0 at configuration c, the free part's pose about `pivot`): in a free configuration
+// the vertex is beside the segment, past one of its ends (or across a wall thinner than the near
+// distance), on the side of the part that carries the segment, so it can meet that segment only
+// through the part. It is no contact of the motion: the segment's end vertex,
+// or the edge beyond it, is the feature the vertex meets first, and features_near lists that one
+// too. Where a whole part lies within the near distance (a bump smaller than the chord
+// deviation), such pairs would put rows facing every way into an impact (docs/simulation.md,
+// "Impacts on nearly dependent contacts"). Pairs with an arc and vertex–vertex pairs are kept.
+bool behind_segment(const Model& model, const SlicedFeaturePair& f, const Point& pivot, const SlicedConfiguration& c) {
+  const ContactGap<Rational> g = contact_gap(model, f, pose_of(pivot, c));
+  return g.defined && !g.arc && sgn(g.gap) < 0;
+}
+
 // The force of a linear spring and damper on its end at offset d from the other end (relative
 // velocity dv): -(k (L - rest) + c dL/dt) d / L; rest 0: the vector spring -k d (defined at
 // L = 0); the damper acts along the line (nothing at L = 0, no direction).
@@ -902,6 +916,7 @@ const SlicedMotionCrossing& PlanarSimulation::Impl::earliest(
   // this close is separated from the first by less than the chord's deviation)
   for (std::size_t i = 0; i < pairs.size(); ++i)
     for (const SlicedNearFeature& f : pairs[i].space.features_near(c.before, Rational(delta))) {
+      if (behind_segment(model, f.pair, model.parts[part].motion.pivot, c.before)) continue;
       bool listed = false;
       for (const auto& [j, g] : touching) listed = listed || (j == i && g.label == f.pair.label);
       if (!listed) touching.emplace_back(i, f.pair);
@@ -2817,6 +2832,9 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
         for (const SlicedFeaturePair& fp : c.features) touching.emplace_back(i, fp);
     for (std::size_t i = 0; i < pairs.size(); ++i)
       for (const SlicedNearFeature& nf : pairs[i].space.features_near(relative(pairs[i], q_at), Rational(2 * delta + backed))) {
+        if (behind_segment(pairs[i].frame_model ? *pairs[i].frame_model : model, nf.pair, pivot_of(pairs[i].second),
+                           relative(pairs[i], q_at)))
+          continue;
         bool listed = false;
         for (const auto& [j, fp] : touching) listed = listed || (j == i && fp.label == nf.pair.label);
         if (!listed) touching.emplace_back(i, nf.pair);
