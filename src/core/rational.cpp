@@ -227,7 +227,7 @@ namespace {
 // thread's first pooled free has registered the release (`open_block_pool`, out of line) and
 // again once the pool is closed, so neither path reads the pool's state or a guard variable.
 constexpr std::size_t pool_sizes = 8;     // blocks of 8 * (k + 1) bytes, k < pool_sizes
-constexpr std::uint32_t pool_depth = 512;
+constexpr std::uint32_t pool_depth = 8192;
 
 struct FreeBlock {
   FreeBlock* next;
