@@ -2094,14 +2094,31 @@ Interval enclose(const Rational& r) {
 // mpq_get_d's division): mpz_get_d truncates toward zero as mpq_get_d does (the same double, and
 // the same infinity beyond the doubles' range), and mpz_cmp_d compares z with a finite double
 // exactly, as compare_with_double does. So lower_double and upper_double take the same branches.
-Interval enclose(const mpz_class& z) {
-  const double d = z.get_d();
+namespace {
+
+// enclose(z) given d = z.get_d() (z truncated toward zero): the interval
+// {c < 0 ? nextafter(d, -inf) : d, c > 0 ? nextafter(d, +inf) : d} with c = sign(z - d), found
+// without comparing z with d: a truncation is exact exactly when z's significant bits (from its
+// highest set bit to its lowest) number at most 53, and otherwise lies strictly between 0 and z,
+// so c = sign(z); the neighbour away from zero of a finite non-zero double is the next bit
+// pattern (the largest finite double's is the infinity, as nextafter's).
+Interval enclose_truncated(const mpz_class& z, double d) {
   if (std::isinf(d))
     return {d > 0 ? std::numeric_limits<double>::max() : d, d < 0 ? std::numeric_limits<double>::lowest() : d};
-  const int c = mpz_cmp_d(z.get_mpz_t(), d);   // sign(z - d)
-  return {c < 0 ? std::nextafter(d, -std::numeric_limits<double>::infinity()) : d,
-          c > 0 ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d};
+  const mpz_srcptr p = z.get_mpz_t();
+  const int s = mpz_sgn(p);
+  if (s == 0 || mpz_sizeinbase(p, 2) - mpz_scan1(p, 0) <= 53) return {d, d};
+  std::uint64_t bits;
+  std::memcpy(&bits, &d, sizeof bits);
+  ++bits;   // |d| one step up (d is finite and non-zero: |z| >= 2^53)
+  double away;
+  std::memcpy(&away, &bits, sizeof away);
+  return s > 0 ? Interval{d, away} : Interval{away, d};
 }
+
+}  // namespace
+
+Interval enclose(const mpz_class& z) { return enclose_truncated(z, z.get_d()); }
 
 IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
   int dx = 0, dy = 0;
@@ -2113,8 +2130,10 @@ IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
     rows_.back().reserve(f.coefficients[i].size());
     nearest_.back().reserve(f.coefficients[i].size());
     for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
-      rows_.back().push_back(enclose(f.coefficients[i][j]));
-      nearest_.back().push_back(f.coefficients[i][j].get_d());
+      // (one conversion: the nearest_ entry is the truncation enclose starts from)
+      const double d = f.coefficients[i][j].get_d();
+      rows_.back().push_back(enclose_truncated(f.coefficients[i][j], d));
+      nearest_.back().push_back(d);
       if (sgn(f.coefficients[i][j]) != 0) {
         dx = std::max(dx, static_cast<int>(i));
         dy = std::max(dy, static_cast<int>(j));

@@ -625,7 +625,7 @@ TEST(CSpaceAlgebra, OneVariableHornerIsTheGenericScalarHorner) {
   EXPECT_GT(differing_starts, 5000);
 }
 
-// enclose(mpz_class) bounds an integer straight from it (mpz_get_d, mpz_cmp_d); it must give the
+// enclose(mpz_class) bounds an integer straight from it (mpz_get_d and the bit span of z); it must give the
 // bounds of the rational path enclose(Rational(z)) bit for bit, and both must be the tightest
 // doubles around z, checked exactly: lo is the greatest double (or -inf) not above z, hi the least
 // double (or +inf) not below it, except that beyond the doubles' range a lower bound is DBL_MAX
@@ -642,6 +642,14 @@ TEST(CSpaceAlgebra, IntegerEnclosureIsTheRationalEnclosureAndTight) {
     for (long delta = -3; delta <= 3; ++delta) values.push_back(base + delta);
   values.push_back(largest_integer + (mpz_class(1) << 969) - 1);   // truncates to DBL_MAX, rounds to 2^1024
   values.push_back(largest_integer + (mpz_class(1) << 970));       // 2^1024 + ...: infinite conversion
+  // 53 and 54 significant bits anywhere (session 53: enclose decides exactness from the bit
+  // span): exact and inexact conversions of every size, both signs
+  for (unsigned long shift : {0ul, 1ul, 11ul, 64ul, 500ul, 970ul, 971ul})
+    for (const mpz_class& m : {mpz_class((mpz_class(1) << 53) - 1), mpz_class((mpz_class(1) << 53) + 1),
+                               mpz_class((mpz_class(1) << 52) + 1), mpz_class((mpz_class(1) << 54) - 1)}) {
+      values.push_back(m << shift);
+      values.push_back(-(m << shift));
+    }
   std::uint64_t state = 0x5851f42d4c957f2dull;
   for (int trial = 0; trial < 20000; ++trial) {
     const unsigned long bits = next_state(state) % 1101;

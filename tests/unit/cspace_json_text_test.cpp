@@ -463,6 +463,34 @@ TEST(CSpaceJsonText, GeneratedDocumentsAsNlohmannDumpsThem) {
   EXPECT_TRUE(oracle == written(big)) << first_difference(oracle, written(big));
 }
 
+// Strings of 0 to 40 plain bytes with one byte of every value 0x00..0x7f (or a two-byte UTF-8
+// character, or none) at every position, as keys and as values: the writer's plain-string test
+// reads eight bytes at a time (session 53), so every byte position within a word and the tail
+// are covered; the text is nlohmann's dump byte for byte.
+TEST(CSpaceJsonText, EveryByteAtEveryPositionAsNlohmannDumpsIt) {
+  std::mt19937_64 random(53);
+  std::size_t strings = 0;
+  for (std::size_t length = 0; length <= 40; ++length)
+    for (std::size_t at = 0; at <= length; ++at) {
+      json array = json::array();
+      json object = json::object();
+      for (int byte = -2; byte < 0x80; ++byte) {
+        std::string s;
+        for (std::size_t k = 0; k < length; ++k) s += static_cast<char>(0x20 + random() % 0x5f);   // printable
+        if (byte == -1) s.insert(at, "\xc3\xa9");
+        else if (byte >= 0) s.insert(at, 1, static_cast<char>(byte));
+        array.push_back(s);
+        object[s] = byte;
+        ++strings;
+      }
+      const json tree = {{"keys", object}, {"values", array}};
+      const std::string oracle = tree.dump(1);
+      const std::string text = written(tree);
+      ASSERT_TRUE(oracle == text) << "length " << length << ", at " << at << ": " << first_difference(oracle, text);
+    }
+  EXPECT_EQ(strings, 861u * 130u);
+}
+
 TEST(CSpaceJsonText, InvalidUtf8IsRefusedAsNlohmannRefusesIt) {
   std::mt19937_64 random(3);
   for (int i = 0; i < 200; ++i) {

@@ -178,6 +178,30 @@ TEST(Rational, GmpBlocksReusedAcrossThreadsKeepEveryValue) {
     });
   for (auto& worker : workers) worker.join();
   for (int t = 0; t < threads; ++t) EXPECT_EQ(failures[static_cast<std::size_t>(t)], 0) << "thread " << t;
+  // bursts longer than a size's list (8 192 blocks since session 53): 30 000 numbers of one and
+  // of two limbs alive at once, freed together (the lists fill, the rest go to free), made again
+  // (from the lists, then from malloc) and checked, on a fresh thread and on this one
+  auto burst = [&] {
+    int wrong = 0;
+    for (int round = 0; round < 2; ++round) {
+      std::vector<mpz_class> held;
+      held.reserve(60000);
+      for (int k = 0; k < 30000; ++k) {
+        held.emplace_back(mpz_class(k) * 1000003 + round);                          // one limb
+        held.emplace_back((mpz_class(k) << 64) + mpz_class(k) * 7 + round);         // two limbs
+      }
+      for (int k = 0; k < 30000; ++k)
+        if (held[2 * static_cast<std::size_t>(k)] != mpz_class(k) * 1000003 + round ||
+            held[2 * static_cast<std::size_t>(k) + 1] != (mpz_class(k) << 64) + mpz_class(k) * 7 + round)
+          ++wrong;
+    }
+    return wrong;
+  };
+  int burst_wrong = 0;
+  std::thread fresh([&] { burst_wrong = burst(); });
+  fresh.join();
+  EXPECT_EQ(burst_wrong, 0);
+  EXPECT_EQ(burst(), 0);
 }
 
 }  // namespace
