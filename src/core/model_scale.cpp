@@ -5,6 +5,7 @@
 #include <gmp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace hipair {
@@ -47,7 +48,8 @@ void require_kinematic_length_scale(const Model& model, const std::vector<std::s
                       ": the kinematic analysis of a mechanism with a length coordinate needs its lengths between "
                       "about 1e-9 mm and 1e9 mm (its positions are lengths and its resolutions absolute), and part '" +
                       widest->name + "' (" + widest->pointer + ") reaches about 2^" + std::to_string(exponent) +
-                      " mm: scale the model (`hipair cspace` builds such a pair in units of 2^L mm)");
+                      " mm: scale the model (`hipair analyze` analyses it on the model divided by a power of ten, "
+                      "decimal_scaled_model; `hipair cspace` builds such a pair in units of 2^L mm)");
 }
 
 long normalising_shift(const Model& model, const std::vector<std::size_t>& parts) {
@@ -270,6 +272,85 @@ Point NormalisedMechanism::to_model(const Point& p) const {
   out.x += by.x;
   out.y += by.y;
   return out;
+}
+
+namespace {
+
+// 10^|exponent| as an integer.
+mpz_class power_of_ten(long exponent) {
+  mpz_class out;
+  mpz_ui_pow_ui(out.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
+  return out;
+}
+
+// floor(log10 value) for value > 0, exactly.
+long decimal_exponent(const Rational& value) {
+  // log10(2) < 0.30103: a first guess within one or two of the answer, then exact comparisons
+  long guess = static_cast<long>(std::floor(static_cast<double>(binary_exponent(value)) * 0.30102999566398));
+  auto ten_to = [](long e) { return e >= 0 ? Rational(power_of_ten(e)) : Rational(mpz_class(1), power_of_ten(e)); };
+  while (ten_to(guess) > value) --guess;
+  while (ten_to(guess + 1) <= value) ++guess;
+  return guess;
+}
+
+}  // namespace
+
+long kinematic_decimal_exponent(const Model& model) {
+  std::vector<std::size_t> parts(model.parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) parts[k] = k;
+  std::optional<Model> moved;
+  if (std::optional<Point> by = normalising_translation(model, parts)) moved = translated_model(model, *by);
+  const Model& measured = moved ? *moved : model;
+  bool length_coordinate = false;
+  Rational largest = 0;
+  for (const Part& part : measured.parts) {
+    length_coordinate = length_coordinate || (part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed);
+    for (const auto& loop : part.loops)
+      for (const auto& edge : loop.edges)
+        for (const Point* p : {&edge.source, &edge.target, &edge.center})
+          for (const Rational* v : {&p->x, &p->y})
+            if (abs(*v) > largest) largest = abs(*v);
+  }
+  if (!length_coordinate || sgn(largest) == 0) return 0;
+  const long binary = binary_exponent(largest);
+  if (binary >= -30 && binary <= 30) return 0;   // require_kinematic_length_scale's range: as is
+  const long d = decimal_exponent(largest);
+  // 10 * floor((d + 4) / 10): the copy's largest coordinate within [1e-4, 1e6) mm
+  const long shifted = d + 4;
+  return 10 * (shifted >= 0 ? shifted / 10 : -((-shifted + 9) / 10));
+}
+
+Model decimal_scaled_model(const Model& model, long exponent) {
+  if (exponent == 0) return model;
+  const Rational factor = exponent > 0 ? Rational(mpz_class(1), power_of_ten(exponent)) : Rational(power_of_ten(exponent));
+  const Rational square = factor * factor;
+  auto scale_point = [&](Point& p) {
+    p.x *= factor;
+    p.y *= factor;
+  };
+  Model scaled = model;
+  for (Part& part : scaled.parts) {
+    for (Loop& loop : part.loops)
+      for (Edge& edge : loop.edges) {
+        scale_point(edge.source);
+        scale_point(edge.target);
+        scale_point(edge.center);
+        edge.radius_squared *= square;
+      }
+    scale_point(part.motion.pivot);
+    if (part.motion.translation_limits) {
+      part.motion.translation_limits->lo *= factor;
+      part.motion.translation_limits->hi *= factor;
+    }
+    part.initial.offset *= factor;
+    part.initial.x *= factor;
+    part.initial.y *= factor;
+    if (part.dynamics) {
+      if (part.dynamics->linear_spring) part.dynamics->linear_spring->rest *= factor;
+      if (part.dynamics->force) scale_point(*part.dynamics->force);
+    }
+  }
+  return scaled;
 }
 
 Rational times_power_of_two(Rational value, long exponent) {

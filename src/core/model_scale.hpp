@@ -46,6 +46,24 @@ long length_coordinate_shift(const Model& model, const std::vector<std::size_t>&
 /// instead (normalising_shift) and never refused.
 void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts);
 
+/// The exponent E of the power of ten a kinematic analysis of the whole mechanism divides its
+/// lengths by (decimal_scaled_model): 0 when no part has a length coordinate (rotation-only
+/// mechanisms are rescaled by normalising_shift) or the largest coordinate of the parts' points
+/// (measured after normalising_translation, when the mechanism is far from the origin for its
+/// size) lies within [2^-30, 2^30] mm, where require_kinematic_length_scale accepts it; else a
+/// multiple of 10 that brings the largest coordinate within [1e-4, 1e6) mm. A multiple of 10 so
+/// that a model scaled by 10^(10 j) from an ordinary one (largest coordinate 1e-4 .. 1e6 mm) is
+/// analysed on exactly that ordinary model: the same events, lengths shown times 10^E
+/// (core/length_display.hpp).
+long kinematic_decimal_exponent(const Model& model);
+
+/// The model with every length divided by 10^exponent, exactly: points, centres and radii
+/// (squared: by 100^exponent), pivots, translation limits, initial offsets and x/y, linear
+/// springs' rest offsets and constant forces (their signs and directions are what the kinematic
+/// analysis reads). The copy a kinematic analysis is made on (kinematic_decimal_exponent); the
+/// parameters, the simulation data and the other dynamics data are not rescaled.
+Model decimal_scaled_model(const Model& model, long exponent);
+
 /// value * 2^exponent, exactly (a length in units of 2^exponent mm, in mm).
 Rational times_power_of_two(Rational value, long exponent);
 
