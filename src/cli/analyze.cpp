@@ -254,6 +254,14 @@ int run_analyze(const AnalyzeOptions& options) {
   // --range (a translating driver) and --load spring rests (a translating part) are given in mm
   // and divided likewise below.
   const long length_exponent = kinematic_decimal_exponent(model);
+  // a rotation-only mechanism's findings are angles: certified on the model as read (below)
+  const std::optional<Model> rotation_only =
+      length_exponent != 0 && std::none_of(model.parts.begin(), model.parts.end(),
+                                           [](const Part& part) {
+                                             return part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed;
+                                           })
+          ? std::optional<Model>(model)
+          : std::nullopt;
   if (length_exponent != 0) model = decimal_scaled_model(model, length_exponent);
   LengthDisplayScope length_display(length_exponent);
   auto to_copy_units = [&](Rational mm) {
@@ -440,10 +448,13 @@ int run_analyze(const AnalyzeOptions& options) {
   // read with the --set values (recorded as overridden, as `hipair certify --set` does).
   // `hipair-verify` reads the file with its own rounding key: under --rounding the certificate is
   // checked against the file as the verifier will read it, and written only if it verifies there.
-  std::vector<CertifiedFinding> findings = certify_kinematic_findings(model, result, CertifyContext{overrides.parameter_values});
-  // on a rescaled copy (length_exponent above) a certificate would hold the copy's offsets and
-  // points, which the verifier checks against the model file: none is given, the finding stays
-  if (length_exponent != 0)
+  // A rotation-only mechanism's findings are angles, the same on the rescaled copy: certified on
+  // the model as read (certify_kinematic_findings normalises it itself). Any other rescaled
+  // copy's certificate would hold the copy's offsets and points, which the verifier checks
+  // against the model file: none is given, the finding stays with the reason.
+  std::vector<CertifiedFinding> findings =
+      certify_kinematic_findings(rotation_only ? *rotation_only : model, result, CertifyContext{overrides.parameter_values});
+  if (length_exponent != 0 && !rotation_only)
     for (CertifiedFinding& finding : findings)
       if (finding.certificate) {
         finding.certificate.reset();

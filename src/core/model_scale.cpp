@@ -311,13 +311,34 @@ long kinematic_decimal_exponent(const Model& model) {
           for (const Rational* v : {&p->x, &p->y})
             if (abs(*v) > largest) largest = abs(*v);
   }
-  if (!length_coordinate || sgn(largest) == 0) return 0;
+  if (sgn(largest) == 0) return 0;
   const long binary = binary_exponent(largest);
-  if (binary >= -30 && binary <= 30) return 0;   // require_kinematic_length_scale's range: as is
-  const long d = decimal_exponent(largest);
-  // 10 * floor((d + 4) / 10): the copy's largest coordinate within [1e-4, 1e6) mm
-  const long shifted = d + 4;
+  if (length_coordinate && binary >= -30 && binary <= 30) return 0;   // require_kinematic_length_scale's range: as is
+  if (!length_coordinate) {
+    // rotation-only: normalising_shift's range (its pivots too) decides; a power of ten then
+    // rather than its power of two, so that a model scaled by 10^(10 j) is analysed as at 1
+    // (a power of two left the copy another model: the escapement x 1e400's jam enclosure
+    // differed from x 1's in the 12th digit, both certified)
+    std::vector<std::size_t> all(measured.parts.size());
+    for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+    if (normalising_shift(measured, all) == 0) return 0;
+    for (const Part& part : measured.parts)
+      if (part.motion.kind == Motion::Kind::rotation)
+        for (const Rational* v : {&part.motion.pivot.x, &part.motion.pivot.y})
+          if (abs(*v) > largest) largest = abs(*v);
+  }
+  return decimal_unit_exponent(largest);
+}
+
+long decimal_unit_exponent(const Rational& magnitude) {
+  if (sgn(magnitude) <= 0) return 0;
+  // 10 * floor((d + 4) / 10), d = floor(log10 magnitude): magnitude / 10^E within [1e-4, 1e6)
+  const long shifted = decimal_exponent(magnitude) + 4;
   return 10 * (shifted >= 0 ? shifted / 10 : -((-shifted + 9) / 10));
+}
+
+Rational power_of_ten_rational(long exponent) {
+  return exponent >= 0 ? Rational(power_of_ten(exponent)) : Rational(mpz_class(1), power_of_ten(exponent));
 }
 
 Model decimal_scaled_model(const Model& model, long exponent) {

@@ -47,15 +47,24 @@ long length_coordinate_shift(const Model& model, const std::vector<std::size_t>&
 void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts);
 
 /// The exponent E of the power of ten a kinematic analysis of the whole mechanism divides its
-/// lengths by (decimal_scaled_model): 0 when no part has a length coordinate (rotation-only
-/// mechanisms are rescaled by normalising_shift) or the largest coordinate of the parts' points
+/// lengths by (decimal_scaled_model): 0 when the largest coordinate of the parts' points
 /// (measured after normalising_translation, when the mechanism is far from the origin for its
-/// size) lies within [2^-30, 2^30] mm, where require_kinematic_length_scale accepts it; else a
+/// size) lies within [2^-30, 2^30] mm, where require_kinematic_length_scale accepts it, or for a
+/// rotation-only mechanism when normalising_shift is 0 (about 1e-9 .. 1e18 mm); else a
 /// multiple of 10 that brings the largest coordinate within [1e-4, 1e6) mm. A multiple of 10 so
 /// that a model scaled by 10^(10 j) from an ordinary one (largest coordinate 1e-4 .. 1e6 mm) is
 /// analysed on exactly that ordinary model: the same events, lengths shown times 10^E
 /// (core/length_display.hpp).
 long kinematic_decimal_exponent(const Model& model);
+
+/// The multiple E of 10 with magnitude / 10^E within [1e-4, 1e6) (magnitude > 0; 0 for 0): the
+/// unit 10^E mm of kinematic_decimal_exponent and of the templates' construction at extreme
+/// scales (src/model/template_geometry.cpp), so that both are exactly covariant with a model
+/// scaled by 10^(10 j).
+long decimal_unit_exponent(const Rational& magnitude);
+
+/// 10^exponent, exactly.
+Rational power_of_ten_rational(long exponent);
 
 /// The model with every length divided by 10^exponent, exactly: points, centres and radii
 /// (squared: by 100^exponent), pivots, translation limits, initial offsets and x/y, linear
