@@ -1,7 +1,6 @@
 #include "model/expression.hpp"
 
 #include "core/exact_literal.hpp"
-#include "core/model_scale.hpp"
 #include "model/exact_trig.hpp"
 #include "model/json_document.hpp"
 
@@ -745,25 +744,34 @@ Rational to_rational(const Quantity& value, const std::string& pointer,
   // A value that is certainly not 0 is rounded within a bound that respects its own size.
   Rational magnitude;
   if (enclosure.sign() != 0) magnitude = lower > 0 ? lower : Rational(-upper);
-  // Outside [2^-20, 2^40] (a model drawn at 10^-300 or 10^400 mm) the value is rounded in units
-  // of a power of ten U = 10^E, E a multiple of 10 with magnitude / U within [1e-4, 1e6)
-  // (core/model_scale.hpp decimal_unit_exponent): the simplest rational within the rounding
-  // bound of value / U, times U (bound: the rounding bound times U). A model written at
-  // 10^(10 j) times an ordinary one so gets exactly its rationals times 10^(10 j) (session 53:
-  // until then a huge value was rounded to the absolute bound, 400 digits of a 10^400 mm length,
-  // and a tiny one to 2^-44 of its size in units of 10^floor(log10): the escapement x 1e400,
-  // x 1e-300 and x 1 were three models, their kinematics apart in the 12th digit).
-  static const Rational low(mpz_class(1), mpz_class(1) << 20), high(mpz_class(1) << 40);
-  const bool extreme = sgn(magnitude) != 0 && (magnitude < low || magnitude > high);
-  const Rational unit = extreme ? power_of_ten_rational(decimal_unit_exponent(magnitude)) : Rational(1);
-  Rational bound = extreme ? Rational(rounding_bound() * unit) : rounding_bound_near(magnitude);
+  Rational bound = rounding_bound_near(magnitude);
   Rational from = upper - bound, to = lower + bound;
   if (from > to)
     throw PrecisionExhausted(pointer, "cannot evaluate " + quoted_expression(expression) + " to within the rounding bound " +
                                           to_decimal_string(bound, 3) + " (the value is too large for " +
                                           std::to_string(working_interval_bits()) + "-bit precision)");
-  Rational rounded = extreme ? Rational(unit * simplest_rational_between(Rational(from / unit), Rational(to / unit)))
-                             : simplest_rational_between(from, to);
+  Rational rounded;
+  if (bound == rounding_bound()) {
+    rounded = simplest_rational_between(from, to);
+  } else {
+    // A value rounded relative to its size (rounding_bound_near): the simplest rational in units
+    // of a power of ten near it, so that a model written at 10^-300 mm gets the rationals it has
+    // at 1 mm times 10^-300 (the literals' own denominators), not unrelated ones of 1000 bits.
+    // The unit is 10^e with 10^e <= magnitude < 10^(e+1), exactly (so that every scale of the
+    // same value picks the same digits).
+    long bits = static_cast<long>(mpz_sizeinbase(magnitude.get_num_mpz_t(), 2)) -
+                static_cast<long>(mpz_sizeinbase(magnitude.get_den_mpz_t(), 2));
+    long exponent = static_cast<long>(std::floor(static_cast<double>(bits) * 0.30102999566398));
+    auto power_of_ten = [](long e) {
+      mpz_class power;
+      mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+      return e < 0 ? Rational(mpz_class(1), power) : Rational(power);
+    };
+    Rational unit = power_of_ten(exponent);
+    while (unit > magnitude) unit = power_of_ten(--exponent);
+    while (power_of_ten(exponent + 1) <= magnitude) unit = power_of_ten(++exponent);
+    rounded = Rational(unit * simplest_rational_between(Rational(from / unit), Rational(to / unit)));
+  }
   roundings.push_back(Rounding{pointer, expression, rounded, bound});
   return rounded;
 }
