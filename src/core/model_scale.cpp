@@ -48,8 +48,8 @@ void require_kinematic_length_scale(const Model& model, const std::vector<std::s
                       ": the kinematic analysis of a mechanism with a length coordinate needs its lengths between "
                       "about 1e-9 mm and 1e9 mm (its positions are lengths and its resolutions absolute), and part '" +
                       widest->name + "' (" + widest->pointer + ") reaches about 2^" + std::to_string(exponent) +
-                      " mm: scale the model (`hipair analyze` analyses it on the model divided by a power of ten, "
-                      "decimal_scaled_model; `hipair cspace` builds such a pair in units of 2^L mm)");
+                      " mm: scale the model (`hipair analyze` analyses such a model divided exactly by a power of ten, and "
+                      "`hipair cspace` builds such a pair in units of 2^L mm)");
 }
 
 long normalising_shift(const Model& model, const std::vector<std::size_t>& parts) {
