@@ -232,6 +232,7 @@ int run_analyze(const AnalyzeOptions& options) {
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");
   Model model = read_model_file(options.model, overrides);
+  require_feature_spread(model);   // a 1e-999 mm face on a 40 mm cam: refused before work (session 53)
   // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp), which
   // takes --driver, --direction, --steps, --out and --quiet; an option of the driven analysis is
   // refused naming it (session 45: they were taken and ignored)

@@ -374,6 +374,55 @@ Model decimal_scaled_model(const Model& model, long exponent) {
   return scaled;
 }
 
+void require_feature_spread(const Model& model, std::size_t first, std::size_t second) {
+  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
+  auto see = [&](const Point& p) {
+    if (!x_lo || p.x < *x_lo) x_lo = p.x;
+    if (!x_hi || p.x > *x_hi) x_hi = p.x;
+    if (!y_lo || p.y < *y_lo) y_lo = p.y;
+    if (!y_hi || p.y > *y_hi) y_hi = p.y;
+  };
+  for (std::size_t index : {first, second})
+    for (const auto& loop : model.parts.at(index).loops)
+      for (const auto& edge : loop.edges) {
+        see(edge.source);   // vertices only: an arc's centre may lie 10^1000 mm away from a
+        see(edge.target);   // part of a few mm (tests/cli/run_far_arc_tests.sh)
+      }
+  if (!x_lo) return;
+  const Rational extent = std::max(Rational(*x_hi - *x_lo), Rational(*y_hi - *y_lo));
+  if (sgn(extent) == 0) return;
+  const long extent_bits = binary_exponent(extent);
+  for (std::size_t index : {first, second}) {
+    const Part& part = model.parts.at(index);
+    for (const auto& loop : part.loops)
+      for (const auto& edge : loop.edges) {
+        long size_bits = 0;
+        if (edge.kind == Edge::Kind::arc) {
+          if (sgn(edge.radius_squared) == 0) continue;
+          size_bits = binary_exponent(edge.radius_squared) / 2;   // of the radius, within one
+        } else {
+          const Rational size = std::max(Rational(abs(Rational(edge.target.x - edge.source.x))),
+                                         Rational(abs(Rational(edge.target.y - edge.source.y))));
+          if (sgn(size) == 0) continue;
+          size_bits = binary_exponent(size);
+        }
+        if (extent_bits - size_bits <= max_feature_spread_bits) continue;
+        const Part& other = model.parts.at(index == first ? second : first);
+        throw GeometryError("part '" + part.name + "' (" + part.pointer + ") has an edge (" +
+                            (edge.pointer.empty() ? loop.pointer : edge.pointer) + ") of about 2^" +
+                            std::to_string(size_bits) + " mm in its pair with '" + other.name +
+                            "', which spans about 2^" + std::to_string(extent_bits) +
+                            " mm: a pair's smallest edge must be at least 2^-" + std::to_string(max_feature_spread_bits) +
+                            " (about 1e-400) of its extent (the exact arithmetic's cost grows with the square of that "
+                            "spread's exponent; a whole model may have any scale from 1e-1000 to 1e1000 mm)");
+      }
+  }
+}
+
+void require_feature_spread(const Model& model) {
+  for (const PairSpec& pair : model.pairs) require_feature_spread(model, pair.first, pair.second);
+}
+
 Rational times_power_of_two(Rational value, long exponent) {
   if (exponent > 0) mpq_mul_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
   if (exponent < 0) mpq_div_2exp(value.get_mpq_t(), value.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));

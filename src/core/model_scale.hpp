@@ -73,6 +73,23 @@ Rational power_of_ten_rational(long exponent);
 /// parameters, the simulation data and the other dynamics data are not rescaled.
 Model decimal_scaled_model(const Model& model, long exponent);
 
+/// The largest spread between a pair's extent and its smallest edge that the commands building
+/// or slicing a pair accept: 2^1330 (about 10^400). Exact arithmetic on such a pair carries both
+/// sizes in every rational, and its cost grows with the square of the spread's exponent
+/// (session 52: a 40 mm cam follower with a 10^-300 mm face, 10 s; 10^-999, about 110 s).
+constexpr long max_feature_spread_bits = 1330;
+
+/// Throws GeometryError, naming the part and the edge's pointer, when an edge of a part of the
+/// pair (first, second) (indices into model.parts) has a nonzero size (a segment's larger
+/// coordinate difference, an arc's radius) below 2^-max_feature_spread_bits of the pair's extent
+/// (the larger side of the box of both parts' vertices), decided on exact binary exponents; the
+/// message gives the supported range. A model scaled uniformly keeps its spread: 10^-300 and
+/// 10^400 mm mechanisms pass.
+void require_feature_spread(const Model& model, std::size_t first, std::size_t second);
+
+/// require_feature_spread for every pair of the model.
+void require_feature_spread(const Model& model);
+
 /// value * 2^exponent, exactly (a length in units of 2^exponent mm, in mm).
 Rational times_power_of_two(Rational value, long exponent);
 

@@ -7,6 +7,7 @@
 #include "sliced/critical_angles.hpp"
 #include "test_paths.hpp"
 
+#include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
@@ -109,6 +110,61 @@ TEST(DecimalUnit, LengthDisplayWritesTheExponentAfterTheDecimal) {
     EXPECT_EQ(length_display_exponent(), 400);
   }
   EXPECT_EQ(length_display_exponent(), 0);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// A pair's smallest edge against its extent: generated rectangles of width 2^-k beside a
+// 2^6 mm block, k on both sides of the limit (exact binary exponents), at overall scales
+// 2^-1000 .. 2^1000 (a uniform scale keeps the spread: never refused for it).
+TEST(FeatureSpread, EdgesBelowTheLimitOfTheirPairsExtentAreRefusedNamingThem) {
+  auto rectangle = [](const Rational& x0, const Rational& y0, const Rational& w, const Rational& h) {
+    Loop loop;
+    const Point a{x0, y0}, b{x0 + w, y0}, c{x0 + w, y0 + h}, d{x0, y0 + h};
+    const Point corners[] = {a, b, c, d};
+    for (int i = 0; i < 4; ++i) {
+      Edge edge;
+      edge.source = corners[i];
+      edge.target = corners[(i + 1) % 4];
+      edge.pointer = "/parts/1/loops/0/edges/" + std::to_string(i);
+      loop.edges.push_back(edge);
+    }
+    return loop;
+  };
+  for (long scale : {-1000L, -300L, 0L, 300L, 1000L})
+    for (long k : {max_feature_spread_bits - 20, max_feature_spread_bits - 6, max_feature_spread_bits + 6, max_feature_spread_bits + 200}) {
+      SCOPED_TRACE("scale 2^" + std::to_string(scale) + ", width 2^-" + std::to_string(k - 6) + " of the block");
+      const Rational unit = times_power_of_two(Rational(1), scale);
+      Model model;
+      Part block, sliver;
+      block.name = "block";
+      block.pointer = "/parts/0";
+      block.loops.push_back(rectangle(Rational(0), Rational(0), unit * 64, unit * 64));
+      sliver.name = "sliver";
+      sliver.pointer = "/parts/1";
+      sliver.motion.kind = Motion::Kind::translation;
+      sliver.loops.push_back(rectangle(unit * 70, Rational(0), times_power_of_two(unit, -(k - 6)), unit * 10));
+      model.parts = {block, sliver};
+      PairSpec pair;
+      pair.first = 0;
+      pair.second = 1;
+      model.pairs.push_back(pair);
+      // the sliver's width against the pair's extent (about 2^6 * 74/64 units): 2^-(k + ~1)
+      const bool refused = k > max_feature_spread_bits;
+      try {
+        require_feature_spread(model);
+        EXPECT_FALSE(refused) << "accepted";
+      } catch (const GeometryError& error) {
+        EXPECT_TRUE(refused) << error.what();
+        const std::string message = error.what();
+        EXPECT_NE(message.find("part 'sliver' (/parts/1) has an edge (/parts/1/loops/0/edges/"), std::string::npos) << message;
+        EXPECT_NE(message.find("2^-1330"), std::string::npos) << message;
+      }
+    }
 }
 
 }  // namespace
