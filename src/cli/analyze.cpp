@@ -4,6 +4,8 @@
 #include "cli/analyze_pinslot.hpp"
 #include "cli/commands.hpp"
 
+#include "core/length_display.hpp"
+#include "core/model_scale.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
@@ -230,6 +232,7 @@ int run_analyze(const AnalyzeOptions& options) {
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");
   Model model = read_model_file(options.model, overrides);
+  require_feature_spread(model);   // a 1e-999 mm face on a 40 mm cam: refused before work (session 53)
   // a pin-in-slot follower (the film advance): its work cycle (cli/analyze_pinslot.cpp), which
   // takes --driver, --direction, --steps, --out and --quiet; an option of the driven analysis is
   // refused naming it (session 45: they were taken and ignored)
@@ -245,6 +248,29 @@ int run_analyze(const AnalyzeOptions& options) {
     return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
                                                          options.steps == 720 ? 72u : options.steps, options.out,
                                                          options.quiet});
+  // A mechanism with a translating part drawn at an extreme scale (lengths outside about 1e-9 mm
+  // .. 1e9 mm: the analysis's resolutions are absolute) is analysed on the model exactly divided
+  // by 10^E (core/model_scale.hpp, kinematic_decimal_exponent), and every length is shown in mm
+  // with the exponent written out (core/length_display.hpp); until session 53 it was refused.
+  // --range (a translating driver) and --load spring rests (a translating part) are given in mm
+  // and divided likewise below.
+  const long length_exponent = kinematic_decimal_exponent(model);
+  // a rotation-only mechanism's findings are angles: certified on the model as read (below)
+  const std::optional<Model> rotation_only =
+      length_exponent != 0 && std::none_of(model.parts.begin(), model.parts.end(),
+                                           [](const Part& part) {
+                                             return part.motion.kind != Motion::Kind::rotation && part.motion.kind != Motion::Kind::fixed;
+                                           })
+          ? std::optional<Model>(model)
+          : std::nullopt;
+  if (length_exponent != 0) model = decimal_scaled_model(model, length_exponent);
+  LengthDisplayScope length_display(length_exponent);
+  auto to_copy_units = [&](Rational mm) {
+    if (length_exponent == 0) return mm;
+    mpz_class power;
+    mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(std::labs(length_exponent)));
+    return length_exponent > 0 ? Rational(mm / Rational(power)) : Rational(mm * Rational(power));
+  };
   KinematicsOptions analysis;
   analysis.driver = options.driver;
   analysis.steps_per_cycle = options.steps;
@@ -259,6 +285,8 @@ int run_analyze(const AnalyzeOptions& options) {
     std::string part;
     FollowerLoad load = parse_load(text, part);
     if (!model.find_part(part)) throw ModelError("", "--load: no part named '" + part + "'");
+    if (load.kind == FollowerLoad::Kind::spring && model.parts[*model.find_part(part)].motion.kind != Motion::Kind::rotation)
+      load.rest = to_copy_units(load.rest);   // a rest offset in mm (a rest angle is no length)
     analysis.loads[part] = load;
   }
   // which part is driven decides the units of --range
@@ -342,6 +370,10 @@ int run_analyze(const AnalyzeOptions& options) {
                                " turns of the driver (analyse a shorter range)");
     if (!options.direction.empty() && (b > a) != (analysis.direction > 0))
       throw ModelError("", "--range runs against --direction");
+    if (!rotates) {
+      a = to_copy_units(a);
+      b = to_copy_units(b);
+    }
     analysis.range = std::make_pair(a, b);
   } else {
     try {
@@ -401,12 +433,13 @@ int run_analyze(const AnalyzeOptions& options) {
         for (const PathPoint& point : path.points) picture.path.push_back({point.x, point.y, point.contact});
         if (!path.points.empty()) picture.marks.push_back({path.points.front().x, path.points.front().y, "start"});
         picture.title = "exact C-space of " + path.pair + " with the motion path";
+        if (length_exponent != 0) picture.title += " (lengths in units of " + length_unit_name() + ")";
         if (!exact->complete())
           picture.title += " (built: operating region along the path, " +
                            std::to_string(exact->statistics().region_tiles) + " tiles)";
         files.push_back({name, render::cspace_svg(*exact, picture)});
       } else {
-        CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);
+        CSpaceRaster raster = sample_cspace(model, path.x_part, path.y_part, options.columns);   // axes: length_unit_name()
         files.push_back({name, render::cspace_path_svg(raster, path)});
       }
       if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r" << std::flush;
@@ -416,7 +449,20 @@ int run_analyze(const AnalyzeOptions& options) {
   // read with the --set values (recorded as overridden, as `hipair certify --set` does).
   // `hipair-verify` reads the file with its own rounding key: under --rounding the certificate is
   // checked against the file as the verifier will read it, and written only if it verifies there.
-  std::vector<CertifiedFinding> findings = certify_kinematic_findings(model, result, CertifyContext{overrides.parameter_values});
+  // A rotation-only mechanism's findings are angles, the same on the rescaled copy: certified on
+  // the model as read (certify_kinematic_findings normalises it itself). Any other rescaled
+  // copy's certificate would hold the copy's offsets and points, which the verifier checks
+  // against the model file: none is given, the finding stays with the reason.
+  std::vector<CertifiedFinding> findings =
+      certify_kinematic_findings(rotation_only ? *rotation_only : model, result, CertifyContext{overrides.parameter_values});
+  if (length_exponent != 0 && !rotation_only)
+    for (CertifiedFinding& finding : findings)
+      if (finding.certificate) {
+        finding.certificate.reset();
+        finding.note = "the analysis ran on the model divided by 1e" + std::to_string(length_exponent) +
+                       " (its lengths beyond about 1e-9 .. 1e9 mm); a certificate would be about that copy: certify "
+                       "the model itself with `hipair certify`";
+      }
   bool rounding_given = rounding != nullptr;
   rounding.reset();   // the verifier's reading: the file's own rounding
   std::string model_text = rounding_given && !findings.empty() ? io::read_file(options.model) : std::string();

@@ -1,6 +1,7 @@
 // `hipair certify MODEL --claim interference|clearance|jam|free --out CERT`: produces a
 // certificate that hipair-verify re-checks independently (docs/certify.md).
 #include "cli/angles.hpp"
+#include "core/model_scale.hpp"
 #include "cli/commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
@@ -149,6 +150,8 @@ int run(const CertifyArguments& arguments) {
   Model model = read_model_file(arguments.path, options);
   CertifyContext context{options.parameter_values};
   auto [first, second] = pair_of(model, arguments.pair);
+  if (model.find_part(first) && model.find_part(second))
+    require_feature_spread(model, *model.find_part(first), *model.find_part(second));   // before work (session 53)
   const Part &a = part_named(model, first, "--pair " + arguments.pair), &b = part_named(model, second, "--pair " + arguments.pair);
   if (&a == &b) throw ModelError("", "--pair " + arguments.pair + ": a pair needs two different parts");
   std::optional<Rational> distance;

@@ -276,6 +276,7 @@ int run(const CSpaceCommandOptions& options) {
         throw ModelError("", "--pair " + options.pair + ": no part called '" + name + "' (the parts: " + names + ")");
       }
     if (first == second) throw ModelError("", "--pair " + options.pair + ": a pair needs two different parts");
+    require_feature_spread(model, *model.find_part(first), *model.find_part(second));   // before work (session 53)
     if (auto sliced = sliced_pair(model, first, second)) {
       refuse_options_that_do_not_apply(options, false, true, false);
       sliced_requests.push_back(*sliced);
@@ -288,6 +289,7 @@ int run(const CSpaceCommandOptions& options) {
       if (build.operating_region) refuse_blocked_start(model, spaces.back());
     }
   } else {
+    require_feature_spread(model);   // every pair, before work (session 53)
     sliced_requests = sliced_pairs(model);
     pin_requests = pin_slot_pairs(model);
     // (a fixed-axis pair: at most one degree of freedom per part, one at least, as

@@ -5,6 +5,7 @@
 // fixed rate) and, per two-dimensional pair, the path over its C-space (cspace-X-Y.svg, like
 // Joskowicz & Sacks 1997, Figure 6b).
 #include "cli/commands.hpp"
+#include "core/model_scale.hpp"
 
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
@@ -495,6 +496,7 @@ int run_sweep(const SimulateOptions& options) {
       models.push_back(
           read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
       check_simulator_range(models.back());
+      require_feature_spread(models.back());
       check_own_frequency(models.back(), options);
     } catch (const ModelError& error) {
       throw ModelError(error.pointer(), error.reason() + " (--sweep " + options.sweep + ": the model of run " +
@@ -961,6 +963,7 @@ int run(const SimulateOptions& options) {
   refuse_unknown_parameters(options.model, options.overrides, "--set");
   Model model = read_model_file_for_simulation(options.model, overrides);
   check_simulator_range(model);   // before anything converts the model to doubles (also in create())
+  require_feature_spread(model);  // a 1e-999 mm feature on a 40 mm part: refused before work (session 53)
   check_own_frequency(model, options);
   // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)
   std::size_t planar_count = 0;

@@ -7,6 +7,7 @@
 // tolerance certificate (hipair::certify_no_interference; docs/certify.md, property
 // no_interference), written as interference-certificate.json with report.txt (all or nothing).
 #include "cli/commands.hpp"
+#include "core/model_scale.hpp"
 
 #include "io/output_directory.hpp"
 #include "io/output_paths.hpp"
@@ -190,6 +191,7 @@ int run_interference(const ToleranceCliOptions& options) {
   certify.max_leaves = options.certify_leaves;
 
   Model model = read_model_file(options.model);
+  require_feature_spread(model);   // a 1e-999 mm feature on a 40 mm part: refused before work (session 53)
   auto part_named = [&](const std::string& name, const std::string& option) -> const Part& {
     std::optional<std::size_t> k = model.find_part(name);
     if (!k) throw ModelError("", option + ": no part '" + name + "' in the model");
@@ -337,6 +339,8 @@ int run(const ToleranceCliOptions& options) {
   ToleranceOptions analysis;
   analysis.parameter_values = overrides.parameter_values;
   analysis.allow_out_of_tolerance = overrides.allow_out_of_tolerance;
+  // the design as --set makes it (a 1e-999 mm face on a 40 mm cam): refused before work (session 53)
+  require_feature_spread(read_model_file(options.model, overrides));
   if ((options.certify || options.certify_free_path) && !analysis.parameter_values.empty())
     throw ModelError("", "--certify: tolerance certificates are about the model file as written (hipair-verify "
                          "checks them against it): drop --set, or write the changed nominal values into the model");

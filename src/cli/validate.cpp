@@ -12,6 +12,7 @@
 
 #include <iostream>
 #include <memory>
+#include <cmath>
 #include <sstream>
 
 namespace hipair::cli {
@@ -22,9 +23,13 @@ std::string number(const Rational& value) { return to_decimal_string(value, 12);
 std::string point(const Point& p) { return "(" + number(p.x) + ", " + number(p.y) + ")"; }
 
 std::string bound(const Rational& value) {
+  const double approximate = to_double(value);
+  // beyond the doubles (a model at 10^400 mm: "inf" until session 53; at 10^-400: "0") the
+  // decimal of the rational itself
+  if (!std::isfinite(approximate) || (approximate == 0 && sgn(value) != 0)) return to_decimal_string(value, 3);
   std::ostringstream out;
   out.precision(3);
-  out << to_double(value);
+  out << approximate;
   return out.str();
 }
 

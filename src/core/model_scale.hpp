@@ -46,6 +46,50 @@ long length_coordinate_shift(const Model& model, const std::vector<std::size_t>&
 /// instead (normalising_shift) and never refused.
 void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts);
 
+/// The exponent E of the power of ten a kinematic analysis of the whole mechanism divides its
+/// lengths by (decimal_scaled_model): 0 when the largest coordinate of the parts' points
+/// (measured after normalising_translation, when the mechanism is far from the origin for its
+/// size) lies within [2^-30, 2^30] mm, where require_kinematic_length_scale accepts it, or for a
+/// rotation-only mechanism when normalising_shift is 0 (about 1e-9 .. 1e18 mm); else a
+/// multiple of 10 that brings the largest coordinate within [1e-4, 1e6) mm. A multiple of 10 so
+/// that a model scaled by 10^(10 j) from an ordinary one (largest coordinate 1e-4 .. 1e6 mm) is
+/// analysed on exactly that ordinary model: the same events, lengths shown times 10^E
+/// (core/length_display.hpp).
+long kinematic_decimal_exponent(const Model& model);
+
+/// The multiple E of 10 with magnitude / 10^E within [1e-4, 1e6) (magnitude > 0; 0 for 0): the
+/// unit 10^E mm of kinematic_decimal_exponent and of the templates' construction at extreme
+/// scales (src/model/template_geometry.cpp), so that both are exactly covariant with a model
+/// scaled by 10^(10 j).
+long decimal_unit_exponent(const Rational& magnitude);
+
+/// 10^exponent, exactly.
+Rational power_of_ten_rational(long exponent);
+
+/// The model with every length divided by 10^exponent, exactly: points, centres and radii
+/// (squared: by 100^exponent), pivots, translation limits, initial offsets and x/y, linear
+/// springs' rest offsets and constant forces (their signs and directions are what the kinematic
+/// analysis reads). The copy a kinematic analysis is made on (kinematic_decimal_exponent); the
+/// parameters, the simulation data and the other dynamics data are not rescaled.
+Model decimal_scaled_model(const Model& model, long exponent);
+
+/// The largest spread between a pair's extent and its smallest edge that the commands building
+/// or slicing a pair accept: 2^1330 (about 10^400). Exact arithmetic on such a pair carries both
+/// sizes in every rational, and its cost grows with the square of the spread's exponent
+/// (session 52: a 40 mm cam follower with a 10^-300 mm face, 10 s; 10^-999, about 110 s).
+constexpr long max_feature_spread_bits = 1330;
+
+/// Throws GeometryError, naming the part and the edge's pointer, when an edge of a part of the
+/// pair (first, second) (indices into model.parts) has a nonzero size (a segment's larger
+/// coordinate difference, an arc's radius) below 2^-max_feature_spread_bits of the pair's extent
+/// (the larger side of the box of both parts' vertices), decided on exact binary exponents; the
+/// message gives the supported range. A model scaled uniformly keeps its spread: 10^-300 and
+/// 10^400 mm mechanisms pass.
+void require_feature_spread(const Model& model, std::size_t first, std::size_t second);
+
+/// require_feature_spread for every pair of the model.
+void require_feature_spread(const Model& model);
+
 /// value * 2^exponent, exactly (a length in units of 2^exponent mm, in mm).
 Rational times_power_of_two(Rational value, long exponent);
 

@@ -1,6 +1,7 @@
 // hipair::analyze_kinematics: drives the chain over the requested range on a grid, locates
 // every contact change between grid points by bisection on exact slices, and collects the
 // pieces, events, samples, play, contact usage, paths and reversal checks.
+#include "core/length_display.hpp"
 #include "core/model_scale.hpp"
 #include "kinematics/engine.hpp"
 
@@ -43,7 +44,8 @@ std::map<std::string, FollowerLoad> model_loads(const Model& model) {
       if (dynamics.linear_spring) {
         load.kind = FollowerLoad::Kind::spring;
         load.rest = dynamics.linear_spring->rest;
-        load.source = "linear spring of the model (rest offset " + to_decimal_string(dynamics.linear_spring->rest, 6) + " mm)";
+        load.source = "linear spring of the model (rest offset " + length_in_mm(to_decimal_string(dynamics.linear_spring->rest, 6)) +
+                      " mm)";   // in mm under a LengthDisplayScope (core/length_display.hpp)
       } else if (dynamics.force) {
         Rational along = dynamics.force->x * part.motion.direction.x + dynamics.force->y * part.motion.direction.y;
         if (sgn(along) != 0) {

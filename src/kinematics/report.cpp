@@ -1,6 +1,8 @@
 // Reports of a kinematic analysis: plain text for mechanism designers, JSON, CSV.
 #include <hipair/kinematics.hpp>
 
+#include "core/length_display.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -25,9 +27,17 @@ std::string format(double value, int decimals = 3) {
   return out;
 }
 
-// A driver or follower coordinate for people: degrees or mm.
+// A driver or follower coordinate for people: degrees or mm (a length in units of 10^E mm
+// written with its exponent, core/length_display.hpp).
 std::string quantity(double value, bool rotation, int decimals = 3) {
-  return rotation ? format(value * degrees_per_radian, decimals) + "°" : format(value, decimals) + " mm";
+  return rotation ? format(value * degrees_per_radian, decimals) + "°" : length_in_mm(format(value, decimals)) + " mm";
+}
+
+// The unit word of the CSV header's length columns: "mm", or "1e400mm" in units of 10^400 mm.
+std::string csv_length_unit() {
+  std::string unit = length_unit_name();
+  unit.erase(std::remove(unit.begin(), unit.end(), ' '), unit.end());
+  return unit;
 }
 
 double display(double value, bool rotation) { return rotation ? value * degrees_per_radian : value; }
@@ -176,7 +186,8 @@ std::string kinematics_text_report(const KinematicsResult& result) {
     }
     if (largest != 0) {
       std::string unit = frot == rot ? "" : frot ? " rad/mm" : " mm/rad";
-      out << "  Largest velocity ratio (" << name << " speed / driver speed): " << format(largest, 4) << unit << " at driver "
+      std::string ratio = frot == rot ? format(largest, 4) : frot ? per_length_in_mm(format(largest, 4)) : length_in_mm(format(largest, 4));
+      out << "  Largest velocity ratio (" << name << " speed / driver speed): " << ratio << unit << " at driver "
           << quantity(at, rot) << ".\n";
     }
     bool play_measured = false;
@@ -239,8 +250,8 @@ std::string kinematics_text_report(const KinematicsResult& result) {
   } else {
     out << "none: the driver completes its range.\n";
   }
-  out << "\nContact changes are located to within " << format(certified_display(CertifiedRange{0, result.event_resolution}, rot).second, 12)
-      << (rot ? "°" : " mm") << " of driver travel (certified); positions are exact at those driver positions.\n";
+  const std::string resolution = format(certified_display(CertifiedRange{0, result.event_resolution}, rot).second, 12);
+  out << "\nContact changes are located to within " << (rot ? resolution + "°" : length_in_mm(resolution) + " mm") << " of driver travel (certified); positions are exact at those driver positions.\n";
   return out.str();
 }
 
@@ -263,7 +274,7 @@ std::string kinematics_json_report(const KinematicsResult& result) {
   };
   json report;
   report["model"] = result.model_name;
-  report["units"] = {{"angle", "deg"}, {"length", "mm"}};
+  report["units"] = {{"angle", "deg"}, {"length", length_unit_name()}};   // "1e400 mm": core/length_display.hpp
   report["driver"] = {{"part", result.driver},
                       {"motion", rot ? "rotation" : "translation"},
                       {"direction", direction_word(result)},
@@ -364,14 +375,15 @@ std::string kinematics_json_report(const KinematicsResult& result) {
 std::string kinematics_csv(const KinematicsResult& result) {
   std::ostringstream out;
   bool rot = result.driver_rotates;
-  out << (rot ? "driver_angle_deg" : "driver_offset_mm");
+  const std::string mm = csv_length_unit();   // "mm", or "1e400mm" (core/length_display.hpp)
+  out << (rot ? "driver_angle_deg" : "driver_offset_" + mm);
   bool accelerations = !result.samples.empty() && !result.samples.front().accelerations.empty();
   for (std::size_t f = 0; f < result.followers.size(); ++f) {
     const std::string& name = result.followers[f];
     bool frot = result.follower_rotates[f];
-    out << "," << name << (frot ? "_angle_deg" : "_offset_mm") << "," << name << "_velocity_ratio";
+    out << "," << name << (frot ? "_angle_deg" : "_offset_" + mm) << "," << name << "_velocity_ratio";
     if (accelerations) out << "," << name << "_acceleration";
-    out << "," << name << (frot ? "_play_deg" : "_play_mm") << "," << name << "_contacts";
+    out << "," << name << (frot ? "_play_deg" : "_play_" + mm) << "," << name << "_contacts";
   }
   out << "\n";
   for (const KinematicSample& sample : result.samples) {

@@ -1,5 +1,6 @@
 #include "model/template_geometry.hpp"
 
+#include "core/model_scale.hpp"
 #include "model/exact_trig.hpp"
 
 #include <hipair/error.hpp>
@@ -47,8 +48,22 @@ Point perpendicular(const Point& p) { return Point{-p.y, p.x}; }
 Rational squared_norm(const Point& a) { return a.x * a.x + a.y * a.y; }
 Rational squared_distance(const Point& a, const Point& b) { return squared_norm(subtract(a, b)); }
 
+namespace {
+thread_local Rational length_scale(1);   // the template's unit of length (LengthScaleScope)
+}  // namespace
+
+// A squared length's root under a template's unit U != 1 is taken in units of U: U sqrt(q / U^2),
+// as at 1 mm (session 53: 30 decimals of a 10^401 mm length were not 10^400 times those of a
+// 11.5 mm one, and the escapement x 1e400 was another model than x 1's scaled).
 Rational approximate_sqrt(const Rational& q) {
   if (q <= 0) return Rational(0);
+  if (length_scale != 1) {
+    const Rational unit = length_scale;
+    length_scale = 1;
+    Rational root = approximate_sqrt(Rational(q / (unit * unit)));
+    length_scale = unit;
+    return Rational(unit * root);
+  }
   unsigned digits = digits_for(q, 30);
   Rational result(scaled_integer_sqrt(q, digits), power_of_ten(digits));
   result.canonicalize();
@@ -57,6 +72,13 @@ Rational approximate_sqrt(const Rational& q) {
 
 Rational upper_sqrt(const Rational& q) {
   if (q <= 0) return Rational(0);
+  if (length_scale != 1) {   // as approximate_sqrt: U upper_sqrt(q / U^2) >= sqrt(q)
+    const Rational unit = length_scale;
+    length_scale = 1;
+    Rational root = upper_sqrt(Rational(q / (unit * unit)));
+    length_scale = unit;
+    return Rational(unit * root);
+  }
   unsigned digits = digits_for(q, 15);
   Rational result(scaled_integer_sqrt(q, digits) + 1, power_of_ten(digits));
   result.canonicalize();
@@ -66,13 +88,14 @@ Rational upper_sqrt(const Rational& q) {
 
 double approximate(const Rational& q) { return q.get_d(); }
 
-namespace {
-thread_local Rational length_scale(1);
-}  // namespace
-
 LengthScaleScope::LengthScaleScope(const Rational& largest) : previous_(length_scale) {
   static const Rational low(1, mpz_class(1) << 20), high(mpz_class(1) << 40);
-  length_scale = largest > 0 && (largest < low || largest > high) ? largest : Rational(1);
+  // a power of ten, 10^E with E a multiple of 10 (core/model_scale.hpp decimal_unit_exponent),
+  // rather than `largest` itself (until session 53): a template scaled by 10^(10 j) from an
+  // ordinary one is then constructed as that one, times 10^(10 j) exactly (the escapement x
+  // 1e400's roundings were others, and its jam moved in the 12th digit)
+  length_scale = largest > 0 && (largest < low || largest > high) ? power_of_ten_rational(decimal_unit_exponent(largest))
+                                                                  : Rational(1);
 }
 
 LengthScaleScope::~LengthScaleScope() { length_scale = previous_; }
@@ -93,9 +116,8 @@ const Rational& length_unit() { return length_scale; }
 
 Rational round_length(const Rational& length) {
   if (length_scale == 1) return round_simplest(length);
-  Rational half = rounding_bound() / 2;
-  Rational relative = length / length_scale;
-  return Rational(length_scale * simplest_rational_between(relative - half, relative + half));
+  // as at 1 mm, in units of the template's unit (round_simplest's bound is at most rounding_bound())
+  return Rational(length_scale * round_simplest(Rational(length / length_scale)));
 }
 
 Rational length_rounding_bound() { return Rational(rounding_bound() * length_scale); }

@@ -31,17 +31,21 @@ Rational squared_norm(const Point& a);
 
 /// sqrt(q) for q >= 0 to within 10^-30 (truncated), and to 30 significant digits when
 /// sqrt(q) < 1 (parts drawn at 10^-300 mm), as a rational. For constructions whose results are
-/// rounded afterwards (round_simplest, point_on_circle_near); never for decisions.
+/// rounded afterwards (round_simplest, point_on_circle_near); never for decisions. q is a squared
+/// length: under a template's unit U != 1 (LengthScaleScope) the root is U sqrt(q / U^2), taken
+/// as above (exactly covariant with a template scaled by a power of ten).
 Rational approximate_sqrt(const Rational& q);
 /// A rational >= sqrt(q), within 10^-15 of it (and within 10^-15 of it relatively when
-/// sqrt(q) < 1): for error bounds.
+/// sqrt(q) < 1): for error bounds (q a squared length, in units of U as approximate_sqrt).
 Rational upper_sqrt(const Rational& q);
 /// Nearest double of a dimensionless value or an angle, as a plain number for constructions and
 /// coarse validity messages.
 double approximate(const Rational& q);
 
 /// A template's unit of length U: 1 (mm) for templates whose largest length argument lies in
-/// [2^-20, 2^40] mm, else that largest length itself, so that a part drawn at 10^-300 or
+/// [2^-20, 2^40] mm, else the power of ten 10^E (E a multiple of 10) that brings that largest
+/// length within [1e-4, 1e6) (core/model_scale.hpp decimal_unit_exponent; until session 53 the
+/// largest length itself), so that a part drawn at 10^-300 or
 /// 10^400 mm is constructed as at unit size: lengths in doubles are taken in units of U (squares
 /// of 10^-300 are 0 in double, 10^400 is infinite), and lengths are rounded relative to U
 /// (round_length), which keeps the construction exactly covariant with the part's scale and the

@@ -2,6 +2,7 @@
 #include "render/kinematics_svg.hpp"
 
 #include "io/svg.hpp"
+#include "core/length_display.hpp"
 #include "core/plot_axis.hpp"
 
 #include <algorithm>
@@ -73,7 +74,8 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
     x_max = std::max(result.samples.front().driver, result.samples.back().driver) * driver_scale;
   }
   PlotAxis x_axis = range_axis(x_min, x_max);
-  std::string x_label = result.driver + (rot ? " angle (deg)" : " offset (mm)");
+  const std::string mm = "(" + length_unit_name() + ")";   // "(1e400 mm)": core/length_display.hpp
+  std::string x_label = result.driver + (rot ? " angle (deg)" : " offset " + mm);
   double top = total - 70;
   for (std::size_t f = 0; f < followers; ++f) {
     bool frot = result.follower_rotates[f];
@@ -110,7 +112,7 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
         svg.rectangle(panel.x(std::min(a, b)), panel.bottom, std::abs(panel.x(b) - panel.x(a)), panel.height, dwell);
       }
       std::string name = result.followers[f];
-      std::string y_label = kind == 0 ? (frot ? "angle (deg)" : "offset (mm)") : "velocity ratio";
+      std::string y_label = kind == 0 ? (frot ? "angle (deg)" : "offset " + mm) : "velocity ratio";
       std::string title = kind == 0 ? name + ": position against the driver (shaded: dwell)"
                                     : name + ": velocity ratio d(" + name + ")/d(" + result.driver + ")";
       draw_axes(svg, panel, x_label, y_label, title);
@@ -179,8 +181,9 @@ std::string cspace_path_svg(const CSpaceRaster& raster, const PairPath& path, co
       if (y1 > y0) svg.rectangle(x0, y0, x1 - x0 + 0.8, y1 - y0, blocked);
     }
   }
-  draw_axes(svg, panel, raster.x_part + (raster.x_rotates ? " angle (deg)" : " offset (mm)"),
-            raster.y_part + (raster.y_rotates ? " (deg)" : " (mm)"),
+  const std::string mm = "(" + length_unit_name() + ")";   // "(1e400 mm)": core/length_display.hpp
+  draw_axes(svg, panel, raster.x_part + (raster.x_rotates ? " angle (deg)" : " offset " + mm),
+            raster.y_part + (raster.y_rotates ? " (deg)" : " " + mm),
             title.empty() ? "C-space of " + raster.pair + ": blocked grey, free white; path: free blue, contact red" : title);
   // the path, broken where it wraps around
   double x_period = raster.x_rotates ? 360 : 0, y_period = raster.y_rotates ? 360 : 0;

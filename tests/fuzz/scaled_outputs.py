@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""Outputs of a command on a model scaled exactly by 10^K against the unscaled model's (session 53).
+
+usage: scaled_outputs.py HIPAIR SOURCE_DIR WORK COMMAND MODELS SCALES [TIMEOUT]
+  COMMAND  analyze (report text, report.json, kinematics.csv) or tolerance (stdout, report files)
+  MODELS   comma-separated example names (examples/models/NAME.json)
+  SCALES   comma-separated exponents K (e.g. -300,-30,30,400): the model is written by
+           tests/fuzz/scale_model.py with every length times 1eK (exactly)
+
+The oracle is the unscaled run: the scaled run must exit with the same code and, once the model's
+name ("NAME-x1eK") and the run's own paths and timings are set aside, give the same outputs with
+every length shown times 10^K exactly: a length the unscaled run prints as "12.500 mm" is
+"12.500eK mm" when the analysis ran in units of 10^K mm (a power of ten chosen from the model,
+core/model_scale.hpp kinematic_decimal_exponent) or "12.500 mm" when it ran as is (K = +-30 at
+most: lengths within the doubles' range), report.json's "units"/"length" is "1eK mm" or "mm"
+accordingly, and every other value (angles, events, verdicts, contact labels, closed forms,
+counts) is identical. Refusals must give the same message. Exit 0 when every scale matches,
+1 otherwise (the differences printed), 2 on usage errors.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+
+def run(hipair, args, cwd, timeout):
+    try:
+        done = subprocess.run([hipair] + args, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None, "", "timeout"
+    return done.returncode, done.stdout, done.stderr
+
+
+def unit_free_text(text, k, name):
+    """The text with the scaled model's name and the lengths' exponent taken out."""
+    text = text.replace("%s-x1e%d" % (name, k), name)
+    text = re.sub(r"(?<![\d.])1e%d ?mm\b" % k, "mm", text)   # a unit named: "1e400 mm", "_1e400mm"
+    # a decimal followed by its exponent: "12.500e400" -> "12.500"; "rad/mm" ratios carry -K
+    text = re.sub(r"(\d)e%d\b" % k, r"\1", text)
+    text = re.sub(r"(\d)e%d\b" % -k, r"\1", text)
+    return text
+
+
+def plain_json(path, k, name):
+    with open(path, encoding="utf-8") as f:
+        data = json.load(f)
+
+    def clean(value):
+        if isinstance(value, dict):
+            return {key: clean(v) for key, v in value.items() if key not in ("seconds", "cpu_seconds")}
+        if isinstance(value, list):
+            return [clean(v) for v in value]
+        if isinstance(value, str):
+            return unit_free_text(value, k, name)
+        return value
+
+    return clean(data)
+
+
+def first_difference(a, b, where=""):
+    if type(a) is not type(b):
+        return "%s: %r vs %r" % (where or "/", a, b)
+    if isinstance(a, dict):
+        for key in sorted(set(a) | set(b)):
+            if key not in a or key not in b:
+                return "%s/%s: only in one" % (where, key)
+            found = first_difference(a[key], b[key], where + "/" + key)
+            if found:
+                return found
+        return None
+    if isinstance(a, list):
+        if len(a) != len(b):
+            return "%s: %d vs %d entries" % (where, len(a), len(b))
+        for i, (x, y) in enumerate(zip(a, b)):
+            found = first_difference(x, y, "%s/%d" % (where, i))
+            if found:
+                return found
+        return None
+    return None if a == b else "%s: %r vs %r" % (where or "/", a, b)
+
+
+def text_difference(a, b):
+    la, lb = a.splitlines(), b.splitlines()
+    for i, (x, y) in enumerate(zip(la, lb)):
+        if x != y:
+            return "line %d: %r vs %r" % (i + 1, x, y)
+    return None if len(la) == len(lb) else "%d vs %d lines" % (len(la), len(lb))
+
+
+def command_args(command, model, out):
+    if command == "analyze":
+        return ["analyze", model, "--quiet", "--no-pictures", "--out", out]
+    if command == "tolerance":
+        return ["tolerance", model, "--quiet", "--out", out]
+    raise SystemExit("scaled_outputs: unknown command " + command)
+
+
+def compare_run(base, scaled, k, name):
+    """The first difference between the unscaled run `base` and the run at 10^k, or None."""
+    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
+    if rc1 is None:
+        return "timed out"
+    if rc0 != rc1:
+        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
+    # the run's own directory is named in "wrote ..." lines
+    out0 = out0.replace(dir0, "@OUT@")
+    out1 = out1.replace(dir1, "@OUT@")
+    found = text_difference(out0, unit_free_text(out1, k, name)) or text_difference(err0, unit_free_text(err1, k, name))
+    if found:
+        return "stdout/stderr " + found
+    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
+    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
+    if files0 != files1:
+        return "files %s vs %s" % (files0, files1)
+    for file in files0:
+        a, b = os.path.join(dir0, file), os.path.join(dir1, file)
+        if file.endswith(".json"):
+            found = first_difference(plain_json(a, 0, name), plain_json(b, k, name))
+        elif file.endswith(".csv") or file.endswith(".txt"):
+            with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
+                found = text_difference(fa.read(), unit_free_text(fb.read(), k, name))
+        else:
+            continue   # pictures: their numbers are the same doubles, their labels name the unit
+        if found:
+            return "%s %s" % (file, found)
+    return None
+
+
+def main(argv):
+    if len(argv) < 7:
+        sys.stderr.write(__doc__)
+        return 2
+    hipair, source, work, command, models, scales = argv[1:7]
+    timeout = float(argv[7]) if len(argv) > 7 else 120
+    hipair = os.path.abspath(hipair)
+    work = os.path.abspath(work)
+    os.makedirs(work, exist_ok=True)
+    failures = 0
+    for name in models.split(","):
+        model = os.path.join(source, "examples", "models", name + ".json")
+        runs = {}
+        for k in [0] + [int(s) for s in scales.split(",")]:
+            path = model
+            if k != 0:
+                path = os.path.join(work, "%s@1e%d.json" % (name, k))
+                subprocess.run([sys.executable, os.path.join(source, "tests", "fuzz", "scale_model.py"), model,
+                                "1e%d" % k, path], check=True)
+            out = os.path.join(work, "out", "%s@%d" % (name, k))
+            shutil.rmtree(out, ignore_errors=True)
+            os.makedirs(os.path.dirname(out), exist_ok=True)
+            rc, stdout, stderr = run(hipair, command_args(command, path, out), work, timeout)
+            runs[k] = (rc, stdout, stderr, out)
+            if k == 0:
+                print("%s %s: exit %s" % (command, name, rc))
+                continue
+            found = compare_run(runs[0], runs[k], k, name)
+            print("  x1e%d: %s" % (k, "same" if found is None else "DIFFERENT: " + found))
+            failures += found is not None
+    print("scaled_outputs: %d difference%s" % (failures, "" if failures == 1 else "s"))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
