@@ -931,59 +931,47 @@ class ChainAnalysis {
       // out and change which pair the case split takes as the widened one).
       // Where it is still unbounded (`far` 2), composed once more with the envelopes' driver ranges
       // walked in pieces too (handover.cpp step 7, session 52), likewise.
-      // The compositions of the position's sub-boxes kept for its later passes (session 53).
-      // Each pass composes every sub-box first without the far walks (`far` 0): what the pass
-      // before did for the same box. compose_over is a pure function of the box and the
-      // thread's switches (the memos it reads hold pure functions of their keys), so that result
-      // is kept per sub-box and replayed with its side effects (each pair's sub-box count, the
-      // hand-over note's fields, the failing pair) instead of being made again. Likewise a
-      // composition with the far walk (`far` 1) where no envelope was left unbounded after the
-      // far walk (handover_unbounded_after_far_walk() did not move): the driver's pieces change
-      // only such envelopes (handover.cpp step 7), so the third pass's composition of that box
-      // is the same, and is replayed.
-      struct Kept {
+      // The plain compositions (no far walk, no driver pieces) of the position's sub-boxes, kept
+      // for its later passes (session 53): a pass that runs again (`far` 1, 2) first composes
+      // each sub-box without the far walks, which is what the pass before did for the same box
+      // (compose_over is a pure function of the box: the memos it reads hold pure functions of
+      // their keys), so the kept result and its side effects (each pair's sub-box count, the
+      // hand-over note's fields, the failing pair) are replayed instead of recomputed.
+      struct Plain {
         bool composed = false, mean_value_through = false, extended = false;
         std::vector<Interval> charts;
         Interval out;
         std::vector<std::size_t> counts;   // what the composition added to each pair's sub-box count
         std::string why;
         std::size_t failed = 0;
-        bool same_with_pieces = false;     // (far 1) no envelope unbounded after the far walk
       };
-      std::map<std::vector<double>, Kept> kept[2];   // [far 0, far 1]
-      auto compose_kept = [&](const Box& b, int far, std::vector<Interval>& charts, Interval& out, bool& mean_value_through,
-                              std::size_t& failed) {
-        // (kept only where a later pass may run)
-        const bool keep = chain_plain_reuse() != 0 && handover_far_windows() > 1 && (far == 0 || handover_driver_pieces() > 1);
+      std::map<std::vector<double>, Plain> plain;
+      auto compose_plain = [&](const Box& b, std::vector<Interval>& charts, Interval& out, bool& mean_value_through,
+                               std::size_t& failed) {
+        // (kept only where a later pass may run: the far walk on)
+        const bool keep = chain_plain_reuse() != 0 && handover_far_windows() > 1;
         std::vector<double> key;
-        const Kept* p = nullptr;
-        std::optional<Kept> fresh;
+        const Plain* p = nullptr;
+        std::optional<Plain> fresh;
         if (keep) {
           key = b.lo;
           key.insert(key.end(), b.hi.begin(), b.hi.end());
-          auto& memo = kept[far == 0 ? 0 : 1];
-          auto it = memo.find(key);
-          if (it != memo.end() && (far < 2 || it->second.same_with_pieces)) p = &it->second;
+          auto it = plain.find(key);
+          if (it != plain.end()) p = &it->second;
         }
         if (!p) {
-          Kept made;
+          Plain made;
           made.charts = charts;
           made.counts.assign(stages_.size(), 0);
           HandoverNote note;   // compose_over only sets a note's fields (extended to true, why)
           made.failed = failed;
-          std::optional<FarWalk> on;
-          std::optional<DriverPieces> pieces;
-          if (far > 0) on.emplace();
-          if (far > 1) pieces.emplace();
-          const std::size_t unbounded = handover_unbounded_after_far_walk();
           made.composed = compose_over(i, b, made.charts, made.out, made.counts.data(), &made.mean_value_through, &note,
                                        &made.failed);
-          made.same_with_pieces = far == 1 && handover_unbounded_after_far_walk() == unbounded;
           made.extended = note.extended;
           made.why = std::move(note.why);
           chain_compositions_made().fetch_add(1, std::memory_order_relaxed);
-          if (keep && far < 2)
-            p = &kept[far].insert_or_assign(std::move(key), std::move(made)).first->second;
+          if (keep)
+            p = &plain.emplace(std::move(key), std::move(made)).first->second;
           else
             p = &fresh.emplace(std::move(made));
         }
@@ -1038,9 +1026,15 @@ class ChainAnalysis {
           Interval out;
           bool mean_value_through = false;
           std::size_t failed = stages_.size();
-          bool composed = compose_kept(b, 0, charts, out, mean_value_through, failed);
-          // (a sub-box composed without the far walks keeps that composition)
-          if (!composed && far > 0) composed = compose_kept(b, far, charts, out, mean_value_through, failed);
+          bool composed = compose_plain(b, charts, out, mean_value_through, failed);
+          if (!composed && far > 0) {   // (a sub-box composed without the far walks keeps that composition)
+            FarWalk on;
+            std::optional<DriverPieces> pieces;
+            if (far > 1) pieces.emplace();
+            composed =
+                compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
+            chain_compositions_made().fetch_add(1, std::memory_order_relaxed);
+          }
           double linear = 0;
           for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
           bool accurate = composed && out.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;

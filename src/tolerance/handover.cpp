@@ -1004,7 +1004,6 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // bounded ends that n. Only while a FarWalk and a DriverPieces live (chain.cpp: a position
   // unbounded even with the far walk, composed once more), and only in the composition's own
   // envelope (not in the pieces', the bridge's or the route's walks: `depth`).
-  if (!bounded && FarWalk::on() && depth.level == 1) ++handover_unbounded_after_far_walk();
   if (!bounded && FarWalk::on() && DriverPieces::on() && depth.level == 1 && handover_driver_pieces() > 1 && curve.fixed_range &&
       fixed.lo < fixed.hi && !away && std::isfinite(nominal_free)) {
     const double t_n = curve.fixed_value.get_d();
@@ -1102,11 +1101,6 @@ int& handover_sub_box_anchor() {
 int& handover_far_windows() {
   static int windows = 2;
   return windows;
-}
-
-std::size_t& handover_unbounded_after_far_walk() {
-  static thread_local std::size_t count = 0;
-  return count;
 }
 
 int& handover_driver_pieces() {

@@ -186,13 +186,6 @@ using FarWalk = ThreadScope<struct FarWalkTag>;
 /// the far walk once more under one.
 using DriverPieces = ThreadScope<struct DriverPiecesTag>;
 
-/// This thread's count of envelopes (the composition's own, not a walk's inner ones) left
-/// unbounded by the walk, the driver-monotone route and the far walk while a FarWalk lives: the
-/// only envelopes a DriverPieces changes (handover.cpp, step 7). chain.cpp reads it around a
-/// composition made with the far walk: where it did not move, the same composition with the
-/// driver's pieces is the same (session 53).
-std::size_t& handover_unbounded_after_far_walk();
-
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:
