@@ -88,15 +88,20 @@ struct Count {
 // Every exact value at the probes against every bounded band of the analysis of `text` (a chain
 // cam -> lifter1 -> lifter2 with parameters e and g; the anchor, the far walk and the driver's
 // pieces, handover.cpp 0b, 6 and 7, as given).
-Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
-                 int pieces = tolerance_detail::handover_driver_pieces()) {
-  const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
+// The analysis of these chains: driven by the cam over 1.4-1.6 rad at 120 per turn, one thread.
+ToleranceOptions chain_options() {
   ToleranceOptions options;
   options.driver = "cam";
   options.chain = true;
-  options.range = range;
+  options.range = std::pair<Rational, Rational>(Rational(7, 5), Rational(8, 5));
   options.positions = 120;
   options.threads = 1;
+  return options;
+}
+
+Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
+                 int pieces = tolerance_detail::handover_driver_pieces()) {
+  const ToleranceOptions options = chain_options();
   ToleranceResult r;
   {
     test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
@@ -137,7 +142,7 @@ Count check_text(const std::string& text, int anchor, int far = tolerance_detail
   for (const std::vector<Rational>& d : probes) {
     KinematicsOptions k;
     k.driver = "cam";
-    k.range = range;
+    k.range = options.range;
     k.steps_per_cycle = options.positions;
     k.reversal = false;
     k.method = SliceMethod::kernels;
@@ -376,13 +381,7 @@ TEST(ChainDriverPieces, CompetitorOverPartOfTheDriversRangeBandsCoverItAndHoldTh
 // equal, and fewer compositions made with it. Mutants (temporary, built, run, removed): the
 // replay not adding the kept sub-box counts; the hand-over note's reason not replayed.
 TEST(ChainPlainReuse, LaterPassesReplayThePlainCompositionsWithTheSameBandsNotesAndCounts) {
-  const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
-  ToleranceOptions options;
-  options.driver = "cam";
-  options.chain = true;
-  options.range = range;
-  options.positions = 120;
-  options.threads = 1;
+  const ToleranceOptions options = chain_options();
   std::size_t unbounded = 0;
   for (const PiecesVariant& v : {PiecesVariant{"2", "35.27", "37.5"}, PiecesVariant{"2", "34.8", "35"}})
     for (int pieces : {tolerance_detail::handover_driver_pieces(), 1}) {
