@@ -32,6 +32,7 @@
 #include <hipair/kinematics.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -930,6 +931,59 @@ class ChainAnalysis {
       // out and change which pair the case split takes as the widened one).
       // Where it is still unbounded (`far` 2), composed once more with the envelopes' driver ranges
       // walked in pieces too (handover.cpp step 7, session 52), likewise.
+      // The plain compositions (no far walk, no driver pieces) of the position's sub-boxes, kept
+      // for its later passes (session 53): a pass that runs again (`far` 1, 2) first composes
+      // each sub-box without the far walks, which is what the pass before did for the same box
+      // (compose_over is a pure function of the box: the memos it reads hold pure functions of
+      // their keys), so the kept result and its side effects (each pair's sub-box count, the
+      // hand-over note's fields, the failing pair) are replayed instead of recomputed.
+      struct Plain {
+        bool composed = false, mean_value_through = false, extended = false;
+        std::vector<Interval> charts;
+        Interval out;
+        std::vector<std::size_t> counts;   // what the composition added to each pair's sub-box count
+        std::string why;
+        std::size_t failed = 0;
+      };
+      std::map<std::vector<double>, Plain> plain;
+      auto compose_plain = [&](const Box& b, std::vector<Interval>& charts, Interval& out, bool& mean_value_through,
+                               std::size_t& failed) {
+        // (kept only where a later pass may run: the far walk on)
+        const bool keep = chain_plain_reuse() != 0 && handover_far_windows() > 1;
+        std::vector<double> key;
+        const Plain* p = nullptr;
+        std::optional<Plain> fresh;
+        if (keep) {
+          key = b.lo;
+          key.insert(key.end(), b.hi.begin(), b.hi.end());
+          auto it = plain.find(key);
+          if (it != plain.end()) p = &it->second;
+        }
+        if (!p) {
+          Plain made;
+          made.charts = charts;
+          made.counts.assign(stages_.size(), 0);
+          HandoverNote note;   // compose_over only sets a note's fields (extended to true, why)
+          made.failed = failed;
+          made.composed = compose_over(i, b, made.charts, made.out, made.counts.data(), &made.mean_value_through, &note,
+                                       &made.failed);
+          made.extended = note.extended;
+          made.why = std::move(note.why);
+          chain_compositions_made().fetch_add(1, std::memory_order_relaxed);
+          if (keep)
+            p = &plain.emplace(std::move(key), std::move(made)).first->second;
+          else
+            p = &fresh.emplace(std::move(made));
+        }
+        charts = p->charts;
+        out = p->out;
+        for (std::size_t s = 0; s < stages_.size(); ++s) boxes[i * stages_.size() + s] += p->counts[s];
+        mean_value_through = p->mean_value_through;
+        if (p->extended) handover[i].extended = true;
+        if (!p->why.empty()) handover[i].why = p->why;
+        failed = p->failed;
+        return p->composed;
+      };
       auto position_band = [&](int far) -> bool {
         std::size_t failure_splits = 0, shared_splits = 0;
         // The parameter of sub-box b whose weight times its width is largest and above `floor`
@@ -972,14 +1026,14 @@ class ChainAnalysis {
           Interval out;
           bool mean_value_through = false;
           std::size_t failed = stages_.size();
-          bool composed =
-              compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
+          bool composed = compose_plain(b, charts, out, mean_value_through, failed);
           if (!composed && far > 0) {   // (a sub-box composed without the far walks keeps that composition)
             FarWalk on;
             std::optional<DriverPieces> pieces;
             if (far > 1) pieces.emplace();
             composed =
                 compose_over(i, b, charts, out, &boxes[i * stages_.size()], &mean_value_through, &handover[i], &failed);
+            chain_compositions_made().fetch_add(1, std::memory_order_relaxed);
           }
           double linear = 0;
           for (std::size_t p = 0; p < n && p < total.size(); ++p) linear += std::fabs(total[p]) * (b.hi[p] - b.lo[p]);
@@ -1452,6 +1506,16 @@ int& chain_case_split() {
 int& chain_widened_split() {
   static int on = 1;
   return on;
+}
+
+int& chain_plain_reuse() {
+  static int on = 1;
+  return on;
+}
+
+std::atomic<std::size_t>& chain_compositions_made() {
+  static std::atomic<std::size_t> made{0};
+  return made;
 }
 
 std::size_t& chain_memo_entries() {

@@ -11,6 +11,7 @@
 #include <hipair/model.hpp>
 #include <hipair/tolerance.hpp>
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
@@ -139,6 +140,16 @@ int& chain_case_split();
 /// linearised width: its halves composed too and the band the meet of both (chain.cpp; session
 /// 48): 1 (on) unless changed; 0 accepts the whole box's band as before (tests compare the two).
 int& chain_widened_split();
+
+/// A position's plain compositions (no far walk, no driver pieces) of its sub-boxes kept for its
+/// later passes, the far walk's and the driver pieces' (chain.cpp certified(); session 53), whose
+/// first step per sub-box is the same plain composition: 1 (on) unless changed; 0 composes them
+/// again (tests compare the two: the same bands, notes and sub-box counts).
+int& chain_plain_reuse();
+
+/// Tests only: compose_over calls the certified band's passes have made (the plain ones not
+/// replayed, and the far walk's), summed over every chain analysis since the program started.
+std::atomic<std::size_t>& chain_compositions_made();
 
 /// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
 ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {});

@@ -32,6 +32,7 @@
 
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
+#include "tolerance/stage.hpp"
 
 #include <hipair/kinematics.hpp>
 #include <hipair/rational.hpp>
@@ -87,15 +88,20 @@ struct Count {
 // Every exact value at the probes against every bounded band of the analysis of `text` (a chain
 // cam -> lifter1 -> lifter2 with parameters e and g; the anchor, the far walk and the driver's
 // pieces, handover.cpp 0b, 6 and 7, as given).
-Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
-                 int pieces = tolerance_detail::handover_driver_pieces()) {
-  const std::pair<Rational, Rational> range(Rational(7, 5), Rational(8, 5));
+// The analysis of these chains: driven by the cam over 1.4-1.6 rad at 120 per turn, one thread.
+ToleranceOptions chain_options() {
   ToleranceOptions options;
   options.driver = "cam";
   options.chain = true;
-  options.range = range;
+  options.range = std::pair<Rational, Rational>(Rational(7, 5), Rational(8, 5));
   options.positions = 120;
   options.threads = 1;
+  return options;
+}
+
+Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
+                 int pieces = tolerance_detail::handover_driver_pieces()) {
+  const ToleranceOptions options = chain_options();
   ToleranceResult r;
   {
     test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
@@ -136,7 +142,7 @@ Count check_text(const std::string& text, int anchor, int far = tolerance_detail
   for (const std::vector<Rational>& d : probes) {
     KinematicsOptions k;
     k.driver = "cam";
-    k.range = range;
+    k.range = options.range;
     k.steps_per_cycle = options.positions;
     k.reversal = false;
     k.method = SliceMethod::kernels;
@@ -365,6 +371,51 @@ TEST(ChainDriverPieces, CompetitorOverPartOfTheDriversRangeBandsCoverItAndHoldTh
   EXPECT_EQ(with_band - without, 7u);
   std::printf("%zu exact values checked against bounded bands, %zu outside; %zu positions newly bounded\n", values, outside,
               with_band - without);
+}
+
+// Session 53 (tol53): a position's later passes (the far walk's, the driver pieces') replay the
+// plain compositions of its sub-boxes that the pass before made (chain.cpp certified(),
+// chain_plain_reuse()). On the chains above, where two or three passes run at most positions,
+// with and without the reuse: every band bit for bit, the notes (each unbounded position's
+// reason among them: the driver's pieces off leaves 7 unbounded) and every pair's sub-box count
+// equal, and fewer compositions made with it. Mutants (temporary, built, run, removed): the
+// replay not adding the kept sub-box counts; the hand-over note's reason not replayed.
+TEST(ChainPlainReuse, LaterPassesReplayThePlainCompositionsWithTheSameBandsNotesAndCounts) {
+  const ToleranceOptions options = chain_options();
+  std::size_t unbounded = 0;
+  for (const PiecesVariant& v : {PiecesVariant{"2", "35.27", "37.5"}, PiecesVariant{"2", "34.8", "35"}})
+    for (int pieces : {tolerance_detail::handover_driver_pieces(), 1}) {
+      SCOPED_TRACE(std::string("competitor at x ") + v.x + ", driver pieces " + std::to_string(pieces));
+      test_band::ScopedSwitch split(tolerance_detail::handover_driver_pieces(), pieces);
+      ToleranceResult r[2];
+      std::size_t made[2];
+      for (int reuse : {0, 1}) {
+        test_band::ScopedSwitch on(tolerance_detail::chain_plain_reuse(), reuse);
+        const std::size_t before = tolerance_detail::chain_compositions_made().load();
+        r[reuse] = analyze_tolerances_text(driver_pieces_chain(v), options);
+        made[reuse] = tolerance_detail::chain_compositions_made().load() - before;
+      }
+      ASSERT_EQ(r[0].samples.size(), r[1].samples.size());
+      for (std::size_t i = 0; i < r[0].samples.size(); ++i) {
+        const VariationSample &a = r[0].samples[i], &b = r[1].samples[i];
+        EXPECT_EQ(bounded(a), bounded(b)) << a.driver;
+        unbounded += bounded(b) ? 0 : 1;
+        if (bounded(a) && bounded(b)) {
+          EXPECT_EQ(a.certified.lower, b.certified.lower) << a.driver;
+          EXPECT_EQ(a.certified.upper, b.certified.upper) << a.driver;
+        }
+      }
+      EXPECT_EQ(r[0].notes, r[1].notes);
+      EXPECT_EQ(r[0].certified_boxes, r[1].certified_boxes);
+      ASSERT_EQ(r[0].chain.size(), r[1].chain.size());
+      for (std::size_t s = 0; s < r[0].chain.size(); ++s) EXPECT_EQ(r[0].chain[s].certified_boxes, r[1].chain[s].certified_boxes);
+      // not vacuous: later passes ran, and the reuse spared compositions
+      EXPECT_LT(made[1], made[0]);
+      std::printf("competitor at x %s, driver pieces %d: %zu compositions without the reuse, %zu with it; %zu sub-boxes\n", v.x,
+                  pieces, made[0], made[1], r[1].certified_boxes);
+    }
+  // the driver's pieces off leaves positions unbounded (their reasons in the notes compared)
+  EXPECT_GE(unbounded, 4u);
 }
 
 }  // namespace
