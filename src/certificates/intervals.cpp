@@ -341,12 +341,12 @@ class MarchCover {
   }
 
   /// Covers `range` left to right; box(piece) is the configuration box (driver, other) of a piece.
+  /// `finest`: the shortest piece, as a fraction of the range, before the cover is given up.
   bool march(const RationalInterval& range, std::vector<BlockedPiece>& pieces, std::size_t max_pieces,
-             const std::function<std::pair<RationalInterval, RationalInterval>(const RationalInterval&)>& box) {
+             const std::function<std::pair<RationalInterval, RationalInterval>(const RationalInterval&)>& box,
+             const Rational& finest) {
     Rational position = range.lo, width = (range.hi - range.lo) / 8;
-    // (a piece a billionth of the range is given up: a wall meeting free space, which the pieces
-    // approach by halves; a closing's cut took pieces of 1e-7 of its range)
-    const Rational floor = std::max(Rational(1, 1000000000000), Rational((range.hi - range.lo) / 1000000000));
+    const Rational floor = std::max(Rational(1, 1000000000000), Rational((range.hi - range.lo) * finest));
     int failures = 0;      // consecutive failed widths at `position`
     bool grow = false;     // the last piece was proved at its first width: try the next one wider
     while (position < range.hi) {
@@ -630,10 +630,14 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                              to_decimal_string(limits.hi) + "]" + unit + (rotating ? " in every turn" : "") +
                                              ": the trap holds no configuration of the mechanism");
     }
+    // (a piece shorter than a billionth of the cut or a hundred-thousandth of a wall gives the
+    // trap up: the pieces approach free space by halves; a closing's cut took pieces of 1e-7 of
+    // its range, its walls 1/64)
     std::optional<MarchCover> marching;
     if (march) marching.emplace(r, *march, c.trap, *budget);
     if (marching ? !marching->march(band, c.cut, options.max_boxes,
-                                    [&](const RationalInterval& piece) { return std::make_pair(cut_at, piece); })
+                                    [&](const RationalInterval& piece) { return std::make_pair(cut_at, piece); },
+                                    Rational(1, 1000000000))
                  : !cover(band, c.cut, options.max_boxes,
                           [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); }))
       return std::nullopt;
@@ -643,7 +647,8 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
       RationalInterval wall_at{at, at};
       std::vector<BlockedPiece>& wall = upper ? c.upper_wall : c.lower_wall;
       if (marching ? !marching->march(c.trap.driver, wall, options.max_boxes,
-                                      [&](const RationalInterval& piece) { return std::make_pair(piece, wall_at); })
+                                      [&](const RationalInterval& piece) { return std::make_pair(piece, wall_at); },
+                                      Rational(1, 100000))
                    : !cover(c.trap.driver, wall, options.max_boxes,
                             [&](const RationalInterval& piece) { return blocking_crossing(r, piece, wall_at); }))
         return std::nullopt;
@@ -732,15 +737,16 @@ std::optional<Certificate> certify_detail::certify_closing_jam(
     bool start_free = false;
     // Past the closing by `past`: the channel's two sides have crossed, so the cut's depth grows
     // with `past`; the walls must clear the channel's sweep up to the cut.
+    // (past, the walls' margin beyond the channel's span): a quarter of the lead past, then the
+    // whole lead; margins of twice the sweep past the closing and a quarter of, else all of, the
+    // travel from the start, else half the sweep past (a deeper wall takes fewer pieces, but a
+    // wide one met free space: a 19 x 18 mesh at 3/4 of its travel, an 18 x 17 mesh driven
+    // backwards; a narrow one's cut did not pass the hardest point of a 17 x 17 mesh)
     const std::pair<Rational, Rational> shapes_of_trap[] = {
-        {lead / 4, lead / 4}, {lead / 4, lead}, {lead, lead / 4}, {lead, lead}};   // (past, extra)
-    for (const auto& [past, extra] : shapes_of_trap) {
+        {lead / 4, rate * (lead / 4 + lead / 2) + 2 * width}, {lead / 4, rate * lead / 8 + 2 * width},
+        {lead / 4, rate * (lead + lead / 2) + 2 * width}, {lead, rate * (lead / 4 + 2 * lead) + 2 * width}};
+    for (const auto& [past, margin] : shapes_of_trap) {
       Rational x1 = closing_driver + direction * past;
-      // the walls' margin: twice the channel's sweep past the closing, and `extra` of its travel
-      // from the start (a deeper wall takes fewer pieces, and the cut's pieces differ; wide, a
-      // wall of a 19 x 18 teeth mesh met free space at 3/4 of the travel, narrow, a 17 x 17
-      // mesh's cut did not pass its hardest point)
-      Rational margin = rate * (extra + 2 * past) + 2 * width;
       RationalInterval band{std::min({s.lo, y0, closing_follower}) - margin, std::max({s.hi, y0, closing_follower}) + margin};
       JamQuery query{d.name, o.name, direction,
                      {direction > 0 ? RationalInterval{s.driver, x1} : RationalInterval{x1, s.driver}, band},
