@@ -42,6 +42,9 @@ std::optional<double> follower_position(const KinematicsResult& result, const st
 std::optional<Certificate> certify_closing(const Model& model, const KinematicsResult& result,
                                                 const KinematicEvent& jam, const Part& driver,
                                                 const CertifyContext& context) {
+  // only where the follower's free range closed (the engine's reason, src/kinematics/engine.cpp):
+  // a dead point ("would have to jump", the escapement's anchor) is no closing channel
+  if (jam.description.find("its free range closed") == std::string::npos) return std::nullopt;
   auto index = std::find(result.followers.begin(), result.followers.end(), jam.part);
   if (index == result.followers.end()) return std::nullopt;
   std::size_t k = std::size_t(index - result.followers.begin());
