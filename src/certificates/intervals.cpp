@@ -738,13 +738,13 @@ std::optional<Certificate> certify_detail::certify_closing_jam(
     // Past the closing by `past`: the channel's two sides have crossed, so the cut's depth grows
     // with `past`; the walls must clear the channel's sweep up to the cut.
     // (past, the walls' margin beyond the channel's span): a quarter of the lead past, then the
-    // whole lead; margins of twice the sweep past the closing and a quarter of, else all of, the
-    // travel from the start, else half the sweep past (a deeper wall takes fewer pieces, but a
-    // wide one met free space: a 19 x 18 mesh at 3/4 of its travel, an 18 x 17 mesh driven
-    // backwards; a narrow one's cut did not pass the hardest point of a 17 x 17 mesh)
+    // whole lead; margins of twice the sweep past the closing and all of, else a quarter of, the
+    // travel from the start, else an eighth of that travel (a deeper wall takes fewer pieces, but
+    // a wide one met free space: a 19 x 18 mesh at 3/4 of its travel; a narrower one's cut did
+    // not pass the hardest point of a 17 x 17 mesh)
     const std::pair<Rational, Rational> shapes_of_trap[] = {
-        {lead / 4, rate * (lead / 4 + lead / 2) + 2 * width}, {lead / 4, rate * lead / 8 + 2 * width},
-        {lead / 4, rate * (lead + lead / 2) + 2 * width}, {lead, rate * (lead / 4 + 2 * lead) + 2 * width}};
+        {lead / 4, rate * (lead + lead / 2) + 2 * width}, {lead / 4, rate * (lead / 4 + lead / 2) + 2 * width},
+        {lead / 4, rate * lead / 8 + 2 * width}, {lead, rate * (lead / 4 + 2 * lead) + 2 * width}};
     for (const auto& [past, margin] : shapes_of_trap) {
       Rational x1 = closing_driver + direction * past;
       RationalInterval band{std::min({s.lo, y0, closing_follower}) - margin, std::max({s.hi, y0, closing_follower}) + margin};
