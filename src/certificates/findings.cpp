@@ -3,6 +3,8 @@
 #include <hipair/certificate.hpp>
 #include <hipair/kinematics.hpp>
 
+#include "certificates/closing.hpp"
+#include "certificates/producer.hpp"
 #include "core/model_scale.hpp"
 
 #include <algorithm>
@@ -34,7 +36,69 @@ std::optional<double> follower_position(const KinematicsResult& result, const st
   return position;
 }
 
+// The jam of `jam.part` where its free range closes, certified with a trap around the closing
+// (certify_detail::certify_closing_jam) for the pair of the driver and that part; nullopt when
+// no trap is certified.
+std::optional<Certificate> certify_closing(const Model& model, const KinematicsResult& result,
+                                                const KinematicEvent& jam, const Part& driver,
+                                                const CertifyContext& context) {
+  // only where the follower's free range closed (the engine's reason, src/kinematics/engine.cpp):
+  // a dead point ("would have to jump", the escapement's anchor) is no closing channel
+  if (jam.description.find("its free range closed") == std::string::npos) return std::nullopt;
+  auto index = std::find(result.followers.begin(), result.followers.end(), jam.part);
+  if (index == result.followers.end()) return std::nullopt;
+  std::size_t k = std::size_t(index - result.followers.begin());
+  double at = result.direction > 0 ? jam.at.coordinate.lower : jam.at.coordinate.upper;
+  if (!std::isfinite(at) || !std::isfinite(jam.position)) return std::nullopt;
+  // the samples before the closing where the follower has play, the nearest first (two at most)
+  // (the analysis samples its driver grid and every event: a sample of a closing channel has
+  // play, narrowing to 0 at the closing)
+  std::vector<certify_detail::ClosingStart> starts;
+  for (auto sample = result.samples.rbegin(); sample != result.samples.rend() && starts.size() < 4; ++sample) {   // two starts a sample
+    if ((at - sample->driver) * result.direction <= 0 || k >= sample->positions.size() || k >= sample->play.size())
+      continue;
+    double position = sample->positions[k], play = sample->play[k];
+    if (!std::isfinite(position) || !std::isfinite(play) || play <= 1e-9 * std::max(1.0, std::abs(position))) continue;
+    // the sample's position is one end of its free interval (the contact that pushes it) or,
+    // free, somewhere inside: both halves are tried, the piece's side first (pushed from above,
+    // +1: the interval lies below the position); the start is checked exactly
+    int side = 0;
+    for (const KinematicPiece& piece : result.pieces)
+      if (piece.part == jam.part && (sample->driver - piece.start.value()) * result.direction >= 0 &&
+          (piece.end.value() - sample->driver) * result.direction >= 0)
+        side = piece.side;
+    Rational x = rational_of(sample->driver);
+    certify_detail::ClosingStart above{x, rational_of(position), rational_of(position + play)},
+        below{x, rational_of(position - play), rational_of(position)};
+    starts.push_back(side > 0 ? below : above);
+    starts.push_back(side > 0 ? above : below);
+  }
+  if (starts.empty()) return std::nullopt;
+  for (const PairSpec& pair : model.pairs) {
+    const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
+    bool ours = (a.name == driver.name && b.name == jam.part) || (b.name == driver.name && a.name == jam.part);
+    if (!ours) continue;
+    try {
+      return certify_detail::certify_closing_jam(model, a.name, b.name, driver.name, result.direction, rational_of(at),
+                                                 rational_of(jam.position), starts, context);
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception&) {
+      return std::nullopt;   // the note of the search above stands
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+std::optional<Certificate> certify_closing_jam(const Model& model, const KinematicsResult& result,
+                                               const CertifyContext& context) {
+  if (!result.jam) return std::nullopt;
+  std::optional<std::size_t> driver = model.find_part(result.driver);
+  if (!driver || result.jam->part == result.driver) return std::nullopt;
+  return certify_closing(model, result, *result.jam, model.parts[*driver], context);
+}
 
 std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, const KinematicsResult& result,
                                                          const CertifyContext& context) {
@@ -129,6 +193,13 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
                        " (from the analysis's samples, not the initial configuration): " + error.what();
       }
       if (finding.certificate) break;
+    }
+    // The follower's free range closes (a zero-backlash mesh): its channel is too narrow for the
+    // search's follower grid, and the analysis's samples put the search's start into the parts
+    // (session 53). A trap around the closing instead, from the last samples before it where the
+    // follower has play (the middle of its free interval, checked exactly as the start).
+    if (!finding.certificate && jam.part != driver.name) {
+      if ((finding.certificate = certify_closing(model, result, jam, driver, context))) finding.note.clear();
     }
     if (!finding.certificate && finding.note.empty())
       finding.note = "no pair geometrically traps the motion near the jam: the stop comes from the quasi-static "

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <optional>
 
 namespace hipair {
@@ -160,8 +161,12 @@ MiddleValue negated(MiddleValue a) {
 // (an arc dipping through a line by less than the samples' spacing shows: a cam pushing its
 // follower just past a limit) is sought by minimising the side value about every sample where
 // it comes locally closest to the other side.
+//
+// `wide`: sub-curves of up to a tenth of the edge either side of the crossing are tried first
+// (MarchCover: two nearly tangent arcs pushed into each other cross at a small angle, so their
+// crossing slides along the edge as the pose moves; 1e-2 of the edge bounded the pieces).
 std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const IntervalEdge& eo, const IntervalEdge& gc,
-                                               const IntervalEdge& go) {
+                                               const IntervalEdge& go, bool wide = false) {
   double end = ec.arc ? mid(ec.sweep) : 1.0;   // a fraction or an angle (at most 2 pi)
   auto side_value = [&](double u) { return middle_value(verify::side_of(gc, verify::point_on(ec, Interval(approximate(u))))); };
   auto side = [&](double u) { return side_value(u).sign; };
@@ -174,7 +179,10 @@ std::optional<RationalInterval> crossing_piece(const IntervalEdge& ec, const Int
       else hi = m;
     }
     double root = 0.5 * (lo + hi);
-    for (double delta : {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6, 1e-7}) {
+    static constexpr double usual[] = {1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6, 1e-7};
+    static constexpr double wider[] = {1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6, 1e-7};
+    for (double delta : wide ? std::vector<double>(std::begin(wider), std::end(wider))
+                             : std::vector<double>(std::begin(usual), std::end(usual))) {
       double a = std::max(0.0, root - delta * end), b = std::min(end * (1 - 1e-9), root + delta * end);
       if (!(a < b)) continue;
       RationalInterval along{approximate(a), approximate(b)};
@@ -282,6 +290,234 @@ bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
          PartRelation::overlapping;
 }
 
+// Covers of a trap's cut and walls for a closing channel (certify_closing_jam): the pieces
+// march along the range, each proved by one feature pair. cover() with blocking_crossing poses
+// both parts whole and tries every near feature pair on every piece, and bisects from the whole
+// range: on a gear mesh (~130 edges a part, ~40 near pairs a piece) that made a closing's trap
+// cost seconds. Here the feature pairs whose discs may meet anywhere in the trap are listed
+// once; a piece is tried first with the pairs that proved earlier pieces (one pair: two edges
+// posed), the whole list only when those fail on a piece already small; a proved piece's
+// successor is tried twice as wide, a failed piece halved. The same witnesses as cover()'s
+// (a crossing piece certain over the piece's box, crossing_piece): only the search differs.
+class MarchCover {
+ public:
+  /// `budget`: crossing_piece searches left (shared by the traps of one closing, about 1/3 ms
+  /// each; a certified gear closing takes about 40): the cover is given up when it runs out.
+  MarchCover(const PairRoles& r, const Shapes& shapes, const ConfigurationBox& trap, std::size_t& budget)
+      : r_(r), driver_shape_(shapes.driver), other_shape_(shapes.other), budget_(budget) {
+    // the groups' discs first (runs of 8 edges), then the edges of groups that may meet
+    verify::IntervalMap driver_map = interval_map(*r.driver, trap.driver), other_map = interval_map(*r.other, *trap.follower);
+    auto apart = [](const verify::IntervalPoint& a, const Interval& ra, const verify::IntervalPoint& b, const Interval& rb) {
+      Interval dx = a.x - b.x, dy = a.y - b.y, reach = ra + rb;
+      return (dx * dx + dy * dy - reach * reach).sign() > 0 && reach.sign() >= 0;
+    };
+    std::vector<verify::IntervalPoint> other_centres;
+    for (const auto& group : other_shape_.groups)
+      other_centres.push_back(verify::place_point(other_shape_, other_map, group.center));
+    std::map<std::pair<std::size_t, std::size_t>, IntervalEdge> posed_driver, posed_other;
+    auto posed = [&](bool driver, std::size_t loop, std::size_t edge) -> const IntervalEdge& {
+      auto& cache = driver ? posed_driver : posed_other;
+      auto found = cache.find({loop, edge});
+      if (found == cache.end())
+        found = cache.emplace(std::make_pair(loop, edge), driver ? pose(driver_shape_, driver_map, loop, edge)
+                                                                 : pose(other_shape_, other_map, loop, edge)).first;
+      return found->second;
+    };
+    for (const auto& dg : driver_shape_.groups) {
+      verify::IntervalPoint dcentre = verify::place_point(driver_shape_, driver_map, dg.center);
+      for (std::size_t n = 0; n < other_shape_.groups.size(); ++n) {
+        const auto& og = other_shape_.groups[n];
+        if (apart(dcentre, dg.radius, other_centres[n], og.radius)) continue;
+        for (std::size_t j = dg.first; j < dg.last; ++j)
+          for (std::size_t l = og.first; l < og.last; ++l) {
+            const IntervalEdge &a = posed(true, dg.loop, j), &b = posed(false, og.loop, l);
+            if (!apart(a.disc_center, a.disc_radius, b.disc_center, b.disc_radius)) near_.push_back({0, dg.loop, j, og.loop, l});
+          }
+      }
+    }
+    // blocking_crossing's order: the driver's edges crossing the other's first
+    std::size_t count = near_.size();
+    for (std::size_t n = 0; n < count; ++n) near_.push_back({1, near_[n].i, near_[n].j, near_[n].k, near_[n].l});
+  }
+
+  /// Covers `range` left to right; box(piece) is the configuration box (driver, other) of a piece.
+  /// `finest`: the shortest piece, as a fraction of the range, before the cover is given up.
+  bool march(const RationalInterval& range, std::vector<BlockedPiece>& pieces, std::size_t max_pieces,
+             const std::function<std::pair<RationalInterval, RationalInterval>(const RationalInterval&)>& box,
+             const Rational& finest) {
+    Rational position = range.lo, width = (range.hi - range.lo) / 8;
+    const Rational floor = std::max(Rational(1, 1000000000000), Rational((range.hi - range.lo) * finest));
+    int failures = 0;      // consecutive failed widths at `position`
+    bool grow = false;     // the last piece was proved at its first width: try the next one wider
+    while (position < range.hi) {
+      if (pieces.size() >= max_pieces || budget_ == 0) return false;
+      Rational end = std::min(Rational(position + width), range.hi);
+      RationalInterval piece{position, end};
+      auto [driver_range, other_range] = box(piece);
+      // a first try at a position takes the proved pairs' last sub-curves only (a wider piece that
+      // fails is halved, which is cheaper than crossing_piece's search)
+      std::optional<CrossingWitness> witness = hinted(driver_range, other_range, failures > 0 || !grow);
+      // every pair only when the proved pairs failed twice here (their region ends) or none is known
+      if (!witness && (hints_.empty() || failures >= 2)) witness = scan(driver_range, other_range);
+      if (witness) {
+        pieces.push_back({piece, *witness});
+        width = grow ? Rational(2 * (end - position)) : Rational(end - position);
+        grow = failures == 0;
+        failures = 0;
+        position = end;
+        continue;
+      }
+      if (end - position < floor) return false;
+      width = (end - position) / 2;
+      ++failures;
+      grow = false;
+    }
+    return true;
+  }
+
+ private:
+  struct FeaturePair {
+    int order;   // 0: driver edge (i, j) crosses other edge (k, l); 1: the other's crosses the driver's
+    std::size_t i, j, k, l;
+    std::optional<RationalInterval> along = std::nullopt;   // of the last piece it proved
+  };
+
+  static IntervalEdge pose(const verify::IntervalPart& shape, const verify::IntervalMap& map, std::size_t loop,
+                           std::size_t edge) {
+    verify::IntervalPart one;
+    one.pivot = shape.pivot;
+    one.loops = {{shape.loops[loop][edge]}};
+    return verify::place_over(one, map).loops[0][0];
+  }
+
+  struct Maps {
+    verify::IntervalMap driver_over, driver_centre, other_over, other_centre;
+  };
+  Maps maps(const RationalInterval& driver_range, const RationalInterval& other_range) const {
+    Rational dc = middle(driver_range), oc = middle(other_range);
+    return {interval_map(*r_.driver, driver_range), interval_map(*r_.driver, {dc, dc}),
+            interval_map(*r_.other, other_range), interval_map(*r_.other, {oc, oc})};
+  }
+
+  // The pair's witness over the piece: first the sub-curve that proved the pair's last piece
+  // (`guess`: the crossing moves on little from one piece to the next), else crossing_piece.
+  std::optional<CrossingWitness> attempt(const FeaturePair& p, const Maps& m,
+                                         const std::optional<RationalInterval>& guess = std::nullopt,
+                                         bool search = true) const {
+    IntervalEdge dover = pose(driver_shape_, m.driver_over, p.i, p.j), oover = pose(other_shape_, m.other_over, p.k, p.l);
+    if (guess && (p.order == 0 ? verify::crossing_certain(dover, *guess, oover, nullptr)
+                               : verify::crossing_certain(oover, *guess, dover, nullptr)))
+      return witness_of(p, *guess);
+    if (!search || budget_ == 0) return std::nullopt;
+    --budget_;
+    IntervalEdge dc = pose(driver_shape_, m.driver_centre, p.i, p.j), oc = pose(other_shape_, m.other_centre, p.k, p.l);
+    // skip the pair when its bounding discs are certainly apart (at the box centre)
+    Interval dx = dc.disc_center.x - oc.disc_center.x, dy = dc.disc_center.y - oc.disc_center.y;
+    Interval reach = dc.disc_radius + oc.disc_radius;
+    if ((dx * dx + dy * dy - reach * reach).sign() > 0 && reach.sign() >= 0) return std::nullopt;
+    auto along = p.order == 0 ? crossing_piece(dc, dover, oc, oover, true) : crossing_piece(oc, oover, dc, dover, true);
+    if (!along) return std::nullopt;
+    return witness_of(p, *along);
+  }
+
+  CrossingWitness witness_of(const FeaturePair& p, const RationalInterval& along) const {
+    const Part &d = *r_.driver, &o = *r_.other;
+    EdgeReference de{d.name, p.i, p.j, d.loops[p.i].edges[p.j].label}, oe{o.name, p.k, p.l, o.loops[p.k].edges[p.l].label};
+    return p.order == 0 ? CrossingWitness{de, oe, along} : CrossingWitness{oe, de, along};
+  }
+
+  std::optional<CrossingWitness> hinted(const RationalInterval& driver_range, const RationalInterval& other_range,
+                                        bool search) {
+    if (hints_.empty()) return std::nullopt;
+    Maps m = maps(driver_range, other_range);
+    for (std::size_t n = 0; n < hints_.size(); ++n)
+      if (auto witness = attempt(hints_[n], m, hints_[n].along, search)) {
+        hints_[n].along = witness->along;
+        std::rotate(hints_.begin(), hints_.begin() + long(n), hints_.begin() + long(n) + 1);   // most recent first
+        return witness;
+      }
+    return std::nullopt;
+  }
+
+  // Every near pair not among the proved ones: first those next to a proved pair (the other
+  // order, or an edge next to one of its edges: a contact moving on along a flank), then the rest.
+  std::optional<CrossingWitness> scan(const RationalInterval& driver_range, const RationalInterval& other_range) {
+    Maps m = maps(driver_range, other_range);
+    auto close = [](std::size_t a, std::size_t b) { return a == b || a + 1 == b || b + 1 == a; };
+    auto proved = [&](const FeaturePair& p) {
+      for (const FeaturePair& h : hints_)
+        if (h.order == p.order && h.i == p.i && h.j == p.j && h.k == p.k && h.l == p.l) return true;
+      return false;
+    };
+    auto next_to_proved = [&](const FeaturePair& p) {
+      for (const FeaturePair& h : hints_)
+        if (h.i == p.i && h.k == p.k && close(h.j, p.j) && close(h.l, p.l)) return true;
+      return false;
+    };
+    for (int round = 0; round < 2; ++round)
+      for (const FeaturePair& p : near_) {
+        if (proved(p) || next_to_proved(p) != (round == 0) || !seems_to_cross(p, m)) continue;
+        if (auto witness = attempt(p, m)) {
+          hints_.insert(hints_.begin(), p);
+          hints_.front().along = witness->along;
+          return witness;
+        }
+      }
+    return std::nullopt;
+  }
+
+  // A quick look in doubles (a heuristic: it only orders the search): does edge e of the pair,
+  // posed at the piece's centre, pass to the other side of g's line or circle, at 256 points,
+  // at a point within g's extent? Pairs that do not are not tried by scan().
+  bool seems_to_cross(const FeaturePair& p, const Maps& m) const {
+    IntervalEdge dc = pose(driver_shape_, m.driver_centre, p.i, p.j), oc = pose(other_shape_, m.other_centre, p.k, p.l);
+    const IntervalEdge& e = p.order == 0 ? dc : oc;
+    const IntervalEdge& g = p.order == 0 ? oc : dc;
+    auto d = [](const Interval& v) { return mid(v); };
+    double sx = d(e.source.x), sy = d(e.source.y), tx = d(e.target.x), ty = d(e.target.y), cx = d(e.center.x),
+           cy = d(e.center.y), sweep = e.arc ? d(e.sweep) : 1.0;
+    double gsx = d(g.source.x), gsy = d(g.source.y), gtx = d(g.target.x), gty = d(g.target.y), gcx = d(g.center.x),
+           gcy = d(g.center.y), gr2 = d(g.radius_squared);
+    auto side = [&](double x, double y) {
+      return g.arc ? (x - gcx) * (x - gcx) + (y - gcy) * (y - gcy) - gr2 : (gtx - gsx) * (y - gsy) - (gty - gsy) * (x - gsx);
+    };
+    auto within = [&](double x, double y) {
+      if (!g.arc) {
+        double along = (x - gsx) * (gtx - gsx) + (y - gsy) * (gty - gsy);
+        double length2 = (gtx - gsx) * (gtx - gsx) + (gty - gsy) * (gty - gsy);
+        return along > -0.01 * length2 && along < 1.01 * length2;
+      }
+      if (g.full_circle) return true;
+      // within the arc's sweep from its source, in its direction
+      double a0 = std::atan2(gsy - gcy, gsx - gcx), a = std::atan2(y - gcy, x - gcx);
+      double turn = (g.ccw ? a - a0 : a0 - a) / (2 * M_PI);
+      turn -= std::floor(turn);
+      double sweep = mid(g.sweep);   // (a hundredth more either side: a crossing at a vertex)
+      return turn * 2 * M_PI < 1.01 * sweep || (1 - turn) * 2 * M_PI < 0.01 * sweep;
+    };
+    constexpr int samples = 256;
+    double previous = 0;
+    for (int n = 0; n <= samples; ++n) {
+      double u = sweep * n / samples, x, y;
+      if (!e.arc) {
+        x = sx + u * (tx - sx), y = sy + u * (ty - sy);
+      } else {
+        double c = std::cos(u), sn = e.ccw ? std::sin(u) : -std::sin(u), wx = sx - cx, wy = sy - cy;
+        x = cx + c * wx - sn * wy, y = cy + sn * wx + c * wy;
+      }
+      double value = side(x, y);
+      if (n > 0 && ((previous < 0) != (value < 0)) && within(x, y)) return true;
+      previous = value;
+    }
+    return false;
+  }
+
+  const PairRoles& r_;
+  const verify::IntervalPart &driver_shape_, &other_shape_;
+  std::vector<FeaturePair> near_, hints_;
+  std::size_t& budget_;
+};
+
 }  // namespace
 
 std::optional<Certificate> certify_free_passage(const Model& model, const std::string& first, const std::string& second,
@@ -359,11 +595,14 @@ std::optional<Certificate> certify_free_passage(const Model& model, const std::s
   return c;
 }
 
-std::optional<Certificate> certify_jam(const Model& model, const std::string& first, const std::string& second,
-                                       const JamQuery& query, const CertifyContext& context,
-                                       const IntervalSearchOptions& options) {
-  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
-    return checked_as_given(certify_jam(*moved, first, second, query, context, options), model);
+namespace {
+// certify_jam's work on a pair at the origin; `march`: cover the cut and walls with MarchCover
+// (certify_closing_jam) instead of cover() with blocking_crossing.
+std::optional<Certificate> certify_trap(const Model& model, const std::string& first, const std::string& second,
+                                        const JamQuery& query, const CertifyContext& context,
+                                        const IntervalSearchOptions& options, const Shapes* march = nullptr,
+                                        std::size_t* budget = nullptr) {
+  // march (certify_closing_jam): its start, checked there, is the certificate's; no grid
   Certificate c = start_certificate(model, context, ClaimKind::jam, first, second);
   PairRoles r = pair_roles(model, first, second, query.driver, query.follower);
   if (r.has_follower != bool(query.trap.follower)) throw NumericError("the trap needs a follower range exactly when the follower moves");
@@ -391,15 +630,27 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
                                              to_decimal_string(limits.hi) + "]" + unit + (rotating ? " in every turn" : "") +
                                              ": the trap holds no configuration of the mechanism");
     }
-    if (!cover(band, c.cut, options.max_boxes,
-               [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); }))
+    // (a piece shorter than a billionth of the cut or a hundred-thousandth of a wall gives the
+    // trap up: the pieces approach free space by halves; a closing's cut took pieces of 1e-7 of
+    // its range, its walls 1/64)
+    std::optional<MarchCover> marching;
+    if (march) marching.emplace(r, *march, c.trap, *budget);
+    if (marching ? !marching->march(band, c.cut, options.max_boxes,
+                                    [&](const RationalInterval& piece) { return std::make_pair(cut_at, piece); },
+                                    Rational(1, 1000000000))
+                 : !cover(band, c.cut, options.max_boxes,
+                          [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); }))
       return std::nullopt;
     for (int upper = 0; upper < 2; ++upper) {
       Rational at = upper ? band.hi : band.lo;
       if (verify::wall_closed_by_limit(*r.other, band, upper)) continue;
       RationalInterval wall_at{at, at};
-      if (!cover(c.trap.driver, upper ? c.upper_wall : c.lower_wall, options.max_boxes,
-                 [&](const RationalInterval& piece) { return blocking_crossing(r, piece, wall_at); }))
+      std::vector<BlockedPiece>& wall = upper ? c.upper_wall : c.lower_wall;
+      if (marching ? !marching->march(c.trap.driver, wall, options.max_boxes,
+                                      [&](const RationalInterval& piece) { return std::make_pair(piece, wall_at); },
+                                      Rational(1, 100000))
+                   : !cover(c.trap.driver, wall, options.max_boxes,
+                            [&](const RationalInterval& piece) { return blocking_crossing(r, piece, wall_at); }))
         return std::nullopt;
     }
   }
@@ -407,9 +658,14 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
   // a grid over the trap, the near driver end first and the band's middle outwards.
   std::vector<JamStart> candidates;
   if (query.start) candidates.push_back(*query.start);
+  if (march) {
+    if (!query.start) return std::nullopt;
+    c.start = query.start;
+  }
   const RationalInterval& span = c.trap.driver;
   Rational near_end = c.direction > 0 ? span.lo : span.hi;
   for (const Rational& fraction : {Rational(0), Rational(1, 2), Rational(1, 4), Rational(3, 4)}) {
+    if (march) break;
     Rational x = near_end + (c.direction > 0 ? Rational(1) : Rational(-1)) * fraction * (span.hi - span.lo);
     if (!r.has_follower) {
       candidates.push_back({x, std::nullopt});
@@ -422,7 +678,7 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
     }
   }
   for (const JamStart& candidate : candidates)
-    if (verify::jam_start_failure(*r.driver, *r.other, c.trap, candidate).empty()) {
+    if (!c.start && verify::jam_start_failure(*r.driver, *r.other, c.trap, candidate).empty()) {
       c.start = candidate;
       break;
     }
@@ -430,6 +686,15 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
   c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;
+}
+}  // namespace
+
+std::optional<Certificate> certify_jam(const Model& model, const std::string& first, const std::string& second,
+                                       const JamQuery& query, const CertifyContext& context,
+                                       const IntervalSearchOptions& options) {
+  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
+    return checked_as_given(certify_jam(*moved, first, second, query, context, options), model);
+  return certify_trap(model, first, second, query, context, options);
 }
 
 std::optional<Certificate> certify_found_jam(const Model& model, const std::string& first, const std::string& second,
@@ -441,6 +706,67 @@ std::optional<Certificate> certify_found_jam(const Model& model, const std::stri
     Rational& far = query.direction > 0 ? longer.trap.driver.hi : longer.trap.driver.lo;
     far += query.direction * further * step;
     if (auto certificate = certify_jam(model, first, second, longer, context, options)) return certificate;
+  }
+  return std::nullopt;
+}
+
+std::optional<Certificate> certify_detail::certify_closing_jam(
+    const Model& model, const std::string& first, const std::string& second, const std::string& driver, int direction,
+    const Rational& closing_driver, const Rational& closing_follower, const std::vector<ClosingStart>& starts,
+    const CertifyContext& context, std::size_t max_pieces) {
+  if (direction != 1 && direction != -1) return std::nullopt;
+  if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
+    return checked_as_given(certify_closing_jam(*moved, first, second, driver, direction, closing_driver, closing_follower,
+                                                starts, context, max_pieces),
+                            model);
+  const Part& d = part_of(model, driver);
+  const Part& o = part_of(model, driver == first ? second : first);
+  if (o.motion.kind == Motion::Kind::fixed) return std::nullopt;
+  IntervalSearchOptions options;
+  options.max_boxes = max_pieces;
+  PairRoles r = pair_roles(model, first, second, driver, o.name);
+  Shapes shapes{verify::shape_of(*r.driver), verify::shape_of(*r.other)};
+  std::size_t budget = 300;
+  for (const ClosingStart& s : starts) {
+    Rational lead = (closing_driver - s.driver) * direction;   // driver travel from the start to the closing
+    Rational width = s.hi - s.lo;
+    if (sgn(lead) <= 0 || sgn(width) <= 0) continue;
+    Rational y0 = (s.lo + s.hi) / 2;
+    // how far the channel moves per driver unit (it runs from about y0 to the closing)
+    Rational rate = abs(closing_follower - y0) / lead;
+    bool start_free = false;
+    // Past the closing by `past`: the channel's two sides have crossed, so the cut's depth grows
+    // with `past`; the walls must clear the channel's sweep up to the cut.
+    // (past, the walls' margin beyond the channel's span): a quarter of the lead past, then the
+    // whole lead; margins of twice the sweep past the closing and all of, else a quarter of, the
+    // travel from the start, else an eighth of that travel (a deeper wall takes fewer pieces, but
+    // a wide one met free space: a 19 x 18 mesh at 3/4 of its travel; a narrower one's cut did
+    // not pass the hardest point of a 17 x 17 mesh)
+    const std::pair<Rational, Rational> shapes_of_trap[] = {
+        {lead / 4, rate * (lead + lead / 2) + 2 * width}, {lead / 4, rate * (lead / 4 + lead / 2) + 2 * width},
+        {lead / 4, rate * lead / 8 + 2 * width}, {lead, rate * (lead / 4 + 2 * lead) + 2 * width}};
+    for (const auto& [past, margin] : shapes_of_trap) {
+      Rational x1 = closing_driver + direction * past;
+      RationalInterval band{std::min({s.lo, y0, closing_follower}) - margin, std::max({s.hi, y0, closing_follower}) + margin};
+      JamQuery query{d.name, o.name, direction,
+                     {direction > 0 ? RationalInterval{s.driver, x1} : RationalInterval{x1, s.driver}, band},
+                     JamStart{s.driver, y0}};
+      if (!verify::band_meets_limits(o, band)) break;
+      // the start first: one not certainly free gives no certificate, whatever the trap (the MPFI
+      // distance bound here; the verifier's whole check, with its exact nesting test, is
+      // certify_trap's self-check)
+      if (!start_free) {
+        if (sgn(clearance_at(r, shapes, s.driver, y0)) <= 0) break;
+        start_free = true;
+      }
+      std::optional<Certificate> certificate;
+      try {
+        certificate = certify_trap(model, first, second, query, context, options, &shapes, &budget);
+      } catch (const NumericError&) {
+        break;   // the self-check refused it: the start (its exact nesting test); the next start
+      }
+      if (certificate) return certificate;
+    }
   }
   return std::nullopt;
 }

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace hipair::certify_detail {
 
@@ -29,6 +30,26 @@ inline std::optional<Certificate> checked_as_given(std::optional<Certificate> ce
   if (certificate) self_check(*certificate, model);
   return certificate;
 }
+
+/// A configuration just before a jam where the follower's free range has not closed yet, read
+/// off a kinematic analysis: the driver at `driver`, the follower free about [lo, hi] (doubles of
+/// the analysis: estimates only; the start a certificate takes is checked with the verifier's
+/// jam_start_failure).
+struct ClosingStart {
+  Rational driver, lo, hi;
+};
+
+/// The jam where the follower's free range closes (a zero-backlash mesh: the free channel
+/// narrows to a point at the driver value `closing_driver`, follower `closing_follower`, both
+/// estimates): a trap around the closing, from a free start before it (the first of `starts`
+/// whose middle is certainly free) to a cut past the closing, its follower range the channel's
+/// sweep with a margin. Each trap is certified by certify_jam (cover of the cut and walls,
+/// self-checked by the verifier's code), with at most `max_pieces` pieces.
+/// \returns nullopt when no trap tried is certified.
+std::optional<Certificate> certify_closing_jam(const Model& model, const std::string& first, const std::string& second,
+                                               const std::string& driver, int direction, const Rational& closing_driver,
+                                               const Rational& closing_follower, const std::vector<ClosingStart>& starts,
+                                               const CertifyContext& context, std::size_t max_pieces = 2000);
 
 /// The exact world map of `part` at `position` (identity for a fixed part).
 /// \throws GeometryError for parts that are neither fixed, rotating nor translating.

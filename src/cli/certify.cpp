@@ -1,5 +1,6 @@
 // `hipair certify MODEL --claim interference|clearance|jam|free --out CERT`: produces a
 // certificate that hipair-verify re-checks independently (docs/certify.md).
+#include "certificates/closing.hpp"
 #include "cli/angles.hpp"
 #include "core/model_scale.hpp"
 #include "cli/commands.hpp"
@@ -9,11 +10,13 @@
 
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <set>
 
 namespace hipair::cli {
@@ -322,6 +325,27 @@ int run(const CertifyArguments& arguments) {
           return 1;
         }
         certificate = certify_found_jam(model, first, second, *query, step, context);
+        // The follower's free range closes (a zero-backlash mesh, session 53): the search's
+        // follower grid misses the narrow channel. The kinematic analysis over the same driver
+        // travel locates the closing; a trap around it is certified from a free start before it.
+        if (!certificate && follows) {
+          Model posed = model;
+          Part& moved = posed.parts[*posed.find_part(other.name)];
+          (rotates(other) ? moved.initial.angle : moved.initial.offset) = follower;
+          KinematicsOptions analysis;
+          analysis.driver = driver.name;
+          analysis.direction = direction;
+          analysis.range = std::make_pair(start, Rational(start + direction * travel));
+          analysis.reversal = false;
+          try {
+            KinematicsResult result = analyze_kinematics(posed, analysis);
+            if (result.jam && result.jam->part == other.name) certificate = certify_closing_jam(model, result, context);
+          } catch (const std::bad_alloc&) {
+            throw;
+          } catch (const Error&) {
+            // the analysis cannot run on this pair: the search's verdict stands
+          }
+        }
       }
       failure = "some configuration of the trap's cut or walls is not certainly blocked, or no configuration tried in the trap is certainly free";
     }
