@@ -3,7 +3,7 @@
 #include <hipair/certificate.hpp>
 #include <hipair/kinematics.hpp>
 
-#include "certificates/closing.hpp"
+#include <hipair/closing_jam.hpp>
 #include "certificates/producer.hpp"
 #include "core/model_scale.hpp"
 

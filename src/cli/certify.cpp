@@ -1,6 +1,6 @@
 // `hipair certify MODEL --claim interference|clearance|jam|free --out CERT`: produces a
 // certificate that hipair-verify re-checks independently (docs/certify.md).
-#include "certificates/closing.hpp"
+#include <hipair/closing_jam.hpp>
 #include "cli/angles.hpp"
 #include "core/model_scale.hpp"
 #include "cli/commands.hpp"

@@ -1,5 +1,5 @@
-// The jam of a closing free range, certified from a kinematic analysis (session 53). Internal:
-// for `hipair analyze` (certify_kinematic_findings) and `hipair certify --claim jam`.
+// The jam of a closing free range, certified from a kinematic analysis (session 53). Used
+// by `hipair analyze` (certify_kinematic_findings) and `hipair certify --claim jam`.
 #pragma once
 
 #include <hipair/certificate.hpp>
