@@ -340,7 +340,7 @@ int run(const CSpaceCommandOptions& options) {
       svg.title = model.name + ": sliced C-space of " + space.free_part() + " against " + space.fixed_part() + " (" +
                   std::to_string(space.critical_angles().size()) + " critical angles, " +
                   std::to_string(space.intervals().size()) + " slices, " + std::to_string(space.components()) +
-                  " free components)";
+                  (space.components() == 1 ? " free component)" : " free components)");
       if (long unit = space.length_unit_exponent(); unit != 0)
         svg.title += " (offsets in units of 2^" + std::to_string(unit) + " mm)";
       sliced_documents.emplace_back(suffixed(options.svg, space, several), render::sliced_stack_svg(space, svg));

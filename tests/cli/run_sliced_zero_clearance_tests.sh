@@ -29,7 +29,7 @@ assert d["components"] == 1, d["components"]
 cells = [c for s in d["slices"] for c in s["free_cells"]]
 assert cells and all(c["component"] == 0 for c in cells), [c["component"] for c in cells]
 PY
-grep -q "1 free components" "$work/peg10.svg" || fail "peg10: the SVG heading does not say 1 component"
+grep -q "1 free component)" "$work/peg10.svg" || fail "peg10: the SVG heading does not say 1 component"
 k=$((20 + RANDOM % 21))
 sed "s/\"hole-side\": { \"nominal\": 12 }/\"hole-side\": { \"nominal\": 10.$(printf '%0*d' $((k - 1)) 0)1 }/" "$peg" >"$work/peg-tiny.json"
 "$hipair" cspace "$work/peg-tiny.json" --stats >"$work/peg-tiny.out" 2>&1 || fail "peg 10 + 1e-$k: exit $?"
