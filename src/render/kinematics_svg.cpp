@@ -54,7 +54,13 @@ void draw_axes(io::SvgWriter& svg, const Panel& panel, const std::string& x_labe
     svg.text(panel.left - 6, panel.bottom + panel.height + 8 + 14, panel.y_axis.base_label, 11, "end");
   svg.rectangle(panel.left, panel.bottom, panel.width, panel.height, frame);
   svg.text(panel.left + panel.width / 2, panel.bottom - 32, x_label, 12);
-  svg.text(panel.left - 8, panel.bottom + panel.height + 8, y_label, 12, "end");
+  // The axis name sits above the axis, ending at it; a name longer than the margin (a length unit
+  // such as "1e400 mm") starts at the picture's edge instead of running off it (DejaVu Sans at
+  // 12 px: about 0.47 em per character of such labels).
+  if (0.47 * 12.0 * static_cast<double>(y_label.size()) > panel.left - 10)
+    svg.text(2, panel.bottom + panel.height + 8, y_label, 12, "start");
+  else
+    svg.text(panel.left - 8, panel.bottom + panel.height + 8, y_label, 12, "end");
   svg.text(panel.left + panel.width / 2, panel.bottom + panel.height + 24, title, 13, "middle", "black", "bold");
 }
 
