@@ -885,14 +885,14 @@ int run_planar(const Model& model, const SimulateOptions& options) {
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
   for (std::size_t k = 0; k < parts.size(); ++k)
-    std::cout << "  " << model.parts[parts[k]].name << ": x " << number(end[k].x) << " mm, y " << number(end[k].y)
-              << " mm, angle " << number(end[k].angle) << " rad; velocity (" << number(end[k].vx) << ", "
-              << number(end[k].vy) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
+    std::cout << "  " << model.parts[parts[k]].name << ": x " << shown(end[k].x, 1) << " mm, y " << shown(end[k].y, 1)
+              << " mm, angle " << number(end[k].angle) << " rad; velocity (" << shown(end[k].vx, 1) << ", "
+              << shown(end[k].vy, 1) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
               << (end[k].resting ? " (at rest)" : "") << "\n";
-  std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
+  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
-            << number(simulation.chord_deviation()) << " mm)\n";
+            << shown(simulation.chord_deviation(), 1) << " mm)\n";
   if (stats.restitution_limited > 0)
     std::cout << "  " << stats.restitution_limited
               << " frictional impacts with their restitution limited (Newton's law would have created energy)\n";
@@ -908,8 +908,12 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   {
     std::ostringstream csv;
     csv << "time_" << tu;
+    // in units of 10^E mm (E != 0): x, y and their rates name it ("_1e400mm", "_1e400mm_per_s")
+    const std::string unit = length_display_exponent() != 0 ? "_1e" + std::to_string(length_display_exponent()) + "mm" : "";
     for (std::size_t p : parts)
-      for (const char* n : names) csv << "," << model.parts[p].name << "_" << n;
+      for (int i = 0; i < 6; ++i)
+        csv << "," << model.parts[p].name << "_" << names[i]
+            << (i == 2 || i == 5 || unit.empty() ? std::string() : i < 2 ? unit : unit + "_per_" + tu);
     csv << "\n";
     for (const Sample& s : samples) {
       csv << number(s.time);
@@ -923,7 +927,9 @@ int run_planar(const Model& model, const SimulateOptions& options) {
                   {{"t_end", state_time(simulation)},
                    {"steps", simulation.steps()},
                    {"energy", simulation.energy()},
-                   {"chord_deviation_mm", simulation.chord_deviation()}});
+                   {length_display_exponent() != 0 ? "chord_deviation_1e" + std::to_string(length_display_exponent()) + "mm"
+                                                   : std::string("chord_deviation_mm"),
+                    simulation.chord_deviation()}});
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
@@ -933,7 +939,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
       render::TimePlot plot;
       plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + part_names;
       plot.x_label = "t (" + tu + ")";
-      plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
+      plot.y_label = which == 0 ? length_unit_name() + " or rad" : length_unit_name() + " or rad per " + tu;
       plot.event_times = event_times;
       for (const Sample& s : samples) plot.times.push_back(s.time);
       for (std::size_t k = 0; k < parts.size(); ++k)
@@ -949,6 +955,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     animation.duration = playback;
     animation.time_unit = tu;
     animation.drawing.title = model.name + ": simulated";
+    if (length_display_exponent() != 0) animation.drawing.title += " (lengths in units of " + length_unit_name() + ")";
     for (const SimulationEvent& e : simulation.events())
       if (e.kind == SimulationEvent::Kind::impact)
         animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
@@ -980,7 +987,7 @@ void check_times(const SimulateOptions& options) {
 }
 
 // The model `hipair simulate` runs and the exponent E of the length unit 10^E mm it runs in.
-// A mechanism whose parts rotate or translate (no part free in the plane), drawn at an extreme
+// A mechanism without a pin-slot part (parts fixed, rotating, translating, free in the plane), drawn at an extreme
 // scale (kinematic_decimal_exponent: lengths outside about 1e-9 .. 1e9 mm with a translating
 // part, 1e-9 .. 1e18 mm rotating only), runs on its copy rescaled exactly by 10^-E with its
 // dynamics data (decimal_scaled_dynamics_model: mass and time unchanged, forces with the
@@ -989,14 +996,12 @@ void check_times(const SimulateOptions& options) {
 // energies in mm and N times the powers of 10^E (shown()). Until session 53 (scale53b) such a
 // model was refused (its inertias, 1e800 kg mm^2, do not fit a double). E = 0 otherwise, and the
 // model is read as before (read_model_file_for_simulation: out-of-range dynamics data refused at
-// its pointer). Planar parts and --sweep are not rescaled (their data beyond the doubles is refused).
+// its pointer). Pin-slot parts and --sweep are not rescaled (their data beyond the doubles is refused).
 Model simulated_model(const SimulateOptions& options, const ReadOptions& overrides, long& exponent) {
   exponent = 0;
   auto rescaled_exponent = [](const Model& model) -> long {
     for (const Part& part : model.parts)
-      if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::rotation &&
-          part.motion.kind != Motion::Kind::translation)
-        return 0;
+      if (part.motion.kind == Motion::Kind::pin_slot) return 0;
     return kinematic_decimal_exponent(model);
   };
   std::optional<Model> read;

@@ -403,8 +403,12 @@ Model decimal_scaled_dynamics_model(const Model& model, long exponent) {
       const int entry = seen[v.part]++;
       if (kind == Motion::Kind::translation || (kind == Motion::Kind::planar && entry < 2)) v.value *= factor;
     }
+    // a planar part's driver is three entries too (vx, vy, omega)
+    std::vector<int> driven(scaled.parts.size(), 0);
     for (SimulationSpec::Driver& driver : spec.drivers) {
-      if (scaled.parts.at(driver.part).motion.kind == Motion::Kind::rotation) continue;
+      const Motion::Kind kind = scaled.parts.at(driver.part).motion.kind;
+      const int entry = driven[driver.part]++;
+      if (!(kind == Motion::Kind::translation || (kind == Motion::Kind::planar && entry < 2))) continue;
       driver.speed *= factor;
       for (auto& point : driver.profile) point.second *= factor;
     }

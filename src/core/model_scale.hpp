@@ -77,7 +77,8 @@ Model decimal_scaled_model(const Model& model, long exponent);
 /// decimal_scaled_model, and the dynamics data rescaled so that the motion is the same in the
 /// unit 10^exponent mm (mass and time unchanged, so a force scales with the lengths): moments of
 /// inertia, torques, torsional stiffnesses and a rotating part's damping divided by
-/// 100^exponent; gravity, a translating part's initial and driven speeds (and speed profiles),
+/// 100^exponent; gravity, a translating part's initial and driven speeds (and speed profiles; a planar part's
+/// vx and vy),
 /// couplings' points and rest lengths and centres of mass divided by 10^exponent; masses, linear
 /// stiffnesses and dampings, angles and their rates, friction and restitution unchanged (the
 /// inverse of tests/fuzz/scale_model.py's rules). A model scaled by 10^exponent from an ordinary

@@ -152,6 +152,8 @@ def compare_simulate(base, scaled, k, name):
                     found = "units %r" % units
                 units["force"], units["length"] = force, "mm"
             ja["model"] = jb["model"] = name
+            if "chord_deviation_1e%dmm" % k in jb:   # a planar run's chord deviation in units of 10^K mm
+                jb["chord_deviation_mm"] = jb.pop("chord_deviation_1e%dmm" % k)
             found = found or first_difference(ja, jb)
         elif file == "events.txt":
             found = numbers_moved(ta, tb, k)
