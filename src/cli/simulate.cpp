@@ -5,6 +5,7 @@
 // fixed rate) and, per two-dimensional pair, the path over its C-space (cspace-X-Y.svg, like
 // Joskowicz & Sacks 1997, Figure 6b).
 #include "cli/commands.hpp"
+#include "core/length_display.hpp"
 #include "core/model_scale.hpp"
 
 #include "io/output_directory.hpp"
@@ -87,6 +88,30 @@ std::string number(double v) {
   return buffer;
 }
 
+// A quantity of the run in the unit (10^E mm)^power of a model simulated on its copy rescaled by
+// 10^-E (decimal_scaled_dynamics_model; E = length_display_exponent()), written in the model's
+// own unit: the decimal number() prints with its exponent moved by power * E ("0.5" -> "0.5e400",
+// "5.4e-07" -> "5.4e393"), exactly. power 1: lengths, speeds, forces, impulses (mass and time are
+// unchanged); 2: energies. number(v) when E = 0 (every ordinary model) or power = 0.
+std::string shown(double v, int power) {
+  std::string text = number(v);
+  const long shift = power * length_display_exponent();
+  if (shift == 0 || !std::isfinite(v)) return text;
+  std::size_t e = text.find('e');
+  long exponent = 0;
+  if (e != std::string::npos) {
+    exponent = std::stol(text.substr(e + 1));
+    text.erase(e);
+  }
+  return text + "e" + std::to_string(exponent + shift);
+}
+
+// The unit name `unit` in units of (10^E mm)^power: "N" or "1e400 N" (see shown()).
+std::string scaled_unit(const std::string& unit, int power) {
+  const long shift = power * length_display_exponent();
+  return shift == 0 ? unit : "1e" + std::to_string(shift) + " " + unit;
+}
+
 std::string event_line(const SimulationEvent& e, const std::string& time_unit, const std::string& force_unit) {
   std::ostringstream out;
   out << "t = " << number(e.time) << " " << time_unit << "  " << to_string(e.kind) << "  " << e.first_part << " / "
@@ -97,13 +122,13 @@ std::string event_line(const SimulationEvent& e, const std::string& time_unit, c
     out << "]";
   }
   if (e.kind == SimulationEvent::Kind::impact)
-    out << "  impulse " << number(e.impulse) << " " << force_unit << "·" << time_unit << ", normal speed "
-        << number(e.normal_speed_before) << " -> " << number(e.normal_speed_after) << " mm/" << time_unit;
+    out << "  impulse " << shown(e.impulse, 1) << " " << force_unit << "·" << time_unit << ", normal speed "
+        << shown(e.normal_speed_before, 1) << " -> " << shown(e.normal_speed_after, 1) << " mm/" << time_unit;
   if (e.kind == SimulationEvent::Kind::impact && e.tangential_impulse != 0)
-    out << ", tangential impulse " << number(e.tangential_impulse) << " " << force_unit << "·" << time_unit;
+    out << ", tangential impulse " << shown(e.tangential_impulse, 1) << " " << force_unit << "·" << time_unit;
   if (e.kind == SimulationEvent::Kind::stick || e.kind == SimulationEvent::Kind::slip)
-    out << "  normal force " << number(e.normal_force) << " " << force_unit << ", friction force "
-        << number(e.friction_force) << " " << force_unit << (e.exact_decision ? ", decided exactly" : ", decided approximately");
+    out << "  normal force " << shown(e.normal_force, 1) << " " << force_unit << ", friction force "
+        << shown(e.friction_force, 1) << " " << force_unit << (e.exact_decision ? ", decided exactly" : ", decided approximately");
   return out.str();
 }
 
@@ -756,7 +781,9 @@ void add_event_files(std::vector<io::RunFile>& files, const Model& model, const 
     text += event_line(e, tu, fu) + "\n";
   }
   nlohmann::json doc{{"model", model.name},
-                     {"units", {{"time", tu}, {"force", fu}, {"length", "mm"}, {"angle", "rad"}, {"mass", "kg"}}}};
+                     {"units", {{"time", tu}, {"force", scaled_unit(fu, 1)}, {"length", length_unit_name()}, {"angle", "rad"}, {"mass", "kg"}}}};
+  // a model simulated in units of 10^E mm (E != 0): its numbers are in those units, the energy in 10^(2E) N mm
+  if (length_display_exponent() != 0) doc["units"]["energy"] = scaled_unit(fu + "·mm", 2);
   for (auto& [key, value] : summary.items()) doc[key] = value;
   doc["events"] = log;
   files.push_back({"events.json", doc.dump(1) + "\n"});
@@ -858,14 +885,14 @@ int run_planar(const Model& model, const SimulateOptions& options) {
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
   for (std::size_t k = 0; k < parts.size(); ++k)
-    std::cout << "  " << model.parts[parts[k]].name << ": x " << number(end[k].x) << " mm, y " << number(end[k].y)
-              << " mm, angle " << number(end[k].angle) << " rad; velocity (" << number(end[k].vx) << ", "
-              << number(end[k].vy) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
+    std::cout << "  " << model.parts[parts[k]].name << ": x " << shown(end[k].x, 1) << " mm, y " << shown(end[k].y, 1)
+              << " mm, angle " << number(end[k].angle) << " rad; velocity (" << shown(end[k].vx, 1) << ", "
+              << shown(end[k].vy, 1) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
               << (end[k].resting ? " (at rest)" : "") << "\n";
-  std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
+  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
-            << number(simulation.chord_deviation()) << " mm)\n";
+            << shown(simulation.chord_deviation(), 1) << " mm)\n";
   if (stats.restitution_limited > 0)
     std::cout << "  " << stats.restitution_limited
               << " frictional impacts with their restitution limited (Newton's law would have created energy)\n";
@@ -881,8 +908,12 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   {
     std::ostringstream csv;
     csv << "time_" << tu;
+    // in units of 10^E mm (E != 0): x, y and their rates name it ("_1e400mm", "_1e400mm_per_s")
+    const std::string unit = length_display_exponent() != 0 ? "_1e" + std::to_string(length_display_exponent()) + "mm" : "";
     for (std::size_t p : parts)
-      for (const char* n : names) csv << "," << model.parts[p].name << "_" << n;
+      for (int i = 0; i < 6; ++i)
+        csv << "," << model.parts[p].name << "_" << names[i]
+            << (i == 2 || i == 5 || unit.empty() ? std::string() : i < 2 ? unit : unit + "_per_" + tu);
     csv << "\n";
     for (const Sample& s : samples) {
       csv << number(s.time);
@@ -896,7 +927,9 @@ int run_planar(const Model& model, const SimulateOptions& options) {
                   {{"t_end", state_time(simulation)},
                    {"steps", simulation.steps()},
                    {"energy", simulation.energy()},
-                   {"chord_deviation_mm", simulation.chord_deviation()}});
+                   {length_display_exponent() != 0 ? "chord_deviation_1e" + std::to_string(length_display_exponent()) + "mm"
+                                                   : std::string("chord_deviation_mm"),
+                    simulation.chord_deviation()}});
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
@@ -906,7 +939,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
       render::TimePlot plot;
       plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + part_names;
       plot.x_label = "t (" + tu + ")";
-      plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
+      plot.y_label = which == 0 ? length_unit_name() + " or rad" : length_unit_name() + " or rad per " + tu;
       plot.event_times = event_times;
       for (const Sample& s : samples) plot.times.push_back(s.time);
       for (std::size_t k = 0; k < parts.size(); ++k)
@@ -922,6 +955,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     animation.duration = playback;
     animation.time_unit = tu;
     animation.drawing.title = model.name + ": simulated";
+    if (length_display_exponent() != 0) animation.drawing.title += " (lengths in units of " + length_unit_name() + ")";
     for (const SimulationEvent& e : simulation.events())
       if (e.kind == SimulationEvent::Kind::impact)
         animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
@@ -952,6 +986,47 @@ void check_times(const SimulateOptions& options) {
                              " steps (--max-steps): give H >= " + number(options.t_end / static_cast<double>(budget)));
 }
 
+// The model `hipair simulate` runs and the exponent E of the length unit 10^E mm it runs in.
+// A mechanism without a pin-slot part (parts fixed, rotating, translating, free in the plane), drawn at an extreme
+// scale (kinematic_decimal_exponent: lengths outside about 1e-9 .. 1e9 mm with a translating
+// part, 1e-9 .. 1e18 mm rotating only), runs on its copy rescaled exactly by 10^-E with its
+// dynamics data (decimal_scaled_dynamics_model: mass and time unchanged, forces with the
+// lengths, inertias and torques with their squares): a model scaled by 10^E from an ordinary one
+// runs as that one, to the last bit, and its outputs show lengths, speeds, forces, impulses and
+// energies in mm and N times the powers of 10^E (shown()). Until session 53 (scale53b) such a
+// model was refused (its inertias, 1e800 kg mm^2, do not fit a double). E = 0 otherwise, and the
+// model is read as before (read_model_file_for_simulation: out-of-range dynamics data refused at
+// its pointer). Pin-slot parts and --sweep are not rescaled (their data beyond the doubles is refused).
+Model simulated_model(const SimulateOptions& options, const ReadOptions& overrides, long& exponent) {
+  exponent = 0;
+  auto rescaled_exponent = [](const Model& model) -> long {
+    for (const Part& part : model.parts)
+      if (part.motion.kind == Motion::Kind::pin_slot) return 0;
+    return kinematic_decimal_exponent(model);
+  };
+  std::optional<Model> read;
+  try {
+    read = read_model_file_for_simulation(options.model, overrides);
+  } catch (const ModelError&) {
+    // dynamics data beyond the doubles (a 1e400 mm model's inertias): simulated in 10^E mm when it rescales
+    Model exact = read_model_file(options.model, overrides);
+    const long e = rescaled_exponent(exact);
+    if (e == 0) throw;
+    require_feature_spread(exact);   // before work (session 53)
+    Model scaled = decimal_scaled_dynamics_model(exact, e);
+    require_dynamics_in_double_range(scaled, "1e" + std::to_string(e) + " mm");
+    exponent = e;
+    return scaled;
+  }
+  require_feature_spread(*read);   // a 1e-999 mm feature on a 40 mm part: refused before work (session 53)
+  const long e = rescaled_exponent(*read);
+  if (e == 0) return std::move(*read);
+  Model scaled = decimal_scaled_dynamics_model(*read, e);
+  require_dynamics_in_double_range(scaled, "1e" + std::to_string(e) + " mm");
+  exponent = e;
+  return scaled;
+}
+
 int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   check_times(options);
@@ -961,9 +1036,10 @@ int run(const SimulateOptions& options) {
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
   ReadOptions overrides = parameter_overrides(options.overrides, options.allow_out_of_tolerance);
   refuse_unknown_parameters(options.model, options.overrides, "--set");
-  Model model = read_model_file_for_simulation(options.model, overrides);
+  long length_exponent = 0;
+  Model model = simulated_model(options, overrides, length_exponent);   // in units of 10^E mm: see there
+  LengthDisplayScope length_display(length_exponent);   // shown(), scaled_unit(), length_unit_name()
   check_simulator_range(model);   // before anything converts the model to doubles (also in create())
-  require_feature_spread(model);  // a 1e-999 mm feature on a 40 mm part: refused before work (session 53)
   check_own_frequency(model, options);
   // parts free in the plane: one (PlanarSimulation) or several (PlanarSystemSimulation)
   std::size_t planar_count = 0;
@@ -1027,10 +1103,12 @@ int run(const SimulateOptions& options) {
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
   for (std::size_t p : moving)
-    std::cout << "  " << model.parts[p].name << ": position " << number(simulation.state().position[p])
+    std::cout << "  " << model.parts[p].name << ": position "
+              << shown(simulation.state().position[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
               << (model.parts[p].motion.kind == Motion::Kind::rotation ? " rad" : " mm") << ", velocity "
-              << number(simulation.state().velocity[p]) << " per " << tu << "\n";
-  std::cout << "  energy " << number(simulation.energy()) << " " << fu << "·mm\n";
+              << shown(simulation.state().velocity[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
+              << " per " << tu << "\n";
+  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
@@ -1038,7 +1116,14 @@ int run(const SimulateOptions& options) {
   {
     std::ostringstream csv;
     csv << "time_" << tu;
-    for (std::size_t p : moving) csv << "," << model.parts[p].name << "_position," << model.parts[p].name << "_velocity";
+    for (std::size_t p : moving) {
+      // in units of 10^E mm (E != 0): a translating part's columns name it ("_1e400mm", "_1e400mm_per_s")
+      const std::string unit = length_exponent != 0 && model.parts[p].motion.kind != Motion::Kind::rotation
+                                   ? "_1e" + std::to_string(length_exponent) + "mm"
+                                   : std::string();
+      csv << "," << model.parts[p].name << "_position" << unit << "," << model.parts[p].name << "_velocity"
+          << (unit.empty() ? unit : unit + "_per_" + tu);
+    }
     csv << "\n";
     for (const SimulationState& s : samples) {
       csv << number(s.time);
@@ -1056,7 +1141,7 @@ int run(const SimulateOptions& options) {
       render::TimePlot plot;
       plot.title = model.name + (which == 0 ? ": positions" : ": velocities");
       plot.x_label = "t (" + tu + ")";
-      plot.y_label = which == 0 ? "rad or mm" : "rad or mm per " + tu;
+      plot.y_label = which == 0 ? "rad or " + length_unit_name() : "rad or " + length_unit_name() + " per " + tu;
       plot.event_times = event_times;
       for (const SimulationState& s : samples) plot.times.push_back(s.time);
       for (std::size_t p : moving) {
@@ -1088,6 +1173,7 @@ int run(const SimulateOptions& options) {
       }
       if (!samples.empty()) picture.marks.push_back({samples.front().position[x], samples.front().position[y], "start"});
       picture.title = model.name + ": simulated path over the C-space of " + space->x_part() + " / " + space->y_part();
+      if (length_exponent != 0) picture.title += " (lengths in units of " + length_unit_name() + ")";
       files.push_back({"cspace-" + file_name_part(space->x_part()) + "-" + file_name_part(space->y_part()) + ".svg",
                        render::cspace_svg(*space, picture)});
     }
@@ -1095,6 +1181,7 @@ int run(const SimulateOptions& options) {
     animation.duration = playback;
     animation.time_unit = tu;
     animation.drawing.title = model.name + ": simulated";
+    if (length_exponent != 0) animation.drawing.title += " (lengths in units of " + length_unit_name() + ")";
     for (const SimulationEvent& e : simulation.events()) {
       bool located = e.point[0] != 0 || e.point[1] != 0 || e.normal[0] != 0 || e.normal[1] != 0;
       if (e.kind != SimulationEvent::Kind::impact || !located) continue;

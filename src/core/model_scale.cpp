@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace hipair {
@@ -372,6 +373,101 @@ Model decimal_scaled_model(const Model& model, long exponent) {
     }
   }
   return scaled;
+}
+
+Model decimal_scaled_dynamics_model(const Model& model, long exponent) {
+  if (exponent == 0) return model;
+  Model scaled = decimal_scaled_model(model, exponent);
+  const Rational factor = exponent > 0 ? Rational(mpz_class(1), power_of_ten(exponent)) : Rational(power_of_ten(exponent));
+  const Rational square = factor * factor;
+  auto scale_point = [&](Point& p) {
+    p.x *= factor;
+    p.y *= factor;
+  };
+  for (Part& part : scaled.parts) {
+    if (!part.dynamics) continue;
+    Dynamics& d = *part.dynamics;
+    const bool rotating = part.motion.kind == Motion::Kind::rotation;
+    if (d.moment_of_inertia) *d.moment_of_inertia *= square;   // kg mm^2
+    if (d.torsional_spring) d.torsional_spring->stiffness *= square;   // N mm / rad
+    if (d.torque) *d.torque *= square;                          // N mm
+    if (d.damping && rotating) *d.damping *= square;            // N mm s / rad (N s / mm: unchanged)
+  }
+  if (scaled.simulation) {
+    SimulationSpec& spec = *scaled.simulation;
+    scale_point(spec.gravity);
+    // a planar part's velocity is three entries (vx, vy, omega): the first two are speeds
+    std::vector<int> seen(scaled.parts.size(), 0);
+    for (SimulationSpec::Velocity& v : spec.velocities) {
+      const Motion::Kind kind = scaled.parts.at(v.part).motion.kind;
+      const int entry = seen[v.part]++;
+      if (kind == Motion::Kind::translation || (kind == Motion::Kind::planar && entry < 2)) v.value *= factor;
+    }
+    // a planar part's driver is three entries too (vx, vy, omega)
+    std::vector<int> driven(scaled.parts.size(), 0);
+    for (SimulationSpec::Driver& driver : spec.drivers) {
+      const Motion::Kind kind = scaled.parts.at(driver.part).motion.kind;
+      const int entry = driven[driver.part]++;
+      if (!(kind == Motion::Kind::translation || (kind == Motion::Kind::planar && entry < 2))) continue;
+      driver.speed *= factor;
+      for (auto& point : driver.profile) point.second *= factor;
+    }
+    for (SimulationSpec::Coupling& coupling : spec.couplings) {
+      scale_point(coupling.first_point);
+      scale_point(coupling.second_point);
+      coupling.rest_length *= factor;
+    }
+    for (SimulationSpec::CenterOfMass& centre : spec.centers_of_mass) scale_point(centre.at);
+  }
+  return scaled;
+}
+
+void require_dynamics_in_double_range(const Model& model, const std::string& unit) {
+  static const Rational least(std::numeric_limits<double>::min()), largest(std::numeric_limits<double>::max());
+  auto check = [&](const Rational& value, const std::string& pointer) {
+    if (sgn(value) == 0) return;
+    const Rational magnitude = abs(value);
+    if (magnitude < least || magnitude > largest)
+      throw ModelError(pointer, std::string("in units of ") + unit + " (the model's lengths rescaled to an ordinary size), "
+                                    "this value is too " + (magnitude < least ? "small" : "large") +
+                                    " for the simulator, which holds dynamics data in doubles: a nonzero magnitude "
+                                    "must lie in [2.2250738585072014e-308, 1.7976931348623157e+308]");
+  };
+  for (const Part& part : model.parts) {
+    if (!part.dynamics) continue;
+    const Dynamics& d = *part.dynamics;
+    const std::string at = part.pointer + "/dynamics/";
+    if (d.mass) check(*d.mass, at + "mass");
+    if (d.moment_of_inertia) check(*d.moment_of_inertia, at + "moment_of_inertia");
+    if (d.torsional_spring) check(d.torsional_spring->stiffness, at + "torsional_spring");
+    if (d.linear_spring) {
+      check(d.linear_spring->stiffness, at + "linear_spring");
+      check(d.linear_spring->rest, at + "linear_spring");
+    }
+    if (d.torque) check(*d.torque, at + "torque");
+    if (d.force) {
+      check(d.force->x, at + "force");
+      check(d.force->y, at + "force");
+    }
+    if (d.damping) check(*d.damping, at + "damping");
+  }
+  if (!model.simulation) return;
+  const SimulationSpec& spec = *model.simulation;
+  check(spec.gravity.x, spec.pointer + "/gravity");
+  check(spec.gravity.y, spec.pointer + "/gravity");
+  for (const auto& v : spec.velocities) check(v.value, v.pointer);
+  for (const auto& driver : spec.drivers) {
+    check(driver.speed, driver.pointer);
+    for (const auto& point : driver.profile) check(point.second, driver.pointer);
+  }
+  for (const auto& coupling : spec.couplings)
+    for (const Rational* value : {&coupling.first_point.x, &coupling.first_point.y, &coupling.second_point.x,
+                                  &coupling.second_point.y, &coupling.rest_length, &coupling.stiffness, &coupling.damping})
+      check(*value, coupling.pointer);
+  for (const auto& centre : spec.centers_of_mass) {
+    check(centre.at.x, centre.pointer);
+    check(centre.at.y, centre.pointer);
+  }
 }
 
 void require_feature_spread(const Model& model, std::size_t first, std::size_t second) {

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -72,6 +73,23 @@ Rational power_of_ten_rational(long exponent);
 /// analysis reads). The copy a kinematic analysis is made on (kinematic_decimal_exponent); the
 /// parameters, the simulation data and the other dynamics data are not rescaled.
 Model decimal_scaled_model(const Model& model, long exponent);
+
+/// decimal_scaled_model, and the dynamics data rescaled so that the motion is the same in the
+/// unit 10^exponent mm (mass and time unchanged, so a force scales with the lengths): moments of
+/// inertia, torques, torsional stiffnesses and a rotating part's damping divided by
+/// 100^exponent; gravity, a translating part's initial and driven speeds (and speed profiles; a planar part's
+/// vx and vy),
+/// couplings' points and rest lengths and centres of mass divided by 10^exponent; masses, linear
+/// stiffnesses and dampings, angles and their rates, friction and restitution unchanged (the
+/// inverse of tests/fuzz/scale_model.py's rules). A model scaled by 10^exponent from an ordinary
+/// one becomes that one exactly: `hipair simulate` runs such a copy (session 53, scale53b).
+Model decimal_scaled_dynamics_model(const Model& model, long exponent);
+
+/// Throws ModelError at the pointer of the first dynamics value of `model` (a part's dynamics,
+/// the simulation object) whose nonzero magnitude lies outside the doubles' normal range
+/// [2.2250738585072014e-308, 1.7976931348623157e+308], saying that it is so in units of
+/// 10^exponent mm (`unit`): the check read_model_for_simulation makes, on a rescaled copy.
+void require_dynamics_in_double_range(const Model& model, const std::string& unit);
 
 /// The largest spread between a pair's extent and its smallest edge that the commands building
 /// or slicing a pair accept: 2^1330 (about 10^400). Exact arithmetic on such a pair carries both

@@ -2,7 +2,9 @@
 """Outputs of a command on a model scaled exactly by 10^K against the unscaled model's (session 53).
 
 usage: scaled_outputs.py HIPAIR SOURCE_DIR WORK COMMAND MODELS SCALES [TIMEOUT]
-  COMMAND  analyze (report text, report.json, kinematics.csv) or tolerance (stdout, report files)
+  COMMAND  analyze (report text, report.json, kinematics.csv), tolerance (stdout, report files) or
+           simulate[=T] (--t-end T, default 0.05 time units, --no-pictures: stdout, trajectory.csv,
+           events.json, events.txt)
   MODELS   comma-separated example names (examples/models/NAME.json)
   SCALES   comma-separated exponents K (e.g. -300,-30,30,400): the model is written by
            tests/fuzz/scale_model.py with every length times 1eK (exactly)
@@ -16,6 +18,13 @@ most: lengths within the doubles' range), report.json's "units"/"length" is "1eK
 accordingly, and every other value (angles, events, verdicts, contact labels, closed forms,
 counts) is identical. Refusals must give the same message. Exit 0 when every scale matches,
 1 otherwise (the differences printed), 2 on usage errors.
+
+simulate (session 53, scale53b): a model whose run is rescaled (src/cli/simulate.cpp
+simulated_model) shows quantities in mm and N with the printed decimal's exponent moved by
+j * K (j = 1: lengths, speeds, forces, impulses; 2: energies; 0: times, angles): every number of
+the scaled run's text must be the unscaled run's digits with its exponent moved by 0, K or 2K
+(its own text otherwise identical; the CPU time set aside); trajectory.csv and events.json hold
+the same numbers in units of 10^K mm (identical), their headers and "units" naming those units.
 """
 import json
 import os
@@ -89,7 +98,76 @@ def text_difference(a, b):
     return None if len(la) == len(lb) else "%d vs %d lines" % (len(la), len(lb))
 
 
+NUMBER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)(?:e([+-]?\d+))?(?![\w.])")
+
+
+def numbers_moved(base, scaled, k):
+    """The first difference between the unscaled text and the scaled one, where every number of the
+    scaled one may be the unscaled one's digits with its exponent moved by 0, k or 2k."""
+    parts0, parts1 = NUMBER.split(base), NUMBER.split(scaled)
+    if len(parts0) != len(parts1):
+        return "%d vs %d numbers" % (len(parts0) // 3, len(parts1) // 3)
+    for i in range(0, len(parts0), 3):
+        if parts0[i] != parts1[i]:
+            return "text %r vs %r" % (parts0[i][:80], parts1[i][:80])
+        if i + 1 < len(parts0):
+            m0, e0, m1, e1 = parts0[i + 1], parts0[i + 2], parts1[i + 1], parts1[i + 2]
+            shift = int(e1 or 0) - int(e0 or 0)
+            if m0 != m1 or shift not in (0, k, 2 * k):
+                return "number %s%s vs %s%s" % (m0, "e" + e0 if e0 else "", m1, "e" + e1 if e1 else "")
+    return None
+
+
+def simulate_text(text, k, name):
+    text = text.replace("%s-x1e%d" % (name, k), name)
+    text = re.sub(r"_1e%dmm(_per_[a-z]+)?" % k, "", text)   # trajectory.csv's columns in units of 10^K mm
+    return re.sub(r"[0-9.e+-]+ s CPU", "@ s CPU", text)
+
+
+def compare_simulate(base, scaled, k, name):
+    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
+    if rc1 is None:
+        return "timed out"
+    if rc0 != rc1:
+        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
+    out0, out1 = simulate_text(out0.replace(dir0, "@OUT@"), 0, name), simulate_text(out1.replace(dir1, "@OUT@"), k, name)
+    found = numbers_moved(out0, out1, k) or numbers_moved(err0, simulate_text(err1, k, name), k)
+    if found:
+        return "stdout/stderr " + found
+    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
+    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
+    if files0 != files1:
+        return "files %s vs %s" % (files0, files1)
+    for file in files0:
+        a, b = os.path.join(dir0, file), os.path.join(dir1, file)
+        with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
+            ta, tb = fa.read(), fb.read()
+        found = None
+        if file == "events.json":
+            ja, jb = json.loads(ta), json.loads(tb)
+            units = jb.get("units", {})
+            if "1e%d mm" % k == units.get("length"):   # run in units of 10^K mm: named so
+                force = ja["units"]["force"]
+                if units.get("force") != "1e%d %s" % (k, force) or units.pop("energy", None) != "1e%d %s·mm" % (2 * k, force):
+                    found = "units %r" % units
+                units["force"], units["length"] = force, "mm"
+            ja["model"] = jb["model"] = name
+            if "chord_deviation_1e%dmm" % k in jb:   # a planar run's chord deviation in units of 10^K mm
+                jb["chord_deviation_mm"] = jb.pop("chord_deviation_1e%dmm" % k)
+            found = found or first_difference(ja, jb)
+        elif file == "events.txt":
+            found = numbers_moved(ta, tb, k)
+        else:
+            found = text_difference(simulate_text(ta, 0, name), simulate_text(tb, k, name))
+        if found:
+            return "%s %s" % (file, found)
+    return None
+
+
 def command_args(command, model, out):
+    if command.startswith("simulate"):
+        t_end = command.split("=", 1)[1] if "=" in command else "0.05"
+        return ["simulate", model, "--t-end", t_end, "--no-pictures", "--out", out]
     if command == "analyze":
         return ["analyze", model, "--quiet", "--no-pictures", "--out", out]
     if command == "tolerance":
@@ -155,7 +233,7 @@ def main(argv):
             if k == 0:
                 print("%s %s: exit %s" % (command, name, rc))
                 continue
-            found = compare_run(runs[0], runs[k], k, name)
+            found = (compare_simulate if command.startswith("simulate") else compare_run)(runs[0], runs[k], k, name)
             print("  x1e%d: %s" % (k, "same" if found is None else "DIFFERENT: " + found))
             failures += found is not None
     print("scaled_outputs: %d difference%s" % (failures, "" if failures == 1 else "s"))
