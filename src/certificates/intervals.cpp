@@ -349,6 +349,7 @@ class MarchCover {
     const Rational floor = std::max(Rational(1, 1000000000000), Rational((range.hi - range.lo) * finest));
     int failures = 0;      // consecutive failed widths at `position`
     bool grow = false;     // the last piece was proved at its first width: try the next one wider
+    std::optional<Rational> rescued;   // the position where every other pair was last tried at the floor
     while (position < range.hi) {
       if (pieces.size() >= max_pieces || budget_ == 0) return false;
       Rational end = std::min(Rational(position + width), range.hi);
@@ -367,7 +368,27 @@ class MarchCover {
         position = end;
         continue;
       }
-      if (end - position < floor) return false;
+      if (end - position < floor) {
+        // A proved pair's crossing that runs into a vertex ahead (its pieces shrink by halves
+        // toward that point, each proved after one halving) brings the width to the floor before
+        // the full search (two failures at one position) is tried: try every other pair once on
+        // a piece of twice the floor before giving up (18 x 16 gears driven backwards: another
+        // pair crosses there with pieces of 1e-4 of the cut; session 53, exact53b).
+        if (rescued != position) {
+          rescued = position;
+          RationalInterval low{position, std::min(Rational(position + 2 * floor), range.hi)};
+          auto [low_driver, low_other] = box(low);
+          if (std::optional<CrossingWitness> found = scan(low_driver, low_other)) {
+            pieces.push_back({low, *found});
+            width = low.hi - low.lo;
+            grow = true;
+            failures = 0;
+            position = low.hi;
+            continue;
+          }
+        }
+        return false;
+      }
       width = (end - position) / 2;
       ++failures;
       grow = false;
