@@ -681,9 +681,39 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     std::vector<sliced::Critical> found;
     bool in_class = true;
     try {
-      found = sliced::pin_slot_critical_values(impl->other(), impl->pin(), impl->pin().motion.translation_limits->lo,
-                                               impl->pin().motion.translation_limits->hi, q_range,
-                                               std::make_pair(impl->tau_lo, impl->tau_hi), cs);
+      // A wide stack (a whole turn: limits of 360 deg or 1e400 deg, or none) is searched in
+      // pieces of at most 30 deg between sample slices: the finder's certified filters (double
+      // intervals over the range) prove far more event polynomials rootless over a narrow range,
+      // so the film advance's film pair over a whole turn takes 14 s CPU instead of more than
+      // 15 min (session 53). Each piece but the first reaches half-way into the gap below its
+      // lower end, so that a value at that end is inside it; values found twice are kept once
+      // (exact comparison). A stack of at most 30 deg (the film advance's +-8 deg) is one piece:
+      // the call as before. The pieces are a choice in doubles; the values are exact either way.
+      std::vector<Rational> ends{taus.front()};
+      std::size_t last_end = 0;
+      auto degrees_of = [](const Rational& t) { return 2 * std::atan(to_double(t)) * 180 / std::numbers::pi; };
+      for (std::size_t k = 1; k < taus.size(); ++k)
+        if (k + 1 == taus.size() || degrees_of(taus[k + 1]) - degrees_of(taus[last_end]) > 30)
+          ends.push_back(taus[k]), last_end = k;
+      for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+        Rational from = ends[k];
+        if (k > 0) from = (ends[k - 1] + ends[k]) / 2;
+        from.canonicalize();
+        sliced::CriticalStatistics piece_stats;
+        for (auto& c : sliced::pin_slot_critical_values(impl->other(), impl->pin(), impl->pin().motion.translation_limits->lo,
+                                                        impl->pin().motion.translation_limits->hi, q_range,
+                                                        std::make_pair(from, ends[k + 1]), piece_stats)) {
+          bool seen = false;
+          for (const auto& f : found)
+            if (!c.half_turn && !f.half_turn && cspace::algebra::compare(f.t, c.t) == 0) seen = true;
+          if (!seen) found.push_back(std::move(c));
+        }
+        cs.roots += piece_stats.roots;
+      }
+      std::sort(found.begin(), found.end(), [](const sliced::Critical& a, const sliced::Critical& b) {
+        if (a.half_turn != b.half_turn) return b.half_turn;
+        return !a.half_turn && cspace::algebra::compare(a.t, b.t) < 0;
+      });
     } catch (const GeometryError&) {
       // outside the finder's class (an arc of irrational radius, a segment of irrational
       // length facing an arc): the sampled stack, as without critical values

@@ -12,7 +12,9 @@
 #include <hipair/overlap.hpp>
 #include <hipair/pin_slot.hpp>
 
+#include "algebra/exact_real.hpp"
 #include "pinslot/angle_limits.hpp"
+#include "sliced/critical_angles.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -293,6 +295,37 @@ TEST(PinSlotAngleLimits, AWholeTurnOrMoreIsTheWholeTurn) {
             PinSlotLocation::Kind::outside);   // 2 atan(2e6) = 179.99994 deg
   EXPECT_NE(short_turn.locate(PinSlotConfiguration{{}, Rational(0), Rational(100000)}).kind,
             PinSlotLocation::Kind::outside);   // 179.9989 deg
+}
+
+// A stack wider than 30 deg searches its critical values in pieces between sample slices
+// (src/pinslot/pin_slot_space.cpp; session 53: the film advance's film pair over a whole turn,
+// minutes in one piece): the values are those of one search over the whole range, exactly.
+TEST(PinSlotAngleLimits, CriticalValuesInPiecesAreThoseOfOneSearch) {
+  for (const char* limits : {"[-60, 60]", "[-170, 170]", "[-180, 180]", "[-1e400, 1e400]"}) {
+    SCOPED_TRACE(limits);
+    Model model = read_model(std::string(R"({ "hipair": 1, "name": "bar-wall", "units": { "length": "mm", "angle": "deg" },
+      "parts": [
+      { "name": "wall", "motion": "fixed", "loops": [ { "start": [12, -20], "edges": [ { "line_to": [20, -20] },
+        { "line_to": [20, 20] }, { "line_to": [12, 20] }, { "line_to": [12, -20] } ] } ] },
+      { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": )") + limits + R"(,
+        "limits": [-5, 5] } }, "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] },
+        { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] } ],
+      "pairs": [ { "parts": ["wall", "bar"] } ] })");
+    PinSlotBuildOptions options;
+    options.connections = false;
+    PinSlotSpace space = PinSlotSpace::build(model, "wall", "bar", options);
+    ASSERT_TRUE(space.critical_values_exact());
+    sliced::CriticalStatistics statistics;
+    std::vector<cspace::algebra::Real> one;
+    for (auto& c : sliced::pin_slot_critical_values(model.parts[0], model.parts[1], Rational(-5), Rational(5), std::nullopt,
+                                                    std::make_pair(space.tau_lower(), space.tau_upper()), statistics))
+      if (!c.half_turn && c.t.compare(space.tau_lower()) > 0 && c.t.compare(space.tau_upper()) < 0) one.push_back(c.t);
+    ASSERT_EQ(space.critical_values().size(), one.size());
+    for (std::size_t k = 0; k < one.size(); ++k)
+      EXPECT_EQ(cspace::algebra::compare(sliced::real_of(space.critical_values()[k].tau), one[k]), 0) << k;
+    // the wall's three (the slide's end on the wall at 27 t^2 -+ 2 t - 3 = 0, and t = 0) at least
+    EXPECT_GE(one.size(), 3u);
+  }
 }
 
 }  // namespace
