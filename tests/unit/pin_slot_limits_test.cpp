@@ -289,6 +289,18 @@ TEST(PinSlotAngleLimits, AWholeTurnOrMoreIsTheWholeTurn) {
     // psi near +-pi is inside
     EXPECT_NE(space.locate(PinSlotConfiguration{{}, Rational(0), Rational(1000000)}).kind, PinSlotLocation::Kind::outside);
   }
+  // limits 1e-60 short of a whole turn are the whole turn when the reader rounded them by more
+  // (its Rounding records at the limits' pointers), not otherwise
+  Model near = bar_and_block("[-30, 30]");
+  near.parts[1].motion.angle_limits = RationalInterval{Rational(-pi_lo()), pi_lo()};
+  near.roundings.clear();   // the records of [-30, 30] deg's rounding
+  PinSlotSpace strict = PinSlotSpace::build(near, "a", "b", options);
+  EXPECT_EQ(strict.locate(PinSlotConfiguration{{}, Rational(0), power10(70)}).kind, PinSlotLocation::Kind::outside);
+  for (const char* end : {"0", "1"})
+    near.roundings.push_back(Rounding{"/parts/1/motion/pin_slot/angle_limits/" + std::string(end), "180", pi_lo(), power10(-59)});
+  PinSlotSpace rounded = PinSlotSpace::build(near, "a", "b", options);
+  EXPECT_NE(rounded.locate(PinSlotConfiguration{{}, Rational(0), power10(70)}).kind, PinSlotLocation::Kind::outside);
+  EXPECT_EQ(rounded.connections().size(), none.connections().size());
   // just short of a whole turn (359.999 deg): not the whole turn; psi = 180 - 0.0001 deg is outside
   PinSlotSpace short_turn = PinSlotSpace::build(bar_and_block("[-179.9995, 179.9995]"), "a", "b", options);
   EXPECT_EQ(short_turn.locate(PinSlotConfiguration{{}, Rational(0), Rational(2000000)}).kind,
