@@ -9,6 +9,8 @@
 
 #include <hipair/error.hpp>
 
+#include "pinslot/angle_limits.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -181,9 +183,13 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
 
   // the follower's angle range in tau (inside its limits)
   double psi_lo = -std::numbers::pi * 0.999, psi_hi = std::numbers::pi * 0.999;
-  if (pin.motion.angle_limits) {
-    psi_lo = std::max(psi_lo, to_double(pin.motion.angle_limits->lo));
-    psi_hi = std::min(psi_hi, to_double(pin.motion.angle_limits->hi));
+  // (limits are angles modulo whole turns, and a whole turn or more is no limit: as in
+  // PinSlotSpace::build, pinslot/angle_limits.hpp)
+  if (const auto& limits = pin.motion.angle_limits;
+      limits && !pinslot::at_least_whole_turn(Rational(limits->hi - limits->lo))) {
+    mpz_class turns = pinslot::nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
+    psi_lo = std::max(psi_lo, pinslot::reduced_angle(limits->lo, turns));
+    psi_hi = std::min(psi_hi, pinslot::reduced_angle(limits->hi, turns));
   }
   // a margin keeps the chosen poses clear of the limits (the choice is in doubles)
   const double tau_lo = std::tan(psi_lo / 2) + 1e-9, tau_hi = std::tan(psi_hi / 2) - 1e-9;

@@ -10,6 +10,7 @@
 #include "sliced/witness_filter.hpp"
 #include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
+#include "pinslot/angle_limits.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -73,6 +74,17 @@ Rational near_rational(double value, long den) {
   Rational r(static_cast<long>(std::llround(value * static_cast<double>(den))), den);
   r.canonicalize();
   return r;
+}
+
+// The reader's rounding bounds of a part's two angle limits (0 for limits that are exact, or a
+// model built in code): the limits as written lie within this of the stored ones.
+Rational limits_rounding(const Model& model, const Part& part) {
+  Rational slack = 0;
+  const std::string prefix = part.motion.pointer + "/pin_slot/angle_limits/";
+  if (part.motion.pointer.empty()) return slack;
+  for (const Rounding& r : model.roundings)
+    if (r.pointer.compare(0, prefix.size(), prefix) == 0) slack += r.bound;
+  return slack;
 }
 
 struct UnionFind {
@@ -604,11 +616,18 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   // slice angles: interior points of n equal angle steps across the limits (or the turn)
   std::size_t n = options.slices ? options.slices : 16;
   double lo = -std::numbers::pi, hi = std::numbers::pi;
-  impl->whole_turn = !impl->pin().motion.angle_limits;
-  if (impl->pin().motion.angle_limits) {
-    lo = to_double(impl->pin().motion.angle_limits->lo);
-    hi = to_double(impl->pin().motion.angle_limits->hi);
-    if (hi - lo >= 2 * std::numbers::pi) impl->whole_turn = true, lo = -std::numbers::pi, hi = std::numbers::pi;
+  const std::optional<RationalInterval>& limits = impl->pin().motion.angle_limits;
+  // limits spanning a whole turn (exactly, allowing for the reader's rounding of the two limits:
+  // [-180, 180] deg is a whole turn whichever way pi was rounded) are the whole turn, however
+  // wide (1e400 deg); before session 53 this was decided in doubles
+  impl->whole_turn = !limits || pinslot::at_least_whole_turn(Rational(limits->hi - limits->lo + limits_rounding(model, pin)));
+  if (!impl->whole_turn) {
+    // limits given beyond a half turn ([100, 170] + 360 k deg) are the same angles reduced by
+    // whole turns (the angle is taken modulo 2 pi, as locate does); the reduction is a choice of
+    // slice angles in doubles, each slice's tau is then checked exactly inside the limits
+    mpz_class turns = pinslot::nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
+    lo = pinslot::reduced_angle(limits->lo, turns);
+    hi = pinslot::reduced_angle(limits->hi, turns);
   }
   // Each slice angle is n-th of the range away from the limits; the rational tangent is within
   // 2^-13 of tan(angle/2), i.e. within about 2^-12 rad (times 1 + tan^2 <= 2 inside a half
@@ -618,6 +637,13 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   const double step = (hi - lo) / static_cast<double>(n);
   if (!(step > 1e-9))
     throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
+  // the stack is ordered by tau = tan(psi / 2), which jumps at the half turn psi = +-pi: limits
+  // (less than a whole turn) whose slices would lie on both sides of it are refused, naming the field
+  if (lo <= -std::numbers::pi - step / 4 || hi >= std::numbers::pi + step / 4)
+    throw GeometryError(pair + ": the angle_limits of part '" + pin.name + "' (" + pin.motion.pointer +
+                        "/pin_slot/angle_limits) cross the half turn psi = +-180 deg, which a stack of slices in "
+                        "tan(psi/2) cannot cross: give limits within [-180, 180] deg (shifted by whole turns if "
+                        "need be), or limits spanning a whole turn");
   for (std::size_t k = 0; k < n; ++k) {
     double angle = lo + step * (static_cast<double>(k) + 0.5);
     // the simplest dyadic tangent (denominator 4096 or finer) within a quarter step of the
@@ -631,6 +657,10 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
         throw GeometryError(pair + ": no rational slice angle found inside the angle limits of part '" + pin.name + "'");
     }
     if (!taus.empty() && t <= taus.back()) continue;
+    // certified, not assumed: the slice lies inside the limits (exact, modulo whole turns)
+    if (!impl->whole_turn && !pinslot::angle_within_limits(t, limits->lo, limits->hi))
+      throw GeometryError(pair + ": internal: slice tan(psi/2) = " + to_exact_string(t) +
+                          " chosen outside the angle limits of part '" + pin.name + "'");
     taus.push_back(t);
   }
   if (taus.size() < 2) throw GeometryError(pair + ": the angle limits of part '" + pin.name + "' are too narrow to slice");
@@ -651,9 +681,39 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     std::vector<sliced::Critical> found;
     bool in_class = true;
     try {
-      found = sliced::pin_slot_critical_values(impl->other(), impl->pin(), impl->pin().motion.translation_limits->lo,
-                                               impl->pin().motion.translation_limits->hi, q_range,
-                                               std::make_pair(impl->tau_lo, impl->tau_hi), cs);
+      // A wide stack (a whole turn: limits of 360 deg or 1e400 deg, or none) is searched in
+      // pieces of at most 30 deg between sample slices: the finder's certified filters (double
+      // intervals over the range) prove far more event polynomials rootless over a narrow range,
+      // so the film advance's film pair over a whole turn takes 14 s CPU instead of more than
+      // 15 min (session 53). Each piece but the first reaches half-way into the gap below its
+      // lower end, so that a value at that end is inside it; values found twice are kept once
+      // (exact comparison). A stack of at most 30 deg (the film advance's +-8 deg) is one piece:
+      // the call as before. The pieces are a choice in doubles; the values are exact either way.
+      std::vector<Rational> ends{taus.front()};
+      std::size_t last_end = 0;
+      auto degrees_of = [](const Rational& t) { return 2 * std::atan(to_double(t)) * 180 / std::numbers::pi; };
+      for (std::size_t k = 1; k < taus.size(); ++k)
+        if (k + 1 == taus.size() || degrees_of(taus[k + 1]) - degrees_of(taus[last_end]) > 30)
+          ends.push_back(taus[k]), last_end = k;
+      for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+        Rational from = ends[k];
+        if (k > 0) from = (ends[k - 1] + ends[k]) / 2;
+        from.canonicalize();
+        sliced::CriticalStatistics piece_stats;
+        for (auto& c : sliced::pin_slot_critical_values(impl->other(), impl->pin(), impl->pin().motion.translation_limits->lo,
+                                                        impl->pin().motion.translation_limits->hi, q_range,
+                                                        std::make_pair(from, ends[k + 1]), piece_stats)) {
+          bool seen = false;
+          for (const auto& f : found)
+            if (!c.half_turn && !f.half_turn && cspace::algebra::compare(f.t, c.t) == 0) seen = true;
+          if (!seen) found.push_back(std::move(c));
+        }
+        cs.roots += piece_stats.roots;
+      }
+      std::sort(found.begin(), found.end(), [](const sliced::Critical& a, const sliced::Critical& b) {
+        if (a.half_turn != b.half_turn) return b.half_turn;
+        return !a.half_turn && cspace::algebra::compare(a.t, b.t) < 0;
+      });
     } catch (const GeometryError&) {
       // outside the finder's class (an arc of irrational radius, a segment of irrational
       // length facing an arc): the sampled stack, as without critical values
@@ -772,17 +832,12 @@ PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {
   const Impl& impl = *impl_;
   Rational tau = q.tau;
   tau.canonicalize();
-  if (impl.pin().motion.angle_limits && !impl.whole_turn) {
-    // outside the angle limits: psi = 2 atan(tau) against rational limits, decided with a
-    // certified double (atan's error is far below 1e-12; ties within it are refused)
-    double psi = 2 * std::atan(to_double(tau));
-    double lo = to_double(impl.pin().motion.angle_limits->lo), hi = to_double(impl.pin().motion.angle_limits->hi);
-    double margin = 1e-12 * (1 + std::abs(psi));
-    if (psi < lo - margin || psi > hi + margin) return PinSlotLocation{};
-    if (std::abs(psi - lo) <= margin || std::abs(psi - hi) <= margin)
-      throw GeometryError("locate: tan(psi/2) = " + to_exact_string(tau) +
-                          " is too close to an angle limit to decide with certainty");
-  }
+  // outside the angle limits (modulo whole turns; the limits themselves are inside): psi =
+  // 2 atan(tau) against the rational limits, decided exactly (pinslot/angle_limits.hpp; before
+  // session 53 a double atan with a 1e-12 margin, refusing configurations within it)
+  if (impl.pin().motion.angle_limits && !impl.whole_turn &&
+      !pinslot::angle_within_limits(tau, impl.pin().motion.angle_limits->lo, impl.pin().motion.angle_limits->hi))
+    return PinSlotLocation{};
   auto space = impl.slice(tau);
   PinSlotLocation out;
   out.in_slice = impl.locate_in(*space, q.other, q.slide);

@@ -1,0 +1,344 @@
+// A pin-slot part's angle limits, decided exactly (src/pinslot/angle_limits.hpp; session 53):
+// psi = 2 atan(tau) at a rational tau against rational limits, modulo whole turns.
+//
+// The oracle is independent of MPFR/MPFI: an exact rational bracket of 2 atan(tau) from the
+// alternating Taylor series of atan (|x| <= 1/3 after atan(tau) = pi/4 + atan((tau - 1) /
+// (tau + 1)) or pi/2 - atan(1 / tau)) and pi's first 60 decimals, narrower than 1e-40. Limits
+// 1e-30 rad inside and outside the bracket (and shifted by whole turns) must be decided so, on
+// generated tangents from 1e-25 to 1e25; before session 53 locate compared a double atan with a
+// 1e-12 margin and refused every such configuration as "too close to an angle limit".
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/overlap.hpp>
+#include <hipair/pin_slot.hpp>
+
+#include "algebra/exact_real.hpp"
+#include "pinslot/angle_limits.hpp"
+#include "sliced/critical_angles.hpp"
+#include "test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <numbers>
+#include <random>
+#include <string>
+#include <utility>
+
+namespace hipair {
+namespace {
+
+Rational power10(int exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
+  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+}
+
+// pi in [pi_lo, pi_hi]: its first 60 decimals, and one more unit in the last place
+const Rational& pi_lo() {
+  static const Rational value = Rational(mpz_class("3141592653589793238462643383279502884197169399375105820974944"),
+                                         mpz_class("1000000000000000000000000000000000000000000000000000000000000"));
+  return value;
+}
+const Rational& pi_hi() {
+  static const Rational value = [] {
+    Rational r = pi_lo() + power10(-60);
+    r.canonicalize();
+    return r;
+  }();
+  return value;
+}
+
+using Bracket = std::pair<Rational, Rational>;
+
+// atan(x) for |x| <= 1/3 in an exact bracket: partial sums of the alternating series, whose
+// terms decrease, until a term is below 1e-45.
+Bracket atan_small(const Rational& x) {
+  Rational sum = 0, power = x, x2 = x * x;
+  const Rational tiny = power10(-45);
+  for (long k = 0;; ++k) {
+    Rational term = power / (2 * k + 1);
+    term.canonicalize();
+    Rational next = sum + (k % 2 == 0 ? term : Rational(-term));
+    next.canonicalize();
+    Rational magnitude = abs(term);
+    if (magnitude < tiny) return sum < next ? Bracket{sum, next} : Bracket{next, sum};
+    sum = next;
+    power *= x2;
+    power.canonicalize();
+  }
+}
+
+// 2 atan(tau) in an exact bracket narrower than 1e-40 (for |tau| < 1e40).
+Bracket psi_bracket(const Rational& tau) {
+  if (abs(tau) <= Rational(1, 3)) {
+    auto [a, b] = atan_small(tau);
+    return {Rational(2 * a), Rational(2 * b)};
+  }
+  if (abs(tau) >= 3) {   // atan(tau) = sign(tau) pi / 2 - atan(1 / tau)
+    Rational inverse = 1 / tau;
+    inverse.canonicalize();
+    auto [a, b] = atan_small(inverse);
+    if (tau > 0) return {Rational(pi_lo() - 2 * b), Rational(pi_hi() - 2 * a)};
+    return {Rational(-pi_hi() - 2 * b), Rational(-pi_lo() - 2 * a)};
+  }
+  // 1/3 < |tau| < 3: atan(tau) = s pi / 4 + atan(y), s = sign(tau), y = (tau - s) / (1 + s tau),
+  // |y| < 1/2; and when |y| > 1/3, atan(y) = atan(+-1/3) + atan((y -+ 1/3) / (1 +- y / 3)), |.| <= 1/7
+  Rational s = tau > 0 ? 1 : -1;
+  Rational y = (tau - s) / (1 + s * tau);
+  y.canonicalize();
+  Rational quarter_lo = tau > 0 ? Rational(pi_lo() / 4) : Rational(-pi_hi() / 4);
+  Rational quarter_hi = tau > 0 ? Rational(pi_hi() / 4) : Rational(-pi_lo() / 4);
+  Rational shift_lo = 0, shift_hi = 0;
+  if (abs(y) > Rational(1, 3)) {
+    Rational third = y > 0 ? Rational(1, 3) : Rational(-1, 3);
+    auto [a, b] = atan_small(third);
+    shift_lo = a, shift_hi = b;
+    y = (y - third) / (1 + y * third);
+    y.canonicalize();
+  }
+  auto [a, b] = atan_small(y);
+  return {Rational(2 * (quarter_lo + shift_lo + a)), Rational(2 * (quarter_hi + shift_hi + b))};
+}
+
+// A generated rational tangent of magnitude about 10^e, either sign.
+Rational random_tangent(std::mt19937_64& random, int e) {
+  // numerator and denominator in [1e9, 2e9): the quotient in (1/2, 2)
+  mpz_class numerator(static_cast<unsigned long>(1000000000 + random() % 1000000000));
+  mpz_class denominator(static_cast<unsigned long>(1000000000 + random() % 1000000000));
+  Rational t = Rational(numerator, denominator) * power10(e);
+  t.canonicalize();
+  if (random() % 2) t = -t;
+  return t;
+}
+
+TEST(PinSlotAngleLimits, TheOracleBracketIsNarrowAndHoldsKnownAngles) {
+  // the oracle itself: psi(1) = pi / 2, psi(-1) = -pi / 2, psi(0) = 0, narrow brackets
+  auto one = psi_bracket(Rational(1));
+  EXPECT_LE(one.first, Rational(pi_hi() / 2));
+  EXPECT_GE(one.second, Rational(pi_lo() / 2));
+  EXPECT_LT(Rational(one.second - one.first), power10(-40));
+  auto zero = psi_bracket(Rational(0));
+  EXPECT_EQ(zero.first, 0);
+  EXPECT_EQ(zero.second, 0);
+  std::mt19937_64 random(53);
+  for (int e = -25; e <= 25; e += 5) {
+    Rational t = random_tangent(random, e);
+    auto [a, b] = psi_bracket(t);
+    EXPECT_LE(a, b);
+    EXPECT_LT(Rational(b - a), power10(-40)) << e;
+    // and the double atan agrees to its own precision
+    EXPECT_NEAR(to_double(a), 2 * std::atan(to_double(t)), 1e-12 * (1 + std::abs(to_double(a))));
+  }
+}
+
+TEST(PinSlotAngleLimits, LimitsOneEMinus30RadAwayAreDecidedExactly) {
+  std::mt19937_64 random(5302);
+  const Rational delta = power10(-30);
+  int cases = 0;
+  for (int round = 0; round < 12; ++round)
+    for (int e = -25; e <= 25; ++e) {
+      Rational tau = random_tangent(random, e);
+      auto [a, b] = psi_bracket(tau);
+      // whole turns: the same angle + 2 pi k against limits shifted by the bracket of 2 pi k
+      for (long k : {0L, 1L, -1L, 3L}) {
+        Rational turns_lo = k >= 0 ? Rational(2 * k * pi_lo()) : Rational(2 * k * pi_hi());
+        Rational turns_hi = k >= 0 ? Rational(2 * k * pi_hi()) : Rational(2 * k * pi_lo());
+        Rational below = a + turns_lo - delta, above = b + turns_hi + delta;   // psi + 2 pi k in (below, above)
+        below.canonicalize();
+        above.canonicalize();
+        SCOPED_TRACE("tau = " + to_exact_string(tau) + ", k = " + std::to_string(k));
+        // just inside: a limit 1e-30 below and one 1e-30 above
+        EXPECT_TRUE(pinslot::angle_within_limits(tau, below, above));
+        EXPECT_TRUE(pinslot::angle_within_limits(tau, below, Rational(above + 1)));
+        EXPECT_TRUE(pinslot::angle_within_limits(tau, Rational(below - 1), above));
+        // just outside: the whole interval 1e-30 above psi, or 1e-30 below it (less than a turn wide)
+        EXPECT_FALSE(pinslot::angle_within_limits(tau, above, Rational(above + 3)));
+        EXPECT_FALSE(pinslot::angle_within_limits(tau, Rational(below - 3), below));
+        // the signs themselves
+        mpz_class m(2 * k);
+        EXPECT_EQ(pinslot::angle_sign(tau, m, below), 1);
+        EXPECT_EQ(pinslot::angle_sign(tau, m, above), -1);
+        ++cases;
+      }
+    }
+  EXPECT_EQ(cases, 12 * 51 * 4);
+}
+
+TEST(PinSlotAngleLimits, TiesAndWholeTurns) {
+  // psi = 0 at tau = 0: a limit at exactly 0 is attained (the limits are closed)
+  EXPECT_EQ(pinslot::angle_sign(Rational(0), mpz_class(0), Rational(0)), 0);
+  EXPECT_TRUE(pinslot::angle_within_limits(Rational(0), Rational(0), Rational(1)));
+  EXPECT_TRUE(pinslot::angle_within_limits(Rational(0), Rational(-1), Rational(0)));
+  EXPECT_FALSE(pinslot::angle_within_limits(Rational(0), power10(-30), Rational(1)));
+  EXPECT_FALSE(pinslot::angle_within_limits(Rational(0), Rational(-1), Rational(-power10(-30))));
+  // tiny tangents: psi = 2 tau - ... is decided at 1e-300 too
+  Rational tiny = power10(-300);
+  EXPECT_TRUE(pinslot::angle_within_limits(tiny, Rational(0), Rational(2 * tiny)));
+  EXPECT_FALSE(pinslot::angle_within_limits(tiny, Rational(2 * tiny), Rational(1)));   // psi < 2 tau
+  EXPECT_FALSE(pinslot::angle_within_limits(Rational(-tiny), Rational(0), Rational(1)));
+  // a whole turn: 2 pi against rational widths 1e-50 apart from it
+  EXPECT_TRUE(pinslot::at_least_whole_turn(Rational(2 * pi_hi())));
+  EXPECT_FALSE(pinslot::at_least_whole_turn(Rational(2 * pi_lo())));
+  EXPECT_TRUE(pinslot::at_least_whole_turn(power10(400)));
+  // 1e400 rad: whole turns are reduced exactly (psi(1) = pi/2 against pi/2 + 2 pi k, k huge,
+  // is out of reach of the oracle; the reduction is checked against the same angle at k = 0)
+  EXPECT_TRUE(pinslot::angle_within_limits(Rational(1), Rational(-power10(400)), power10(400)));
+}
+
+// A bar on a pin-slot motion against a fixed block (BadPairsAreRefusedWithAMessage's pair)
+Model bar_and_block(const std::string& angle_limits, const std::string& initial_angle = "0") {
+  return read_model(R"({ "hipair": 1, "name": "limits", "units": { "length": "mm", "angle": "deg" }, "parts": [
+    { "name": "a", "motion": "fixed", "loops": [ { "start": [30, 0], "edges": [
+      { "line_to": [34, 0] }, { "line_to": [34, 4] }, { "line_to": [30, 4] }, { "line_to": [30, 0] } ] } ] },
+    { "name": "b", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": )" +
+                    angle_limits + R"(, "limits": [-2, 2] } },
+      "initial": { "angle": )" + initial_angle + R"( },
+      "loops": [ { "start": [0, 0], "edges": [ { "line_to": [10, 0] }, { "line_to": [10, 2] }, { "line_to": [0, 2] },
+      { "line_to": [0, 0] } ] } ] } ] })");
+}
+
+TEST(PinSlotAngleLimits, LocateAtALimitOneEMinus30Away) {
+  Model model = bar_and_block("[-30, 30]");
+  std::mt19937_64 random(5303);
+  PinSlotBuildOptions lazy;
+  lazy.stack = false;
+  const Rational delta = power10(-30);
+  for (int round = 0; round < 8; ++round) {
+    Rational tau = random_tangent(random, -1 - round % 3);   // |psi| up to about 0.2 rad
+    auto [a, b] = psi_bracket(tau);
+    for (bool upper : {true, false}) {
+      // the limit 1e-30 beyond psi (inside) or short of it (outside), the other limit far
+      Model m = model;
+      Rational inside = upper ? Rational(b + delta) : Rational(a - delta);
+      Rational outside = upper ? Rational(a - delta) : Rational(b + delta);
+      for (bool in : {true, false}) {
+        Rational limit = in ? inside : outside;
+        limit.canonicalize();
+        m.parts[1].motion.angle_limits =
+            upper ? RationalInterval{Rational(-1), limit} : RationalInterval{limit, Rational(1)};
+        PinSlotSpace space = PinSlotSpace::build(m, "a", "b", lazy);
+        for (const Rational& slide : {Rational(0), Rational(3, 2)}) {
+          PinSlotLocation at = space.locate(PinSlotConfiguration{{}, slide, tau});
+          SCOPED_TRACE("tau = " + to_exact_string(tau) + (upper ? ", upper" : ", lower") + (in ? " inside" : " outside"));
+          if (!in) {
+            EXPECT_EQ(at.kind, PinSlotLocation::Kind::outside);
+            continue;
+          }
+          // inside: the exact overlap oracle
+          const Part& other = m.parts[0];
+          const Part& pin = m.parts[1];
+          PartOverlap o = part_overlap(other, Placement{}, pin, pin_slot_placement(pin, slide, tau));
+          PinSlotLocation::Kind expected = o.relation == PartRelation::apart      ? PinSlotLocation::Kind::free
+                                           : o.relation == PartRelation::touching ? PinSlotLocation::Kind::contact
+                                                                                  : PinSlotLocation::Kind::blocked;
+          EXPECT_EQ(at.kind, expected);
+        }
+      }
+    }
+  }
+}
+
+TEST(PinSlotAngleLimits, LimitsBeyondAHalfTurnAreTheAnglesModuloWholeTurns) {
+  // [330, 390] deg is [-30, 30] deg: the same slices, and a configuration at -20 deg inside
+  PinSlotBuildOptions options;
+  options.slices = 4;
+  options.refine_steps = 0;
+  options.connections = false;
+  PinSlotSpace shifted = PinSlotSpace::build(bar_and_block("[330, 390]", "360"), "a", "b", options);
+  PinSlotSpace plain = PinSlotSpace::build(bar_and_block("[-30, 30]"), "a", "b", options);
+  ASSERT_EQ(shifted.slices().size(), plain.slices().size());
+  for (std::size_t k = 0; k < plain.slices().size(); ++k) EXPECT_EQ(shifted.slices()[k].tau, plain.slices()[k].tau);
+  Rational tau_minus_20 = Rational(-176, 1000);   // tan(-10 deg) = -0.1763
+  EXPECT_NE(shifted.locate(PinSlotConfiguration{{}, Rational(0), tau_minus_20}).kind, PinSlotLocation::Kind::outside);
+  EXPECT_EQ(shifted.locate(PinSlotConfiguration{{}, Rational(0), Rational(1, 2)}).kind,
+            PinSlotLocation::Kind::outside);   // 53 deg
+  // [150, 200] deg crosses the half turn: refused, naming the field
+  try {
+    PinSlotSpace::build(bar_and_block("[150, 200]", "170"), "a", "b", options);
+    FAIL() << "limits across the half turn were accepted";
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("angle_limits"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/parts/1/motion"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PinSlotAngleLimits, AWholeTurnOrMoreIsTheWholeTurn) {
+  // [-180, 180] deg (pi rounded by the reader either way), [0, 360] deg and +-1e400 deg are the
+  // whole turn: the stack of no limits, with the connection across the half turn
+  PinSlotBuildOptions options;
+  options.slices = 4;
+  options.refine_steps = 0;
+  PinSlotSpace none = PinSlotSpace::build(
+      read_model(R"({ "hipair": 1, "name": "limits", "parts": [
+        { "name": "a", "motion": "fixed", "loops": [ { "start": [30, 0], "edges": [
+          { "line_to": [34, 0] }, { "line_to": [34, 4] }, { "line_to": [30, 4] }, { "line_to": [30, 0] } ] } ] },
+        { "name": "b", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-2, 2] } },
+          "loops": [ { "start": [0, 0], "edges": [ { "line_to": [10, 0] }, { "line_to": [10, 2] }, { "line_to": [0, 2] },
+          { "line_to": [0, 0] } ] } ] } ] })"),
+      "a", "b", options);
+  for (const char* limits : {"[-180, 180]", "[0, 360]", "[-1e400, 1e400]", "[-90, 1e400]"}) {
+    SCOPED_TRACE(limits);
+    auto start = std::chrono::steady_clock::now();
+    PinSlotSpace space = PinSlotSpace::build(bar_and_block(limits), "a", "b", options);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+    ASSERT_EQ(space.slices().size(), none.slices().size());
+    for (std::size_t k = 0; k < none.slices().size(); ++k) EXPECT_EQ(space.slices()[k].tau, none.slices()[k].tau);
+    EXPECT_EQ(space.connections().size(), none.connections().size());
+    EXPECT_EQ(space.groups(), none.groups());
+    // psi near +-pi is inside
+    EXPECT_NE(space.locate(PinSlotConfiguration{{}, Rational(0), Rational(1000000)}).kind, PinSlotLocation::Kind::outside);
+  }
+  // limits 1e-60 short of a whole turn are the whole turn when the reader rounded them by more
+  // (its Rounding records at the limits' pointers), not otherwise
+  Model near = bar_and_block("[-30, 30]");
+  near.parts[1].motion.angle_limits = RationalInterval{Rational(-pi_lo()), pi_lo()};
+  near.roundings.clear();   // the records of [-30, 30] deg's rounding
+  PinSlotSpace strict = PinSlotSpace::build(near, "a", "b", options);
+  EXPECT_EQ(strict.locate(PinSlotConfiguration{{}, Rational(0), power10(70)}).kind, PinSlotLocation::Kind::outside);
+  for (const char* end : {"0", "1"})
+    near.roundings.push_back(Rounding{"/parts/1/motion/pin_slot/angle_limits/" + std::string(end), "180", pi_lo(), power10(-59)});
+  PinSlotSpace rounded = PinSlotSpace::build(near, "a", "b", options);
+  EXPECT_NE(rounded.locate(PinSlotConfiguration{{}, Rational(0), power10(70)}).kind, PinSlotLocation::Kind::outside);
+  EXPECT_EQ(rounded.connections().size(), none.connections().size());
+  // just short of a whole turn (359.999 deg): not the whole turn; psi = 180 - 0.0001 deg is outside
+  PinSlotSpace short_turn = PinSlotSpace::build(bar_and_block("[-179.9995, 179.9995]"), "a", "b", options);
+  EXPECT_EQ(short_turn.locate(PinSlotConfiguration{{}, Rational(0), Rational(2000000)}).kind,
+            PinSlotLocation::Kind::outside);   // 2 atan(2e6) = 179.99994 deg
+  EXPECT_NE(short_turn.locate(PinSlotConfiguration{{}, Rational(0), Rational(100000)}).kind,
+            PinSlotLocation::Kind::outside);   // 179.9989 deg
+}
+
+// A stack wider than 30 deg searches its critical values in pieces between sample slices
+// (src/pinslot/pin_slot_space.cpp; session 53: the film advance's film pair over a whole turn,
+// minutes in one piece): the values are those of one search over the whole range, exactly.
+TEST(PinSlotAngleLimits, CriticalValuesInPiecesAreThoseOfOneSearch) {
+  for (const char* limits : {"[-60, 60]", "[-170, 170]", "[-180, 180]", "[-1e400, 1e400]"}) {
+    SCOPED_TRACE(limits);
+    Model model = read_model(std::string(R"({ "hipair": 1, "name": "bar-wall", "units": { "length": "mm", "angle": "deg" },
+      "parts": [
+      { "name": "wall", "motion": "fixed", "loops": [ { "start": [12, -20], "edges": [ { "line_to": [20, -20] },
+        { "line_to": [20, 20] }, { "line_to": [12, 20] }, { "line_to": [12, -20] } ] } ] },
+      { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": )") + limits + R"(,
+        "limits": [-5, 5] } }, "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] },
+        { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] } ],
+      "pairs": [ { "parts": ["wall", "bar"] } ] })");
+    PinSlotBuildOptions options;
+    options.connections = false;
+    PinSlotSpace space = PinSlotSpace::build(model, "wall", "bar", options);
+    ASSERT_TRUE(space.critical_values_exact());
+    sliced::CriticalStatistics statistics;
+    std::vector<cspace::algebra::Real> one;
+    for (auto& c : sliced::pin_slot_critical_values(model.parts[0], model.parts[1], Rational(-5), Rational(5), std::nullopt,
+                                                    std::make_pair(space.tau_lower(), space.tau_upper()), statistics))
+      if (!c.half_turn && c.t.compare(space.tau_lower()) > 0 && c.t.compare(space.tau_upper()) < 0) one.push_back(c.t);
+    ASSERT_EQ(space.critical_values().size(), one.size());
+    for (std::size_t k = 0; k < one.size(); ++k)
+      EXPECT_EQ(cspace::algebra::compare(sliced::real_of(space.critical_values()[k].tau), one[k]), 0) << k;
+    // the wall's three (the slide's end on the wall at 27 t^2 -+ 2 t - 3 = 0, and t = 0) at least
+    EXPECT_GE(one.size(), 3u);
+  }
+}
+
+}  // namespace
+}  // namespace hipair
