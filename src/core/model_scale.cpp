@@ -223,6 +223,39 @@ std::optional<Point> normalising_translation(const Model& model, const std::vect
   return Point{round_down(cx), round_down(cy)};
 }
 
+namespace {
+
+// Every length of a model's geometry, motion and initial pose (edges' points and squared radii,
+// pivots, translation limits, initial offsets and positions) through `scale(value, power)`,
+// power 1 for a length and 2 for a squared length: the one walk behind scaled_model (powers of
+// two) and decimal_scaled_model (powers of ten).
+template <class Scale>
+void scale_lengths(Model& model, Scale scale) {
+  auto scale_point = [&](Point& p) {
+    scale(p.x, 1);
+    scale(p.y, 1);
+  };
+  for (Part& part : model.parts) {
+    for (Loop& loop : part.loops)
+      for (Edge& edge : loop.edges) {
+        scale_point(edge.source);
+        scale_point(edge.target);
+        scale_point(edge.center);
+        scale(edge.radius_squared, 2);
+      }
+    scale_point(part.motion.pivot);
+    if (part.motion.translation_limits) {
+      scale(part.motion.translation_limits->lo, 1);
+      scale(part.motion.translation_limits->hi, 1);
+    }
+    scale(part.initial.offset, 1);
+    scale(part.initial.x, 1);
+    scale(part.initial.y, 1);
+  }
+}
+
+}  // namespace
+
 Model translated_model(const Model& model, const Point& by) {
   auto move = [&](Point& p) {
     p.x -= by.x;
@@ -346,32 +379,16 @@ Model decimal_scaled_model(const Model& model, long exponent) {
   if (exponent == 0) return model;
   const Rational factor = exponent > 0 ? Rational(mpz_class(1), power_of_ten(exponent)) : Rational(power_of_ten(exponent));
   const Rational square = factor * factor;
-  auto scale_point = [&](Point& p) {
-    p.x *= factor;
-    p.y *= factor;
-  };
   Model scaled = model;
-  for (Part& part : scaled.parts) {
-    for (Loop& loop : part.loops)
-      for (Edge& edge : loop.edges) {
-        scale_point(edge.source);
-        scale_point(edge.target);
-        scale_point(edge.center);
-        edge.radius_squared *= square;
-      }
-    scale_point(part.motion.pivot);
-    if (part.motion.translation_limits) {
-      part.motion.translation_limits->lo *= factor;
-      part.motion.translation_limits->hi *= factor;
-    }
-    part.initial.offset *= factor;
-    part.initial.x *= factor;
-    part.initial.y *= factor;
+  scale_lengths(scaled, [&](Rational& value, int power) { value *= power == 1 ? factor : square; });
+  for (Part& part : scaled.parts)
     if (part.dynamics) {
       if (part.dynamics->linear_spring) part.dynamics->linear_spring->rest *= factor;
-      if (part.dynamics->force) scale_point(*part.dynamics->force);
+      if (part.dynamics->force) {
+        part.dynamics->force->x *= factor;
+        part.dynamics->force->y *= factor;
+      }
     }
-  }
   return scaled;
 }
 
@@ -526,29 +543,8 @@ Rational times_power_of_two(Rational value, long exponent) {
 }
 
 Model scaled_model(const Model& model, long shift) {
-  auto scale = [shift](Rational& value, long power) { value = times_power_of_two(std::move(value), -shift * power); };
-  auto scale_point = [&](Point& p) {
-    scale(p.x, 1);
-    scale(p.y, 1);
-  };
   Model scaled = model;
-  for (Part& part : scaled.parts) {
-    for (Loop& loop : part.loops)
-      for (Edge& edge : loop.edges) {
-        scale_point(edge.source);
-        scale_point(edge.target);
-        scale_point(edge.center);
-        scale(edge.radius_squared, 2);
-      }
-    scale_point(part.motion.pivot);
-    if (part.motion.translation_limits) {
-      scale(part.motion.translation_limits->lo, 1);
-      scale(part.motion.translation_limits->hi, 1);
-    }
-    scale(part.initial.offset, 1);
-    scale(part.initial.x, 1);
-    scale(part.initial.y, 1);
-  }
+  scale_lengths(scaled, [shift](Rational& value, int power) { value = times_power_of_two(std::move(value), -shift * power); });
   return scaled;
 }
 
