@@ -103,8 +103,10 @@ struct PinSlotChange {
 /// events of docs/cspace.md, "Critical values of pin-in-slot pairs"). Between two consecutive
 /// critical values the slices are alike.
 struct PinSlotCritical {
-  AlgebraicNumber tau;
+  AlgebraicNumber tau;     ///< (half_turn: unused)
   double degrees = 0;      ///< psi, approximate, for display
+  /// psi = pi itself (tau infinite; a whole-turn stack only: between its last and first slices)
+  bool half_turn = false;
 };
 
 /// Options of a pin-in-slot build.
@@ -196,6 +198,10 @@ class PinSlotSpace {
   /// The exact critical values inside (tau_lower, tau_upper), ascending (empty unless
   /// critical_values_exact()). Every interval between consecutive ones (and the stack's ends)
   /// holds a slice of the stack: two slices with no critical value between them are alike.
+  /// A whole-turn stack (no angle limits, or limits of a turn or more) is a cycle: the values
+  /// across the half turn are found too (in the chart about it, u = -1/tau), slices are added
+  /// beyond the first and last so that every interval between cyclically consecutive values
+  /// holds one, and psi = pi itself, when critical, is listed last (half_turn).
   const std::vector<PinSlotCritical>& critical_values() const;
 
   /// Exact point location at any rational configuration.

@@ -125,7 +125,10 @@ std::string pin_slot_json(const PinSlotSpace& space, bool with_times) {
   out["critical_values_exact"] = space.critical_values_exact();
   json critical = json::array();
   for (const PinSlotCritical& c : space.critical_values())
-    critical.push_back({{"tau", c.tau.to_string("tau")}, {"degrees", c.degrees}});
+    if (c.half_turn)
+      critical.push_back({{"tau", "infinite (the half turn)"}, {"degrees", c.degrees}, {"half_turn", true}});
+    else
+      critical.push_back({{"tau", c.tau.to_string("tau")}, {"degrees", c.degrees}});
   out["critical_values"] = critical;
   out["critical_values_note"] =
       "when exact (the other part fixed or translating, slides within limits): every tau in (tau_range) where the "

@@ -5,6 +5,7 @@
 
 #include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
+#include "algebra/angle_sign.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
 #include "curves/pair_sort.hpp"
@@ -17,6 +18,7 @@
 
 #include <hipair/error.hpp>
 
+#include <mpfi.h>
 #include <mpfr.h>
 
 #include <algorithm>
@@ -2554,13 +2556,14 @@ namespace {
 
 constexpr mpfr_prec_t chart_bits = 256;
 
-// Rational on the 10^-12 grid below (down) or above (up) an MPFR value, one extra step out.
+// Rational on the 10^-12 grid below (down) or above (up) an MPFR value, one extra step out
+// (the product with 10^12 rounded outward too: the result is certainly below / above).
 Rational grid_round(const mpfr_t value, bool up) {
   mpfr_t scaled;
-  mpfr_init2(scaled, chart_bits);
+  mpfr_init2(scaled, std::max(chart_bits, mpfr_get_prec(value) + 64));
   mpz_class denominator;
   mpz_ui_pow_ui(denominator.get_mpz_t(), 10, 12);
-  mpfr_mul_z(scaled, value, denominator.get_mpz_t(), MPFR_RNDN);
+  mpfr_mul_z(scaled, value, denominator.get_mpz_t(), up ? MPFR_RNDU : MPFR_RNDD);
   if (up) {
     mpfr_ceil(scaled, scaled);
   } else {
@@ -2575,58 +2578,80 @@ Rational grid_round(const mpfr_t value, bool up) {
   return result;
 }
 
+// A rational certainly below (up: above) tan((L - m pi) / 2), for |L - m pi| < pi / 2: the
+// MPFI enclosure's end at a precision above L's and m's magnitudes, on the grid.
+Rational chart_edge(const Rational& L, const mpz_class& m, bool up) {
+  const mpfr_prec_t bits = std::max(chart_bits, algebra::angle_bits(m, L) + chart_bits);
+  mpfi_t angle;
+  mpfi_init2(angle, bits);
+  algebra::enclose_angle(angle, Rational(0), m, L, bits);   // m pi - L
+  mpfi_neg(angle, angle);
+  mpfi_div_2ui(angle, angle, 1);
+  mpfi_tan(angle, angle);
+  mpfr_t end;
+  mpfr_init2(end, bits);
+  if (up) {
+    mpfi_get_right(end, angle);
+  } else {
+    mpfi_get_left(end, angle);
+  }
+  Rational out = grid_round(end, up);
+  mpfr_clear(end);
+  mpfi_clear(angle);
+  return out;
+}
+
 // Chart intervals for a rotation with limits [lo, hi] (rad). Returns false when the range
 // covers a full turn (then the caller uses the two full charts). Chart edges inside the range
-// are rounded outward to the 10^-12 grid of t.
+// are rounded outward to the 10^-12 grid of t. Every decision is exact (session 54; before,
+// the comparisons were made in MPFR at a fixed 256 bits, wrong for limits within 2^-250 of a
+// chart seam or beyond 2^200 rad): whether the range is a whole turn, and whether the range
+// in a chart, [lo, hi] - m pi (m = 2 k + centre), reaches -pi/2 or pi/2, are signs of
+// 2 atan(0 or +-1) + m pi - L (algebra::angle_sign: MPFI refined until certain, never 0, pi
+// being irrational); the edges' tangents are MPFI enclosures rounded outward. The turns k
+// tried (four around an estimate) are a choice: charts that miss the range are skipped exactly.
 bool limited_rotation_charts(const RationalInterval& limits, std::vector<ChartAxis>& charts) {
-  mpfr_t pi, half_pi, two_pi, lo, hi, tmp, offset, start, end, tangent;
-  mpfr_inits2(chart_bits, pi, half_pi, two_pi, lo, hi, tmp, offset, start, end, tangent,
-              static_cast<mpfr_ptr>(nullptr));
+  // hi - lo >= 2 pi: 2 pi - (hi - lo) < 0 (never 0)
+  if (algebra::angle_sign(Rational(0), mpz_class(2), Rational(limits.hi - limits.lo)) <= 0) return false;
+  const mpfr_prec_t bits = algebra::angle_bits(mpz_class(0), limits.lo) + chart_bits;
+  mpfr_t pi, two_pi, tmp;
+  mpfr_inits2(bits, pi, two_pi, tmp, static_cast<mpfr_ptr>(nullptr));
   mpfr_const_pi(pi, MPFR_RNDN);
-  mpfr_div_ui(half_pi, pi, 2, MPFR_RNDN);
   mpfr_mul_ui(two_pi, pi, 2, MPFR_RNDN);
-  mpfr_set_q(lo, limits.lo.get_mpq_t(), MPFR_RNDN);
-  mpfr_set_q(hi, limits.hi.get_mpq_t(), MPFR_RNDN);
-  mpfr_sub(tmp, hi, lo, MPFR_RNDN);
-  bool limited = mpfr_cmp(tmp, two_pi) < 0;
-  for (int centre = 0; limited && centre < 2; ++centre) {
+  for (int centre = 0; centre < 2; ++centre) {
     // The chart around c = centre * pi covers theta in [c - pi/2, c + pi/2] + 2 pi k.
     mpfr_mul_ui(tmp, pi, static_cast<unsigned long>(centre), MPFR_RNDN);
-    mpfr_sub(tmp, lo, tmp, MPFR_RNDN);
+    mpfr_sub_q(tmp, tmp, limits.lo.get_mpq_t(), MPFR_RNDN);
+    mpfr_neg(tmp, tmp, MPFR_RNDN);
     mpfr_div(tmp, tmp, two_pi, MPFR_RNDN);
-    long first = mpfr_get_si(tmp, MPFR_RNDD) - 1;
-    long last = first + 3;
-    for (long k = first; k <= last; ++k) {
-      mpfr_mul_si(offset, two_pi, k, MPFR_RNDN);
-      mpfr_mul_ui(tmp, pi, static_cast<unsigned long>(centre), MPFR_RNDN);
-      mpfr_add(offset, offset, tmp, MPFR_RNDN);
-      mpfr_sub(start, lo, offset, MPFR_RNDN);  // local angles theta - c - 2 pi k
-      mpfr_sub(end, hi, offset, MPFR_RNDN);
-      mpfr_neg(tmp, half_pi, MPFR_RNDN);
-      if (mpfr_cmp(end, tmp) < 0 || mpfr_cmp(start, half_pi) > 0) continue;
+    mpz_class first;
+    mpfr_get_z(first.get_mpz_t(), tmp, MPFR_RNDD);
+    first -= 1;
+    for (mpz_class k = first; k <= first + 3; ++k) {
+      const mpz_class m = 2 * k + centre;   // local angles theta - m pi
+      // the range ends below the chart (hi - m pi < -pi/2: -pi/2 + m pi - hi > 0) or starts
+      // above it (lo - m pi > pi/2: pi/2 + m pi - lo < 0)
+      if (algebra::angle_sign(Rational(-1), m, limits.hi) > 0 || algebra::angle_sign(Rational(1), m, limits.lo) < 0) continue;
       ChartAxis axis;
       axis.kind = ChartAxis::Kind::rotation;
       axis.half_turn = centre == 1;
-      if (mpfr_cmp(start, tmp) <= 0) {
+      // lo - m pi <= -pi/2: -pi/2 + m pi - lo >= 0
+      if (algebra::angle_sign(Rational(-1), m, limits.lo) >= 0) {
         axis.lo = -1;
       } else {
-        mpfr_div_ui(tangent, start, 2, MPFR_RNDN);
-        mpfr_tan(tangent, tangent, MPFR_RNDN);
-        axis.lo = std::max(Rational(-1), grid_round(tangent, false));
+        axis.lo = std::max(Rational(-1), chart_edge(limits.lo, m, false));
       }
-      if (mpfr_cmp(end, half_pi) >= 0) {
+      // hi - m pi >= pi/2: pi/2 + m pi - hi <= 0
+      if (algebra::angle_sign(Rational(1), m, limits.hi) <= 0) {
         axis.hi = 1;
       } else {
-        mpfr_div_ui(tangent, end, 2, MPFR_RNDN);
-        mpfr_tan(tangent, tangent, MPFR_RNDN);
-        axis.hi = std::min(Rational(1), grid_round(tangent, true));
+        axis.hi = std::min(Rational(1), chart_edge(limits.hi, m, true));
       }
       if (axis.lo <= axis.hi) charts.push_back(axis);
     }
   }
-  mpfr_clears(pi, half_pi, two_pi, lo, hi, tmp, offset, start, end, tangent,
-              static_cast<mpfr_ptr>(nullptr));
-  return limited;
+  mpfr_clears(pi, two_pi, tmp, static_cast<mpfr_ptr>(nullptr));
+  return true;
 }
 
 std::vector<ChartAxis> rotation_charts(const Motion& motion) {

@@ -1,6 +1,8 @@
 // Exact comparisons of a pin-slot angle 2 atan(tau) with rational angle limits (angle_limits.hpp).
 #include "pinslot/angle_limits.hpp"
 
+#include "algebra/angle_sign.hpp"
+
 #include <mpfi.h>
 #include <mpfr.h>
 
@@ -26,60 +28,20 @@ struct Mpfr {
   Mpfr& operator=(const Mpfr&) = delete;
 };
 
-// Bits above the binary point of |x| (0 for |x| < 1).
-long magnitude_bits(const Rational& x) {
-  if (sgn(x) == 0) return 0;
-  long bits = static_cast<long>(mpz_sizeinbase(x.get_num_mpz_t(), 2)) -
-              static_cast<long>(mpz_sizeinbase(x.get_den_mpz_t(), 2)) + 1;
-  return std::max(0L, bits);
-}
-
-long magnitude_bits(const mpz_class& x) {
-  return sgn(x) == 0 ? 0 : static_cast<long>(mpz_sizeinbase(x.get_mpz_t(), 2));
-}
-
-// An enclosure of 2 atan(tau) + m pi - L at `bits` into `out` (initialised at `bits`).
-void enclose(mpfi_t out, const Rational& tau, const mpz_class& m, const Rational& L, mpfr_prec_t bits) {
-  Mpfi term(bits);
-  mpfi_set_q(out, tau.get_mpq_t());
-  mpfi_atan(out, out);
-  mpfi_mul_2ui(out, out, 1);
-  if (sgn(m) != 0) {
-    mpfi_const_pi(term.v);
-    mpfi_mul_z(term.v, term.v, m.get_mpz_t());
-    mpfi_add(out, out, term.v);
-  }
-  if (sgn(L) != 0) {
-    mpfi_set_q(term.v, L.get_mpq_t());
-    mpfi_sub(out, out, term.v);
-  }
-}
-
-mpfr_prec_t starting_bits(const mpz_class& m, const Rational& L) {
-  return static_cast<mpfr_prec_t>(64 + std::max(magnitude_bits(L), magnitude_bits(m) + 2));
-}
-
 }  // namespace
 
 int angle_sign(const Rational& tau, const mpz_class& m, const Rational& L) {
-  if (sgn(m) == 0 && sgn(L) == 0) return sgn(tau);   // 2 atan(tau) has the sign of tau
-  // never 0 here (angle_limits.hpp): the refinement ends
-  for (mpfr_prec_t bits = starting_bits(m, L);; bits *= 2) {
-    Mpfi difference(bits);
-    enclose(difference.v, tau, m, L, bits);
-    if (mpfi_is_strictly_pos(difference.v) > 0) return 1;
-    if (mpfi_is_strictly_neg(difference.v) > 0) return -1;
-  }
+  return cspace::algebra::angle_sign(tau, m, L);
 }
 
 bool angle_within_limits(const Rational& tau, const Rational& lo, const Rational& hi) {
   // k: the fewest whole turns with 2 atan(tau) + 2 pi k >= lo. An estimate, ceil((lo - psi) /
   // 2 pi) from an enclosure, then made exact by the signs.
-  mpfr_prec_t bits = starting_bits(mpz_class(0), lo) + 16;
+  mpfr_prec_t bits = cspace::algebra::angle_bits(mpz_class(0), lo) + 16;
   mpz_class k;
   {
     Mpfi x(bits), two_pi(bits);
-    enclose(x.v, tau, mpz_class(0), lo, bits);   // psi - lo
+    cspace::algebra::enclose_angle(x.v, tau, mpz_class(0), lo, bits);   // psi - lo
     mpfi_const_pi(two_pi.v);
     mpfi_mul_2ui(two_pi.v, two_pi.v, 1);
     mpfi_div(x.v, x.v, two_pi.v);                 // (psi - lo) / 2 pi
@@ -99,7 +61,7 @@ bool at_least_whole_turn(const Rational& width) {
 }
 
 mpz_class nearest_whole_turns(const Rational& x) {
-  mpfr_prec_t bits = starting_bits(mpz_class(0), x) + 16;
+  mpfr_prec_t bits = cspace::algebra::angle_bits(mpz_class(0), x) + 16;
   Mpfr value(bits), two_pi(bits);
   mpfr_set_q(value.v, x.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(two_pi.v, MPFR_RNDN);
@@ -111,7 +73,7 @@ mpz_class nearest_whole_turns(const Rational& x) {
 }
 
 double reduced_angle(const Rational& x, const mpz_class& k) {
-  mpfr_prec_t bits = starting_bits(k, x) + 64;
+  mpfr_prec_t bits = cspace::algebra::angle_bits(k, x) + 64;
   Mpfr value(bits), turns(bits);
   mpfr_set_q(value.v, x.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(turns.v, MPFR_RNDN);

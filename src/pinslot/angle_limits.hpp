@@ -1,5 +1,6 @@
 // Exact comparisons of a pin-slot part's angle psi = 2 atan(tau) (tau rational, the
 // configuration's half-angle tangent) with its rational angle limits (rad), modulo whole turns.
+// (angle_sign is algebra/angle_sign.hpp's, since session 54 shared with rotating parts' charts.)
 //
 // 2 atan(tau) + m pi (m an integer) is compared with a rational L through an MPFI enclosure of
 // the difference, refined (precision doubled) until it excludes 0. The difference is never 0

@@ -87,6 +87,35 @@ Rational limits_rounding(const Model& model, const Part& part) {
   return slack;
 }
 
+// The half-angle tangent tau = -1/u of psi = pi + 2 atan(u) (the chart about the half turn:
+// tan((pi + psi') / 2) = -1 / tan(psi' / 2)), exactly, for a real u != 0: the root of
+// tau^n p(-1/tau) (p's coefficients reversed, alternating in sign) in (-1/lower, -1/upper), once
+// u's isolating interval excludes 0 (the map is increasing on each side of 0, and tau^n has one
+// sign there, so the signs at the ends stay opposite and non-zero).
+cspace::algebra::Real across_half_turn(cspace::algebra::Real u) {
+  while (!u.exact && sgn(u.lower) <= 0 && sgn(u.upper) >= 0) u.refine();
+  if (u.exact) {
+    Rational t = Rational(-1) / u.lower;
+    t.canonicalize();
+    return cspace::algebra::Real::from_rational(t);
+  }
+  cspace::algebra::Real tau;
+  const std::size_t n = u.polynomial.size() - 1;
+  tau.polynomial.resize(n + 1);
+  for (std::size_t k = 0; k <= n; ++k) {
+    tau.polynomial[k] = u.polynomial[n - k];
+    if ((n - k) % 2 == 1) tau.polynomial[k] = -tau.polynomial[k];
+  }
+  cspace::algebra::trim(tau.polynomial);
+  if (sgn(tau.polynomial.back()) < 0)
+    for (auto& c : tau.polynomial) c = -c;   // a positive leading coefficient, as the roots' polynomials
+  tau.lower = Rational(-1) / u.lower;
+  tau.upper = Rational(-1) / u.upper;
+  tau.lower.canonicalize();
+  tau.upper.canonicalize();
+  return tau;
+}
+
 struct UnionFind {
   std::vector<std::size_t> parent;
   std::size_t find(std::size_t x) {
@@ -719,6 +748,50 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
       // length facing an arc): the sampled stack, as without critical values
       in_class = false;
     }
+    // The gap across the half turn of a whole-turn stack, (tau_hi, +inf) + {psi = pi} + (-inf,
+    // tau_lo), which no search in tau can reach (before session 54 it was left out while the
+    // values were claimed complete): searched in the chart about the half turn, psi = pi + psi',
+    // u = tan(psi'/2) = -1/tau in [-1/tau_hi, -1/tau_lo] (0 = the half turn), on the pin-slot
+    // part pre-turned by pi about its pivot with its slide direction reversed (the same placed
+    // part at every psi: R(psi') R(pi) P + s R(psi') (-d) = R(psi) P + s R(psi) d). In pieces of
+    // at most 30 deg as above (a choice in doubles; the values are exact either way); values
+    // at the gap's ends (the end slices' own tau) are left out as above.
+    std::vector<cspace::algebra::Real> gap;
+    if (in_class && impl->whole_turn) {
+      try {
+        Part turned = moved(impl->pin(), placement_about(impl->pin().motion.pivot, Rational(-1), Rational(0), Point{}));
+        turned.motion.direction = Point{Rational(-impl->pin().motion.direction.x), Rational(-impl->pin().motion.direction.y)};
+        Rational u_lo = Rational(-1) / impl->tau_hi, u_hi = Rational(-1) / impl->tau_lo;
+        u_lo.canonicalize();
+        u_hi.canonicalize();
+        const double from_angle = 2 * std::atan(to_double(u_lo)), to_angle = 2 * std::atan(to_double(u_hi));
+        const auto pieces = static_cast<long>(std::ceil((to_angle - from_angle) / (30 * std::numbers::pi / 180)));
+        std::vector<Rational> ends{u_lo};
+        for (long k = 1; k < pieces; ++k) {
+          Rational end = near_rational(std::tan((from_angle + (to_angle - from_angle) * static_cast<double>(k) /
+                                                                  static_cast<double>(pieces)) / 2), 4096);
+          if (end > ends.back() && end < u_hi) ends.push_back(end);
+        }
+        ends.push_back(u_hi);
+        for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+          sliced::CriticalStatistics piece_stats;
+          for (auto& c : sliced::pin_slot_critical_values(impl->other(), turned, impl->pin().motion.translation_limits->lo,
+                                                          impl->pin().motion.translation_limits->hi, q_range,
+                                                          std::make_pair(ends[k], ends[k + 1]), piece_stats)) {
+            if (c.half_turn || c.t.compare(u_lo) <= 0 || c.t.compare(u_hi) >= 0) continue;
+            bool seen = false;
+            for (const auto& f : gap)
+              if (cspace::algebra::compare(f, c.t) == 0) seen = true;
+            if (!seen) gap.push_back(std::move(c.t));
+          }
+          cs.roots += piece_stats.roots;
+        }
+        std::sort(gap.begin(), gap.end(),
+                  [](const cspace::algebra::Real& a, const cspace::algebra::Real& b) { return cspace::algebra::compare(a, b) < 0; });
+      } catch (const GeometryError&) {
+        in_class = false;
+      }
+    }
     impl->stats.critical_roots = cs.roots;
     std::vector<cspace::algebra::Real> inside;
     if (in_class)
@@ -731,12 +804,42 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
       });
       if (!has) taus.push_back(cspace::algebra::rational_between(inside[k], inside[k + 1]));
     }
+    // in the gap: a slice between consecutive values there (u = -1/tau, never u = 0), beyond
+    // the end slices (which lie between the gap's values and the others); the stack's ends
+    // become the outermost slices
+    bool half_turn_critical = false;
+    std::vector<cspace::algebra::Real> above, below;   // tau > tau_hi, tau < tau_lo
+    if (in_class) {
+      for (std::size_t k = 0; k + 1 < gap.size(); ++k) {
+        const bool across = gap[k].compare(Rational(0)) < 0 && gap[k + 1].compare(Rational(0)) >= 0;
+        Rational u = cspace::algebra::rational_between(gap[k], across ? cspace::algebra::Real::from_rational(Rational(0)) : gap[k + 1]);
+        Rational t = Rational(-1) / u;
+        t.canonicalize();
+        taus.push_back(t);
+      }
+      for (const auto& u : gap) {
+        int side = u.compare(Rational(0));
+        if (side == 0) half_turn_critical = true;
+        else (side < 0 ? above : below).push_back(across_half_turn(u));
+      }
+    }
     std::sort(taus.begin(), taus.end());
-    for (auto& r : inside) {
+    impl->tau_lo = taus.front();
+    impl->tau_hi = taus.back();
+    std::vector<cspace::algebra::Real> listed = below;
+    listed.insert(listed.end(), inside.begin(), inside.end());
+    listed.insert(listed.end(), above.begin(), above.end());
+    for (auto& r : listed) {
       PinSlotCritical c;
       cspace::algebra::refine_dyadically(r, Rational(1, 1 << 30));
       c.tau = sliced::algebraic_of(r);
       c.degrees = 2 * std::atan(r.approximate()) * 180 / std::numbers::pi;
+      impl->critical.push_back(std::move(c));
+    }
+    if (half_turn_critical) {
+      PinSlotCritical c;
+      c.half_turn = true;
+      c.degrees = 180;
       impl->critical.push_back(std::move(c));
     }
     impl->critical_exact = in_class;

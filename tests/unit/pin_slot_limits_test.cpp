@@ -13,6 +13,7 @@
 #include <hipair/pin_slot.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "curves/contact_curves.hpp"
 #include "pinslot/angle_limits.hpp"
 #include "sliced/critical_angles.hpp"
 #include "test_paths.hpp"
@@ -20,8 +21,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -337,6 +340,361 @@ TEST(PinSlotAngleLimits, CriticalValuesInPiecesAreThoseOfOneSearch) {
       EXPECT_EQ(cspace::algebra::compare(sliced::real_of(space.critical_values()[k].tau), one[k]), 0) << k;
     // the wall's three (the slide's end on the wall at 27 t^2 -+ 2 t - 3 = 0, and t = 0) at least
     EXPECT_GE(one.size(), 3u);
+  }
+}
+
+// ------------------------------------------------------------------ across the half turn
+// A whole-turn stack is a cycle: the critical values between its last and first slices (the
+// gap across psi = +-180 deg, which no search in tau = tan(psi/2) reaches) are found in the chart
+// about the half turn, u = -1/tau (session 54; before, the gap was left out while the values were
+// claimed complete). The oracle scans the slices by brute force: 1-D slices (exact C-spaces in
+// the slide) at rational tau across the gap and the whole turn; two consecutive scanned slices
+// whose structure differs must have a listed critical value between them (cyclically), and every
+// interval between cyclically consecutive values must hold a slice of the stack.
+
+// A slice's free structure: its free cells with the contacts on their boundaries (2-D: the
+// edges' feature pairs; 1-D: the contacts at the intervals' ends).
+std::string turn_structure(const CSpace& space) {
+  std::multiset<std::string> cells;
+  for (std::size_t c = 0; c < space.cells().size(); ++c) {
+    if (space.cells()[c].kind != CellKind::free) continue;
+    std::set<std::string> labels;
+    for (std::size_t e : space.cells()[c].boundary)
+      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
+    if (space.dimension() == 1)
+      for (const CSpaceFace& face : space.faces(0)) {
+        if (face.cell.index() != c) continue;
+        for (VertexId v : {face.lower, face.upper})
+          if (v.valid())
+            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
+      }
+    std::string text;
+    for (const auto& l : labels) text += l + "; ";
+    cells.insert(text);
+  }
+  std::string out;
+  for (const auto& c : cells) out += "[" + c + "] ";
+  return out;
+}
+
+// A bar [0, 10] x [-1, 1] turning (a whole turn) about (0, 0) and sliding along itself by s in
+// [-5, 5], against a wall x <= -`wall` (|y| <= 20): behind the pivot, so the bar meets it near
+// psi = 180 deg. Its far corners reach (10 + s) cos psi' + |sin psi'| behind the pivot (psi =
+// 180 deg + psi').
+Model bar_behind_wall(const std::string& wall) {
+  return read_model(R"({ "hipair": 1, "name": "bar-wall behind", "units": { "length": "mm", "angle": "deg" },
+    "parts": [
+    { "name": "wall", "motion": "fixed", "loops": [ { "start": [-20, -20], "edges": [ { "line_to": [)" + wall + R"(, -20] },
+      { "line_to": [)" + wall + R"(, 20] }, { "line_to": [-20, 20] }, { "line_to": [-20, -20] } ] } ] },
+    { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-5, 5] } },
+      "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] },
+      { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] } ],
+    "pairs": [ { "parts": ["wall", "bar"] } ] })");
+}
+
+int algebra_compare(const PinSlotCritical& a, const PinSlotCritical& b) {
+  return cspace::algebra::compare(sliced::real_of(a.tau), sliced::real_of(b.tau));
+}
+
+// Is a listed critical value between scanned slices a and b, going counter-clockwise from a
+// (a > b: across the half turn)?
+bool critical_between(const PinSlotSpace& space, const Rational& a, const Rational& b) {
+  for (const PinSlotCritical& c : space.critical_values()) {
+    if (c.half_turn) {
+      if (a > b) return true;
+      continue;
+    }
+    const cspace::algebra::Real t = sliced::real_of(c.tau);
+    if (a < b ? t.compare(a) > 0 && t.compare(b) < 0 : t.compare(a) > 0 || t.compare(b) < 0) return true;
+  }
+  return false;
+}
+
+// The brute-force scan: `count` slices at rational u = -1/tau evenly across the gap beyond the
+// stack's first slices (and `count` more over the rest of the turn); returns the number of
+// structure changes seen. Every change has a critical value between its two slices, and every
+// interval between cyclically consecutive critical values holds a slice of the stack.
+int scan_whole_turn(const PinSlotSpace& space, const Rational& u_lo, const Rational& u_hi, int count, int main_count = -1) {
+  std::vector<Rational> taus;
+  if (main_count < 0) main_count = count;
+  for (int k = 0; k <= main_count && main_count > 0; ++k) {   // psi from -180 + ... to 180 - ...: tau = tan(psi / 2)
+    double psi = -std::numbers::pi + (2 * std::numbers::pi) * (k + 0.5) / (main_count + 1);
+    Rational t(static_cast<long>(std::llround(std::tan(psi / 2) * 65536)), 65536);
+    t.canonicalize();
+    if (t > Rational(-1) / u_hi && t < Rational(-1) / u_lo && (taus.empty() || t > taus.back())) taus.push_back(t);
+  }
+  std::vector<Rational> above, below;   // the gap: u in (u_lo, 0) is tau > -1/u_lo, u in (0, u_hi) tau < -1/u_hi
+  for (int k = 1; k < count; ++k) {
+    Rational u = u_lo + (u_hi - u_lo) * Rational(k, count);
+    u.canonicalize();
+    if (sgn(u) == 0) continue;
+    Rational t = Rational(-1) / u;
+    t.canonicalize();
+    (sgn(u) < 0 ? above : below).push_back(t);
+  }
+  std::vector<Rational> cycle = below;   // ascending tau: below the stack, the stack, above it
+  cycle.insert(cycle.end(), taus.begin(), taus.end());
+  cycle.insert(cycle.end(), above.begin(), above.end());
+  std::vector<std::string> seen;
+  for (const Rational& t : cycle) seen.push_back(turn_structure(*space.slice(t)));
+  int changes = 0;
+  for (std::size_t k = 0; k < cycle.size(); ++k) {
+    std::size_t next = (k + 1) % cycle.size();
+    if (seen[k] == seen[next]) continue;
+    ++changes;
+    EXPECT_TRUE(critical_between(space, cycle[k], cycle[next]))
+        << "slices at tau " << cycle[k].get_str() << " and " << cycle[next].get_str() << " differ with no critical value between: "
+        << seen[k] << " | " << seen[next];
+  }
+  // a slice of the stack in every interval between cyclically consecutive critical values
+  const auto& critical = space.critical_values();
+  const auto& slices = space.slices();
+  for (std::size_t k = 0; k < critical.size(); ++k) {
+    const PinSlotCritical& a = critical[k];
+    const PinSlotCritical& b = critical[(k + 1) % critical.size()];
+    bool has = false;
+    for (const PinSlotSlice& s : slices) {
+      if (a.half_turn) has = has || sliced::real_of(b.tau).compare(s.tau) > 0;        // (-inf, b)
+      else if (b.half_turn) has = has || sliced::real_of(a.tau).compare(s.tau) < 0;   // (a, +inf)
+      else {
+        bool after_a = sliced::real_of(a.tau).compare(s.tau) < 0, before_b = sliced::real_of(b.tau).compare(s.tau) > 0;
+        has = has || (algebra_compare(a, b) < 0 ? after_a && before_b : after_a || before_b);   // across the half turn
+      }
+    }
+    EXPECT_TRUE(has) << "no slice between critical values " << k << " and " << (k + 1) % critical.size();
+  }
+  return changes;
+}
+
+TEST(PinSlotAngleLimits, CriticalValuesAcrossTheHalfTurnAreFound) {
+  // wall at x = -15.02: the slide's end s = 5 meets it where 15 cos psi' + |sin psi'| = 15.02,
+  // |psi'| = atan(1/15) -+ acos(15.02 / sqrt 226) (1.404 and 6.224 deg): four critical values
+  // within 7 deg of 180, inside the gap (168.75, 191.25) deg between the 16 slices' last and first
+  PinSlotBuildOptions options;
+  options.connections = false;
+  Model model = bar_behind_wall("-15.02");
+  PinSlotSpace space = PinSlotSpace::build(model, "wall", "bar", options);
+  ASSERT_TRUE(space.critical_values_exact());
+  const double phi = std::atan(1.0 / 15), delta = std::acos(15.02 / std::sqrt(226.0));
+  std::vector<double> expected;   // degrees in (-180, 180]
+  for (double psi : {phi - delta, phi + delta}) {
+    expected.push_back(180 - psi * 180 / std::numbers::pi);
+    expected.push_back(-180 + psi * 180 / std::numbers::pi);
+  }
+  std::string listing;
+  for (const auto& c : space.critical_values()) listing += std::to_string(c.degrees) + (c.half_turn ? " (half turn)" : "") + "\n";
+  for (double e : expected) {
+    bool found = false;
+    for (const auto& c : space.critical_values())
+      if (!c.half_turn && std::abs(c.degrees - e) < 1e-6) found = true;
+    EXPECT_TRUE(found) << e << " deg not listed:\n" << listing;
+  }
+  // the stack reaches into the gap: slices between the values there (180 - 6.224 ... 180 -
+  // 1.404 deg, 180 - 1.404 ... -180 + 1.404 across the half turn, -180 + 1.404 ... -180 + 6.224)
+  EXPECT_GT(space.slices().back().degrees, 180 - 6.2);
+  EXPECT_LT(space.slices().front().degrees, -180 + 6.2);
+  // the gap of the 16 slices: u = -1/tau within tan(11.25 deg / 2) of 0
+  const Rational gap(1, 8);
+  EXPECT_GE(scan_whole_turn(space, Rational(-gap), gap, 240), 4);
+}
+
+// The film advance with its follower turning a whole turn (no angle limits): the film pair's
+// critical values across the half turn, against 2-D slices scanned across the gap.
+TEST(PinSlotAngleLimits, FilmAdvanceWholeTurnAcrossTheHalfTurn) {
+  Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  for (Part& part : model.parts)
+    if (part.name == "follower") part.motion.angle_limits.reset();
+  PinSlotBuildOptions options;
+  options.connections = false;
+  PinSlotSpace space = PinSlotSpace::build(model, "film", "follower", options);
+  ASSERT_TRUE(space.critical_values_exact());
+  EXPECT_GE(space.critical_values().size(), 22u);
+  // the 16 slices' gap: |u| < tan(11.25 deg / 2) < 1/10 (40 slices across it, none elsewhere)
+  scan_whole_turn(space, Rational(-1, 10), Rational(1, 10), 40, 0);
+}
+
+TEST(PinSlotAngleLimits, TheHalfTurnItselfIsACriticalValue) {
+  // wall at x = -12 (the wall of BarAgainstAWallHasThreeCriticalValues, behind the pivot): the
+  // end edge is parallel to it at psi = 180 deg, where the touching corner changes
+  PinSlotBuildOptions options;
+  options.connections = false;
+  PinSlotSpace space = PinSlotSpace::build(bar_behind_wall("-12"), "wall", "bar", options);
+  ASSERT_TRUE(space.critical_values_exact());
+  ASSERT_FALSE(space.critical_values().empty());
+  EXPECT_TRUE(space.critical_values().back().half_turn);
+  EXPECT_EQ(space.critical_values().back().degrees, 180);
+  // slices on both sides of the half turn, between it and the values at 180 -+ 40.9 deg
+  EXPECT_GT(space.slices().back().degrees, 139.2);
+  EXPECT_LT(space.slices().front().degrees, -139.2);
+  EXPECT_GE(scan_whole_turn(space, Rational(-1, 8), Rational(1, 8), 180), 3);
+}
+
+// ------------------------------------------------------------------ rotating parts' charts
+// A rotating part's angle limits [lo, hi] (rad) choose its charts (src/curves/contact_curves.cpp,
+// limited_rotation_charts): the chart about c = centre pi for each whole turn k whose local range
+// [lo, hi] - m pi (m = 2 k + centre) meets [-pi/2, pi/2], its edges the tangents of the local
+// range's ends rounded outward to the 10^-12 grid (+-1 when the range passes the seam). Before
+// session 54 every comparison was made in MPFR at 256 bits: limits within 2^-250 of a seam
+// (m pi +- pi/2) or of a whole turn could be misjudged, and limits beyond 2^200 rad were reduced
+// by garbage. The oracle: pi as an exact rational bracket narrower than 10^-digits (Machin's
+// formula, the alternating atan series), the comparisons decided on it (and refused when it
+// cannot decide them), the edges checked tight with psi_bracket.
+
+// atan(x), 0 < x <= 1/3, in an exact bracket narrower than 10^-digits.
+Bracket atan_series(const Rational& x, int digits) {
+  Rational sum = 0, power = x, x2 = x * x;
+  const Rational tiny = power10(-digits);
+  for (long k = 0;; ++k) {
+    Rational term = power / (2 * k + 1);
+    term.canonicalize();
+    Rational next = sum + (k % 2 == 0 ? term : Rational(-term));
+    next.canonicalize();
+    if (abs(term) < tiny) return sum < next ? Bracket{sum, next} : Bracket{next, sum};
+    sum = next;
+    power *= x2;
+    power.canonicalize();
+  }
+}
+
+// pi = 16 atan(1/5) - 4 atan(1/239), in an exact bracket narrower than about 10^-digits.
+Bracket pi_bracket(int digits) {
+  auto [a_lo, a_hi] = atan_series(Rational(1, 5), digits + 2);
+  auto [b_lo, b_hi] = atan_series(Rational(1, 239), digits + 2);
+  Rational lo = 16 * a_lo - 4 * b_hi, hi = 16 * a_hi - 4 * b_lo;
+  lo.canonicalize();
+  hi.canonicalize();
+  return {lo, hi};
+}
+
+// The sign of L - q pi (q rational) on the bracket; 0 when the bracket cannot decide it.
+int sign_on(const Rational& L, const Rational& q, const Bracket& pi) {
+  Rational a = L - q * (sgn(q) >= 0 ? pi.second : pi.first), b = L - q * (sgn(q) >= 0 ? pi.first : pi.second);
+  if (sgn(a) > 0) return 1;
+  if (sgn(b) < 0) return -1;
+  return 0;
+}
+
+// The charts of a rotating part with limits [lo, hi] (rad), as chart_layout gives them.
+std::vector<cspace::ChartAxis> charts_for(const Rational& lo, const Rational& hi) {
+  static const Model base = read_model(R"({ "hipair": 1, "name": "charts", "units": { "length": "mm", "angle": "rad" },
+    "parts": [
+    { "name": "arm", "motion": { "rotation": { "pivot": [0, 0], "limits": [-1, 1] } }, "loops": [ { "start": [0, -1],
+      "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] },
+    { "name": "block", "motion": "fixed", "loops": [ { "start": [20, 0], "edges": [ { "line_to": [24, 0] },
+      { "line_to": [24, 4] }, { "line_to": [20, 4] }, { "line_to": [20, 0] } ] } ] } ] })");
+  Model model = base;
+  model.parts[0].motion.angle_limits = RationalInterval{lo, hi};
+  return cspace::chart_layout(model, cspace::pair_axes(model, 0, 1)).x_charts;
+}
+
+// Checks charts_for(lo, hi) against the oracle (`pi`: a bracket narrow enough for the limits).
+void expect_charts(const Rational& lo, const Rational& hi, const Bracket& pi, const std::string& what) {
+  SCOPED_TRACE(what);
+  std::vector<cspace::ChartAxis> charts = charts_for(lo, hi);
+  const int whole = sign_on(Rational(hi - lo), Rational(2), pi);   // hi - lo - 2 pi
+  ASSERT_NE(whole, 0) << "the oracle's pi is too coarse";
+  if (whole > 0) {   // a whole turn: the two full charts
+    ASSERT_EQ(charts.size(), 2u);
+    for (const auto& c : charts) EXPECT_TRUE(c.lo == -1 && c.hi == 1);
+    return;
+  }
+  // expected charts, in the code's order (centre 0 then the half turn, turns ascending)
+  const Rational turns = lo / (2 * pi.first);
+  mpz_class k0 = turns.get_num() / turns.get_den();   // truncated: within 1 of the turns
+  std::size_t next = 0;
+  const Rational grid(3, 1000000000000);   // the edge within 3 grid steps of the exact one
+  for (int centre = 0; centre < 2; ++centre)
+    for (mpz_class k = k0 - 3; k <= k0 + 3; ++k) {
+      const mpz_class m = 2 * k + centre;
+      const Rational below(Rational(m) - Rational(1, 2)), above(Rational(m) + Rational(1, 2));
+      const int hi_below = sign_on(hi, below, pi), lo_above = sign_on(lo, above, pi);   // hi - (m - 1/2) pi, lo - (m + 1/2) pi
+      ASSERT_TRUE(hi_below != 0 && lo_above != 0) << "the oracle's pi is too coarse";
+      if (hi_below < 0 || lo_above > 0) continue;   // the range misses this chart
+      ASSERT_LT(next, charts.size()) << "chart m = " << m.get_str() << " missing";
+      const cspace::ChartAxis& c = charts[next++];
+      EXPECT_EQ(c.half_turn, centre == 1) << m.get_str();
+      const int lo_below = sign_on(lo, below, pi), hi_above = sign_on(hi, above, pi);
+      ASSERT_TRUE(lo_below != 0 && hi_above != 0) << "the oracle's pi is too coarse";
+      // the local range's ends L - m pi against the edges' angles 2 atan(edge) (m pi bracketed)
+      auto local = [&](const Rational& L) {
+        return Bracket{Rational(L - m * (sgn(m) >= 0 ? pi.second : pi.first)), Rational(L - m * (sgn(m) >= 0 ? pi.first : pi.second))};
+      };
+      if (lo_below <= 0) {
+        EXPECT_EQ(c.lo, -1) << m.get_str();
+      } else {
+        const Bracket end = local(lo);
+        // (an edge clamped to -1 is 2 atan(-1) = -pi/2, below the local end as decided above)
+        if (c.lo > -1) EXPECT_LT(psi_bracket(c.lo).second, end.first) << "lower edge not below the limit, m = " << m.get_str();
+        if (c.lo > -1) {
+          EXPECT_GT(psi_bracket(Rational(c.lo + grid)).first, end.second) << "lower edge not tight, m = " << m.get_str();
+        }
+      }
+      if (hi_above >= 0) {
+        EXPECT_EQ(c.hi, 1) << m.get_str();
+      } else {
+        const Bracket end = local(hi);
+        if (c.hi < 1) EXPECT_GT(psi_bracket(c.hi).first, end.second) << "upper edge not above the limit, m = " << m.get_str();
+        if (c.hi < 1) {
+          EXPECT_LT(psi_bracket(Rational(c.hi - grid)).second, end.first) << "upper edge not tight, m = " << m.get_str();
+        }
+      }
+    }
+  EXPECT_EQ(next, charts.size()) << "extra charts";
+}
+
+TEST(RotationChartLimits, TheOraclePiIsPi) {
+  const Bracket pi = pi_bracket(120);
+  EXPECT_LT(Rational(pi.second - pi.first), power10(-118));
+  EXPECT_LE(pi.first, pi_hi());
+  EXPECT_GE(pi.second, pi_lo());
+}
+
+TEST(RotationChartLimits, OrdinaryAndHugeLimitsGiveTheExactCharts) {
+  std::mt19937_64 random(54);
+  const Bracket pi = pi_bracket(500);
+  for (int round = 0; round < 60; ++round) {
+    // magnitudes 1 ... 10^400 rad, widths 0.01 ... 6.2 rad
+    const int e = round < 20 ? 0 : round < 40 ? 20 * (round - 19) : 100 + 15 * (round - 40);
+    Rational lo = random_tangent(random, e);
+    Rational width(static_cast<long>(1 + random() % 620), 100);
+    Rational hi = lo + width;
+    hi.canonicalize();
+    expect_charts(lo, hi, pi, "limits 10^" + std::to_string(e) + " rad, width " + width.get_str());
+  }
+}
+
+TEST(RotationChartLimits, TiesAtSeamsAndWholeTurnsAreDecidedExactly) {
+  const Bracket pi = pi_bracket(200);
+  const Rational& p = pi.first;   // within 10^-200 of pi
+  for (int e : {30, 80, 150}) {
+    const Rational d = power10(-e);
+    for (int j = -5; j <= 5; ++j) {
+      for (int side : {-1, 1}) {
+        // a limit 10^-e from the seam or chart centre j pi / 2 (odd j: a seam between charts)
+        Rational L = Rational(j) * p / 2 + side * d;
+        L.canonicalize();
+        std::string what = "j = " + std::to_string(j) + ", 10^-" + std::to_string(e) + (side < 0 ? " below" : " above");
+        expect_charts(L, Rational(L + Rational(1, 2)), pi, what + " (lower limit)");
+        expect_charts(Rational(L - Rational(1, 2)), L, pi, what + " (upper limit)");
+      }
+    }
+    // a width 10^-e short of or beyond a whole turn
+    for (int side : {-1, 1}) {
+      Rational lo(1, 3), hi = lo + 2 * p + side * d;
+      hi.canonicalize();
+      expect_charts(lo, hi, pi, "whole turn " + std::string(side < 0 ? "- " : "+ ") + "10^-" + std::to_string(e));
+    }
+  }
+  // limits whose half-angle tangent is rational (0): the edge one grid step out of 0
+  for (const auto& [lo, hi] : {std::pair<Rational, Rational>{Rational(0), Rational(1)}, {Rational(-1), Rational(0)}}) {
+    std::vector<cspace::ChartAxis> charts = charts_for(lo, hi);
+    ASSERT_EQ(charts.size(), 1u);
+    if (sgn(lo) == 0) {
+      EXPECT_EQ(charts[0].lo, Rational(-1, 1000000000000));
+    } else {
+      EXPECT_EQ(charts[0].hi, Rational(1, 1000000000000));
+    }
+    expect_charts(lo, hi, pi, "a limit at 0");
   }
 }
 
