@@ -946,6 +946,10 @@ class ChainAnalysis {
         std::size_t failed = 0;
       };
       std::map<std::vector<double>, Plain> plain;
+      // The envelopes walked in the far walk's pass (session 54; handover.hpp EnvelopeMemo): the
+      // pass of the driver's pieces makes the same calls of the sub-boxes it composes again, whose
+      // steps 0-6 are the far walk's; replayed, only their step 7 is walked.
+      EnvelopeMemo far_envelopes;
       auto compose_plain = [&](const Box& b, std::vector<Interval>& charts, Interval& out, bool& mean_value_through,
                                std::size_t& failed) {
         // (kept only where a later pass may run: the far walk on)
@@ -1029,6 +1033,7 @@ class ChainAnalysis {
           bool composed = compose_plain(b, charts, out, mean_value_through, failed);
           if (!composed && far > 0) {   // (a sub-box composed without the far walks keeps that composition)
             FarWalk on;
+            EnvelopeMemo::Scope reuse(far_envelopes);
             std::optional<DriverPieces> pieces;
             if (far > 1) pieces.emplace();
             composed =

@@ -61,6 +61,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -330,17 +331,121 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
   return memo_.emplace(key, parts).first->second;
 }
 
+namespace {
+
+// The key of an envelope's call (EnvelopeMemo): every argument, doubles by their bits.
+EnvelopeMemo::Key envelope_key(const HandoverSearch* search, const CurveSlice& curve, const Box& box,
+                               const Interval& holder, double relative_accuracy, double absolute_accuracy, int side,
+                               const DriverForm* driver, bool monotone, double nominal_free) {
+  std::vector<std::uint64_t> bits;
+  bits.reserve(24 + 2 * box.lo.size() + (driver ? 2 * driver->gradient.size() : 0));
+  auto number = [&bits](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    bits.push_back(b);
+  };
+  auto whole = [&bits](std::uint64_t x) { bits.push_back(x); };
+  for (const FeatureIdentity* f : {&curve.first, &curve.second}) {
+    whole(f->part);
+    whole(f->loop);
+    whole(f->edge);
+    whole(static_cast<std::uint64_t>(f->kind));
+  }
+  whole(curve.fixed_part);
+  whole(curve.free_part);
+  whole(curve.fixed_half_turn);
+  whole(curve.free_half_turn);
+  whole(curve.fixed_range.has_value());
+  if (curve.fixed_range) {
+    number(curve.fixed_range->lo);
+    number(curve.fixed_range->hi);
+  }
+  number(curve.fixed_spread);
+  whole(box.lo.size());
+  for (double x : box.lo) number(x);
+  for (double x : box.hi) number(x);
+  number(holder.lo);
+  number(holder.hi);
+  number(relative_accuracy);
+  number(absolute_accuracy);
+  whole(static_cast<std::uint64_t>(static_cast<std::int64_t>(side)));
+  whole(monotone);
+  number(nominal_free);
+  whole(driver != nullptr);
+  if (driver) {
+    number(driver->value.lo);
+    number(driver->value.hi);
+    whole(driver->gradient.size());
+    for (const Interval& g : driver->gradient) {
+      number(g.lo);
+      number(g.hi);
+    }
+  }
+  return {search, std::move(bits), curve.fixed_value};
+}
+
+}  // namespace
+
+// Steps 0-6 (walk_steps) and step 7 (driver_pieces), the former replayed from this position's
+// EnvelopeMemo in the pass of the driver's pieces where the far walk's pass walked the same call.
 HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& box,
                                           const Interval& holder, double relative_accuracy,
                                           double absolute_accuracy, std::size_t& boxes, int side,
                                           const DriverForm* driver, bool monotone, double nominal_free) const {
-  HandoverEnvelope out;
-  out.chart = holder;
   const EnvelopeDepth depth;
   if (disabled_) {
+    HandoverEnvelope out;
+    out.chart = holder;
     out.bounded = true;
     return out;
   }
+  EnvelopeMemo* memo =
+      depth.level == 1 && FarWalk::on() && handover_far_reuse() != 0 ? EnvelopeMemo::Scope::current() : nullptr;
+  std::optional<EnvelopeMemo::Key> key;
+  const EnvelopeMemo::Entry* walked = nullptr;
+  if (memo) {
+    key = envelope_key(this, curve, box, holder, relative_accuracy, absolute_accuracy, side, driver, monotone,
+                       nominal_free);
+    walked = memo->find(*key);
+  }
+  EnvelopeMemo::Entry made;
+  if (walked) {
+    boxes += walked->boxes;
+    handover_envelopes_reused().fetch_add(1, std::memory_order_relaxed);
+  } else {
+    const std::size_t before = boxes;
+    made.result = walk_steps(curve, box, holder, relative_accuracy, absolute_accuracy, boxes, side, driver, monotone,
+                             nominal_free, made);
+    made.boxes = boxes - before;
+    walked = memo ? memo->store(std::move(*key), std::move(made)) : &made;
+  }
+  const HandoverEnvelope& out = walked->result;
+  // 7. (driver_pieces) only while a FarWalk and a DriverPieces live (chain.cpp: a position unbounded
+  // even with the far walk, composed once more), and only in the composition's own envelope (not in
+  // the pieces', the bridge's or the route's walks: `depth`).
+  if (out.bounded || !walked->pieces || !FarWalk::on() || !DriverPieces::on() || depth.level != 1 ||
+      handover_driver_pieces() <= 1)
+    return out;
+  std::optional<double> edge =
+      driver_pieces(curve, box, holder, walked->sigma, relative_accuracy, absolute_accuracy, boxes, nominal_free);
+  if (!edge) return out;
+  // bounded to the pieces' sigma-most end (walk_steps' bounded_to)
+  const int sigma = walked->sigma;
+  HandoverEnvelope pieces = out;
+  pieces.why.clear();
+  pieces.extended = *edge != end_of(holder, sigma);
+  pieces.side = sigma;
+  pieces.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, *edge)) : Interval(std::min(holder.lo, *edge), holder.hi);
+  pieces.bounded = true;
+  return pieces;
+}
+
+HandoverEnvelope HandoverSearch::walk_steps(const CurveSlice& curve, const Box& box, const Interval& holder,
+                                            double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
+                                            int side, const DriverForm* driver, bool monotone, double nominal_free,
+                                            EnvelopeMemo::Entry& entry) const {
+  HandoverEnvelope out;
+  out.chart = holder;
   const Model& m = solver_->nominal();
   std::shared_ptr<const BoxParts> parts = box_parts(box);
   const Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
@@ -983,96 +1088,9 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     if (more.bounded) return bounded_to(more.edge);
     stuck = more.last;
   }
-  // 7. The driver's range walked in pieces (session 52), where neither the walk over box x T, the
-  // driver-monotone route nor the far walk bounded the envelope, the box holds the nominal vector
-  // and T the nominal driver t_n: where T is wider than the teeth's pitch, the next tooth pair
-  // really may hold the follower inside box x T and its zeros over the whole of T sweep every
-  // leaf. T is split into n equal pieces T_0 .. T_n-1 (adjacent pieces share their double end
-  // t_b), and the pieces are walked outward from the one holding t_n, each over box x T_j alone
-  // (an interval driver: the driver's form holds the actual driver on its graph over the box,
-  // which a piece of T does not leave connected):
-  //   - the piece T_c holding t_n: the nominal configuration (0, t_n) lies in box x T_c, its
-  //     follower at the holder's root, in Y_c (the holder's enclosure over box x T_c): the walk
-  //     from Y_c's sigma end is anchored as in 3., and ends at E_c;
-  //   - a piece T_j next to an already walked T_i (outward): every point (p, t_b) of box x {t_b}
-  //     lies in box x T_i, so y(p, t_b) is within E_i; the walk over box x T_j started at the
-  //     sigma end of hull(Y_j, E_i) has that anchor, and ends at E_j.
-  // For every p and t of T, y(p, t) lies in some piece's envelope [Y_j's -sigma end, E_j], so the
-  // envelope is the holder's enclosure Y widened to the sigma-most E_j (its -sigma end stays Y's:
-  // the follower is never on the -sigma side of the holder's root). Each piece's competitor zeros
-  // sweep a fraction of the window. n = 4, 8, ... up to handover_driver_pieces(); a piece not
-  // bounded ends that n. Only while a FarWalk and a DriverPieces live (chain.cpp: a position
-  // unbounded even with the far walk, composed once more), and only in the composition's own
-  // envelope (not in the pieces', the bridge's or the route's walks: `depth`).
-  if (!bounded && FarWalk::on() && DriverPieces::on() && depth.level == 1 && handover_driver_pieces() > 1 && curve.fixed_range &&
-      fixed.lo < fixed.hi && !away && std::isfinite(nominal_free)) {
-    const double t_n = curve.fixed_value.get_d();
-    std::vector<double> s;
-    double slope = 0;
-    bool anchored = t_n >= fixed.lo && t_n <= fixed.hi;
-    if (anchored) {
-      try {
-        CurveSlice at_nominal = curve;
-        at_nominal.fixed_range.reset();
-        double v = nominal_free;
-        s = solver_->sensitivities(at_nominal, v, &slope);
-      } catch (const Error&) {
-        anchored = false;
-      }
-    }
-    for (int n = 4; anchored && n <= handover_driver_pieces(); n *= 2) {
-      std::vector<double> ends(static_cast<std::size_t>(n) + 1);
-      for (int j = 0; j <= n; ++j)
-        ends[static_cast<std::size_t>(j)] =
-            j == n ? fixed.hi : std::max(fixed.lo, fixed.lo + fixed.width() * static_cast<double>(j) / static_cast<double>(n));
-      for (std::size_t j = 1; j < ends.size(); ++j) ends[j] = std::max(ends[j], ends[j - 1]);
-      std::size_t c = 0;
-      while (c + 1 < static_cast<std::size_t>(n) && !(t_n <= ends[c + 1])) ++c;
-      // the walk over box x T_j from the sigma end of hull(Y_j, previous): its envelope's sigma end
-      auto piece_walk = [&](std::size_t j, std::optional<double> previous) -> std::optional<double> {
-        CurveSlice piece = curve;
-        piece.fixed_range = Interval(ends[j], ends[j + 1]);
-        piece.fixed_spread = std::fabs(slope) * piece.fixed_range->width();
-        // Y_j: certified about the nominal root moved along the driver, as Y is, and met with Y
-        // (which holds the holder's root over box x T, so over box x T_j); Y itself where the two
-        // do not meet, or where T_c's would not hold the nominal follower (the anchor of T_c)
-        Interval y = holder;
-        try {
-          Interval own = solver_->certified_range(piece, box, nominal_free + slope * (centre(*piece.fixed_range) - t_n), s,
-                                                  relative_accuracy, absolute_accuracy, boxes);
-          Interval both(std::max(own.lo, holder.lo), std::min(own.hi, holder.hi));
-          if (both.lo <= both.hi && (previous || (both.lo < nominal_free && nominal_free < both.hi))) y = both;
-        } catch (const Error&) {
-        }
-        if (previous) y = kernels::hull(y, Interval::point(*previous));
-        try {
-          HandoverEnvelope e = envelope(piece, box, y, relative_accuracy, absolute_accuracy, boxes, sigma, nullptr,
-                                        false, nominal_free);
-          if (e.bounded && e.side == sigma) return end_of(e.chart, sigma);
-        } catch (const Error&) {
-        }
-        return std::nullopt;
-      };
-      std::optional<double> centre_edge = piece_walk(c, std::nullopt);
-      if (!centre_edge) continue;
-      double reached = *centre_edge;
-      bool all = true;
-      for (int direction : {1, -1}) {
-        std::optional<double> previous = centre_edge;
-        for (std::size_t j = c; all;) {
-          if (direction > 0 ? j + 1 >= static_cast<std::size_t>(n) : j == 0) break;
-          j = direction > 0 ? j + 1 : j - 1;
-          previous = piece_walk(j, previous);
-          if (!previous) {
-            all = false;
-            break;
-          }
-          reached = sigma > 0 ? std::max(reached, *previous) : std::min(reached, *previous);
-        }
-      }
-      if (all) return bounded_to(reached);
-    }
-  }
+  // 7. (driver_pieces) where the envelope is still not bounded: whether it applies here
+  entry.sigma = sigma;
+  entry.pieces = !bounded && curve.fixed_range && fixed.lo < fixed.hi && !away && std::isfinite(nominal_free);
   if (!bounded) {
     auto name = [&](const FeatureIdentity& f) {
       const Part& part = m.parts[f.part];
@@ -1086,6 +1104,103 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
     return out;
   }
   return bounded_to(edge_reached);
+}
+
+// 7. The driver's range walked in pieces (session 52; envelope), where neither the walk over
+// box x T, the driver-monotone route nor the far walk bounded the envelope, the box holds the nominal vector
+// and T the nominal driver t_n: where T is wider than the teeth's pitch, the next tooth pair
+// really may hold the follower inside box x T and its zeros over the whole of T sweep every
+// leaf. T is split into n equal pieces T_0 .. T_n-1 (adjacent pieces share their double end
+// t_b), and the pieces are walked outward from the one holding t_n, each over box x T_j alone
+// (an interval driver: the driver's form holds the actual driver on its graph over the box,
+// which a piece of T does not leave connected):
+//   - the piece T_c holding t_n: the nominal configuration (0, t_n) lies in box x T_c, its
+//     follower at the holder's root, in Y_c (the holder's enclosure over box x T_c): the walk
+//     from Y_c's sigma end is anchored as in 3., and ends at E_c;
+//   - a piece T_j next to an already walked T_i (outward): every point (p, t_b) of box x {t_b}
+//     lies in box x T_i, so y(p, t_b) is within E_i; the walk over box x T_j started at the
+//     sigma end of hull(Y_j, E_i) has that anchor, and ends at E_j.
+// For every p and t of T, y(p, t) lies in some piece's envelope [Y_j's -sigma end, E_j], so the
+// envelope is the holder's enclosure Y widened to the sigma-most E_j (its -sigma end stays Y's:
+// the follower is never on the -sigma side of the holder's root). Each piece's competitor zeros
+// sweep a fraction of the window. n = 4, 8, ... up to handover_driver_pieces(); a piece not
+// bounded ends that n. Called only while a FarWalk and a DriverPieces live, in the composition's
+// own envelope, where steps 0-6 left it unbounded over a box holding the nominal vector.
+std::optional<double> HandoverSearch::driver_pieces(const CurveSlice& curve, const Box& box, const Interval& holder,
+                                                    int sigma, double relative_accuracy, double absolute_accuracy,
+                                                    std::size_t& boxes, double nominal_free) const {
+  const Interval fixed = *curve.fixed_range;
+  auto centre = [](const Interval& x) {
+    double c = x.middle();
+    return c >= x.lo && c <= x.hi ? c : x.lo;
+  };
+  const double t_n = curve.fixed_value.get_d();
+  std::vector<double> s;
+  double slope = 0;
+  bool anchored = t_n >= fixed.lo && t_n <= fixed.hi;
+  if (anchored) {
+    try {
+      CurveSlice at_nominal = curve;
+      at_nominal.fixed_range.reset();
+      double v = nominal_free;
+      s = solver_->sensitivities(at_nominal, v, &slope);
+    } catch (const Error&) {
+      anchored = false;
+    }
+  }
+  for (int n = 4; anchored && n <= handover_driver_pieces(); n *= 2) {
+    std::vector<double> ends(static_cast<std::size_t>(n) + 1);
+    for (int j = 0; j <= n; ++j)
+      ends[static_cast<std::size_t>(j)] =
+          j == n ? fixed.hi : std::max(fixed.lo, fixed.lo + fixed.width() * static_cast<double>(j) / static_cast<double>(n));
+    for (std::size_t j = 1; j < ends.size(); ++j) ends[j] = std::max(ends[j], ends[j - 1]);
+    std::size_t c = 0;
+    while (c + 1 < static_cast<std::size_t>(n) && !(t_n <= ends[c + 1])) ++c;
+    // the walk over box x T_j from the sigma end of hull(Y_j, previous): its envelope's sigma end
+    auto piece_walk = [&](std::size_t j, std::optional<double> previous) -> std::optional<double> {
+      CurveSlice piece = curve;
+      piece.fixed_range = Interval(ends[j], ends[j + 1]);
+      piece.fixed_spread = std::fabs(slope) * piece.fixed_range->width();
+      // Y_j: certified about the nominal root moved along the driver, as Y is, and met with Y
+      // (which holds the holder's root over box x T, so over box x T_j); Y itself where the two
+      // do not meet, or where T_c's would not hold the nominal follower (the anchor of T_c)
+      Interval y = holder;
+      try {
+        Interval own = solver_->certified_range(piece, box, nominal_free + slope * (centre(*piece.fixed_range) - t_n), s,
+                                                relative_accuracy, absolute_accuracy, boxes);
+        Interval both(std::max(own.lo, holder.lo), std::min(own.hi, holder.hi));
+        if (both.lo <= both.hi && (previous || (both.lo < nominal_free && nominal_free < both.hi))) y = both;
+      } catch (const Error&) {
+      }
+      if (previous) y = kernels::hull(y, Interval::point(*previous));
+      try {
+        HandoverEnvelope e = envelope(piece, box, y, relative_accuracy, absolute_accuracy, boxes, sigma, nullptr,
+                                      false, nominal_free);
+        if (e.bounded && e.side == sigma) return end_of(e.chart, sigma);
+      } catch (const Error&) {
+      }
+      return std::nullopt;
+    };
+    std::optional<double> centre_edge = piece_walk(c, std::nullopt);
+    if (!centre_edge) continue;
+    double reached = *centre_edge;
+    bool all = true;
+    for (int direction : {1, -1}) {
+      std::optional<double> previous = centre_edge;
+      for (std::size_t j = c; all;) {
+        if (direction > 0 ? j + 1 >= static_cast<std::size_t>(n) : j == 0) break;
+        j = direction > 0 ? j + 1 : j - 1;
+        previous = piece_walk(j, previous);
+        if (!previous) {
+          all = false;
+          break;
+        }
+        reached = sigma > 0 ? std::max(reached, *previous) : std::min(reached, *previous);
+      }
+    }
+    if (all) return reached;
+  }
+  return std::nullopt;
 }
 
 int& handover_monotone_driver() {
@@ -1111,6 +1226,16 @@ int& handover_driver_pieces() {
 int& handover_taylor_partials() {
   static int on = 1;
   return on;
+}
+
+int& handover_far_reuse() {
+  static int on = 1;
+  return on;
+}
+
+std::atomic<std::size_t>& handover_envelopes_reused() {
+  static std::atomic<std::size_t> count{0};
+  return count;
 }
 
 }  // namespace hipair::tolerance_detail

@@ -10,12 +10,16 @@
 #include "tolerance/solver.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace hipair::tolerance_detail {
@@ -186,6 +190,59 @@ using FarWalk = ThreadScope<struct FarWalkTag>;
 /// the far walk once more under one.
 using DriverPieces = ThreadScope<struct DriverPiecesTag>;
 
+/// Tests and measurements only (session 54): 1 (unless changed) lets a position's driver-pieces
+/// pass replay the far-walk pass's envelopes (EnvelopeMemo); 0 walks them again, as before.
+int& handover_far_reuse();
+
+/// How many envelopes were replayed from an EnvelopeMemo (tests and measurements).
+std::atomic<std::size_t>& handover_envelopes_reused();
+
+class HandoverSearch;
+
+/// The composition's own envelopes (HandoverSearch::envelope at depth 1) walked while a FarWalk
+/// lives, kept per position for its later passes (session 54; chain.cpp `position_band`). A pass
+/// with the driver's pieces (step 7) first does steps 0-6, which are those of the far walk's pass
+/// for the same arguments (a pure function of them: the memos they read hold pure functions of
+/// their keys, and step 7 runs only at depth 1, after them), so their result, the sub-boxes they
+/// counted and what step 7 needs (the holder's free side, whether it applies) are kept here and
+/// replayed; step 7 alone is then walked. One per position, on the thread composing it (Scope).
+class EnvelopeMemo {
+ public:
+  /// Steps 0-6's outcome for one call.
+  struct Entry {
+    HandoverEnvelope result;
+    std::size_t boxes = 0;   ///< what the steps added to the caller's sub-box count
+    int sigma = 0;           ///< the holder's free side (0: not certain, or not reached)
+    bool pieces = false;     ///< unbounded where step 7 applies (the box and driver's range allow it)
+  };
+  /// Every argument of the call, bit for bit (doubles by their bits: no NaN ordering), and its search.
+  using Key = std::tuple<const HandoverSearch*, std::vector<std::uint64_t>, Rational>;
+
+  const Entry* find(const Key& key) const {
+    auto it = entries_.find(key);
+    return it == entries_.end() ? nullptr : &it->second;
+  }
+  const Entry* store(Key key, Entry entry) { return &entries_.insert_or_assign(std::move(key), std::move(entry)).first->second; }
+  std::size_t size() const { return entries_.size(); }
+
+  /// While one lives, this thread's envelopes at depth 1 under a FarWalk use `memo`.
+  class Scope {
+   public:
+    explicit Scope(EnvelopeMemo& memo) : previous_(current_) { current_ = &memo; }
+    ~Scope() { current_ = previous_; }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+    static EnvelopeMemo* current() { return current_; }
+
+   private:
+    EnvelopeMemo* previous_;
+    static inline thread_local EnvelopeMemo* current_ = nullptr;
+  };
+
+ private:
+  std::map<Key, Entry> entries_;
+};
+
 /// The candidates' search for one pair of the chain (one per pair: its parts are fixed).
 class HandoverSearch {
  public:
@@ -223,6 +280,18 @@ class HandoverSearch {
   void set_disabled(bool disabled) { disabled_ = disabled; }
 
  private:
+  /// envelope's steps 0-6 (all but the driver's pieces); `entry` receives the free side and
+  /// whether step 7 applies where the result is unbounded.
+  HandoverEnvelope walk_steps(const CurveSlice& curve, const Box& box, const Interval& holder,
+                              double relative_accuracy, double absolute_accuracy, std::size_t& boxes, int side,
+                              const DriverForm* driver, bool monotone, double nominal_free,
+                              EnvelopeMemo::Entry& entry) const;
+  /// Step 7 (session 52): the envelope's sigma end over box x T walked in pieces of T (none: not
+  /// bounded so).
+  std::optional<double> driver_pieces(const CurveSlice& curve, const Box& box, const Interval& holder, int sigma,
+                                      double relative_accuracy, double absolute_accuracy, std::size_t& boxes,
+                                      double nominal_free) const;
+
   struct BoxParts;
   std::shared_ptr<const BoxParts> box_parts(const Box& box) const;
 

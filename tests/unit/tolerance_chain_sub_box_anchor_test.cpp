@@ -418,5 +418,47 @@ TEST(ChainPlainReuse, LaterPassesReplayThePlainCompositionsWithTheSameBandsNotes
   EXPECT_GE(unbounded, 4u);
 }
 
+// Session 54 (tol54): the pass of the driver's pieces replays the far walk's pass's envelopes
+// (handover.hpp EnvelopeMemo, tolerance_detail::handover_far_reuse()): a sub-box composed again in
+// that pass makes the far-walk pass's envelope calls, whose steps 0-6 are kept and only step 7 is
+// walked. On two of the chains above, where the third pass runs (7 positions of the first are
+// unbounded after the far walk and bounded by the pieces), with and without the replay: every band
+// bit for bit, the notes and every pair's sub-box count equal, and envelopes replayed only with it.
+TEST(ChainFarReuse, PiecesPassReplaysTheFarWalksEnvelopesWithTheSameBandsNotesAndCounts) {
+  const ToleranceOptions options = chain_options();
+  std::size_t bounded_count = 0;
+  for (const PiecesVariant& v : {PiecesVariant{"2", "35.27", "37.5"}, PiecesVariant{"2", "34.8", "35"}}) {
+    SCOPED_TRACE(std::string("competitor at x ") + v.x);
+    ToleranceResult r[2];
+    std::size_t replayed[2];
+    for (int reuse : {0, 1}) {
+      test_band::ScopedSwitch on(tolerance_detail::handover_far_reuse(), reuse);
+      const std::size_t before = tolerance_detail::handover_envelopes_reused().load();
+      r[reuse] = analyze_tolerances_text(driver_pieces_chain(v), options);
+      replayed[reuse] = tolerance_detail::handover_envelopes_reused().load() - before;
+    }
+    ASSERT_EQ(r[0].samples.size(), r[1].samples.size());
+    for (std::size_t i = 0; i < r[0].samples.size(); ++i) {
+      const VariationSample &a = r[0].samples[i], &b = r[1].samples[i];
+      EXPECT_EQ(bounded(a), bounded(b)) << a.driver;
+      bounded_count += bounded(b) ? 1 : 0;
+      if (bounded(a) && bounded(b)) {
+        EXPECT_EQ(a.certified.lower, b.certified.lower) << a.driver;
+        EXPECT_EQ(a.certified.upper, b.certified.upper) << a.driver;
+      }
+    }
+    EXPECT_EQ(r[0].notes, r[1].notes);
+    EXPECT_EQ(r[0].certified_boxes, r[1].certified_boxes);
+    ASSERT_EQ(r[0].chain.size(), r[1].chain.size());
+    for (std::size_t s = 0; s < r[0].chain.size(); ++s) EXPECT_EQ(r[0].chain[s].certified_boxes, r[1].chain[s].certified_boxes);
+    // not vacuous: the third pass ran and replayed envelopes, none without the replay
+    EXPECT_EQ(replayed[0], 0u);
+    EXPECT_GT(replayed[1], 0u);
+    std::printf("competitor at x %s: %zu envelopes replayed; %zu sub-boxes\n", v.x, replayed[1], r[1].certified_boxes);
+  }
+  // the pieces bound positions here (ChainDriverPieces: all 12 of these two chains)
+  EXPECT_GE(bounded_count, 7u);
+}
+
 }  // namespace
 }  // namespace hipair
