@@ -34,6 +34,57 @@ bool mentions_parameters(const FormulaPtr& formula) {
   return false;
 }
 
+FormulaPtr formula_scaled(const FormulaPtr& formula, const Rational& factor, bool& parameter_scaled) {
+  using Op = Formula::Op;
+  const Formula& f = *formula;
+  auto all = [&] {
+    std::vector<FormulaPtr> arguments;
+    for (const FormulaPtr& argument : f.arguments) arguments.push_back(formula_scaled(argument, factor, parameter_scaled));
+    return formula_node(f.op, std::move(arguments));
+  };
+  switch (f.op) {
+    case Op::constant: return formula_constant(Rational(f.value * factor));
+    case Op::add:
+    case Op::subtract:
+    case Op::negate:
+    case Op::abs:
+    case Op::min:
+    case Op::max: return all();
+    case Op::multiply: {
+      // into the factor free of parameters ("(p)*(1e400)": p * 1 at the scale 1e-400); of two
+      // such factors the larger in magnitude ("(0)*(1e400)": 0 * 1; "(1e400)*(2)": 1 * 2)
+      const bool a = mentions_parameters(f.arguments[0]), b = mentions_parameters(f.arguments[1]);
+      std::size_t k = a && !b ? 1 : 0;
+      if (!a && !b) {
+        auto none = [](std::size_t) { return 0.0; };
+        const double x = std::fabs(evaluate_formula<double>(*f.arguments[0], none));
+        const double y = std::fabs(evaluate_formula<double>(*f.arguments[1], none));
+        k = y > x || std::isnan(x) ? 1 : 0;
+      }
+      std::vector<FormulaPtr> arguments = f.arguments;
+      arguments[k] = formula_scaled(arguments[k], factor, parameter_scaled);
+      // a factor that became exactly 1 is left out: x, not x * 1, for number types whose
+      // products round outwards (intervals, jets, Taylor models): the unscaled form's values
+      if (arguments[k]->op == Op::constant && arguments[k]->value == 1) return arguments[1 - k];
+      return formula_node(Op::multiply, std::move(arguments));
+    }
+    case Op::divide:
+      return formula_node(Op::divide, {formula_scaled(f.arguments[0], factor, parameter_scaled), f.arguments[1]});
+    case Op::sqrt:
+      return formula_node(Op::sqrt, {formula_scaled(f.arguments[0], Rational(factor * factor), parameter_scaled)});
+    case Op::power:
+      if (f.exponent == 1) {
+        auto node = std::make_shared<Formula>(f);
+        node->arguments = {formula_scaled(f.arguments[0], factor, parameter_scaled)};
+        return node;
+      }
+      break;
+    default: break;
+  }
+  parameter_scaled = parameter_scaled || mentions_parameters(formula);
+  return formula_node(Op::multiply, {formula, formula_constant(factor)});
+}
+
 namespace {
 
 struct Token {
