@@ -10,6 +10,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 namespace hipair::model_detail {
 
@@ -52,14 +53,25 @@ FormulaPtr formula_scaled(const FormulaPtr& formula, const Rational& factor, boo
     case Op::max: return all();
     case Op::multiply: {
       // into the factor free of parameters ("(p)*(1e400)": p * 1 at the scale 1e-400); of two
-      // such factors the larger in magnitude ("(0)*(1e400)": 0 * 1; "(1e400)*(2)": 1 * 2)
+      // such factors the one whose value times the scale is nearest 1 in magnitude, the second
+      // on a tie ("(20)*(1e-300)": 20 * 1; "(0)*(1e400)": 0 * 1; "(1e400)*(2)": 1 * 2)
       const bool a = mentions_parameters(f.arguments[0]), b = mentions_parameters(f.arguments[1]);
       std::size_t k = a && !b ? 1 : 0;
       if (!a && !b) {
+        auto log2_abs = [](const Rational& q) {   // log2 |q|, -inf for 0 (beyond the doubles too)
+          if (sgn(q) == 0) return -std::numeric_limits<double>::infinity();
+          long en = 0, ed = 0;
+          const double n = mpz_get_d_2exp(&en, q.get_num_mpz_t()), d = mpz_get_d_2exp(&ed, q.get_den_mpz_t());
+          return std::log2(std::fabs(n)) + double(en) - std::log2(d) - double(ed);
+        };
         auto none = [](std::size_t) { return 0.0; };
-        const double x = std::fabs(evaluate_formula<double>(*f.arguments[0], none));
-        const double y = std::fabs(evaluate_formula<double>(*f.arguments[1], none));
-        k = y > x || std::isnan(x) ? 1 : 0;
+        auto distance = [&](const FormulaPtr& side) {
+          const double log2 = side->op == Op::constant ? log2_abs(side->value)
+                                                       : std::log2(std::fabs(evaluate_formula<double>(*side, none)));
+          const double d = std::fabs(log2 + log2_abs(factor));
+          return std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+        };
+        k = distance(f.arguments[1]) <= distance(f.arguments[0]) ? 1 : 0;
       }
       std::vector<FormulaPtr> arguments = f.arguments;
       arguments[k] = formula_scaled(arguments[k], factor, parameter_scaled);
