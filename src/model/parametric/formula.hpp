@@ -56,7 +56,8 @@ bool mentions_parameters(const FormulaPtr& formula);
 /// in doubles in the unit its model is analysed in (the tolerance analysis of a model divided by
 /// 10^E, ParametricModel::rescaled): a constant c becomes c * factor (exactly); a sum, a
 /// difference, min, max, abs and a negation carry it into each operand; a product into its
-/// factor free of parameters (else its first), a quotient into its numerator, sqrt(x) as
+/// factor free of parameters (of two such, the one whose scaled magnitude is nearest 1; else its
+/// first), leaving out a factor that became exactly 1; a quotient into its numerator, sqrt(x) as
 /// sqrt(x * factor^2). Elsewhere (a parameter, pi, a trigonometric value, a power) the node is
 /// multiplied by the constant `factor`: `parameter_scaled` is set then when the node mentions a
 /// parameter (its double value times the factor may leave the doubles' range). Exact: the
