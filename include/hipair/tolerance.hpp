@@ -283,6 +283,11 @@ struct ToleranceCertification {
 /// Everything the tolerance analysis found.
 struct ToleranceResult {
   std::string model_name;
+  /// The lengths of the result (a translating part's coordinates, bands, plays and sensitivities
+  /// of a translating follower, its zones) are in units of 10^length_exponent mm: nonzero for a
+  /// mechanism drawn at an extreme scale, analysed on the model divided exactly by 10^E (session
+  /// 54; 0, mm, for every ordinary model). The reports show them in mm.
+  long length_exponent = 0;
   std::string driver, follower;
   bool driver_rotates = true, follower_rotates = true;
   std::vector<Parameter> parameters;

@@ -244,10 +244,17 @@ int run_analyze(const AnalyzeOptions& options) {
                                  ": does not apply to a model with a pin-in-slot part, whose analysis is its work cycle "
                                  "(one turn of the driver in --steps steps; it takes --driver, --direction, --steps, "
                                  "--out and --quiet)");
-  if (has_pin_slot_part(model))
+  if (has_pin_slot_part(model)) {
+    // at an extreme scale (lengths outside about 1e-9 .. 1e9 mm) the cycle runs on the model
+    // divided exactly by 10^E, as the driven analysis below (session 54: the film advance at
+    // 10^-300 gave another cycle, at 10^400 it was refused); its lengths shown in mm
+    const long exponent = kinematic_decimal_exponent(model);
+    if (exponent != 0) model = decimal_scaled_model(model, exponent);
+    LengthDisplayScope length_display(exponent);
     return run_pin_slot_cycle(model, PinSlotCycleRequest{options.driver, options.direction,
                                                          options.steps == 720 ? 72u : options.steps, options.out,
                                                          options.quiet});
+  }
   // A mechanism with a translating part drawn at an extreme scale (lengths outside about 1e-9 mm
   // .. 1e9 mm: the analysis's resolutions are absolute) is analysed on the model exactly divided
   // by 10^E (core/model_scale.hpp, kinematic_decimal_exponent), and every length is shown in mm

@@ -1,6 +1,7 @@
 #include "cli/analyze_pinslot.hpp"
 
 #include "cli/commands.hpp"
+#include "core/length_display.hpp"
 #include "io/atomic_file.hpp"
 
 #include <hipair/error.hpp>
@@ -27,6 +28,27 @@ bool has_pin_slot_part(const Model& model) {
   }
   return false;
 }
+
+namespace {
+
+// A key of cycle.json holding a length in mm ("advance_mm"), or in units of 10^E mm when the
+// cycle ran on the model divided by 10^E ("advance_1e400mm"; length_display_exponent()).
+std::string mm_key(const std::string& name) {
+  const long e = length_display_exponent();
+  return e == 0 ? name + "_mm" : name + "_1e" + std::to_string(e) + "mm";
+}
+
+// An exact length of the cycle (in units of 10^E mm) in mm, as text: to_exact_string, with the
+// exponent written after it ("8e400", "(3/2)e400") when E is not 0.
+std::string exact_mm(const Rational& value) {
+  const long e = length_display_exponent();
+  std::string text = to_exact_string(value);
+  if (e == 0 || value == 0) return text;
+  if (text.find('/') != std::string::npos) text = "(" + text + ")";
+  return text + "e" + std::to_string(e);
+}
+
+}  // namespace
 
 int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
   PinSlotCycleOptions options;
@@ -78,7 +100,7 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
     j["slide"] = to_exact_string(s.slide);
     j["tau"] = to_exact_string(s.tau);
     j["psi_degrees"] = s.psi_degrees;
-    j["follower_clearance_mm"] = s.clearance;
+    j[mm_key("follower_clearance")] = s.clearance;
     j["follower_free"] = s.follower_free;
     j["target_offset"] = to_exact_string(s.target_offset);
     j["target_offset_exact"] = s.target_offset_exact;
@@ -96,10 +118,13 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
                     {"last_sample", r.last},
                     {"driver_degrees", {cycle.samples[r.first].driver_degrees, cycle.samples[r.last].driver_degrees}},
                     {"target_moved", to_exact_string(r.target_moved)},
-                    {"target_moved_mm", to_double(r.target_moved)}});
+                    {mm_key("target_moved"), to_double(r.target_moved)}});
   out["phases"] = runs;
   out["advance"] = to_exact_string(cycle.advance);
-  out["advance_mm"] = to_double(cycle.advance);
+  out[mm_key("advance")] = to_double(cycle.advance);
+  // every length of the file (slides, offsets, moves: exact rationals and doubles) in units of
+  // 10^E mm when the cycle ran on the rescaled model (absent for every ordinary model)
+  if (length_display_exponent() != 0) out["units"] = {{"length", length_unit_name()}};
   out["seconds"] = cycle.seconds;
 
   bool all_free = true;
@@ -118,8 +143,8 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
                          : r.phase == CyclePhase::pushing ? "pushing the " + cycle.target
                                                           : "JAMMED";
       std::printf("  %8.1f .. %8.1f deg  %-28s %s moved %s mm (exact %s)\n", a.driver_degrees, b.driver_degrees,
-                  what.c_str(), cycle.target.c_str(), to_decimal_string(r.target_moved, 6).c_str(),
-                  to_exact_string(r.target_moved).c_str());
+                  what.c_str(), cycle.target.c_str(), length_in_mm(to_decimal_string(r.target_moved, 6)).c_str(),
+                  exact_mm(r.target_moved).c_str());
       std::set<std::string> contacts, bounds, driver_bounds;
       for (std::size_t i = r.first; i <= r.last; ++i) {
         for (const auto& c : cycle.samples[i].contacts) contacts.insert(c);
@@ -132,7 +157,7 @@ int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
         std::printf("        %s slide bounded by (%s): %s\n", cycle.follower.c_str(), cycle.driver.c_str(), c.c_str());
     }
     std::printf("  %s advanced by %s mm (exact %s) over the cycle; %.2f s\n", cycle.target.c_str(),
-                to_decimal_string(cycle.advance, 6).c_str(), to_exact_string(cycle.advance).c_str(), cycle.seconds);
+                length_in_mm(to_decimal_string(cycle.advance, 6)).c_str(), exact_mm(cycle.advance).c_str(), cycle.seconds);
   }
   if (!request.out.empty()) {
     std::filesystem::create_directories(request.out);

@@ -310,9 +310,17 @@ int run(const CSpaceCommandOptions& options) {
   std::vector<SlicedSpace> sliced_spaces;
   for (const auto& [fixed, free] : sliced_requests)
     sliced_spaces.push_back(build_sliced(model, fixed, free, isatty(2)));
+  // Pin-in-slot stacks of a mechanism drawn at an extreme scale (lengths outside about 1e-9 ..
+  // 1e9 mm) are built, as `analyze` runs it, on the model divided exactly by 10^E
+  // (kinematic_decimal_exponent): a model written at 10^E times an ordinary one gets that one's
+  // stack, its lengths written in mm times 10^E exactly (session 54; the slices' samples and
+  // witnesses differed with the power-of-two unit, and a stack at 10^-300 took 4 x as long).
   std::vector<PinSlotSpace> pin_spaces;
+  const long pin_exponent = pin_requests.empty() ? 0 : kinematic_decimal_exponent(model);
+  const Model pin_model = pin_exponent != 0 ? decimal_scaled_model(model, pin_exponent) : Model();
   for (const auto& [other, pin] : pin_requests)
-    pin_spaces.push_back(build_pin_slot(model, other, pin, isatty(2), options.slices, options.plane_witnesses));
+    pin_spaces.push_back(build_pin_slot(pin_exponent != 0 ? pin_model : model, other, pin, isatty(2), options.slices,
+                                        options.plane_witnesses));
   bool several = spaces.size() + sliced_spaces.size() + pin_spaces.size() > 1;
   std::vector<io::PlannedOutput> outputs;
   for (const CSpace& space : spaces) {
@@ -358,12 +366,13 @@ int run(const CSpaceCommandOptions& options) {
                   (space.groups() == 1 ? " certainly-connected group)" : " certainly-connected groups)");
       if (long unit = space.length_unit_exponent(); unit != 0)
         svg.title += " (slides in units of 2^" + std::to_string(unit) + " mm)";
+      if (pin_exponent != 0) svg.title += " (slides in units of 1e" + std::to_string(pin_exponent) + " mm)";
       sliced_documents.emplace_back(suffixed(options.svg, space.other_part(), space.pin_slot_part(), several),
                                     render::pin_slot_stack_svg(space, svg));
     }
     if (!options.json.empty())
       sliced_documents.emplace_back(suffixed(options.json, space.other_part(), space.pin_slot_part(), several),
-                                    pin_slot_json(space, options.stats));
+                                    pin_slot_json(space, options.stats, pin_exponent));
   }
   for (const CSpace& space : spaces) {
     if (options.stats) print_statistics(space);

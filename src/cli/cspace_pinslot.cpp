@@ -14,11 +14,20 @@ namespace {
 
 using nlohmann::json;
 
-// A length of the space (in units of 2^unit mm: PinSlotSpace::length_unit_exponent) in mm,
-// exactly, as text.
-std::string mm_text(const Rational& length, long unit) { return to_exact_string(times_power_of_two(length, unit)); }
+// The units of a space's lengths: 2^binary mm (PinSlotSpace::length_unit_exponent) of a space
+// built on the model divided by 10^decimal (pin_slot_json).
+struct LengthUnit {
+  long binary = 0, decimal = 0;
+};
 
-json coordinate_json(const PartCoordinate& c, Motion::Kind kind, long unit) {
+// A length of the space in mm, exactly, as text.
+std::string mm_text(const Rational& length, LengthUnit unit) {
+  Rational mm = times_power_of_two(length, unit.binary);
+  if (unit.decimal != 0) mm *= power_of_ten_rational(unit.decimal);
+  return to_exact_string(mm);
+}
+
+json coordinate_json(const PartCoordinate& c, Motion::Kind kind, LengthUnit unit) {
   if (kind == Motion::Kind::fixed) return nullptr;
   if (c.kind == PartCoordinate::Kind::offset) return {{"offset", mm_text(c.value, unit)}};
   if (c.kind == PartCoordinate::Kind::half_turn) return {{"half_turn", true}};
@@ -69,9 +78,9 @@ PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const 
   return space;
 }
 
-std::string pin_slot_json(const PinSlotSpace& space, bool with_times) {
+std::string pin_slot_json(const PinSlotSpace& space, bool with_times, long decimal_exponent) {
   // every length below (samples' and witnesses' slides and offsets) in mm, exactly
-  const long unit = space.length_unit_exponent();
+  const LengthUnit unit{space.length_unit_exponent(), decimal_exponent};
   json out;
   out["pair"] = {space.other_part(), space.pin_slot_part()};
   out["dimension"] = space.dimension();

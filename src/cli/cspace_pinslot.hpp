@@ -27,7 +27,9 @@ PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const 
 
 /// JSON of the stack: slices (tau exact, degrees), free cells (contacts, sample, group),
 /// connections with their witnesses, changes, groups, statistics.
-std::string pin_slot_json(const PinSlotSpace& space, bool with_times);
+/// `decimal_exponent`: the space was built on the model divided by 10^E (an extreme-scale
+/// mechanism, cli/cspace.cpp); its lengths are written in mm, times 10^E exactly.
+std::string pin_slot_json(const PinSlotSpace& space, bool with_times, long decimal_exponent = 0);
 
 /// Counts and times, as `--stats` prints them.
 void print_pin_slot_statistics(const PinSlotSpace& space);

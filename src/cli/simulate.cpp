@@ -294,6 +294,8 @@ std::size_t moving_part(const Model& model, const std::vector<std::size_t>& movi
 }
 
 // Checks the criteria's syntax and parts; throws a ModelError naming the option.
+// A translating part's STEP is in mm; on a model run in units of 10^E mm (length_display_exponent(),
+// a sweep of a mechanism at an extreme scale) it is read exactly and divided by 10^E.
 Verdict parse_verdict(const SimulateOptions& options, const Model& model, const std::vector<std::size_t>& moving) {
   Verdict verdict;
   if (options.works_period.empty()) {
@@ -332,7 +334,21 @@ Verdict parse_verdict(const SimulateOptions& options, const Model& model, const 
         throw ModelError("", option + ": STEP in deg needs a rotating part");
       step = step.substr(0, step.size() - 3);
     }
-    advance.step = parse_number(step, option, "STEP");
+    const long exponent = length_display_exponent();
+    if (exponent != 0 && model.parts[moving[advance.part]].motion.kind != Motion::Kind::rotation) {
+      Rational exact;
+      try {
+        exact = parse_rational(step);
+      } catch (const Error&) {
+        throw ModelError("", option + ": STEP must be a number, got '" + step + "'");
+      }
+      advance.step = Rational(exact / power_of_ten_rational(exponent)).get_d();
+      if (!std::isfinite(advance.step) || (advance.step != 0 && std::abs(advance.step) < 2.2250738585072014e-308))
+        throw ModelError("", option + ": STEP " + step + " mm is beyond the doubles' range in the unit the runs use (1e" +
+                                 std::to_string(exponent) + " mm)");
+    } else {
+      advance.step = parse_number(step, option, "STEP");
+    }
     if (degrees) advance.step *= M_PI / 180;
     if (advance.step == 0) throw ModelError("", option + ": STEP must not be zero");
     verdict.advance.push_back(advance);
@@ -470,6 +486,8 @@ void check_own_frequency(const Model& model, const SimulateOptions& options) {
 }
 
 
+Model simulated_model(const SimulateOptions& options, const ReadOptions& overrides, long& exponent);
+
 int run_sweep(const SimulateOptions& options) {
   // NAME=A:B:N
   auto equals = options.sweep.find('=');
@@ -513,15 +531,29 @@ int run_sweep(const SimulateOptions& options) {
   // every model is read (and checked) before any run starts: a bad value stops the sweep at once
   // (a refusal names the sweep's value too: until session 52 it named only the model's pointer,
   // `/parts/0/features/0/escape_wheel/teeth: must be at least 3`, with no word of --sweep)
+  // A mechanism drawn at an extreme scale runs, as a single simulation does (simulated_model),
+  // on its copy rescaled exactly by 10^-E with its dynamics data: every run of the sweep in the
+  // same unit 10^E mm (its lengths, speeds and forces shown in mm and N: shown()). Until session
+  // 54 a sweep was not rescaled (refused at the first inertia beyond the doubles).
   std::vector<Model> models;
+  long length_exponent = 0;
+  std::string first_assignment;
   for (std::size_t i = 0; i < values.size(); ++i) {
     std::vector<std::string> overrides = options.overrides;
     overrides.push_back(name + "=" + values[i].get_str());
     try {
-      models.push_back(
-          read_model_file_for_simulation(options.model, parameter_overrides(overrides, options.allow_out_of_tolerance)));
+      long exponent = 0;
+      models.push_back(simulated_model(options, parameter_overrides(overrides, options.allow_out_of_tolerance), exponent));
+      if (i == 0) {
+        length_exponent = exponent;
+        first_assignment = overrides.back();
+      } else if (exponent != length_exponent) {
+        auto unit = [](long e) { return e == 0 ? std::string("mm") : "1e" + std::to_string(e) + " mm"; };
+        throw ModelError("", "its lengths lie at another scale than the first run's (" + first_assignment +
+                                 "): the runs would be simulated in units of " + unit(length_exponent) + " and " +
+                                 unit(exponent) + "; sweep a range within one scale");
+      }
       check_simulator_range(models.back());
-      require_feature_spread(models.back());
       check_own_frequency(models.back(), options);
     } catch (const ModelError& error) {
       throw ModelError(error.pointer(), error.reason() + " (--sweep " + options.sweep + ": the model of run " +
@@ -529,6 +561,7 @@ int run_sweep(const SimulateOptions& options) {
                                             overrides.back() + " ; nothing was run)");
     }
   }
+  LengthDisplayScope length_display(length_exponent);   // shown(), the STEP of --works-advance
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
@@ -656,7 +689,8 @@ int run_sweep(const SimulateOptions& options) {
     j["events"] = row.events;
     if (completed) {
       for (std::size_t k = 0; k < moving.size(); ++k) {
-        std::cout << "\t" << number(row.advance[k]) << "\t" << row.swings[k];
+        const bool rotates = model.parts[moving[k]].motion.kind == Motion::Kind::rotation;
+        std::cout << "\t" << shown(row.advance[k], rotates ? 0 : 1) << "\t" << row.swings[k];
         j["parts"][model.parts[moving[k]].name] = {{"advance", row.advance[k]},
                                                    {"velocity_sign_changes", row.swings[k]},
                                                    {"rest_window_position_range", row.window_range[k]},
@@ -674,6 +708,9 @@ int run_sweep(const SimulateOptions& options) {
   if (!options.out.empty()) {
     std::filesystem::path directory(options.out);
     nlohmann::json sweep{{"model", model.name}, {"parameter", name}, {"t_end", options.t_end}, {"runs", doc}};
+    // a translating part's advance, ranges and speeds (and --works-advance steps) in units of
+    // 10^E mm: named so (absent for every ordinary model)
+    if (length_exponent != 0) sweep["units"] = {{"length", length_unit_name()}};
     if (verdict.any()) {
       sweep["works_period"] = options.works_period;
       sweep["works_advance"] = options.works_advance;
@@ -996,7 +1033,8 @@ void check_times(const SimulateOptions& options) {
 // energies in mm and N times the powers of 10^E (shown()). Until session 53 (scale53b) such a
 // model was refused (its inertias, 1e800 kg mm^2, do not fit a double). E = 0 otherwise, and the
 // model is read as before (read_model_file_for_simulation: out-of-range dynamics data refused at
-// its pointer). Pin-slot parts and --sweep are not rescaled (their data beyond the doubles is refused).
+// its pointer). Pin-slot parts are not rescaled (their data beyond the doubles is refused); a
+// --sweep's runs are, each like this (session 54).
 Model simulated_model(const SimulateOptions& options, const ReadOptions& overrides, long& exponent) {
   exponent = 0;
   auto rescaled_exponent = [](const Model& model) -> long {

@@ -5,6 +5,7 @@
 // model (solver.hpp).
 #include <hipair/tolerance.hpp>
 
+#include "core/model_scale.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
@@ -265,8 +266,8 @@ class Analysis {
     if (!options_.parameter_values.empty() && (options_.certify || options_.certify_free_path))
       throw ModelError("", "tolerance certificates are about the model file as written (hipair-verify checks them "
                            "against it): write the changed nominal values into the model instead of --set");
-    model_ = std::make_shared<const model_detail::ParametricModel>(
-        model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options_)));
+    model_ = tolerance_detail::analysed_form(
+        model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options_)), options_);
     start_solver();
   }
   // On `model`, the parametric form of `text` read with design_read_options(options) (an
@@ -314,6 +315,7 @@ class Analysis {
     const Model& m = model_->nominal();
     result_.model_name = m.name;
     result_.parameters = m.parameters;
+    result_.length_exponent = model_->length_exponent();
     choose_parts();
     std::size_t n = m.parameters.size();
     dist_ = distributions(m);
@@ -420,7 +422,7 @@ class Analysis {
     const Model& m = model_->nominal();
     KinematicsOptions k;
     k.driver = result_.driver;
-    k.range = options_.range;
+    k.range = tolerance_detail::range_in_unit(options_, result_.driver_rotates, model_->length_exponent());
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
     k.method = SliceMethod::cspace;
@@ -1456,6 +1458,26 @@ class Analysis {
 }  // namespace
 
 namespace tolerance_detail {
+
+std::shared_ptr<const model_detail::ParametricModel> analysed_form(model_detail::ParametricModel form,
+                                                                    const ToleranceOptions& options) {
+  const long exponent = kinematic_decimal_exponent(form.nominal());
+  if (exponent == 0) return std::make_shared<const model_detail::ParametricModel>(std::move(form));
+  if (options.certify || options.certify_free_path)
+    throw ModelError("", "--certify: this model's lengths lie outside about 1e-9 .. 1e9 mm, and its tolerance analysis "
+                         "runs on the model divided exactly by 1e" + std::to_string(exponent) +
+                         "; a tolerance certificate would be about that copy, while hipair-verify checks it against "
+                         "the model file: run the analysis without --certify, or certify the model drawn in a unit "
+                         "near its size");
+  return std::make_shared<const model_detail::ParametricModel>(form.rescaled(exponent));
+}
+
+std::optional<std::pair<Rational, Rational>> range_in_unit(const ToleranceOptions& options, bool driver_rotates,
+                                                           long exponent) {
+  if (!options.range || driver_rotates || exponent == 0) return options.range;
+  const Rational unit = power_of_ten_rational(exponent);
+  return std::make_pair(Rational(options.range->first / unit), Rational(options.range->second / unit));
+}
 
 StageAnalysis analyze_stage(std::string_view text, const ToleranceOptions& options, const std::vector<StagePosition>& path,
                             const CSpace* space) {

@@ -21,6 +21,7 @@
 //     it (the first contact it meets among its nominal holder and the neighbouring holders along
 //     the path: a tooth hand-over inside the box followed; monte_carlo, actual_root), certified
 //     (interval bisection), its driver ranging over the previous pair's certified value there.
+#include "core/model_scale.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
@@ -182,12 +183,16 @@ class ChainAnalysis {
     // pair's) take this one.
     model_detail::ParametricModel::Nominal nominal =
         model_detail::ParametricModel::read_nominal(text_, "<string>", design_read_options(options_));
-    const Model& model = *nominal.model;
+    // a mechanism at an extreme scale: analysed in units of 10^E mm (analysed_form, stage.hpp)
+    const long exponent = kinematic_decimal_exponent(*nominal.model);
+    const Model scaled = exponent != 0 ? decimal_scaled_model(*nominal.model, exponent) : Model();
+    const Model& model = exponent != 0 ? scaled : *nominal.model;
+    length_exponent_ = exponent;
     std::vector<std::size_t> parts = chain_parts(model, options_);
     bar_.begin(1);
     KinematicsOptions k;
     k.driver = model.parts[parts.front()].name;
-    k.range = options_.range;
+    k.range = range_in_unit(options_, model.parts[parts.front()].motion.kind == Motion::Kind::rotation, exponent);
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
     k.progress = bar_.within();
@@ -205,8 +210,8 @@ class ChainAnalysis {
     std::shared_ptr<const model_detail::ParametricModel> parametric;
     auto parametric_model = [&]() {
       if (parametric) return parametric;
-      parametric = std::make_shared<const model_detail::ParametricModel>(
-          model_detail::ParametricModel::read(text_, "<string>", design_read_options(options_), nominal));
+      parametric = analysed_form(model_detail::ParametricModel::read(text_, "<string>", design_read_options(options_), nominal),
+                                 options_);
       if (!parametric->generic())
         throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
                                  parametric->exact_only_feature() + " has an exact form only");
@@ -314,6 +319,7 @@ class ChainAnalysis {
     const StageAnalysis& first = stages_.front();
     const StageAnalysis& last = stages_.back();
     result_.model_name = first.result.model_name;
+    result_.length_exponent = length_exponent_;
     result_.driver = first.result.driver;
     result_.follower = last.result.follower;
     result_.driver_rotates = first.result.driver_rotates;
@@ -1498,6 +1504,7 @@ class ChainAnalysis {
   std::vector<std::unique_ptr<HandoverSearch>> handovers_;   // per pair
   std::vector<std::vector<PositionStage>> per_;   // [position][pair]
   ToleranceResult result_;
+  long length_exponent_ = 0;   // the chain analysed in units of 10^E mm (analysed_form)
   std::vector<std::string> notes_;
 };
 

@@ -31,6 +31,37 @@ double unit_factor(bool rotates) { return rotates ? 180 / pi : 1.0; }
 const char* unit_name(bool rotates) { return rotates ? "deg" : "mm"; }
 const char* driver_unit(bool rotates) { return rotates ? "deg" : "mm"; }
 
+// The unit a translating part's coordinates are held in: "mm", or "1e400 mm" for a result in
+// units of 10^400 mm (ToleranceResult::length_exponent: a mechanism analysed on its rescaled copy).
+std::string length_unit(const ToleranceResult& r) {
+  return r.length_exponent == 0 ? std::string("mm") : "1e" + std::to_string(r.length_exponent) + " mm";
+}
+// The picture's axis unit of a part: "deg", "mm" or "1e400 mm" (its numbers as held).
+std::string axis_unit(const ToleranceResult& r, bool rotates) { return rotates ? "deg" : length_unit(r); }
+
+// A number of the result shown as number(value * factor, digits) for a rotating part (deg, or a
+// ratio), and for a translating one (a length held in units of 10^E mm) in mm: the decimal
+// number() prints with its exponent moved by E ("0.5" -> "0.5e400", "1.2e-05" -> "1.2e395"),
+// exactly. E = 0: number(value, digits).
+std::string shown(const ToleranceResult& r, double value, bool rotates, int digits) {
+  if (rotates) return number(value * unit_factor(true), digits);
+  std::string text = number(value, digits);
+  if (r.length_exponent == 0 || !std::isfinite(value) || value == 0) return text;
+  long exponent = 0;
+  std::size_t e = text.find('e');
+  if (e != std::string::npos) {
+    exponent = std::stol(text.substr(e + 1));
+    text.erase(e);
+  }
+  return text + "e" + std::to_string(exponent + r.length_exponent);
+}
+
+// A CSV column holding a translating part's coordinates: `name`, or "name_1e400mm" when they are
+// in units of 10^400 mm.
+std::string column(const ToleranceResult& r, const std::string& name, bool rotates) {
+  return rotates || r.length_exponent == 0 ? name : name + "_1e" + std::to_string(r.length_exponent) + "mm";
+}
+
 std::string xml_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -155,9 +186,10 @@ std::optional<Rational> certified_lower_end(const ToleranceResult& r) {
 
 std::string tolerance_text_report(const ToleranceResult& r) {
   std::ostringstream out;
-  double uf = unit_factor(r.follower_rotates);
   const char* u = unit_name(r.follower_rotates);
-  double ud = unit_factor(r.driver_rotates);
+  // follower values and driver positions, in deg or mm (a length held in 10^E mm shown in mm)
+  auto fv = [&](double v, int digits) { return shown(r, v, r.follower_rotates, digits); };
+  auto dv = [&](double v, int digits) { return shown(r, v, r.driver_rotates, digits); };
   out << "Tolerance analysis of '" << r.model_name << "': " << r.driver << " drives " << r.follower << "\n";
   if (!r.chain.empty()) {
     out << "Assembly chain of " << r.chain.size() << " pairs: " << r.driver;
@@ -182,20 +214,20 @@ std::string tolerance_text_report(const ToleranceResult& r) {
   }
   out << "Variation of the follower along the path (" << r.samples.size() << " driver positions, " << contact
       << " in contact):\n";
-  out << "  worst case, linearised: +-" << number(0.5 * widest_linear * uf, 4) << " " << u << " at most (driver "
-      << number(at * ud, 5) << ")\n";
-  out << "  worst case, certified:  +-" << number(0.5 * widest_certified * uf, 4) << " " << u
+  out << "  worst case, linearised: +-" << fv(0.5 * widest_linear, 4) << " " << u << " at most (driver "
+      << dv(at, 5) << ")\n";
+  out << "  worst case, certified:  +-" << fv(0.5 * widest_certified, 4) << " " << u
       << " at most (interval arithmetic over the whole tolerance box, " << r.certified_boxes
-      << " sub-boxes; at most " << number(r.certified_excess * uf, 3) << " " << u << " wider than linearised)\n";
-  out << "  statistical (mean +- 3 sigma): +-" << number(0.5 * widest_rss * uf, 4) << " " << u << " at most\n\n";
+      << " sub-boxes; at most " << fv(r.certified_excess, 3) << " " << u << " wider than linearised)\n";
+  out << "  statistical (mean +- 3 sigma): +-" << fv(0.5 * widest_rss, 4) << " " << u << " at most\n\n";
   out << "Contact regions and their dominant parameters (the paper's Table 1):\n";
   for (const ContactRegion& region : r.regions) {
-    out << "  " << region.contact << "  (driver " << number(region.driver_start * ud, 5) << " .. "
-        << number(region.driver_end * ud, 5) << "; +-" << number(region.linear_half_width * uf, 3) << " " << u << ")\n";
+    out << "  " << region.contact << "  (driver " << dv(region.driver_start, 5) << " .. "
+        << dv(region.driver_end, 5) << "; +-" << fv(region.linear_half_width, 3) << " " << u << ")\n";
     for (std::size_t k = 0; k < region.ranked.size() && k < 5; ++k) {
       const ParameterContribution& c = region.ranked[k];
       if (c.contribution <= 0) break;
-      out << "      " << c.parameter << ": " << number(100 * c.share, 3) << " %  (" << number(c.sensitivity * uf, 4)
+      out << "      " << c.parameter << ": " << number(100 * c.share, 3) << " %  (" << fv(c.sensitivity, 4)
           << " " << u << " per unit)\n";
     }
   }
@@ -210,7 +242,7 @@ std::string tolerance_text_report(const ToleranceResult& r) {
                                           "certified positions)")
         << "\n";
     out << "  outside the linearised band: " << mc.outside_linear << " (linearisation error up to "
-        << number(mc.linearisation_error * uf, 3) << " " << u << ")\n";
+        << fv(mc.linearisation_error, 3) << " " << u << ")\n";
   }
   if (r.threshold) {
     const JammingThreshold& t = *r.threshold;
@@ -219,16 +251,16 @@ std::string tolerance_text_report(const ToleranceResult& r) {
       out << "  not found (no bounded channel along the path)\n";
     } else {
       out << "  the channel can close when every tolerance is scaled by " << number(t.scale, 4)
-          << " (linearised), at driver " << number(t.driver * ud, 5) << " " << driver_unit(r.driver_rotates)
+          << " (linearised), at driver " << dv(t.driver, 5) << " " << driver_unit(r.driver_rotates)
           << ", between '" << t.lower_contact << "' and '" << t.upper_contact << "' (nominal play "
-          << number(t.nominal_play * uf, 4) << " " << u << ")\n";
+          << fv(t.nominal_play, 4) << " " << u << ")\n";
       if (t.certified_open_scale > 0)
         out << "  certified open there up to scale " << number(t.certified_open_scale, 4) << "\n";
       out << "  exact check: " << (t.confirmed ? "CONFIRMED — " : "not confirmed — ") << t.evidence << "\n";
       if (t.bracketed) {
         out << "  bracket (corner search, " << t.bracket_steps << " steps): no jam found at scale "
             << to_exact_string(t.bracket_below) << ", exact jam witness at scale " << to_exact_string(t.bracket_above)
-            << " (driver " << number(t.bracket_driver.get_d() * ud, 9) << " " << driver_unit(r.driver_rotates) << ")\n";
+            << " (driver " << dv(t.bracket_driver.get_d(), 9) << " " << driver_unit(r.driver_rotates) << ")\n";
         out << "  exact C-space at the witness: " << (t.bracket_confirmed ? "CONFIRMED — " : "not confirmed — ")
             << t.bracket_evidence << "\n";
         if (auto lower = certified_lower_end(r))
@@ -256,9 +288,9 @@ std::string tolerance_text_report(const ToleranceResult& r) {
       bool appears = change.kind == ContactChange::Kind::appears;
       out << "  " << (appears ? "APPEARS: '" : "DISAPPEARS: '") << change.contact << "' "
           << (appears ? "overtakes '" : "is overtaken by '") << change.other << "' on the channel's "
-          << (change.lower_side ? "lower" : "upper") << " side, driver " << number(change.driver_first * ud, 5) << " .. "
-          << number(change.driver_last * ud, 5) << " " << driver_unit(r.driver_rotates) << " (" << change.positions
-          << " positions); at driver " << number(change.driver * ud, 5) << " by " << number(change.overshoot * uf, 4) << " " << u
+          << (change.lower_side ? "lower" : "upper") << " side, driver " << dv(change.driver_first, 5) << " .. "
+          << dv(change.driver_last, 5) << " " << driver_unit(r.driver_rotates) << " (" << change.positions
+          << " positions); at driver " << dv(change.driver, 5) << " by " << fv(change.overshoot, 4) << " " << u
           << " (linearised" << (change.certified_at_witness ? "; reversed order certified at the witness" : "") << ")\n";
       out << "    witness:";
       for (const auto& [name, value] : change.witness) out << " " << name << "=" << to_exact_string(value);
@@ -302,7 +334,9 @@ std::string tolerance_json_report(const ToleranceResult& r) {
   j["model"] = r.model_name;
   j["driver"] = r.driver;
   j["follower"] = r.follower;
-  j["follower_unit"] = r.follower_rotates ? "rad" : "mm";
+  j["follower_unit"] = r.follower_rotates ? "rad" : length_unit(r);
+  // a result in units of 10^E mm: every length of the report (a translating part's coordinates)
+  if (r.length_exponent != 0) j["length_unit"] = length_unit(r);
   if (!r.chain.empty()) {
     ordered_json chain = ordered_json::array();
     for (const ChainStage& stage : r.chain)
@@ -442,8 +476,11 @@ std::string tolerance_json_report(const ToleranceResult& r) {
 
 std::string tolerance_csv(const ToleranceResult& r) {
   std::ostringstream out;
-  out << "driver,contact,nominal,linear_lower,linear_upper,rss_lower,rss_upper,certified_lower,certified_upper,"
-         "monte_carlo_min,monte_carlo_max,play\n";
+  out << column(r, "driver", r.driver_rotates) << ",contact";
+  for (const char* name : {"nominal", "linear_lower", "linear_upper", "rss_lower", "rss_upper", "certified_lower",
+                           "certified_upper", "monte_carlo_min", "monte_carlo_max", "play"})
+    out << "," << column(r, name, r.follower_rotates);
+  out << "\n";
   auto f = [](double v) { return number(v, 12); };
   for (const VariationSample& s : r.samples) {
     out << f(s.driver) << "," << (s.contact ? (s.region < r.regions.size() ? "\"" + r.regions[s.region].contact + "\"" : "1") : "") << ","
@@ -457,7 +494,9 @@ std::string tolerance_csv(const ToleranceResult& r) {
 
 std::string tolerance_sensitivity_csv(const ToleranceResult& r) {
   std::ostringstream out;
-  out << "region,contact,driver_start,driver_end,rank,parameter,sensitivity,contribution,share\n";
+  out << "region,contact," << column(r, "driver_start", r.driver_rotates) << "," << column(r, "driver_end", r.driver_rotates)
+      << ",rank,parameter," << column(r, "sensitivity", r.follower_rotates) << ","
+      << column(r, "contribution", r.follower_rotates) << ",share\n";
   for (std::size_t k = 0; k < r.regions.size(); ++k) {
     const ContactRegion& region = r.regions[k];
     for (std::size_t i = 0; i < region.ranked.size(); ++i) {
@@ -501,8 +540,8 @@ std::string tolerance_band_svg(const ToleranceResult& r) {
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"960\" height=\"460\" viewBox=\"0 0 960 460\">\n";
   out << axes(f, "Variation of " + r.follower + " about its nominal motion (" + r.model_name + ")",
-              r.driver + " (" + driver_unit(r.driver_rotates) + ")",
-              std::string("deviation of ") + r.follower + " (" + unit_name(r.follower_rotates) + ")");
+              r.driver + " (" + axis_unit(r, r.driver_rotates) + ")",
+              std::string("deviation of ") + r.follower + " (" + axis_unit(r, r.follower_rotates) + ")");
   out << polyline(f, x, std::vector<double>(x.size(), 0.0), "stroke=\"#000\" stroke-width=\"1\"");
   out << polyline(f, x, cert_lo, "stroke=\"#c00\" stroke-width=\"1.6\"");
   out << polyline(f, x, cert_hi, "stroke=\"#c00\" stroke-width=\"1.6\"");
@@ -558,8 +597,8 @@ std::string tolerance_zone_svg(const ToleranceResult& r) {
   }
   Frame f = frame_of(x.front(), x.back(), lo, hi, 0.1);
   out << axes(f, "Contact zone (Figure 5 detail): " + zone->contact,
-              std::string("x part coordinate (") + unit_name(zone->x_rotates) + ")",
-              std::string("zone boundary - nominal curve (") + unit_name(zone->y_rotates) + ")");
+              std::string("x part coordinate (") + axis_unit(r, zone->x_rotates) + ")",
+              std::string("zone boundary - nominal curve (") + axis_unit(r, zone->y_rotates) + ")");
   out << polyline(f, x, zero, "stroke=\"#000\" stroke-width=\"1.2\"");
   out << polyline(f, x, cl, "stroke=\"#c00\" stroke-width=\"1.6\"");
   out << polyline(f, x, cu, "stroke=\"#c00\" stroke-width=\"1.6\"");

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -29,6 +30,22 @@ inline ReadOptions design_read_options(const ToleranceOptions& options) {
   read.overrides_set_nominal = true;
   return read;
 }
+
+/// The parametric form a tolerance analysis runs on (session 54): `form` itself, or for a
+/// mechanism drawn at an extreme scale (kinematic_decimal_exponent of its nominal model nonzero:
+/// lengths outside about 1e-9 .. 1e9 mm with a translating part, 1e-9 .. 1e18 mm rotating only)
+/// form.rescaled(E), the model divided exactly by 10^E: the analysis then runs in units of
+/// 10^E mm, as `hipair analyze` does, and a model written at 10^E times an ordinary one is
+/// analysed as that one (ToleranceResult::length_exponent). \throws ModelError as rescaled(),
+/// and for tolerance certificates of such a model (`certify`, `certify_free_path`: a
+/// certificate would be about the copy, and hipair-verify checks it against the model file).
+std::shared_ptr<const model_detail::ParametricModel> analysed_form(model_detail::ParametricModel form,
+                                                                    const ToleranceOptions& options);
+
+/// The options' driver range in the unit of a form rescaled by 10^exponent: a translating
+/// driver's mm divided by 10^exponent exactly, a rotating one's rad unchanged.
+std::optional<std::pair<Rational, Rational>> range_in_unit(const ToleranceOptions& options, bool driver_rotates,
+                                                           long exponent);
 
 /// The pair's two parts at one position of the chain's nominal motion (part coordinates, rad or
 /// mm, as KinematicSample::positions gives them).

@@ -2,9 +2,10 @@
 """Outputs of a command on a model scaled exactly by 10^K against the unscaled model's (session 53).
 
 usage: scaled_outputs.py HIPAIR SOURCE_DIR WORK COMMAND MODELS SCALES [TIMEOUT]
-  COMMAND  analyze (report text, report.json, kinematics.csv), tolerance (stdout, report files) or
+  COMMAND  analyze (report text, report.json, kinematics.csv), tolerance (stdout, report files),
            simulate[=T] (--t-end T, default 0.05 time units, --no-pictures: stdout, trajectory.csv,
-           events.json, events.txt)
+           events.json, events.txt) or sweep=NAME=A:B:N[@T] (simulate --sweep NAME=A:B:N --t-end T:
+           stdout, sweep.json), cycle (analyze of a pin-in-slot mechanism: cycle.json) or cspace (--json: the pin-in-slot stacks, lengths times 10^K exactly)
   MODELS   comma-separated example names (examples/models/NAME.json)
   SCALES   comma-separated exponents K (e.g. -300,-30,30,400): the model is written by
            tests/fuzz/scale_model.py with every length times 1eK (exactly)
@@ -28,6 +29,7 @@ the same numbers in units of 10^K mm (identical), their headers and "units" nami
 """
 import json
 import os
+from fractions import Fraction
 import re
 import shutil
 import subprocess
@@ -54,11 +56,14 @@ def unit_free_text(text, k, name):
 
 def plain_json(path, k, name):
     with open(path, encoding="utf-8") as f:
-        data = json.load(f)
+        return plain_json_data(json.load(f), k, name)
 
+
+def plain_json_data(data, k, name):
     def clean(value):
-        if isinstance(value, dict):
-            return {key: clean(v) for key, v in value.items() if key not in ("seconds", "cpu_seconds")}
+        if isinstance(value, dict):   # keys naming the unit 10^K mm ("advance_1e400mm") as "advance_mm"
+            return {re.sub(r"_1e%dmm\b" % k, "_mm", key): clean(v) for key, v in value.items()
+                    if key not in ("seconds", "cpu_seconds")}
         if isinstance(value, list):
             return [clean(v) for v in value]
         if isinstance(value, str):
@@ -101,9 +106,11 @@ def text_difference(a, b):
 NUMBER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)(?:e([+-]?\d+))?(?![\w.])")
 
 
-def numbers_moved(base, scaled, k):
+def numbers_moved(base, scaled, k, shifts=None):
     """The first difference between the unscaled text and the scaled one, where every number of the
-    scaled one may be the unscaled one's digits with its exponent moved by 0, k or 2k."""
+    scaled one may be the unscaled one's digits with its exponent moved by 0, k or 2k (or by one
+    of `shifts`)."""
+    shifts = shifts or (0, k, 2 * k)
     parts0, parts1 = NUMBER.split(base), NUMBER.split(scaled)
     if len(parts0) != len(parts1):
         return "%d vs %d numbers" % (len(parts0) // 3, len(parts1) // 3)
@@ -113,7 +120,7 @@ def numbers_moved(base, scaled, k):
         if i + 1 < len(parts0):
             m0, e0, m1, e1 = parts0[i + 1], parts0[i + 2], parts1[i + 1], parts1[i + 2]
             shift = int(e1 or 0) - int(e0 or 0)
-            if m0 != m1 or shift not in (0, k, 2 * k):
+            if m0 != m1 or shift not in shifts:
                 return "number %s%s vs %s%s" % (m0, "e" + e0 if e0 else "", m1, "e" + e1 if e1 else "")
     return None
 
@@ -164,12 +171,185 @@ def compare_simulate(base, scaled, k, name):
     return None
 
 
+def tolerance_text(text, k, name):
+    """The scaled tolerance run's text with the model's name and its CSV columns' unit taken out
+    ("nominal_1e400mm": a translating part's coordinates in units of 10^K mm)."""
+    text = text.replace("%s-x1e%d" % (name, k), name)
+    return re.sub(r"_1e%dmm\b" % k, "", text)
+
+
+def unit_named(data, key, k):
+    """data[key] when it names the unit 10^K mm ("1e400 mm") turned into "mm"; an error text when
+    it names another power of ten."""
+    value = data.get(key)
+    if isinstance(value, str) and value.startswith("1e") and value.endswith(" mm"):
+        if value != "1e%d mm" % k:
+            return "%s %r" % (key, value)
+        data[key] = "mm"
+    return None
+
+
+def compare_tolerance(base, scaled, k, name):
+    """`hipair tolerance` (session 54, scale54): a mechanism at 10^K is analysed on its copy divided
+    by 10^E (E = K for a model scaled from an ordinary one), so the scaled run's text is the
+    unscaled one with each number the same digits, its exponent moved by 0 (angles, shares,
+    counts) or K (lengths: a translating part's coordinates, bands, plays, sensitivities and
+    contributions of a translating follower); tolerance.json, variation.csv and sensitivity.csv
+    hold the same numbers in units of 10^K mm, their "length_unit" / "follower_unit" and column
+    names naming that unit."""
+    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
+    if rc1 is None:
+        return "timed out"
+    if rc0 != rc1:
+        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
+    out0, out1 = out0.replace(dir0, "@OUT@"), tolerance_text(out1.replace(dir1, "@OUT@"), k, name)
+    found = numbers_moved(out0, out1, k, (0, k)) or numbers_moved(err0, tolerance_text(err1, k, name), k, (0, k))
+    if found:
+        return "stdout/stderr " + found
+    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
+    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
+    if files0 != files1:
+        return "files %s vs %s" % (files0, files1)
+    for file in files0:
+        a, b = os.path.join(dir0, file), os.path.join(dir1, file)
+        with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
+            ta, tb = fa.read(), fb.read()
+        if file.endswith(".json"):
+            ja, jb = json.loads(ta), json.loads(tb)
+            found = unit_named(jb, "follower_unit", k)
+            if not found and "length_unit" in jb:   # named only when the run is in units of 10^K mm
+                unit = jb.pop("length_unit")
+                if "length_unit" in ja or unit != "1e%d mm" % k:
+                    found = "length_unit %r" % unit
+            ja["model"] = jb["model"] = name
+            found = found or first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
+        elif file.endswith(".csv"):
+            found = text_difference(ta, tolerance_text(tb, k, name))
+        elif file.endswith(".txt"):
+            found = numbers_moved(ta.replace(dir0, "@OUT@"), tolerance_text(tb.replace(dir1, "@OUT@"), k, name), k, (0, k))
+        else:
+            continue   # pictures: the same doubles, their axis labels naming the unit
+        if found:
+            return "%s %s" % (file, found)
+    return None
+
+
+def sweep_text(text, k, name):
+    """A sweep's stdout with the model's name and the CPU-time column (cpu_s) set aside."""
+    text = text.replace("%s-x1e%d" % (name, k), name)
+    lines = text.splitlines()
+    column = None
+    for i, line in enumerate(lines):
+        cells = line.split("\t")
+        if column is None and "cpu_s" in cells:
+            column = cells.index("cpu_s")
+        elif column is not None and len(cells) > column:
+            cells[column] = "@"
+            lines[i] = "\t".join(cells)
+    return "\n".join(lines)
+
+
+def compare_sweep(base, scaled, k, name):
+    """`hipair simulate --sweep` (session 54, scale54): each run of a mechanism at 10^K simulated
+    on its rescaled copy as the unscaled run is: the same rows (status, verdict, steps, events,
+    swings), a translating part's advance shown in mm (the digits, exponent moved by K); sweep.json
+    the same numbers in units of 10^K mm ("units" naming them), CPU times set aside."""
+    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
+    if rc1 is None:
+        return "timed out"
+    if rc0 != rc1:
+        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
+    found = numbers_moved(sweep_text(out0.replace(dir0, "@OUT@"), 0, name),
+                          sweep_text(out1.replace(dir1, "@OUT@"), k, name), k, (0, k))
+    found = found or numbers_moved(err0, sweep_text(err1, k, name), k, (0, k))
+    if found:
+        return "stdout/stderr " + found
+    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
+    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
+    if files0 != files1:
+        return "files %s vs %s" % (files0, files1)
+    for file in files0:
+        with open(os.path.join(dir0, file), encoding="utf-8") as fa, open(os.path.join(dir1, file), encoding="utf-8") as fb:
+            ja, jb = json.load(fa), json.load(fb)
+        units = jb.pop("units", None)
+        if units != {"length": "1e%d mm" % k} and (units is not None or "units" in ja):
+            return "%s units %r" % (file, units)
+        ja["model"] = jb["model"] = name
+        found = first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
+        if found:
+            return "%s %s" % (file, found)
+    return None
+
+
+def exact_scaled(a, b, k, where):
+    """The first difference between the unscaled pin-slot stack `a` and the scaled one `b`: every
+    "offset" and "slide" (an exact rational in mm) of b is a's times 10^K exactly, everything else
+    (tau, angles, cells, contacts, groups, critical values) identical."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        if sorted(a) != sorted(b):
+            return "%s: keys %s vs %s" % (where or "/", sorted(a), sorted(b))
+        for key in sorted(a):
+            if key in ("offset", "slide") and isinstance(a[key], str):
+                if Fraction(b[key]) != Fraction(a[key]) * Fraction(10) ** k:
+                    return "%s/%s: %s vs %s" % (where, key, a[key][:40], b[key][:40])
+                continue
+            found = exact_scaled(a[key], b[key], k, where + "/" + key)
+            if found:
+                return found
+        return None
+    if isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            return "%s: %d vs %d entries" % (where, len(a), len(b))
+        for i, (x, y) in enumerate(zip(a, b)):
+            found = exact_scaled(x, y, k, "%s/%d" % (where, i))
+            if found:
+                return found
+        return None
+    return None if a == b else "%s: %r vs %r" % (where or "/", a, b)
+
+
+def compare_cspace(base, scaled, k, name):
+    """`hipair cspace --json` of a mechanism with pin-in-slot pairs (session 54, scale54): each
+    pin-slot stack of the scaled model is the unscaled one's, its lengths (samples' and witnesses'
+    offsets and slides, exact) times 10^K exactly (exact_scaled); the other pairs' files are left
+    to tests/fuzz/scaled_cli.sh (their exact curves are the scaled model's)."""
+    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
+    if rc1 is None:
+        return "timed out"
+    if rc0 != rc1:
+        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
+    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
+    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
+    if files0 != files1:
+        return "files %s vs %s" % (files0, files1)
+    stacks = 0
+    for file in files0:
+        with open(os.path.join(dir0, file), encoding="utf-8") as fa, open(os.path.join(dir1, file), encoding="utf-8") as fb:
+            ja, jb = json.load(fa), json.load(fb)
+        if ja.get("kind") != "pin_slot":
+            continue
+        stacks += 1
+        found = exact_scaled(ja, jb, k, "")
+        if found:
+            return "%s %s" % (file, found)
+    return None if stacks else "no pin-slot stack written"
+
+
 def command_args(command, model, out):
+    if command == "cspace":
+        os.makedirs(out, exist_ok=True)
+        return ["cspace", model, "--json", os.path.join(out, "cspace.json")]
+    if command.startswith("sweep="):
+        spec, _, t_end = command[len("sweep="):].partition("@")
+        return ["simulate", model, "--t-end", t_end or "0.05", "--sweep", spec, "--jobs", "1",
+                "--allow-out-of-tolerance", "--out", out]
     if command.startswith("simulate"):
         t_end = command.split("=", 1)[1] if "=" in command else "0.05"
         return ["simulate", model, "--t-end", t_end, "--no-pictures", "--out", out]
     if command == "analyze":
         return ["analyze", model, "--quiet", "--no-pictures", "--out", out]
+    if command == "cycle":   # a pin-in-slot mechanism's work cycle (analyze takes no --no-pictures there)
+        return ["analyze", model, "--quiet", "--out", out]
     if command == "tolerance":
         return ["tolerance", model, "--quiet", "--out", out]
     raise SystemExit("scaled_outputs: unknown command " + command)
@@ -195,7 +375,10 @@ def compare_run(base, scaled, k, name):
     for file in files0:
         a, b = os.path.join(dir0, file), os.path.join(dir1, file)
         if file.endswith(".json"):
-            found = first_difference(plain_json(a, 0, name), plain_json(b, k, name))
+            ja, jb = plain_json(a, 0, name), plain_json(b, k, name)
+            if "units" not in ja and jb.get("units") == {"length": "mm"}:   # named only in units of 10^K mm
+                del jb["units"]
+            found = first_difference(ja, jb)
         elif file.endswith(".csv") or file.endswith(".txt"):
             with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
                 found = text_difference(fa.read(), unit_free_text(fb.read(), k, name))
@@ -233,7 +416,10 @@ def main(argv):
             if k == 0:
                 print("%s %s: exit %s" % (command, name, rc))
                 continue
-            found = (compare_simulate if command.startswith("simulate") else compare_run)(runs[0], runs[k], k, name)
+            compare = (compare_simulate if command.startswith("simulate") else compare_sweep if command.startswith("sweep=")
+                       else compare_tolerance if command == "tolerance" else compare_cspace if command == "cspace"
+                       else compare_run)
+            found = compare(runs[0], runs[k], k, name)
             print("  x1e%d: %s" % (k, "same" if found is None else "DIFFERENT: " + found))
             failures += found is not None
     print("scaled_outputs: %d difference%s" % (failures, "" if failures == 1 else "s"))

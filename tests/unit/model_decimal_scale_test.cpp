@@ -4,6 +4,9 @@
 #include "core/length_display.hpp"
 #include "core/model_equal.hpp"
 #include "core/model_scale.hpp"
+#include "kernels/interval.hpp"
+#include "model/parametric/number_traits.hpp"
+#include "model/parametric/parametric.hpp"
 #include "sliced/critical_angles.hpp"
 #include "test_paths.hpp"
 
@@ -13,7 +16,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 namespace hipair {
@@ -165,6 +171,156 @@ TEST(FeatureSpread, EdgesBelowTheLimitOfTheirPairsExtentAreRefusedNamingThem) {
         EXPECT_NE(message.find("2^-1330"), std::string::npos) << message;
       }
     }
+}
+
+
+// Session 54 (scale54): the tolerance analysis of a mechanism at an extreme scale evaluates its
+// parametric form divided by 10^E (ParametricModel::rescaled, model/parametric/formula.hpp
+// formula_scaled). Generated expressions over a parameter p: (1) the form scale_model.py writes,
+// "(f)*(1e{10j})", divided by 10^{10j} is f to the last bit in doubles and intervals; (2) any f
+// times 10^k, k from -290 to 290, gives a certified interval that meets the exact value's
+// enclosure (f's interval times 10^k, exactly enclosed): a rewrite putting the factor in a
+// denominator, an exponent or a square root's square would miss it.
+std::string scaled_expression(std::mt19937_64& random, int depth) {
+  auto pick = [&](int n) { return int(random() % unsigned(n)); };
+  if (depth == 0) {
+    switch (pick(4)) {
+      case 0: return "p";
+      case 1: return std::to_string(1 + pick(9));
+      case 2: return std::to_string(1 + pick(9)) + "/" + std::to_string(2 + pick(7));
+      default: return "pi";
+    }
+  }
+  std::string x = scaled_expression(random, depth - 1), y = scaled_expression(random, depth - 1);
+  switch (pick(9)) {
+    case 0: return "(" + x + " + " + y + ")";
+    case 1: return "(" + x + " - " + y + ")";
+    case 2: return "(" + x + " * " + y + ")";
+    case 3: return "(" + x + " / (1 + abs(" + y + ")))";
+    case 4: return "sqrt(1 + abs(" + x + "))";
+    case 5: return "max(" + x + ", " + y + ")";
+    case 6: return "-(" + x + ")";
+    case 7: return "(" + x + ")^" + std::to_string(1 + pick(2));
+    default: return "(" + x + " * sin(" + y + "))";
+  }
+}
+
+TEST(DecimalUnit, ScaledFormulasAreTheFormulasInTheUnit) {
+  using model_detail::evaluate_formula;
+  using model_detail::formula_scaled;
+  using model_detail::parse_formula;
+  std::mt19937_64 random(54);
+  auto parameter = [](const std::string& name) -> std::size_t {
+    if (name != "p") throw ModelError("/x", "unknown parameter '" + name + "'");
+    return 0;
+  };
+  int trials = 0, carried = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const std::string text = scaled_expression(random, 1 + int(random() % 3));
+    const double p = double(1 + random() % 1000) / 64;
+    const kernels::Interval pi{p, p};
+    auto at_p = [&](std::size_t) { return p; };
+    auto at_pi = [&](std::size_t) { return pi; };
+    model_detail::FormulaPtr f = parse_formula(text, "/x", parameter);
+    const double value = evaluate_formula<double>(*f, at_p);
+    const kernels::Interval enclosure = evaluate_formula<kernels::Interval>(*f, at_pi);
+    // (1) scale_model.py's form divided back
+    const long j = long(random() % 61) - 30;
+    bool parameter_scaled = false;
+    model_detail::FormulaPtr written =
+        parse_formula("(" + text + ")*(1e" + std::to_string(10 * j) + ")", "/x", parameter);
+    model_detail::FormulaPtr back = formula_scaled(written, power_of_ten_rational(-10 * j), parameter_scaled);
+    EXPECT_FALSE(parameter_scaled) << text;
+    const double back_value = evaluate_formula<double>(*back, at_p);
+    EXPECT_TRUE(back_value == value || (std::isnan(back_value) && std::isnan(value))) << text << " x 1e" << 10 * j;
+    const kernels::Interval back_enclosure = evaluate_formula<kernels::Interval>(*back, at_pi);
+    EXPECT_EQ(back_enclosure.lo, enclosure.lo) << text;
+    EXPECT_EQ(back_enclosure.hi, enclosure.hi) << text;
+    // (2) any formula times 10^k
+    const long k = long(random() % 581) - 290;
+    parameter_scaled = false;
+    const kernels::Interval scaled =
+        evaluate_formula<kernels::Interval>(*formula_scaled(f, power_of_ten_rational(k), parameter_scaled), at_pi);
+    carried += !parameter_scaled;
+    if (!std::isfinite(enclosure.lo) || !std::isfinite(enclosure.hi)) continue;
+    const kernels::Interval exact = enclosure * kernels::Interval::enclose(power_of_ten_rational(k));
+    if (!std::isfinite(exact.lo) || !std::isfinite(exact.hi) || !std::isfinite(scaled.lo) || !std::isfinite(scaled.hi))
+      continue;
+    ++trials;
+    EXPECT_TRUE(scaled.lo <= exact.hi && exact.lo <= scaled.hi)
+        << text << " x 1e" << k << ": [" << scaled.lo << ", " << scaled.hi << "] misses [" << exact.lo << ", " << exact.hi << "]";
+  }
+  EXPECT_GT(trials, 300);
+  EXPECT_GT(carried, 40);   // formulas whose factor went into constants only
+}
+
+// The parametric form of an example rescaled by 10^-30 (its lengths times 10^30) gives every
+// edge, pivot and direction of the example's form times 10^30 in doubles (relative 1e-12) at
+// random deviation vectors in the tolerance box, and its exact model is the example's exact model
+// scaled, field for field; a parameter-valued length that cannot be divided into the doubles'
+// range is refused at its slot.
+TEST(DecimalUnit, RescaledParametricFormIsTheFormTimesThePower) {
+  for (const char* name : {"cam-follower", "scotch-yoke", "two-pin-wedge", "geneva"}) {
+    SCOPED_TRACE(name);
+    std::ifstream file(std::string(HIPAIR_EXAMPLES) + "/" + name + ".json");
+    std::stringstream text;
+    text << file.rdbuf();
+    const model_detail::ParametricModel form = model_detail::ParametricModel::read(text.str());
+    const model_detail::ParametricModel scaled = form.rescaled(-30);
+    EXPECT_EQ(scaled.length_exponent(), -30);
+    EXPECT_TRUE(same_model(scaled.nominal(), decimal_scaled_model(form.nominal(), -30)));
+    std::mt19937_64 random(30);
+    const std::size_t n = form.parameter_count();
+    for (int trial = 0; trial < 4; ++trial) {
+      std::vector<double> deviations(n, 0.0);
+      std::vector<Rational> exact_deviations(n, Rational(0));
+      for (std::size_t i = 0; i < n && trial > 0; ++i) {
+        const Parameter& parameter = form.nominal().parameters[i];
+        if (parameter.range.lo == parameter.range.hi || form.derived(i)) continue;
+        Rational t(long(random() % 9), 8);
+        exact_deviations[i] = Rational(parameter.range.lo + t * (parameter.range.hi - parameter.range.lo) - parameter.nominal);
+        deviations[i] = exact_deviations[i].get_d();
+      }
+      for (std::size_t part = 0; part < form.nominal().parts.size(); ++part) {
+        const auto a = form.part_geometry<double>(part, deviations);
+        const auto b = scaled.part_geometry<double>(part, deviations);
+        auto near = [](double x, double y) { return std::abs(y - 1e30 * x) <= 1e-12 * (1e30 * std::abs(x) + 1e30); };
+        ASSERT_EQ(a.loops.size(), b.loops.size());
+        for (std::size_t l = 0; l < a.loops.size(); ++l)
+          for (std::size_t e = 0; e < a.loops[l].size(); ++e) {
+            const auto &x = a.loops[l][e], &y = b.loops[l][e];
+            EXPECT_TRUE(near(x.source.x, y.source.x) && near(x.source.y, y.source.y) && near(x.target.x, y.target.x) &&
+                        near(x.target.y, y.target.y))
+                << "part " << part << " loop " << l << " edge " << e;
+            if (x.arc) EXPECT_TRUE(near(x.center.x, y.center.x) && near(x.center.y, y.center.y));
+          }
+        EXPECT_TRUE(near(a.pivot.x, b.pivot.x) && near(a.pivot.y, b.pivot.y));
+        EXPECT_EQ(a.direction.x, b.direction.x);
+        EXPECT_EQ(a.direction.y, b.direction.y);
+      }
+      EXPECT_TRUE(same_model(scaled.exact_model(exact_deviations),
+                             decimal_scaled_model(form.exact_model(exact_deviations), -30)));
+    }
+  }
+  // a parameter of 1e400 mm used as a length: no double holds it in any unit near the model's
+  std::ifstream file(std::string(HIPAIR_EXAMPLES) + "/cam-follower.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string huge = text.str();
+  const std::size_t at = huge.find("\"parameters\": {");
+  ASSERT_NE(at, std::string::npos);
+  huge.insert(at + 15, "\"huge\": { \"nominal\": \"1e400\" }, ");
+  const std::string start = "\"start\": [\"-face-width/2\", \"cam-radius\"]";
+  const std::size_t at_start = huge.find(start);
+  ASSERT_NE(at_start, std::string::npos);
+  huge.replace(at_start, start.size(), "\"start\": [\"-face-width/2\", \"cam-radius + 0 * huge\"]");
+  const model_detail::ParametricModel form = model_detail::ParametricModel::read(huge);
+  try {
+    (void)form.rescaled(10);
+    ADD_FAILURE() << "a length formula holding a 1e400 parameter was divided";
+  } catch (const ModelError& error) {
+    EXPECT_NE(std::string(error.what()).find("/start/1"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

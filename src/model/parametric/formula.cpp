@@ -10,6 +10,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 namespace hipair::model_detail {
 
@@ -32,6 +33,68 @@ bool mentions_parameters(const FormulaPtr& formula) {
   for (const FormulaPtr& argument : formula->arguments)
     if (mentions_parameters(argument)) return true;
   return false;
+}
+
+FormulaPtr formula_scaled(const FormulaPtr& formula, const Rational& factor, bool& parameter_scaled) {
+  using Op = Formula::Op;
+  const Formula& f = *formula;
+  auto all = [&] {
+    std::vector<FormulaPtr> arguments;
+    for (const FormulaPtr& argument : f.arguments) arguments.push_back(formula_scaled(argument, factor, parameter_scaled));
+    return formula_node(f.op, std::move(arguments));
+  };
+  switch (f.op) {
+    case Op::constant: return formula_constant(Rational(f.value * factor));
+    case Op::add:
+    case Op::subtract:
+    case Op::negate:
+    case Op::abs:
+    case Op::min:
+    case Op::max: return all();
+    case Op::multiply: {
+      // into the factor free of parameters ("(p)*(1e400)": p * 1 at the scale 1e-400); of two
+      // such factors the one whose value times the scale is nearest 1 in magnitude, the second
+      // on a tie ("(20)*(1e-300)": 20 * 1; "(0)*(1e400)": 0 * 1; "(1e400)*(2)": 1 * 2)
+      const bool a = mentions_parameters(f.arguments[0]), b = mentions_parameters(f.arguments[1]);
+      std::size_t k = a && !b ? 1 : 0;
+      if (!a && !b) {
+        auto log2_abs = [](const Rational& q) {   // log2 |q|, -inf for 0 (beyond the doubles too)
+          if (sgn(q) == 0) return -std::numeric_limits<double>::infinity();
+          long en = 0, ed = 0;
+          const double n = mpz_get_d_2exp(&en, q.get_num_mpz_t()), d = mpz_get_d_2exp(&ed, q.get_den_mpz_t());
+          return std::log2(std::fabs(n)) + double(en) - std::log2(d) - double(ed);
+        };
+        auto none = [](std::size_t) { return 0.0; };
+        auto distance = [&](const FormulaPtr& side) {
+          const double log2 = side->op == Op::constant ? log2_abs(side->value)
+                                                       : std::log2(std::fabs(evaluate_formula<double>(*side, none)));
+          const double d = std::fabs(log2 + log2_abs(factor));
+          return std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+        };
+        k = distance(f.arguments[1]) <= distance(f.arguments[0]) ? 1 : 0;
+      }
+      std::vector<FormulaPtr> arguments = f.arguments;
+      arguments[k] = formula_scaled(arguments[k], factor, parameter_scaled);
+      // a factor that became exactly 1 is left out: x, not x * 1, for number types whose
+      // products round outwards (intervals, jets, Taylor models): the unscaled form's values
+      if (arguments[k]->op == Op::constant && arguments[k]->value == 1) return arguments[1 - k];
+      return formula_node(Op::multiply, std::move(arguments));
+    }
+    case Op::divide:
+      return formula_node(Op::divide, {formula_scaled(f.arguments[0], factor, parameter_scaled), f.arguments[1]});
+    case Op::sqrt:
+      return formula_node(Op::sqrt, {formula_scaled(f.arguments[0], Rational(factor * factor), parameter_scaled)});
+    case Op::power:
+      if (f.exponent == 1) {
+        auto node = std::make_shared<Formula>(f);
+        node->arguments = {formula_scaled(f.arguments[0], factor, parameter_scaled)};
+        return node;
+      }
+      break;
+    default: break;
+  }
+  parameter_scaled = parameter_scaled || mentions_parameters(formula);
+  return formula_node(Op::multiply, {formula, formula_constant(factor)});
 }
 
 namespace {

@@ -51,6 +51,19 @@ FormulaPtr parse_formula(std::string_view text, const std::string& pointer,
 /// Whether the formula refers to any parameter.
 bool mentions_parameters(const FormulaPtr& formula);
 
+/// The formula times `factor` (a positive rational), with the factor carried into its constants
+/// where the formula's form allows it, so that a length written at an extreme scale evaluates
+/// in doubles in the unit its model is analysed in (the tolerance analysis of a model divided by
+/// 10^E, ParametricModel::rescaled): a constant c becomes c * factor (exactly); a sum, a
+/// difference, min, max, abs and a negation carry it into each operand; a product into its
+/// factor free of parameters (of two such, the one whose scaled magnitude is nearest 1; else its
+/// first), leaving out a factor that became exactly 1; a quotient into its numerator, sqrt(x) as
+/// sqrt(x * factor^2). Elsewhere (a parameter, pi, a trigonometric value, a power) the node is
+/// multiplied by the constant `factor`: `parameter_scaled` is set then when the node mentions a
+/// parameter (its double value times the factor may leave the doubles' range). Exact: the
+/// result's value is the formula's times `factor` for every number type up to its rounding.
+FormulaPtr formula_scaled(const FormulaPtr& formula, const Rational& factor, bool& parameter_scaled);
+
 /// Evaluates a formula for number type T (see number_traits.hpp); `parameter(i)` gives the
 /// value of parameter i.
 template <class T, class ParameterValue>

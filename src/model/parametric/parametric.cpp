@@ -11,7 +11,10 @@
 #include "model/reader.hpp"
 #include "model/validate_geometry.hpp"
 
+#include "core/model_scale.hpp"
+
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -443,6 +446,7 @@ ParametricModel ParametricModel::read(std::string_view json_text, std::string_vi
   model.text_ = std::string(json_text);
   JsonValue root = parse_json(json_text);
   RoundingBoundScope rounding_scope(model_rounding_bound(root));  // the file's bound
+  model.profile_tolerances_ = root.is_object() && has_profile_tolerances(root);
   if (root.is_object() && has_profile_tolerances(root)) {
     // The same translation as the reader's: offset parameters and rewritten loop points.
     ReadOptions plain_options = design;  // as the reader's: overrides of declared parameters only
@@ -471,6 +475,7 @@ ParametricModel ParametricModel::read_file(const std::filesystem::path& path) {
 }
 
 Model ParametricModel::exact_model(const std::vector<Rational>& deviations) const {
+  if (unscaled_) return decimal_scaled_model(unscaled_->exact_model(deviations), length_exponent_);
   if (deviations.size() != parameter_count())
     throw ModelError("/parameters", "expected " + std::to_string(parameter_count()) +
                                         " parameter deviations, got " + std::to_string(deviations.size()));
@@ -512,6 +517,87 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
     validate_part_geometry(part);
   }
   return model;
+}
+
+namespace {
+
+// Divides the length slots of a part's recipe (formula_scaled); `slots` collects each slot
+// rewritten with a parameter multiplied by the factor, for the range check of rescaled().
+struct RecipeScaler {
+  Rational factor;
+  std::vector<const Slot*> checked;
+
+  void slot(Slot& s) {
+    bool parameter = false;
+    s.formula = formula_scaled(s.formula, factor, parameter);
+    checked.push_back(&s);
+  }
+  void point(PointRecipe& p) {
+    if (!p.polar) {
+      slot(p.x);
+      slot(p.y);
+      return;
+    }
+    auto center = std::make_shared<PointRecipe>(*p.center);
+    point(*center);
+    p.center = center;
+    slot(p.radius);
+  }
+  void part(PartRecipe& part) {
+    for (LoopRecipe& loop : part.loops) {
+      if (loop.circle) {
+        point(loop.center);
+        slot(loop.radius);
+        continue;
+      }
+      point(loop.start);
+      for (EdgeRecipe& edge : loop.edges) {
+        point(edge.target);
+        if (edge.arc) point(edge.center);
+      }
+    }
+    for (FeatureRecipe& feature : part.features)
+      for (auto& [key, argument] : feature.arguments) {
+        if (argument.kind == ArgumentKind::length) slot(argument.number);
+        if (argument.kind == ArgumentKind::point) point(argument.point);
+      }
+    if (part.motion.has_pivot) point(part.motion.pivot);
+  }
+};
+
+}  // namespace
+
+ParametricModel ParametricModel::rescaled(long exponent) const {
+  if (exponent == 0 || unscaled_) return *this;
+  const std::string unit = "1e" + std::to_string(exponent) + " mm";
+  if (profile_tolerances_)
+    throw ModelError("/parts", "profile tolerances of a model drawn at this scale: its lengths are analysed in units of " +
+                                   unit + " (they lie outside about 1e-9 .. 1e9 mm), and a profile tolerance's offset "
+                                   "parameter is a length in mm that is not rescaled; give the tolerance as a parameter "
+                                   "of the points instead");
+  ParametricModel scaled = *this;
+  scaled.unscaled_ = std::make_shared<const ParametricModel>(*this);
+  scaled.length_exponent_ = exponent;
+  scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*nominal_, exponent));
+  RecipeScaler scaler{power_of_ten_rational(-exponent), {}};
+  for (PartRecipe& part : scaled.parts_) scaler.part(part);
+  // Each length at the nominal vector, in doubles: finite and normal (or 0) once divided. A
+  // formula that keeps the scale (a parameter of about 1e400 mm used as a length) cannot be
+  // evaluated so: refused at its slot.
+  std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(parameter_count(), 0.0));
+  for (const Slot* slot : scaler.checked) {
+    double v = parametric_detail::slot_value(*slot, values);
+    if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;
+    char shown[40];
+    std::snprintf(shown, sizeof shown, "%.3g", v);
+    throw ModelError(slot->pointer, "'" + slot->text + "': the tolerance analysis of this model runs in units of " + unit +
+                                        " (its lengths lie outside about 1e-9 .. 1e9 mm), and this length's formula does "
+                                        "not evaluate there in doubles (" +
+                                        (std::isfinite(v) ? std::string(shown) : std::string("beyond the doubles")) +
+                                        " in that unit): a parameter of about that size used as a length? Write such "
+                                        "lengths as factors of the scale at their uses, e.g. \"(radius)*(1e400)\"");
+  }
+  return scaled;
 }
 
 }  // namespace hipair::model_detail

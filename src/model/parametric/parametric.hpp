@@ -167,6 +167,21 @@ class ParametricModel {
   /// there (loops crossing, ...), naming the pointer.
   Model exact_model(const std::vector<Rational>& deviations) const;
 
+  /// The parametric form of the model divided by 10^exponent (decimal_scaled_model,
+  /// core/model_scale.hpp): its nominal() and exact_model() are the models read divided so, and
+  /// every length formula (points, radii, template lengths, pivots) is the formula read times
+  /// 10^-exponent with the factor carried into its constants (formula_scaled): a model written
+  /// at 10^E times an ordinary one (tests/fuzz/scale_model.py) evaluates, for every number type,
+  /// as that ordinary one. Parameters, angles and directions are not rescaled. The tolerance
+  /// analysis of a mechanism drawn at an extreme scale runs on it (session 54).
+  /// \throws ModelError naming the first length slot whose double value at the nominal vector
+  /// is not finite or lies outside the doubles' normal range once divided (a parameter itself
+  /// of about 10^400 mm), and for a model with profile tolerances (their offset parameters are
+  /// lengths: not rescaled).
+  ParametricModel rescaled(long exponent) const;
+  /// The exponent of rescaled(), 0 for a model as read.
+  long length_exponent() const { return length_exponent_; }
+
   /// The value of every parameter at a deviation vector, for number type T.
   template <class T>
   std::vector<T> parameter_values(const std::vector<T>& deviations) const;
@@ -221,6 +236,10 @@ class ParametricModel {
                       const SpurFlank<T>* flank, EdgeValue<T>& value) const;
 
   std::shared_ptr<const Model> nominal_;
+  long length_exponent_ = 0;
+  /// rescaled(): the form as read, whose exact_model() is divided by 10^length_exponent_
+  std::shared_ptr<const ParametricModel> unscaled_;
+  bool profile_tolerances_ = false;   ///< the model has profile tolerances (offset parameters)
   std::string text_;
   long precision_bits_ = 256;
   std::map<std::string, Rational> nominal_overrides_;  ///< ReadOptions::parameter_values as read  ///< the reader's working precision for this model (read_model_escalating)
