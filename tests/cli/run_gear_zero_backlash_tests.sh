@@ -111,7 +111,8 @@ done
 # the certificate below makes a false or unsupported claim, which hipair-verify must refuse on
 # its geometry (not merely because the statement no longer matches). Two of the jamming pairs
 # of 15..19 teeth (all 12 certify; 16 x 15 and 16 x 16 are left out: their older jam search
-# fails slowly, 17 s), driven forwards or backwards; and (session 53, exact53b) one of 18 x 16,
+# failed slowly, 17 s; since session 54 2 s and 0.7 s forwards, 16 x 15 still 11 s backwards),
+# driven forwards or backwards; and (session 53, exact53b) one of 18 x 16,
 # 18 x 17 and 19 x 18 driven backwards, whose mirror jams exact53 left uncertified: the verdict
 # is right (no touching channel runs on past the closing: the certificate's cut is strict
 # overlap), the closing trap's cover had missed the one pair that crosses at one gear position.
