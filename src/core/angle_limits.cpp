@@ -1,12 +1,12 @@
-// Exact comparisons of a pin-slot angle 2 atan(tau) with rational angle limits (angle_limits.hpp).
-#include "pinslot/angle_limits.hpp"
+// Exact comparisons of an angle 2 atan(tau) with rational angle limits (angle_limits.hpp).
+#include "core/angle_limits.hpp"
 
 #include <mpfi.h>
 #include <mpfr.h>
 
 #include <algorithm>
 
-namespace hipair::pinslot {
+namespace hipair {
 
 namespace {
 
@@ -98,6 +98,22 @@ bool at_least_whole_turn(const Rational& width) {
   return angle_sign(Rational(0), mpz_class(2), width) <= 0;
 }
 
+Rational rounding_slack(const std::vector<Rounding>& roundings, const std::string& pointer) {
+  Rational slack = 0;
+  if (pointer.empty()) return slack;
+  for (const Rounding& r : roundings)
+    if (r.pointer.compare(0, pointer.size(), pointer) == 0) slack += r.bound;
+  return slack;
+}
+
+bool initial_angle_within_limits(const Rational& angle, const RationalInterval& limits, const Rational& limits_slack,
+                                 const Rational& angle_slack) {
+  if (at_least_whole_turn(Rational(limits.hi - limits.lo + limits_slack))) return true;
+  const Rational slack = limits_slack + angle_slack;
+  // angle + 2 pi k in [lo - slack, hi + slack]: 2 atan(0) + 2 pi k in [lo - slack - angle, hi + slack - angle]
+  return angle_within_limits(Rational(0), Rational(limits.lo - slack - angle), Rational(limits.hi + slack - angle));
+}
+
 mpz_class nearest_whole_turns(const Rational& x) {
   mpfr_prec_t bits = starting_bits(mpz_class(0), x) + 16;
   Mpfr value(bits), two_pi(bits);
@@ -121,4 +137,4 @@ double reduced_angle(const Rational& x, const mpz_class& k) {
   return mpfr_get_d(value.v, MPFR_RNDN);
 }
 
-}  // namespace hipair::pinslot
+}  // namespace hipair
