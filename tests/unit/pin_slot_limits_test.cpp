@@ -219,7 +219,7 @@ TEST(PinSlotAngleLimits, TheInitialAngleIsTakenModuloWholeTurns) {
   EXPECT_TRUE(accepted("[-20, 20]", "-350"));
   EXPECT_FALSE(accepted("[-20, 20]", "390"));
   EXPECT_TRUE(accepted("[330, 390]", "0"));
-  EXPECT_TRUE(accepted("[-180, 180]", "1e6 + 179.5"));   // a whole turn: any angle
+  EXPECT_TRUE(accepted("[-180, 180]", "\"1e6 + 179.5\""));   // a whole turn: any angle
   std::mt19937_64 random(5401);
   std::uniform_int_distribution<long> lower(-400, 400), width(1, 300), turns(-12, 12);
   const long far_turns[] = {-1000000, -1000, 1000, 1000000};
@@ -236,7 +236,7 @@ TEST(PinSlotAngleLimits, TheInitialAngleIsTakenModuloWholeTurns) {
     SCOPED_TRACE(limits + " at " + std::to_string(written) + " deg");
     EXPECT_EQ(accepted(limits, std::to_string(written)), expected);
     // the same angle and whole turns written as an expression (rounded once, as one value)
-    EXPECT_EQ(accepted(limits, std::to_string(a) + " + 360 * (" + std::to_string(k) + ")"), expected);
+    EXPECT_EQ(accepted(limits, "\"" + std::to_string(a) + " + 360 * (" + std::to_string(k) + ")\""), expected);
     (expected ? (a == lo || a == hi ? at_limit : inside) : outside) += 1;
   }
   EXPECT_GT(inside, 5);
