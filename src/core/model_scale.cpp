@@ -19,6 +19,31 @@ long binary_exponent(const Rational& value) {
          static_cast<long>(mpz_sizeinbase(value.get_den_mpz_t(), 2));
 }
 
+// The exact axis-aligned box of the points seen (empty until the first).
+struct BoundingBox {
+  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
+  void see(const Point& p) {
+    if (!x_lo || p.x < *x_lo) x_lo = p.x;
+    if (!x_hi || p.x > *x_hi) x_hi = p.x;
+    if (!y_lo || p.y < *y_lo) y_lo = p.y;
+    if (!y_hi || p.y > *y_hi) y_hi = p.y;
+  }
+  bool empty() const { return !x_lo; }
+  /// The larger side. \pre !empty()
+  Rational size() const { return std::max(Rational(*x_hi - *x_lo), Rational(*y_hi - *y_lo)); }
+};
+
+// Every edge's source and target of `part` into `box`, and its arcs' centres when `arc_centres`:
+// the one walk behind normalising_translation (centres in) and require_feature_spread (out).
+void see_vertices(BoundingBox& box, const Part& part, bool arc_centres) {
+  for (const auto& loop : part.loops)
+    for (const auto& edge : loop.edges) {
+      box.see(edge.source);
+      box.see(edge.target);
+      if (arc_centres && edge.kind == Edge::Kind::arc) box.see(edge.center);
+    }
+}
+
 }  // namespace
 
 void require_kinematic_length_scale(const Model& model, const std::vector<std::size_t>& parts) {
@@ -179,28 +204,17 @@ long length_coordinate_shift(const Model& model, const std::vector<std::size_t>&
 }
 
 std::optional<Point> normalising_translation(const Model& model, const std::vector<std::size_t>& parts) {
-  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
-  auto see = [&](const Point& p) {
-    if (!x_lo || p.x < *x_lo) x_lo = p.x;
-    if (!x_hi || p.x > *x_hi) x_hi = p.x;
-    if (!y_lo || p.y < *y_lo) y_lo = p.y;
-    if (!y_hi || p.y > *y_hi) y_hi = p.y;
-  };
+  BoundingBox box;
   for (std::size_t index : parts) {
     const Part& part = model.parts.at(index);
     if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::translation)
-      see(part.motion.pivot);   // a centre of turning belongs to the pair's extent
-    for (const auto& loop : part.loops)
-      for (const auto& edge : loop.edges) {
-        see(edge.source);
-        see(edge.target);
-        if (edge.kind == Edge::Kind::arc) see(edge.center);
-      }
+      box.see(part.motion.pivot);   // a centre of turning belongs to the pair's extent
+    see_vertices(box, part, true);
   }
-  if (!x_lo) return std::nullopt;
-  Rational size = std::max(Rational(*x_hi - *x_lo), Rational(*y_hi - *y_lo));
+  if (box.empty()) return std::nullopt;
+  Rational size = box.size();
   if (sgn(size) == 0) return std::nullopt;
-  Rational cx = (*x_lo + *x_hi) / 2, cy = (*y_lo + *y_hi) / 2;
+  Rational cx = (*box.x_lo + *box.x_hi) / 2, cy = (*box.y_lo + *box.y_hi) / 2;
   Rational far = std::max(Rational(abs(cx)), Rational(abs(cy)));
   // |centre| <= 2^20 * size: as is (every example; the doubles keep about 30 bits of the parts)
   if (far <= size * Rational(mpz_class(1) << 20)) return std::nullopt;
@@ -488,21 +502,12 @@ void require_dynamics_in_double_range(const Model& model, const std::string& uni
 }
 
 void require_feature_spread(const Model& model, std::size_t first, std::size_t second) {
-  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
-  auto see = [&](const Point& p) {
-    if (!x_lo || p.x < *x_lo) x_lo = p.x;
-    if (!x_hi || p.x > *x_hi) x_hi = p.x;
-    if (!y_lo || p.y < *y_lo) y_lo = p.y;
-    if (!y_hi || p.y > *y_hi) y_hi = p.y;
-  };
-  for (std::size_t index : {first, second})
-    for (const auto& loop : model.parts.at(index).loops)
-      for (const auto& edge : loop.edges) {
-        see(edge.source);   // vertices only: an arc's centre may lie 10^1000 mm away from a
-        see(edge.target);   // part of a few mm (tests/cli/run_far_arc_tests.sh)
-      }
-  if (!x_lo) return;
-  const Rational extent = std::max(Rational(*x_hi - *x_lo), Rational(*y_hi - *y_lo));
+  BoundingBox box;
+  // vertices only: an arc's centre may lie 10^1000 mm away from a part of a few mm
+  // (tests/cli/run_far_arc_tests.sh)
+  for (std::size_t index : {first, second}) see_vertices(box, model.parts.at(index), false);
+  if (box.empty()) return;
+  const Rational extent = box.size();
   if (sgn(extent) == 0) return;
   const long extent_bits = binary_exponent(extent);
   for (std::size_t index : {first, second}) {

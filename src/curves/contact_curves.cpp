@@ -5,7 +5,7 @@
 
 #include "oracle/blocked_tester.hpp"
 #include "oracle/overlap.hpp"
-#include "algebra/angle_sign.hpp"
+#include "core/angle_sign.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
 #include "curves/pair_sort.hpp"
@@ -2581,10 +2581,10 @@ Rational grid_round(const mpfr_t value, bool up) {
 // A rational certainly below (up: above) tan((L - m pi) / 2), for |L - m pi| < pi / 2: the
 // MPFI enclosure's end at a precision above L's and m's magnitudes, on the grid.
 Rational chart_edge(const Rational& L, const mpz_class& m, bool up) {
-  const mpfr_prec_t bits = std::max(chart_bits, algebra::angle_bits(m, L) + chart_bits);
+  const mpfr_prec_t bits = std::max(chart_bits, hipair::angle_bits(m, L) + chart_bits);
   mpfi_t angle;
   mpfi_init2(angle, bits);
-  algebra::enclose_angle(angle, Rational(0), m, L, bits);   // m pi - L
+  hipair::enclose_angle(angle, Rational(0), m, L, bits);   // m pi - L
   mpfi_neg(angle, angle);
   mpfi_div_2ui(angle, angle, 1);
   mpfi_tan(angle, angle);
@@ -2607,13 +2607,13 @@ Rational chart_edge(const Rational& L, const mpz_class& m, bool up) {
 // the comparisons were made in MPFR at a fixed 256 bits, wrong for limits within 2^-250 of a
 // chart seam or beyond 2^200 rad): whether the range is a whole turn, and whether the range
 // in a chart, [lo, hi] - m pi (m = 2 k + centre), reaches -pi/2 or pi/2, are signs of
-// 2 atan(0 or +-1) + m pi - L (algebra::angle_sign: MPFI refined until certain, never 0, pi
+// 2 atan(0 or +-1) + m pi - L (hipair::angle_sign: MPFI refined until certain, never 0, pi
 // being irrational); the edges' tangents are MPFI enclosures rounded outward. The turns k
 // tried (four around an estimate) are a choice: charts that miss the range are skipped exactly.
 bool limited_rotation_charts(const RationalInterval& limits, std::vector<ChartAxis>& charts) {
   // hi - lo >= 2 pi: 2 pi - (hi - lo) < 0 (never 0)
-  if (algebra::angle_sign(Rational(0), mpz_class(2), Rational(limits.hi - limits.lo)) <= 0) return false;
-  const mpfr_prec_t bits = algebra::angle_bits(mpz_class(0), limits.lo) + chart_bits;
+  if (hipair::angle_sign(Rational(0), mpz_class(2), Rational(limits.hi - limits.lo)) <= 0) return false;
+  const mpfr_prec_t bits = hipair::angle_bits(mpz_class(0), limits.lo) + chart_bits;
   mpfr_t pi, two_pi, tmp;
   mpfr_inits2(bits, pi, two_pi, tmp, static_cast<mpfr_ptr>(nullptr));
   mpfr_const_pi(pi, MPFR_RNDN);
@@ -2631,18 +2631,18 @@ bool limited_rotation_charts(const RationalInterval& limits, std::vector<ChartAx
       const mpz_class m = 2 * k + centre;   // local angles theta - m pi
       // the range ends below the chart (hi - m pi < -pi/2: -pi/2 + m pi - hi > 0) or starts
       // above it (lo - m pi > pi/2: pi/2 + m pi - lo < 0)
-      if (algebra::angle_sign(Rational(-1), m, limits.hi) > 0 || algebra::angle_sign(Rational(1), m, limits.lo) < 0) continue;
+      if (hipair::angle_sign(Rational(-1), m, limits.hi) > 0 || hipair::angle_sign(Rational(1), m, limits.lo) < 0) continue;
       ChartAxis axis;
       axis.kind = ChartAxis::Kind::rotation;
       axis.half_turn = centre == 1;
       // lo - m pi <= -pi/2: -pi/2 + m pi - lo >= 0
-      if (algebra::angle_sign(Rational(-1), m, limits.lo) >= 0) {
+      if (hipair::angle_sign(Rational(-1), m, limits.lo) >= 0) {
         axis.lo = -1;
       } else {
         axis.lo = std::max(Rational(-1), chart_edge(limits.lo, m, false));
       }
       // hi - m pi >= pi/2: pi/2 + m pi - hi <= 0
-      if (algebra::angle_sign(Rational(1), m, limits.hi) <= 0) {
+      if (hipair::angle_sign(Rational(1), m, limits.hi) <= 0) {
         axis.hi = 1;
       } else {
         axis.hi = std::min(Rational(1), chart_edge(limits.hi, m, true));

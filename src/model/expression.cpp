@@ -13,17 +13,81 @@
 namespace hipair::model_detail {
 namespace {
 
-constexpr std::size_t max_nesting = 100;
-constexpr long max_exponent = 1024;
-constexpr long max_angle = 1000000;  // rad: larger angles orienting geometry are mistakes
-
-std::string quoted_expression(std::string_view text) { return quoted_excerpt(text, 120); }
-
 bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
 bool is_name_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
 }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+}  // namespace
+
+std::optional<std::size_t> expression_tokens(std::string_view text, std::vector<ExpressionToken>& tokens) {
+  tokens.clear();
+  std::size_t i = 0;
+  while (i < text.size()) {
+    char c = text[i];
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+      continue;
+    }
+    ExpressionToken token;
+    token.position = i;
+    if (is_digit(c) || (c == '.' && i + 1 < text.size() && is_digit(text[i + 1]))) {
+      std::size_t j = i;
+      while (j < text.size() && is_digit(text[j])) ++j;
+      if (j < text.size() && text[j] == '.') {
+        ++j;
+        while (j < text.size() && is_digit(text[j])) ++j;
+      }
+      if (j < text.size() && (text[j] == 'e' || text[j] == 'E')) {
+        std::size_t k = j + 1;
+        if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
+        if (k < text.size() && is_digit(text[k])) {
+          while (k < text.size() && is_digit(text[k])) ++k;
+          j = k;
+        }
+      }
+      token.kind = ExpressionToken::Kind::number;
+      token.text = std::string(text.substr(i, j - i));
+      i = j;
+    } else if (is_name_start(c)) {
+      std::size_t j = i + 1;
+      while (j < text.size()) {
+        if (is_name_char(text[j])) {
+          ++j;
+        } else if (text[j] == '-' && j + 1 < text.size() && is_name_char(text[j + 1])) {
+          j += 2;  // a '-' inside a name binds to the name
+        } else {
+          break;
+        }
+      }
+      token.kind = ExpressionToken::Kind::name;
+      token.text = std::string(text.substr(i, j - i));
+      i = j;
+    } else if (std::string_view("+-*/^(),").find(c) != std::string_view::npos) {
+      token.kind = ExpressionToken::Kind::symbol;
+      token.text = std::string(1, c);
+      ++i;
+    } else {
+      return i;
+    }
+    tokens.push_back(std::move(token));
+  }
+  ExpressionToken end;
+  end.kind = ExpressionToken::Kind::end;
+  end.text = "end of expression";
+  end.position = text.size();
+  tokens.push_back(end);
+  return std::nullopt;
+}
+
+namespace {
+
+constexpr std::size_t max_nesting = 100;
+constexpr long max_exponent = 1024;
+constexpr long max_angle = 1000000;  // rad: larger angles orienting geometry are mistakes
+
+std::string quoted_expression(std::string_view text) { return quoted_excerpt(text, 120); }
 
 std::string lower_case(std::string_view text) {
   std::string out;
@@ -31,12 +95,7 @@ std::string lower_case(std::string_view text) {
   return out;
 }
 
-struct Token {
-  enum class Kind { number, name, symbol, end };
-  Kind kind = Kind::end;
-  std::string text;
-  std::size_t position = 0;
-};
+using Token = ExpressionToken;
 
 // sin(p pi) when it is rational (Niven: only 0, +-1/2, +-1).
 std::optional<Rational> exact_sin_of_pi_multiple(const Rational& multiple) {
@@ -83,64 +142,13 @@ class Evaluator {
 
   // ------------------------------------------------------------------ tokens
   void tokenize() {
-    std::size_t i = 0;
-    while (i < text_.size()) {
-      char c = text_[i];
-      if (std::isspace(static_cast<unsigned char>(c))) {
-        ++i;
-        continue;
-      }
-      Token token;
-      token.position = i;
-      if (is_digit(c) || (c == '.' && i + 1 < text_.size() && is_digit(text_[i + 1]))) {
-        std::size_t j = i;
-        while (j < text_.size() && is_digit(text_[j])) ++j;
-        if (j < text_.size() && text_[j] == '.') {
-          ++j;
-          while (j < text_.size() && is_digit(text_[j])) ++j;
-        }
-        if (j < text_.size() && (text_[j] == 'e' || text_[j] == 'E')) {
-          std::size_t k = j + 1;
-          if (k < text_.size() && (text_[k] == '+' || text_[k] == '-')) ++k;
-          if (k < text_.size() && is_digit(text_[k])) {
-            while (k < text_.size() && is_digit(text_[k])) ++k;
-            j = k;
-          }
-        }
-        token.kind = Token::Kind::number;
-        token.text = std::string(text_.substr(i, j - i));
-        i = j;
-      } else if (is_name_start(c)) {
-        std::size_t j = i + 1;
-        while (j < text_.size()) {
-          if (is_name_char(text_[j])) {
-            ++j;
-          } else if (text_[j] == '-' && j + 1 < text_.size() && is_name_char(text_[j + 1])) {
-            j += 2;  // a '-' inside a name binds to the name
-          } else {
-            break;
-          }
-        }
-        token.kind = Token::Kind::name;
-        token.text = std::string(text_.substr(i, j - i));
-        i = j;
-      } else if (std::string_view("+-*/^(),").find(c) != std::string_view::npos) {
-        token.kind = Token::Kind::symbol;
-        token.text = std::string(1, c);
-        ++i;
-      } else {
-        std::string shown = static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f
-                                ? "byte " + std::to_string(static_cast<unsigned char>(c))
-                                : "'" + std::string(1, c) + "'";
-        fail("unexpected character " + shown + " at character " + std::to_string(i + 1));
-      }
-      tokens_.push_back(std::move(token));
+    if (std::optional<std::size_t> at = expression_tokens(text_, tokens_)) {
+      const char c = text_[*at];
+      std::string shown = static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f
+                              ? "byte " + std::to_string(static_cast<unsigned char>(c))
+                              : "'" + std::string(1, c) + "'";
+      fail("unexpected character " + shown + " at character " + std::to_string(*at + 1));
     }
-    Token end;
-    end.kind = Token::Kind::end;
-    end.text = "end of expression";
-    end.position = text_.size();
-    tokens_.push_back(end);
     if (tokens_.size() == 1) fail("empty expression");
   }
 
@@ -792,6 +800,33 @@ Point unit_vector(const Quantity& angle, const std::string& pointer, const std::
     throw ModelError(pointer, "the angle " + quoted_expression(expression) + " is larger than " +
                                   std::to_string(max_angle) + " rad in magnitude");
   return exact_unit_vector(value, pointer, expression, roundings);
+}
+
+Point unit_direction(const Rational& dx, const Rational& dy, const std::string& pointer, const std::string& dx_text,
+                     const std::string& dy_text, std::vector<Rounding>& roundings) {
+  Rational length_squared = dx * dx + dy * dy;
+  if (length_squared == 0) throw ModelError(pointer, "zero direction vector: the axis has no direction");
+  if (mpz_perfect_square_p(length_squared.get_num_mpz_t()) &&
+      mpz_perfect_square_p(length_squared.get_den_mpz_t())) {
+    mpz_class numerator, denominator;
+    mpz_sqrt(numerator.get_mpz_t(), length_squared.get_num_mpz_t());
+    mpz_sqrt(denominator.get_mpz_t(), length_squared.get_den_mpz_t());
+    Rational length(numerator, denominator);
+    return Point{Rational(dx / length), Rational(dy / length)};
+  }
+  // Half-angle tangent t = dy / (|d| + dx) of the direction (or of its opposite when dx < 0,
+  // which keeps |t| <= 1), rounded within the rounding bound: the vector is then exactly unit.
+  bool flip = dx < 0;
+  Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
+  Interval length;
+  Interval squared(length_squared);
+  mpfi_sqrt(length.get(), squared.get());
+  Interval t = Interval(y) / (length + Interval(x));
+  std::string expression = "direction [" + dx_text + ", " + dy_text + "] (half-angle tangent)";
+  Rational rounded = to_rational(Quantity::approximate(t), pointer, expression, roundings);
+  Point unit = unit_from_half_tangent(rounded);
+  if (flip) unit = Point{Rational(-unit.x), Rational(-unit.y)};
+  return unit;
 }
 
 }  // namespace hipair::model_detail

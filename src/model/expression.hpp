@@ -79,6 +79,21 @@ class PrecisionExhausted : public ModelError {
 /// "Exactness and rounding").
 Rational rounding_bound_near(const Rational& magnitude);
 
+/// A token of an expression: a number literal ("2.5e-3"), a name ("pi", "lever-length": a '-'
+/// between name characters binds to the name), one of the symbols + - * / ^ ( ) , or the end.
+struct ExpressionToken {
+  enum class Kind { number, name, symbol, end };
+  Kind kind = Kind::end;
+  std::string text;
+  std::size_t position = 0;   ///< of its first character in the expression
+};
+
+/// Splits `text` into `tokens` (white space skipped, the last token the end, "end of
+/// expression", at text.size()): the one tokenizer of the exact evaluator and the parametric
+/// form's formula parser (model/parametric/formula.cpp). Returns the position of the first
+/// character that starts no token (the tokens before it kept), nullopt when every one does.
+std::optional<std::size_t> expression_tokens(std::string_view text, std::vector<ExpressionToken>& tokens);
+
 /// Largest decimal exponent accepted in a literal ("1e1000").
 inline constexpr long max_literal_exponent = 1000;
 
@@ -104,5 +119,14 @@ Rational to_rational(const Quantity& value, const std::string& pointer,
 /// exact for 0 and multiples of pi/2, else through the rounded half-angle tangent (recorded).
 Point unit_vector(const Quantity& angle, const std::string& pointer, const std::string& expression,
                   std::vector<Rounding>& roundings);
+
+/// Exact rational unit vector along [dx, dy] (a direction written as a vector, `dx_text` and
+/// `dy_text` as written): d / |d| when |d|^2 is the square of a rational, else through the
+/// half-angle tangent t = dy / (|d| + dx) (of -d when dx < 0, which keeps |t| <= 1) rounded
+/// within the rounding bound and recorded under `pointer` ("direction [dx, dy] (half-angle
+/// tangent)"): the stored vector is exactly unit. The reader's and the parametric model's one
+/// construction of a direction vector. \throws ModelError(pointer, ...) for a zero vector.
+Point unit_direction(const Rational& dx, const Rational& dy, const std::string& pointer, const std::string& dx_text,
+                     const std::string& dy_text, std::vector<Rounding>& roundings);
 
 }  // namespace hipair::model_detail

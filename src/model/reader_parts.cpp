@@ -2,6 +2,7 @@
 // configurations, dynamics; each part's geometry is validated and oriented exactly.
 #include "model/reader.hpp"
 
+#include "core/angle_limits.hpp"
 #include "model/validate_geometry.hpp"
 
 #include <hipair/error.hpp>
@@ -250,8 +251,19 @@ PartConfiguration Reader::read_initial(const JsonValue& value, const Motion& mot
   }
   if (const JsonValue* a = value.find("angle")) {
     initial.angle = angle(*a);
-    if (motion.angle_limits && (initial.angle < motion.angle_limits->lo || initial.angle > motion.angle_limits->hi))
+    if (motion.kind == Motion::Kind::pin_slot && motion.angle_limits) {
+      // a pin-slot part's angle limits are angles modulo whole turns (docs/model-format.md), and
+      // so is its initial angle: 370 deg against [-20, 20] deg is 10 deg (PinSlotSpace::locate
+      // reduces the same way); decided exactly, the three values' roundings allowed for
+      const Rational limits_slack =
+          motion.pointer.empty() ? Rational(0) : rounding_slack(model_.roundings, motion.pointer + "/pin_slot/angle_limits/");
+      if (!initial_angle_within_limits(initial.angle, *motion.angle_limits, limits_slack,
+                                       rounding_slack(model_.roundings, a->pointer)))
+        throw ModelError(a->pointer, "the initial angle lies outside the motion's angle limits, also after whole turns "
+                                     "(a pin-slot part's angles are taken modulo 360 deg)");
+    } else if (motion.angle_limits && (initial.angle < motion.angle_limits->lo || initial.angle > motion.angle_limits->hi)) {
       throw ModelError(a->pointer, "the initial angle lies outside the motion's angle limits");
+    }
   }
   if (const JsonValue* s = value.find("offset")) {
     initial.offset = number(*s);

@@ -238,31 +238,8 @@ Point Reader::direction(const JsonValue& value) {
   if (value.items.size() != 2)
     throw ModelError(value.pointer, "a direction is [dx, dy] or an angle: expected 2 numbers, found " +
                                         std::to_string(value.items.size()));
-  Rational dx = number(value.items[0]), dy = number(value.items[1]);
-  Rational length_squared = dx * dx + dy * dy;
-  if (length_squared == 0) throw ModelError(value.pointer, "zero direction vector: the axis has no direction");
-  if (mpz_perfect_square_p(length_squared.get_num_mpz_t()) &&
-      mpz_perfect_square_p(length_squared.get_den_mpz_t())) {
-    mpz_class numerator, denominator;
-    mpz_sqrt(numerator.get_mpz_t(), length_squared.get_num_mpz_t());
-    mpz_sqrt(denominator.get_mpz_t(), length_squared.get_den_mpz_t());
-    Rational length(numerator, denominator);
-    return Point{Rational(dx / length), Rational(dy / length)};
-  }
-  // Half-angle tangent t = dy / (|d| + dx) of the direction (or of its opposite when dx < 0,
-  // which keeps |t| <= 1), rounded within the rounding bound: the vector is then exactly unit.
-  bool flip = dx < 0;
-  Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
-  Interval length;
-  Interval squared(length_squared);
-  mpfi_sqrt(length.get(), squared.get());
-  Interval t = Interval(y) / (length + Interval(x));
-  std::string expression = "direction [" + text_of(value.items[0]) + ", " + text_of(value.items[1]) +
-                           "] (half-angle tangent)";
-  Rational rounded = to_rational(Quantity::approximate(t), value.pointer, expression, model_.roundings);
-  Point unit = unit_from_half_tangent(rounded);
-  if (flip) unit = Point{Rational(-unit.x), Rational(-unit.y)};
-  return unit;
+  Rational dx = number(value.items[0]), dy = number(value.items[1]);   // in order: their roundings are recorded
+  return unit_direction(dx, dy, value.pointer, text_of(value.items[0]), text_of(value.items[1]), model_.roundings);
 }
 
 }  // namespace hipair::model_detail

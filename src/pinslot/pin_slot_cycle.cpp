@@ -9,7 +9,7 @@
 
 #include <hipair/error.hpp>
 
-#include "pinslot/angle_limits.hpp"
+#include "core/angle_limits.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -184,12 +184,12 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
   // the follower's angle range in tau (inside its limits)
   double psi_lo = -std::numbers::pi * 0.999, psi_hi = std::numbers::pi * 0.999;
   // (limits are angles modulo whole turns, and a whole turn or more is no limit: as in
-  // PinSlotSpace::build, pinslot/angle_limits.hpp)
+  // PinSlotSpace::build, core/angle_limits.hpp)
   if (const auto& limits = pin.motion.angle_limits;
-      limits && !pinslot::at_least_whole_turn(Rational(limits->hi - limits->lo))) {
-    mpz_class turns = pinslot::nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
-    psi_lo = std::max(psi_lo, pinslot::reduced_angle(limits->lo, turns));
-    psi_hi = std::min(psi_hi, pinslot::reduced_angle(limits->hi, turns));
+      limits && !at_least_whole_turn(Rational(limits->hi - limits->lo))) {
+    mpz_class turns = nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
+    psi_lo = std::max(psi_lo, reduced_angle(limits->lo, turns));
+    psi_hi = std::min(psi_hi, reduced_angle(limits->hi, turns));
   }
   // a margin keeps the chosen poses clear of the limits (the choice is in doubles)
   const double tau_lo = std::tan(psi_lo / 2) + 1e-9, tau_hi = std::tan(psi_hi / 2) - 1e-9;

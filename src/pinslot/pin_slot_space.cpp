@@ -10,7 +10,7 @@
 #include "sliced/witness_filter.hpp"
 #include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
-#include "pinslot/angle_limits.hpp"
+#include "core/angle_limits.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -79,12 +79,8 @@ Rational near_rational(double value, long den) {
 // The reader's rounding bounds of a part's two angle limits (0 for limits that are exact, or a
 // model built in code): the limits as written lie within this of the stored ones.
 Rational limits_rounding(const Model& model, const Part& part) {
-  Rational slack = 0;
-  const std::string prefix = part.motion.pointer + "/pin_slot/angle_limits/";
-  if (part.motion.pointer.empty()) return slack;
-  for (const Rounding& r : model.roundings)
-    if (r.pointer.compare(0, prefix.size(), prefix) == 0) slack += r.bound;
-  return slack;
+  if (part.motion.pointer.empty()) return Rational(0);
+  return rounding_slack(model.roundings, part.motion.pointer + "/pin_slot/angle_limits/");
 }
 
 // The half-angle tangent tau = -1/u of psi = pi + 2 atan(u) (the chart about the half turn:
@@ -649,14 +645,14 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   // limits spanning a whole turn (exactly, allowing for the reader's rounding of the two limits:
   // [-180, 180] deg is a whole turn whichever way pi was rounded) are the whole turn, however
   // wide (1e400 deg); before session 53 this was decided in doubles
-  impl->whole_turn = !limits || pinslot::at_least_whole_turn(Rational(limits->hi - limits->lo + limits_rounding(model, pin)));
+  impl->whole_turn = !limits || at_least_whole_turn(Rational(limits->hi - limits->lo + limits_rounding(model, pin)));
   if (!impl->whole_turn) {
     // limits given beyond a half turn ([100, 170] + 360 k deg) are the same angles reduced by
     // whole turns (the angle is taken modulo 2 pi, as locate does); the reduction is a choice of
     // slice angles in doubles, each slice's tau is then checked exactly inside the limits
-    mpz_class turns = pinslot::nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
-    lo = pinslot::reduced_angle(limits->lo, turns);
-    hi = pinslot::reduced_angle(limits->hi, turns);
+    mpz_class turns = nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
+    lo = reduced_angle(limits->lo, turns);
+    hi = reduced_angle(limits->hi, turns);
   }
   // Each slice angle is n-th of the range away from the limits; the rational tangent is within
   // 2^-13 of tan(angle/2), i.e. within about 2^-12 rad (times 1 + tan^2 <= 2 inside a half
@@ -687,7 +683,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     }
     if (!taus.empty() && t <= taus.back()) continue;
     // certified, not assumed: the slice lies inside the limits (exact, modulo whole turns)
-    if (!impl->whole_turn && !pinslot::angle_within_limits(t, limits->lo, limits->hi))
+    if (!impl->whole_turn && !angle_within_limits(t, limits->lo, limits->hi))
       throw GeometryError(pair + ": internal: slice tan(psi/2) = " + to_exact_string(t) +
                           " chosen outside the angle limits of part '" + pin.name + "'");
     taus.push_back(t);
@@ -936,10 +932,10 @@ PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {
   Rational tau = q.tau;
   tau.canonicalize();
   // outside the angle limits (modulo whole turns; the limits themselves are inside): psi =
-  // 2 atan(tau) against the rational limits, decided exactly (pinslot/angle_limits.hpp; before
+  // 2 atan(tau) against the rational limits, decided exactly (core/angle_limits.hpp; before
   // session 53 a double atan with a 1e-12 margin, refusing configurations within it)
   if (impl.pin().motion.angle_limits && !impl.whole_turn &&
-      !pinslot::angle_within_limits(tau, impl.pin().motion.angle_limits->lo, impl.pin().motion.angle_limits->hi))
+      !angle_within_limits(tau, impl.pin().motion.angle_limits->lo, impl.pin().motion.angle_limits->hi))
     return PinSlotLocation{};
   auto space = impl.slice(tau);
   PinSlotLocation out;

@@ -118,7 +118,9 @@ std::string kinematics_plot_svg(const KinematicsResult& result, double pixel_wid
         svg.rectangle(panel.x(std::min(a, b)), panel.bottom, std::abs(panel.x(b) - panel.x(a)), panel.height, dwell);
       }
       std::string name = result.followers[f];
-      std::string y_label = kind == 0 ? (frot ? "angle (deg)" : "offset " + mm) : "velocity ratio";
+      // the ratio's unit: the follower's per the driver's (deg/deg and mm/mm: none)
+      const std::string ratio_unit = frot == rot ? "" : frot ? " (deg/" + length_unit_name() + ")" : " (" + length_unit_name() + "/deg)";
+      std::string y_label = kind == 0 ? (frot ? "angle (deg)" : "offset " + mm) : "velocity ratio" + ratio_unit;
       std::string title = kind == 0 ? name + ": position against the driver (shaded: dwell)"
                                     : name + ": velocity ratio d(" + name + ")/d(" + result.driver + ")";
       draw_axes(svg, panel, x_label, y_label, title);

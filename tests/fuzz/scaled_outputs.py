@@ -131,14 +131,19 @@ def simulate_text(text, k, name):
     return re.sub(r"[0-9.e+-]+ s CPU", "@ s CPU", text)
 
 
-def compare_simulate(base, scaled, k, name):
+def compare_dirs(base, scaled, streams, file_difference):
+    """The first difference between the unscaled run `base` and a scaled run, or None: each run is
+    (exit code, stdout, stderr, output folder); `streams(a, b)` compares the unscaled and the
+    scaled stdout (then stderr) once the runs' own folders are named alike, and
+    `file_difference(file, a, b)` the two copies of each file of the folders (None: the same)."""
     (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
     if rc1 is None:
         return "timed out"
     if rc0 != rc1:
         return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
-    out0, out1 = simulate_text(out0.replace(dir0, "@OUT@"), 0, name), simulate_text(out1.replace(dir1, "@OUT@"), k, name)
-    found = numbers_moved(out0, out1, k) or numbers_moved(err0, simulate_text(err1, k, name), k)
+    # the run's own directory is named in "wrote ..." lines
+    found = streams(out0.replace(dir0, "@OUT@"), out1.replace(dir1, "@OUT@")) or \
+        streams(err0.replace(dir0, "@OUT@"), err1.replace(dir1, "@OUT@"))
     if found:
         return "stdout/stderr " + found
     files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
@@ -146,12 +151,26 @@ def compare_simulate(base, scaled, k, name):
     if files0 != files1:
         return "files %s vs %s" % (files0, files1)
     for file in files0:
-        a, b = os.path.join(dir0, file), os.path.join(dir1, file)
-        with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
-            ta, tb = fa.read(), fb.read()
-        found = None
+        found = file_difference(file, os.path.join(dir0, file), os.path.join(dir1, file))
+        if found:
+            return "%s %s" % (file, found)
+    return None
+
+
+def read_text(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read()
+
+
+def compare_simulate(base, scaled, k, name):
+    def streams(a, b):
+        return numbers_moved(simulate_text(a, 0, name), simulate_text(b, k, name), k)
+
+    def file_difference(file, a, b):
+        ta, tb = read_text(a), read_text(b)
         if file == "events.json":
             ja, jb = json.loads(ta), json.loads(tb)
+            found = None
             units = jb.get("units", {})
             if "1e%d mm" % k == units.get("length"):   # run in units of 10^K mm: named so
                 force = ja["units"]["force"]
@@ -161,14 +180,12 @@ def compare_simulate(base, scaled, k, name):
             ja["model"] = jb["model"] = name
             if "chord_deviation_1e%dmm" % k in jb:   # a planar run's chord deviation in units of 10^K mm
                 jb["chord_deviation_mm"] = jb.pop("chord_deviation_1e%dmm" % k)
-            found = found or first_difference(ja, jb)
-        elif file == "events.txt":
-            found = numbers_moved(ta, tb, k)
-        else:
-            found = text_difference(simulate_text(ta, 0, name), simulate_text(tb, k, name))
-        if found:
-            return "%s %s" % (file, found)
-    return None
+            return found or first_difference(ja, jb)
+        if file == "events.txt":
+            return numbers_moved(ta, tb, k)
+        return text_difference(simulate_text(ta, 0, name), simulate_text(tb, k, name))
+
+    return compare_dirs(base, scaled, streams, file_difference)
 
 
 def tolerance_text(text, k, name):
@@ -357,36 +374,20 @@ def command_args(command, model, out):
 
 def compare_run(base, scaled, k, name):
     """The first difference between the unscaled run `base` and the run at 10^k, or None."""
-    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
-    if rc1 is None:
-        return "timed out"
-    if rc0 != rc1:
-        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
-    # the run's own directory is named in "wrote ..." lines
-    out0 = out0.replace(dir0, "@OUT@")
-    out1 = out1.replace(dir1, "@OUT@")
-    found = text_difference(out0, unit_free_text(out1, k, name)) or text_difference(err0, unit_free_text(err1, k, name))
-    if found:
-        return "stdout/stderr " + found
-    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
-    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
-    if files0 != files1:
-        return "files %s vs %s" % (files0, files1)
-    for file in files0:
-        a, b = os.path.join(dir0, file), os.path.join(dir1, file)
+    def streams(a, b):
+        return text_difference(a, unit_free_text(b, k, name))
+
+    def file_difference(file, a, b):
         if file.endswith(".json"):
             ja, jb = plain_json(a, 0, name), plain_json(b, k, name)
             if "units" not in ja and jb.get("units") == {"length": "mm"}:   # named only in units of 10^K mm
                 del jb["units"]
-            found = first_difference(ja, jb)
-        elif file.endswith(".csv") or file.endswith(".txt"):
-            with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
-                found = text_difference(fa.read(), unit_free_text(fb.read(), k, name))
-        else:
-            continue   # pictures: their numbers are the same doubles, their labels name the unit
-        if found:
-            return "%s %s" % (file, found)
-    return None
+            return first_difference(ja, jb)
+        if file.endswith(".csv") or file.endswith(".txt"):
+            return text_difference(read_text(a), unit_free_text(read_text(b), k, name))
+        return None   # pictures: their numbers are the same doubles, their labels name the unit
+
+    return compare_dirs(base, scaled, streams, file_difference)
 
 
 def main(argv):

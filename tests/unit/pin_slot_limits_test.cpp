@@ -1,4 +1,4 @@
-// A pin-slot part's angle limits, decided exactly (src/pinslot/angle_limits.hpp; session 53):
+// A pin-slot part's angle limits, decided exactly (src/core/angle_limits.hpp; session 53):
 // psi = 2 atan(tau) at a rational tau against rational limits, modulo whole turns.
 //
 // The oracle is independent of MPFR/MPFI: an exact rational bracket of 2 atan(tau) from the
@@ -13,8 +13,8 @@
 #include <hipair/pin_slot.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "core/angle_limits.hpp"
 #include "curves/contact_curves.hpp"
-#include "pinslot/angle_limits.hpp"
 #include "sliced/critical_angles.hpp"
 #include "test_paths.hpp"
 
@@ -152,16 +152,16 @@ TEST(PinSlotAngleLimits, LimitsOneEMinus30RadAwayAreDecidedExactly) {
         above.canonicalize();
         SCOPED_TRACE("tau = " + to_exact_string(tau) + ", k = " + std::to_string(k));
         // just inside: a limit 1e-30 below and one 1e-30 above
-        EXPECT_TRUE(pinslot::angle_within_limits(tau, below, above));
-        EXPECT_TRUE(pinslot::angle_within_limits(tau, below, Rational(above + 1)));
-        EXPECT_TRUE(pinslot::angle_within_limits(tau, Rational(below - 1), above));
+        EXPECT_TRUE(angle_within_limits(tau, below, above));
+        EXPECT_TRUE(angle_within_limits(tau, below, Rational(above + 1)));
+        EXPECT_TRUE(angle_within_limits(tau, Rational(below - 1), above));
         // just outside: the whole interval 1e-30 above psi, or 1e-30 below it (less than a turn wide)
-        EXPECT_FALSE(pinslot::angle_within_limits(tau, above, Rational(above + 3)));
-        EXPECT_FALSE(pinslot::angle_within_limits(tau, Rational(below - 3), below));
+        EXPECT_FALSE(angle_within_limits(tau, above, Rational(above + 3)));
+        EXPECT_FALSE(angle_within_limits(tau, Rational(below - 3), below));
         // the signs themselves
         mpz_class m(2 * k);
-        EXPECT_EQ(pinslot::angle_sign(tau, m, below), 1);
-        EXPECT_EQ(pinslot::angle_sign(tau, m, above), -1);
+        EXPECT_EQ(angle_sign(tau, m, below), 1);
+        EXPECT_EQ(angle_sign(tau, m, above), -1);
         ++cases;
       }
     }
@@ -170,23 +170,23 @@ TEST(PinSlotAngleLimits, LimitsOneEMinus30RadAwayAreDecidedExactly) {
 
 TEST(PinSlotAngleLimits, TiesAndWholeTurns) {
   // psi = 0 at tau = 0: a limit at exactly 0 is attained (the limits are closed)
-  EXPECT_EQ(pinslot::angle_sign(Rational(0), mpz_class(0), Rational(0)), 0);
-  EXPECT_TRUE(pinslot::angle_within_limits(Rational(0), Rational(0), Rational(1)));
-  EXPECT_TRUE(pinslot::angle_within_limits(Rational(0), Rational(-1), Rational(0)));
-  EXPECT_FALSE(pinslot::angle_within_limits(Rational(0), power10(-30), Rational(1)));
-  EXPECT_FALSE(pinslot::angle_within_limits(Rational(0), Rational(-1), Rational(-power10(-30))));
+  EXPECT_EQ(angle_sign(Rational(0), mpz_class(0), Rational(0)), 0);
+  EXPECT_TRUE(angle_within_limits(Rational(0), Rational(0), Rational(1)));
+  EXPECT_TRUE(angle_within_limits(Rational(0), Rational(-1), Rational(0)));
+  EXPECT_FALSE(angle_within_limits(Rational(0), power10(-30), Rational(1)));
+  EXPECT_FALSE(angle_within_limits(Rational(0), Rational(-1), Rational(-power10(-30))));
   // tiny tangents: psi = 2 tau - ... is decided at 1e-300 too
   Rational tiny = power10(-300);
-  EXPECT_TRUE(pinslot::angle_within_limits(tiny, Rational(0), Rational(2 * tiny)));
-  EXPECT_FALSE(pinslot::angle_within_limits(tiny, Rational(2 * tiny), Rational(1)));   // psi < 2 tau
-  EXPECT_FALSE(pinslot::angle_within_limits(Rational(-tiny), Rational(0), Rational(1)));
+  EXPECT_TRUE(angle_within_limits(tiny, Rational(0), Rational(2 * tiny)));
+  EXPECT_FALSE(angle_within_limits(tiny, Rational(2 * tiny), Rational(1)));   // psi < 2 tau
+  EXPECT_FALSE(angle_within_limits(Rational(-tiny), Rational(0), Rational(1)));
   // a whole turn: 2 pi against rational widths 1e-50 apart from it
-  EXPECT_TRUE(pinslot::at_least_whole_turn(Rational(2 * pi_hi())));
-  EXPECT_FALSE(pinslot::at_least_whole_turn(Rational(2 * pi_lo())));
-  EXPECT_TRUE(pinslot::at_least_whole_turn(power10(400)));
+  EXPECT_TRUE(at_least_whole_turn(Rational(2 * pi_hi())));
+  EXPECT_FALSE(at_least_whole_turn(Rational(2 * pi_lo())));
+  EXPECT_TRUE(at_least_whole_turn(power10(400)));
   // 1e400 rad: whole turns are reduced exactly (psi(1) = pi/2 against pi/2 + 2 pi k, k huge,
   // is out of reach of the oracle; the reduction is checked against the same angle at k = 0)
-  EXPECT_TRUE(pinslot::angle_within_limits(Rational(1), Rational(-power10(400)), power10(400)));
+  EXPECT_TRUE(angle_within_limits(Rational(1), Rational(-power10(400)), power10(400)));
 }
 
 // A bar on a pin-slot motion against a fixed block (BadPairsAreRefusedWithAMessage's pair)
@@ -199,6 +199,57 @@ Model bar_and_block(const std::string& angle_limits, const std::string& initial_
       "initial": { "angle": )" + initial_angle + R"( },
       "loops": [ { "start": [0, 0], "edges": [ { "line_to": [10, 0] }, { "line_to": [10, 2] }, { "line_to": [0, 2] },
       { "line_to": [0, 0] } ] } ] } ] })");
+}
+
+// The reader takes a pin-slot part's initial angle modulo whole turns, as its angle limits and
+// PinSlotSpace::locate do (session 54): generated limits [lo, hi] (whole degrees, narrower than a
+// turn) and initial angles a + 360 k deg, k from -10^6 to 10^6, against the oracle in whole
+// degrees ((a - lo) mod 360 <= hi - lo); an angle at a limit plus whole turns is inside whichever
+// way the reader rounded the three values; limits of a whole turn take any angle. Before, 370 deg
+// against [-20, 20] deg was refused ("outside the motion's angle limits").
+TEST(PinSlotAngleLimits, TheInitialAngleIsTakenModuloWholeTurns) {
+  auto accepted = [](const std::string& limits, const std::string& angle) {
+    try {
+      Model model = bar_and_block(limits, angle);
+      return true;
+    } catch (const ModelError& e) {
+      EXPECT_EQ(e.pointer(), "/parts/1/initial/angle") << e.what();
+      EXPECT_NE(std::string(e.what()).find("modulo 360 deg"), std::string::npos) << e.what();
+      return false;
+    }
+  };
+  EXPECT_TRUE(accepted("[-20, 20]", "370"));
+  EXPECT_TRUE(accepted("[-20, 20]", "-350"));
+  EXPECT_FALSE(accepted("[-20, 20]", "390"));
+  EXPECT_TRUE(accepted("[330, 390]", "0"));
+  EXPECT_TRUE(accepted("[-180, 180]", "\"1e6 + 179.5\""));   // a whole turn: any angle
+  std::mt19937_64 random(5401);
+  std::uniform_int_distribution<long> lower(-400, 400), width(1, 300), turns(-12, 12);
+  const long far_turns[] = {-1000000, -1000, 1000, 1000000};
+  int inside = 0, outside = 0, at_limit = 0;
+  for (int round = 0; round < 60; ++round) {
+    const long lo = lower(random), hi = lo + width(random);
+    const std::string limits = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    std::uniform_int_distribution<long> offset(0, 359);
+    long a = lo + offset(random);   // an angle of the turn from lo
+    if (round % 5 == 0) a = round % 10 == 0 ? lo : hi;   // at a limit
+    const long k = round % 4 == 3 ? far_turns[(round / 4) % 4] : turns(random);
+    const long written = a + 360 * k;
+    const bool expected = ((a - lo) % 360 + 360) % 360 <= hi - lo;
+    SCOPED_TRACE(limits + " at " + std::to_string(written) + " deg");
+    EXPECT_EQ(accepted(limits, std::to_string(written)), expected);
+    // the same angle and whole turns written as an expression (rounded once, as one value)
+    EXPECT_EQ(accepted(limits, "\"" + std::to_string(a) + " + 360 * (" + std::to_string(k) + ")\""), expected);
+    (expected ? (a == lo || a == hi ? at_limit : inside) : outside) += 1;
+  }
+  EXPECT_GT(inside, 5);
+  EXPECT_GT(outside, 5);
+  EXPECT_GT(at_limit, 5);
+  // a rotating part's limits are not angles modulo whole turns: 370 deg against [-20, 20] deg is refused
+  EXPECT_THROW(read_model(R"({ "hipair": 1, "name": "r", "units": { "length": "mm", "angle": "deg" }, "parts": [
+    { "name": "b", "motion": { "rotation": { "pivot": [0, 0], "limits": [-20, 20] } }, "initial": { "angle": 370 },
+      "loops": [ { "start": [0, 0], "edges": [ { "line_to": [10, 0] }, { "line_to": [10, 2] }, { "line_to": [0, 0] } ] } ] } ] })"),
+               ModelError);
 }
 
 TEST(PinSlotAngleLimits, LocateAtALimitOneEMinus30Away) {

@@ -1,13 +1,16 @@
 // SVG writer and mechanism drawings: well-formed documents, y-up coordinates, arc flags,
 // atomic output.
+#include "core/length_display.hpp"
 #include "io/atomic_file.hpp"
 #include "io/svg.hpp"
 #include "render/cspace_svg.hpp"
+#include "render/kinematics_svg.hpp"
 #include "render/mechanism_svg.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
+#include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
@@ -343,6 +346,64 @@ TEST(CSpaceSvg, EveryContactEdgeOfTheBuiltSpaceIsDrawn) {
     // an operating region's picture says what was built
     std::string built = "outside the " + std::to_string(space.statistics().region_tiles) + " tiles of the operating region";
     EXPECT_EQ(svg.find(built) != std::string::npos, test.region) << test.model;
+  }
+}
+
+
+// The kinematics picture's velocity-ratio axis names the ratio's unit for every driver/follower
+// combination: none for deg/deg and mm/mm, mm/deg for a translating follower of a rotating
+// driver, deg/mm the other way round, and the length unit of a rescaled analysis ("1e400 mm",
+// core/length_display.hpp) in it. The oracle for the plotted numbers: ratios made so that their
+// largest value in the named unit is exactly 2 (mm/rad 360/pi is 2 mm/deg, rad/mm pi/90 is
+// 2 deg/mm) give a ratio axis whose top tick is 2, above every position tick.
+TEST(KinematicsSvg, TheVelocityRatioAxisNamesItsUnitForEveryDriverAndFollower) {
+  const double pi = std::acos(-1.0);
+  struct Case {
+    bool driver_rotates, follower_rotates;
+    long length_exponent;
+    const char* label;
+  };
+  const Case cases[] = {{true, true, 0, "velocity ratio"},
+                        {false, false, 0, "velocity ratio"},
+                        {true, false, 0, "velocity ratio (mm/deg)"},
+                        {false, true, 0, "velocity ratio (deg/mm)"},
+                        {true, false, 400, "velocity ratio (1e400 mm/deg)"},
+                        {false, true, -300, "velocity ratio (deg/1e-300 mm)"},
+                        {false, false, 400, "velocity ratio"}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.label);
+    LengthDisplayScope unit(c.length_exponent);
+    KinematicsResult result;
+    result.model_name = "ratios";
+    result.driver = "driver";
+    result.driver_rotates = c.driver_rotates;
+    result.followers = {"follower"};
+    result.follower_rotates = {c.follower_rotates};
+    // the largest ratio in internal units (rad or mm per rad or mm) that is 2 in the named unit
+    const double top = c.driver_rotates == c.follower_rotates ? 2 : c.follower_rotates ? 2 * pi / 180 : 2 * 180 / pi;
+    const double position_top = c.follower_rotates ? 0.5 * pi / 180 : 0.5;   // 0.5 deg or 0.5 mm
+    for (int i = 0; i <= 20; ++i) {
+      KinematicSample sample;
+      sample.driver = (c.driver_rotates ? pi / 180 : 1.0) * i;   // 0 .. 20 deg or mm
+      sample.positions = {position_top * i / 20};
+      sample.velocity_ratios = {top * i / 20};
+      result.samples.push_back(sample);
+    }
+    result.start = result.samples.front().driver;
+    result.end = result.reached = result.samples.back().driver;
+    std::string svg = render::kinematics_plot_svg(result);
+    ASSERT_TRUE(well_formed(svg));
+    EXPECT_NE(svg.find(">" + std::string(c.label) + "<"), std::string::npos);
+    // exactly one ratio axis label (a unitless one is not followed by a unit)
+    std::size_t labels = 0;
+    for (std::size_t at = svg.find(">velocity ratio"); at != std::string::npos; at = svg.find(">velocity ratio", at + 1))
+      if (svg.compare(at + 15, 1, "<") == 0 || svg.compare(at + 15, 2, " (") == 0) ++labels;
+    EXPECT_EQ(labels, 1u);
+    double largest_tick = -1;
+    std::regex tick(R"re(text-anchor="end" fill="black">([-0-9.]+)<)re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), tick); it != std::sregex_iterator(); ++it)
+      largest_tick = std::max(largest_tick, std::stod((*it)[1]));
+    EXPECT_EQ(largest_tick, 2);
   }
 }
 

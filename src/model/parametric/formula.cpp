@@ -99,10 +99,7 @@ FormulaPtr formula_scaled(const FormulaPtr& formula, const Rational& factor, boo
 
 namespace {
 
-struct Token {
-  enum class Kind { number, name, symbol, end } kind = Kind::end;
-  std::string text;
-};
+using Token = ExpressionToken;
 
 // A formula and whether its value carries an angle unit (the exact evaluator's Quantity::is_angle,
 // by the same rules: expression.cpp).
@@ -131,58 +128,7 @@ class Parser {
   }
 
   void tokenize() {
-    std::size_t i = 0;
-    auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
-    auto name_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
-    while (i < text_.size()) {
-      char c = text_[i];
-      if (std::isspace(static_cast<unsigned char>(c))) {
-        ++i;
-        continue;
-      }
-      Token token;
-      if (digit(c) || (c == '.' && i + 1 < text_.size() && digit(text_[i + 1]))) {
-        std::size_t j = i;
-        while (j < text_.size() && digit(text_[j])) ++j;
-        if (j < text_.size() && text_[j] == '.') {
-          ++j;
-          while (j < text_.size() && digit(text_[j])) ++j;
-        }
-        if (j < text_.size() && (text_[j] == 'e' || text_[j] == 'E')) {
-          std::size_t k = j + 1;
-          if (k < text_.size() && (text_[k] == '+' || text_[k] == '-')) ++k;
-          if (k < text_.size() && digit(text_[k])) {
-            while (k < text_.size() && digit(text_[k])) ++k;
-            j = k;
-          }
-        }
-        token.kind = Token::Kind::number;
-        token.text = std::string(text_.substr(i, j - i));
-        i = j;
-      } else if (std::isalpha(static_cast<unsigned char>(c))) {
-        std::size_t j = i + 1;
-        while (j < text_.size()) {
-          if (name_char(text_[j])) {
-            ++j;
-          } else if (text_[j] == '-' && j + 1 < text_.size() && name_char(text_[j + 1])) {
-            j += 2;
-          } else {
-            break;
-          }
-        }
-        token.kind = Token::Kind::name;
-        token.text = std::string(text_.substr(i, j - i));
-        i = j;
-      } else if (std::string_view("+-*/^(),").find(c) != std::string_view::npos) {
-        token.kind = Token::Kind::symbol;
-        token.text = std::string(1, c);
-        ++i;
-      } else {
-        fail("unexpected character");
-      }
-      tokens_.push_back(std::move(token));
-    }
-    tokens_.push_back(Token{Token::Kind::end, "end of expression"});
+    if (expression_tokens(text_, tokens_)) fail("unexpected character");
   }
 
   const Token& current() const { return tokens_[next_]; }

@@ -90,30 +90,9 @@ class ExactEvaluator {
     if (motion.direction_is_angle)
       return unit_vector(angle_quantity(motion.direction_angle), motion.direction_angle.pointer,
                          motion.direction_angle.text, roundings_);
+    // the reader's construction (Reader::direction), on the recipe's slots
     Rational dx = number(motion.direction_x), dy = number(motion.direction_y);
-    Rational length_squared = dx * dx + dy * dy;
-    const std::string& pointer = motion.direction_x.pointer;
-    if (length_squared == 0) throw ModelError(pointer, "zero direction vector: the axis has no direction");
-    if (mpz_perfect_square_p(length_squared.get_num_mpz_t()) && mpz_perfect_square_p(length_squared.get_den_mpz_t())) {
-      mpz_class numerator, denominator;
-      mpz_sqrt(numerator.get_mpz_t(), length_squared.get_num_mpz_t());
-      mpz_sqrt(denominator.get_mpz_t(), length_squared.get_den_mpz_t());
-      Rational length(numerator, denominator);
-      return Point{Rational(dx / length), Rational(dy / length)};
-    }
-    // As Reader::direction: the half-angle tangent rounded within the bound.
-    bool flip = dx < 0;
-    Rational x = flip ? Rational(-dx) : dx, y = flip ? Rational(-dy) : dy;
-    Interval length;
-    Interval squared(length_squared);
-    mpfi_sqrt(length.get(), squared.get());
-    Interval t = Interval(y) / (length + Interval(x));
-    std::string expression = "direction [" + motion.direction_x.text + ", " + motion.direction_y.text +
-                             "] (half-angle tangent)";
-    Rational rounded = to_rational(Quantity::approximate(t), pointer, expression, roundings_);
-    Point unit = unit_from_half_tangent(rounded);
-    if (flip) unit = Point{Rational(-unit.x), Rational(-unit.y)};
-    return unit;
+    return unit_direction(dx, dy, motion.direction_x.pointer, motion.direction_x.text, motion.direction_y.text, roundings_);
   }
 
   std::vector<Rounding>& roundings() { return roundings_; }

@@ -1,14 +1,14 @@
-// Exact comparisons of a pin-slot angle 2 atan(tau) with rational angle limits (angle_limits.hpp).
-#include "pinslot/angle_limits.hpp"
+// Exact comparisons of an angle 2 atan(tau) with rational angle limits (angle_limits.hpp).
+#include "core/angle_limits.hpp"
 
-#include "algebra/angle_sign.hpp"
+#include "core/angle_sign.hpp"
 
 #include <mpfi.h>
 #include <mpfr.h>
 
 #include <algorithm>
 
-namespace hipair::pinslot {
+namespace hipair {
 
 namespace {
 
@@ -30,18 +30,14 @@ struct Mpfr {
 
 }  // namespace
 
-int angle_sign(const Rational& tau, const mpz_class& m, const Rational& L) {
-  return cspace::algebra::angle_sign(tau, m, L);
-}
-
 bool angle_within_limits(const Rational& tau, const Rational& lo, const Rational& hi) {
   // k: the fewest whole turns with 2 atan(tau) + 2 pi k >= lo. An estimate, ceil((lo - psi) /
   // 2 pi) from an enclosure, then made exact by the signs.
-  mpfr_prec_t bits = cspace::algebra::angle_bits(mpz_class(0), lo) + 16;
+  mpfr_prec_t bits = angle_bits(mpz_class(0), lo) + 16;
   mpz_class k;
   {
     Mpfi x(bits), two_pi(bits);
-    cspace::algebra::enclose_angle(x.v, tau, mpz_class(0), lo, bits);   // psi - lo
+    enclose_angle(x.v, tau, mpz_class(0), lo, bits);   // psi - lo
     mpfi_const_pi(two_pi.v);
     mpfi_mul_2ui(two_pi.v, two_pi.v, 1);
     mpfi_div(x.v, x.v, two_pi.v);                 // (psi - lo) / 2 pi
@@ -60,8 +56,24 @@ bool at_least_whole_turn(const Rational& width) {
   return angle_sign(Rational(0), mpz_class(2), width) <= 0;
 }
 
+Rational rounding_slack(const std::vector<Rounding>& roundings, const std::string& pointer) {
+  Rational slack = 0;
+  if (pointer.empty()) return slack;
+  for (const Rounding& r : roundings)
+    if (r.pointer.compare(0, pointer.size(), pointer) == 0) slack += r.bound;
+  return slack;
+}
+
+bool initial_angle_within_limits(const Rational& angle, const RationalInterval& limits, const Rational& limits_slack,
+                                 const Rational& angle_slack) {
+  if (at_least_whole_turn(Rational(limits.hi - limits.lo + limits_slack))) return true;
+  const Rational slack = limits_slack + angle_slack;
+  // angle + 2 pi k in [lo - slack, hi + slack]: 2 atan(0) + 2 pi k in [lo - slack - angle, hi + slack - angle]
+  return angle_within_limits(Rational(0), Rational(limits.lo - slack - angle), Rational(limits.hi + slack - angle));
+}
+
 mpz_class nearest_whole_turns(const Rational& x) {
-  mpfr_prec_t bits = cspace::algebra::angle_bits(mpz_class(0), x) + 16;
+  mpfr_prec_t bits = angle_bits(mpz_class(0), x) + 16;
   Mpfr value(bits), two_pi(bits);
   mpfr_set_q(value.v, x.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(two_pi.v, MPFR_RNDN);
@@ -73,7 +85,7 @@ mpz_class nearest_whole_turns(const Rational& x) {
 }
 
 double reduced_angle(const Rational& x, const mpz_class& k) {
-  mpfr_prec_t bits = cspace::algebra::angle_bits(k, x) + 64;
+  mpfr_prec_t bits = angle_bits(k, x) + 64;
   Mpfr value(bits), turns(bits);
   mpfr_set_q(value.v, x.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(turns.v, MPFR_RNDN);
@@ -83,4 +95,4 @@ double reduced_angle(const Rational& x, const mpz_class& k) {
   return mpfr_get_d(value.v, MPFR_RNDN);
 }
 
-}  // namespace hipair::pinslot
+}  // namespace hipair

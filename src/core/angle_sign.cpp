@@ -1,9 +1,9 @@
 // Exact signs of 2 atan(tau) + m pi - L (angle_sign.hpp).
-#include "algebra/angle_sign.hpp"
+#include "core/angle_sign.hpp"
 
 #include <algorithm>
 
-namespace hipair::cspace::algebra {
+namespace hipair {
 
 namespace {
 
@@ -59,4 +59,4 @@ int angle_sign(const Rational& tau, const mpz_class& m, const Rational& L) {
   }
 }
 
-}  // namespace hipair::cspace::algebra
+}  // namespace hipair

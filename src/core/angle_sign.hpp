@@ -1,6 +1,6 @@
 // Exact signs of angles 2 atan(tau) + m pi - L (tau and L rational, m an integer): the
 // comparisons of half-angle tangents with rational angle limits, modulo half turns, shared by
-// pin-slot parts (pinslot/angle_limits.hpp) and rotating parts' chart layout
+// pin-slot parts and model checks (core/angle_limits.hpp) and rotating parts' chart layout
 // (curves/contact_curves.cpp).
 //
 // The sign comes from an MPFI enclosure of the difference, refined (precision doubled) until it
@@ -16,7 +16,7 @@
 #include <gmpxx.h>
 #include <mpfi.h>
 
-namespace hipair::cspace::algebra {
+namespace hipair {
 
 /// The sign of 2 atan(tau) + m pi - L, exactly (-1, 0 or +1; 0 only for tau = m = L = 0).
 int angle_sign(const Rational& tau, const mpz_class& m, const Rational& L);
@@ -31,4 +31,4 @@ void enclose_angle(mpfi_t out, const Rational& tau, const mpz_class& m, const Ra
 /// A precision at which enclose_angle(tau, m, L) is narrow (64 bits beyond the magnitudes).
 mpfr_prec_t angle_bits(const mpz_class& m, const Rational& L);
 
-}  // namespace hipair::cspace::algebra
+}  // namespace hipair
