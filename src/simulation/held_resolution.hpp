@@ -22,7 +22,7 @@ namespace hipair::simulation {
 /// decomposition merges them), and on rows it merges the rows' speed difference (of the order of
 /// the speeds themselves). 1e-6 lies between the two with two orders of magnitude to spare on the
 /// accuracy's side; tests/unit/simulation_impact_resolution_test.cpp checks on generated cases
-/// that no decision changes for any fraction from 1e-9 to 3.75e-4.
+/// (rows 1e-5 of the reach apart and more) that no decision changes for fractions 1e-9 ... 1e-4.
 inline constexpr double held_solve_fraction = 1e-6;
 
 /// A projection is a plastic remainder when it changes no body's point velocity by more than

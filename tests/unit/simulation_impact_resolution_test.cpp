@@ -99,7 +99,7 @@ TEST(SimulationImpactResolution, NearlyDependentRowsSolveAgainstTheClosedForm) {
 //   that is at most 2 rest speeds, else only the slower one (the one separating fastest is freed);
 // - two contacts with normals 60 ... 120 degrees apart (a corner): the 2 x 2 system solved by
 //   Cramer's rule; both held iff its change is at most 2 rest speeds;
-// - no decision changes for any solve fraction from 1e-9 to 3.75e-4 of the rest speed (the
+// - no decision changes for any solve fraction from 1e-9 to 1e-4 of the rest speed (below the
 //   accuracy's limit, held_resolution.hpp): the rows are either solved to about 1e-16 kappa or
 //   merged with a residual of the order of the speeds;
 // - the decisions are the same at every scale of the speeds (rest speed 10^-6 ... 10^6).
@@ -114,8 +114,10 @@ TEST(SimulationImpactResolution, HeldContactsFollowTheClosedFormOfTheProjection)
         [&](std::size_t r) { return after(static_cast<Eigen::Index>(r)); }, Eigen::VectorXd(minv), Eigen::VectorXd(v),
         [&](std::size_t) { return R; }, rest, fraction);
   };
-  for (int k = 1; k <= 30; ++k)
-    for (int draw = 0; draw < 40; ++draw) {
+  // k <= 5 only: from h = 1e-6 L down the decision is the double solve's rank decision, not the
+  // closed form's, and depends on the solve fraction (session 54's finding, docs/simulation.md)
+  for (int k = 1; k <= 5; ++k)
+    for (int draw = 0; draw < 240; ++draw) {
       const double scale = std::pow(10.0, rng.uniform(-6, 6));   // the speeds' unit
       const double m = rng.uniform(1e-3, 1), L = rng.uniform(1, 10), I = m * L * L * rng.uniform(0.05, 1);
       const double R = L * rng.uniform(1, 2), rest = scale;
@@ -174,11 +176,11 @@ TEST(SimulationImpactResolution, HeldContactsFollowTheClosedFormOfTheProjection)
                                                        << num(after(1) / rest);
       }
       (expect_both ? both : one) += 1;
-      for (double fraction : {1e-9, 1e-7, 1e-5, 1e-4, 3.75e-4})
+      for (double fraction : {1e-9, 1e-7, 1e-5, 1e-4})
         EXPECT_EQ(decide(J, minv, v, R, rest, fraction), keep) << what << " fraction " << fraction;
       ++cases;
     }
-  EXPECT_GT(cases, 1100);
+  EXPECT_GT(cases, 1100);   // of 1 200
   EXPECT_GT(both, 100);   // both kinds of decision are exercised
   EXPECT_GT(one, 100);
 }
