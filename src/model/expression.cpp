@@ -1,6 +1,7 @@
 #include "model/expression.hpp"
 
 #include "core/exact_literal.hpp"
+#include "core/model_scale.hpp"
 #include "model/exact_trig.hpp"
 #include "model/json_document.hpp"
 
@@ -749,37 +750,28 @@ Rational to_rational(const Quantity& value, const std::string& pointer,
   // Every value within the bound of each end of the enclosure is within the bound of the exact
   // value: the simplest rational of [upper - bound, lower + bound] (small denominators keep the
   // downstream polynomials' coefficients small).
-  // A value that is certainly not 0 is rounded within a bound that respects its own size.
+  // A value that is certainly not 0 and outside [2^-20, 2^40] (in its unit) is rounded as at
+  // its decimal scale: in units U = 10^E, E the multiple of 10 that brings it within [1e-4, 1e6)
+  // (core/model_scale.hpp decimal_unit_exponent), the simplest rational within b of value / U,
+  // times U (bound b U). A value written at 10^(10 j) times an ordinary one (in [1e-4, 1e6)) is
+  // so exactly 10^(10 j) times the rational the ordinary one gets: a model scaled by 10^(10 j)
+  // reads as that model scaled, as the templates do (template_geometry.cpp). Until session 54
+  // large values kept the absolute bound b (the escapement x 1e400's banking pins and balance
+  // spring were other rationals than x 1's, and its simulation jammed at 0.0082 s) and small
+  // ones min(b, 2^-44 |v|) in units of the power of ten below them.
   Rational magnitude;
   if (enclosure.sign() != 0) magnitude = lower > 0 ? lower : Rational(-upper);
-  Rational bound = rounding_bound_near(magnitude);
+  static const Rational small(1, mpz_class(1) << 20), large(mpz_class(1) << 40);
+  const bool decimal = magnitude > 0 && (magnitude < small || magnitude > large);
+  const Rational unit = decimal ? power_of_ten_rational(decimal_unit_exponent(magnitude)) : Rational(1);
+  const Rational bound = decimal ? Rational(rounding_bound() * unit) : rounding_bound();
   Rational from = upper - bound, to = lower + bound;
   if (from > to)
     throw PrecisionExhausted(pointer, "cannot evaluate " + quoted_expression(expression) + " to within the rounding bound " +
                                           to_decimal_string(bound, 3) + " (the value is too large for " +
                                           std::to_string(working_interval_bits()) + "-bit precision)");
-  Rational rounded;
-  if (bound == rounding_bound()) {
-    rounded = simplest_rational_between(from, to);
-  } else {
-    // A value rounded relative to its size (rounding_bound_near): the simplest rational in units
-    // of a power of ten near it, so that a model written at 10^-300 mm gets the rationals it has
-    // at 1 mm times 10^-300 (the literals' own denominators), not unrelated ones of 1000 bits.
-    // The unit is 10^e with 10^e <= magnitude < 10^(e+1), exactly (so that every scale of the
-    // same value picks the same digits).
-    long bits = static_cast<long>(mpz_sizeinbase(magnitude.get_num_mpz_t(), 2)) -
-                static_cast<long>(mpz_sizeinbase(magnitude.get_den_mpz_t(), 2));
-    long exponent = static_cast<long>(std::floor(static_cast<double>(bits) * 0.30102999566398));
-    auto power_of_ten = [](long e) {
-      mpz_class power;
-      mpz_ui_pow_ui(power.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
-      return e < 0 ? Rational(mpz_class(1), power) : Rational(power);
-    };
-    Rational unit = power_of_ten(exponent);
-    while (unit > magnitude) unit = power_of_ten(--exponent);
-    while (power_of_ten(exponent + 1) <= magnitude) unit = power_of_ten(++exponent);
-    rounded = Rational(unit * simplest_rational_between(Rational(from / unit), Rational(to / unit)));
-  }
+  const Rational rounded = decimal ? Rational(unit * simplest_rational_between(Rational(from / unit), Rational(to / unit)))
+                                   : simplest_rational_between(from, to);
   roundings.push_back(Rounding{pointer, expression, rounded, bound});
   return rounded;
 }

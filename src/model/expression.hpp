@@ -76,7 +76,8 @@ class PrecisionExhausted : public ModelError {
 /// rounded: the thread's rounding bound b (rounding_bound()), and for a value smaller than
 /// 2^-20 (about 10^-6, in the value's unit) the smaller of b and 2^-44 times the value, so that
 /// a part drawn at 10^-300 mm keeps its shape instead of rounding to 0 (docs/model-format.md
-/// "Exactness and rounding").
+/// "Exactness and rounding"). Used by round_simplest (model/exact_trig.hpp); to_rational rounds
+/// values outside [2^-20, 2^40] at their decimal scale instead.
 Rational rounding_bound_near(const Rational& magnitude);
 
 /// A token of an expression: a number literal ("2.5e-3"), a name ("pi", "lever-length": a '-'
@@ -109,9 +110,13 @@ void check_rational_size(const Rational& value, const std::string& pointer);
 /// \throws ModelError(pointer, ...) when the enclosure contains 0 and the value is not exact.
 int sign_of(const Quantity& value, const std::string& pointer, std::string_view expression);
 
-/// The rational value: exact when the value is rational, else the nearest multiple of 10^-12
-/// (a Rounding {pointer, expression, value, 10^-12} is appended).
-/// \throws ModelError(pointer, ...) when the enclosure is too wide to round within 10^-12.
+/// The rational value: exact when the value is rational, else the simplest rational within the
+/// rounding bound b of it (a Rounding {pointer, expression, value, b} is appended); a value
+/// certainly not 0 and outside [2^-20, 2^40] is rounded as at its decimal scale instead: U times
+/// the simplest rational within b of value / U, U = 10^E with E a multiple of 10 bringing it
+/// within [1e-4, 1e6) (core/model_scale.hpp decimal_unit_exponent; the Rounding's bound b U), so
+/// a value written 10^(10 j) times an ordinary one is exactly 10^(10 j) times that one's rational.
+/// \throws PrecisionExhausted(pointer, ...) when the enclosure is too wide to round within the bound.
 Rational to_rational(const Quantity& value, const std::string& pointer,
                      const std::string& expression, std::vector<Rounding>& roundings);
 

@@ -42,6 +42,7 @@
 
 #include "kernels/contact_geometry.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/held_resolution.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/planar_bounds.hpp"
 #include "simulation/units.hpp"
@@ -458,46 +459,6 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
 
 // ---- held contacts, shared by both planar simulators (docs/simulation.md, "Sustained contact
 // of a planar part", "Sustained contact between moving parts")
-
-// Which of the contacts an impact left without separating speed (candidate[r]: normal speed
-// after(r) <= the rest speed, a contact of its own) are held (docs/simulation.md, "A held set the
-// velocities cannot keep"). Holding them projects the velocity v onto J v = 0 (mass-weighted,
-// inverse masses minv): a plastic remainder, by the rest speed's definition, moves no point of a
-// part by more than about the rest speed. Where two contacts' rows are nearly dependent (two
-// fixed vertices 1e-8 mm apart under one turning face of the part: their rows differ by the
-// moment arm 1e-8 only) the projection is not a remainder: it either stops the part's turning
-// (a rotation of 55 rad/s removed for a normal speed of 5e-3 mm/s) or, where the decomposition
-// takes the rows as one, leaves one contact approaching while held — the next step's force
-// problem lifts it off and the chord strikes it again at once, with no end (session 52). Then the
-// contact the impact left separating fastest is not held (the exact chords watch it like any
-// free feature pair), until the projection of the rest removes their normal speeds (to 1e-6 of
-// the rest speed) and changes no body's point velocity (|dv| + |domega| reach, reach(b) per body
-// of 3 coordinates) by more than twice the rest speed. A single contact is always held.
-template <class Row, class After, class Reach>
-std::vector<bool> held_at_resolution(std::vector<bool> keep, Row row, After after, const Eigen::VectorXd& minv,
-                                     const Eigen::VectorXd& v, Reach reach, double rest_speed) {
-  const Eigen::Index n = minv.size();
-  for (;;) {
-    std::vector<std::size_t> kept;
-    for (std::size_t r = 0; r < keep.size(); ++r)
-      if (keep[r]) kept.push_back(r);
-    if (kept.size() <= 1) return keep;
-    Eigen::MatrixXd A(static_cast<Eigen::Index>(kept.size()), n);
-    for (std::size_t i = 0; i < kept.size(); ++i) A.row(static_cast<Eigen::Index>(i)) = row(kept[i]).transpose();
-    const Eigen::MatrixXd MAt = minv.asDiagonal() * A.transpose();
-    const Eigen::VectorXd dv = -MAt * (A * MAt).completeOrthogonalDecomposition().solve(A * v);
-    const double residual = (A * (v + dv)).cwiseAbs().maxCoeff();
-    double change = 0;
-    for (Eigen::Index b = 0; b + 2 < n; b += 3)
-      change = std::max(change, std::hypot(dv(b), dv(b + 1)) + std::abs(dv(b + 2)) * reach(static_cast<std::size_t>(b / 3)));
-    if (residual <= 1e-6 * rest_speed && change <= 2 * rest_speed) return keep;
-    std::size_t fastest = kept.front();
-    for (std::size_t r : kept)
-      if (after(r) > after(fastest)) fastest = r;
-    if (!(after(fastest) > 1e-6 * rest_speed)) return keep;   // none separating: the projection stands
-    keep[fastest] = false;
-  }
-}
 
 // Projects a state onto its m held contacts: positions by Gauss–Newton onto gap = hold_gap
 // (mass-weighted, at most 4 iterations), then velocities onto J v = 0 and, for sticking
@@ -1331,7 +1292,7 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
   for (std::size_t r = 0; r < rows.pair.size(); ++r)
     candidate[r] = after(static_cast<Eigen::Index>(r)) <= rest_speed &&   // not separating
                    contact_gap(model, rows.feature[r], pose_of(model.parts[part].motion.pivot, k), true).defined;   // a contact of its own
-  const std::vector<bool> keep = held_at_resolution(
+  const std::vector<bool> keep = simulation::held_at_resolution(
       candidate, [&](std::size_t r) { return Eigen::VectorXd(rows.J.row(static_cast<Eigen::Index>(r)).transpose()); },
       [&](std::size_t r) { return after(static_cast<Eigen::Index>(r)); }, Eigen::VectorXd(inverse_mass()),
       Eigen::VectorXd(Eigen::Vector3d(k.vx, k.vy, k.omega)), [&](std::size_t) { return reach; }, rest_speed);
@@ -2637,7 +2598,7 @@ void PlanarSystemSimulation::Impl::impact(double time,
     }
     candidate[r] = true;
   }
-  const std::vector<bool> keep = held_at_resolution(
+  const std::vector<bool> keep = simulation::held_at_resolution(
       candidate, [&](std::size_t r) { return contact.J[r]; }, [&](std::size_t r) { return after(static_cast<Eigen::Index>(r)); },
       inverse_mass(), after_v, [&](std::size_t b) { return bodies[b].reach; }, rest_speed);
   std::vector<Held> now;

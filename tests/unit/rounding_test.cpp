@@ -359,64 +359,76 @@ TEST(ModelRounding, PhasePlusPiMultipleKeepsQuarterTurnsExact) {
   }
 }
 
-// Session 19: values far from 1 mm. A value below 2^-20 (in its unit) is rounded within
-// min(b, 2^-44 |v|), as the simplest rational in units of the power of ten below it, so that the
-// same value written at another decimal scale gets the same digits (a model drawn at 10^-300 mm
-// keeps its shape and the rationals it has at 1 mm); a value too large for the 256-bit
-// enclosure to be rounded within b signals PrecisionExhausted, and read_model then reads the
-// whole model at doubled precision.
-TEST(ModelRounding, TinyValuesAreRoundedRelativeToTheirSizeAndAlikeAtEveryDecimalScale) {
+// Values far from 1 mm (session 19; session 54). A value outside [2^-20, 2^40] (in its unit) is
+// rounded at its decimal scale: in units U = 10^E, E the multiple of 10 that brings it within
+// [1e-4, 1e6), the simplest rational within b of v / U, times U (bound b U). So a value written
+// at 10^(10 j) times an ordinary one is exactly 10^(10 j) times the rational the ordinary one
+// gets at 1 mm (a model scaled so reads as that model scaled), and a model drawn at 10^-300 mm
+// keeps its shape and the small rationals it has at 1 mm. Oracle: the ordinary value's own
+// rounding (the absolute bound b) and the exact value, decided by squaring.
+TEST(ModelRounding, TinyValuesAreRoundedAtTheirDecimalScaleAsTheOrdinaryValueIs) {
   using namespace hipair::model_detail;
   const Rational bound = power_of_ten(-12);
   RoundingBoundScope scope(bound);
-  const Rational relative(1, mpz_class(1) << 44);
+  auto rounded = [](const std::string& text, Rational& used_bound) {
+    ExpressionContext context;
+    context.pointer = "/test";
+    Quantity q = evaluate_expression(text, context);
+    std::vector<hipair::Rounding> roundings;
+    Rational v = to_rational(q, "/test", text, roundings);
+    EXPECT_EQ(roundings.size(), 1u) << text;
+    used_bound = roundings.empty() ? Rational(0) : roundings[0].bound;
+    return v;
+  };
   int checked = 0;
   for (long n = 2; n < 160; ++n) {
     long root = static_cast<long>(std::sqrt(static_cast<double>(n)));
     if (root * root == n) continue;
-    std::optional<Rational> digits;  // v / 10^k, the same at every scale k
-    for (int k : {-300, -250, -120, -45, -31, -25, -9}) {
-      std::string text = "sqrt(" + std::to_string(n) + ")*1e" + std::to_string(k);
-      ExpressionContext context;
-      context.pointer = "/test";
-      Quantity q = evaluate_expression(text, context);
-      std::vector<hipair::Rounding> roundings;
-      Rational v = to_rational(q, "/test", text, roundings);
-      ASSERT_EQ(roundings.size(), 1u);
-      const Rational& b = roundings[0].bound;
-      Rational scale = power_of_ten(k);
-      // |v - sqrt(n) 10^k| <= b, decided exactly by squaring in units of 10^k.
-      ASSERT_TRUE(within_sqrt(Rational(v / scale), n, Rational(b / scale))) << text << " -> " << v;
-      // The bound is at most b and at most 2^-44 of the value: (b 2^44 / 10^k)^2 <= n.
-      EXPECT_LE(b, bound) << text;
-      Rational proportional = b / (relative * scale);
-      EXPECT_LE(proportional * proportional, Rational(n)) << text;
-      Rational at_unit = v / scale;
-      if (!digits) digits = at_unit;
-      EXPECT_EQ(at_unit, *digits) << text << ": other digits than at 1e-300";
-      // Small: the digits' denominator is about that of a 10^-13 relative rounding at 1 mm.
-      EXPECT_LE(mpz_sizeinbase(at_unit.get_den_mpz_t(), 2), static_cast<std::size_t>(64))
-          << text;
-      ++checked;
+    for (int shift : {0, 1, 3, 5}) {   // sqrt(n) 10^shift: ordinary values 1.4 .. 1.3e6
+      Rational ordinary_bound;
+      const std::string ordinary_text = "sqrt(" + std::to_string(n) + ")*1e" + std::to_string(shift);
+      const Rational ordinary = rounded(ordinary_text, ordinary_bound);
+      if (ordinary > 1000000) continue;   // beyond [1e-4, 1e6): another decimal unit
+      ASSERT_EQ(ordinary_bound, bound) << ordinary_text;
+      for (int k : {-300, -250, -120, -40, -30, -20}) {   // below 2^-20: at the decimal scale
+        const std::string text = ordinary_text + "*1e" + std::to_string(k);
+        Rational b;
+        const Rational v = rounded(text, b);
+        const Rational scale = power_of_ten(k), unit = power_of_ten(k + shift);
+        EXPECT_EQ(b, Rational(bound * scale)) << text;
+        // |v - sqrt(n) 10^(k + shift)| <= b, decided exactly by squaring in units of 10^(k + shift).
+        ASSERT_TRUE(within_sqrt(Rational(v / unit), n, Rational(b / unit))) << text << " -> " << v;
+        EXPECT_EQ(Rational(v / scale), ordinary) << text << ": not 10^" << k << " times the value at 1 mm";
+        // Small: the digits' denominator is that of a rounding within 1e-12 at 1 mm.
+        EXPECT_LE(mpz_sizeinbase(Rational(v / unit).get_den_mpz_t(), 2), static_cast<std::size_t>(64)) << text;
+        ++checked;
+      }
     }
   }
-  EXPECT_GT(checked, 1000);
+  EXPECT_GT(checked, 2000);
 }
 
-TEST(ModelRounding, LargeValuesAreRoundedWithinTheAbsoluteBoundAtAHigherPrecision) {
+// A large value (above 2^40 in its unit) is rounded at its decimal scale too (session 54; until
+// then within the absolute bound b, which pi 10^100 needed 512 bits for and pi 10^400 2048): pi
+// 10^k is 10^k times the rational pi gets at 1 mm, at the 256-bit precision.
+TEST(ModelRounding, LargeValuesAreRoundedAtTheirDecimalScaleAsTheOrdinaryValueIs) {
   using namespace hipair::model_detail;
   const Rational bound = power_of_ten(-12);
-  // At 256 bits pi 10^100 cannot be rounded within 1e-12: the evaluator says so by type.
+  Rational pi_at_1mm;
   {
     RoundingBoundScope scope(bound);
     ExpressionContext context;
     context.pointer = "/test";
-    Quantity q = evaluate_expression("pi*1e100", context);
     std::vector<hipair::Rounding> roundings;
-    EXPECT_THROW(to_rational(q, "/test", "pi*1e100", roundings), PrecisionExhausted);
+    pi_at_1mm = to_rational(evaluate_expression("pi", context), "/test", "pi", roundings);
+    Quantity q = evaluate_expression("pi*1e100", context);
+    roundings.clear();
+    EXPECT_EQ(to_rational(q, "/test", "pi*1e100", roundings), Rational(pi_at_1mm * power_of_ten(100)));
+    ASSERT_EQ(roundings.size(), 1u);
+    EXPECT_EQ(roundings[0].bound, Rational(bound * power_of_ten(100)));
   }
-  // A model with such values reads (the reader escalates), and each lies within the bound of
-  // the exact value, checked against an 8192-bit enclosure.
+  // A model with such values reads, and each lies within its bound (b 10^k) of the exact value,
+  // checked against an 8192-bit enclosure, and is 10^k times pi's rational at 1 mm.
   for (int k : {30, 100, 250, 400}) {
     std::string radius = "pi*1e" + std::to_string(k);
     std::string text = R"({"hipair": 1, "name": "big", "units": {"length": "mm", "angle": "rad"},
@@ -425,7 +437,9 @@ TEST(ModelRounding, LargeValuesAreRoundedWithinTheAbsoluteBoundAtAHigherPrecisio
     hipair::Model model = hipair::read_model(text, "big");
     ASSERT_EQ(model.roundings.size(), 1u) << radius;
     const hipair::Rounding& rounding = model.roundings[0];
-    EXPECT_EQ(rounding.bound, bound) << radius;
+    EXPECT_EQ(rounding.bound, Rational(bound * power_of_ten(k))) << radius;
+    EXPECT_EQ(rounding.value, Rational(pi_at_1mm * power_of_ten(k))) << radius;
+    const Rational& used = rounding.bound;
     mpfi_t exact;
     mpfi_init2(exact, 8192);
     mpfi_const_pi(exact);
@@ -439,8 +453,8 @@ TEST(ModelRounding, LargeValuesAreRoundedWithinTheAbsoluteBoundAtAHigherPrecisio
     mpfr_get_q(upper.get_mpq_t(), end);
     mpfr_clear(end);
     mpfi_clear(exact);
-    EXPECT_LE(Rational(rounding.value - bound), lower) << radius;
-    EXPECT_GE(Rational(rounding.value + bound), upper) << radius;
+    EXPECT_LE(Rational(rounding.value - used), lower) << radius;
+    EXPECT_GE(Rational(rounding.value + used), upper) << radius;
     // The circle's radius is the rounded value.
     const hipair::Edge& edge = model.parts[0].loops[0].edges[0];
     EXPECT_EQ(edge.radius_squared, Rational(rounding.value * rounding.value)) << radius;
