@@ -400,8 +400,17 @@ Polynomial exact_gcd(const Polynomial& a, const Polynomial& b) {
   if (x.empty()) return y;
   if (y.empty()) return x;
   if (degree(x) < degree(y)) std::swap(x, y);
-  // (a linear or constant argument: a step or two of the sequence, cheaper than the primes)
-  if (degree(y) >= 2 && modular_gcd_enabled().load(std::memory_order_relaxed))
+  // (a linear or constant argument: a step or two of the sequence, cheaper than the primes;
+  // coefficients beyond 1 400 bits, the x 10^400 models': the gcd's images, h times the gcd with
+  // up to about twice their bits, would not fit the product of the 96 moduli, 2 976 bits, and
+  // the primes would be spent for nothing)
+  auto widest = [](const Polynomial& p) {
+    std::size_t bits = 0;
+    for (const mpz_class& c : p) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+    return bits;
+  };
+  if (degree(y) >= 2 && modular_gcd_enabled().load(std::memory_order_relaxed) && widest(x) <= 1400 &&
+      widest(y) <= 1400)
     if (std::optional<Polynomial> g = modular_gcd(x, y)) {
       modular_gcd_answers().fetch_add(1, std::memory_order_relaxed);
       return std::move(*g);
