@@ -1,5 +1,6 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/interval_times.hpp"
+#include "algebra/modular_gcd.hpp"
 #include "algebra/multiprecision_sign.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/near_quotient.hpp"
@@ -14,6 +15,8 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <charconv>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <cmath>
@@ -215,12 +218,203 @@ Polynomial primitive_part(const Polynomial& p) {
 
 namespace {
 
-// The primitive gcd by the primitive polynomial remainder sequence.
+// Arithmetic modulo a prime below 2^31: products fit in 64 bits.
+using Residues = std::vector<std::uint64_t>;
+
+std::uint64_t power_mod(std::uint64_t base, std::uint64_t exponent, std::uint64_t prime) {
+  std::uint64_t result = 1;
+  base %= prime;
+  while (exponent > 0) {
+    if (exponent & 1) result = result * base % prime;
+    base = base * base % prime;
+    exponent >>= 1;
+  }
+  return result;
+}
+
+void trim_residues(Residues& a) {
+  while (!a.empty() && a.back() == 0) a.pop_back();
+}
+
+// A gcd of a and b modulo the prime (Euclid's last non-zero remainder, not made monic); empty
+// when both are zero.
+Residues modular_euclid(Residues a, Residues b, std::uint64_t prime) {
+  trim_residues(a);
+  trim_residues(b);
+  if (a.size() < b.size()) std::swap(a, b);
+  while (!b.empty()) {
+    // a <- a mod b
+    const std::uint64_t inverse = power_mod(b.back(), prime - 2, prime);
+    while (a.size() >= b.size()) {
+      const std::uint64_t factor = a.back() * inverse % prime;
+      const std::size_t shift = a.size() - b.size();
+      for (std::size_t i = 0; i < b.size(); ++i)
+        a[shift + i] = (a[shift + i] + (prime - factor) * b[i]) % prime;
+      trim_residues(a);   // the leading residue is now 0
+      if (a.empty()) break;
+    }
+    std::swap(a, b);
+  }
+  return a;
+}
+
+// Degree of gcd(a, b) modulo the prime (Euclid); -1 when both are zero.
+int modular_gcd_degree(Residues a, Residues b, std::uint64_t prime) {
+  return static_cast<int>(modular_euclid(std::move(a), std::move(b), prime).size()) - 1;
+}
+
+// The residues of p's coefficients modulo the prime.
+Residues residues(const Polynomial& p, std::uint64_t prime) {
+  Residues r;
+  r.reserve(p.size());
+  for (const mpz_class& c : p) r.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
+  return r;
+}
+
+// Primes below 2^31, descending from 2^31 - 1 (deterministic Miller-Rabin: the bases 2, 7
+// and 61 decide every n < 4 759 123 141), made once: the moduli of the modular gcd.
+bool prime_below_2_31(std::uint64_t n) {
+  if (n < 2) return false;
+  for (std::uint64_t p : {2u, 3u, 5u, 7u, 11u, 13u, 61u})
+    if (n % p == 0) return n == p;
+  std::uint64_t d = n - 1;
+  int s = 0;
+  while (d % 2 == 0) {
+    d /= 2;
+    ++s;
+  }
+  for (std::uint64_t a : {2u, 7u, 61u}) {
+    std::uint64_t x = power_mod(a, d, n);
+    if (x == 1 || x == n - 1) continue;
+    bool composite = true;
+    for (int r = 1; r < s && composite; ++r) {
+      x = x * x % n;
+      composite = x != n - 1;
+    }
+    if (composite) return false;
+  }
+  return true;
+}
+
+constexpr std::size_t modular_gcd_primes = 96;
+
+const std::vector<std::uint64_t>& gcd_primes() {
+  static const std::vector<std::uint64_t> primes = [] {
+    std::vector<std::uint64_t> out;
+    for (std::uint64_t n = 2147483647ULL; out.size() < modular_gcd_primes; n -= 2)
+      if (prime_below_2_31(n)) out.push_back(n);
+    return out;
+  }();
+  return primes;
+}
+
+// Does the primitive g (positive leading coefficient, degree >= 1) divide p in Z[x]? Exact
+// division: by Gauss's lemma a quotient of p by a primitive divisor is integral, so a step
+// whose leading coefficient lc(g) does not divide has no integral quotient, and g divides p
+// exactly when every step divides and the remainder is zero.
+bool divides_exactly(const Polynomial& g, Polynomial r) {
+  const int dg = degree(g);
+  const mpz_srcptr lg = g.back().get_mpz_t();
+  mpz_class c;
+  for (int k = degree(r) - dg; k >= 0; --k) {
+    const mpz_ptr top = r[static_cast<std::size_t>(k + dg)].get_mpz_t();
+    if (!mpz_divisible_p(top, lg)) return false;
+    mpz_divexact(c.get_mpz_t(), top, lg);
+    for (int i = 0; i <= dg; ++i)
+      mpz_submul(r[static_cast<std::size_t>(k + i)].get_mpz_t(), c.get_mpz_t(), g[static_cast<std::size_t>(i)].get_mpz_t());
+  }
+  return std::all_of(r.begin(), r.end(), [](const mpz_class& v) { return sgn(v) == 0; });
+}
+
+// The primitive gcd of the primitive x and y (degrees >= 1, positive leading coefficients) by
+// Brown's modular algorithm, or nullopt (then the remainder sequence decides): the monic gcds
+// modulo primes that divide neither leading coefficient, times h = gcd(lc x, lc y), combined by
+// the Chinese remainder theorem over the primes of the least degree seen, in the symmetric
+// range. The answer is checked, not trusted: a candidate G (the primitive part of the combined
+// images, tried once the images stop changing) that divides x and y exactly divides their gcd
+// D, while deg G, the least modular degree, is >= deg D (D's reduction divides each modular
+// gcd and keeps its degree: the primes divide no leading coefficient, and lc D divides lc x).
+// So G = D up to sign, and both are primitive with a positive leading coefficient: G is the
+// remainder sequence's answer, bit for bit. A modular degree 0 proves deg D = 0 (D = 1).
+std::optional<Polynomial> modular_gcd(const Polynomial& x, const Polynomial& y) {
+  mpz_class h;
+  mpz_gcd(h.get_mpz_t(), x.back().get_mpz_t(), y.back().get_mpz_t());
+  int least = std::min(degree(x), degree(y)) + 1;   // no prime used yet
+  std::vector<mpz_class> combined;                  // the images combined, in [0, modulus)
+  mpz_class modulus = 1, half, step;
+  bool unchanged = false, tried = false;
+  for (std::uint64_t prime : gcd_primes()) {
+    const auto p = static_cast<unsigned long>(prime);
+    if (mpz_fdiv_ui(x.back().get_mpz_t(), p) == 0 || mpz_fdiv_ui(y.back().get_mpz_t(), p) == 0) continue;
+    Residues g = modular_euclid(residues(x, prime), residues(y, prime), prime);
+    const int d = static_cast<int>(g.size()) - 1;
+    if (d == 0) return Polynomial{mpz_class(1)};
+    if (d > least) continue;   // an unlucky prime: the gcd's reduction is a proper divisor
+    // h times the monic gcd modulo the prime
+    const std::uint64_t scale = mpz_fdiv_ui(h.get_mpz_t(), p) * power_mod(g.back(), prime - 2, prime) % prime;
+    for (auto& c : g) c = c * scale % prime;
+    if (d < least) {   // the first prime, or every earlier one was unlucky: start again
+      least = d;
+      combined.assign(g.size(), mpz_class(0));
+      for (std::size_t k = 0; k < g.size(); ++k) combined[k] = static_cast<unsigned long>(g[k]);
+      modulus = p;
+      mpz_fdiv_q_2exp(half.get_mpz_t(), modulus.get_mpz_t(), 1);
+      unchanged = tried = false;
+      continue;
+    }
+    // combine: v + modulus * ((r - v) / modulus mod prime), and whether the symmetric
+    // representative already had this image
+    const std::uint64_t modulus_residue = mpz_fdiv_ui(modulus.get_mpz_t(), p);
+    const std::uint64_t inverse = power_mod(modulus_residue, prime - 2, prime);
+    unchanged = true;
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      mpz_class& v = combined[k];
+      const std::uint64_t v_residue = mpz_fdiv_ui(v.get_mpz_t(), p);
+      const std::uint64_t symmetric =
+          mpz_cmp(v.get_mpz_t(), half.get_mpz_t()) <= 0 ? v_residue : (v_residue + prime - modulus_residue) % prime;
+      if (symmetric != g[k]) unchanged = false;
+      const std::uint64_t t = (g[k] + prime - v_residue) % prime * inverse % prime;
+      mpz_mul_ui(step.get_mpz_t(), modulus.get_mpz_t(), static_cast<unsigned long>(t));
+      v += step;
+    }
+    mpz_mul_ui(modulus.get_mpz_t(), modulus.get_mpz_t(), p);
+    mpz_fdiv_q_2exp(half.get_mpz_t(), modulus.get_mpz_t(), 1);
+    if (!unchanged) tried = false;
+    if (!unchanged || tried) continue;
+    tried = true;   // the same candidate again only after an image changes it
+    Polynomial candidate(combined.size());
+    for (std::size_t k = 0; k < combined.size(); ++k) {
+      candidate[k] = combined[k];
+      if (combined[k] > half) candidate[k] -= modulus;
+    }
+    candidate = primitive_part(candidate);
+    if (degree(candidate) == least && divides_exactly(candidate, x) && divides_exactly(candidate, y)) return candidate;
+  }
+  return std::nullopt;
+}
+
+// The primitive gcd: by the modular algorithm where it answers, else by the primitive
+// polynomial remainder sequence.
 Polynomial exact_gcd(const Polynomial& a, const Polynomial& b) {
   Polynomial x = primitive_part(a), y = primitive_part(b);
   if (x.empty()) return y;
   if (y.empty()) return x;
   if (degree(x) < degree(y)) std::swap(x, y);
+  // (a linear or constant argument: a step or two of the sequence, cheaper than the primes;
+  // coefficients beyond 1 400 bits, the x 10^400 models': the gcd's images, h times the gcd with
+  // up to about twice their bits, would not fit the product of the 96 moduli, 2 976 bits, and
+  // the primes would be spent for nothing)
+  auto widest = [](const Polynomial& p) {
+    std::size_t bits = 0;
+    for (const mpz_class& c : p) bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+    return bits;
+  };
+  if (degree(y) >= 2 && modular_gcd_enabled().load(std::memory_order_relaxed) && widest(x) <= 1400 &&
+      widest(y) <= 1400)
+    if (std::optional<Polynomial> g = modular_gcd(x, y)) {
+      modular_gcd_answers().fetch_add(1, std::memory_order_relaxed);
+      return std::move(*g);
+    }
   while (!y.empty()) {
     Polynomial r = primitive_part(positive_pseudo_remainder(x, y));
     x = std::move(y);
@@ -230,6 +424,16 @@ Polynomial exact_gcd(const Polynomial& a, const Polynomial& b) {
 }
 
 }  // namespace
+
+std::atomic<bool>& modular_gcd_enabled() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+std::atomic<std::size_t>& modular_gcd_answers() {
+  static std::atomic<std::size_t> answers{0};
+  return answers;
+}
 
 // The same gcds come back again and again: the overlapping cut abscissae of the quadratic
 // traits (common_root_in_overlap) and the square-free parts of the same resultants in every
@@ -274,26 +478,39 @@ Polynomial from_rationals(const std::vector<Rational>& coefficients) {
 
 std::string to_string(const Polynomial& p, const std::string& variable) {
   if (p.empty()) return "0";
-  std::ostringstream out;
+  // written into one string (the JSON writer describes every vertex number by its polynomial):
+  // the digits by mpz_get_str into the string's own storage, the magnitudes without a copy of
+  // each coefficient
+  std::string out;
   bool first = true;
+  char exponent[16];
   for (int i = degree(p); i >= 0; --i) {
-    const mpz_class& c = p[static_cast<std::size_t>(i)];
-    if (sgn(c) == 0) continue;
-    mpz_class magnitude = abs(c);
-    if (first) {
-      if (sgn(c) < 0) out << "-";
-    } else {
-      out << (sgn(c) < 0 ? " - " : " + ");
-    }
+    const mpz_srcptr c = p[static_cast<std::size_t>(i)].get_mpz_t();
+    const int sign = mpz_sgn(c);
+    if (sign == 0) continue;
+    if (first)
+      out += sign < 0 ? "-" : "";
+    else
+      out += sign < 0 ? " - " : " + ";
     first = false;
-    if (i == 0 || magnitude != 1) {
-      out << magnitude.get_str();
-      if (i > 0) out << "*";
+    if (i == 0 || mpz_cmpabs_ui(c, 1) != 0) {
+      // mpz_get_str writes c's digits after a '-' when c < 0 (sizeinbase may exceed the digits
+      // by one; the terminating zero needs one more): the sign is dropped after
+      const std::size_t start = out.size();
+      out.resize(start + mpz_sizeinbase(c, 10) + 2);
+      mpz_get_str(out.data() + start, 10, c);
+      const std::size_t written = std::strlen(out.data() + start);
+      if (sign < 0) out.erase(start, 1);
+      out.resize(start + written - (sign < 0 ? 1 : 0));
+      if (i > 0) out += '*';
     }
-    if (i > 0) out << variable;
-    if (i > 1) out << "^" << i;
+    if (i > 0) out += variable;
+    if (i > 1) {
+      out += '^';
+      out.append(exponent, std::to_chars(exponent, exponent + sizeof exponent, i).ptr);
+    }
   }
-  return out.str();
+  return out;
 }
 
 namespace {
@@ -1548,53 +1765,6 @@ std::vector<Real> real_roots(const Polynomial& input) {
 // ---------------------------------------------------------------- Descartes' rule of signs
 
 namespace {
-
-// Arithmetic modulo a prime below 2^31: products fit in 64 bits.
-using Residues = std::vector<std::uint64_t>;
-
-std::uint64_t power_mod(std::uint64_t base, std::uint64_t exponent, std::uint64_t prime) {
-  std::uint64_t result = 1;
-  base %= prime;
-  while (exponent > 0) {
-    if (exponent & 1) result = result * base % prime;
-    base = base * base % prime;
-    exponent >>= 1;
-  }
-  return result;
-}
-
-void trim_residues(Residues& a) {
-  while (!a.empty() && a.back() == 0) a.pop_back();
-}
-
-// Degree of gcd(a, b) modulo the prime (Euclid); -1 when both are zero.
-int modular_gcd_degree(Residues a, Residues b, std::uint64_t prime) {
-  trim_residues(a);
-  trim_residues(b);
-  if (a.size() < b.size()) std::swap(a, b);
-  while (!b.empty()) {
-    // a <- a mod b
-    const std::uint64_t inverse = power_mod(b.back(), prime - 2, prime);
-    while (a.size() >= b.size()) {
-      const std::uint64_t factor = a.back() * inverse % prime;
-      const std::size_t shift = a.size() - b.size();
-      for (std::size_t i = 0; i < b.size(); ++i)
-        a[shift + i] = (a[shift + i] + (prime - factor) * b[i]) % prime;
-      trim_residues(a);   // the leading residue is now 0
-      if (a.empty()) break;
-    }
-    std::swap(a, b);
-  }
-  return static_cast<int>(a.size()) - 1;
-}
-
-// The residues of p's coefficients modulo the prime.
-Residues residues(const Polynomial& p, std::uint64_t prime) {
-  Residues r;
-  r.reserve(p.size());
-  for (const mpz_class& c : p) r.push_back(mpz_fdiv_ui(c.get_mpz_t(), static_cast<unsigned long>(prime)));
-  return r;
-}
 
 // Sign variations of the coefficients, zeros skipped.
 int sign_variations(const Polynomial& q) {

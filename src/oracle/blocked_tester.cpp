@@ -220,14 +220,15 @@ std::vector<Disk> inscribed_disks(const Part& part, std::size_t limit, long expo
   const double unit = size > 0 ? std::min(1.0, 1024 * size) : 1.0;
   std::vector<Disk> disks;
   for (auto [px, py] : candidates) {
+    // the parity first: a candidate outside the part (most of the bounding box's grid around a
+    // toothed wheel) is dropped whatever its distance, which is not measured then
     int count = 0;
+    for (const auto& e : edges) count += crossings(e, px, py);
+    if (count % 2 == 0) continue;
     double distance = 1e300;
-    for (const auto& e : edges) {
-      count += crossings(e, px, py);
-      distance = std::min(distance, distance_to(e, px, py));
-    }
+    for (const auto& e : edges) distance = std::min(distance, distance_to(e, px, py));
     if (!std::isfinite(px) || !std::isfinite(py) || !std::isfinite(distance)) continue;
-    if (count % 2 == 0 || distance <= 1e-9 * (unit + std::fabs(px) + std::fabs(py))) continue;
+    if (distance <= 1e-9 * (unit + std::fabs(px) + std::fabs(py))) continue;
     // double rounding in the distance is far below 1e-9 relative: shrink by that much (a guess:
     // certify_part certifies the radius and the centre exactly)
     disks.push_back({px, py, distance * (1 - 1e-9) - 1e-9 * (unit + std::fabs(px) + std::fabs(py))});

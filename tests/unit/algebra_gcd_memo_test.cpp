@@ -4,6 +4,7 @@
 // with small roots, times contents of either sign: the gcd is the product of the common factors
 // at their smaller multiplicity, leading coefficient positive).
 #include "algebra/exact_real.hpp"
+#include "algebra/modular_gcd.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,8 @@
 #include <cstdint>
 #include <map>
 #include <random>
+#include <sstream>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -144,6 +147,137 @@ TEST(AlgebraGcdMemo, GcdOfLargeCoefficientProductsIsTheCommonPart) {
   EXPECT_EQ(checked, 150);
   EXPECT_GT(constant, 10);
   EXPECT_GT(large_gap, 50);
+}
+
+// gcd's modular route (session 54): Brown's algorithm over primes below 2^31, its candidate
+// checked by exact division. Generated pairs of degree >= 2 with a known common part: random
+// factors of degree 1-4 and 1-400 bits (square factors too, as the gcd with a derivative),
+// leading coefficients that the moduli divide (2147483647 times a factor: those primes must be
+// skipped), and unlucky primes — the common part times (x - a) and (x - a - k P) for one of
+// the first three moduli P, whose reductions modulo P share one more root than the integers do. Each gcd is the
+// common part's primitive part, the plain primitive sequence's gcd, and the library's gcd with
+// the modular route switched off (on a fresh thread: the memo is per thread); the modular
+// route must answer most of them (else the test would test the sequence only).
+TEST(AlgebraGcdMemo, ModularRouteIsThePrimitiveSequenceGcd) {
+  std::mt19937_64 random(54054);
+  const mpz_class big_prime = 2147483647;
+  auto factor = [&](int max_degree) {
+    const int degree = 1 + static_cast<int>(random() % static_cast<unsigned>(max_degree));
+    const int bits = 1 + static_cast<int>(random() % 400);
+    Polynomial f;
+    for (int i = 0; i <= degree; ++i) f.push_back(random_integer(random, bits, i == degree));
+    if (random() % 4 == 0) f.back() *= big_prime;   // a modulus divides the leading coefficient
+    return f;
+  };
+  struct Case {
+    Polynomial a, b, expected;
+  };
+  std::vector<Case> cases;
+  int unlucky = 0, constant = 0, squares = 0;
+  for (int trial = 0; trial < 160; ++trial) {
+    Polynomial common{mpz_class(1)};
+    const int shared = static_cast<int>(random() % 3);
+    for (int k = 0; k < shared; ++k) common = times(common, factor(3));
+    Polynomial a = times(common, factor(4)), b = times(common, factor(4));
+    if (trial % 4 == 1) {
+      // an unlucky prime: x - r and x - r - k p are one factor modulo p
+      const mpz_class r = random_integer(random, 1 + static_cast<int>(random() % 60), false);
+      const mpz_class k = 1 + static_cast<long>(random() % 1000);
+      // the first, second or third modulus (2^31 - 1, 2^31 - 19, 2^31 - 61): unlucky before or
+      // after a lucky one
+      const mpz_class modulus = std::array<long, 3>{2147483647, 2147483629, 2147483587}[random() % 3];
+      a = times(a, Polynomial{mpz_class(-r), mpz_class(1)});
+      b = times(b, Polynomial{mpz_class(-(r + k * modulus)), mpz_class(1)});
+      ++unlucky;
+    }
+    if (trial % 4 == 2) {
+      // a square factor and the derivative (square_free_part's gcd)
+      a = times(times(a, common), factor(2));
+      b = derivative(a);
+      ++squares;
+      const Polynomial reference = primitive_sequence_gcd(a, b);
+      cases.push_back({a, b, reference});
+      continue;
+    }
+    if (random() % 3 == 0) a = times(a, Polynomial{random_integer(random, 90, true)});
+    const Polynomial expected = primitive_part(common);
+    constant += degree(expected) == 0;
+    cases.push_back({a, b, expected});
+  }
+  const std::size_t before = modular_gcd_answers().load();
+  std::size_t eligible = 0;
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const Case& k = cases[c];
+    ASSERT_EQ(primitive_sequence_gcd(k.a, k.b), k.expected) << "case " << c << ": the oracle's own gcd";
+    ASSERT_EQ(gcd(k.a, k.b), k.expected) << "case " << c << ": gcd(" << to_string(k.a, "x") << ", "
+                                         << to_string(k.b, "x") << ") is not " << to_string(k.expected, "x");
+    ASSERT_EQ(gcd(k.b, k.a), k.expected) << "case " << c;
+    eligible += degree(primitive_part(k.a)) >= 2 && degree(primitive_part(k.b)) >= 2;
+  }
+  const std::size_t answered = modular_gcd_answers().load() - before;
+  // the same gcds by the remainder sequence alone
+  modular_gcd_enabled() = false;
+  std::vector<Polynomial> sequence(cases.size());
+  std::thread([&] {
+    for (std::size_t c = 0; c < cases.size(); ++c) sequence[c] = gcd(cases[c].a, cases[c].b);
+  }).join();
+  modular_gcd_enabled() = true;
+  for (std::size_t c = 0; c < cases.size(); ++c) EXPECT_EQ(sequence[c], cases[c].expected) << "case " << c;
+  EXPECT_EQ(modular_gcd_answers().load() - before, answered) << "the switch did not switch the route off";
+  EXPECT_EQ(cases.size(), 160u);
+  EXPECT_GT(unlucky, 30);
+  EXPECT_GT(squares, 30);
+  EXPECT_GT(constant, 20);
+  // every eligible pair asked both ways round (the memo holds each order once)
+  EXPECT_GE(answered, eligible * 2 * 9 / 10) << eligible << " pairs of degree >= 2";
+}
+
+// to_string(Polynomial) (the text of every algebraic number `cspace --json` writes; session 54
+// wrote it into one string instead of an ostringstream): written by hand for a few, and for
+// generated polynomials (zero, unit and 1-300-bit coefficients of either sign, degrees 0-9)
+// the plain stream rendition of the same rules.
+TEST(AlgebraPolynomialText, TermsHighestFirstWithSignsUnitsAndPowers) {
+  auto text = [](std::vector<long> c) {
+    Polynomial p;
+    for (long v : c) p.emplace_back(v);
+    trim(p);
+    return to_string(p, "x");
+  };
+  EXPECT_EQ(text({}), "0");
+  EXPECT_EQ(text({5}), "5");
+  EXPECT_EQ(text({-5}), "-5");
+  EXPECT_EQ(text({1}), "1");
+  EXPECT_EQ(text({-1}), "-1");
+  EXPECT_EQ(text({0, 1}), "x");
+  EXPECT_EQ(text({0, -1}), "-x");
+  EXPECT_EQ(text({-2, 0, 1}), "x^2 - 2");
+  EXPECT_EQ(text({1, -1}), "-x + 1");
+  EXPECT_EQ(text({0, 0, 0, -1}), "-x^3");
+  EXPECT_EQ(text({-1, 3, 0, -12, 0, 0, 0, 0, 0, 0, 0, 1}), "x^11 - 12*x^3 + 3*x - 1");
+  std::mt19937_64 random(5454);
+  for (int trial = 0; trial < 2000; ++trial) {
+    Polynomial p(random() % 10 + 1);
+    for (auto& c : p) {
+      const int kind = static_cast<int>(random() % 4);
+      c = kind == 0 ? mpz_class(0) : kind == 1 ? mpz_class(random() % 2 ? 1 : -1)
+                                                : random_integer(random, 1 + static_cast<int>(random() % 300), false);
+    }
+    trim(p);
+    std::ostringstream plain;
+    if (p.empty()) plain << "0";
+    bool first = true;
+    for (int i = degree(p); i >= 0; --i) {
+      const mpz_class& c = p[static_cast<std::size_t>(i)];
+      if (sgn(c) == 0) continue;
+      plain << (first ? (sgn(c) < 0 ? "-" : "") : (sgn(c) < 0 ? " - " : " + "));
+      first = false;
+      const mpz_class magnitude = abs(c);
+      if (i == 0 || magnitude != 1) plain << magnitude.get_str() << (i > 0 ? "*" : "");
+      if (i > 0) plain << "t";
+      if (i > 1) plain << "^" << i;
+    }
+    ASSERT_EQ(to_string(p, "t"), plain.str()) << "trial " << trial;
+  }
 }
 
 TEST(AlgebraGcdMemo, PairsSharingAnArgumentGiveTheirOwnGcd) {
