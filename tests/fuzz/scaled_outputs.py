@@ -214,23 +214,13 @@ def compare_tolerance(base, scaled, k, name):
     contributions of a translating follower); tolerance.json, variation.csv and sensitivity.csv
     hold the same numbers in units of 10^K mm, their "length_unit" / "follower_unit" and column
     names naming that unit."""
-    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
-    if rc1 is None:
-        return "timed out"
-    if rc0 != rc1:
-        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
-    out0, out1 = out0.replace(dir0, "@OUT@"), tolerance_text(out1.replace(dir1, "@OUT@"), k, name)
-    found = numbers_moved(out0, out1, k, (0, k)) or numbers_moved(err0, tolerance_text(err1, k, name), k, (0, k))
-    if found:
-        return "stdout/stderr " + found
-    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
-    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
-    if files0 != files1:
-        return "files %s vs %s" % (files0, files1)
-    for file in files0:
-        a, b = os.path.join(dir0, file), os.path.join(dir1, file)
-        with open(a, encoding="utf-8") as fa, open(b, encoding="utf-8") as fb:
-            ta, tb = fa.read(), fb.read()
+    dir0, dir1 = base[3], scaled[3]
+
+    def streams(a, b):
+        return numbers_moved(a, tolerance_text(b, k, name), k, (0, k))
+
+    def file_difference(file, a, b):
+        ta, tb = read_text(a), read_text(b)
         if file.endswith(".json"):
             ja, jb = json.loads(ta), json.loads(tb)
             found = unit_named(jb, "follower_unit", k)
@@ -239,16 +229,14 @@ def compare_tolerance(base, scaled, k, name):
                 if "length_unit" in ja or unit != "1e%d mm" % k:
                     found = "length_unit %r" % unit
             ja["model"] = jb["model"] = name
-            found = found or first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
-        elif file.endswith(".csv"):
-            found = text_difference(ta, tolerance_text(tb, k, name))
-        elif file.endswith(".txt"):
-            found = numbers_moved(ta.replace(dir0, "@OUT@"), tolerance_text(tb.replace(dir1, "@OUT@"), k, name), k, (0, k))
-        else:
-            continue   # pictures: the same doubles, their axis labels naming the unit
-        if found:
-            return "%s %s" % (file, found)
-    return None
+            return found or first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
+        if file.endswith(".csv"):
+            return text_difference(ta, tolerance_text(tb, k, name))
+        if file.endswith(".txt"):
+            return numbers_moved(ta.replace(dir0, "@OUT@"), tolerance_text(tb.replace(dir1, "@OUT@"), k, name), k, (0, k))
+        return None   # pictures: the same doubles, their axis labels naming the unit
+
+    return compare_dirs(base, scaled, streams, file_difference)
 
 
 def sweep_text(text, k, name):
@@ -271,31 +259,18 @@ def compare_sweep(base, scaled, k, name):
     on its rescaled copy as the unscaled run is: the same rows (status, verdict, steps, events,
     swings), a translating part's advance shown in mm (the digits, exponent moved by K); sweep.json
     the same numbers in units of 10^K mm ("units" naming them), CPU times set aside."""
-    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
-    if rc1 is None:
-        return "timed out"
-    if rc0 != rc1:
-        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
-    found = numbers_moved(sweep_text(out0.replace(dir0, "@OUT@"), 0, name),
-                          sweep_text(out1.replace(dir1, "@OUT@"), k, name), k, (0, k))
-    found = found or numbers_moved(err0, sweep_text(err1, k, name), k, (0, k))
-    if found:
-        return "stdout/stderr " + found
-    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
-    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
-    if files0 != files1:
-        return "files %s vs %s" % (files0, files1)
-    for file in files0:
-        with open(os.path.join(dir0, file), encoding="utf-8") as fa, open(os.path.join(dir1, file), encoding="utf-8") as fb:
-            ja, jb = json.load(fa), json.load(fb)
+    def streams(a, b):
+        return numbers_moved(sweep_text(a, 0, name), sweep_text(b, k, name), k, (0, k))
+
+    def file_difference(file, a, b):
+        ja, jb = json.loads(read_text(a)), json.loads(read_text(b))
         units = jb.pop("units", None)
         if units != {"length": "1e%d mm" % k} and (units is not None or "units" in ja):
-            return "%s units %r" % (file, units)
+            return "units %r" % units
         ja["model"] = jb["model"] = name
-        found = first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
-        if found:
-            return "%s %s" % (file, found)
-    return None
+        return first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
+
+    return compare_dirs(base, scaled, streams, file_difference)
 
 
 def exact_scaled(a, b, k, where):
@@ -330,26 +305,17 @@ def compare_cspace(base, scaled, k, name):
     pin-slot stack of the scaled model is the unscaled one's, its lengths (samples' and witnesses'
     offsets and slides, exact) times 10^K exactly (exact_scaled); the other pairs' files are left
     to tests/fuzz/scaled_cli.sh (their exact curves are the scaled model's)."""
-    (rc0, out0, err0, dir0), (rc1, out1, err1, dir1) = base, scaled
-    if rc1 is None:
-        return "timed out"
-    if rc0 != rc1:
-        return "exit %s vs %s (%s)" % (rc0, rc1, (err1 or err0).strip()[:300])
-    files0 = sorted(os.listdir(dir0)) if os.path.isdir(dir0) else []
-    files1 = sorted(os.listdir(dir1)) if os.path.isdir(dir1) else []
-    if files0 != files1:
-        return "files %s vs %s" % (files0, files1)
-    stacks = 0
-    for file in files0:
-        with open(os.path.join(dir0, file), encoding="utf-8") as fa, open(os.path.join(dir1, file), encoding="utf-8") as fb:
-            ja, jb = json.load(fa), json.load(fb)
+    stacks = []
+
+    def file_difference(file, a, b):
+        ja, jb = json.loads(read_text(a)), json.loads(read_text(b))
         if ja.get("kind") != "pin_slot":
-            continue
-        stacks += 1
-        found = exact_scaled(ja, jb, k, "")
-        if found:
-            return "%s %s" % (file, found)
-    return None if stacks else "no pin-slot stack written"
+            return None
+        stacks.append(file)
+        return exact_scaled(ja, jb, k, "")
+
+    found = compare_dirs(base, scaled, lambda a, b: None, file_difference)
+    return found or (None if stacks else "no pin-slot stack written")
 
 
 def command_args(command, model, out):

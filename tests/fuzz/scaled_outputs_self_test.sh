@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # tests/fuzz/scaled_outputs.py must fail when an output differs (session 54): the scaled run's
-# output (analyze: kinematics.csv or report.json; simulate: trajectory.csv) has one digit changed
+# output (analyze: kinematics.csv or report.json; simulate: trajectory.csv; tolerance:
+# variation.csv) has one digit changed
 # after the run by a wrapper around hipair, and the comparison must say DIFFERENT naming that
 # file and exit 1; the same runs unperturbed must give "same" and exit 0 (the control).
 # usage: scaled_outputs_self_test.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
@@ -50,5 +51,7 @@ check analyze-csv analyze cam-follower kinematics.csv
 check analyze-json analyze cam-follower report.json
 check simulate-control simulate=0.01 cam-follower ""
 check simulate-csv simulate=0.01 cam-follower trajectory.csv
+check tolerance-control tolerance cam-follower ""
+check tolerance-csv tolerance cam-follower variation.csv
 ((failures == 0)) || { echo "scaled_outputs self-test: $failures failure(s)"; exit 1; }
 echo "scaled_outputs self-test passed"
