@@ -27,15 +27,7 @@ verify=$2
 source "$(dirname "$0")/seeded_test.sh" "$1" "$3" "$4"
 
 gears() {   # Z1 Z2 FILE
-  python3 - "$source/examples/models/spur-gears.json" "$@" <<'PY'
-import json, sys
-t = json.load(open(sys.argv[1]))
-t['parameters']['teeth-1'] = {'nominal': int(sys.argv[2])}
-t['parameters']['teeth-2'] = {'nominal': int(sys.argv[3])}
-t['parameters']['backlash'] = {'nominal': 0}
-t['parameters']['center-distance'] = {'nominal': 'module * (teeth-1 + teeth-2) / 2'}
-json.dump(t, open(sys.argv[4], 'w'), indent=1)
-PY
+  python3 "$source/tests/fuzz/zero_backlash_gears.py" "$source/examples/models/spur-gears.json" "$@"
 }
 
 # two small pairs (where the zero-backlash profiles overlap at the start), one near 17 teeth
