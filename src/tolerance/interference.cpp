@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace hipair {
@@ -89,9 +90,7 @@ class InterferenceProducer {
       claim_.varied.push_back(p.name);
       claim_.box.push_back({options.scale * (p.range.lo - p.nominal), options.scale * (p.range.hi - p.nominal)});
     }
-    // Lever arms (for ranking splits only): the parts' largest vertex distance from their pivots.
-    lever_driver_ = lever(driver_);
-    lever_follower_ = lever(follower_);
+    levers_ = split_levers();
   }
 
   ToleranceCertification run() {
@@ -146,16 +145,63 @@ class InterferenceProducer {
  private:
   enum class Status { ok, interferes, undecided };
 
-  double lever(std::size_t part) const {
+  // The lever of every dimension of the search (the varied parameters, the driver, the
+  // follower), for ranking splits only: how far (mm, the largest coordinate change) a point of
+  // the two parts moves per unit of the dimension. A rotating part's: its reach from its pivot;
+  // a translating part's: 1. A varied parameter's: the largest secant slope over the parts'
+  // vertices, arc centres and pivots between the nominal and the exact model at the box's end
+  // (a parameter that moves nothing of the pair has lever 0 and is not split). Exact rationals,
+  // so that the ranking is the same at every scale of the model (a length written "(x)*1e-300"
+  // or a parameter of 1e-300 mm moves the geometry by as little, and is split as its unscaled
+  // model's would be; doubles underflow there).
+  std::vector<Rational> split_levers() const {
     const Model& m = model_->nominal();
-    const Part& p = m.parts[part];
-    if (p.motion.kind != Motion::Kind::rotation) return 1;
-    double best = 1;
-    for (const Loop& loop : p.loops)
-      for (const Edge& e : loop.edges)
-        best = std::max(best, std::hypot(e.source.x.get_d() - p.motion.pivot.x.get_d(),
-                                         e.source.y.get_d() - p.motion.pivot.y.get_d()));
-    return best;
+    std::size_t k = varied_.size();
+    std::vector<Rational> levers(k + 2, Rational(0));
+    auto largest = [](const Point& a, const Point& b) {
+      Rational dx = abs(Rational(a.x - b.x)), dy = abs(Rational(a.y - b.y));
+      return dx < dy ? dy : dx;
+    };
+    auto points = [](const Part& part) {
+      std::vector<Point> all{part.motion.pivot};
+      for (const Loop& loop : part.loops)
+        for (const Edge& e : loop.edges) {
+          all.push_back(e.source);
+          all.push_back(e.target);
+          if (e.is_arc()) all.push_back(e.center);
+        }
+      return all;
+    };
+    for (std::size_t i = 0; i < k; ++i) {
+      const RationalInterval& range = claim_.box[i];
+      Rational step = range.hi != 0 ? range.hi : range.lo;
+      if (step == 0) continue;
+      std::vector<Rational> deviations(model_->parameter_count(), Rational(0));
+      deviations[varied_[i]] = step;
+      Model moved;
+      try {
+        moved = model_->exact_model(deviations);
+      } catch (const ModelError&) {
+        continue;   // the geometry is invalid at the box's end: ranked as moving nothing
+      }
+      Rational most(0);
+      for (std::size_t part : {driver_, follower_}) {
+        std::vector<Point> a = points(m.parts[part]), b = points(moved.parts[part]);
+        if (a.size() != b.size()) continue;
+        for (std::size_t j = 0; j < a.size(); ++j) most = std::max(most, largest(a[j], b[j]));
+      }
+      levers[i] = most / abs(step);
+    }
+    auto reach = [&](std::size_t index) {
+      const Part& part = m.parts[index];
+      if (part.motion.kind != Motion::Kind::rotation) return Rational(1);
+      Rational most(0);
+      for (const Point& q : points(part)) most = std::max(most, largest(q, part.motion.pivot));
+      return most;
+    };
+    levers[k] = reach(driver_);
+    levers[k + 1] = reach(follower_);
+    return levers;
   }
 
   // An exact position of a part inside `range` near its middle, and its placement in the
@@ -246,19 +292,15 @@ class InterferenceProducer {
       reason_ = "the branch-and-bound reached depth 300 without certifying a box: " + failure;
       return Status::undecided;
     }
-    // Split the dimension that moves the geometry most (mm): parameters by their width (angles
-    // times the lever arm of the part), the driver and the follower by width times lever arm.
-    const Model& m = model_->nominal();
+    // Split the dimension that moves the geometry most (mm): its width times its lever
+    // (split_levers), compared exactly.
     std::size_t best = 0;
-    double score = -1;
+    std::optional<Rational> score;
     for (std::size_t d = 0; d < k + 2; ++d) {
-      double width = Rational(region[d].hi - region[d].lo).get_d();
-      double lever = 1;
-      if (d < k && m.parameters[varied_[d]].is_angle) lever = std::max(lever_driver_, lever_follower_);
-      if (d == k) lever = lever_driver_;
-      if (d == k + 1) lever = lever_follower_;
-      if (width * lever > score && region[d].lo < region[d].hi) {
-        score = width * lever;
+      if (!(region[d].lo < region[d].hi)) continue;
+      Rational moves = Rational(region[d].hi - region[d].lo) * levers_[d];
+      if (!score || moves > *score) {
+        score = moves;
         best = d;
       }
     }
@@ -280,7 +322,7 @@ class InterferenceProducer {
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::size_t driver_ = 0, follower_ = 0;
   std::vector<std::size_t> varied_;
-  double lever_driver_ = 1, lever_follower_ = 1;
+  std::vector<Rational> levers_;   // split_levers()
   ToleranceClaim claim_;
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;

@@ -143,6 +143,25 @@ cert="$work/noint/interference-certificate.json"
 "$verify" "$cert" "$geneva" >"$work/noint.verify" 2>&1 \
   || fail "hipair-verify rejects the CLI's no-interference certificate: $(cat "$work/noint.verify")"
 grep -q "never interfere" "$work/noint.verify" || fail "no-interference verdict: $(cat "$work/noint.verify")"
+# The same claim on the Geneva with every length times 10^-300, 10^-30 and 10^400
+# (tests/fuzz/scale_model.py): the same search as x 1 (the split ranking is exact and scales with
+# the model: src/tolerance/interference.cpp split_levers), so the same leaves and boxes, and each
+# certificate verifies for its model. Before session 55 the ranking was in doubles with a 1 mm
+# floor on the levers: x 10^-30 and below split the parameters, never the driver, and gave up
+# after 80 000 boxes.
+leaves=$(grep -o "CERTIFIED: [0-9]* leaves ([0-9]* boxes tried)" "$work/noint.out")
+[ -n "$leaves" ] || fail "tolerance --certify-interference: no leaf count: $(tail -c 300 "$work/noint.out")"
+for scale in 1e-300 1e-30 1e400; do
+  scaled="$work/geneva-$scale.json"
+  python3 "$source/tests/fuzz/scale_model.py" "$geneva" "$scale" "$scaled" || { fail "scale_model.py $scale"; continue; }
+  "$hipair" tolerance "$scaled" --certify-interference --pair driver:wheel --range 1:2.4 --follower-range 0 --quiet \
+    --certify-leaves 200 --out "$work/noint-$scale" >"$work/noint-$scale.out" 2>&1 \
+    || { fail "tolerance --certify-interference x $scale: $(tail -c 300 "$work/noint-$scale.out")"; continue; }
+  grep -qF "$leaves" "$work/noint-$scale.out" \
+    || fail "tolerance --certify-interference x $scale: not the x 1 search ($leaves): $(grep CERTIFIED "$work/noint-$scale.out")"
+  "$verify" "$work/noint-$scale/interference-certificate.json" "$scaled" >"$work/noint-$scale.verify" 2>&1 \
+    || fail "hipair-verify rejects the x $scale no-interference certificate: $(head -c 300 "$work/noint-$scale.verify")"
+done
 # Mutations: a wider follower range or driver range (not covered by the leaves), a larger scale
 # (not the box), another property; each must be rejected (exit 1).
 mutations=('s|"follower_range": \["0", "0"\]|"follower_range": ["0", "1/1000"]|'
