@@ -423,9 +423,31 @@ HandoverEnvelope HandoverSearch::envelope(const CurveSlice& curve, const Box& bo
   // 7. (driver_pieces) only while a FarWalk and a DriverPieces live (chain.cpp: a position unbounded
   // even with the far walk, composed once more), and only in the composition's own envelope (not in
   // the pieces', the bridge's or the route's walks: `depth`).
-  if (out.bounded || !walked->pieces || !FarWalk::on() || !DriverPieces::on() || depth.level != 1 ||
-      handover_driver_pieces() <= 1)
-    return out;
+  if (!FarWalk::on() || !DriverPieces::on() || depth.level != 1 || handover_driver_pieces() <= 1) return out;
+  // 7b. (session 55) An envelope bounded only widened, over a box and driver's range where step 7
+  // applies: the walk over box x T sees every candidate's zeros over the whole of T, independently
+  // of the follower's (the holder's enclosure Y over box x T spans T's sweep too), and where T's
+  // sweep is wide those zero sets overlap into a wall the walk passes leaf by leaf (gear-train.json
+  // at 1.7279 rad, mesh F:G: widened 0.325 chart units, 27 deg of gear G, beyond Y, while the exact
+  // train over the box stays inside Y; docs/tolerance.md "The driver's range walked in pieces"). The
+  // pieces' walk bounds the same follower over the same box x T (step 7's argument needs only the
+  // box holding the nominal vector and T the nominal driver), so both ends bound it and the
+  // envelope is their meet: the nearer sigma end.
+  if (out.bounded) {
+    if (!walked->widened || handover_widened_pieces() == 0 || (out.side != 1 && out.side != -1)) return out;
+    const int sigma = out.side;
+    std::optional<double> edge =
+        driver_pieces(curve, box, holder, sigma, relative_accuracy, absolute_accuracy, boxes, nominal_free);
+    if (!edge) return out;
+    const double reached = end_of(out.chart, sigma), holder_end = end_of(holder, sigma);
+    const double pieces_end = sigma > 0 ? std::max(holder_end, *edge) : std::min(holder_end, *edge);
+    if (!(sigma > 0 ? pieces_end < reached : pieces_end > reached)) return out;
+    HandoverEnvelope narrowed = out;
+    narrowed.extended = pieces_end != holder_end;
+    narrowed.chart = sigma > 0 ? Interval(out.chart.lo, pieces_end) : Interval(pieces_end, out.chart.hi);
+    return narrowed;
+  }
+  if (!walked->pieces) return out;
   std::optional<double> edge =
       driver_pieces(curve, box, holder, walked->sigma, relative_accuracy, absolute_accuracy, boxes, nominal_free);
   if (!edge) return out;
@@ -899,6 +921,9 @@ HandoverEnvelope HandoverSearch::walk_steps(const CurveSlice& curve, const Box& 
   auto bounded_to = [&](double edge) {
     out.extended = edge != start;
     out.side = sigma;
+    // 7b. (the pieces) whether they may narrow a widened envelope here
+    entry.sigma = sigma;
+    entry.widened = out.extended && curve.fixed_range && fixed.lo < fixed.hi && !away && std::isfinite(nominal_free);
     out.chart = sigma > 0 ? Interval(holder.lo, std::max(holder.hi, edge))
                           : Interval(std::min(holder.lo, edge), holder.hi);
     out.bounded = true;
@@ -1224,6 +1249,11 @@ int& handover_driver_pieces() {
 }
 
 int& handover_taylor_partials() {
+  static int on = 1;
+  return on;
+}
+
+int& handover_widened_pieces() {
   static int on = 1;
   return on;
 }

@@ -190,6 +190,11 @@ using FarWalk = ThreadScope<struct FarWalkTag>;
 /// the far walk once more under one.
 using DriverPieces = ThreadScope<struct DriverPiecesTag>;
 
+/// Session 55: 1 (unless changed) lets the pass of the driver's pieces also walk in pieces an
+/// envelope that steps 0-6 bounded only widened (handover.cpp, step 7b; the envelope is then the
+/// meet of the two); 0: only unbounded envelopes are walked in pieces (the envelopes of session 54).
+int& handover_widened_pieces();
+
 /// Tests and measurements only (session 54): 1 (unless changed) lets a position's driver-pieces
 /// pass replay the far-walk pass's envelopes (EnvelopeMemo); 0 walks them again, as before.
 int& handover_far_reuse();
@@ -214,6 +219,7 @@ class EnvelopeMemo {
     std::size_t boxes = 0;   ///< what the steps added to the caller's sub-box count
     int sigma = 0;           ///< the holder's free side (0: not certain, or not reached)
     bool pieces = false;     ///< unbounded where step 7 applies (the box and driver's range allow it)
+    bool widened = false;    ///< bounded but widened (extended) where step 7 applies: 7b may narrow it
   };
   /// Every argument of the call, bit for bit (doubles by their bits: no NaN ordering), and its search.
   using Key = std::tuple<const HandoverSearch*, std::vector<std::uint64_t>, Rational>;

@@ -459,5 +459,138 @@ TEST(ChainFarReuse, PiecesPassReplaysTheFarWalksEnvelopesWithTheSameBandsNotesAn
   EXPECT_GE(bounded_count, 7u);
 }
 
+// Session 55 (tol55): the pass of the driver's pieces also walks in pieces an envelope that the
+// walk over box x T bounded only widened (handover.cpp step 7b, tolerance_detail::
+// handover_widened_pieces(); docs/tolerance.md "The driver's range walked in pieces"). The walk
+// sees every candidate's zeros over the whole of T at once, independently of the follower, whose
+// own enclosure Y spans T's sweep: zeros that lie beyond the follower at every driver value
+// (a feature passed through, in a configuration the parts cannot reach) fill the leaves beyond Y,
+// and the walk passes them (gear-train.json at 1.7279 rad, mesh F:G: 27 deg of gear G beyond Y,
+// the exact train inside Y). cam -> lifter1 -> lifter2 -> lifter3: the cam (radius 20 + e1 + ..
+// + e4, each +-0.5) moves lifter1 sideways, T 4 mm wide; lifter2 rests on lifter1's roller under
+// a slanted underside (slope 0.15), so Y spans 0.7 mm; a post of lifter1 sits between lifter2's
+// underside and a thin tab hanging below it (0.1 mm clear above and below): the tab's underside
+// clears the post's top 0.35 mm above the holder's root at every driver value, but over T those
+// zeros cover the leaves beyond Y, and the envelope widens to about Y + 0.3. lifter3 rests on a
+// roller of lifter2 (holder face, 0.5 mm per mm) and a second roller reaches a nearly flat face
+// of lifter3 (20 mm per mm) 0.15 mm above the highest lifter2 of the box: through the widened
+// envelope it takes over, and the band's top follows it 3 mm up. With the pieces' end met, the
+// pair's envelope ends at Y's and the band is the holders'. The exact chain at the box's 32
+// corners and at random vectors, and the Monte Carlo values, must lie inside every band with it;
+// the bands with it inside those without, a quarter as wide at most.
+std::string widened_pieces_chain() {
+  return R"({"hipair": 1, "name": "widened-pieces-chain", "units": {"length": "mm", "angle": "rad"},
+ "parameters": {"e1": {"nominal": 0, "tolerance": 0.5}, "e2": {"nominal": 0, "tolerance": 0.5},
+                "e3": {"nominal": 0, "tolerance": 0.5}, "e4": {"nominal": 0, "tolerance": 0.5},
+                "g": {"nominal": 0, "tolerance": 0.05}},
+ "parts": [
+  {"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},
+   "loops": [{"circle": {"center": [5, 0], "radius": "20 + e1 + e2 + e3 + e4"}}]},
+  {"name": "lifter1", "motion": {"translation": {"direction": [1, 0], "limits": [-40, 40]}}, "initial": {"offset": -10},
+   "loops": [{"start": [30, -30], "edges": [{"line_to": [50, -30]}, {"line_to": [50, 30]}, {"line_to": [30, 30]}, {"line_to": [30, -30]}]},
+             {"circle": {"center": [45, 40], "radius": "5 + g"}},
+             {"circle": {"center": [30, 42.60596], "radius": 0.1}}],
+   "dynamics": {"mass": 0.1, "force": [-10, 0]}},
+  {"name": "lifter2", "motion": {"translation": {"direction": [0, 1], "limits": [-40, 40]}}, "initial": {"offset": -7.2},
+   "loops": [{"start": [0, 47], "edges": [{"line_to": [70, 57.5]}, {"line_to": [70, 80]}, {"line_to": [0, 80]}, {"line_to": [0, 47]}]},
+             {"start": [5, 47.3], "edges": [{"line_to": [26, 50.45]}, {"line_to": [26, 50.5]}, {"line_to": [5, 47.35]}, {"line_to": [5, 47.3]}]},
+             {"circle": {"center": [80, 60], "radius": 1}},
+             {"circle": {"center": [80, 66], "radius": 1}}],
+   "dynamics": {"mass": 0.1, "force": [0, -10]}},
+  {"name": "lifter3", "motion": {"translation": {"direction": [1, 0], "limits": [-40, 40]}}, "initial": {"offset": -7},
+   "loops": [{"start": [82, 40], "edges": [{"line_to": [120, 40]}, {"line_to": [120, 70]}, {"line_to": [83, 70]}, {"line_to": [83, 60.4766]},
+                                            {"line_to": [92.013, 60.026]}, {"line_to": [82, 40]}]}],
+   "dynamics": {"mass": 0.1, "force": [-10, 0]}}],
+ "pairs": [{"parts": ["cam", "lifter1"]}, {"parts": ["lifter1", "lifter2"]}, {"parts": ["lifter2", "lifter3"]}]})";
+}
+
+TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChainAndTheMonteCarlo) {
+  ASSERT_GT(tolerance_detail::handover_driver_pieces(), 1);
+  ASSERT_EQ(tolerance_detail::handover_widened_pieces(), 1);
+  const std::string text = widened_pieces_chain();
+  ToleranceOptions options;
+  options.driver = "cam";
+  options.chain = true;
+  options.range = std::pair<Rational, Rational>(Rational(3, 2), Rational(38, 25));
+  options.positions = 120;
+  options.threads = 1;
+  options.monte_carlo = 300;
+  options.seed = 55;
+  ToleranceResult r[2];
+  for (int on : {0, 1}) {
+    test_band::ScopedSwitch pieces(tolerance_detail::handover_widened_pieces(), on);
+    r[on] = analyze_tolerances_text(text, options);
+  }
+  ASSERT_EQ(r[0].samples.size(), 2u);
+  ASSERT_EQ(r[1].samples.size(), 2u);
+  ASSERT_EQ(r[1].parameters.size(), 5u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const VariationSample &without = r[0].samples[i], &with = r[1].samples[i];
+    SCOPED_TRACE("driver " + std::to_string(with.driver));
+    ASSERT_TRUE(with.contact);
+    ASSERT_TRUE(bounded(with));
+    EXPECT_LE(with.certified.lower, with.nominal);
+    EXPECT_GE(with.certified.upper, with.nominal);
+    // both enclose the output; the meet can only narrow it
+    if (bounded(without)) {
+      EXPECT_GE(with.certified.lower, without.certified.lower);
+      EXPECT_LE(with.certified.upper, without.certified.upper);
+      // not vacuous: the widened envelope (the second roller's take-over) is what the pieces cut
+      EXPECT_LT(with.certified.upper - with.certified.lower, 0.25 * (without.certified.upper - without.certified.lower));
+    }
+    std::printf("driver %.4f: band without the pieces' meet [%.5f, %.5f], with it [%.5f, %.5f], linearised [%.5f, %.5f] mm\n",
+                with.driver, without.certified.lower, without.certified.upper, with.certified.lower, with.certified.upper,
+                with.linear_lower, with.linear_upper);
+  }
+  ASSERT_TRUE(r[1].monte_carlo.has_value());
+  EXPECT_EQ(r[1].monte_carlo->outside_certified, 0u);
+  EXPECT_EQ(r[1].monte_carlo->not_certified, 0u);
+  // the exact chain: the 32 corners of the box and 8 random vectors
+  std::vector<std::vector<Rational>> probes;
+  const std::vector<Parameter>& parameters = r[1].parameters;
+  for (unsigned corner = 0; corner < 32; ++corner) {
+    std::vector<Rational> d(parameters.size());
+    for (std::size_t q = 0; q < parameters.size(); ++q)
+      d[q] = ((corner >> q) & 1u ? parameters[q].range.hi : parameters[q].range.lo) - parameters[q].nominal;
+    probes.push_back(d);
+  }
+  std::mt19937 rng(55);
+  for (int k = 0; k < 8; ++k) probes.push_back(test_gears::random_deviations(parameters, rng));
+  auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
+  std::size_t values = 0, outside = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const std::vector<Rational>& d : probes) {
+    KinematicsOptions k;
+    k.driver = "cam";
+    k.range = options.range;
+    k.steps_per_cycle = options.positions;
+    k.reversal = false;
+    k.method = SliceMethod::kernels;
+    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
+    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "lifter3") -
+                                                  exact.followers.begin());
+    ASSERT_LT(output, exact.followers.size());
+    for (const VariationSample& sample : r[1].samples) {
+      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
+                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
+      ASSERT_NE(at, exact.samples.end()) << "driver " << sample.driver;
+      const double value = at->positions.at(output);
+      ASSERT_TRUE(std::isfinite(value));
+      ++values;
+      // (the exact engine's position is the exact root rounded to a double: within an ulp)
+      const double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
+      nearest = std::min({nearest, value - sample.certified.lower, sample.certified.upper - value});
+      if (value < sample.certified.lower - ulp || value > sample.certified.upper + ulp) {
+        ++outside;
+        ADD_FAILURE() << "driver " << sample.driver << ": exact " << value << " outside [" << sample.certified.lower << ", "
+                      << sample.certified.upper << "]";
+      }
+    }
+  }
+  EXPECT_EQ(values, 2 * probes.size());
+  std::printf("%zu exact values checked, %zu outside, nearest %.4g mm from an edge; Monte Carlo %zu outside\n", values, outside,
+              nearest, r[1].monte_carlo->outside_certified);
+}
+
 }  // namespace
 }  // namespace hipair
