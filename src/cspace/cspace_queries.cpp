@@ -29,6 +29,7 @@
 #include "cspace/scan_memo.hpp"
 #include "cspace/slopes_memo.hpp"
 #include "cspace/start_filter.hpp"
+#include "algebra/interval_shift.hpp"
 #include "core/kept_per_thread.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
@@ -876,10 +877,20 @@ std::shared_ptr<const TrackerData> tracker_data_of(const ChartData& chart, const
   const auto& f = raw_edge.support.coefficients;
   data->nearest.resize(f.size());
   data->enclosed.resize(f.size());
+  // F / 2^shift throughout, as `value` encloses it (interval_shift.hpp: Newton's F / F_y and
+  // the slopes' quotients of partials are the same at any common scale); shift 0 but for huge
+  // coefficients
+  const long shift = cspace::algebra::interval_shift(raw_edge.support);
   for (std::size_t i = 0; i < f.size(); ++i)
     for (const mpz_class& coefficient : f[i]) {
-      data->nearest[i].push_back(coefficient.get_d());
-      data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
+      if (shift == 0) {
+        data->nearest[i].push_back(coefficient.get_d());
+        data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
+      } else {
+        data->nearest[i].push_back(cspace::algebra::nearest_shifted(coefficient, shift));
+        const cspace::algebra::Interval scaled = cspace::algebra::enclose_shifted(coefficient, shift);
+        data->enclosed[i].push_back(KInterval(scaled.lo, scaled.hi));
+      }
     }
   data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
   data->terms = cspace::partial_terms();
@@ -1574,11 +1585,25 @@ struct ScanMemo {
     // the other edges with a curve (spurious, inside one cell), for locate_inside's anchor boxes
     std::vector<Carrier> inner;
   };
+  // A partial derivative D of a chart curve F, enclosed at F's scale: the interval polynomial
+  // encloses D / 2^interval_shift(D), and evaluate multiplies by 2^(that shift - F's), so that it
+  // encloses D / 2^interval_shift(F), as chart.interval_polynomials[k] encloses F / 2^shift(F)
+  // (algebra/interval_shift.hpp: the mean-value and Taylor forms add F and its derivatives).
+  struct ScaledPartial {
+    ScaledPartial(const cspace::IntegerPolynomial2& d, long f_shift)
+        : polynomial(d), exponent(cspace::algebra::interval_shift(d) - f_shift) {}
+    cspace::algebra::Interval evaluate(cspace::algebra::Interval x, cspace::algebra::Interval y) const {
+      const cspace::algebra::Interval value = polynomial.evaluate(x, y);
+      return exponent == 0 ? value : cspace::algebra::scale_by_power_of_two(value, exponent);
+    }
+    cspace::algebra::IntervalPolynomial2 polynomial;
+    long exponent = 0;   // 0 for every polynomial of ordinary size
+  };
   struct Gradient {
-    cspace::algebra::IntervalPolynomial2 fx, fy;
+    ScaledPartial fx, fy;
   };
   struct Hessian {
-    cspace::algebra::IntervalPolynomial2 fxx, fxy, fyy;
+    ScaledPartial fxx, fxy, fyy;
   };
   using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
   std::vector<ChartCarriers> carriers;
@@ -2221,8 +2246,10 @@ class MotionScanner {
     std::vector<std::optional<Gradient>>& memo = memo_->gradients[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
-    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
-    memo[k] = Gradient{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
+    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+    const long shift = cspace::algebra::interval_shift(f);
+    auto [fx, fy] = partials(f);
+    memo[k] = Gradient{ScanMemo::ScaledPartial(fx, shift), ScanMemo::ScaledPartial(fy, shift)};
     return *memo[k];
   }
 
@@ -2232,11 +2259,12 @@ class MotionScanner {
     std::vector<std::optional<Hessian>>& memo = memo_->hessians[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
-    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
+    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+    const long shift = cspace::algebra::interval_shift(f);
+    auto [fx, fy] = partials(f);
     auto [fxx, fxy] = partials(fx);
     cspace::IntegerPolynomial2 fyy = partials(fy).second;
-    memo[k] = Hessian{cspace::algebra::IntervalPolynomial2(fxx), cspace::algebra::IntervalPolynomial2(fxy),
-                      cspace::algebra::IntervalPolynomial2(fyy)};
+    memo[k] = Hessian{ScanMemo::ScaledPartial(fxx, shift), ScanMemo::ScaledPartial(fxy, shift), ScanMemo::ScaledPartial(fyy, shift)};
     return *memo[k];
   }
 
@@ -2450,6 +2478,11 @@ class MotionScanner {
       for (std::size_t j = f.coefficients[i].size(); j-- > 0;)
         row = row * Y + RInterval::point(Rational(f.coefficients[i][j]));
       value = value * X + row;
+    }
+    // at the scale of the double enclosures it is added to (F / 2^shift, interval_shift.hpp)
+    if (const long shift = cspace::algebra::interval_shift(f); shift > 0) {
+      mpq_div_2exp(value.lo.get_mpq_t(), value.lo.get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
+      mpq_div_2exp(value.hi.get_mpq_t(), value.hi.get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
     }
     DInterval result{cspace::algebra::lower_double(value.lo), cspace::algebra::upper_double(value.hi)};
     start_->exact.emplace(key, result);
