@@ -2293,6 +2293,11 @@ Interval enclose(const mpz_class& z) { return enclose_truncated(z, z.get_d()); }
 
 // ---------------------------------------------------------------- scaled enclosures (interval_shift.hpp)
 
+bool& interval_scaling() {
+  thread_local bool on = false;
+  return on;
+}
+
 long interval_shift(const IntegerPolynomial2& f) {
   long bits = 0;
   for (const auto& row : f.coefficients)
@@ -2353,8 +2358,9 @@ Interval scale_by_power_of_two(Interval v, long exponent) {
 }
 
 IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
-  // f / 2^shift (interval_shift.hpp): the same signs and zero set, within the doubles' range
-  const long shift = interval_shift(f);
+  // under ScaledEnclosures, f / 2^shift (interval_shift.hpp): the same signs and zero set,
+  // within the doubles' range
+  const long shift = interval_scaling() ? interval_shift(f) : 0;
   int dx = 0, dy = 0;
   rows_.reserve(f.coefficients.size());
   nearest_.reserve(f.coefficients.size());

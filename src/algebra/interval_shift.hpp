@@ -6,7 +6,8 @@
 // 1 061-bit coefficients. Enclosed as they are, those are [DBL_MAX, inf]: every evaluation
 // contains 0, so no curve was ever excluded near them and every point query of the pair answered
 // "in contact (grazing)" at any configuration (session 55). A positive multiple of f has f's zero
-// set and f's signs, so IntervalPolynomial2(f) encloses f / 2^s instead, s = interval_shift(f):
+// set and f's signs, so IntervalPolynomial2(f) made under ScaledEnclosures (the crossing queries'
+// polynomials, cspace_queries.cpp) encloses f / 2^s instead, s = interval_shift(f):
 // 0 while every coefficient has at most `interval_coefficient_bits` bits (every polynomial of
 // ordinary size: enclosed exactly as before), else the largest bit length less that many, which
 // leaves 2^123 of headroom below DBL_MAX for the sums of the Horner evaluation over the charts'
@@ -21,10 +22,30 @@
 
 namespace hipair::cspace::algebra {
 
+/// Whether IntervalPolynomial2's constructor scales by interval_shift on this thread: off unless
+/// a ScaledEnclosures scope is open. (The C-space builder's filters — the curve culler, the label
+/// filter, the arrangement's vertex certificates — keep their unscaled enclosures, unbounded for
+/// coefficients beyond 2^1024: scaled, the rotation-translation pairs x 10^-400 of
+/// CSpaceScale.RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne located wrongly;
+/// not located further, session 55.)
+bool& interval_scaling();
+
+/// Scaled enclosures while in scope.
+class ScaledEnclosures {
+ public:
+  ScaledEnclosures() : was_(interval_scaling()) { interval_scaling() = true; }
+  ~ScaledEnclosures() { interval_scaling() = was_; }
+  ScaledEnclosures(const ScaledEnclosures&) = delete;
+  ScaledEnclosures& operator=(const ScaledEnclosures&) = delete;
+
+ private:
+  bool was_;
+};
+
 /// Coefficients of at most this many bits are enclosed unscaled.
 inline constexpr long interval_coefficient_bits = 900;
 
-/// The exponent s >= 0 with which IntervalPolynomial2(f) encloses f / 2^s.
+/// The exponent s >= 0 with which IntervalPolynomial2(f) encloses f / 2^s under ScaledEnclosures.
 long interval_shift(const IntegerPolynomial2& f);
 
 /// z / 2^shift enclosed outward in doubles: enclose(z) for shift 0. A quotient below the least

@@ -892,7 +892,10 @@ std::shared_ptr<const TrackerData> tracker_data_of(const ChartData& chart, const
         data->enclosed[i].push_back(KInterval(scaled.lo, scaled.hi));
       }
     }
-  data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+  {
+    cspace::algebra::ScaledEnclosures scope;
+    data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+  }
   data->terms = cspace::partial_terms();
   if (data->terms) {
     auto identity = [](const auto& v) { return v; };
@@ -1587,11 +1590,15 @@ struct ScanMemo {
   };
   // A partial derivative D of a chart curve F, enclosed at F's scale: the interval polynomial
   // encloses D / 2^interval_shift(D), and evaluate multiplies by 2^(that shift - F's), so that it
-  // encloses D / 2^interval_shift(F), as chart.interval_polynomials[k] encloses F / 2^shift(F)
+  // encloses D / 2^interval_shift(F), as curve_enclosure(k) encloses F / 2^shift(F)
   // (algebra/interval_shift.hpp: the mean-value and Taylor forms add F and its derivatives).
   struct ScaledPartial {
     ScaledPartial(const cspace::IntegerPolynomial2& d, long f_shift)
-        : polynomial(d), exponent(cspace::algebra::interval_shift(d) - f_shift) {}
+        : polynomial(scaled(d)), exponent(cspace::algebra::interval_shift(d) - f_shift) {}
+    static cspace::algebra::IntervalPolynomial2 scaled(const cspace::IntegerPolynomial2& d) {
+      cspace::algebra::ScaledEnclosures scope;
+      return cspace::algebra::IntervalPolynomial2(d);
+    }
     cspace::algebra::Interval evaluate(cspace::algebra::Interval x, cspace::algebra::Interval y) const {
       const cspace::algebra::Interval value = polynomial.evaluate(x, y);
       return exponent == 0 ? value : cspace::algebra::scale_by_power_of_two(value, exponent);
@@ -1607,6 +1614,11 @@ struct ScanMemo {
   };
   using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
   std::vector<ChartCarriers> carriers;
+  // per chart: its curves' enclosures made under ScaledEnclosures where one of them has
+  // coefficients beyond interval_coefficient_bits (empty: chart.interval_polynomials serve, the
+  // same enclosures), and whether that was looked at (curve_enclosure)
+  std::vector<std::vector<cspace::algebra::IntervalPolynomial2>> scaled_curves;
+  std::vector<char> scaled_ready;
   std::vector<std::vector<std::optional<Gradient>>> gradients;
   std::vector<std::vector<std::optional<Hessian>>> hessians;
   std::vector<std::vector<std::optional<Clauses>>> validity;
@@ -1634,6 +1646,8 @@ struct ScanMemo {
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
   auto memo = std::make_shared<ScanMemo>();
   memo->carriers.resize(impl.charts.size());
+  memo->scaled_curves.resize(impl.charts.size());
+  memo->scaled_ready.assign(impl.charts.size(), 0);
   memo->gradients.resize(impl.charts.size());
   memo->hessians.resize(impl.charts.size());
   memo->validity.resize(impl.charts.size());
@@ -1650,6 +1664,27 @@ std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
     memo->chart_boxes.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                                  cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
   return memo;
+}
+
+// Curve k of chart c enclosed for the crossing queries: F / 2^interval_shift(F)
+// (algebra/interval_shift.hpp) — the builder's chart.interval_polynomials[k] itself unless some
+// curve of the chart has coefficients beyond interval_coefficient_bits (their enclosures
+// unbounded: every curve "possibly vanished" everywhere), then the chart's curves made under
+// ScaledEnclosures once per memo.
+const cspace::algebra::IntervalPolynomial2& curve_enclosure(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c,
+                                                            std::size_t k) {
+  std::vector<cspace::algebra::IntervalPolynomial2>& scaled = memo.scaled_curves[c];
+  if (!memo.scaled_ready[c]) {
+    memo.scaled_ready[c] = 1;
+    const std::vector<cspace::IntegerPolynomial2>& curves = impl.charts[c].polynomials;
+    if (std::any_of(curves.begin(), curves.end(),
+                    [](const cspace::IntegerPolynomial2& f) { return cspace::algebra::interval_shift(f) > 0; })) {
+      cspace::algebra::ScaledEnclosures scope;
+      scaled.reserve(curves.size());
+      for (const cspace::IntegerPolynomial2& f : curves) scaled.emplace_back(f);
+    }
+  }
+  return scaled.empty() ? impl.charts[c].interval_polynomials[k] : scaled[k];
 }
 
 // The curves of chart c that can bound a cell (ScanMemo::carriers), made on first use.
@@ -2018,12 +2053,11 @@ class MotionScanner {
   // a 1-D space: no curve of the chart does).
   bool on_no_edge(const PieceBox& box) {
     if (impl_.dimension == 1 || !cspace::carried_bounds()) return clear_of_curves(box);
-    const ChartData& chart = impl_.charts[box.chart];
     const cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
     for (const Carrier& carrier : carriers(box.chart).inner) {
       if (x.hi < carrier.box[0] || x.lo > carrier.box[2] || y.hi < carrier.box[1] || y.lo > carrier.box[3]) continue;
       for (std::size_t k : carrier.curves) {
-        cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+        cspace::algebra::Interval value = curve_enclosure(impl_, *memo_, box.chart, k).evaluate(x, y);
         if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
       }
     }
@@ -2038,8 +2072,8 @@ class MotionScanner {
       x = {cspace::algebra::lower_double(box.x_lo.rational()), cspace::algebra::upper_double(box.x_hi.rational())};
       y = {cspace::algebra::lower_double(box.y_lo.rational()), cspace::algebra::upper_double(box.y_hi.rational())};
     }
-    for (const auto& f : impl_.charts[box.chart].interval_polynomials) {
-      cspace::algebra::Interval value = f.evaluate(x, y);
+    for (std::size_t k = 0; k < impl_.charts[box.chart].interval_polynomials.size(); ++k) {
+      cspace::algebra::Interval value = curve_enclosure(impl_, *memo_, box.chart, k).evaluate(x, y);
       if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
     }
     return true;
@@ -2343,9 +2377,8 @@ class MotionScanner {
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
     for (const Possible& p : possible) {
-      const ChartData& chart = impl_.charts[p.chart];
       const Gradient& g = gradient(p.chart, p.curve);
-      DInterval start = chart.interval_polynomials[p.curve].evaluate(x_at, y_at);
+      DInterval start = curve_enclosure(impl_, *memo_, p.chart, p.curve).evaluate(x_at, y_at);
       // a start within rounding of the curve (a motion leaving a contact from a configuration a
       // few ulps off it): the double enclosure contains 0 at any depth, so take F over the
       // start's exact (160-bit) box in rational intervals, cached per start and curve
@@ -2557,7 +2590,7 @@ class MotionScanner {
     }
     for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
       if (!candidate[k]) continue;
-      if (!chart.interval_polynomials[k].evaluate(x, y).contains_zero()) continue;
+      if (!curve_enclosure(impl_, *memo_, box.chart, k).evaluate(x, y).contains_zero()) continue;
       const auto& clauses = validity(box.chart, k);
       bool invalid = false;
       for (const auto& clause : clauses) {
@@ -2577,6 +2610,7 @@ class MotionScanner {
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
     Clauses clauses;
+    cspace::algebra::ScaledEnclosures scope;   // (signs only: each atom at its own scale)
     for (const auto& clause : impl_.charts[chart].validity[k]) {
       clauses.emplace_back();
       for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
@@ -3257,9 +3291,8 @@ std::optional<WalkAxis> walk_axis(const AxisPath& axis, const Rational& u, Memo&
 // (outward-rounded interval evaluation).
 bool no_boundary_on(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c, const cspace::algebra::Interval& x,
                     const cspace::algebra::Interval& y) {
-  const ChartData& chart = impl.charts[c];
   auto vanishes = [&](std::size_t k) {
-    cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+    cspace::algebra::Interval value = curve_enclosure(impl, memo, c, k).evaluate(x, y);
     return !std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero();
   };
   const ScanMemo::ChartCarriers& known = chart_carriers(impl, memo, c);

@@ -2,7 +2,6 @@
 // comparison of algebraic numbers, simplest rationals, substitutions and signs at algebraic
 // points. Values are chosen where doubles fail (2^53 + 1, roots 10^-20 apart).
 #include "algebra/exact_real.hpp"
-#include "algebra/interval_shift.hpp"
 #include "algebra/interval_times.hpp"
 #include "algebra/real_filters.hpp"
 
@@ -444,15 +443,12 @@ bool same_bits(Interval a, Interval b) {
 }
 
 // f over the box by nested Horner with operator* and operator+ only (the evaluation as it was
-// written before the products by a known sign): the oracle of the fast evaluation. Of f / 2^s,
-// s = interval_shift(f), as IntervalPolynomial2 encloses it (session 55: 0 unless a coefficient
-// has more than 900 bits; then the coefficients' enclosures are enclose_shifted's).
+// written before the products by a known sign): the oracle of the fast evaluation.
 Interval reference_evaluate(const IntegerPolynomial2& f, Interval x, Interval y) {
-  const long shift = interval_shift(f);
   Interval result{0, 0};
   for (auto row = f.coefficients.rbegin(); row != f.coefficients.rend(); ++row) {
     Interval inner{0, 0};
-    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + enclose_shifted(*c, shift);
+    for (auto c = row->rbegin(); c != row->rend(); ++c) inner = inner * y + enclose(*c);
     result = result * x + inner;
   }
   return result;
@@ -494,9 +490,8 @@ TEST(CSpaceAlgebra, ProductsByAKnownSignAreTheGenericProducts) {
 
 // IntervalPolynomial2::evaluate (products by x and y of known sign where the box allows) and
 // rows_at / evaluate_rows against the generic nested Horner, bit for bit, on generated polynomials (bidegree up to
-// (4, 4), coefficients up to 2^1100, beyond the doubles' range: enclosed as f / 2^(bits - 900))
-// over boxes on either side of and across the axes; and against the exact value of f (/ 2^shift)
-// at rational points of the box.
+// (4, 4), coefficients up to 2^1100, beyond the doubles' range) over boxes on either side of
+// and across the axes; and against the exact value of f at rational points of the box.
 TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
   using namespace interval_products;
   std::uint64_t state = 0x9e3779b97f4a7c15ull;
@@ -545,7 +540,6 @@ TEST(CSpaceAlgebra, IntervalPolynomialEvaluationIsTheGenericHorner) {
             for (std::size_t j = columns; j-- > 0;) inner = inner * py + Rational(f.coefficients[i][j]);
             exact = exact * px + inner;
           }
-          mpq_div_2exp(exact.get_mpq_t(), exact.get_mpq_t(), static_cast<mp_bitcnt_t>(interval_shift(f)));
           if (std::isfinite(fast.lo)) ASSERT_LE(Rational(fast.lo), exact);
           if (std::isfinite(fast.hi)) ASSERT_GE(Rational(fast.hi), exact);
         }

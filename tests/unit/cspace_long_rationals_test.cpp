@@ -262,8 +262,9 @@ TEST(CSpaceLongRationals, ShiftedEnclosuresHoldTheExactQuotient) {
   EXPECT_GE(tiny, 100);
 }
 
-// interval_shift: 0 for polynomials of ordinary size (enclosed as before), and the enclosures of
-// a huge polynomial's values hold the exact value / 2^shift with its sign.
+// interval_shift: 0 for polynomials of ordinary size (enclosed as before), and under
+// ScaledEnclosures the enclosures of a huge polynomial's values hold the exact value / 2^shift
+// (outside it the enclosure is unbounded, as before, beyond 2^1024).
 TEST(CSpaceLongRationals, HugePolynomialsEncloseTheirScaledValues) {
   namespace algebra = cspace::algebra;
   std::mt19937_64 random(550);
@@ -283,7 +284,15 @@ TEST(CSpaceLongRationals, HugePolynomialsEncloseTheirScaledValues) {
     for (const auto& row : f.coefficients)
       for (const mpz_class& c : row) largest = std::max(largest, mpz_sizeinbase(c.get_mpz_t(), 2));
     EXPECT_EQ(shift, largest > 900 ? static_cast<long>(largest) - 900 : 0) << i;
-    const algebra::IntervalPolynomial2 p(f);
+    const algebra::IntervalPolynomial2 plain(f);   // (outside the scope: unscaled, as before)
+    if (largest > 1024) {
+      const algebra::Interval v = plain.evaluate(algebra::Interval{0.5, 0.5}, algebra::Interval{0.5, 0.5});
+      EXPECT_FALSE(std::isfinite(v.lo) && std::isfinite(v.hi)) << i;
+    }
+    const algebra::IntervalPolynomial2 p = [&] {
+      algebra::ScaledEnclosures scope;
+      return algebra::IntervalPolynomial2(f);
+    }();
     std::uniform_real_distribution<double> sym(-1, 1);
     for (int k = 0; k < 5; ++k) {
       const double x = sym(random), y = sym(random);
