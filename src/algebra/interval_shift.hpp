@@ -26,8 +26,8 @@ namespace hipair::cspace::algebra {
 /// a ScaledEnclosures scope is open. (The C-space builder's filters — the curve culler, the label
 /// filter, the arrangement's vertex certificates — keep their unscaled enclosures, unbounded for
 /// coefficients beyond 2^1024: scaled, the rotation-translation pairs x 10^-400 of
-/// CSpaceScale.RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne located wrongly;
-/// not located further, session 55.)
+/// CSpaceScale.RotationTranslationPairsBeyondTheDoublesLocateAsAtScaleOne located wrongly, the
+/// culler's grid cells not nesting where their width underflows; docs/simulation.md, session 55.)
 bool& interval_scaling();
 
 /// Scaled enclosures while in scope.
