@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/interval_shift.hpp"
 #include "algebra/interval_times.hpp"
 #include "algebra/modular_gcd.hpp"
 #include "algebra/multiprecision_sign.hpp"
@@ -2290,7 +2291,76 @@ Interval enclose_truncated(const mpz_class& z, double d) {
 
 Interval enclose(const mpz_class& z) { return enclose_truncated(z, z.get_d()); }
 
+// ---------------------------------------------------------------- scaled enclosures (interval_shift.hpp)
+
+bool& interval_scaling() {
+  thread_local bool on = false;
+  return on;
+}
+
+long interval_shift(const IntegerPolynomial2& f) {
+  long bits = 0;
+  for (const auto& row : f.coefficients)
+    for (const mpz_class& c : row)
+      if (sgn(c) != 0) bits = std::max(bits, static_cast<long>(mpz_sizeinbase(c.get_mpz_t(), 2)));
+  return bits > interval_coefficient_bits ? bits - interval_coefficient_bits : 0;
+}
+
+namespace {
+// z = d 2^e with d = z truncated toward zero to 53 bits, 1/2 <= |d| < 1 (z != 0): the exponent
+// e - shift of z / 2^shift, and d
+double truncated_mantissa(const mpz_class& z, long shift, long& exponent) {
+  long e = 0;
+  const double d = mpz_get_d_2exp(&e, z.get_mpz_t());
+  exponent = e - shift;
+  return d;
+}
+constexpr long least_normal_exponent = -1021;   // 2^-1022 = (1/2) 2^-1021, the least normal double
+constexpr long overflow_exponent = 1024;        // (1/2) 2^1025 = 2^1024 is beyond DBL_MAX
+}  // namespace
+
+Interval enclose_shifted(const mpz_class& z, long shift) {
+  if (shift == 0) return enclose(z);
+  const int s = sgn(z);
+  if (s == 0) return {0.0, 0.0};
+  long exponent = 0;
+  const double d = truncated_mantissa(z, shift, exponent);
+  const double least = std::numeric_limits<double>::min(), inf = std::numeric_limits<double>::infinity();
+  if (exponent < least_normal_exponent) return s > 0 ? Interval{0.0, least} : Interval{-least, 0.0};   // |z / 2^shift| < 2^-1022
+  if (exponent > overflow_exponent)
+    return s > 0 ? Interval{std::numeric_limits<double>::max(), inf} : Interval{-inf, std::numeric_limits<double>::lowest()};
+  // d 2^exponent is a normal double (or beyond DBL_MAX: enclose_truncated's infinite case), the
+  // truncation of z / 2^shift toward zero: the same enclosure as enclose(z) of the scaled z
+  return enclose_truncated(z, std::ldexp(d, static_cast<int>(exponent)));
+}
+
+double nearest_shifted(const mpz_class& z, long shift) {
+  if (shift == 0) return z.get_d();
+  if (sgn(z) == 0) return 0.0;
+  long exponent = 0;
+  const double d = truncated_mantissa(z, shift, exponent);
+  if (exponent < least_normal_exponent) return std::numeric_limits<double>::quiet_NaN();
+  if (exponent > overflow_exponent) return d > 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+  return std::ldexp(d, static_cast<int>(exponent));
+}
+
+Interval scale_by_power_of_two(Interval v, long exponent) {
+  if (exponent == 0) return v;
+  const double inf = std::numeric_limits<double>::infinity(), least = std::numeric_limits<double>::min();
+  const int e = static_cast<int>(std::clamp<long>(exponent, -4096, 4096));   // beyond: 0 or infinity either way
+  double lo = std::ldexp(v.lo, e), hi = std::ldexp(v.hi, e);
+  // exact but where it left the normal range: an overflowed finite bound, an underflowed one
+  if (lo == inf && v.lo < inf) lo = std::numeric_limits<double>::max();
+  if (hi == -inf && v.hi > -inf) hi = std::numeric_limits<double>::lowest();
+  if (std::fabs(lo) < least) lo = v.lo >= 0 ? 0.0 : -least;
+  if (std::fabs(hi) < least) hi = v.hi <= 0 ? 0.0 : least;
+  return {lo, hi};
+}
+
 IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
+  // under ScaledEnclosures, f / 2^shift (interval_shift.hpp): the same signs and zero set,
+  // within the doubles' range
+  const long shift = interval_scaling() ? interval_shift(f) : 0;
   int dx = 0, dy = 0;
   rows_.reserve(f.coefficients.size());
   nearest_.reserve(f.coefficients.size());
@@ -2301,9 +2371,14 @@ IntervalPolynomial2::IntervalPolynomial2(const IntegerPolynomial2& f) {
     nearest_.back().reserve(f.coefficients[i].size());
     for (std::size_t j = 0; j < f.coefficients[i].size(); ++j) {
       // (one conversion: the nearest_ entry is the truncation enclose starts from)
-      const double d = f.coefficients[i][j].get_d();
-      rows_.back().push_back(enclose_truncated(f.coefficients[i][j], d));
-      nearest_.back().push_back(d);
+      if (shift == 0) {
+        const double d = f.coefficients[i][j].get_d();
+        rows_.back().push_back(enclose_truncated(f.coefficients[i][j], d));
+        nearest_.back().push_back(d);
+      } else {
+        rows_.back().push_back(enclose_shifted(f.coefficients[i][j], shift));
+        nearest_.back().push_back(nearest_shifted(f.coefficients[i][j], shift));
+      }
       if (sgn(f.coefficients[i][j]) != 0) {
         dx = std::max(dx, static_cast<int>(i));
         dy = std::max(dy, static_cast<int>(j));

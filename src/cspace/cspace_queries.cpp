@@ -29,6 +29,7 @@
 #include "cspace/scan_memo.hpp"
 #include "cspace/slopes_memo.hpp"
 #include "cspace/start_filter.hpp"
+#include "algebra/interval_shift.hpp"
 #include "core/kept_per_thread.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
@@ -876,12 +877,25 @@ std::shared_ptr<const TrackerData> tracker_data_of(const ChartData& chart, const
   const auto& f = raw_edge.support.coefficients;
   data->nearest.resize(f.size());
   data->enclosed.resize(f.size());
+  // F / 2^shift throughout, as `value` encloses it (interval_shift.hpp: Newton's F / F_y and
+  // the slopes' quotients of partials are the same at any common scale); shift 0 but for huge
+  // coefficients
+  const long shift = cspace::algebra::interval_shift(raw_edge.support);
   for (std::size_t i = 0; i < f.size(); ++i)
     for (const mpz_class& coefficient : f[i]) {
-      data->nearest[i].push_back(coefficient.get_d());
-      data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
+      if (shift == 0) {
+        data->nearest[i].push_back(coefficient.get_d());
+        data->enclosed[i].push_back(KInterval::enclose(mpq_class(coefficient)));
+      } else {
+        data->nearest[i].push_back(cspace::algebra::nearest_shifted(coefficient, shift));
+        const cspace::algebra::Interval scaled = cspace::algebra::enclose_shifted(coefficient, shift);
+        data->enclosed[i].push_back(KInterval(scaled.lo, scaled.hi));
+      }
     }
-  data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+  {
+    cspace::algebra::ScaledEnclosures scope;
+    data->value = cspace::algebra::IntervalPolynomial2(raw_edge.support);
+  }
   data->terms = cspace::partial_terms();
   if (data->terms) {
     auto identity = [](const auto& v) { return v; };
@@ -1574,14 +1588,37 @@ struct ScanMemo {
     // the other edges with a curve (spurious, inside one cell), for locate_inside's anchor boxes
     std::vector<Carrier> inner;
   };
+  // A partial derivative D of a chart curve F, enclosed at F's scale: the interval polynomial
+  // encloses D / 2^interval_shift(D), and evaluate multiplies by 2^(that shift - F's), so that it
+  // encloses D / 2^interval_shift(F), as curve_enclosure(k) encloses F / 2^shift(F)
+  // (algebra/interval_shift.hpp: the mean-value and Taylor forms add F and its derivatives).
+  struct ScaledPartial {
+    ScaledPartial(const cspace::IntegerPolynomial2& d, long f_shift)
+        : polynomial(scaled(d)), exponent(cspace::algebra::interval_shift(d) - f_shift) {}
+    static cspace::algebra::IntervalPolynomial2 scaled(const cspace::IntegerPolynomial2& d) {
+      cspace::algebra::ScaledEnclosures scope;
+      return cspace::algebra::IntervalPolynomial2(d);
+    }
+    cspace::algebra::Interval evaluate(cspace::algebra::Interval x, cspace::algebra::Interval y) const {
+      const cspace::algebra::Interval value = polynomial.evaluate(x, y);
+      return exponent == 0 ? value : cspace::algebra::scale_by_power_of_two(value, exponent);
+    }
+    cspace::algebra::IntervalPolynomial2 polynomial;
+    long exponent = 0;   // 0 for every polynomial of ordinary size
+  };
   struct Gradient {
-    cspace::algebra::IntervalPolynomial2 fx, fy;
+    ScaledPartial fx, fy;
   };
   struct Hessian {
-    cspace::algebra::IntervalPolynomial2 fxx, fxy, fyy;
+    ScaledPartial fxx, fxy, fyy;
   };
   using Clauses = std::vector<std::vector<cspace::algebra::IntervalPolynomial2>>;
   std::vector<ChartCarriers> carriers;
+  // per chart: its curves' enclosures made under ScaledEnclosures where one of them has
+  // coefficients beyond interval_coefficient_bits (empty: chart.interval_polynomials serve, the
+  // same enclosures), and whether that was looked at (curve_enclosure)
+  std::vector<std::vector<cspace::algebra::IntervalPolynomial2>> scaled_curves;
+  std::vector<char> scaled_ready;
   std::vector<std::vector<std::optional<Gradient>>> gradients;
   std::vector<std::vector<std::optional<Hessian>>> hessians;
   std::vector<std::vector<std::optional<Clauses>>> validity;
@@ -1609,6 +1646,8 @@ struct ScanMemo {
 std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
   auto memo = std::make_shared<ScanMemo>();
   memo->carriers.resize(impl.charts.size());
+  memo->scaled_curves.resize(impl.charts.size());
+  memo->scaled_ready.assign(impl.charts.size(), 0);
   memo->gradients.resize(impl.charts.size());
   memo->hessians.resize(impl.charts.size());
   memo->validity.resize(impl.charts.size());
@@ -1625,6 +1664,27 @@ std::shared_ptr<ScanMemo> fresh_scan_memo(const CSpace::Impl& impl) {
     memo->chart_boxes.push_back({cspace::algebra::lower_double(chart.x_lo), cspace::algebra::upper_double(chart.x_hi),
                                  cspace::algebra::lower_double(chart.y_lo), cspace::algebra::upper_double(chart.y_hi)});
   return memo;
+}
+
+// Curve k of chart c enclosed for the crossing queries: F / 2^interval_shift(F)
+// (algebra/interval_shift.hpp) — the builder's chart.interval_polynomials[k] itself unless some
+// curve of the chart has coefficients beyond interval_coefficient_bits (their enclosures
+// unbounded: every curve "possibly vanished" everywhere), then the chart's curves made under
+// ScaledEnclosures once per memo.
+const cspace::algebra::IntervalPolynomial2& curve_enclosure(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c,
+                                                            std::size_t k) {
+  std::vector<cspace::algebra::IntervalPolynomial2>& scaled = memo.scaled_curves[c];
+  if (!memo.scaled_ready[c]) {
+    memo.scaled_ready[c] = 1;
+    const std::vector<cspace::IntegerPolynomial2>& curves = impl.charts[c].polynomials;
+    if (std::any_of(curves.begin(), curves.end(),
+                    [](const cspace::IntegerPolynomial2& f) { return cspace::algebra::interval_shift(f) > 0; })) {
+      cspace::algebra::ScaledEnclosures scope;
+      scaled.reserve(curves.size());
+      for (const cspace::IntegerPolynomial2& f : curves) scaled.emplace_back(f);
+    }
+  }
+  return scaled.empty() ? impl.charts[c].interval_polynomials[k] : scaled[k];
 }
 
 // The curves of chart c that can bound a cell (ScanMemo::carriers), made on first use.
@@ -1993,12 +2053,11 @@ class MotionScanner {
   // a 1-D space: no curve of the chart does).
   bool on_no_edge(const PieceBox& box) {
     if (impl_.dimension == 1 || !cspace::carried_bounds()) return clear_of_curves(box);
-    const ChartData& chart = impl_.charts[box.chart];
     const cspace::algebra::Interval x{box.dx_lo, box.dx_hi}, y{box.dy_lo, box.dy_hi};
     for (const Carrier& carrier : carriers(box.chart).inner) {
       if (x.hi < carrier.box[0] || x.lo > carrier.box[2] || y.hi < carrier.box[1] || y.lo > carrier.box[3]) continue;
       for (std::size_t k : carrier.curves) {
-        cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+        cspace::algebra::Interval value = curve_enclosure(impl_, *memo_, box.chart, k).evaluate(x, y);
         if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
       }
     }
@@ -2013,8 +2072,8 @@ class MotionScanner {
       x = {cspace::algebra::lower_double(box.x_lo.rational()), cspace::algebra::upper_double(box.x_hi.rational())};
       y = {cspace::algebra::lower_double(box.y_lo.rational()), cspace::algebra::upper_double(box.y_hi.rational())};
     }
-    for (const auto& f : impl_.charts[box.chart].interval_polynomials) {
-      cspace::algebra::Interval value = f.evaluate(x, y);
+    for (std::size_t k = 0; k < impl_.charts[box.chart].interval_polynomials.size(); ++k) {
+      cspace::algebra::Interval value = curve_enclosure(impl_, *memo_, box.chart, k).evaluate(x, y);
       if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
     }
     return true;
@@ -2221,8 +2280,10 @@ class MotionScanner {
     std::vector<std::optional<Gradient>>& memo = memo_->gradients[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
-    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
-    memo[k] = Gradient{cspace::algebra::IntervalPolynomial2(fx), cspace::algebra::IntervalPolynomial2(fy)};
+    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+    const long shift = cspace::algebra::interval_shift(f);
+    auto [fx, fy] = partials(f);
+    memo[k] = Gradient{ScanMemo::ScaledPartial(fx, shift), ScanMemo::ScaledPartial(fy, shift)};
     return *memo[k];
   }
 
@@ -2232,11 +2293,12 @@ class MotionScanner {
     std::vector<std::optional<Hessian>>& memo = memo_->hessians[chart];
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
-    auto [fx, fy] = partials(impl_.charts[chart].polynomials[k]);
+    const cspace::IntegerPolynomial2& f = impl_.charts[chart].polynomials[k];
+    const long shift = cspace::algebra::interval_shift(f);
+    auto [fx, fy] = partials(f);
     auto [fxx, fxy] = partials(fx);
     cspace::IntegerPolynomial2 fyy = partials(fy).second;
-    memo[k] = Hessian{cspace::algebra::IntervalPolynomial2(fxx), cspace::algebra::IntervalPolynomial2(fxy),
-                      cspace::algebra::IntervalPolynomial2(fyy)};
+    memo[k] = Hessian{ScanMemo::ScaledPartial(fxx, shift), ScanMemo::ScaledPartial(fxy, shift), ScanMemo::ScaledPartial(fyy, shift)};
     return *memo[k];
   }
 
@@ -2315,9 +2377,8 @@ class MotionScanner {
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
     for (const Possible& p : possible) {
-      const ChartData& chart = impl_.charts[p.chart];
       const Gradient& g = gradient(p.chart, p.curve);
-      DInterval start = chart.interval_polynomials[p.curve].evaluate(x_at, y_at);
+      DInterval start = curve_enclosure(impl_, *memo_, p.chart, p.curve).evaluate(x_at, y_at);
       // a start within rounding of the curve (a motion leaving a contact from a configuration a
       // few ulps off it): the double enclosure contains 0 at any depth, so take F over the
       // start's exact (160-bit) box in rational intervals, cached per start and curve
@@ -2451,6 +2512,11 @@ class MotionScanner {
         row = row * Y + RInterval::point(Rational(f.coefficients[i][j]));
       value = value * X + row;
     }
+    // at the scale of the double enclosures it is added to (F / 2^shift, interval_shift.hpp)
+    if (const long shift = cspace::algebra::interval_shift(f); shift > 0) {
+      mpq_div_2exp(value.lo.get_mpq_t(), value.lo.get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
+      mpq_div_2exp(value.hi.get_mpq_t(), value.hi.get_mpq_t(), static_cast<mp_bitcnt_t>(shift));
+    }
     DInterval result{cspace::algebra::lower_double(value.lo), cspace::algebra::upper_double(value.hi)};
     start_->exact.emplace(key, result);
     return result;
@@ -2524,7 +2590,7 @@ class MotionScanner {
     }
     for (std::size_t k = 0; k < chart.polynomials.size(); ++k) {
       if (!candidate[k]) continue;
-      if (!chart.interval_polynomials[k].evaluate(x, y).contains_zero()) continue;
+      if (!curve_enclosure(impl_, *memo_, box.chart, k).evaluate(x, y).contains_zero()) continue;
       const auto& clauses = validity(box.chart, k);
       bool invalid = false;
       for (const auto& clause : clauses) {
@@ -2544,6 +2610,7 @@ class MotionScanner {
     if (memo.empty()) memo.resize(impl_.charts[chart].polynomials.size());
     if (memo[k]) return *memo[k];
     Clauses clauses;
+    cspace::algebra::ScaledEnclosures scope;   // (signs only: each atom at its own scale)
     for (const auto& clause : impl_.charts[chart].validity[k]) {
       clauses.emplace_back();
       for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
@@ -3224,9 +3291,8 @@ std::optional<WalkAxis> walk_axis(const AxisPath& axis, const Rational& u, Memo&
 // (outward-rounded interval evaluation).
 bool no_boundary_on(const CSpace::Impl& impl, ScanMemo& memo, std::size_t c, const cspace::algebra::Interval& x,
                     const cspace::algebra::Interval& y) {
-  const ChartData& chart = impl.charts[c];
   auto vanishes = [&](std::size_t k) {
-    cspace::algebra::Interval value = chart.interval_polynomials[k].evaluate(x, y);
+    cspace::algebra::Interval value = curve_enclosure(impl, memo, c, k).evaluate(x, y);
     return !std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero();
   };
   const ScanMemo::ChartCarriers& known = chart_carriers(impl, memo, c);
