@@ -874,8 +874,12 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
         } else if (!impl->whole_turn) {
           const bool lower = above_lo <= 0;
           const int side = limit_side(c.t, reduced.turns, lower ? limits->lo : limits->hi);
-          if (side == 0) at_limits.push_back(Rational(0)), (lower ? at_lower_limit : at_upper_limit) = true;
-          else if (lower ? side > 0 : side < 0) inside.push_back(c.t);
+          if (side == 0) {
+            at_limits.push_back(Rational(0));
+            (lower ? at_lower_limit : at_upper_limit) = true;
+          } else if (lower ? side > 0 : side < 0) {
+            inside.push_back(c.t);
+          }
         }
       }
     // a slice in every interval between consecutive critical values
