@@ -173,8 +173,8 @@ class PinSlotSpace {
   Motion::Kind other_kind() const;
   /// 3 (the other part moves) or 2 (it is fixed: slices are 1-D in s).
   int dimension() const;
-  /// The rational half-angle tangents bounding the stack: tan of the angle limits (rounded
-  /// inward) or, without limits, the whole turn but the half turn.
+  /// The rational half-angle tangents bounding the stack: its first and last slices (inside
+  /// the angle limits, or, without limits, the whole turn but the half turn).
   const Rational& tau_lower() const;
   const Rational& tau_upper() const;
   /// L when the pair was stacked with its lengths in units of 2^L mm (PinSlotBuildOptions::
@@ -198,6 +198,12 @@ class PinSlotSpace {
   /// The exact critical values inside (tau_lower, tau_upper), ascending (empty unless
   /// critical_values_exact()). Every interval between consecutive ones (and the stack's ends)
   /// holds a slice of the stack: two slices with no critical value between them are alike.
+  /// A stack narrower than a whole turn is searched up to its angle limits (the end pieces
+  /// between the limits and the end slices too, since session 55): slices are added between a
+  /// limit and the value nearest it, so the stack is complete up to the limits; a value at a
+  /// limit (psi = 0 only: tau rational) is listed, and that limit is the stack's end slice. A
+  /// limit at or beyond the half turn (the quarter step the stack accepts) leaves the values
+  /// incomplete (critical_values_exact() false).
   /// A whole-turn stack (no angle limits, or limits of a turn or more) is a cycle: the values
   /// across the half turn are found too (in the chart about it, u = -1/tau), slices are added
   /// beyond the first and last so that every interval between cyclically consecutive values

@@ -2,33 +2,15 @@
 #include "core/angle_limits.hpp"
 
 #include "core/angle_sign.hpp"
+#include "core/mp_values.hpp"
 
 #include <mpfi.h>
 #include <mpfr.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace hipair {
-
-namespace {
-
-struct Mpfi {
-  mpfi_t v;
-  explicit Mpfi(mpfr_prec_t bits) { mpfi_init2(v, bits); }
-  ~Mpfi() { mpfi_clear(v); }
-  Mpfi(const Mpfi&) = delete;
-  Mpfi& operator=(const Mpfi&) = delete;
-};
-
-struct Mpfr {
-  mpfr_t v;
-  explicit Mpfr(mpfr_prec_t bits) { mpfr_init2(v, bits); }
-  ~Mpfr() { mpfr_clear(v); }
-  Mpfr(const Mpfr&) = delete;
-  Mpfr& operator=(const Mpfr&) = delete;
-};
-
-}  // namespace
 
 bool angle_within_limits(const Rational& tau, const Rational& lo, const Rational& hi) {
   // k: the fewest whole turns with 2 atan(tau) + 2 pi k >= lo. An estimate, ceil((lo - psi) /
@@ -36,13 +18,13 @@ bool angle_within_limits(const Rational& tau, const Rational& lo, const Rational
   mpfr_prec_t bits = angle_bits(mpz_class(0), lo) + 16;
   mpz_class k;
   {
-    Mpfi x(bits), two_pi(bits);
+    MpfiValue x(bits), two_pi(bits);
     enclose_angle(x.v, tau, mpz_class(0), lo, bits);   // psi - lo
     mpfi_const_pi(two_pi.v);
     mpfi_mul_2ui(two_pi.v, two_pi.v, 1);
     mpfi_div(x.v, x.v, two_pi.v);                 // (psi - lo) / 2 pi
     mpfi_neg(x.v, x.v);                           // (lo - psi) / 2 pi
-    Mpfr middle(bits);
+    MpfrValue middle(bits);
     mpfi_mid(middle.v, x.v);
     if (mpfr_number_p(middle.v)) mpfr_get_z(k.get_mpz_t(), middle.v, MPFR_RNDU);
   }
@@ -64,6 +46,24 @@ Rational rounding_slack(const std::vector<Rounding>& roundings, const std::strin
   return slack;
 }
 
+Rational pin_slot_limits_slack(const std::vector<Rounding>& roundings, const Motion& motion) {
+  if (motion.pointer.empty()) return Rational(0);
+  return rounding_slack(roundings, motion.pointer + "/pin_slot/angle_limits/");
+}
+
+bool pin_slot_whole_turn(const std::vector<Rounding>& roundings, const Motion& motion) {
+  const std::optional<RationalInterval>& limits = motion.angle_limits;
+  return !limits || at_least_whole_turn(Rational(limits->hi - limits->lo + pin_slot_limits_slack(roundings, motion)));
+}
+
+ReducedLimits reduced_limits(const RationalInterval& limits) {
+  ReducedLimits out;
+  out.turns = nearest_whole_turns(Rational((limits.lo + limits.hi) / 2));
+  out.lo = reduced_angle(limits.lo, out.turns);
+  out.hi = reduced_angle(limits.hi, out.turns);
+  return out;
+}
+
 bool initial_angle_within_limits(const Rational& angle, const RationalInterval& limits, const Rational& limits_slack,
                                  const Rational& angle_slack) {
   if (at_least_whole_turn(Rational(limits.hi - limits.lo + limits_slack))) return true;
@@ -74,7 +74,7 @@ bool initial_angle_within_limits(const Rational& angle, const RationalInterval& 
 
 mpz_class nearest_whole_turns(const Rational& x) {
   mpfr_prec_t bits = angle_bits(mpz_class(0), x) + 16;
-  Mpfr value(bits), two_pi(bits);
+  MpfrValue value(bits), two_pi(bits);
   mpfr_set_q(value.v, x.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(two_pi.v, MPFR_RNDN);
   mpfr_mul_2ui(two_pi.v, two_pi.v, 1, MPFR_RNDN);
@@ -86,7 +86,7 @@ mpz_class nearest_whole_turns(const Rational& x) {
 
 double reduced_angle(const Rational& x, const mpz_class& k) {
   mpfr_prec_t bits = angle_bits(k, x) + 64;
-  Mpfr value(bits), turns(bits);
+  MpfrValue value(bits), turns(bits);
   mpfr_set_q(value.v, x.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(turns.v, MPFR_RNDN);
   mpfr_mul_z(turns.v, turns.v, k.get_mpz_t(), MPFR_RNDN);

@@ -37,6 +37,26 @@ bool at_least_whole_turn(const Rational& width);
 /// values, or a model built in code). The values as written lie within it of the stored ones.
 Rational rounding_slack(const std::vector<Rounding>& roundings, const std::string& pointer);
 
+/// The reader's rounding bound of a pin-slot motion's two angle limits: rounding_slack under
+/// `motion.pointer` + "/pin_slot/angle_limits/" (0 for a motion built in code).
+Rational pin_slot_limits_slack(const std::vector<Rounding>& roundings, const Motion& motion);
+
+/// Are a pin-slot motion's angles unlimited: no angle limits, or limits spanning a whole turn
+/// allowing for the reader's rounding of the two (pin_slot_limits_slack: [-180, 180] deg is a
+/// whole turn whichever way pi was rounded), however wide (1e400 deg)? Exact. The one decision
+/// PinSlotSpace::build and pin_slot_cycle take (session 55; before, the cycle left out the
+/// rounding and could take limits the stack called a whole turn for narrower ones).
+bool pin_slot_whole_turn(const std::vector<Rounding>& roundings, const Motion& motion);
+
+/// Limits narrower than a whole turn shifted by the whole turns nearest their middle (the
+/// angle is taken modulo 2 pi), for choosing slice angles and poses: a choice in doubles
+/// (each end within a few units in the last place of limit - 2 pi turns), not a decision.
+struct ReducedLimits {
+  mpz_class turns;
+  double lo = 0, hi = 0;
+};
+ReducedLimits reduced_limits(const RationalInterval& limits);
+
 /// Is a pin-slot part's initial angle `angle` (rad) inside its angle limits modulo whole turns,
 /// as PinSlotSpace::locate takes its angle? Limits spanning a whole turn, allowing for the
 /// rounding of the two (`limits_slack`), are the whole turn: every angle is inside. Otherwise

@@ -1,21 +1,11 @@
 // Exact signs of 2 atan(tau) + m pi - L (angle_sign.hpp).
 #include "core/angle_sign.hpp"
 
+#include "core/mp_values.hpp"
+
 #include <algorithm>
 
 namespace hipair {
-
-namespace {
-
-struct Mpfi {
-  mpfi_t v;
-  explicit Mpfi(mpfr_prec_t bits) { mpfi_init2(v, bits); }
-  ~Mpfi() { mpfi_clear(v); }
-  Mpfi(const Mpfi&) = delete;
-  Mpfi& operator=(const Mpfi&) = delete;
-};
-
-}  // namespace
 
 long magnitude_bits(const Rational& x) {
   if (sgn(x) == 0) return 0;
@@ -29,7 +19,7 @@ long magnitude_bits(const mpz_class& x) {
 }
 
 void enclose_angle(mpfi_t out, const Rational& tau, const mpz_class& m, const Rational& L, mpfr_prec_t bits) {
-  Mpfi term(bits);
+  MpfiValue term(bits);
   mpfi_set_q(out, tau.get_mpq_t());
   mpfi_atan(out, out);
   mpfi_mul_2ui(out, out, 1);
@@ -52,7 +42,7 @@ int angle_sign(const Rational& tau, const mpz_class& m, const Rational& L) {
   if (sgn(m) == 0 && sgn(L) == 0) return sgn(tau);   // 2 atan(tau) has the sign of tau
   // never 0 here (angle_sign.hpp): the refinement ends
   for (mpfr_prec_t bits = angle_bits(m, L);; bits *= 2) {
-    Mpfi difference(bits);
+    MpfiValue difference(bits);
     enclose_angle(difference.v, tau, m, L, bits);
     if (mpfi_is_strictly_pos(difference.v) > 0) return 1;
     if (mpfi_is_strictly_neg(difference.v) > 0) return -1;

@@ -111,7 +111,7 @@ std::vector<Segment> plan_segments(const AxisLine& line, const Rational& start, 
     double offset = line.offsets[piece];
     double local = offset + 2 * std::atan(t.get_d());
     long turns = std::lround((start.get_d() - local) / (2 * pi));
-    base_pi = std::lround(offset / pi) + 2 * turns;
+    base_pi = line.half_turns[piece] + 2 * turns;
   }
   auto base_of = [&](long multiple) { return multiple * pi; };
   // end position (exact when given, else rounded)
@@ -143,12 +143,12 @@ std::vector<Segment> plan_segments(const AxisLine& line, const Rational& start, 
     }
     if (direction > 0) {
       std::size_t next = line.next(piece);
-      base_pi += line.rotation ? (line.cyclic ? 1 : std::lround((line.offsets[next] - line.offsets[piece]) / pi)) : 0;
+      base_pi += line.rotation ? (line.cyclic ? 1 : line.half_turns[next] - line.half_turns[piece]) : 0;
       piece = next;
       t = line.pieces[piece].lo;
     } else {
       std::size_t previous = piece == 0 ? line.pieces.size() - 1 : piece - 1;
-      base_pi -= line.rotation ? (line.cyclic ? 1 : std::lround((line.offsets[piece] - line.offsets[previous]) / pi)) : 0;
+      base_pi -= line.rotation ? (line.cyclic ? 1 : line.half_turns[piece] - line.half_turns[previous]) : 0;
       piece = previous;
       t = line.pieces[piece].hi;
     }

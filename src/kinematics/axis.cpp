@@ -5,6 +5,7 @@
 #include "algebra/liouville.hpp"
 #include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
+#include "core/angle_limits.hpp"
 
 #include <hipair/error.hpp>
 
@@ -26,6 +27,16 @@ constexpr double pi = std::numbers::pi;
 
 bool same_chart(const ChartAxis& a, const ChartAxis& b) {
   return a.kind == b.kind && a.half_turn == b.half_turn && a.lo == b.lo && a.hi == b.hi;
+}
+
+// The fewest whole turns k with 2 atan(t) + (m0 + 2 k) pi >= L, exactly (the signs of
+// core/angle_sign.hpp, never 0 here but at t = m = L = 0, where >= holds); the estimate is a
+// choice (the whole turns nearest L / 2 pi).
+mpz_class fewest_turns(const Rational& t, long m0, const Rational& L) {
+  mpz_class k = nearest_whole_turns(L);
+  while (angle_sign(t, m0 + 2 * k, L) < 0) ++k;
+  while (angle_sign(t, m0 + 2 * (k - 1), L) >= 0) --k;
+  return k;
 }
 }  // namespace
 
@@ -66,6 +77,7 @@ AxisLine make_axis(const Model& model, std::size_t part, const std::vector<Chart
       piece.hi = std::max(piece.hi, chart.hi);
     }
     line.pieces = {piece};
+    line.half_turns = {0};
     line.offsets = {0.0};
     line.limited = motion.translation_limits.has_value();
     return line;
@@ -77,27 +89,37 @@ AxisLine make_axis(const Model& model, std::size_t part, const std::vector<Chart
       unique.push_back(chart);
   bool full = unique.size() == 2 && unique[0].lo == -1 && unique[0].hi == 1 && unique[1].lo == -1 &&
               unique[1].hi == 1 && unique[0].half_turn != unique[1].half_turn;
-  if (full && !(motion.angle_limits && motion.angle_limits->hi - motion.angle_limits->lo < 6)) {
+  // limits of a whole turn or more are the whole turn (exact: core/angle_limits.hpp; limits
+  // short of it by less than the charts' outward rounding give two full charts too)
+  if (full && !(motion.angle_limits && !at_least_whole_turn(Rational(motion.angle_limits->hi - motion.angle_limits->lo)))) {
     line.cyclic = true;
     line.pieces = unique;
     if (line.pieces[0].half_turn) std::swap(line.pieces[0], line.pieces[1]);
+    line.half_turns = {0, 1};
     line.offsets = {0.0, pi};
     return line;
   }
   line.limited = true;
-  double limit_lo = motion.angle_limits ? motion.angle_limits->lo.get_d() : -pi;
-  std::vector<std::pair<double, ChartAxis>> placed;
+  // Each chart about m pi, m = centre + 2 k, k the fewest whole turns with the chart's start
+  // at or above the lower limit less 10^-6 rad (the first chart starts below the limit by its
+  // outward rounding; without limits, the lower end -pi); the pieces in the order of m. Exact
+  // (session 55; before, doubles: limits beyond 2^53 rad gave infinite or coarse offsets and
+  // the charts in any order).
+  const Rational slack(1, 1000000);
+  std::vector<std::pair<mpz_class, ChartAxis>> placed;
   for (const ChartAxis& chart : unique) {
-    double centre = chart.half_turn ? pi : 0.0;
-    double lo = centre + 2 * std::atan(chart.lo.get_d());
-    double shift = 2 * pi * std::ceil((limit_lo - 1e-6 - lo) / (2 * pi));
-    placed.emplace_back(centre + shift, chart);
+    const long centre = chart.half_turn ? 1 : 0;
+    mpz_class m = motion.angle_limits ? centre + 2 * fewest_turns(chart.lo, centre, Rational(motion.angle_limits->lo - slack))
+                                      : centre + 2 * fewest_turns(chart.lo, centre + 1, Rational(-slack));
+    placed.emplace_back(std::move(m), chart);
   }
-  std::sort(placed.begin(), placed.end(), [](const auto& a, const auto& b) {
-    return a.first + 2 * std::atan(a.second.lo.get_d()) < b.first + 2 * std::atan(b.second.lo.get_d());
-  });
-  for (auto& [offset, chart] : placed) {
-    line.offsets.push_back(offset);
+  std::sort(placed.begin(), placed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [m, chart] : placed) {
+    if (!m.fits_slong_p())
+      throw GeometryError("part '" + model.parts[part].name + "' (" + motion.pointer +
+                          "): rotation angle limits beyond about 10^19 rad (2^63 half turns) are out of the kinematic analysis' range");
+    line.half_turns.push_back(m.get_si());
+    line.offsets.push_back(m.get_d() * pi);
     line.pieces.push_back(chart);
   }
   return line;
@@ -625,7 +647,7 @@ struct Enclosure {
 
 // The position's unwrapped coordinate is half_turns pi + 2 atan(t) (rotation).
 long half_turns(const AxisLine& line, const AxisPosition& position, double unwrapped) {
-  long m = std::lround(line.offsets[position.piece] / pi);
+  long m = line.half_turns[position.piece];
   if (line.cyclic) m += 2 * std::lround((unwrapped - coordinate(line, position)) / (2 * pi));
   return m;
 }

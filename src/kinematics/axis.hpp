@@ -20,7 +20,11 @@ struct AxisLine {
   bool cyclic = false;
   bool limited = false;              ///< line ends are motion limits (else: beyond every contact)
   std::vector<ChartAxis> pieces;
-  std::vector<double> offsets;       ///< coordinate = offsets[p] + 2 atan(t) (rotation) or t
+  /// Rotation: piece p is the chart about half_turns[p] pi, exactly (0 and 1 for a cyclic axis;
+  /// a limited rotation's charts in the order of these, session 55: before, in the order of
+  /// double angles, garbage for limits beyond 2^53 rad); 0 for a translation.
+  std::vector<long> half_turns;
+  std::vector<double> offsets;       ///< half_turns[p] pi in double: coordinate = offsets[p] + 2 atan(t) (rotation) or t
 
   /// Part coordinate (rad or mm) of chart value `t` of piece `piece`, in double.
   double coordinate(std::size_t piece, double t) const;

@@ -107,7 +107,7 @@ AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordi
       best = p;
     }
   }
-  long multiple = std::lround(line.offsets[best] / pi);
+  long multiple = line.half_turns[best];
   Rational t = half_tangent(coordinate_value, multiple, bits);
   t = std::clamp(t, line.pieces[best].lo, line.pieces[best].hi);
   return canonical(line, AxisPosition{best, Real::from_rational(t)});

@@ -255,8 +255,7 @@ PartConfiguration Reader::read_initial(const JsonValue& value, const Motion& mot
       // a pin-slot part's angle limits are angles modulo whole turns (docs/model-format.md), and
       // so is its initial angle: 370 deg against [-20, 20] deg is 10 deg (PinSlotSpace::locate
       // reduces the same way); decided exactly, the three values' roundings allowed for
-      const Rational limits_slack =
-          motion.pointer.empty() ? Rational(0) : rounding_slack(model_.roundings, motion.pointer + "/pin_slot/angle_limits/");
+      const Rational limits_slack = pin_slot_limits_slack(model_.roundings, motion);
       if (!initial_angle_within_limits(initial.angle, *motion.angle_limits, limits_slack,
                                        rounding_slack(model_.roundings, a->pointer)))
         throw ModelError(a->pointer, "the initial angle lies outside the motion's angle limits, also after whole turns "

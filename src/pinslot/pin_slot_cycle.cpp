@@ -54,9 +54,13 @@ Part placed_fixed(const Part& part, const Placement& placement) {
   return out;
 }
 
-Model two_parts(const std::string& name, Part a, Part b) {
+// The two parts as a model of their own; the reader's rounding records of the original model
+// go with them (their pointers are the parts' own), so that the pin-slot part's limits are
+// decided as in the original (pin_slot_whole_turn).
+Model two_parts(const std::string& name, Part a, Part b, const std::vector<Rounding>& roundings = {}) {
   Model m;
   m.name = name;
+  m.roundings = roundings;
   m.angle_unit = "rad";
   m.source = "<" + name + ">";
   a.dynamics.reset();
@@ -184,12 +188,12 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
   // the follower's angle range in tau (inside its limits)
   double psi_lo = -std::numbers::pi * 0.999, psi_hi = std::numbers::pi * 0.999;
   // (limits are angles modulo whole turns, and a whole turn or more is no limit: as in
-  // PinSlotSpace::build, core/angle_limits.hpp)
-  if (const auto& limits = pin.motion.angle_limits;
-      limits && !at_least_whole_turn(Rational(limits->hi - limits->lo))) {
-    mpz_class turns = nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
-    psi_lo = std::max(psi_lo, reduced_angle(limits->lo, turns));
-    psi_hi = std::min(psi_hi, reduced_angle(limits->hi, turns));
+  // PinSlotSpace::build, core/angle_limits.hpp: the same exact decision, the reader's rounding
+  // of the limits allowed for)
+  if (!pin_slot_whole_turn(model.roundings, pin.motion)) {
+    const ReducedLimits reduced = reduced_limits(*pin.motion.angle_limits);
+    psi_lo = std::max(psi_lo, reduced.lo);
+    psi_hi = std::min(psi_hi, reduced.hi);
   }
   // a margin keeps the chosen poses clear of the limits (the choice is in doubles)
   const double tau_lo = std::tan(psi_lo / 2) + 1e-9, tau_hi = std::tan(psi_hi / 2) - 1e-9;
@@ -216,7 +220,7 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
       sample.driver.value = near_rational(std::tan(wrapped / 2));
     }
     // ---- the follower's pose: the driver fixed at phi, slices in s at follower angles tau
-    Model fixed_driver = two_parts("cycle driver", placed_fixed(cam, part_placement(cam, sample.driver)), pin);
+    Model fixed_driver = two_parts("cycle driver", placed_fixed(cam, part_placement(cam, sample.driver)), pin, model.roundings);
     PinSlotSpace around = PinSlotSpace::build(fixed_driver, cam.name, pin.name, light);
     struct Best {
       double length = 0;

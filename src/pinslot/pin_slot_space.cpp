@@ -76,11 +76,52 @@ Rational near_rational(double value, long den) {
   return r;
 }
 
-// The reader's rounding bounds of a part's two angle limits (0 for limits that are exact, or a
-// model built in code): the limits as written lie within this of the stored ones.
-Rational limits_rounding(const Model& model, const Part& part) {
-  if (part.motion.pointer.empty()) return Rational(0);
-  return rounding_slack(model.roundings, part.motion.pointer + "/pin_slot/angle_limits/");
+// The side of psi = 2 atan(x) + 2 pi turns against a rational angle limit L, for a real
+// algebraic x: the sign of psi - L, exactly. x's isolating interval is refined until both its
+// ends lie on one side (core/angle_sign.hpp): psi - L is never 0 but at psi = 0 = L - 2 pi turns
+// (tan of a nonzero rational is transcendental, pi irrational), which is decided directly.
+int limit_side(cspace::algebra::Real x, const mpz_class& turns, const Rational& L) {
+  const mpz_class m = 2 * turns;
+  if (sgn(m) == 0 && sgn(L) == 0) return x.compare(Rational(0));
+  for (;;) {
+    if (x.exact) return angle_sign(x.lower, m, L);
+    if (angle_sign(x.upper, m, L) <= 0) return -1;   // x < upper
+    if (angle_sign(x.lower, m, L) >= 0) return 1;    // x > lower
+    x.refine();
+  }
+}
+
+// A rational tau just beyond an angle limit L (side -1: below the lower limit, +1: above the
+// upper one), psi = 2 atan(tau) + 2 pi turns: from the double tangent of the reduced limit
+// (`reduced`, a choice), moved outward until the exact sign says so. \pre the reduced limit
+// lies strictly inside (-pi, pi).
+Rational beyond_limit(double reduced, const mpz_class& turns, const Rational& L, int side) {
+  double t = std::tan(reduced / 2);
+  if (!std::isfinite(t)) t = 0;
+  const Rational base(t);
+  Rational step = Rational(std::max(1.0, std::abs(t))) / (mpz_class(1) << 30);
+  for (;;) {
+    Rational candidate = base + side * step;
+    candidate.canonicalize();
+    if (angle_sign(candidate, 2 * turns, L) * side > 0) return candidate;
+    step *= 2;
+  }
+}
+
+// A rational tau strictly between the angle limit L (side -1: the lower one, +1: the upper
+// one) and x, which lies strictly inside it; `outside` is a rational beyond the limit. Bisection
+// between `outside` and x's end towards the limit once that end is inside too (exact signs).
+Rational inside_limit(cspace::algebra::Real x, const Rational& outside, const mpz_class& turns, const Rational& L,
+                      int side) {
+  auto inside = [&](const Rational& t) { return angle_sign(t, 2 * turns, L) * side < 0; };
+  while (!x.exact && !inside(side < 0 ? x.lower : x.upper)) x.refine();
+  Rational near = outside, far = side < 0 ? x.lower : x.upper;   // far: x itself, or beyond it from the limit
+  for (;;) {
+    Rational middle = (near + far) / 2;
+    middle.canonicalize();
+    if (inside(middle)) return middle;
+    near = middle;
+  }
 }
 
 // The half-angle tangent tau = -1/u of psi = pi + 2 atan(u) (the chart about the half turn:
@@ -645,14 +686,16 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
   // limits spanning a whole turn (exactly, allowing for the reader's rounding of the two limits:
   // [-180, 180] deg is a whole turn whichever way pi was rounded) are the whole turn, however
   // wide (1e400 deg); before session 53 this was decided in doubles
-  impl->whole_turn = !limits || at_least_whole_turn(Rational(limits->hi - limits->lo + limits_rounding(model, pin)));
+  // (core/angle_limits.hpp, the decision pin_slot_cycle takes too)
+  impl->whole_turn = pin_slot_whole_turn(model.roundings, impl->pin().motion);
+  ReducedLimits reduced;
   if (!impl->whole_turn) {
     // limits given beyond a half turn ([100, 170] + 360 k deg) are the same angles reduced by
     // whole turns (the angle is taken modulo 2 pi, as locate does); the reduction is a choice of
     // slice angles in doubles, each slice's tau is then checked exactly inside the limits
-    mpz_class turns = nearest_whole_turns(Rational((limits->lo + limits->hi) / 2));
-    lo = reduced_angle(limits->lo, turns);
-    hi = reduced_angle(limits->hi, turns);
+    reduced = reduced_limits(*limits);
+    lo = reduced.lo;
+    hi = reduced.hi;
   }
   // Each slice angle is n-th of the range away from the limits; the rational tangent is within
   // 2^-13 of tan(angle/2), i.e. within about 2^-12 rad (times 1 + tan^2 <= 2 inside a half
@@ -735,6 +778,32 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
         }
         cs.roots += piece_stats.roots;
       }
+      // Limits narrower than a whole turn: the two end pieces between a limit and the end slice
+      // (about half a step each; before session 55 they were not searched while the values were
+      // claimed complete), from a rational just beyond the limit to the end slice; the values
+      // beyond the limits are dropped below. A limit at or beyond the half turn (the reduced
+      // limit outside (-pi, pi), at most a quarter step: the piece crosses the jump of tau,
+      // which no search in tau can) leaves the values incomplete: the sampled stack.
+      if (!impl->whole_turn) {
+        const mpz_class& turns = reduced.turns;
+        if (angle_sign(Rational(0), 2 * turns - 1, limits->lo) >= 0 || angle_sign(Rational(0), 2 * turns + 1, limits->hi) <= 0)
+          throw GeometryError("pin-slot angle limits reach the half turn");
+        const std::pair<Rational, Rational> ends_pieces[] = {
+            {beyond_limit(reduced.lo, turns, limits->lo, -1), taus.front()},
+            {taus.back(), beyond_limit(reduced.hi, turns, limits->hi, 1)}};
+        for (const auto& piece : ends_pieces) {
+          sliced::CriticalStatistics piece_stats;
+          for (auto& c : sliced::pin_slot_critical_values(impl->other(), impl->pin(), impl->pin().motion.translation_limits->lo,
+                                                          impl->pin().motion.translation_limits->hi, q_range, piece,
+                                                          piece_stats)) {
+            bool seen = false;
+            for (const auto& f : found)
+              if (!c.half_turn && !f.half_turn && cspace::algebra::compare(f.t, c.t) == 0) seen = true;
+            if (!seen) found.push_back(std::move(c));
+          }
+          cs.roots += piece_stats.roots;
+        }
+      }
       std::sort(found.begin(), found.end(), [](const sliced::Critical& a, const sliced::Critical& b) {
         if (a.half_turn != b.half_turn) return b.half_turn;
         return !a.half_turn && cspace::algebra::compare(a.t, b.t) < 0;
@@ -789,10 +858,30 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
       }
     }
     impl->stats.critical_roots = cs.roots;
+    // the values strictly inside the stack's range: (tau_lo, tau_hi) for a whole turn; strictly
+    // inside the angle limits otherwise (exact signs against the limits for those at or beyond
+    // an end slice). A value at a limit itself (only psi = 0 can be: tau rational) is listed
+    // too, and the limit becomes a slice of its own, the stack's end.
     std::vector<cspace::algebra::Real> inside;
+    std::vector<Rational> at_limits;
+    bool at_lower_limit = false, at_upper_limit = false;
     if (in_class)
-    for (const auto& c : found)
-      if (!c.half_turn && c.t.compare(impl->tau_lo) > 0 && c.t.compare(impl->tau_hi) < 0) inside.push_back(c.t);
+      for (const auto& c : found) {
+        if (c.half_turn) continue;
+        const int below_hi = c.t.compare(impl->tau_hi), above_lo = c.t.compare(impl->tau_lo);
+        if (above_lo > 0 && below_hi < 0) {
+          inside.push_back(c.t);
+        } else if (!impl->whole_turn) {
+          const bool lower = above_lo <= 0;
+          const int side = limit_side(c.t, reduced.turns, lower ? limits->lo : limits->hi);
+          if (side == 0) {
+            at_limits.push_back(Rational(0));
+            (lower ? at_lower_limit : at_upper_limit) = true;
+          } else if (lower ? side > 0 : side < 0) {
+            inside.push_back(c.t);
+          }
+        }
+      }
     // a slice in every interval between consecutive critical values
     for (std::size_t k = 0; k + 1 < inside.size(); ++k) {
       bool has = std::any_of(taus.begin(), taus.end(), [&](const Rational& t) {
@@ -800,6 +889,19 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
       });
       if (!has) taus.push_back(cspace::algebra::rational_between(inside[k], inside[k + 1]));
     }
+    // and (limited stacks) between each limit and the value nearest it, when the end pieces
+    // held values or one is at an end slice
+    if (!impl->whole_turn && !inside.empty()) {
+      const cspace::algebra::Real &first = inside.front(), &last = inside.back();
+      if (std::none_of(taus.begin(), taus.end(), [&](const Rational& t) { return first.compare(t) > 0; }))
+        taus.push_back(inside_limit(first, beyond_limit(reduced.lo, reduced.turns, limits->lo, -1), reduced.turns,
+                                    limits->lo, -1));
+      if (std::none_of(taus.begin(), taus.end(), [&](const Rational& t) { return last.compare(t) < 0; }))
+        taus.push_back(inside_limit(last, beyond_limit(reduced.hi, reduced.turns, limits->hi, 1), reduced.turns,
+                                    limits->hi, 1));
+    }
+    for (const Rational& t : at_limits)
+      if (std::find(taus.begin(), taus.end(), t) == taus.end()) taus.push_back(t);
     // in the gap: a slice between consecutive values there (u = -1/tau, never u = 0), beyond
     // the end slices (which lie between the gap's values and the others); the stack's ends
     // become the outermost slices
@@ -823,7 +925,9 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     impl->tau_lo = taus.front();
     impl->tau_hi = taus.back();
     std::vector<cspace::algebra::Real> listed = below;
+    if (at_lower_limit) listed.push_back(cspace::algebra::Real::from_rational(Rational(0)));
     listed.insert(listed.end(), inside.begin(), inside.end());
+    if (at_upper_limit) listed.push_back(cspace::algebra::Real::from_rational(Rational(0)));
     listed.insert(listed.end(), above.begin(), above.end());
     for (auto& r : listed) {
       PinSlotCritical c;

@@ -34,6 +34,7 @@ AxisLine cyclic_line() {
   line.cyclic = true;
   line.pieces = {ChartAxis{ChartAxis::Kind::rotation, false, Rational(-1), Rational(1)},
                  ChartAxis{ChartAxis::Kind::rotation, true, Rational(-1), Rational(1)}};
+  line.half_turns = {0, 1};
   line.offsets = {0.0, pi_d};
   return line;
 }
@@ -42,6 +43,7 @@ AxisLine translation_line() {
   AxisLine line;
   line.rotation = false;
   line.pieces = {ChartAxis{ChartAxis::Kind::translation, false, Rational(-100), Rational(100)}};
+  line.half_turns = {0};
   line.offsets = {0.0};
   return line;
 }

@@ -15,12 +15,16 @@
 #include "algebra/exact_real.hpp"
 #include "core/angle_limits.hpp"
 #include "curves/contact_curves.hpp"
+#include "kinematics/axis.hpp"
 #include "sliced/critical_angles.hpp"
+#include "pin_slot_test_support.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -31,11 +35,6 @@
 namespace hipair {
 namespace {
 
-Rational power10(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
-  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
-}
 
 // pi in [pi_lo, pi_hi]: its first 60 decimals, and one more unit in the last place
 const Rational& pi_lo() {
@@ -45,7 +44,7 @@ const Rational& pi_lo() {
 }
 const Rational& pi_hi() {
   static const Rational value = [] {
-    Rational r = pi_lo() + power10(-60);
+    Rational r = pi_lo() + pin_slot_test::exact_power10(-60);
     r.canonicalize();
     return r;
   }();
@@ -58,7 +57,7 @@ using Bracket = std::pair<Rational, Rational>;
 // terms decrease, until a term is below 1e-45.
 Bracket atan_small(const Rational& x) {
   Rational sum = 0, power = x, x2 = x * x;
-  const Rational tiny = power10(-45);
+  const Rational tiny = pin_slot_test::exact_power10(-45);
   for (long k = 0;; ++k) {
     Rational term = power / (2 * k + 1);
     term.canonicalize();
@@ -109,7 +108,7 @@ Rational random_tangent(std::mt19937_64& random, int e) {
   // numerator and denominator in [1e9, 2e9): the quotient in (1/2, 2)
   mpz_class numerator(static_cast<unsigned long>(1000000000 + random() % 1000000000));
   mpz_class denominator(static_cast<unsigned long>(1000000000 + random() % 1000000000));
-  Rational t = Rational(numerator, denominator) * power10(e);
+  Rational t = Rational(numerator, denominator) * pin_slot_test::exact_power10(e);
   t.canonicalize();
   if (random() % 2) t = -t;
   return t;
@@ -120,7 +119,7 @@ TEST(PinSlotAngleLimits, TheOracleBracketIsNarrowAndHoldsKnownAngles) {
   auto one = psi_bracket(Rational(1));
   EXPECT_LE(one.first, Rational(pi_hi() / 2));
   EXPECT_GE(one.second, Rational(pi_lo() / 2));
-  EXPECT_LT(Rational(one.second - one.first), power10(-40));
+  EXPECT_LT(Rational(one.second - one.first), pin_slot_test::exact_power10(-40));
   auto zero = psi_bracket(Rational(0));
   EXPECT_EQ(zero.first, 0);
   EXPECT_EQ(zero.second, 0);
@@ -129,7 +128,7 @@ TEST(PinSlotAngleLimits, TheOracleBracketIsNarrowAndHoldsKnownAngles) {
     Rational t = random_tangent(random, e);
     auto [a, b] = psi_bracket(t);
     EXPECT_LE(a, b);
-    EXPECT_LT(Rational(b - a), power10(-40)) << e;
+    EXPECT_LT(Rational(b - a), pin_slot_test::exact_power10(-40)) << e;
     // and the double atan agrees to its own precision
     EXPECT_NEAR(to_double(a), 2 * std::atan(to_double(t)), 1e-12 * (1 + std::abs(to_double(a))));
   }
@@ -137,7 +136,7 @@ TEST(PinSlotAngleLimits, TheOracleBracketIsNarrowAndHoldsKnownAngles) {
 
 TEST(PinSlotAngleLimits, LimitsOneEMinus30RadAwayAreDecidedExactly) {
   std::mt19937_64 random(5302);
-  const Rational delta = power10(-30);
+  const Rational delta = pin_slot_test::exact_power10(-30);
   int cases = 0;
   for (int round = 0; round < 12; ++round)
     for (int e = -25; e <= 25; ++e) {
@@ -173,20 +172,20 @@ TEST(PinSlotAngleLimits, TiesAndWholeTurns) {
   EXPECT_EQ(angle_sign(Rational(0), mpz_class(0), Rational(0)), 0);
   EXPECT_TRUE(angle_within_limits(Rational(0), Rational(0), Rational(1)));
   EXPECT_TRUE(angle_within_limits(Rational(0), Rational(-1), Rational(0)));
-  EXPECT_FALSE(angle_within_limits(Rational(0), power10(-30), Rational(1)));
-  EXPECT_FALSE(angle_within_limits(Rational(0), Rational(-1), Rational(-power10(-30))));
+  EXPECT_FALSE(angle_within_limits(Rational(0), pin_slot_test::exact_power10(-30), Rational(1)));
+  EXPECT_FALSE(angle_within_limits(Rational(0), Rational(-1), Rational(-pin_slot_test::exact_power10(-30))));
   // tiny tangents: psi = 2 tau - ... is decided at 1e-300 too
-  Rational tiny = power10(-300);
+  Rational tiny = pin_slot_test::exact_power10(-300);
   EXPECT_TRUE(angle_within_limits(tiny, Rational(0), Rational(2 * tiny)));
   EXPECT_FALSE(angle_within_limits(tiny, Rational(2 * tiny), Rational(1)));   // psi < 2 tau
   EXPECT_FALSE(angle_within_limits(Rational(-tiny), Rational(0), Rational(1)));
   // a whole turn: 2 pi against rational widths 1e-50 apart from it
   EXPECT_TRUE(at_least_whole_turn(Rational(2 * pi_hi())));
   EXPECT_FALSE(at_least_whole_turn(Rational(2 * pi_lo())));
-  EXPECT_TRUE(at_least_whole_turn(power10(400)));
+  EXPECT_TRUE(at_least_whole_turn(pin_slot_test::exact_power10(400)));
   // 1e400 rad: whole turns are reduced exactly (psi(1) = pi/2 against pi/2 + 2 pi k, k huge,
   // is out of reach of the oracle; the reduction is checked against the same angle at k = 0)
-  EXPECT_TRUE(angle_within_limits(Rational(1), Rational(-power10(400)), power10(400)));
+  EXPECT_TRUE(angle_within_limits(Rational(1), Rational(-pin_slot_test::exact_power10(400)), pin_slot_test::exact_power10(400)));
 }
 
 // A bar on a pin-slot motion against a fixed block (BadPairsAreRefusedWithAMessage's pair)
@@ -257,7 +256,7 @@ TEST(PinSlotAngleLimits, LocateAtALimitOneEMinus30Away) {
   std::mt19937_64 random(5303);
   PinSlotBuildOptions lazy;
   lazy.stack = false;
-  const Rational delta = power10(-30);
+  const Rational delta = pin_slot_test::exact_power10(-30);
   for (int round = 0; round < 8; ++round) {
     Rational tau = random_tangent(random, -1 - round % 3);   // |psi| up to about 0.2 rad
     auto [a, b] = psi_bracket(tau);
@@ -349,11 +348,11 @@ TEST(PinSlotAngleLimits, AWholeTurnOrMoreIsTheWholeTurn) {
   near.parts[1].motion.angle_limits = RationalInterval{Rational(-pi_lo()), pi_lo()};
   near.roundings.clear();   // the records of [-30, 30] deg's rounding
   PinSlotSpace strict = PinSlotSpace::build(near, "a", "b", options);
-  EXPECT_EQ(strict.locate(PinSlotConfiguration{{}, Rational(0), power10(70)}).kind, PinSlotLocation::Kind::outside);
+  EXPECT_EQ(strict.locate(PinSlotConfiguration{{}, Rational(0), pin_slot_test::exact_power10(70)}).kind, PinSlotLocation::Kind::outside);
   for (const char* end : {"0", "1"})
-    near.roundings.push_back(Rounding{"/parts/1/motion/pin_slot/angle_limits/" + std::string(end), "180", pi_lo(), power10(-59)});
+    near.roundings.push_back(Rounding{"/parts/1/motion/pin_slot/angle_limits/" + std::string(end), "180", pi_lo(), pin_slot_test::exact_power10(-59)});
   PinSlotSpace rounded = PinSlotSpace::build(near, "a", "b", options);
-  EXPECT_NE(rounded.locate(PinSlotConfiguration{{}, Rational(0), power10(70)}).kind, PinSlotLocation::Kind::outside);
+  EXPECT_NE(rounded.locate(PinSlotConfiguration{{}, Rational(0), pin_slot_test::exact_power10(70)}).kind, PinSlotLocation::Kind::outside);
   EXPECT_EQ(rounded.connections().size(), none.connections().size());
   // just short of a whole turn (359.999 deg): not the whole turn; psi = 180 - 0.0001 deg is outside
   PinSlotSpace short_turn = PinSlotSpace::build(bar_and_block("[-179.9995, 179.9995]"), "a", "b", options);
@@ -403,30 +402,6 @@ TEST(PinSlotAngleLimits, CriticalValuesInPiecesAreThoseOfOneSearch) {
 // whose structure differs must have a listed critical value between them (cyclically), and every
 // interval between cyclically consecutive values must hold a slice of the stack.
 
-// A slice's free structure: its free cells with the contacts on their boundaries (2-D: the
-// edges' feature pairs; 1-D: the contacts at the intervals' ends).
-std::string turn_structure(const CSpace& space) {
-  std::multiset<std::string> cells;
-  for (std::size_t c = 0; c < space.cells().size(); ++c) {
-    if (space.cells()[c].kind != CellKind::free) continue;
-    std::set<std::string> labels;
-    for (std::size_t e : space.cells()[c].boundary)
-      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
-    if (space.dimension() == 1)
-      for (const CSpaceFace& face : space.faces(0)) {
-        if (face.cell.index() != c) continue;
-        for (VertexId v : {face.lower, face.upper})
-          if (v.valid())
-            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
-      }
-    std::string text;
-    for (const auto& l : labels) text += l + "; ";
-    cells.insert(text);
-  }
-  std::string out;
-  for (const auto& c : cells) out += "[" + c + "] ";
-  return out;
-}
 
 // A bar [0, 10] x [-1, 1] turning (a whole turn) about (0, 0) and sliding along itself by s in
 // [-5, 5], against a wall x <= -`wall` (|y| <= 20): behind the pivot, so the bar meets it near
@@ -487,7 +462,7 @@ int scan_whole_turn(const PinSlotSpace& space, const Rational& u_lo, const Ratio
   cycle.insert(cycle.end(), taus.begin(), taus.end());
   cycle.insert(cycle.end(), above.begin(), above.end());
   std::vector<std::string> seen;
-  for (const Rational& t : cycle) seen.push_back(turn_structure(*space.slice(t)));
+  for (const Rational& t : cycle) seen.push_back(pin_slot_test::free_structure(*space.slice(t)));
   int changes = 0;
   for (std::size_t k = 0; k < cycle.size(); ++k) {
     std::size_t next = (k + 1) % cycle.size();
@@ -594,7 +569,7 @@ TEST(PinSlotAngleLimits, TheHalfTurnItselfIsACriticalValue) {
 // atan(x), 0 < x <= 1/3, in an exact bracket narrower than 10^-digits.
 Bracket atan_series(const Rational& x, int digits) {
   Rational sum = 0, power = x, x2 = x * x;
-  const Rational tiny = power10(-digits);
+  const Rational tiny = pin_slot_test::exact_power10(-digits);
   for (long k = 0;; ++k) {
     Rational term = power / (2 * k + 1);
     term.canonicalize();
@@ -626,7 +601,7 @@ int sign_on(const Rational& L, const Rational& q, const Bracket& pi) {
 }
 
 // The charts of a rotating part with limits [lo, hi] (rad), as chart_layout gives them.
-std::vector<cspace::ChartAxis> charts_for(const Rational& lo, const Rational& hi) {
+Model arm_model(const Rational& lo, const Rational& hi) {
   static const Model base = read_model(R"({ "hipair": 1, "name": "charts", "units": { "length": "mm", "angle": "rad" },
     "parts": [
     { "name": "arm", "motion": { "rotation": { "pivot": [0, 0], "limits": [-1, 1] } }, "loops": [ { "start": [0, -1],
@@ -635,6 +610,11 @@ std::vector<cspace::ChartAxis> charts_for(const Rational& lo, const Rational& hi
       { "line_to": [24, 4] }, { "line_to": [20, 4] }, { "line_to": [20, 0] } ] } ] } ] })");
   Model model = base;
   model.parts[0].motion.angle_limits = RationalInterval{lo, hi};
+  return model;
+}
+
+std::vector<cspace::ChartAxis> charts_for(const Rational& lo, const Rational& hi) {
+  Model model = arm_model(lo, hi);
   return cspace::chart_layout(model, cspace::pair_axes(model, 0, 1)).x_charts;
 }
 
@@ -695,7 +675,7 @@ void expect_charts(const Rational& lo, const Rational& hi, const Bracket& pi, co
 
 TEST(RotationChartLimits, TheOraclePiIsPi) {
   const Bracket pi = pi_bracket(120);
-  EXPECT_LT(Rational(pi.second - pi.first), power10(-118));
+  EXPECT_LT(Rational(pi.second - pi.first), pin_slot_test::exact_power10(-118));
   EXPECT_LE(pi.first, pi_hi());
   EXPECT_GE(pi.second, pi_lo());
 }
@@ -718,7 +698,7 @@ TEST(RotationChartLimits, TiesAtSeamsAndWholeTurnsAreDecidedExactly) {
   const Bracket pi = pi_bracket(200);
   const Rational& p = pi.first;   // within 10^-200 of pi
   for (int e : {30, 80, 150}) {
-    const Rational d = power10(-e);
+    const Rational d = pin_slot_test::exact_power10(-e);
     for (int j = -5; j <= 5; ++j) {
       for (int side : {-1, 1}) {
         // a limit 10^-e from the seam or chart centre j pi / 2 (odd j: a seam between charts)
@@ -746,6 +726,247 @@ TEST(RotationChartLimits, TiesAtSeamsAndWholeTurnsAreDecidedExactly) {
       EXPECT_EQ(charts[0].hi, Rational(1, 1000000000000));
     }
     expect_charts(lo, hi, pi, "a limit at 0");
+  }
+}
+
+// ------------------------------------------------------------------ session 55
+// A pin-slot part's limits are the whole turn when they span it allowing for the reader's
+// rounding of the two (core/angle_limits.hpp, pin_slot_whole_turn): the one decision of
+// PinSlotSpace::build and pin_slot_cycle (before session 55 the cycle left the rounding out and
+// took limits the stack called a whole turn for narrower ones). Widths 10^-30 ... 10^-150 from
+// 2 pi, either side, decided against the oracle's pi (Machin, 10^-200), with rounding records
+// at the limits of 10^-e each (the short width becomes a whole turn), of 10^-e / 8 each (it
+// stays short) and at other fields (nothing).
+TEST(PinSlotAngleLimits, TheWholeTurnIsOneExactDecisionAtTies) {
+  const Bracket pi = pi_bracket(200);
+  std::mt19937_64 random(5501);
+  Motion motion;
+  motion.kind = Motion::Kind::pin_slot;
+  motion.pointer = "/parts/1/motion";
+  EXPECT_TRUE(pin_slot_whole_turn({}, motion));   // no limits
+  const std::string at = "/parts/1/motion/pin_slot/angle_limits/";
+  for (int e : {30, 60, 100, 150}) {
+    const Rational d = pin_slot_test::exact_power10(-e);
+    for (int side : {-1, 1}) {
+      Rational lo(static_cast<long>(random() % 8001) - 4000, 1000);
+      lo.canonicalize();
+      Rational hi = lo + 2 * (side < 0 ? pi.first : pi.second) + side * d;   // hi - lo - 2 pi has the sign of side
+      hi.canonicalize();
+      motion.angle_limits = RationalInterval{lo, hi};
+      SCOPED_TRACE("2 pi " + std::string(side < 0 ? "- " : "+ ") + "10^-" + std::to_string(e));
+      EXPECT_EQ(pin_slot_whole_turn({}, motion), side > 0);
+      EXPECT_EQ(at_least_whole_turn(Rational(hi - lo)), side > 0);
+      const Rational eighth = d / 8;
+      const std::vector<Rounding> wide{{at + "0", "", lo, d}, {at + "1", "", hi, d}};
+      const std::vector<Rounding> narrow{{at + "0", "", lo, eighth}, {at + "1", "", hi, eighth}};
+      const std::vector<Rounding> elsewhere{{"/parts/1/motion/pin_slot/limits/0", "", lo, d},
+                                            {"/parts/11/motion/pin_slot/angle_limits/1", "", hi, d}};
+      EXPECT_TRUE(pin_slot_whole_turn(wide, motion));
+      EXPECT_EQ(pin_slot_whole_turn(narrow, motion), side > 0);
+      EXPECT_EQ(pin_slot_whole_turn(elsewhere, motion), side > 0);
+      EXPECT_EQ(pin_slot_limits_slack(wide, motion), Rational(2 * d));
+    }
+  }
+  // the stack takes the same decision: limits 10^-60 short of a whole turn, widened by the
+  // reader's rounding, are the whole turn (psi near pi inside), not without it
+  PinSlotBuildOptions options;
+  options.slices = 4;
+  options.refine_steps = 0;
+  options.critical_values = false;
+  options.connections = false;
+  Model near = bar_and_block("[-30, 30]");
+  near.roundings.clear();
+  const Rational d = pin_slot_test::exact_power10(-60);
+  near.parts[1].motion.angle_limits = RationalInterval{Rational(-pi.first), Rational(pi.first - d)};
+  near.parts[1].motion.angle_limits->hi.canonicalize();
+  EXPECT_EQ(PinSlotSpace::build(near, "a", "b", options).locate(PinSlotConfiguration{{}, Rational(0), pin_slot_test::exact_power10(70)}).kind,
+            PinSlotLocation::Kind::outside);
+  for (const char* end : {"0", "1"}) near.roundings.push_back(Rounding{at + end, "", Rational(0), d});
+  EXPECT_TRUE(pin_slot_whole_turn(near.roundings, near.parts[1].motion));
+  EXPECT_NE(PinSlotSpace::build(near, "a", "b", options).locate(PinSlotConfiguration{{}, Rational(0), pin_slot_test::exact_power10(70)}).kind,
+            PinSlotLocation::Kind::outside);
+}
+
+// A stack narrower than a whole turn: its end slices lie about half a step inside the limits,
+// and the end pieces between them and the limits are searched for critical values too (before
+// session 55 they were not, while the values were claimed complete: the wall's value at 40.85
+// deg went unlisted under limits of 41 deg). The bar against the wall x >= 12 (its slide's end
+// on the wall at 27 t^2 -+ 2 t - 3 = 0: +-40.853 deg) under generated limits around that angle,
+// either side of it, with 8 to 20 slices. The oracle scans 1-D slices by brute force across the
+// limits (each certainly inside them by psi_bracket); two scanned slices whose structure differs
+// have a listed value between them; every listed value is inside the limits (psi_bracket); the
+// value 40.853 deg is listed exactly when it is inside; every interval between consecutive
+// values, and between the limits and the outermost values, holds a slice of the stack.
+Model bar_wall_limits(const std::string& limits, const std::string& initial_angle = "0") {
+  return read_model(std::string(R"({ "hipair": 1, "name": "bar-wall", "units": { "length": "mm", "angle": "deg" },
+    "parts": [
+    { "name": "wall", "motion": "fixed", "loops": [ { "start": [12, -20], "edges": [ { "line_to": [20, -20] },
+      { "line_to": [20, 20] }, { "line_to": [12, 20] }, { "line_to": [12, -20] } ] } ] },
+    { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "angle_limits": )") + limits + R"(,
+      "limits": [-5, 5] } }, "initial": { "angle": )" + initial_angle + R"( },
+      "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] },
+      { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] } ],
+    "pairs": [ { "parts": ["wall", "bar"] } ] })");
+}
+
+// Checks a limited stack's critical values against the brute-force scan (`count` slices).
+void expect_limited_stack_complete(const PinSlotSpace& space, const RationalInterval& limits, int count) {
+  const double lo = to_double(limits.lo), hi = to_double(limits.hi);
+  auto certainly_inside = [&](const Rational& t) {
+    auto [a, b] = psi_bracket(t);
+    return a > limits.lo && b < limits.hi;
+  };
+  std::vector<Rational> taus;
+  for (const PinSlotSlice& s : space.slices()) taus.push_back(s.tau);
+  for (int k = 0; k <= count; ++k) {
+    double psi = lo + (hi - lo) * (k == 0 ? 1e-7 : k == count ? 1 - 1e-7 : static_cast<double>(k) / count);
+    Rational t(std::tan(psi / 2));
+    t.canonicalize();
+    if (certainly_inside(t)) taus.push_back(t);
+  }
+  std::sort(taus.begin(), taus.end());
+  taus.erase(std::unique(taus.begin(), taus.end()), taus.end());
+  const auto& critical = space.critical_values();
+  auto listed_between = [&](const Rational& a, const Rational& b) {
+    return std::any_of(critical.begin(), critical.end(), [&](const PinSlotCritical& c) {
+      const cspace::algebra::Real t = sliced::real_of(c.tau);
+      return t.compare(a) >= 0 && t.compare(b) <= 0;   // (a scanned slice may be a stack's slice at a value)
+    });
+  };
+  std::vector<std::string> seen;
+  for (const Rational& t : taus) seen.push_back(pin_slot_test::free_structure(*space.slice(t)));
+  int changes = 0;
+  for (std::size_t k = 0; k + 1 < taus.size(); ++k) {
+    if (seen[k] == seen[k + 1]) continue;
+    ++changes;
+    EXPECT_TRUE(listed_between(taus[k], taus[k + 1]))
+        << "slices at tau " << taus[k].get_str() << " and " << taus[k + 1].get_str() << " differ with no critical value between: "
+        << seen[k] << " | " << seen[k + 1];
+  }
+  EXPECT_GT(changes, 0);
+  // inside the limits, and a slice of the stack in every interval they bound
+  for (std::size_t k = 0; k < critical.size(); ++k) {
+    cspace::algebra::Real t = sliced::real_of(critical[k].tau);
+    t.refine_to(pin_slot_test::exact_power10(-30));
+    if (t.exact && sgn(t.lower) == 0 && (sgn(limits.lo) == 0 || sgn(limits.hi) == 0)) continue;   // at a limit 0
+    EXPECT_TRUE(t.exact ? certainly_inside(t.lower) : certainly_inside(t.lower) && certainly_inside(t.upper))
+        << critical[k].degrees << " deg outside the limits";
+  }
+  const auto& slices = space.slices();
+  for (std::size_t k = 0; k <= critical.size(); ++k) {
+    // (a value at the limit 0 has no interval below it: the limit is the stack's first slice)
+    if (k == 0 && !critical.empty() && sgn(limits.lo) == 0 && sliced::real_of(critical[0].tau).compare(Rational(0)) == 0) {
+      EXPECT_EQ(slices.front().tau, 0);
+      continue;
+    }
+    if (k == critical.size() && k > 0 && sgn(limits.hi) == 0 && sliced::real_of(critical[k - 1].tau).compare(Rational(0)) == 0) {
+      EXPECT_EQ(slices.back().tau, 0);
+      continue;
+    }
+    const bool has = std::any_of(slices.begin(), slices.end(), [&](const PinSlotSlice& s) {
+      const bool after = k == 0 || sliced::real_of(critical[k - 1].tau).compare(s.tau) < 0;
+      const bool before = k == critical.size() || sliced::real_of(critical[k].tau).compare(s.tau) > 0;
+      return after && before;
+    });
+    EXPECT_TRUE(has) << "no slice of the stack between critical values " << k << " - 1 and " << k << " (or a limit)";
+  }
+  for (const PinSlotSlice& s : slices) EXPECT_TRUE(angle_within_limits(s.tau, limits.lo, limits.hi)) << s.degrees;
+}
+
+TEST(PinSlotAngleLimits, CriticalValuesBetweenTheLimitsAndTheEndSlicesAreFound) {
+  const double wall_degrees = 2 * std::atan((1 + std::sqrt(82.0)) / 27) * 180 / std::numbers::pi;   // 40.853
+  std::mt19937_64 random(5502);
+  PinSlotBuildOptions options;
+  options.connections = false;
+  int listed_near_limit = 0;
+  for (int round = 0; round < 8; ++round) {
+    // each limit 0.05 ... 2.5 deg beyond +-40.853 deg (inside: listed), or short of it (rounds 3 and 6)
+    auto offset = [&] { return (5 + static_cast<long>(random() % 246)) / 100.0; };
+    const double below = -(wall_degrees + offset()) + (round == 3 ? 2.6 : 0);
+    const double above = wall_degrees + (round == 6 ? -offset() : offset());
+    char text[64];
+    std::snprintf(text, sizeof text, "[%.2f, %.2f]", below, above);
+    options.slices = 8 + static_cast<std::size_t>(random() % 13);
+    SCOPED_TRACE(std::string(text) + " deg, " + std::to_string(options.slices) + " slices");
+    Model model = bar_wall_limits(text);
+    PinSlotSpace space = PinSlotSpace::build(model, "wall", "bar", options);
+    ASSERT_TRUE(space.critical_values_exact());
+    const RationalInterval& limits = *model.parts[1].motion.angle_limits;
+    for (double target : {-wall_degrees, wall_degrees}) {
+      const bool inside = target > below && target < above;
+      const bool listed = std::any_of(space.critical_values().begin(), space.critical_values().end(),
+                                      [&](const PinSlotCritical& c) { return std::abs(c.degrees - target) < 1e-6; });
+      EXPECT_EQ(listed, inside) << target << " deg";
+      // the end slices' angles: the value lies in an end piece (beyond them)
+      if (inside) {
+        const double step = (above - below) / static_cast<double>(options.slices);
+        if (target > above - step / 2 || target < below + step / 2) ++listed_near_limit;
+      }
+    }
+    expect_limited_stack_complete(space, limits, 160);
+  }
+  EXPECT_GE(listed_near_limit, 6);   // most rounds put a value in an end piece
+  // a limit at psi = 0, where a critical value lies (t = 0): listed, and the limit is the
+  // stack's first slice
+  Model zero = bar_wall_limits("[0, 42]");
+  options.slices = 12;
+  PinSlotSpace from_zero = PinSlotSpace::build(zero, "wall", "bar", options);
+  ASSERT_TRUE(from_zero.critical_values_exact());
+  EXPECT_EQ(from_zero.slices().front().tau, 0);
+  ASSERT_FALSE(from_zero.critical_values().empty());
+  EXPECT_EQ(sliced::real_of(from_zero.critical_values().front().tau).compare(Rational(0)), 0);
+  expect_limited_stack_complete(from_zero, *zero.parts[1].motion.angle_limits, 120);
+  // a limit at or beyond the half turn (within the quarter step the stack accepts): the end
+  // piece crosses the jump of tau, which no search in tau reaches: the values are not claimed
+  Model half = bar_wall_limits("[100, 150]", "120");
+  half.roundings.clear();
+  half.parts[1].motion.angle_limits = RationalInterval{Rational(2), pi_hi()};
+  EXPECT_FALSE(PinSlotSpace::build(half, "wall", "bar", options).critical_values_exact());
+  half.parts[1].motion.angle_limits = RationalInterval{Rational(2), Rational(314159, 100000)};
+  EXPECT_TRUE(PinSlotSpace::build(half, "wall", "bar", options).critical_values_exact());
+}
+
+// A limited rotation's axis (kinematics/axis.hpp, make_axis): its charts in the order of the
+// exact half turns m pi they lie about (session 55; before, of double angles: limits beyond
+// 2^53 rad gave coarse or infinite offsets and charts in any order). Generated limits of
+// magnitude 1 ... 10^18 rad and widths 0.01 ... 6.2 rad against the oracle's pi: consecutive
+// half turns, the chart's half_turn flag of m's parity, the first chart holding the lower
+// limit and the last the upper one; limits beyond the range of a long are refused naming the part.
+TEST(RotationChartLimits, TheAxisOrdersItsChartsByExactHalfTurns) {
+  const Bracket pi = pi_bracket(80);
+  std::mt19937_64 random(5503);
+  for (int round = 0; round < 48; ++round) {
+    const int e = round % 12 == 0 ? 0 : round % 19;   // 10^0 ... 10^18 rad
+    Rational lo = pin_slot_test::exact_power10(e) * Rational(static_cast<long>(1000 + random() % 9000), 1000);
+    if (random() % 2) lo = -lo;
+    lo.canonicalize();
+    Rational hi = lo + Rational(static_cast<long>(1 + random() % 620), 100);
+    hi.canonicalize();
+    SCOPED_TRACE("limits [" + lo.get_str() + ", " + hi.get_str() + "] rad");
+    Model model = arm_model(lo, hi);
+    const kinematics_detail::AxisLine line = kinematics_detail::make_axis(model, 0, charts_for(lo, hi));
+    ASSERT_FALSE(line.pieces.empty());
+    ASSERT_EQ(line.half_turns.size(), line.pieces.size());
+    for (std::size_t p = 0; p < line.pieces.size(); ++p) {
+      const long m = line.half_turns[p];
+      EXPECT_EQ(line.pieces[p].half_turn, m % 2 != 0) << p;
+      if (p > 0) EXPECT_EQ(m, line.half_turns[p - 1] + 1) << p;
+      EXPECT_NEAR(line.offsets[p], static_cast<double>(m) * std::numbers::pi, 1e-15 * std::abs(static_cast<double>(m)) + 1e-15);
+    }
+    // the lower limit within [m - 1/2, m + 1/2] pi of the first chart, the upper one of the last
+    const Rational m_first(line.half_turns.front()), m_last(line.half_turns.back());
+    EXPECT_GT(sign_on(lo, Rational(m_first - Rational(1, 2)), pi), 0);
+    EXPECT_LT(sign_on(lo, Rational(m_first + Rational(1, 2)), pi), 0);
+    EXPECT_GT(sign_on(hi, Rational(m_last - Rational(1, 2)), pi), 0);
+    EXPECT_LT(sign_on(hi, Rational(m_last + Rational(1, 2)), pi), 0);
+  }
+  const Rational far = pin_slot_test::exact_power10(25);
+  try {
+    Model model = arm_model(far, Rational(far + 1));
+    kinematics_detail::make_axis(model, 0, charts_for(far, Rational(far + 1)));
+    FAIL() << "limits at 10^25 rad were taken";
+  } catch (const GeometryError& error) {
+    EXPECT_NE(std::string(error.what()).find("'arm'"), std::string::npos) << error.what();
   }
 }
 

@@ -17,6 +17,7 @@
 #include "cli/cspace_pinslot.hpp"
 #include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
+#include "pin_slot_test_support.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -33,11 +34,6 @@
 namespace hipair {
 namespace {
 
-Rational pin_slot_scale_power10(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
-  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
-}
 
 struct PinSlotScaleSummary {
   std::vector<std::size_t> free_cells;   // per slice
@@ -89,7 +85,7 @@ TEST(PinSlotScale, StacksOfTinyAndHugePairsWitnessTheirConnections) {
     ASSERT_GT(expected.connections, 0u) << other;
     for (int exponent : exponents) {
       // 10^k times a random rational in [1/2, 2) (a factor, not a power of two, of both parts)
-      Rational factor = pin_slot_scale_power10(exponent) * Rational(static_cast<long>(500 + random() % 1500), 1000);
+      Rational factor = pin_slot_test::exact_power10(exponent) * Rational(static_cast<long>(500 + random() % 1500), 1000);
       factor.canonicalize();
       Model model = film;
       for (Part& part : model.parts) part = sliced::scaled_part(part, factor);
@@ -127,7 +123,7 @@ TEST(PinSlotScale, OrdinaryStacksJoinWhatTheirHugeCopiesJoin) {
   std::mt19937_64 random(4900);
   const PinSlotSpace ordinary = PinSlotSpace::build(film, "film", "follower");
   pin_slot_scale_check_witnesses(film, ordinary, "film:follower at 1 mm");
-  Rational factor = pin_slot_scale_power10(100) * Rational(static_cast<long>(500 + random() % 1500), 1000);
+  Rational factor = pin_slot_test::exact_power10(100) * Rational(static_cast<long>(500 + random() % 1500), 1000);
   factor.canonicalize();
   Model model = film;
   for (Part& part : model.parts) part = sliced::scaled_part(part, factor);
@@ -169,7 +165,7 @@ TEST(PinSlotScale, BeyondTheDoublesWhenAskedStacksAreInUnitsOfAPowerOfTwo) {
     for (int exponent : {400, 450}) {
       // a dyadic r: its exact critical values stay short (a factor r = n / 1000 made the film
       // pair's take minutes: its coefficients carry the odd part of every coordinate)
-      Rational factor = pin_slot_scale_power10(exponent) * Rational(static_cast<long>(512 + random() % 1536), 1024);
+      Rational factor = pin_slot_test::exact_power10(exponent) * Rational(static_cast<long>(512 + random() % 1536), 1024);
       factor.canonicalize();
       Model model = film;
       for (Part& part : model.parts) part = sliced::scaled_part(part, factor);
@@ -292,8 +288,8 @@ TEST(PinSlotScale, FarAndHugePairsLocateMillimetreConfigurationsAsAtOneMillimetr
       ++located[static_cast<int>(reference.locate(q).kind)];
     }
     // moved far from the origin
-    Model far = translated_model(film, Point{Rational(-pin_slot_scale_power10(400) - dyadic(-64, 64)),
-                                             Rational(pin_slot_scale_power10(400) - dyadic(-64, 64))});
+    Model far = translated_model(film, Point{Rational(-pin_slot_test::exact_power10(400) - dyadic(-64, 64)),
+                                             Rational(pin_slot_test::exact_power10(400) - dyadic(-64, 64))});
     const std::string what = std::string(other_name) + ":" + pin_name;
     const PinSlotSpace moved = PinSlotSpace::build(far, other_name, pin_name, options);
     EXPECT_EQ(moved.length_unit_exponent(), 0) << what;
@@ -304,7 +300,7 @@ TEST(PinSlotScale, FarAndHugePairsLocateMillimetreConfigurationsAsAtOneMillimetr
     for (std::size_t n = 0; n < configurations.size(); ++n)
       EXPECT_EQ(key(moved, configurations[n]), expected[n]) << what << " + 10^400: configuration " << n;
     // times 10^400 r, the caller's millimetres in the space's units
-    const Rational factor = pin_slot_scale_power10(400) * Rational(static_cast<long>(512 + random() % 1536), 1024);
+    const Rational factor = pin_slot_test::exact_power10(400) * Rational(static_cast<long>(512 + random() % 1536), 1024);
     Model huge = film;
     for (Part& part : huge.parts) part = sliced::scaled_part(part, factor);
     const PinSlotSpace space = PinSlotSpace::build(huge, other_name, pin_name, options);

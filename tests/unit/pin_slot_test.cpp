@@ -11,6 +11,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "sliced/critical_angles.hpp"
+#include "pin_slot_test_support.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -451,31 +452,6 @@ namespace algebra = cspace::algebra;
 
 using sliced::real_of;
 
-// A slice's free structure, exactly: its free cells, each with the feature pairs on its boundary
-// (edges; 1-D: the contacts at its ends), as a multiset. (Vertices and edges inside blocked
-// space are left out: events there are dropped once certified blocked.)
-std::string structure(const CSpace& space) {
-  std::multiset<std::string> cells;
-  for (std::size_t c = 0; c < space.cells().size(); ++c) {
-    if (space.cells()[c].kind != CellKind::free) continue;
-    std::set<std::string> labels;
-    for (std::size_t e : space.cells()[c].boundary)
-      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
-    if (space.dimension() == 1)
-      for (const CSpaceFace& face : space.faces(0)) {
-        if (face.cell.index() != c) continue;
-        for (VertexId v : {face.lower, face.upper})
-          if (v.valid())
-            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
-      }
-    std::string text;
-    for (const auto& l : labels) text += l + "; ";
-    cells.insert(text);
-  }
-  std::string out;
-  for (const auto& c : cells) out += "[" + c + "] ";
-  return out;
-}
 
 // Slices at two random rational tau inside each interval between consecutive critical values
 // have the same structure; with `all_change` (hand-checked cases where every critical value is
@@ -501,7 +477,7 @@ void expect_steady_between_critical_values(const PinSlotSpace& space, Random& ra
       if (ends[k].compare(t) < 0 && ends[k + 1].compare(t) > 0) taus.push_back(t);
     }
     if (taus.size() < 2) continue;
-    EXPECT_EQ(structure(*space.slice(taus[0])), structure(*space.slice(taus[1])))
+    EXPECT_EQ(pin_slot_test::free_structure(*space.slice(taus[0])), pin_slot_test::free_structure(*space.slice(taus[1])))
         << "between critical values " << k << " and " << k + 1 << ": tau " << taus[0].get_str() << ", " << taus[1].get_str();
     ++checked;
   }
@@ -509,9 +485,9 @@ void expect_steady_between_critical_values(const PinSlotSpace& space, Random& ra
   for (std::size_t k = 0; k < critical.size() && all_change; ++k) {
     if (!critical[k].tau.exact) continue;
     Rational t = critical[k].tau.lower, d(1, 1 << 20);
-    std::string at = structure(*space.slice(t));
-    EXPECT_NE(at, structure(*space.slice(Rational(t - d)))) << t.get_str();
-    EXPECT_NE(at, structure(*space.slice(Rational(t + d)))) << t.get_str();
+    std::string at = pin_slot_test::free_structure(*space.slice(t));
+    EXPECT_NE(at, pin_slot_test::free_structure(*space.slice(Rational(t - d)))) << t.get_str();
+    EXPECT_NE(at, pin_slot_test::free_structure(*space.slice(Rational(t + d)))) << t.get_str();
   }
 }
 

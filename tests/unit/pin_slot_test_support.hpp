@@ -1,0 +1,50 @@
+// Helpers shared by the pin-slot tests (pin_slot_test.cpp, pin_slot_limits_test.cpp,
+// pin_slot_scale_test.cpp; session 55: before, each unit had its own copy).
+#pragma once
+
+#include <hipair/cspace.hpp>
+#include <hipair/rational.hpp>
+
+#include <gmpxx.h>
+
+#include <cstddef>
+#include <set>
+#include <string>
+
+namespace hipair::pin_slot_test {
+
+/// 10^exponent, exactly.
+inline Rational exact_power10(int exponent) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
+  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+}
+
+/// A slice's free structure, exactly: its free cells, each with the feature pairs on its
+/// boundary (edges; 1-D: the contacts at its ends), as a multiset. (Vertices and edges inside
+/// blocked space are left out: events there are dropped once certified blocked.) Two slices
+/// of a brute-force scan whose structures differ have a critical value between them.
+inline std::string free_structure(const CSpace& space) {
+  std::multiset<std::string> cells;
+  for (std::size_t c = 0; c < space.cells().size(); ++c) {
+    if (space.cells()[c].kind != CellKind::free) continue;
+    std::set<std::string> labels;
+    for (std::size_t e : space.cells()[c].boundary)
+      for (std::size_t f : space.edges()[e].curves) labels.insert(space.feature_pairs()[f].label);
+    if (space.dimension() == 1)
+      for (const CSpaceFace& face : space.faces(0)) {
+        if (face.cell.index() != c) continue;
+        for (VertexId v : {face.lower, face.upper})
+          if (v.valid())
+            for (std::size_t f : space.vertices()[v.index()].curves) labels.insert(space.feature_pairs()[f].label);
+      }
+    std::string text;
+    for (const auto& l : labels) text += l + "; ";
+    cells.insert(text);
+  }
+  std::string out;
+  for (const auto& c : cells) out += "[" + c + "] ";
+  return out;
+}
+
+}  // namespace hipair::pin_slot_test
