@@ -311,8 +311,10 @@ grep -q "0 touching edges, 1 isolated touching vertices$" "$work/round-fit.txt" 
 grep -q "undecided" "$work/round-fit.txt" && fail "cspace --stats: the round fit is left undecided"
 
 # Out of memory (also inside GMP, which aborted with "GNU MP: Cannot allocate memory", exit
-# 134): exit 4 and one line, no output file.
-(ulimit -v 200000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \
+# 134): exit 4 and one line, no output file. 120 MB: the program starts and reads the model in
+# 50 MB, and the C-space build runs out about a second later. (At 200 MB the build has come to
+# fit nearly: it ran for a minute of CPU at the ceiling before an allocation failed, session 55.)
+(ulimit -v 120000; "$hipair" cspace "$source/examples/models/spur-gears.json" --json "$work/oom.json" \
   >/dev/null 2>"$work/oom.err")
 code=$?
 [ $code -eq 4 ] || fail "out of memory: exit $code, want 4: $(tail -c 300 "$work/oom.err")"

@@ -5,8 +5,10 @@
 #   certificate_verifier  the certificate reader and the verifier, built from the verifier's own
 #                         sources as hipair-verify is (certify/, the model reader); seeds: the
 #                         certificate corpus
-# Both targets share one object directory beside WORK_DIR (the reader's objects are compiled once,
-# under a lock, when the two tests run in parallel).
+# Both targets share one object directory beside WORK_DIR: the reader's objects (src/core,
+# src/model) are compiled once, under a lock, when the two tests run in parallel; each target's
+# own objects are compiled after the lock is released, so that the model reader never waits for
+# the verifier's.
 # usage: run_fuzz.sh TARGET CLANGXX SOURCE_DIR WORK_DIR SECONDS
 # exit: 0 no crash found; 1 crash/leak/timeout found (the input is saved in WORK_DIR); 2 usage;
 # 77 no libFuzzer runtime (skipped).
@@ -21,12 +23,12 @@ mkdir -p "$objects_dir"
 shopt -s nullglob
 case "$target" in
   model_reader)
-    sources=("$source"/src/core/*.cpp "$source"/src/model/*.cpp "$source"/tests/fuzz/model_reader_fuzzer.cpp)
+    sources=("$source"/tests/fuzz/model_reader_fuzzer.cpp)
     seeds=("$source"/examples/models/*.json "$source"/tests/data/good/*.json "$source"/tests/data/bad/*.json
            "$source"/tests/fuzz/regressions/*)
     dictionary=model.dict ;;
   certificate_verifier)
-    sources=("$source"/src/core/*.cpp "$source"/src/model/*.cpp "$source"/src/model/parametric/*.cpp
+    sources=("$source"/src/model/parametric/*.cpp
              "$source"/src/io/atomic_file.cpp "$source"/certify/tolerance_check.cpp "$source"/certify/free_path_check.cpp
              "$source"/certify/planar_check.cpp "$source"/certify/statement.cpp
              "$source"/certify/certificate_reader.cpp "$source"/certify/exact_geometry.cpp
@@ -36,6 +38,7 @@ case "$target" in
     dictionary=certificate.dict ;;
   *) echo "run_fuzz.sh: unknown target '$target' (model_reader or certificate_verifier)" >&2; exit 2 ;;
 esac
+shared=("$source"/src/core/*.cpp "$source"/src/model/*.cpp)   # the model reader, in both targets
 
 # Skip when clang cannot link a fuzzer.
 printf 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }\n' >"$work/probe.cpp"
@@ -43,33 +46,42 @@ if ! "$clangxx" -fsanitize=fuzzer "$work/probe.cpp" -o "$work/probe" >"$work/pro
   echo "clang's libFuzzer runtime is not available: skipping"; cat "$work/probe.log"; exit 77
 fi
 
-flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
-       -fno-sanitize-recover=undefined -I"$source/include" -I"$source/src" -I"$source"
-       -I/usr/include/eigen3 -DHIPAIR_EXAMPLES="\"$source/examples/models\"")
+# -gline-tables-only: a report's stack names every function, file and line (inlined frames too)
+# without the full debug information, most of these objects' compile time (as OSS-Fuzz builds).
+# Through ccache when it is installed (as the project's build): with ccache's base_dir above the
+# checkout, the source paths mapped to "." and the examples' directory given to the fuzzers' own
+# sources only, the product's objects are compiled by the same command from any checkout and
+# reused from an earlier run or clone.
+flags=(-std=c++20 -O1 -gline-tables-only -fdebug-prefix-map="$source"=. -fno-omit-frame-pointer
+       -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+       -I"$source/include" -I"$source/src" -I"$source" -I/usr/include/eigen3)
+fuzzer_flags=(-DHIPAIR_EXAMPLES="\"$source/examples/models\"")
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(ccache)
 
 # An object is stale when it is missing, has no dependency list, or any file it was compiled
-# from (the source and every header clang listed with -MMD) is newer than it.
+# from (the source and every header clang listed with -MMD) is missing or newer than it.
 stale() {
   local object=$1 dep
   [ -f "$object" ] && [ -f "$object.d" ] || return 0
   for dep in $(sed -e 's/^[^:]*://' -e 's/\\$//' "$object.d"); do
+    [ -e "$dep" ] || return 0
     [ "$dep" -nt "$object" ] && return 0
   done
   return 1
 }
 
-# Compile what is missing or stale, at most two compilers at a time (the machine has two cores),
-# holding the object directory's lock so that the other target waits instead of racing.
+# Compile the files given that are missing or stale, at most two compilers at a time (the machine
+# has two cores).
 compile() {
-  # Objects built with other flags (another source directory) are rebuilt.
-  if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then rm -f "$objects_dir"/*.o "$objects_dir"/*.o.d; fi
-  printf '%s' "${flags[*]}" >"$objects_dir/flags.txt"
   local pids=() file object
-  for file in "${sources[@]}"; do
+  for file in "$@"; do
     object="$objects_dir/$(basename "$(dirname "$file")")-$(basename "$file" .cpp).o"
     objects+=("$object")
     if stale "$object"; then
-      "$clangxx" "${flags[@]}" -MMD -MF "$object.d.tmp" -c "$file" -o "$object.tmp" &&
+      local extra=()
+      [ "$file" = "$source/tests/fuzz/$(basename "$file")" ] && extra=("${fuzzer_flags[@]}")
+      "${launcher[@]}" "$clangxx" "${flags[@]}" "${extra[@]}" -MMD -MF "$object.d.tmp" -c "$file" -o "$object.tmp" &&
         mv "$object.d.tmp" "$object.d" && mv "$object.tmp" "$object" &
       pids+=($!)
       if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || return 1; pids=("${pids[@]:1}"); fi
@@ -78,11 +90,18 @@ compile() {
   local pid
   for pid in "${pids[@]}"; do wait "$pid" || return 1; done
 }
+# The shared objects under the object directory's lock (the other target waits instead of racing);
+# objects built with other flags (another source directory) are rebuilt.
 objects=()
 exec 9>"$objects_dir/lock"
 flock 9
-compile || { echo "compile failed"; exit 1; }
+if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]} ${fuzzer_flags[*]}" ]; then
+  rm -f "$objects_dir"/*.o "$objects_dir"/*.o.d
+fi
+printf '%s' "${flags[*]} ${fuzzer_flags[*]}" >"$objects_dir/flags.txt"
+compile "${shared[@]}" || { echo "compile failed"; exit 1; }
 flock -u 9
+compile "${sources[@]}" || { echo "compile failed"; exit 1; }
 "$clangxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" -lmpfi -lmpfr -lgmpxx -lgmp \
   -o "$work/${target}_fuzzer" || { echo "link failed"; exit 1; }
 
