@@ -1,4 +1,5 @@
 #include "algebra/polynomial.hpp"
+#include "algebra/content.hpp"
 
 #include "kernels/weights.hpp"
 
@@ -68,9 +69,10 @@ void normalize(IntegerPolynomial2& polynomial) {
   auto& c = polynomial.coefficients;
   trim(c);
   if (c.empty()) return;
-  mpz_class content = 0;
-  for (const auto& row : c)
-    for (const mpz_class& v : row) mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), v.get_mpz_t());
+  const mpz_class content = algebra::smallest_first_content([&](auto visit) {
+    for (const auto& row : c)
+      for (const mpz_class& v : row) visit(v.get_mpz_t());
+  });
   if (content > 1)
     for (auto& row : c)
       for (mpz_class& v : row) mpz_divexact(v.get_mpz_t(), v.get_mpz_t(), content.get_mpz_t());
