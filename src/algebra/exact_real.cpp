@@ -1894,10 +1894,13 @@ Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
   if (exact_needed) *exact_needed = false;
   Polynomial p = primitive_part(input);
   if (degree(p) <= 1) return p;
-  const Polynomial d = derivative(p);
   for (std::uint64_t prime : {2147483647ULL, 2147483629ULL, 2147483587ULL}) {
     if (mpz_fdiv_ui(p.back().get_mpz_t(), static_cast<unsigned long>(prime)) == 0) continue;
-    if (modular_gcd_degree(residues(p, prime), residues(d, prime), prime) == 0) return p;
+    // the derivative's residues from p's: (i p_i) mod prime = (i (p_i mod prime)) mod prime
+    // (i < degree < prime; products below 2^62), the residues of derivative(p) without forming it
+    Residues r = residues(p, prime), dr(r.size() - 1);
+    for (std::size_t i = 1; i < r.size(); ++i) dr[i - 1] = i * r[i] % prime;
+    if (modular_gcd_degree(std::move(r), std::move(dr), prime) == 0) return p;
   }
   if (exact_needed) *exact_needed = true;
   return memoised_square_free_part(p);
