@@ -1,4 +1,5 @@
 #include "algebra/exact_real.hpp"
+#include "algebra/content.hpp"
 #include "algebra/interval_shift.hpp"
 #include "algebra/interval_times.hpp"
 #include "algebra/modular_gcd.hpp"
@@ -167,12 +168,9 @@ int homogeneous_sign(const Polynomial& p, const mpz_class& n, const mpz_class& d
 }
 
 mpz_class content(const Polynomial& p) {
-  mpz_class g = 0;
-  for (const auto& c : p) {
-    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
-    if (g == 1) break;
-  }
-  return g;
+  return smallest_first_content([&](auto visit) {
+    for (const mpz_class& c : p) visit(c.get_mpz_t());
+  });
 }
 
 // Pseudo-remainder a = q b + r scaled so that the scale factor is positive:
@@ -395,9 +393,10 @@ std::optional<Polynomial> modular_gcd(const Polynomial& x, const Polynomial& y) 
 }
 
 // The primitive gcd: by the modular algorithm where it answers, else by the primitive
-// polynomial remainder sequence.
-Polynomial exact_gcd(const Polynomial& a, const Polynomial& b) {
-  Polynomial x = primitive_part(a), y = primitive_part(b);
+// polynomial remainder sequence. a_primitive: the caller knows a is primitive with a positive
+// leading coefficient (primitive_part(a) = a: its content is not computed again).
+Polynomial exact_gcd(const Polynomial& a, const Polynomial& b, bool a_primitive = false) {
+  Polynomial x = a_primitive ? a : primitive_part(a), y = primitive_part(b);
   if (x.empty()) return y;
   if (y.empty()) return x;
   if (degree(x) < degree(y)) std::swap(x, y);
@@ -441,15 +440,20 @@ std::atomic<std::size_t>& modular_gcd_answers() {
 // tile of a chart (on a 6 x 9 gears' operating region 3,916 gcds of 1,851 distinct pairs). The
 // value is a pure function of the pair (compared coefficient by coefficient), so a hit returns
 // exactly what exact_gcd would. Bounded (remembered's capacity).
-Polynomial gcd(const Polynomial& a, const Polynomial& b) {
+namespace {
+
+PolynomialPairMemo& gcd_memo() {
   thread_local PolynomialPairMemo memo;
-  return remembered(memo, std::pair<Polynomial, Polynomial>(a, b), [&] { return exact_gcd(a, b); });
+  return memo;
 }
 
-Polynomial square_free_part(const Polynomial& p) {
-  Polynomial q = primitive_part(p);
+// square_free_part(q) of a primitive q with a positive leading coefficient (q's content not
+// computed again, here or in the gcd).
+Polynomial square_free_part_of_primitive(const Polynomial& q) {
   if (degree(q) <= 1) return q;
-  Polynomial g = gcd(q, derivative(q));
+  const Polynomial d = derivative(q);
+  // gcd(q, d): the same memo and value as gcd()'s
+  Polynomial g = remembered(gcd_memo(), std::pair<Polynomial, Polynomial>(q, d), [&] { return exact_gcd(q, d, true); });
   if (degree(g) == 0) return q;
   // exact division q / g
   Polynomial quotient(static_cast<std::size_t>(degree(q) - degree(g) + 1));
@@ -463,8 +467,19 @@ Polynomial square_free_part(const Polynomial& p) {
     for (int i = 0; i <= degree(g); ++i)
       remainder[static_cast<std::size_t>(k + i)] -= coefficient * g[static_cast<std::size_t>(i)];
   }
-  return primitive_part(quotient);
+  // primitive with a positive leading coefficient already: q = g quotient with q and g
+  // primitive, so the quotient is primitive (Gauss's lemma: content(q) = content(g)
+  // content(quotient)), and lc(quotient) = lc(q) / lc(g) > 0
+  return quotient;
 }
+
+}  // namespace
+
+Polynomial gcd(const Polynomial& a, const Polynomial& b) {
+  return remembered(gcd_memo(), std::pair<Polynomial, Polynomial>(a, b), [&] { return exact_gcd(a, b); });
+}
+
+Polynomial square_free_part(const Polynomial& p) { return square_free_part_of_primitive(primitive_part(p)); }
 
 Polynomial from_rationals(const std::vector<Rational>& coefficients) {
   mpz_class common = 1;
@@ -1541,9 +1556,7 @@ std::optional<Rational> rational_root_by_refinement(const Real& r) {
   const Polynomial& p = r.polynomial;
   if (degree(p) < 1) throw NumericError("internal: an isolated real root of a constant polynomial");
   // Q = |a_n| / content: the denominator of a rational root divides it
-  mpz_class content = 0;
-  for (const mpz_class& c : p) mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), c.get_mpz_t());
-  const mpz_class q_bound = abs(p.back()) / content;
+  const mpz_class q_bound = abs(p.back()) / content(p);
   const Rational final_width(1, q_bound * q_bound);
   Real copy = r;
   const Rational start_width = copy.upper - copy.lower;
@@ -1741,13 +1754,10 @@ void isolate(const Polynomial& p, const SturmSequence& sturm, Rational a, Ration
   isolate(p, sturm, m, b, n - left, out);
 }
 
-}  // namespace
-
-std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
+// real_roots(p, lo, hi) of a p that is its own square_free_part (primitive, square-free,
+// positive leading coefficient).
+std::vector<Real> square_free_real_roots(const Polynomial& p, const Rational& lo, const Rational& hi) {
   std::vector<Real> roots;
-  // the same polynomial as square_free_part(input), without the exact gcd when a modular one
-  // certifies that there is no square factor
-  Polynomial p = square_free_test(input);
   if (degree(p) < 1 || lo > hi) return roots;
   if (isolated_trivially(p, lo, hi, roots)) return roots;
   SturmSequence sturm(p);
@@ -1756,11 +1766,21 @@ std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const 
   return roots;
 }
 
+}  // namespace
+
+std::vector<Real> real_roots(const Polynomial& input, const Rational& lo, const Rational& hi) {
+  // the same polynomial as square_free_part(input), without the exact gcd when a modular one
+  // certifies that there is no square factor
+  return square_free_real_roots(square_free_test(input), lo, hi);
+}
+
 std::vector<Real> real_roots(const Polynomial& input) {
-  Polynomial p = square_free_part(input);
+  // square_free_test(input) is square_free_part(input) (see real_roots above), which is its own
+  // square-free part: its roots in the bound are isolated without testing it again
+  Polynomial p = square_free_test(input);
   if (degree(p) < 1) return {};
   Rational bound = root_bound(p);
-  return real_roots(p, -bound, bound);
+  return square_free_real_roots(p, -bound, bound);
 }
 
 // ---------------------------------------------------------------- Descartes' rule of signs
@@ -1855,7 +1875,7 @@ namespace {
 // what square_free_part would. Bounded: emptied when it holds `capacity` polynomials.
 Polynomial memoised_square_free_part(const Polynomial& p) {
   thread_local PolynomialMemo memo;
-  return remembered(memo, p, [&] { return square_free_part(p); });
+  return remembered(memo, p, [&] { return square_free_part_of_primitive(p); });
 }
 
 }  // namespace
@@ -1875,10 +1895,13 @@ Polynomial square_free_test(const Polynomial& input, bool* exact_needed) {
   if (exact_needed) *exact_needed = false;
   Polynomial p = primitive_part(input);
   if (degree(p) <= 1) return p;
-  const Polynomial d = derivative(p);
   for (std::uint64_t prime : {2147483647ULL, 2147483629ULL, 2147483587ULL}) {
     if (mpz_fdiv_ui(p.back().get_mpz_t(), static_cast<unsigned long>(prime)) == 0) continue;
-    if (modular_gcd_degree(residues(p, prime), residues(d, prime), prime) == 0) return p;
+    // the derivative's residues from p's: (i p_i) mod prime = (i (p_i mod prime)) mod prime
+    // (i < degree < prime; products below 2^62), the residues of derivative(p) without forming it
+    Residues r = residues(p, prime), dr(r.size() - 1);
+    for (std::size_t i = 1; i < r.size(); ++i) dr[i - 1] = i * r[i] % prime;
+    if (modular_gcd_degree(std::move(r), std::move(dr), prime) == 0) return p;
   }
   if (exact_needed) *exact_needed = true;
   return memoised_square_free_part(p);
@@ -1946,7 +1969,7 @@ Real nth_real_root(const Polynomial& p, int index) {
 }
 
 Real nth_real_root_in(const Polynomial& input, int index, const Rational& lo, const Rational& hi) {
-  Polynomial p = square_free_part(input);
+  Polynomial p = square_free_test(input);   // = square_free_part(input)
   if (degree(p) < 1) throw NumericError("internal: evaluating a constant contact curve");
   if (degree(p) == 1) {
     Rational root(-p[0], p[1]);

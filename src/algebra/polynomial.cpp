@@ -1,4 +1,5 @@
 #include "algebra/polynomial.hpp"
+#include "algebra/content.hpp"
 
 #include "kernels/weights.hpp"
 
@@ -68,21 +69,25 @@ void normalize(IntegerPolynomial2& polynomial) {
   auto& c = polynomial.coefficients;
   trim(c);
   if (c.empty()) return;
-  mpz_class content = 0;
-  for (const auto& row : c)
-    for (const mpz_class& v : row) mpz_gcd(content.get_mpz_t(), content.get_mpz_t(), v.get_mpz_t());
+  const mpz_class content = algebra::smallest_first_content([&](auto visit) {
+    for (const auto& row : c)
+      for (const mpz_class& v : row) visit(v.get_mpz_t());
+  });
   if (content > 1)
     for (auto& row : c)
       for (mpz_class& v : row) mpz_divexact(v.get_mpz_t(), v.get_mpz_t(), content.get_mpz_t());
   // Pad rows to a rectangle for the divisions, then trim again.
   while (divide_by_one_plus_x_squared(c)) trim(c);
-  auto t = transposed(c);
-  bool divided = false;
-  while (divide_by_one_plus_x_squared(t)) {
-    trim(t);
-    divided = true;
+  // (the transpose only when (1 + y^2) divides: the same division, no copies otherwise)
+  if (kernels::half_angle_weight_divides_y(c)) {
+    auto t = transposed(c);
+    bool divided = false;
+    while (divide_by_one_plus_x_squared(t)) {
+      trim(t);
+      divided = true;
+    }
+    if (divided) c = transposed(t);
   }
-  if (divided) c = transposed(t);
   trim(c);
 }
 

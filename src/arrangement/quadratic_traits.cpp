@@ -47,10 +47,12 @@ double seconds_since(Clock::time_point start) {
 
 // ------------------------------------------------------------------ univariate arithmetic
 
+// (sums and products written into the result's coefficients: no temporary integer per term)
 Polynomial add(const Polynomial& a, const Polynomial& b) {
-  Polynomial r(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) r[i] += a[i];
-  for (std::size_t i = 0; i < b.size(); ++i) r[i] += b[i];
+  const Polynomial& longer = a.size() >= b.size() ? a : b;
+  const Polynomial& shorter = a.size() >= b.size() ? b : a;
+  Polynomial r(longer);
+  for (std::size_t i = 0; i < shorter.size(); ++i) mpz_add(r[i].get_mpz_t(), r[i].get_mpz_t(), shorter[i].get_mpz_t());
   algebra::trim(r);
   return r;
 }
@@ -62,13 +64,20 @@ Polynomial scale(const Polynomial& a, long k) {
   return r;
 }
 
-Polynomial sub(const Polynomial& a, const Polynomial& b) { return add(a, scale(b, -1)); }
+Polynomial sub(const Polynomial& a, const Polynomial& b) {
+  Polynomial r(a);
+  if (r.size() < b.size()) r.resize(b.size());
+  for (std::size_t i = 0; i < b.size(); ++i) mpz_sub(r[i].get_mpz_t(), r[i].get_mpz_t(), b[i].get_mpz_t());
+  algebra::trim(r);
+  return r;
+}
 
 Polynomial mul(const Polynomial& a, const Polynomial& b) {
   if (a.empty() || b.empty()) return {};
   Polynomial r(a.size() + b.size() - 1);
   for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+    for (std::size_t j = 0; j < b.size(); ++j)
+      mpz_addmul(r[i + j].get_mpz_t(), a[i].get_mpz_t(), b[j].get_mpz_t());
   algebra::trim(r);
   return r;
 }

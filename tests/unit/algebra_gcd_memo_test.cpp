@@ -3,8 +3,10 @@
 // the exact primitive gcd, known by construction (products of primitive linear factors d x - n
 // with small roots, times contents of either sign: the gcd is the product of the common factors
 // at their smaller multiplicity, leading coefficient positive).
+#include "algebra/content.hpp"
 #include "algebra/exact_real.hpp"
 #include "algebra/modular_gcd.hpp"
+#include "algebra/polynomial.hpp"
 
 #include <gtest/gtest.h>
 
@@ -314,6 +316,160 @@ TEST(AlgebraGcdMemo, PairsSharingAnArgumentGiveTheirOwnGcd) {
   }
   EXPECT_EQ(checked, 1200);
   EXPECT_EQ(repeated, 600);
+}
+
+// The gcd of a list taken left to right, plainly (the oracle of the smallest-first content).
+mpz_class plain_content(const std::vector<mpz_class>& values) {
+  mpz_class g = 0;
+  for (const mpz_class& v : values) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), v.get_mpz_t());
+  return g;
+}
+
+// p divided by its plain content, the sign making the leading coefficient positive.
+Polynomial plain_primitive_part(Polynomial p) {
+  trim(p);
+  if (p.empty()) return p;
+  mpz_class g = plain_content(p);
+  if (sgn(p.back()) < 0) g = -g;
+  for (auto& c : p) c /= g;
+  return p;
+}
+
+// Session 55: contents are taken smallest coefficient first, stopping at 1 (content.hpp; used
+// by primitive_part, normalize and the Descartes isolator). Generated coefficient lists (zeros,
+// units, 1-20 and 1-600 bits, either sign, lengths 1-10, some all zero, some times a common
+// factor of up to 200 bits): smallest_first_content is the plain left-to-right gcd,
+// primitive_part the plain division by it, and normalize of the bivariate polynomial (the
+// list as rows) divides by it: normalize(P) = normalize(P / content) = normalize(k P), k > 0.
+TEST(AlgebraContent, SmallestFirstIsThePlainLeftToRightGcd) {
+  std::mt19937_64 random(55055);
+  int ones = 0, larger = 0, zero = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::vector<mpz_class> values(1 + random() % 10);
+    const bool all_zero = random() % 40 == 0;
+    for (auto& v : values) {
+      const int kind = all_zero ? 0 : static_cast<int>(random() % 5);
+      v = kind == 0 ? mpz_class(0)
+          : kind == 1 ? mpz_class(random() % 2 ? 1 : -1)
+          : kind == 2 ? random_integer(random, 1 + static_cast<int>(random() % 20), true)
+                      : random_integer(random, 1 + static_cast<int>(random() % 600), true);
+    }
+    if (random() % 2) {
+      const mpz_class k = random_integer(random, 1 + static_cast<int>(random() % 200), true);
+      for (auto& v : values) v *= k;
+    }
+    const mpz_class expected = plain_content(values);
+    const mpz_class content = smallest_first_content([&](auto visit) {
+      for (const mpz_class& v : values) visit(v.get_mpz_t());
+    });
+    ASSERT_EQ(content, expected) << "trial " << trial;
+    ones += expected == 1;
+    larger += expected > 1;
+    zero += expected == 0;
+    const Polynomial p(values.begin(), values.end());
+    ASSERT_EQ(primitive_part(p), plain_primitive_part(p)) << "trial " << trial << ": " << to_string(p, "x");
+    // the bivariate normalisation's content
+    IntegerPolynomial2 bivariate, divided, multiplied;
+    const std::size_t width = 1 + random() % 3;
+    const mpz_class k = 1 + static_cast<long>(random() % 1000);
+    for (std::size_t i = 0; i < values.size(); i += width) {
+      bivariate.coefficients.emplace_back(values.begin() + static_cast<long>(i),
+                                          values.begin() + static_cast<long>(std::min(values.size(), i + width)));
+      divided.coefficients.push_back(bivariate.coefficients.back());
+      multiplied.coefficients.push_back(bivariate.coefficients.back());
+      for (auto& v : divided.coefficients.back())
+        if (expected > 1) v /= expected;
+      for (auto& v : multiplied.coefficients.back()) v *= k;
+    }
+    normalize(bivariate);
+    normalize(divided);
+    normalize(multiplied);
+    ASSERT_EQ(bivariate.coefficients, divided.coefficients) << "trial " << trial;
+    ASSERT_EQ(multiplied.coefficients, divided.coefficients) << "trial " << trial;
+  }
+  EXPECT_GT(ones, 500);
+  EXPECT_GT(larger, 500);
+  EXPECT_GT(zero, 20);
+}
+
+// Session 55: square_free_part no longer recomputes the content of its primitive argument
+// (in the gcd with the derivative) nor of the quotient (primitive by Gauss's lemma), and
+// real_roots(p) / nth_real_root / nth_real_root_in take square_free_test's polynomial (the
+// exact gcd only when the modular test cannot certify p square-free). Generated products of
+// random factors (degree 1-3, 1-200 bits) and of small linear factors (real roots), each at
+// multiplicity 1-3, times a content of either sign: square_free_part is the plain primitive
+// part divided by the plain sequence's gcd with the derivative (itself primitive), real_roots(p)
+// is real_roots of that polynomial in its Cauchy bound (the route before session 55), root
+// for root, nth_real_root its roots in turn, nth_real_root_in the same numbers, and every
+// root is a root of the square-free part (exact, or a sign change over its interval).
+TEST(AlgebraGcdMemo, SquareFreePartAndRootsAreThePlainRoute) {
+  std::mt19937_64 random(55505);
+  int repeated = 0, roots_seen = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Polynomial a{random_integer(random, 1 + static_cast<int>(random() % 90), true)};
+    const int factors = 1 + static_cast<int>(random() % 3);
+    bool square = false;
+    for (int k = 0; k < factors; ++k) {
+      Polynomial f;
+      if (random() % 2) {
+        const auto& [n, d] = gcd_memo_factors[random() % gcd_memo_factors.size()];
+        f = {mpz_class(-n), mpz_class(d)};
+      } else {
+        const int deg = 1 + static_cast<int>(random() % 3);
+        const int bits = 1 + static_cast<int>(random() % 200);
+        for (int i = 0; i <= deg; ++i) f.push_back(random_integer(random, bits, i == deg));
+      }
+      const int multiplicity = 1 + static_cast<int>(random() % 3);
+      square = square || multiplicity > 1;
+      for (int m = 0; m < multiplicity; ++m) a = times(a, f);
+    }
+    repeated += square;
+    // the plain square-free part
+    const Polynomial q = plain_primitive_part(a);
+    const Polynomial g = primitive_sequence_gcd(q, derivative(q));
+    Polynomial expected(q.size() - g.size() + 1), rest = q;
+    for (int k = degree(q) - degree(g); k >= 0; --k) {
+      mpz_class& top = rest[static_cast<std::size_t>(k + degree(g))];
+      ASSERT_TRUE(mpz_divisible_p(top.get_mpz_t(), g.back().get_mpz_t())) << "trial " << trial;
+      expected[static_cast<std::size_t>(k)] = top / g.back();
+      for (int i = 0; i <= degree(g); ++i)
+        rest[static_cast<std::size_t>(k + i)] -= expected[static_cast<std::size_t>(k)] * g[static_cast<std::size_t>(i)];
+    }
+    trim(rest);
+    ASSERT_TRUE(rest.empty()) << "trial " << trial << ": the gcd does not divide";
+    ASSERT_EQ(plain_primitive_part(expected), expected) << "trial " << trial << ": the quotient is not primitive";
+    ASSERT_EQ(square_free_part(a), expected) << "trial " << trial << ": " << to_string(a, "x");
+    ASSERT_EQ(square_free_part(a), expected) << "trial " << trial << " (memo)";
+    if (degree(expected) < 1) continue;
+    const Rational bound = root_bound(expected);
+    const std::vector<Real> reference = real_roots(expected, -bound, bound);
+    const std::vector<Real> roots = real_roots(a);
+    ASSERT_EQ(roots.size(), reference.size()) << "trial " << trial;
+    for (std::size_t i = 0; i < roots.size(); ++i) {
+      const Real& r = roots[i];
+      ASSERT_EQ(r.polynomial, reference[i].polynomial) << "trial " << trial << " root " << i;
+      ASSERT_EQ(r.lower, reference[i].lower) << "trial " << trial << " root " << i;
+      ASSERT_EQ(r.upper, reference[i].upper) << "trial " << trial << " root " << i;
+      ASSERT_EQ(r.exact, reference[i].exact) << "trial " << trial << " root " << i;
+      if (r.exact) {
+        ASSERT_EQ(sign_at(expected, r.lower), 0) << "trial " << trial << " root " << i;
+      } else {
+        ASSERT_EQ(r.polynomial, expected) << "trial " << trial << " root " << i;
+        ASSERT_LT(sign_at(expected, r.lower) * sign_at(expected, r.upper), 0) << "trial " << trial << " root " << i;
+      }
+      const Real nth = nth_real_root(a, static_cast<int>(i));
+      ASSERT_EQ(nth.lower, r.lower) << "trial " << trial << " root " << i;
+      ASSERT_EQ(nth.upper, r.upper) << "trial " << trial << " root " << i;
+      if (!r.exact) {
+        const Real in = nth_real_root_in(a, static_cast<int>(i), -bound, bound);
+        ASSERT_EQ(in.polynomial, expected) << "trial " << trial << " root " << i;
+        ASSERT_EQ(compare(in, r), 0) << "trial " << trial << " root " << i;
+      }
+      ++roots_seen;
+    }
+  }
+  EXPECT_GT(repeated, 100);
+  EXPECT_GT(roots_seen, 300);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <random>
 
@@ -224,6 +225,163 @@ TEST(ContactTable, HalfAngleWeightIsDividedOutExactlyAndOnlyWhenPresent) {
   std::vector<std::vector<Rational>> half{{Rational(1, 2)}, {Rational(0)}, {Rational(1, 2)}};
   ASSERT_TRUE(kernels::divide_by_half_angle_weight(half));
   EXPECT_EQ(half, (std::vector<std::vector<Rational>>{{Rational(1, 2)}}));
+}
+
+// Session 55: divide_by_half_angle_weight tests a(i) = 0 per column before forming a quotient,
+// and normalize transposes only when (1 + y^2) divides (half_angle_weight_divides_x / _y).
+// Oracle: the plain long division by x^2 + 1 of every column (the remainder r_1 x + r_0 zero),
+// on generated polynomials (ragged rows, 1-6 rows and columns, coefficients of 1-200 bits): the
+// products (1 + x^2) p, (1 + y^2) p, (1 + x^2)^2 (1 + y^2) p, and each with one coefficient
+// changed by +-1 or +-2 (an even or an odd power). normalize against the plain normalisation
+// (the content divided out, every (1 + x^2) and (1 + y^2) divided out by long division).
+namespace weight_oracle {
+
+using Matrix = std::vector<std::vector<mpz_class>>;
+
+bool long_division_divides(const std::vector<mpz_class>& a) {
+  std::vector<mpz_class> r = a;   // r <- r - r_k x^(k-2) (1 + x^2), from the top
+  for (std::size_t k = r.size(); k-- > 2;) r[k - 2] -= r[k];
+  return (r.empty() || r[0] == 0) && (r.size() < 2 || r[1] == 0);
+}
+
+std::vector<mpz_class> column(const Matrix& c, std::size_t j) {
+  std::vector<mpz_class> out(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) out[i] = j < c[i].size() ? c[i][j] : mpz_class(0);
+  return out;
+}
+
+std::size_t width(const Matrix& c) {
+  std::size_t w = 0;
+  for (const auto& row : c) w = std::max(w, row.size());
+  return w;
+}
+
+bool divides_x(const Matrix& c) {
+  for (std::size_t j = 0; j < width(c); ++j)
+    if (!long_division_divides(column(c, j))) return false;
+  return true;
+}
+
+bool divides_y(const Matrix& c) {
+  for (const auto& row : c)
+    if (!long_division_divides(row)) return false;
+  return true;
+}
+
+Matrix times_one_plus_x_squared(const Matrix& p) {
+  Matrix q(p.size() + 2, std::vector<mpz_class>(width(p)));
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = 0; j < p[i].size(); ++j) {
+      q[i][j] += p[i][j];
+      q[i + 2][j] += p[i][j];
+    }
+  return q;
+}
+
+Matrix transposed(const Matrix& c) {
+  Matrix t(width(c), std::vector<mpz_class>(c.size()));
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (std::size_t j = 0; j < c[i].size(); ++j) t[j][i] = c[i][j];
+  return t;
+}
+
+void trim(Matrix& c) {
+  for (auto& row : c)
+    while (!row.empty() && row.back() == 0) row.pop_back();
+  while (!c.empty() && c.back().empty()) c.pop_back();
+}
+
+// x^2 + 1 divided out of every column (the caller knows it divides)
+Matrix divided_x(const Matrix& c) {
+  Matrix q(c.size() - 2, std::vector<mpz_class>(width(c)));
+  for (std::size_t j = 0; j < width(c); ++j) {
+    std::vector<mpz_class> r = column(c, j);
+    for (std::size_t k = r.size(); k-- > 2;) {
+      q[k - 2][j] = r[k];
+      r[k - 2] -= r[k];
+    }
+  }
+  return q;
+}
+
+Matrix plain_normalized(Matrix c) {
+  trim(c);
+  if (c.empty()) return c;
+  mpz_class g = 0;
+  for (const auto& row : c)
+    for (const auto& v : row) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), v.get_mpz_t());
+  for (auto& row : c)
+    for (auto& v : row) v /= g;
+  while (c.size() >= 3 && divides_x(c)) {
+    c = divided_x(c);
+    trim(c);
+  }
+  Matrix t = transposed(c);
+  bool divided = false;
+  while (t.size() >= 3 && divides_x(t)) {
+    t = divided_x(t);
+    trim(t);
+    divided = true;
+  }
+  if (divided) c = transposed(t);
+  trim(c);
+  return c;
+}
+
+}  // namespace weight_oracle
+
+TEST(ContactTable, HalfAngleWeightTestsAreTheLongDivisionsRemainders) {
+  using namespace weight_oracle;
+  std::mt19937_64 random(550055);
+  auto big = [&](int bits) {
+    mpz_class v = 0;
+    for (int b = 0; b < bits; b += 32) v = (v << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
+    return random() % 2 ? v : mpz_class(-v);
+  };
+  int divisible_x = 0, divisible_y = 0, not_x = 0, not_y = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    Matrix p(1 + random() % 6);
+    const int bits = 1 + static_cast<int>(random() % 200);
+    for (auto& row : p) {
+      row.resize(random() % 7);
+      for (auto& v : row) v = random() % 4 == 0 ? mpz_class(0) : big(bits);
+    }
+    if (p.back().empty()) p.back().push_back(mpz_class(1));
+    Matrix c = p;
+    const int kind = static_cast<int>(random() % 4);
+    if (kind == 1 || kind == 3) c = times_one_plus_x_squared(c);
+    if (kind == 2 || kind == 3) c = transposed(times_one_plus_x_squared(transposed(c)));
+    if (kind == 3) c = times_one_plus_x_squared(c);
+    if (random() % 2) {   // one coefficient changed
+      auto& row = c[random() % c.size()];
+      if (row.empty()) row.resize(1 + random() % 4);
+      row[random() % row.size()] += mpz_class(static_cast<long>(random() % 2 + 1) * (random() % 2 ? 1 : -1));
+    }
+    const bool x = divides_x(c), y = divides_y(c);
+    ASSERT_EQ(kernels::half_angle_weight_divides_x(c), x) << "trial " << trial;
+    ASSERT_EQ(kernels::half_angle_weight_divides_y(c), y) << "trial " << trial;
+    Matrix d = c;
+    const Matrix before = c;
+    const bool divided = kernels::divide_by_half_angle_weight(d);
+    ASSERT_EQ(divided, c.size() >= 3 && x) << "trial " << trial;
+    if (divided) {
+      EXPECT_EQ(d, divided_x(c)) << "trial " << trial;
+    } else {
+      EXPECT_EQ(d, before) << "trial " << trial;
+    }
+    IntegerPolynomial2 f;
+    f.coefficients = c;
+    normalize(f);
+    ASSERT_EQ(f.coefficients, plain_normalized(c)) << "trial " << trial;
+    divisible_x += x && c.size() >= 3;
+    divisible_y += y && width(c) >= 3;
+    not_x += !x;
+    not_y += !y;
+  }
+  EXPECT_GT(divisible_x, 300);
+  EXPECT_GT(divisible_y, 300);
+  EXPECT_GT(not_x, 300);
+  EXPECT_GT(not_y, 300);
 }
 
 }  // namespace
