@@ -99,6 +99,25 @@ ToleranceOptions chain_options() {
   return options;
 }
 
+// The exact chain at parameter deviations `d`: the kinematics of the cam chain's exact model
+// (kernel slicing, no reversal) over the tolerance run's range and positions per cycle.
+KinematicsResult exact_chain(const model_detail::ParametricModel& model, const std::vector<Rational>& d,
+                             const ToleranceOptions& options) {
+  KinematicsOptions k;
+  k.driver = "cam";
+  k.range = options.range;
+  k.steps_per_cycle = options.positions;
+  k.reversal = false;
+  k.method = SliceMethod::kernels;
+  return analyze_kinematics(model.exact_model(d), k);
+}
+
+// The index of follower `name` among the result's followers (their count when it is not one).
+std::size_t follower_index(const KinematicsResult& result, const std::string& name) {
+  return static_cast<std::size_t>(std::find(result.followers.begin(), result.followers.end(), name) -
+                                  result.followers.begin());
+}
+
 Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
                  int pieces = tolerance_detail::handover_driver_pieces()) {
   const ToleranceOptions options = chain_options();
@@ -140,15 +159,8 @@ Count check_text(const std::string& text, int anchor, int far = tolerance_detail
   for (int k = 0; k < 4; ++k) probes.push_back(test_gears::random_deviations(r.parameters, rng));
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
   for (const std::vector<Rational>& d : probes) {
-    KinematicsOptions k;
-    k.driver = "cam";
-    k.range = options.range;
-    k.steps_per_cycle = options.positions;
-    k.reversal = false;
-    k.method = SliceMethod::kernels;
-    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
-    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "lifter2") -
-                                                  exact.followers.begin());
+    KinematicsResult exact = exact_chain(*model, d, options);
+    std::size_t output = follower_index(exact, "lifter2");
     EXPECT_LT(output, exact.followers.size());
     if (output >= exact.followers.size()) continue;
     for (const VariationSample& sample : r.samples) {
@@ -560,15 +572,8 @@ TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChai
   std::size_t values = 0, outside = 0;
   double nearest = std::numeric_limits<double>::infinity();
   for (const std::vector<Rational>& d : probes) {
-    KinematicsOptions k;
-    k.driver = "cam";
-    k.range = options.range;
-    k.steps_per_cycle = options.positions;
-    k.reversal = false;
-    k.method = SliceMethod::kernels;
-    KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
-    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "lifter3") -
-                                                  exact.followers.begin());
+    KinematicsResult exact = exact_chain(*model, d, options);
+    std::size_t output = follower_index(exact, "lifter3");
     ASSERT_LT(output, exact.followers.size());
     for (const VariationSample& sample : r[1].samples) {
       auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
