@@ -1,6 +1,7 @@
 // hipair::analyze_kinematics: drives the chain over the requested range on a grid, locates
 // every contact change between grid points by bisection on exact slices, and collects the
 // pieces, events, samples, play, contact usage, paths and reversal checks.
+#include "core/angle_sign.hpp"
 #include "core/length_display.hpp"
 #include "core/model_scale.hpp"
 #include "kinematics/engine.hpp"
@@ -59,18 +60,118 @@ std::map<std::string, FollowerLoad> model_loads(const Model& model) {
   return loads;
 }
 
+namespace kinematics_detail {
+
+// Is m pi + 2 (atan(to) - atan(from)) <= n pi? Exact: atan(to) - atan(from) lies in (-pi, pi),
+// and against pi / 2 it is decided by the sign of cos of the difference, (1 + to from) over a
+// positive number.
+bool half_turns_at_most(const mpz_class& m, const Rational& from, const Rational& to, long n) {
+  const mpz_class d = n - m;   // is atan(to) - atan(from) <= d pi / 2?
+  if (d >= 2) return true;
+  if (d <= -2) return false;
+  const int cosine = sgn(Rational(1 + to * from));
+  if (d == 1) return to <= from || cosine >= 0;
+  if (d == 0) return to <= from;
+  return to < from && cosine <= 0;
+}
+
+DriverPlan plan_driver(const AxisLine& line, const Rational& start, int direction, const DriverEnd& end,
+                       std::vector<std::string>& warnings) {
+  DriverPlan plan;
+  LocatedCoordinate from = locate_coordinate(line, start);
+  if (!from.position.value.exact) throw NumericError("driver start is not rational");
+  plan.start = from.position;
+  plan.start_half_turns = from.half_turns;
+  LocatedCoordinate to;
+  if (end.kind == DriverEnd::Kind::coordinate) {
+    to = locate_coordinate(line, end.value);
+    plan.beyond = to.beyond == direction;
+  } else if (end.kind == DriverEnd::Kind::cycles) {
+    if (end.value.get_den() == 1) {
+      to = from;   // whole turns end where they start, 2 cycles half turns on
+      to.half_turns += 2 * direction * end.value.get_num();
+    } else {
+      // start + 2 pi cycles: irrational; its rounding to well inside the chart value's 2^-60 grid
+      const mpfr_prec_t bits = 200 + std::max(magnitude_bits(start), magnitude_bits(end.value));
+      mpfr_t x, p;
+      mpfr_inits2(bits, x, p, static_cast<mpfr_ptr>(nullptr));
+      mpfr_const_pi(p, MPFR_RNDN);
+      mpfr_mul_q(p, p, end.value.get_mpq_t(), MPFR_RNDN);
+      mpfr_mul_si(p, p, 2 * direction, MPFR_RNDN);
+      mpfr_set_q(x, start.get_mpq_t(), MPFR_RNDN);
+      mpfr_add(x, x, p, MPFR_RNDN);
+      mpq_t q;
+      mpq_init(q);
+      mpfr_get_q(q, x);
+      to = locate_coordinate(line, Rational(q));
+      mpq_clear(q);
+      mpfr_clears(x, p, static_cast<mpfr_ptr>(nullptr));
+    }
+  } else if (line.rotation) {
+    const std::size_t piece = direction > 0 ? line.pieces.size() - 1 : 0;
+    to.position = AxisPosition{piece, Real::from_rational(direction > 0 ? line.pieces[piece].hi : line.pieces[piece].lo)};
+    to.half_turns = line.half_turns[piece];
+  } else {
+    to = locate_coordinate(line, direction > 0 ? line.pieces.back().hi : line.pieces.front().lo);
+  }
+  plan.end = to.position;
+  plan.end_half_turns = to.half_turns;
+  // the frame: whole turns of the start taken out when it lies far out (0 keeps the doubles of
+  // an ordinary start as they were)
+  if (abs(from.half_turns) >= mpz_class(1) << 20) mpz_fdiv_q_2exp(plan.reference.get_mpz_t(), from.half_turns.get_mpz_t(), 1);
+  plan.reference *= 2;
+  auto relative = [&](const mpz_class& half_turns) {
+    const mpz_class offset = half_turns - plan.reference;
+    if (!offset.fits_slong_p()) throw NumericError("driver range too long");
+    return offset.get_si();
+  };
+  const Rational& end_t = to.position.value.lower;
+  std::size_t piece = from.position.piece;
+  Rational t = from.position.value.lower;
+  long base_pi = line.rotation ? relative(from.half_turns) : 0;
+  const long end_base_pi = line.rotation ? relative(to.half_turns) : 0;
+  // the end behind the start (a rounding of an end beside it): nothing to drive
+  if ((end_base_pi - base_pi) * direction < 0 ||
+      (end_base_pi == base_pi && to.position.piece == piece && (end_t - t) * direction < 0))
+    return plan;
+  for (int guard = 0; guard < 100000; ++guard) {
+    const ChartAxis& chart = line.pieces[piece];
+    DriverSegment segment{piece, t, direction > 0 ? chart.hi : chart.lo, base_pi, line.rotation ? base_pi * std::numbers::pi : 0.0};
+    if (base_pi == end_base_pi && piece == to.position.piece) {
+      segment.to = end_t;
+      if (segment.to != segment.from) plan.segments.push_back(segment);
+      if (plan.beyond) warnings.push_back("the driver reaches the end of its travel (motion limit) before the end of the range");
+      return plan;
+    }
+    if (segment.to != segment.from) plan.segments.push_back(segment);
+    const bool last = direction > 0 ? piece + 1 >= line.pieces.size() : piece == 0;
+    if (!line.cyclic && (last || !line.seam_after(direction > 0 ? piece : piece - 1))) {
+      warnings.push_back("the driver reaches the end of its travel (motion limit) before the end of the range");
+      return plan;
+    }
+    if (direction > 0) {
+      std::size_t next = line.next(piece);
+      base_pi += line.rotation ? (line.cyclic ? 1 : line.half_turns[next] - line.half_turns[piece]) : 0;
+      piece = next;
+      t = line.pieces[piece].lo;
+    } else {
+      std::size_t previous = piece == 0 ? line.pieces.size() - 1 : piece - 1;
+      base_pi -= line.rotation ? (line.cyclic ? 1 : line.half_turns[piece] - line.half_turns[previous]) : 0;
+      piece = previous;
+      t = line.pieces[piece].hi;
+    }
+  }
+  throw NumericError("driver range too long");
+}
+
+}  // namespace kinematics_detail
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
 constexpr long max_driver_turns = 100;   // at most this many turns of a rotating driver (every turn's samples are kept)
 
-// A stretch of the driver's travel inside one chart: t runs from `from` to `to`.
-struct Segment {
-  std::size_t piece = 0;
-  Rational from, to;
-  long base_pi = 0;          // rotation: coordinate = base_pi * pi + 2 atan(t)
-  double base = 0;
-};
+using Segment = DriverSegment;
 
 double segment_coordinate(const AxisLine& line, const Segment& segment, const Rational& t) {
   return line.rotation ? segment.base + 2 * std::atan(t.get_d()) : t.get_d();
@@ -96,70 +197,14 @@ CertifiedRange certified_coordinate(const AxisLine& line, const Segment& segment
   return range;
 }
 
-// Builds the driver's segments from `start` over `travel` (signed, rad or mm).
-std::vector<Segment> plan_segments(const AxisLine& line, const Rational& start, double travel, const Rational* exact_end,
-                                   std::vector<std::string>& warnings) {
-  std::vector<Segment> segments;
-  int direction = travel >= 0 ? 1 : -1;
-  AxisPosition position = position_of_coordinate(line, start);
-  if (!position.value.exact) throw NumericError("driver start is not rational");
-  std::size_t piece = position.piece;
-  Rational t = position.value.lower;
-  long base_pi = 0;
-  if (line.rotation) {
-    // choose the turn so that the coordinate of (piece, t) is the start
-    double offset = line.offsets[piece];
-    double local = offset + 2 * std::atan(t.get_d());
-    long turns = std::lround((start.get_d() - local) / (2 * pi));
-    base_pi = line.half_turns[piece] + 2 * turns;
-  }
-  auto base_of = [&](long multiple) { return multiple * pi; };
-  // end position (exact when given, else rounded)
-  double end_coordinate = start.get_d() + travel;
-  AxisPosition end_position = exact_end ? position_of_coordinate(line, *exact_end)
-                                        : position_of_coordinate(line, Rational(end_coordinate));
-  Rational end_t = end_position.value.lower;
-  double travelled = 0, total = std::abs(travel);
-  for (int guard = 0; guard < 100000; ++guard) {
-    const ChartAxis& chart = line.pieces[piece];
-    Segment segment{piece, t, direction > 0 ? chart.hi : chart.lo, base_pi, line.rotation ? base_of(base_pi) : 0.0};
-    double here = segment_coordinate(line, segment, t);
-    double chart_end = segment_coordinate(line, segment, segment.to);
-    if (end_position.piece == piece) {
-      double to_end = (segment_coordinate(line, segment, end_t) - here) * direction;
-      if (to_end >= -1e-9 && travelled + to_end >= total - 1e-6) {
-        segment.to = end_t;
-        if (segment.to != segment.from) segments.push_back(segment);
-        return segments;
-      }
-    }
-    double length = std::abs(chart_end - here);
-    if (segment.to != segment.from) segments.push_back(segment);
-    travelled += length;
-    bool last = direction > 0 ? piece + 1 >= line.pieces.size() : piece == 0;
-    if (!line.cyclic && (last || !line.seam_after(direction > 0 ? piece : piece - 1))) {
-      warnings.push_back("the driver reaches the end of its travel (motion limit) before the end of the range");
-      return segments;
-    }
-    if (direction > 0) {
-      std::size_t next = line.next(piece);
-      base_pi += line.rotation ? (line.cyclic ? 1 : line.half_turns[next] - line.half_turns[piece]) : 0;
-      piece = next;
-      t = line.pieces[piece].lo;
-    } else {
-      std::size_t previous = piece == 0 ? line.pieces.size() - 1 : piece - 1;
-      base_pi -= line.rotation ? (line.cyclic ? 1 : line.half_turns[piece] - line.half_turns[previous]) : 0;
-      piece = previous;
-      t = line.pieces[piece].hi;
-    }
-  }
-  throw NumericError("driver range too long");
-}
 
 // Rational chart values of the grid inside a segment (excluding `from`, including `to`).
 std::vector<Rational> grid_of(const AxisLine& line, const Segment& segment, double spacing) {
   double a = segment_coordinate(line, segment, segment.from), b = segment_coordinate(line, segment, segment.to);
-  long steps = std::max<long>(1, std::lround(std::ceil(std::abs(b - a) / spacing - 1e-9)));
+  // a choice of samples: one step where the spacing is no positive double (a range whose length
+  // underflows)
+  const double ratio = std::abs(b - a) / spacing;
+  long steps = std::isfinite(ratio) ? std::max<long>(1, std::lround(std::ceil(ratio - 1e-9))) : 1;
   std::vector<Rational> values;
   mpz_class scale = mpz_class(1) << 32;
   for (long i = 1; i < steps; ++i) {
@@ -605,6 +650,44 @@ struct Sweep {
   }
 };
 
+// Shifts the driver's coordinates in `result` (those of the sweep's frame) by `half_turns` pi:
+// certified ranges outwards, the other doubles to nearest; the events' resolution is then the
+// widest shifted range (the doubles far out are coarse).
+void shift_driver_coordinates(KinematicsResult& result, const mpz_class& half_turns) {
+  mpfr_t x, p;
+  mpfr_inits2(128 + static_cast<mpfr_prec_t>(mpz_sizeinbase(half_turns.get_mpz_t(), 2)), x, p, static_cast<mpfr_ptr>(nullptr));
+  auto shifted = [&](double value, mpfr_rnd_t rounding) {
+    const bool positive = sgn(half_turns) > 0;
+    mpfr_const_pi(p, positive ? rounding : (rounding == MPFR_RNDD ? MPFR_RNDU : rounding == MPFR_RNDU ? MPFR_RNDD : rounding));
+    mpfr_mul_z(p, p, half_turns.get_mpz_t(), rounding);
+    mpfr_add_d(x, p, value, rounding);
+    return mpfr_get_d(x, rounding);
+  };
+  auto near = [&](double& value) { value = shifted(value, MPFR_RNDN); };
+  result.event_resolution = 0;
+  auto range = [&](DriverLocation& at) {
+    at.coordinate = CertifiedRange{shifted(at.coordinate.lower, MPFR_RNDD), shifted(at.coordinate.upper, MPFR_RNDU)};
+    result.event_resolution = std::max(result.event_resolution, std::nextafter(at.coordinate.upper - at.coordinate.lower,
+                                                                               std::numeric_limits<double>::infinity()));
+  };
+  near(result.reached);
+  for (KinematicSample& sample : result.samples) near(sample.driver);
+  for (KinematicEvent& event : result.events) {
+    range(event.at);
+    if (event.part == result.driver) near(event.position);
+  }
+  if (result.jam) {
+    range(result.jam->at);
+    if (result.jam->part == result.driver) near(result.jam->position);
+  }
+  for (KinematicPiece& piece : result.pieces) {
+    range(piece.start);
+    range(piece.end);
+  }
+  for (ReversalCheck& check : result.reversals) near(check.driver);
+  mpfr_clears(x, p, static_cast<mpfr_ptr>(nullptr));
+}
+
 }  // namespace
 
 KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions& options, const std::vector<CSpace>& spaces) {
@@ -650,6 +733,22 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
   if (!options.model_loads)
     for (std::size_t k = 1; k < chain.parts.size(); ++k)
       if (!options.loads.count(model.parts[chain.parts[k].part].name)) chain.parts[k].load = FollowerLoad{};
+  // A rotating follower's whole turns are followed in doubles (its unwrapped coordinate gives
+  // compare_unwrapped the turns of its exact position): refused beyond 2^40 rad, where that
+  // hint would lose them (session 56; the driver's are exact, plan_driver). Whole turns change
+  // nothing for a part about a fixed axis: give its angle reduced.
+  for (std::size_t k = 1; k < chain.parts.size(); ++k) {
+    if (!chain.parts[k].line.rotation) continue;
+    const Part& part = model.parts[chain.parts[k].part];
+    const Rational bound(mpz_class(1) << 40);
+    const bool far_angle = abs(part.initial.angle) >= bound;
+    const bool far_rest = chain.parts[k].load.kind == FollowerLoad::Kind::spring && abs(chain.parts[k].load.rest) >= bound;
+    if (far_angle || far_rest)
+      throw ModelError(part.pointer, "part '" + part.name + "': its " + (far_angle ? "initial angle" : "spring's rest angle") +
+                                         " lies beyond 2^40 rad (about 1.1e12 rad); the kinematic analysis follows a driven "
+                                         "part's whole turns in doubles: give the angle less whole turns (they change nothing "
+                                         "for a part about a fixed axis)");
+  }
   result.unconnected = chain.unconnected;
   result.warnings = chain.warnings;
   for (std::size_t k = 1; k < chain.parts.size(); ++k) {
@@ -675,28 +774,28 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
                                                         "' drives no other part (its pairs are with fixed parts only; where a fixed "
                                                         "part stops it is shown by 'hipair cspace' and 'hipair certify')");
 
-  // the driver's travel
+  // the driver's travel: its end, and its length `travel` in doubles (approximate: the grid's
+  // spacing, progress and the report's range; every decision on the travel is exact, plan_driver)
   const AxisLine& line = chain.parts[0].line;
   Rational start = result.driver_rotates ? driver_part.initial.angle : driver_part.initial.offset;
   double travel = 0;
-  std::optional<Rational> exact_end;
+  DriverEnd end;
   int direction = options.direction >= 0 ? 1 : -1;
   if (options.range) {
     start = options.range->first;
-    travel = Rational(options.range->second - options.range->first).get_d();
-    exact_end = options.range->second;
-    if (travel < 0) direction = -1;
-    else if (travel > 0) direction = 1;
-    travel = std::abs(travel) * direction;
+    const int sign = sgn(Rational(options.range->second - options.range->first));
+    if (sign != 0) direction = sign;
+    travel = std::abs(Rational(options.range->second - options.range->first).get_d()) * direction;
+    end.value = options.range->second;
   } else if (result.driver_rotates && line.cyclic) {
     travel = direction * 2 * pi * options.cycles.get_d();
-    if (options.cycles.get_den() == 1) exact_end = start;   // whole turns end where they start
+    end = DriverEnd{DriverEnd::Kind::cycles, options.cycles};
   } else {
     // to the end of the travel in the direction
     Rational limit = direction > 0 ? line.pieces.back().hi : line.pieces.front().lo;
-    double end = result.driver_rotates ? line.coordinate(direction > 0 ? line.pieces.size() - 1 : 0, limit.get_d()) : limit.get_d();
-    travel = end - start.get_d();
-    if (!result.driver_rotates) exact_end = limit;
+    double coordinate = result.driver_rotates ? line.coordinate(direction > 0 ? line.pieces.size() - 1 : 0, limit.get_d()) : limit.get_d();
+    travel = coordinate - start.get_d();
+    end = result.driver_rotates ? DriverEnd{DriverEnd::Kind::limit, Rational(0)} : DriverEnd{DriverEnd::Kind::coordinate, limit};
   }
   // A range whose ends differ: say why it is still empty (session 32: "the driver range is
   // empty" for --range 1e-300:2e-300 told nothing).
@@ -708,19 +807,48 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
   // Every turn's samples are kept (about 3.5 MB and 0.3 s a turn on the cam follower): a range of
   // 100 000 rad grew past 1 GB in 20 s before "driver range too long" (≈ 30 000 turns) stopped it
   // (hunt41; tolerance's nominal path and library callers come here too, not only analyze's CLI).
-  if (result.driver_rotates && !(std::abs(travel) <= max_driver_turns * 2 * pi))
+  // Decided exactly (session 56): a range's length against 200 pi, the cycles against 100, a
+  // limited rotation's travel to its limit from the located ends.
+  auto too_long = [&] {
     throw ModelError("", (options.range ? range_text() : "the driver's " + to_decimal_string(options.cycles) + " cycles") +
                              " spans more than " + std::to_string(max_driver_turns) +
                              " turns of the driver: analyse a shorter range");
-  if (travel == 0)
-    throw NumericError(ends_differ ? range_text() + " is too short to drive: its length rounds to 0 in double precision"
-                                   : std::string("the driver range is empty"));
+  };
+  if (result.driver_rotates) {
+    if (options.range) {
+      if (angle_sign(Rational(0), mpz_class(2 * max_driver_turns), abs(Rational(options.range->second - options.range->first))) < 0)
+        too_long();
+    } else if (line.cyclic && options.cycles > max_driver_turns) {
+      too_long();
+    }
+  }
   result.direction = direction;
   result.start = start.get_d();
   result.end = start.get_d() + travel;
+  // the plan and the sweep hold at any angle; the report's angles are doubles
+  if (result.driver_rotates && !std::isfinite(result.start))
+    throw NumericError("the driver's angle " + to_decimal_string(start, 6) +
+                       " rad lies beyond the range of doubles (about 1.8e308 rad), in which the driver's angles are "
+                       "reported: give it less whole turns (they change nothing for a part about a fixed axis)");
 
   Sweep sweep(chain, options, result);
-  sweep.segments = plan_segments(line, start, travel, exact_end ? &*exact_end : nullptr, result.warnings);
+  DriverPlan plan = plan_driver(line, start, direction, end, result.warnings);
+  if (result.driver_rotates && !options.range && !line.cyclic) {
+    const bool up = direction > 0;
+    const mpz_class half_turns = up ? mpz_class(plan.end_half_turns - plan.start_half_turns)
+                                    : mpz_class(plan.start_half_turns - plan.end_half_turns);
+    const Rational& a = up ? plan.start.value.lower : plan.end.value.lower;
+    const Rational& b = up ? plan.end.value.lower : plan.start.value.lower;
+    if (!half_turns_at_most(half_turns, a, b, 2 * max_driver_turns)) too_long();
+  }
+  // the travel in the frame's doubles where the frame is not the model's (far out; approximate)
+  if (sgn(plan.reference) != 0 && result.driver_rotates && !plan.segments.empty()) {
+    const Segment& first = plan.segments.front();
+    const Segment& last = plan.segments.back();
+    travel = segment_coordinate(line, last, last.to) - segment_coordinate(line, first, first.from);
+    result.end = result.start + travel;
+  }
+  sweep.segments = std::move(plan.segments);
   if (sweep.segments.empty())
     throw NumericError(!ends_differ ? std::string("the driver range is empty")
                        : result.driver_rotates
@@ -735,6 +863,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
                                          : std::abs(travel) / std::max(8u, options.steps_per_cycle);
   sweep.path_at_events = sweep.total_travel < spacing;
 
+  const double origin_unwrapped = sgn(plan.reference) == 0 ? result.start : sweep.unwrapped(0, sweep.segments[0].from);
   ChainState state = initial_state(chain, sweep.segments[0].piece, sweep.segments[0].from,
                                    sweep.unwrapped(0, sweep.segments[0].from), result.initial_interference);
   DriverLocation origin = sweep.locate(0, sweep.segments[0].from, sweep.segments[0].from);
@@ -761,7 +890,7 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
       sweep.sample(state);
       sweep.grid.push_back({s, t, state});
       if (options.progress)
-        options.progress(std::min(1.0, std::abs(state.driver_unwrapped - result.start) / sweep.total_travel));
+        options.progress(std::min(1.0, std::abs(state.driver_unwrapped - origin_unwrapped) / sweep.total_travel));
     }
   }
   result.reached = state.driver_unwrapped;
@@ -829,6 +958,10 @@ KinematicsResult analyze_kinematics(const Model& model, const KinematicsOptions&
       result.reversals.push_back(check);
     }
   }
+
+  // back from the sweep's frame to the model's: the driver's coordinates shifted by the frame's
+  // whole turns (certified enclosures outwards; the rest approximate, as they were)
+  if (sgn(plan.reference) != 0) shift_driver_coordinates(result, plan.reference);
 
   // contact usage and play
   for (const KinematicPiece& piece : result.pieces) {

@@ -9,6 +9,8 @@
 // no such range exists the follower is squeezed and the driver is blocked.
 #include "kinematics/engine.hpp"
 
+#include "core/angle_limits.hpp"
+#include "core/angle_sign.hpp"
 #include "kernels/implicit_curve.hpp"
 
 #include <hipair/error.hpp>
@@ -20,6 +22,7 @@
 #include <deque>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace hipair::kinematics_detail {
 
@@ -52,14 +55,18 @@ Rational round_to_bits(const Rational& value, int bits) {
   return result;
 }
 
-// tan((theta - multiple_of_pi * pi) / 2), rounded to the grid 2^-bits.
-Rational half_tangent(const Rational& theta, long multiple_of_pi, int bits) {
-  if (multiple_of_pi == 0 && theta == 0) return Rational(0);
-  mpfr_t x, p, q;
-  mpfr_inits2(std::max(200, bits + 140), x, p, q, static_cast<mpfr_ptr>(nullptr));
+// tan((theta - multiple_of_pi * pi) / 2), rounded to the grid 2^-bits. The precision covers the
+// magnitudes of theta and of the multiple of pi (session 56: 200 bits left nothing of theta - m pi
+// beyond about 10^40 rad), so the difference keeps bits + 140 bits.
+Rational half_tangent(const Rational& theta, const mpz_class& multiple_of_pi, int bits) {
+  if (sgn(multiple_of_pi) == 0 && theta == 0) return Rational(0);
+  const mpfr_prec_t precision =
+      std::max<long>(200, bits + 140 + std::max(magnitude_bits(theta), magnitude_bits(multiple_of_pi)) + 2);
+  mpfr_t x, p;
+  mpfr_inits2(precision, x, p, static_cast<mpfr_ptr>(nullptr));
   mpfr_set_q(x, theta.get_mpq_t(), MPFR_RNDN);
   mpfr_const_pi(p, MPFR_RNDN);
-  mpfr_mul_si(p, p, multiple_of_pi, MPFR_RNDN);
+  mpfr_mul_z(p, p, multiple_of_pi.get_mpz_t(), MPFR_RNDN);
   mpfr_sub(x, x, p, MPFR_RNDN);
   mpfr_div_ui(x, x, 2, MPFR_RNDN);
   mpfr_tan(x, x, MPFR_RNDN);
@@ -68,7 +75,7 @@ Rational half_tangent(const Rational& theta, long multiple_of_pi, int bits) {
   mpfr_get_q(exact, x);
   Rational value(exact);
   mpq_clear(exact);
-  mpfr_clears(x, p, q, static_cast<mpfr_ptr>(nullptr));
+  mpfr_clears(x, p, static_cast<mpfr_ptr>(nullptr));
   return round_to_bits(value, bits);
 }
 
@@ -81,40 +88,73 @@ void sort_contacts(std::vector<SliceContact>& contacts) {
 
 }  // namespace
 
-AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate_value, int bits) {
+LocatedCoordinate locate_coordinate(const AxisLine& line, const Rational& coordinate_value, int bits) {
+  LocatedCoordinate out;
   if (!line.rotation) {
-    Rational value = coordinate_value;
-    value = std::clamp(value, line.pieces.front().lo, line.pieces.front().hi);
-    return AxisPosition{0, Real::from_rational(value)};
+    const ChartAxis& piece = line.pieces.front();
+    out.beyond = coordinate_value < piece.lo ? -1 : coordinate_value > piece.hi ? 1 : 0;
+    out.position = AxisPosition{0, Real::from_rational(std::clamp(coordinate_value, piece.lo, piece.hi))};
+    return out;
   }
-  double theta = coordinate_value.get_d();
+  // 2 theta against (2 m -+ 1) pi, exactly (core/angle_sign.hpp: never equal but at 0)
+  const Rational twice = 2 * coordinate_value;
+  auto below_half_turn = [&](const mpz_class& odd) { return angle_sign(Rational(0), odd, twice) > 0; };   // 2 theta < odd pi
+  std::size_t piece = 0;
+  mpz_class m;
   if (line.cyclic) {
-    long turns = static_cast<long>(std::floor((theta + pi / 2) / (2 * pi)));
-    double local = theta - 2 * pi * turns;
-    std::size_t piece = local < pi / 2 ? 0 : 1;
-    long multiple = 2 * turns + (piece == 1 ? 1 : 0);
-    Rational t = half_tangent(coordinate_value, multiple, bits);
-    t = std::clamp(t, Rational(-1), Rational(1));
-    return canonical(line, AxisPosition{piece, Real::from_rational(t)});
-  }
-  std::size_t best = 0;
-  double best_distance = infinity;
-  for (std::size_t p = 0; p < line.pieces.size(); ++p) {
-    double lo = line.coordinate(p, line.pieces[p].lo.get_d()), hi = line.coordinate(p, line.pieces[p].hi.get_d());
-    double distance = theta < lo ? lo - theta : theta > hi ? theta - hi : 0;
-    if (distance < best_distance) {
-      best_distance = distance;
-      best = p;
+    // the chart about m pi with theta in [m pi - pi / 2, m pi + pi / 2): piece 0 about the even m,
+    // piece 1 about the odd (session 56: a double floor before, garbage beyond 2^53 rad); the
+    // nearest whole turns are an estimate, made exact by the signs
+    m = 2 * nearest_whole_turns(coordinate_value);
+    while (below_half_turn(2 * m - 1)) --m;
+    while (!below_half_turn(2 * m + 1)) ++m;
+    piece = mpz_odd_p(m.get_mpz_t()) ? 1 : 0;
+  } else {
+    // the first piece whose end is not below theta (pieces in the order of their half turns,
+    // glued at seams), exactly; below the first or above the last: that end (session 56: the
+    // nearest piece by double distances before)
+    piece = line.pieces.size();
+    for (std::size_t p = 0; p < line.pieces.size() && piece == line.pieces.size(); ++p) {
+      const mpz_class half_turns(line.half_turns[p]);
+      // theta <= half_turns pi + 2 atan(hi): inside piece p, or in a gap before it (its start)
+      if (angle_sign(line.pieces[p].hi, half_turns, coordinate_value) >= 0) piece = p;
+    }
+    // beyond the piece's start or end: that end (the half-angle tangent about the piece's centre
+    // of an angle more than a half turn away is no clamp to the right side)
+    std::optional<Rational> end;
+    if (piece == line.pieces.size()) {
+      piece = line.pieces.size() - 1;
+      out.beyond = 1;
+      end = line.pieces[piece].hi;
+    } else if (angle_sign(line.pieces[piece].lo, mpz_class(line.half_turns[piece]), coordinate_value) > 0) {
+      if (piece == 0) out.beyond = -1;
+      end = line.pieces[piece].lo;
+    }
+    m = line.half_turns[piece];
+    if (end) {
+      out.position = canonical(line, AxisPosition{piece, Real::from_rational(*end)});
+      out.half_turns = out.position.piece != piece ? mpz_class(line.half_turns[out.position.piece]) : m;
+      return out;
     }
   }
-  long multiple = line.half_turns[best];
-  Rational t = half_tangent(coordinate_value, multiple, bits);
-  t = std::clamp(t, line.pieces[best].lo, line.pieces[best].hi);
-  return canonical(line, AxisPosition{best, Real::from_rational(t)});
+  Rational t = half_tangent(coordinate_value, m, bits);
+  t = std::clamp(t, line.pieces[piece].lo, line.pieces[piece].hi);
+  AxisPosition position{piece, Real::from_rational(t)};
+  out.position = canonical(line, position);
+  if (out.position.piece != piece) m = line.cyclic ? mpz_class(m + 1) : mpz_class(line.half_turns[out.position.piece]);
+  out.half_turns = m;
+  return out;
+}
+
+AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate_value, int bits) {
+  return locate_coordinate(line, coordinate_value, bits).position;
 }
 
 AxisPosition rest_position(const AxisLine& line, const Rational& rest, const Bound& low, double low_unwrapped,
                            const Bound& high, double high_unwrapped) {
+  // the rest's double: only the hint of its whole turns for compare_unwrapped (within a quarter
+  // turn of the rest while |rest| < 2^40 rad, which analyze_kinematics requires of a rotating
+  // follower's spring rest and initial angle, session 56)
   const double rest_unwrapped = rest.get_d();
   for (int bits = 60; bits <= 4096; bits *= 2) {
     AxisPosition at = position_of_coordinate(line, rest, bits);
@@ -585,7 +625,7 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
       } else {
         target = rest_position(line, load.rest, low, here - (low.exists ? distance_down(line, start, low.at) : 0),
                                high, here + (high.exists ? distance_up(line, start, high.at) : 0));
-        moved += load.rest.get_d() - here;
+        moved += load.rest.get_d() - here;   // the unwrapped double (approximate): the state is at_rest, exactly
         out.at_rest = true;
       }
       break;
@@ -617,6 +657,8 @@ Outcome update_part(const Chain& chain, std::size_t k, const PartState& old, con
 struct WindowWidths {
   double first = 0, full = 0;
 };
+// The widths are a choice, not a decision: windows are widened until the decision is local, so
+// every answer is the whole axis' (a double range here only costs slicing).
 WindowWidths window_widths(const AxisLine& line) {
   const double full = line.rotation ? 4.0 : Rational(line.pieces.front().hi - line.pieces.front().lo).get_d();
   return WindowWidths{line.rotation ? 0.06 : 0.1 * full, full};
@@ -717,6 +759,11 @@ ChainState step(const Chain& chain, const ChainState& state, std::size_t piece, 
       return next;
     }
   }
+  // The driver's motion in doubles: in the sweep's frame (analyze.cpp, DriverPlan::reference) the
+  // unwrapped coordinates stay below 2^20 half turns, so it is within a few units in the last
+  // place of the exact motion (session 56: at 10^17 deg it was 0 or 0.25 rad). It sets max_push,
+  // a choice of step (a coarse step is subdivided; the events are then located exactly), and
+  // with the velocity ratio whether a contact still pushes (an approximate rate, as reported).
   double driver_motion = unwrapped - state.driver_unwrapped;
   std::vector<Rates> known{rate_of(chain, next, 0, {})};
   std::vector<Rates> old_rates;
@@ -771,7 +818,7 @@ ChainState initial_state(const Chain& chain, std::size_t piece, const Rational& 
     const Part& part = model.parts[chain.parts[k].part];
     Rational coordinate_value = part.motion.kind == Motion::Kind::rotation ? part.initial.angle : part.initial.offset;
     start.parts[k].position = position_of_coordinate(chain.parts[k].line, coordinate_value);
-    start.parts[k].unwrapped = coordinate_value.get_d();
+    start.parts[k].unwrapped = coordinate_value.get_d();   // whole-turn hint: |angle| < 2^40 rad (analyze_kinematics)
   }
   ChainState next;
   next.driver_piece = piece;
@@ -925,6 +972,8 @@ Fraction operator+(const Fraction& a, const Fraction& b) {
 
 Fraction operator/(const Fraction& a, const Fraction& b) { return {a.num * b.den, a.den * b.num}; }
 
+// Rates are reported approximate; a decision reads only their sign (a pushing contact), which
+// mpq_get_d keeps but for a ratio below 2^-1074 in magnitude (then 0).
 double to_double(const Fraction& f) {
   Rational value(f.num, f.den);
   value.canonicalize();

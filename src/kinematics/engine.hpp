@@ -148,6 +148,60 @@ ContactLabel label_of(const Chain& chain, const SliceContact& contact, std::size
 /// Chain part `k`'s position as an AxisPosition from a coordinate (rad or mm), rounded (a
 /// rotation's half-angle tangent to the grid 2^-bits).
 AxisPosition position_of_coordinate(const AxisLine& line, const Rational& coordinate, int bits = 60);
+/// position_of_coordinate with the exact number of half turns of the chart it lies in: the
+/// coordinate is half_turns pi + 2 atan(t) up to the rounding of t (a rotation; 0 for a
+/// translation), at any magnitude the reader accepts. The chart is chosen exactly (session 56:
+/// core/angle_sign.hpp; a cyclic axis' chart about m pi holds [m pi - pi / 2, m pi + pi / 2)).
+/// `beyond`: -1 (+1) when the coordinate lies below (above) the ends of a line, whose end it is
+/// then clamped to; 0 otherwise.
+struct LocatedCoordinate {
+  AxisPosition position;
+  mpz_class half_turns;
+  int beyond = 0;
+};
+LocatedCoordinate locate_coordinate(const AxisLine& line, const Rational& coordinate, int bits = 60);
+
+// A stretch of the driver's travel inside one chart: t runs from `from` to `to`. The sweep works
+// in a frame whose origin is DriverPlan::reference half turns (exact, even: whole turns; 0 unless
+// the start lies beyond 2^20 half turns), so that its doubles (the driver's unwrapped
+// coordinate, its motion between two states, grid spacing) keep their precision at any angle
+// the reader accepts; the results are shifted back by it at the end.
+struct DriverSegment {
+  std::size_t piece = 0;
+  Rational from, to;
+  long base_pi = 0;          // rotation: coordinate = (reference + base_pi) pi + 2 atan(t)
+  double base = 0;           // base_pi * pi
+};
+
+// The end of the driver's travel: a coordinate (a range's end, a translation's limit), whole or
+// part turns of a full rotation from the start, or the motion limit of a limited rotation.
+struct DriverEnd {
+  enum class Kind { coordinate, cycles, limit } kind = Kind::coordinate;
+  Rational value;   // the coordinate (rad or mm) or the number of cycles
+};
+
+// The driver's travel planned exactly (session 56; before, in doubles: the start's turn by
+// std::lround of start.get_d(), the end from start.get_d() + travel, the segments counted until
+// the doubles' travel was reached within 1e-6, so beyond 2^53 rad the turns and the end were
+// wrong, and a cam with limits near 10^17 deg ran for minutes): the start and the end located
+// exactly (locate_coordinate: their charts and half turns, at any magnitude), the segments the
+// charts from the one to the other.
+struct DriverPlan {
+  std::vector<DriverSegment> segments;
+  mpz_class reference;        // half turns of the sweep's frame (even)
+  mpz_class start_half_turns, end_half_turns;
+  AxisPosition start, end;
+  bool beyond = false;        // the end asked for lies beyond the driver's motion limit
+};
+
+/// Is m pi + 2 (atan(to) - atan(from)) <= n pi? Exact (by rationals: atan(to) - atan(from) lies in
+/// (-pi, pi), and its side of +-pi / 2 is the sign of 1 + to from).
+bool half_turns_at_most(const mpz_class& m, const Rational& from, const Rational& to, long n);
+/// Plans the driver's travel from `start` (rad or mm) in `direction` to `end` (analyze.cpp).
+/// Warns in `warnings` when the driver reaches its motion limit before the end.
+DriverPlan plan_driver(const AxisLine& line, const Rational& start, int direction, const DriverEnd& end,
+                       std::vector<std::string>& warnings);
+
 /// A spring's rest as a position strictly inside the free range (low, high) that holds it
 /// (`rest` strictly between them, decided before): the rest itself for a translation; for a
 /// rotation its half-angle tangent rounded to 2^-60, 2^-120, ... until the rounded position lies

@@ -863,12 +863,13 @@ refused jam-step-deg-zero "--step 1e-300deg: the step must be positive (it round
 refused jam-travel-deg-zero "--travel 1e-300deg: the travel must be positive (it rounds to 0 rad" \
   certify "$lever_stop" --claim jam --travel 1e-300deg
 # tolerance --range A:B: A below B (1:0 ran backwards silently), the range not one driver position
-# (1e-300:2e-300 said "the driver range is empty"), and the option values checked before the analysis
+# (1e-300:2e-300 said "the driver range is empty"; 0:1e-400 is one position too, planned exactly since
+# session 56: "its length rounds to 0 in double precision" before), and the option values checked before the analysis
 refused tol-range-reversed "--range 1:0: A must be below B" tolerance "$geneva" --range 1:0 --quiet
 refused tol-range-reversed-deg "--range 90deg:0deg: A must be below B" tolerance "$geneva" --range 90deg:0deg --quiet
 refused tol-range-tiny "the driver range [1e-300, 2e-300] rad is one driver position: a rotating driver is placed at half-angle tangents rounded to 2^-60" \
   tolerance "$geneva" --range 1e-300:2e-300 --positions 16 --quiet
-refused tol-range-underflow "is too short to drive: its length rounds to 0 in double precision" \
+refused tol-range-underflow "the driver range [0, 1e-400] rad is one driver position" \
   tolerance "$geneva" --range 0:1e-400 --positions 16 --quiet
 refused tol-range-deg-same "--range 1e-300deg:2e-300deg: the range is empty (both ends are the same position once converted to exact rad)" \
   tolerance "$geneva" --range 1e-300deg:2e-300deg --quiet
