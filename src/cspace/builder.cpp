@@ -362,9 +362,17 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
   // without a grid (no blocked test): one of the culling depth, that blocks nothing
   const bool blocked_test = input.blocked_cells && input.blocked_cells->usable();
+  // (made when a curve first needs the quadtree: a polygon pair's lines all have an exact valid
+  // point in the box, and their chart then makes neither)
   std::optional<BlockedCells> own;
-  if (!input.blocked_cells) own.emplace(nullptr, input.x, input.y, dimension, input.cull_depth > 0 ? input.cull_depth : 6);
-  CurveCuller culler(input.blocked_cells ? *input.blocked_cells : *own, entry_depth);
+  std::optional<CurveCuller> quadtree;
+  auto culler = [&]() -> CurveCuller& {
+    if (!quadtree) {
+      if (!input.blocked_cells) own.emplace(nullptr, input.x, input.y, dimension, input.cull_depth > 0 ? input.cull_depth : 6);
+      quadtree.emplace(input.blocked_cells ? *input.blocked_cells : *own, entry_depth);
+    }
+    return *quadtree;
+  };
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     ContactCurve& curve = input.curves[k];
@@ -381,7 +389,7 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
           for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
         }
         std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
-        found = culler.windows(f, clauses, entry, cells);
+        found = culler().windows(f, clauses, entry, cells);
         if (found.empty()) continue;
       }
       if (blocked_test)
@@ -714,6 +722,18 @@ bool strictly_valid_at(const std::vector<ValidityClause>& clauses, const Rationa
   });
 }
 
+// strictly_valid_at at a rational point (x, y): the linear atoms' signs in integers
+// (sign_of_line_at), the others by algebra::sign_at at the rationals.
+bool strictly_valid_at_rational(const std::vector<ValidityClause>& clauses, const Rational& x, const Rational& y) {
+  return std::all_of(clauses.begin(), clauses.end(), [&](const ValidityClause& clause) {
+    return std::any_of(clause.atoms.begin(), clause.atoms.end(), [&](const IntegerPolynomial2& atom) {
+      const mpz_class *a, *b, *c;
+      if (line_of(atom, a, b, c)) return sign_of_line_at(*a, *b, *c, x, y) > 0;
+      return algebra::sign_at(atom, x, y) > 0;
+    });
+  });
+}
+
 // Face classification by the blocked side of a contact edge (docs/contact-kernels.md: a
 // contact function has the sign `blocked_sign` where its two features locally penetrate, near
 // configurations where the contact is valid). At the sample point of the non-vertical edge e,
@@ -733,10 +753,21 @@ class ContactSides {
     for (std::size_t k : data.curves) {
       int sign = k < blocked_signs_.size() ? blocked_signs_[k] : 0;
       if (sign == 0) continue;
-      if (!derivatives_[k]) derivatives_[k] = derivative_y(chart_.polynomials[k]);
-      int slope = algebra::sign_at(*derivatives_[k], data.sample_x, data.sample_y);
+      // a line a x + b y + c: f_y is the constant b (no derivative polynomial formed); at an
+      // exact sample its linear atoms' signs in integers (sign_of_line_at), as valid_at_rational
+      const mpz_class *a, *b, *c;
+      const bool line = line_of(chart_.polynomials[k], a, b, c);
+      int slope;
+      if (line) {
+        slope = sgn(*b);
+      } else {
+        if (!derivatives_[k]) derivatives_[k] = derivative_y(chart_.polynomials[k]);
+        slope = algebra::sign_at(*derivatives_[k], data.sample_x, data.sample_y);
+      }
       if (slope == 0 || (above ? slope : -slope) != sign) continue;
-      if (strictly_valid_at(chart_.validity[k], data.sample_x, data.sample_y)) return true;
+      if (line && data.sample_y.exact ? strictly_valid_at_rational(chart_.validity[k], data.sample_x, data.sample_y.lower)
+                                      : strictly_valid_at(chart_.validity[k], data.sample_x, data.sample_y))
+        return true;
     }
     return false;
   }
@@ -1665,6 +1696,30 @@ void CSpace::Impl::write_vertex_numbers() const {
   numbers.all.store(true, std::memory_order_release);
 }
 
+// (the public cells are the Impl's own, never const objects: every cell's sample is written
+// once, under samples.mutex, before readers are told it is (samples.all, release), and never
+// rewritten; sample_face writes only the faces' sample fields, which nothing reads but this and
+// the build)
+void CSpace::Impl::write_cell_samples() const {
+  std::lock_guard<std::mutex> lock(samples.mutex);
+  if (samples.all.load(std::memory_order_relaxed)) return;
+  auto& out = const_cast<std::vector<CSpaceCell>&>(cells);
+  std::vector<char> done(out.size(), 0);
+  // a cell's first face in chart, then face order: the build's cells loop made the cell there
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    auto& chart = const_cast<cspace::ChartData&>(charts[c]);
+    for (std::size_t f = 0; f < chart.faces.size(); ++f) {
+      const std::size_t cell = chart.faces[f].cell;
+      if (chart.faces[f].kind == cspace::FaceKind::outside || cell >= out.size() || done[cell]) continue;
+      done[cell] = 1;
+      cspace::sample_face(chart, f);
+      out[cell].sample_x = chart.faces[f].sample_x;
+      out[cell].sample_y = chart.faces[f].sample_y;
+    }
+  }
+  samples.all.store(true, std::memory_order_release);
+}
+
 void CSpace::Impl::write_vertex_number(std::size_t index) const {
   std::lock_guard<std::mutex> lock(numbers.mutex);
   if (numbers.all.load(std::memory_order_relaxed)) return;
@@ -2078,10 +2133,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         auto wraps = components.wraps(root);
         cell.wraps_x = wraps[0];
         cell.wraps_y = wraps[1];
+        // (its sample: face f's, taken when the cells are first read: CSpace::Impl::write_cell_samples)
         cell.sample_chart = c;
-        sample_face(chart, f);
-        cell.sample_x = face.sample_x;
-        cell.sample_y = face.sample_y;
         impl->cells.push_back(std::move(cell));
       }
       face.cell = cell_of_root[root];

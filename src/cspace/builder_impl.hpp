@@ -166,6 +166,13 @@ struct CSpace::Impl {
   /// edges, curves, flags) is written by the build.
   std::vector<CSpaceVertex> vertices;
   std::vector<CSpaceEdge> edges;
+  /// The public cells. A cell's sample (sample_x, sample_y) is the sample of its first face (in
+  /// chart, then face order: the face whose chart is sample_chart), taken by sample_face when
+  /// the cells are first read (cell_samples(): CSpace::cells(), CSpace::cell(id)), not by the
+  /// build: the build classifies most faces of a polygon pair without a sample. sample_face is
+  /// deterministic (the same point whichever reader asks first; the arrangement is immutable
+  /// after the build), so the samples are the ones the build took before. Everything else of a
+  /// cell is written by the build.
   std::vector<CSpaceCell> cells;
   std::vector<std::pair<std::size_t, std::size_t>> edge_local;   ///< global edge -> (chart, local)
   std::vector<std::pair<std::size_t, std::size_t>> vertex_local;
@@ -189,6 +196,13 @@ struct CSpace::Impl {
     }
     return vertices[index];
   }
+  /// `cells`, every cell's sample written first if it is not yet (thread-safe).
+  const std::vector<CSpaceCell>& cell_samples() const {
+    if (!samples.all.load(std::memory_order_acquire)) write_cell_samples();
+    return cells;
+  }
+  /// The samples of every cell, from its first face's (builder.cpp).
+  void write_cell_samples() const;
   /// The numbers of every 2-D chart's public vertices not yet written, from their raw vertices
   /// (builder.cpp).
   void write_vertex_numbers() const;
@@ -207,6 +221,13 @@ struct CSpace::Impl {
     ~Numbers() { delete[] written.load(); }
   };
   mutable Numbers numbers;
+  /// The cells' samples' state: `all` once every cell's sample is written (release after the
+  /// writes, under `mutex`).
+  struct Samples {
+    std::mutex mutex;
+    std::atomic<bool> all{false};
+  };
+  mutable Samples samples;
 };
 
 }  // namespace hipair

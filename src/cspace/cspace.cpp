@@ -72,7 +72,7 @@ const std::vector<CSpaceChart>& CSpace::charts() const { return implementation(*
 const std::vector<FeaturePair>& CSpace::feature_pairs() const { return implementation(*this).feature_pairs; }
 const std::vector<CSpaceVertex>& CSpace::vertices() const { return implementation(*this).vertex_numbers(); }
 const std::vector<CSpaceEdge>& CSpace::edges() const { return implementation(*this).edges; }
-const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*this).cells; }
+const std::vector<CSpaceCell>& CSpace::cells() const { return implementation(*this).cell_samples(); }
 const CSpaceStatistics& CSpace::statistics() const { return implementation(*this).statistics; }
 bool CSpace::complete() const { return implementation(*this).complete; }
 long CSpace::length_unit_exponent() const { return implementation(*this).length_unit_exponent; }

@@ -268,7 +268,7 @@ bool contact_location(const CSpace::Impl& impl, const Location& location) {
 
 const CSpaceCell& CSpace::cell(CellId id) const {
   const Impl& impl = checked(*this);
-  return impl.cells[index_in(id, impl.cells.size(), "cell")];
+  return impl.cell_samples()[index_in(id, impl.cells.size(), "cell")];
 }
 const CSpaceEdge& CSpace::edge(EdgeId id) const {
   const Impl& impl = checked(*this);

@@ -51,6 +51,12 @@ inline std::pair<Points, Points> minkowski_polygons(int n) {
   return {rational_polygon(n, 5, 0, 0), rational_polygon(n + 1, 3, 20, 7)};
 }
 
+/// A convex n-gon and m-gon placed as minkowski_polygons' (n >= 3, m >= 3); with n = m every
+/// edge of one has a parallel edge in the other (collinear convolution segments).
+inline std::pair<Points, Points> minkowski_polygons(int n, int m) {
+  return {rational_polygon(n, 5, 0, 0), rational_polygon(m, 3, 20, 7)};
+}
+
 /// A model loop of straight edges through `points`.
 inline std::string loop_json(const Points& points) {
   auto value = [](const Rational& q) { return "\"" + q.get_str() + "\""; };

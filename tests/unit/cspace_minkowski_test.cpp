@@ -127,6 +127,62 @@ TEST(CSpaceMinkowski, RandomRationalPolygonsEqualTheMinkowskiSum) {
   EXPECT_GE(compared, 20);
 }
 
+// A convex polygon with k vertices on the circle of rational radius `radius` about (cx, cy),
+// placed as the Minkowski benchmark's (tests/perf/polygon_models.hpp): (cos, sin) from the
+// half-angle tangents tan(pi i / k) rounded to 1/grid (a double only places the test input),
+// here turned by the rational tangent `turn`. Two such polygons with the same k, grid and turn
+// have pairwise parallel edges: every convolution segment overlaps another one.
+std::vector<std::pair<std::string, std::string>> rational_circle_polygon(int k, const Rational& radius, const Rational& cx,
+                                                                         const Rational& cy, long grid, const Rational& turn) {
+  const Rational turn_d = 1 + turn * turn, turn_c = (1 - turn * turn) / turn_d, turn_s = 2 * turn / turn_d;
+  std::vector<std::pair<std::string, std::string>> points;
+  auto add = [&](const Rational& c, const Rational& s) {
+    Rational x = cx + radius * (c * turn_c - s * turn_s), y = cy + radius * (c * turn_s + s * turn_c);
+    x.canonicalize();
+    y.canonicalize();
+    points.emplace_back(x.get_str(), y.get_str());
+  };
+  for (int i = -(k / 2) + 1; i < k - k / 2; ++i) {
+    if (2 * i == k) break;
+    Rational t(std::lround(std::tan(3.141592653589793 * i / k) * static_cast<double>(grid)), grid);
+    t.canonicalize();
+    const Rational d = 1 + t * t;
+    add((1 - t * t) / d, 2 * t / d);
+  }
+  if (k % 2 == 0) add(Rational(-1), Rational(0));
+  return points;
+}
+
+// The benchmark's pair family generated: convex k-gons and m-gons on circles (m = k on every
+// other instance: all edges pairwise parallel, the 12-gon + 12-gon and 40-gon + 40-gon rows of
+// docs/performance.md's session 56 are of this kind), rational radii and centres, turned by
+// random rational tangents; the blocked region equals CGAL's Minkowski sum exactly.
+TEST(CSpaceMinkowski, GeneratedConvexCirclePolygonPairsEqualTheMinkowskiSum) {
+  std::mt19937_64 random(5656);
+  int compared = 0, parallel = 0;
+  for (int instance = 0; instance < 14; ++instance) {
+    const int k = 3 + static_cast<int>(random() % 14);
+    const int m = instance % 2 == 0 ? k : 3 + static_cast<int>(random() % 14);
+    const long grid = instance % 3 == 0 ? 8 : instance % 3 == 1 ? 64 : 97;
+    const Rational turn_a(static_cast<long>(random() % 9) - 4, 7), turn_b = instance % 2 == 0 ? turn_a : Rational(static_cast<long>(random() % 9) - 4, 5);
+    const Rational ra(3 + static_cast<long>(random() % 40), 1 + static_cast<long>(random() % 7));
+    const Rational rb(2 + static_cast<long>(random() % 30), 1 + static_cast<long>(random() % 5));
+    const Rational bx(static_cast<long>(random() % 41) - 20, 3), by(static_cast<long>(random() % 41) - 20, 7);
+    auto a = rational_circle_polygon(k, ra, Rational(0), Rational(0), grid, turn_a);
+    auto b = rational_circle_polygon(m, rb, bx, by, grid, turn_b);
+    SCOPED_TRACE("instance " + std::to_string(instance) + ": " + std::to_string(k) + "-gon and " + std::to_string(m) + "-gon");
+    try {
+      expect_minkowski(a, b);
+      ++compared;
+      parallel += k == m;
+    } catch (const ModelError&) {
+      // rounding repeated a vertex (a coarse grid, many vertices): not a test case
+    }
+  }
+  EXPECT_GE(compared, 11);
+  EXPECT_GE(parallel, 5);
+}
+
 // The shortcuts of translating polygon pairs checked by the exact oracle on random pairs:
 // check_face_classification has the oracle confirm every face decided by a contact edge's
 // blocked side or by propagation across curve-free edges, and every one-contact edge between

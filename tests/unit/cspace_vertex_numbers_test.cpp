@@ -11,6 +11,10 @@
 //   - vertex(id) read first, before vertices(), gives the same numbers (and vertices() first);
 //   - copies of a space share one set of numbers (the same storage), written once;
 //   - several threads reading a fresh space's vertices at once all see the written numbers.
+// The cells' samples (sample_x, sample_y) are likewise written when the cells are first read
+// (CSpace::cells(), CSpace::cell(); CSpace::Impl::cell_samples, session 56): the build writes
+// none (checked before the first read); each cell's sample is its first face's (in chart, then
+// face order), and, independently of that, exact point location at the sample finds the cell.
 #include "cspace/builder_impl.hpp"
 #include "polygon_loop_json.hpp"
 #include "test_paths.hpp"
@@ -213,6 +217,108 @@ TEST(CSpaceVertexNumbers, ThreadsReadingAFreshSpaceAtOnceSeeTheWrittenNumbers) {
       EXPECT_EQ(first_x[t], first_x[0]);
     }
     expect_vertex_numbers(space, space.vertices(), true);
+  }
+}
+
+// The cells of `space` read first through cell(id) (`cell_first`) or cells(): every cell's sample
+// is its first face's (in chart, then face order) and that face is sampled; exact point location
+// at the sample finds the cell (free / blocked / touching inside it, or a spurious piece inside
+// it); nothing was written before the first read; copies share the cells.
+void check_cell_samples(const CSpace& space, bool cell_first) {
+  const CSpace::Impl& impl = implementation(space);
+  EXPECT_FALSE(impl.samples.all.load()) << "the build wrote the cells' samples";
+  CSpace copy = space;
+  const std::size_t n = space.statistics().cells;
+  if (cell_first && n > 0) {
+    const CSpaceCell& last = space.cell(CellId{n - 1});
+    EXPECT_TRUE(impl.samples.all.load());
+    EXPECT_EQ(&last, &space.cells().back());
+  }
+  const std::vector<CSpaceCell>& cells = space.cells();
+  EXPECT_EQ(&cells, &copy.cells());
+  ASSERT_EQ(cells.size(), n);
+  std::vector<char> seen(n, 0);
+  std::size_t located = 0;
+  for (std::size_t c = 0; c < impl.charts.size(); ++c) {
+    const cspace::ChartData& chart = impl.charts[c];
+    for (std::size_t f = 0; f < chart.faces.size(); ++f) {
+      const cspace::FaceData& face = chart.faces[f];
+      if (face.kind == cspace::FaceKind::outside || face.cell >= n || seen[face.cell]) continue;
+      seen[face.cell] = 1;
+      const CSpaceCell& cell = cells[face.cell];
+      SCOPED_TRACE("cell " + std::to_string(face.cell));
+      EXPECT_TRUE(face.sampled);
+      EXPECT_EQ(cell.sample_chart, c);
+      EXPECT_EQ(cell.sample_x, face.sample_x);
+      EXPECT_EQ(cell.sample_y, face.sample_y);
+      const Location at = space.locate(ChartPoint{c, cell.sample_x, space.dimension() == 2 ? cell.sample_y : Rational(0)});
+      EXPECT_EQ(at.cell, face.cell) << "the sample " << cell.sample_x.get_str() << ", " << cell.sample_y.get_str()
+                                    << " is not inside its cell";
+      if (at.kind == Location::Kind::free || at.kind == Location::Kind::blocked)
+        EXPECT_EQ(at.kind == Location::Kind::free, cell.kind == CellKind::free);
+      ++located;
+    }
+  }
+  EXPECT_EQ(located, n);   // every cell has a first face
+}
+
+TEST(CSpaceVertexNumbers, CellSamplesWrittenOnFirstReadAreTheirFirstFacesAndLieInTheirCells) {
+  std::mt19937_64 random(5656);
+  int checked = 0;
+  for (int instance = 0; instance < 16; ++instance) {
+    SCOPED_TRACE("instance " + std::to_string(instance));
+    const long q = instance % 3 == 0 ? 1 : instance % 3 == 1 ? 16 : 97;
+    Points a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3 + static_cast<double>(random() % 4), q, 1);
+    Points b = instance % 5 == 4 ? a
+                                 : random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 7) - 3,
+                                               static_cast<double>(random() % 7) - 3, 2 + static_cast<double>(random() % 5), q, 1);
+    try {
+      check_cell_samples(CSpace::build(sliders(a, b), "a", "b"), instance % 2 == 0);
+      ++checked;
+    } catch (const ModelError&) {
+      // rounding made a polygon degenerate: not a test case
+    }
+  }
+  EXPECT_GE(checked, 12);
+  // a non-convex slot with a square exactly its width (touching cells), at 2^-100
+  const Points slot{{0, 0}, {6, 0}, {6, 1}, {4, 1}, {4, 3}, {2, 3}, {2, 1}, {0, 1}};
+  const Points square{{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  const Rational tiny = Rational(1) / (mpz_class(1) << 100);
+  check_cell_samples(CSpace::build(sliders(scaled(square, tiny, 2 * tiny, tiny), scaled(slot, tiny)), "a", "b"), true);
+  // the corpus: rotating and mixed pairs of several charts, 1-D spaces
+  std::size_t spaces = 0, one_dimensional = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate")) {
+    SCOPED_TRACE(entry.path().filename().string());
+    for (const CSpace& space : CSpace::build_all(read_model_file(entry.path()))) {
+      check_cell_samples(space, spaces % 2 == 0);
+      ++spaces;
+      one_dimensional += space.dimension() == 1;
+    }
+  }
+  EXPECT_GE(spaces, 5u);
+  EXPECT_GE(one_dimensional, 1u);
+}
+
+TEST(CSpaceVertexNumbers, ThreadsReadingAFreshSpaceAtOnceSeeTheWrittenCellSamples) {
+  std::mt19937_64 random(56);
+  for (int instance = 0; instance < 6; ++instance) {
+    Points a = random_star(random, 7, 0, 0, 4, 16, 1), b = random_star(random, 9, 1, -1, 5, 16, 1);
+    CSpace space;
+    try {
+      space = CSpace::build(sliders(a, b), "a", "b");
+    } catch (const ModelError&) {
+      continue;
+    }
+    std::vector<std::string> samples(4);
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < 4; ++t)
+      threads.emplace_back([&, t] {
+        const CSpaceCell& cell = t % 2 ? space.cell(CellId{0}) : space.cells().front();
+        samples[t] = cell.sample_x.get_str() + " " + cell.sample_y.get_str();
+      });
+    for (auto& thread : threads) thread.join();
+    for (std::size_t t = 1; t < 4; ++t) EXPECT_EQ(samples[t], samples[0]);
+    EXPECT_EQ(samples[0], space.cells().front().sample_x.get_str() + " " + space.cells().front().sample_y.get_str());
   }
 }
 
