@@ -1565,7 +1565,10 @@ bool PlanarSimulation::Impl::held_advance(double span) {
       turn_acceleration = std::max(turn_acceleration, std::abs(acc(2)));
     }
     // how far the path's angle can leave the range of its ends: max|theta''| step^2 / 8, twice
-    const Rational eta(2 * turn_acceleration * end * end / 8);
+    // (none certified without a finite bound)
+    const double eta_bound = 2 * turn_acceleration * end * end / 8;
+    const bool companions = simulation::companion_watch() && std::isfinite(eta_bound);
+    const Rational eta(companions ? eta_bound : 0.0);
     const SlicedConfiguration q_end = configuration_of(kend.x, kend.y, kend.theta);
     const std::optional<Rational> sweep = simulation::motion_sweep_bound(q0, q_end, flip, reach_bound);
     Rational radius(2 * travel + delta);
@@ -1578,7 +1581,7 @@ bool PlanarSimulation::Impl::held_advance(double span) {
         bool is_held = false;
         for (const Held& c : held) is_held = is_held || (c.feature.fixed == f.pair.fixed && c.feature.free == f.pair.free);
         if (is_held) continue;
-        if (simulation::companion_watch() && companion_apart(f.pair, q0, q_end, eta)) {   // apart along the step
+        if (companions && companion_apart(f.pair, q0, q_end, eta)) {   // apart along the step
           ++simulation::companion_steps();
           continue;
         }
