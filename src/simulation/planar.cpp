@@ -42,6 +42,7 @@
 
 #include "kernels/contact_geometry.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/planar_bounds.hpp"
@@ -747,6 +748,7 @@ struct PlanarSimulation::Impl {
     std::vector<std::array<double, 4>> frames; // point, unit normal
     std::vector<std::size_t> pair;             // index into pairs
     std::vector<SlicedFeaturePair> feature;
+    std::vector<simulation::ExactRow> exact;   // J's rows at c in exact rationals (the held decision)
   };
   Rows contact_rows(double time, const Kinematic& at, const SlicedConfiguration& c,
                     const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
@@ -813,6 +815,11 @@ struct PlanarSimulation::Impl {
   void project(Kinematic& at, bool positions) const;
   // The longest chord (s) from a within delta/2 of the path to b (the bounds of both ends).
   double chord_cap(const Kinematic& a, const Kinematic& b) const;
+  // Whether feature pair f, a vertex on the segment of a held vertex–segment contact, stays
+  // apart along the held step from q0 to q1 (docs/simulation.md, "Turning on a vertex"):
+  // eta bounds how far the path's angle leaves the ends' range.
+  bool companion_apart(const SlicedFeaturePair& f, const SlicedConfiguration& q0, const SlicedConfiguration& q1,
+                       const Rational& eta) const;
   // The held conditions at a state integrated with fixed states: 0 when all hold, else a
   // bit set: 1 lift-off (a bilateral force below 0), 2 stick -> slip, 4 slip -> stick
   // (the sliding velocity changes sign), 8 edge end (the foot leaves the segment).
@@ -1024,6 +1031,10 @@ PlanarSimulation::Impl::Rows PlanarSimulation::Impl::contact_rows(
     out.frames.push_back({px, py, nx, ny});
     out.pair.push_back(i);
     out.feature.push_back(f);
+    const Rational erx = frame.point.x - (model.parts[part].motion.pivot.x + c.x);
+    const Rational ery = frame.point.y - (model.parts[part].motion.pivot.y + c.y);
+    out.exact.push_back({{frame.normal.x, frame.normal.y, Rational(erx * frame.normal.y - ery * frame.normal.x)},
+                         Rational(frame.normal.x * frame.normal.x + frame.normal.y * frame.normal.y)});
   }
   if (rows.empty())
     throw GeometryError(where(time) + " touches a fixed part only at vertex–vertex contacts: no contact normal");
@@ -1286,16 +1297,19 @@ SimulationEvent PlanarSimulation::Impl::held_event(SimulationEvent::Kind kind, c
 }
 
 void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
-  Eigen::VectorXd after = rows.J * Eigen::Vector3d(k.vx, k.vy, k.omega);
   held.clear();
+  // exact decisions (held_resolution.hpp): the rows at the exact configuration, the velocities,
+  // masses and speeds as the exact values of their doubles
+  const std::vector<Rational> v{Rational(k.vx), Rational(k.vy), Rational(k.omega)};
+  const Eigen::Vector3d minv_d = inverse_mass();
+  const std::vector<Rational> minv{Rational(minv_d(0)), Rational(minv_d(1)), Rational(minv_d(2))};
+  const Rational rest(rest_speed), reach_exact(reach);
   std::vector<bool> candidate(rows.pair.size());
   for (std::size_t r = 0; r < rows.pair.size(); ++r)
-    candidate[r] = after(static_cast<Eigen::Index>(r)) <= rest_speed &&   // not separating
+    candidate[r] = !simulation::separating_faster_than(rows.exact[r], v, rest) &&   // not separating
                    contact_gap(model, rows.feature[r], pose_of(model.parts[part].motion.pivot, k), true).defined;   // a contact of its own
-  const std::vector<bool> keep = simulation::held_at_resolution(
-      candidate, [&](std::size_t r) { return Eigen::VectorXd(rows.J.row(static_cast<Eigen::Index>(r)).transpose()); },
-      [&](std::size_t r) { return after(static_cast<Eigen::Index>(r)); }, Eigen::VectorXd(inverse_mass()),
-      Eigen::VectorXd(Eigen::Vector3d(k.vx, k.vy, k.omega)), [&](std::size_t) { return reach; }, rest_speed);
+  const std::vector<bool> keep =
+      simulation::held_at_resolution(candidate, rows.exact, minv, v, [&](std::size_t) { return reach_exact; }, rest);
   for (std::size_t r = 0; r < rows.pair.size(); ++r) {
     if (!keep[r]) continue;
     Held c{rows.pair[r], rows.feature[r], simulation::frictionless};
@@ -1451,6 +1465,62 @@ double PlanarSimulation::Impl::chord_cap(const Kinematic& a, const Kinematic& b)
   return cap;
 }
 
+bool PlanarSimulation::Impl::companion_apart(const SlicedFeaturePair& f, const SlicedConfiguration& q0,
+                                             const SlicedConfiguration& q1, const Rational& eta) const {
+  using V = kernels::Vector<Rational>;
+  if (q0.angle.half_turn || q1.angle.half_turn) return false;
+  const Point& pivot = model.parts[part].motion.pivot;
+  const kernels::Pose<Rational> pose0 = pose_of(pivot, q0), pose1 = pose_of(pivot, q1);
+  for (const Held& c : held) {
+    // the held contact and f: vertex–segment pairs on one segment, each vertex on the other part
+    const bool fixed_segment = c.feature.fixed.kind == FeatureKind::segment && c.feature.free.kind == FeatureKind::vertex;
+    const bool free_segment = c.feature.fixed.kind == FeatureKind::vertex && c.feature.free.kind == FeatureKind::segment;
+    if (fixed_segment ? !(f.fixed == c.feature.fixed && f.free.kind == FeatureKind::vertex)
+                      : !(free_segment && f.free == c.feature.free && f.fixed.kind == FeatureKind::vertex))
+      continue;
+    const kernels::FeatureGeometry<Rational> seg = feature_geometry<Rational>(model, fixed_segment ? c.feature.fixed : c.feature.free);
+    const V vc = feature_geometry<Rational>(model, fixed_segment ? c.feature.free : c.feature.fixed).point;
+    const V vf = feature_geometry<Rational>(model, fixed_segment ? f.free : f.fixed).point;
+    // at an end: n (the segment's normal, world, |n| = the segment's length), the held vertex's
+    // gap n . (V_c - s0) and the difference of the gaps n . (V_f - V_c), a function of the angle only
+    auto at = [&](const kernels::Pose<Rational>& pose, Rational& gap, Rational& difference) {
+      V s0 = seg.point, s1 = seg.target, c_world = vc, f_world = vf;
+      if (fixed_segment) {
+        c_world = kernels::world_point(pose, vc);
+        f_world = kernels::world_point(pose, vf);
+      } else {
+        s0 = kernels::world_point(pose, seg.point);
+        s1 = kernels::world_point(pose, seg.target);
+      }
+      const V d = s1 - s0, n{d.y, Rational(-d.x)};
+      gap = kernels::dot(n, c_world - s0);
+      difference = kernels::dot(n, f_world - c_world);
+    };
+    Rational g0, g1, d0, d1;
+    at(pose0, g0, d0);
+    at(pose1, g1, d1);
+    if (sgn(g0) < 0) {   // the normal toward the held vertex's side (apart)
+      g0 = -g0;
+      g1 = -g1;
+      d0 = -d0;
+      d1 = -d1;
+    }
+    if (sgn(g0) <= 0 || sgn(g1) <= 0) return false;
+    // the difference is rho cos(theta - phi), rho = |n| |V_f - V_c| (body vectors for the
+    // rotating ones): over an angle range of length l it is at least its smaller end value less
+    // rho l^2 / 8, and over the range widened by eta at each side less rho eta more.
+    // l <= 2 |t1 - t0| (theta = 2 atan t); rho from above by the 1-norms
+    const V dn = seg.target - seg.point, dd = vf - vc;
+    const Rational rho = (abs(dn.x) + abs(dn.y)) * (abs(dd.x) + abs(dd.y));
+    const Rational l = 2 * abs(q1.angle.t - q0.angle.t);
+    const Rational lowest = (cmp(d0, d1) < 0 ? d0 : d1) - rho * (l * l / 8 + eta);
+    // the held gap along the path: at least half its smaller end value (the held dynamics keep
+    // it constant; the projection puts it at the hold gap within 1e-3 at every state)
+    return sgn((g0 < g1 ? g0 : g1) / 2 + lowest) > 0;
+  }
+  return false;
+}
+
 bool PlanarSimulation::Impl::held_advance(double span) {
   using namespace boost::numeric::odeint;
   // a change of the held set or of a state is a step of its own (its events at its time)
@@ -1486,13 +1556,19 @@ bool PlanarSimulation::Impl::held_advance(double span) {
     // accuracy): it is also kept apart from them, in double, by twice the distance its points can
     // travel in the step (speed at the ends plus acceleration x step) plus delta. Otherwise the
     // chord, within delta of the path, is tested exactly.
-    double travel = 0;
+    double travel = 0, turn_acceleration = 0;
     for (const Kinematic* e : std::array<const Kinematic*, 2>{&k0, &kend}) {
       Eigen::VectorXd acc = held_problem(*e, false).solution.x;
       double speed = std::hypot(e->vx, e->vy) + std::abs(e->omega) * reach;
       double gain = std::hypot(acc(0), acc(1)) + std::abs(acc(2)) * reach;
       travel = std::max(travel, (speed + gain * end) * end);
+      turn_acceleration = std::max(turn_acceleration, std::abs(acc(2)));
     }
+    // how far the path's angle can leave the range of its ends: max|theta''| step^2 / 8, twice
+    // (none certified without a finite bound)
+    const double eta_bound = 2 * turn_acceleration * end * end / 8;
+    const bool companions = simulation::companion_watch() && std::isfinite(eta_bound);
+    const Rational eta(companions ? eta_bound : 0.0);
     const SlicedConfiguration q_end = configuration_of(kend.x, kend.y, kend.theta);
     const std::optional<Rational> sweep = simulation::motion_sweep_bound(q0, q_end, flip, reach_bound);
     Rational radius(2 * travel + delta);
@@ -1505,6 +1581,10 @@ bool PlanarSimulation::Impl::held_advance(double span) {
         bool is_held = false;
         for (const Held& c : held) is_held = is_held || (c.feature.fixed == f.pair.fixed && c.feature.free == f.pair.free);
         if (is_held) continue;
+        if (companions && companion_apart(f.pair, q0, q_end, eta)) {   // apart along the step
+          ++simulation::companion_steps();
+          continue;
+        }
         nearest = std::min(nearest, to_d(f.distance_lower));
         if (!nearest_exact || f.distance_lower < *nearest_exact) nearest_exact = f.distance_lower;
       }
@@ -2182,6 +2262,7 @@ struct PlanarSystemSimulation::Impl {
     std::vector<std::array<double, 4>> frames;
     std::vector<std::size_t> pair;
     std::vector<SlicedFeaturePair> feature;
+    std::vector<simulation::ExactRow> exact;   // J's rows at q in exact rationals (the held decision)
   };
   Rows contact_rows(const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
   void impact(double time, const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching);
@@ -2494,6 +2575,25 @@ PlanarSystemSimulation::Impl::Rows PlanarSystemSimulation::Impl::contact_rows(
     out.frames.push_back({px, py, nx, ny});
     out.pair.push_back(i);
     out.feature.push_back(f);
+    // the same row exactly: the frame to the world by the first part's exact pose (its normal
+    // by a positive multiple of the rotation), arms from the bodies' exact reference points
+    kernels::Vector<Rational> ep{frame.point.x, frame.point.y}, en{frame.normal.x, frame.normal.y};
+    if (p.body_a != no_index) {
+      const kernels::Pose<Rational> pose = pose_of(pivot_of(p.first), q[p.body_a]);
+      ep = kernels::world_point(pose, ep);
+      en = kernels::world_direction_homogeneous(pose, en);
+    }
+    simulation::ExactRow exact{std::vector<Rational>(static_cast<std::size_t>(n), Rational(0)),
+                               Rational(en.x * en.x + en.y * en.y)};
+    auto put_exact = [&](std::size_t body, std::size_t part, int sign) {
+      const Rational rx = ep.x - (pivot_of(part).x + q[body].x), ry = ep.y - (pivot_of(part).y + q[body].y);
+      exact.a[3 * body] += sign * en.x;
+      exact.a[3 * body + 1] += sign * en.y;
+      exact.a[3 * body + 2] += sign * (rx * en.y - ry * en.x);
+    };
+    put_exact(p.body_b, p.second, 1);
+    if (p.body_a != no_index) put_exact(p.body_a, p.first, -1);
+    out.exact.push_back(std::move(exact));
   }
   return out;
 }
@@ -2584,10 +2684,19 @@ void PlanarSystemSimulation::Impl::impact(double time,
   }
   // hold every contact left without separating speed (vertex–segment contacts); one involving
   // an arc cannot be held between moving parts: the class of inputs ends there
+  // (exact decisions, held_resolution.hpp: the rows at the exact configuration, the velocities,
+  // masses and speeds as the exact values of their doubles)
+  std::vector<Rational> v_exact, minv_exact, reach_exact;
+  for (Eigen::Index c = 0; c < n; ++c) {
+    v_exact.emplace_back(after_v(c));
+    minv_exact.emplace_back(minv(c));
+  }
+  for (const Body& b : bodies) reach_exact.emplace_back(b.reach);
+  const Rational rest(rest_speed);
   std::vector<bool> candidate(row_pair.size(), false);
   for (std::size_t r = 0; r < row_pair.size(); ++r) {
     const auto row = static_cast<Eigen::Index>(r);
-    if (after(row) > rest_speed) continue;   // separating
+    if (simulation::separating_faster_than(contact.exact[r], v_exact, rest)) continue;   // separating
     const Pair& p = pairs[row_pair[r]];
     if (!world_gap(p, contact.feature[r], k).defined) {
       if (before(row) >= 0) continue;   // not approaching: the free search watches it
@@ -2599,8 +2708,7 @@ void PlanarSystemSimulation::Impl::impact(double time,
     candidate[r] = true;
   }
   const std::vector<bool> keep = simulation::held_at_resolution(
-      candidate, [&](std::size_t r) { return contact.J[r]; }, [&](std::size_t r) { return after(static_cast<Eigen::Index>(r)); },
-      inverse_mass(), after_v, [&](std::size_t b) { return bodies[b].reach; }, rest_speed);
+      candidate, contact.exact, minv_exact, v_exact, [&](std::size_t b) { return reach_exact[b]; }, rest);
   std::vector<Held> now;
   for (std::size_t r = 0; r < row_pair.size(); ++r) {
     if (!keep[r]) continue;

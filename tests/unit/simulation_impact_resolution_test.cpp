@@ -89,6 +89,23 @@ TEST(SimulationImpactResolution, NearlyDependentRowsSolveAgainstTheClosedForm) {
   EXPECT_EQ(cases, 31 * 20);
 }
 
+// The exact rows and vectors of double ones (a double is an exact rational).
+std::vector<simulation::ExactRow> exact_rows(const Eigen::MatrixXd& J) {
+  std::vector<simulation::ExactRow> rows;
+  for (Eigen::Index r = 0; r < J.rows(); ++r) {
+    simulation::ExactRow row;
+    for (Eigen::Index c = 0; c < J.cols(); ++c) row.a.emplace_back(J(r, c));
+    row.norm2 = row.a[0] * row.a[0] + row.a[1] * row.a[1];
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+std::vector<Rational> exact_vector(const Eigen::VectorXd& x) {
+  std::vector<Rational> out;
+  for (Eigen::Index i = 0; i < x.size(); ++i) out.emplace_back(x(i));
+  return out;
+}
+
 // held_at_resolution's thresholds (session 54; docs/simulation.md, "Why held_at_resolution's
 // thresholds are what they are"). A planar body (mass m, inertia I, reach R) left by an impact
 // with two contacts below the rest speed. Oracles, closed forms of the mass-weighted projection
@@ -108,14 +125,12 @@ TEST(SimulationImpactResolution, HeldContactsFollowTheClosedFormOfTheProjection)
   int both = 0, one = 0, cases = 0;
   auto decide = [](const Eigen::MatrixXd& J, const Eigen::Vector3d& minv, const Eigen::Vector3d& v, double R,
                    double rest, double fraction) {
-    const Eigen::VectorXd after = J * v;
-    return simulation::held_at_resolution(
-        std::vector<bool>{true, true}, [&](std::size_t r) { return Eigen::VectorXd(J.row(static_cast<Eigen::Index>(r)).transpose()); },
-        [&](std::size_t r) { return after(static_cast<Eigen::Index>(r)); }, Eigen::VectorXd(minv), Eigen::VectorXd(v),
-        [&](std::size_t) { return R; }, rest, fraction);
+    return simulation::held_at_resolution(std::vector<bool>{true, true}, exact_rows(J), exact_vector(minv),
+                                          exact_vector(v), [&](std::size_t) { return Rational(R); }, Rational(rest),
+                                          fraction);
   };
-  // k <= 5 only: from h = 1e-6 L down the decision is the double solve's rank decision, not the
-  // closed form's, and depends on the solve fraction (session 54's finding, docs/simulation.md)
+  // k <= 5 here (the double rows' closed form); nearer contacts, 0 apart included, and scales
+  // beyond the doubles: HeldContactsOfNearlyCoincidentPointsDecideExactlyAtEveryScale below
   for (int k = 1; k <= 5; ++k)
     for (int draw = 0; draw < 240; ++draw) {
       const double scale = std::pow(10.0, rng.uniform(-6, 6));   // the speeds' unit
@@ -181,6 +196,95 @@ TEST(SimulationImpactResolution, HeldContactsFollowTheClosedFormOfTheProjection)
       ++cases;
     }
   EXPECT_GT(cases, 1100);   // of 1 200
+  EXPECT_GT(both, 100);   // both kinds of decision are exercised
+  EXPECT_GT(one, 100);
+}
+
+// Held contacts decided exactly (session 56; docs/simulation.md, "Held contacts decided exactly").
+// Two contacts on one face of a planar body (mass m, inertia I, reach R), h = 10^-k L apart
+// (k = 6 ... 15) or exactly 0 apart (two features at one point), at the scales 1, 10^-300 and
+// 10^400 (every length, speed and the rest speed times s, the inertia times s^2: no double holds
+// the latter two). Oracles, the closed forms of the mass-weighted projection onto J v = 0:
+// - h > 0: no normal speed and no turning remain, the change is |n . v| / |n| + |omega| R;
+// - h = 0: one row a = [n, c], the change is |a . v| / G (|n| / m + |c| R / I), G = a M^-1 a^T;
+// both are held iff the change is at most 2 rest speeds (or neither separates faster than the
+// solve fraction); otherwise the one separating faster is freed (one of two equal ones at h = 0).
+// The decisions are the same at every scale. Before (base56: the rows rounded to doubles, the
+// projection solved in doubles) 438 of these 1 320 decisions at scale 1 differed from the closed
+// form (k = 7 ... 15; 1, 26, 49 ... 68 of 120 per k), and the other scales cannot be written in
+// doubles at all (docs/simulation.md).
+TEST(SimulationImpactResolution, HeldContactsOfNearlyCoincidentPointsDecideExactlyAtEveryScale) {
+  Lcg rng{56};
+  int both = 0, one = 0, cases = 0;
+  auto power10 = [](int e) {
+    mpz_class p;
+    mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+    return e < 0 ? Rational(1) / Rational(p) : Rational(p);
+  };
+  // |x| <= limit - y for x, y >= 0 given x^2 (exactly)
+  auto within = [](const Rational& x2, const Rational& y, const Rational& limit) {
+    return cmp(y, limit) <= 0 && cmp(x2, (limit - y) * (limit - y)) <= 0;
+  };
+  for (int k = 6; k <= 16; ++k)   // k = 16: the two contacts exactly 0 apart
+    for (int draw = 0; draw < 120; ++draw) {
+      const bool coincident = k == 16;
+      const double m = rng.uniform(1e-3, 1), Ld = rng.uniform(1, 10), Id = m * Ld * Ld * rng.uniform(0.05, 1);
+      const double Rd = Ld * rng.uniform(1, 2), restd = std::pow(10.0, rng.uniform(-6, 6));
+      const double phi = rng.uniform(0, 6.283185307179586), nxd = std::cos(phi), nyd = std::sin(phi);
+      const double s_along = rng.uniform(-Ld, Ld);
+      const double wd = std::pow(10.0, rng.uniform(-4, 4)) * restd / Rd * (draw % 2 ? 1 : -1);
+      const double u1 = rng.uniform(0, 1) * restd, along = rng.uniform(-1, 1) * restd;
+      const Rational nx(nxd), ny(nyd), N = nx * nx + ny * ny, tx = -ny, ty = nx;
+      std::vector<bool> decided;
+      for (int E : {0, -300, 400}) {
+        const Rational s = power10(E), L = Rational(Ld) * s, R = Rational(Rd) * s, rest = Rational(restd) * s;
+        const Rational h = coincident ? Rational(0) : L * power10(-k);
+        const Rational p1x = -L * nx + Rational(s_along) * s * tx, p1y = -L * ny + Rational(s_along) * s * ty;
+        const Rational p2x = p1x + h * tx, p2y = p1y + h * ty;
+        const Rational c1 = p1x * ny - p1y * nx, c2 = p2x * ny - p2y * nx;
+        // the turning kept small enough that the second contact is not separating either
+        Rational w(wd);
+        if (!coincident && std::abs(wd) * to_double(h / s) > restd - u1) w = Rational((restd - u1) * 0.5) / (h / s) * (wd > 0 ? 1 : -1);
+        const Rational an = (Rational(u1) * s - c1 * w) / N;   // n . v = an N: the first contact's speed ~ u1
+        const std::vector<Rational> v{an * nx + Rational(along) * s * tx, an * ny + Rational(along) * s * ty, w};
+        const std::vector<Rational> minv{Rational(1) / Rational(m), Rational(1) / Rational(m),
+                                         Rational(1) / (Rational(Id) * s * s)};
+        const std::vector<simulation::ExactRow> rows{{{nx, ny, c1}, N}, {{nx, ny, c2}, N}};
+        const std::vector<bool> keep = simulation::held_at_resolution(
+            std::vector<bool>{true, true}, rows, minv, v, [&](std::size_t) { return R; }, rest);
+        // the closed form
+        const Rational nv = v[0] * nx + v[1] * ny, a1v = nv + c1 * w, a2v = nv + c2 * w;
+        bool expect_both;
+        if (!coincident) {
+          expect_both = within(nv * nv / N, abs(w) * R, 2 * rest);
+        } else {
+          const Rational G = N * minv[0] + c1 * c1 * minv[2];
+          const Rational lin = abs(a1v) / G * minv[0], turn = abs(a1v) / G * abs(c1) * minv[2] * R;
+          expect_both = within(lin * lin * N, turn, 2 * rest);
+        }
+        // neither separating faster than the solve fraction: the projection stands
+        const Rational slow = Rational(simulation::held_solve_fraction) * rest;
+        const Rational fastest = cmp(a1v, a2v) >= 0 ? a1v : a2v;
+        if (sgn(fastest) <= 0 || cmp(fastest * fastest, slow * slow * N) <= 0) expect_both = true;
+        const std::string what = "k=" + std::to_string(k) + " draw=" + std::to_string(draw) + " scale 10^" + std::to_string(E);
+        if (expect_both) {
+          EXPECT_TRUE(keep[0] && keep[1]) << what;
+        } else if (coincident) {
+          EXPECT_TRUE(keep[0] != keep[1]) << what;
+        } else {
+          const std::size_t slower = cmp(a1v, a2v) <= 0 ? 0 : 1;
+          EXPECT_TRUE(keep[slower] && !keep[1 - slower]) << what;
+        }
+        if (E == 0) {
+          decided = keep;
+          (expect_both ? both : one) += 1;
+          ++cases;
+        } else {
+          EXPECT_EQ(keep, decided) << what;
+        }
+      }
+    }
+  EXPECT_EQ(cases, 11 * 120);
   EXPECT_GT(both, 100);   // both kinds of decision are exercised
   EXPECT_GT(one, 100);
 }
