@@ -943,10 +943,45 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
 
 namespace {
 // Side k of 2^depth equal parts of [whole]: the ends are the doubles lo + width * k (the same
-// expression for the cells on either side of a cut, so the cells tile the whole interval).
-algebra::Interval part_of(const algebra::Interval& whole, int depth, long k) {
+// expression for the cells on either side of a cut, so the cells of one depth tile the whole
+// interval). The cells of depth d + 1 must also tile their parents exactly (a cell inside a
+// blocked cell is blocked without a test; a child's candidates are its parent's list), so the
+// cut k of depth d and the cut 2k of depth d + 1 must be the same double. They are when every
+// width is exactly half the one above (a normal double: whole widths >= 2^-960, depths <= 62):
+// the products width * k are then the same real number, rounded alike. A narrower box (cells
+// below the smallest normal double, models at ~10^-305 and below: the halving rounds, a child
+// then reached past its parent; a point box) or one whose width or ends are beyond the doubles
+// (NaN or reversed cells) is cut on a copy scaled by an exact 2^e (ends clamped to the finite
+// doubles), where the widths are normal: each cut is a monotone function (x 2^-e, rounded; held
+// inside the box) of a scaled cut that is the same real number at every depth, so the children
+// tile their parents exactly (cells may shrink to points there, never leave a gap). Session 56
+// (scale56); the common case stays inline (the Geneva's C-space asks ~700 000 sides).
+[[gnu::noinline]] algebra::Interval part_of_scaled(const algebra::Interval& whole, int depth, long k) {
   const long count = 1L << depth;
-  const double width = (whole.hi - whole.lo) / static_cast<double>(count);
+  if (!(whole.lo <= whole.hi) || depth > 62)
+    throw NumericError("blocked-space grid: a cell of a box that is not an interval, or deeper than 62");
+  const double largest = std::numeric_limits<double>::max();
+  const double lo = std::max(whole.lo, -largest), hi = std::min(whole.hi, largest);
+  // 2^e brings the larger end to [2^1020, 2^1021): the scaled width is finite and, at least the
+  // ends' spacing 2^968, stays normal when divided by 2^62
+  const double larger = std::max(std::fabs(lo), std::fabs(hi));
+  const int exponent = larger > 0 ? 1020 - std::ilogb(larger) : 0;
+  const double scaled_lo = std::ldexp(lo, exponent), scaled_hi = std::ldexp(hi, exponent);
+  const double width = (scaled_hi - scaled_lo) / static_cast<double>(count);
+  auto cut = [&](long m) {
+    if (m == 0) return whole.lo;
+    if (m == count) return whole.hi;
+    return std::clamp(std::ldexp(scaled_lo + width * static_cast<double>(m), -exponent), whole.lo, whole.hi);
+  };
+  return {cut(k), cut(k + 1)};
+}
+
+inline algebra::Interval part_of(const algebra::Interval& whole, int depth, long k) {
+  const double span = whole.hi - whole.lo;
+  if (!(span >= 0x1p-960 && span <= std::numeric_limits<double>::max())) [[unlikely]]
+    return part_of_scaled(whole, depth, k);
+  const long count = 1L << depth;
+  const double width = span / static_cast<double>(count);
   return {k == 0 ? whole.lo : whole.lo + width * static_cast<double>(k),
           k + 1 == count ? whole.hi : whole.lo + width * static_cast<double>(k + 1)};
 }

@@ -317,6 +317,24 @@ class Analysis {
     result_.parameters = m.parameters;
     result_.length_exponent = model_->length_exponent();
     choose_parts();
+    // A certificate of a mechanism analysed in units of 10^E mm (analysed_form): the producer works
+    // on that copy; when both parts rotate, every number of the claim is an angle or a
+    // parameter's deviation (the copy keeps the parameters as read) but the second-order margins,
+    // which it writes at the file's scale (certificate.cpp file_scale_margins), so it is a
+    // certificate of the model file as written, and certify_no_jam checks it against the file's
+    // text (hipair-verify's check, exact at any scale) before it is kept. A translating part's
+    // offsets and brackets would be the copy's: still refused (session 56, scale56; until then
+    // refused at every such scale).
+    if ((options_.certify || options_.certify_free_path) && model_->length_exponent() != 0 &&
+        !(result_.driver_rotates && result_.follower_rotates)) {
+      const Part& moving = m.parts[result_.driver_rotates ? follower_ : driver_];
+      throw ModelError(moving.pointer, "--certify: this model's lengths lie outside about 1e-9 .. 1e9 mm and part '" +
+                                           moving.name + "' translates: its tolerance analysis runs on the model "
+                                           "divided exactly by 1e" + std::to_string(model_->length_exponent()) +
+                                           ", whose offsets a certificate would give, while hipair-verify checks it "
+                                           "against the model file: run the analysis without --certify, or certify "
+                                           "the model drawn in a unit near its size");
+    }
     std::size_t n = m.parameters.size();
     dist_ = distributions(m);
     box_.lo.resize(n);
@@ -1463,12 +1481,6 @@ std::shared_ptr<const model_detail::ParametricModel> analysed_form(model_detail:
                                                                     const ToleranceOptions& options) {
   const long exponent = kinematic_decimal_exponent(form.nominal());
   if (exponent == 0) return std::make_shared<const model_detail::ParametricModel>(std::move(form));
-  if (options.certify || options.certify_free_path)
-    throw ModelError("", "--certify: this model's lengths lie outside about 1e-9 .. 1e9 mm, and its tolerance analysis "
-                         "runs on the model divided exactly by 1e" + std::to_string(exponent) +
-                         "; a tolerance certificate would be about that copy, while hipair-verify checks it against "
-                         "the model file: run the analysis without --certify, or certify the model drawn in a unit "
-                         "near its size");
   return std::make_shared<const model_detail::ParametricModel>(form.rescaled(exponent));
 }
 

@@ -5,6 +5,7 @@
 #include "tolerance/certificate.hpp"
 
 #include "certify/tolerance_check.hpp"
+#include "core/model_scale.hpp"
 
 #include <hipair/error.hpp>
 
@@ -193,6 +194,7 @@ class Producer {
     c.first = claim_.driver;
     c.second = claim_.follower;
     c.tolerance = claim_;
+    file_scale_margins(m, *c.tolerance);
     c.statement = certificate_statement(c, m);
     auto verify_start = std::chrono::steady_clock::now();
     VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), request_.model_text,
@@ -213,6 +215,28 @@ class Producer {
   }
 
  private:
+  // A mechanism drawn at an extreme scale is analysed on the model divided exactly by 10^E
+  // (analysed_form; both parts rotate, so every other number of the claim is an angle or a
+  // parameter's deviation, which the copy keeps): the second-order margins are values of contact
+  // functions there (certify/tolerance_check.cpp contact_of), homogeneous in lengths of degree 2
+  // (a vertex on a segment or an arc, two arcs) or 4 (an arc against a segment), so at the model
+  // file's scale they are those times 10^(2E) or 10^(4E), exactly (session 56, scale56: before,
+  // --certify was refused at every such scale).
+  void file_scale_margins(const Model& m, ToleranceClaim& claim) const {
+    const long exponent = request_.model->length_exponent();
+    if (exponent == 0) return;
+    auto arc = [&](const FeatureReference& f) {
+      const Part& part = m.parts.at(*m.find_part(f.edge.part));
+      return part.loops.at(f.edge.loop).edges.at(f.edge.edge).is_arc();
+    };
+    for (ToleranceLeaf& leaf : claim.leaves)
+      for (std::size_t s = 0; s < leaf.witness_margins.size() && s < 2; ++s) {
+        const ContactSidePair& side = claim.sides.at((s == 0 ? leaf.lower : leaf.upper).pair);
+        const bool fourth = !side.driver.vertex && !side.follower.vertex && arc(side.driver) != arc(side.follower);
+        leaf.witness_margins[s] *= power_of_ten_rational((fourth ? 4 : 2) * exponent);
+      }
+  }
+
   enum class Status { ok, jams, undecided };
   struct Piece {
     std::size_t lower = 0, upper = 0;

@@ -36,9 +36,9 @@ inline ReadOptions design_read_options(const ToleranceOptions& options) {
 /// lengths outside about 1e-9 .. 1e9 mm with a translating part, 1e-9 .. 1e18 mm rotating only)
 /// form.rescaled(E), the model divided exactly by 10^E: the analysis then runs in units of
 /// 10^E mm, as `hipair analyze` does, and a model written at 10^E times an ordinary one is
-/// analysed as that one (ToleranceResult::length_exponent). \throws ModelError as rescaled(),
-/// and for tolerance certificates of such a model (`certify`, `certify_free_path`: a
-/// certificate would be about the copy, and hipair-verify checks it against the model file).
+/// analysed as that one (ToleranceResult::length_exponent). \throws ModelError as rescaled().
+/// Tolerance certificates of such a model: for a pair whose parts both rotate, written at the
+/// file's scale (session 56); refused by the analysis when a part translates.
 std::shared_ptr<const model_detail::ParametricModel> analysed_form(model_detail::ParametricModel form,
                                                                     const ToleranceOptions& options);
 

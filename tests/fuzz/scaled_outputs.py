@@ -2,7 +2,8 @@
 """Outputs of a command on a model scaled exactly by 10^K against the unscaled model's (session 53).
 
 usage: scaled_outputs.py HIPAIR SOURCE_DIR WORK COMMAND MODELS SCALES [TIMEOUT]
-  COMMAND  analyze (report text, report.json, kinematics.csv), tolerance (stdout, report files),
+  COMMAND  analyze (report text, report.json, kinematics.csv), tolerance[=OPTIONS] (stdout, report
+           files; OPTIONS: more options of the run, separated by spaces),
            simulate[=T] (--t-end T, default 0.05 time units, --no-pictures: stdout, trajectory.csv,
            events.json, events.txt) or sweep=NAME=A:B:N[@T] (simulate --sweep NAME=A:B:N --t-end T:
            stdout, sweep.json), cycle (analyze of a pin-in-slot mechanism: cycle.json) or cspace (--json: the pin-in-slot stacks, lengths times 10^K exactly)
@@ -63,7 +64,7 @@ def plain_json_data(data, k, name):
     def clean(value):
         if isinstance(value, dict):   # keys naming the unit 10^K mm ("advance_1e400mm") as "advance_mm"
             return {re.sub(r"_1e%dmm\b" % k, "_mm", key): clean(v) for key, v in value.items()
-                    if key not in ("seconds", "cpu_seconds")}
+                    if key not in ("seconds", "cpu_seconds") and not key.startswith("seconds_")}
         if isinstance(value, list):
             return [clean(v) for v in value]
         if isinstance(value, str):
@@ -206,6 +207,24 @@ def unit_named(data, key, k):
     return None
 
 
+def certificate_margins(a, b, k):
+    """A tolerance certificate's leaves' second-order margins (values of contact functions, of
+    degree 2 or 4 in lengths: session 56) in the scaled run's certificate are the unscaled one's
+    times 10^2K or 10^4K exactly; set equal once checked (None), else the difference."""
+    leaves_a = a.get("tolerance", {}).get("leaves", []) if isinstance(a.get("tolerance"), dict) else []
+    leaves_b = b.get("tolerance", {}).get("leaves", []) if isinstance(b.get("tolerance"), dict) else []
+    for i, (la, lb) in enumerate(zip(leaves_a, leaves_b)):
+        ma = la.get("witness", {}).get("second_order_margins")
+        mb = lb.get("witness", {}).get("second_order_margins")
+        if ma is None or mb is None or len(ma) != len(mb):
+            continue   # left to the comparison of the whole
+        for x, y in zip(ma, mb):
+            if Fraction(y) not in (Fraction(x) * Fraction(10) ** (2 * k), Fraction(x) * Fraction(10) ** (4 * k)):
+                return "leaf %d: second-order margin %s vs %s" % (i, x, y[:40])
+        lb["witness"]["second_order_margins"] = ma
+    return None
+
+
 def compare_tolerance(base, scaled, k, name):
     """`hipair tolerance` (session 54, scale54): a mechanism at 10^K is analysed on its copy divided
     by 10^E (E = K for a model scaled from an ordinary one), so the scaled run's text is the
@@ -216,11 +235,14 @@ def compare_tolerance(base, scaled, k, name):
     names naming that unit."""
     dir0, dir1 = base[3], scaled[3]
 
+    def timeless(text):   # the Monte Carlo's and the certificate's times ("... in 2.41 s")
+        return re.sub(r"\bin [0-9.]+ s\b", "in @ s", text)
+
     def streams(a, b):
-        return numbers_moved(a, tolerance_text(b, k, name), k, (0, k))
+        return numbers_moved(timeless(a), tolerance_text(timeless(b), k, name), k, (0, k))
 
     def file_difference(file, a, b):
-        ta, tb = read_text(a), read_text(b)
+        ta, tb = timeless(read_text(a)), timeless(read_text(b))
         if file.endswith(".json"):
             ja, jb = json.loads(ta), json.loads(tb)
             found = unit_named(jb, "follower_unit", k)
@@ -229,6 +251,7 @@ def compare_tolerance(base, scaled, k, name):
                 if "length_unit" in ja or unit != "1e%d mm" % k:
                     found = "length_unit %r" % unit
             ja["model"] = jb["model"] = name
+            found = found or certificate_margins(ja, jb, k)
             return found or first_difference(plain_json_data(ja, 0, name), plain_json_data(jb, k, name))
         if file.endswith(".csv"):
             return text_difference(ta, tolerance_text(tb, k, name))
@@ -333,8 +356,9 @@ def command_args(command, model, out):
         return ["analyze", model, "--quiet", "--no-pictures", "--out", out]
     if command == "cycle":   # a pin-in-slot mechanism's work cycle (analyze takes no --no-pictures there)
         return ["analyze", model, "--quiet", "--out", out]
-    if command == "tolerance":
-        return ["tolerance", model, "--quiet", "--out", out]
+    if command == "tolerance" or command.startswith("tolerance="):   # tolerance=OPTIONS: more options
+        extra = command.split("=", 1)[1].split() if "=" in command else []
+        return ["tolerance", model, "--quiet"] + extra + ["--out", out]
     raise SystemExit("scaled_outputs: unknown command " + command)
 
 
@@ -384,7 +408,7 @@ def main(argv):
                 print("%s %s: exit %s" % (command, name, rc))
                 continue
             compare = (compare_simulate if command.startswith("simulate") else compare_sweep if command.startswith("sweep=")
-                       else compare_tolerance if command == "tolerance" else compare_cspace if command == "cspace"
+                       else compare_tolerance if command.split("=")[0] == "tolerance" else compare_cspace if command == "cspace"
                        else compare_run)
             found = compare(runs[0], runs[k], k, name)
             print("  x1e%d: %s" % (k, "same" if found is None else "DIFFERENT: " + found))

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -32,6 +33,7 @@
 #include <tuple>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace hipair {
 namespace {
@@ -683,6 +685,92 @@ TEST(CSpaceCull, SurvivingCellsAreNoneTheTesterCertifies) {
   expect_surviving_cells_not_certified(lever_pair(Rational(3, 4), Rational(10), Rational(3), Rational(9, 2), Rational(1), Rational(1)),
                                        "crank", "rocker", &checked);
   EXPECT_GT(checked, 1000);
+}
+
+// The grid's cells at every scale (session 56, scale56): for generated chart boxes with ends
+// from 2^-1100 to 2^1100 (beyond the doubles both ways: the box is then enclosed in [0, 2^-1074]
+// or reaches infinity), 1-D and 2-D grids, every cell of depth d + 1 <= 24 tiles its parent
+// exactly: the first child starts where the parent starts, the second starts where the first
+// ends and ends where the parent ends (compared as exact rationals), no cell is reversed or NaN,
+// and depth 0 encloses the rational box. Before, once the cells' width fell below the smallest
+// normal double (boxes narrower than ~2^-998, models at ~10^-305), halving the width rounded and
+// a child reached past its parent (a cell inside a blocked cell is blocked without a test: an
+// unsound cull there), and a box wider than the doubles gave NaN or reversed cells.
+TEST(CSpaceCull, GridCellsTileTheirParentsExactlyAtEveryScale) {
+  std::mt19937_64 random(5601);
+  auto power_of_two = [](long e) {
+    mpz_class p = 1;
+    p <<= static_cast<mp_bitcnt_t>(std::labs(e));
+    return e >= 0 ? Rational(p) : Rational(mpz_class(1), p);
+  };
+  auto random_end = [&](long e) {   // +- a / 2^20 * 2^e, a in [1, 2^20]
+    Rational r = Rational(static_cast<long>(1 + random() % (1u << 20)), 1L << 20) * power_of_two(e);
+    if (random() % 2) r = -r;
+    return r;
+  };
+  // the exact value of a side (finite), or its infinity
+  auto same = [](double a, double b) {
+    if (std::isnan(a) || std::isnan(b)) return false;
+    if (std::isinf(a) || std::isinf(b)) return a == b;
+    return Rational(a) == Rational(b);
+  };
+  auto ordered = [](const auto& c) {
+    if (std::isnan(c.lo) || std::isnan(c.hi)) return false;
+    if (std::isinf(c.lo) || std::isinf(c.hi)) return c.lo <= c.hi;
+    return Rational(c.lo) <= Rational(c.hi);
+  };
+  auto at_most = [](double side, const Rational& end) {   // side <= end, exactly
+    return std::isinf(side) ? side < 0 : !std::isnan(side) && Rational(side) <= end;
+  };
+  auto at_least = [](double side, const Rational& end) {
+    return std::isinf(side) ? side > 0 : !std::isnan(side) && Rational(side) >= end;
+  };
+  int checked = 0, subnormal_cells = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    cspace::ChartAxis axes[2];
+    for (cspace::ChartAxis& axis : axes) {
+      const long e = -1100 + static_cast<long>(random() % 2201);
+      axis.kind = cspace::ChartAxis::Kind::translation;
+      // a box from 0, one around an end, or one much narrower than its ends (down to 2^-60 of them)
+      const int shape = static_cast<int>(random() % 3);
+      Rational lo = shape == 0 ? Rational(0) : random_end(e);
+      Rational width = Rational(static_cast<long>(1 + random() % (1u << 20)), 1L << 20) *
+                       power_of_two(e - (shape == 2 ? static_cast<long>(random() % 61) : 0));
+      axis.lo = lo;
+      axis.hi = Rational(lo + width);
+    }
+    const int dimension = trial % 4 == 3 ? 1 : 2;
+    SCOPED_TRACE("box " + std::to_string(trial) + ": x [" + axes[0].lo.get_str().substr(0, 40) + "...]");
+    cspace::BlockedCells grid(nullptr, axes[0], axes[1], dimension, 9);
+    for (int side = 0; side < dimension; ++side) {
+      auto cell = [&](int d, long k) { return side == 0 ? grid.cell_x(d, k) : grid.cell_y(d, k); };
+      const auto box = cell(0, 0);
+      EXPECT_TRUE(at_most(box.lo, axes[side].lo) && at_least(box.hi, axes[side].hi)) << "depth 0 does not enclose the box";
+      for (int d = 0; d < 24; ++d) {
+        const long count = 1L << d;
+        std::vector<long> ks;
+        if (d <= 6) {
+          for (long k = 0; k < count; ++k) ks.push_back(k);
+        } else {
+          ks = {0, count - 1};
+          for (int n = 0; n < 24; ++n) ks.push_back(static_cast<long>(random() % static_cast<unsigned long>(count)));
+        }
+        for (long k : ks) {
+          const auto parent = cell(d, k), first = cell(d + 1, 2 * k), second = cell(d + 1, 2 * k + 1);
+          ASSERT_TRUE(ordered(parent) && ordered(first) && ordered(second))
+              << "a reversed or NaN cell at depth " << d << ", side " << k;
+          ASSERT_TRUE(same(first.lo, parent.lo) && same(first.hi, second.lo) && same(second.hi, parent.hi))
+              << "the children of cell " << k << " of depth " << d << " (axis " << side << ") do not tile it: ["
+              << parent.lo << ", " << parent.hi << "] -> [" << first.lo << ", " << first.hi << "] + [" << second.lo
+              << ", " << second.hi << "]";
+          if (std::isfinite(first.hi) && first.hi != 0 && std::fabs(first.hi - first.lo) < 0x1p-1022) ++subnormal_cells;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 50000);
+  EXPECT_GT(subnormal_cells, 1000);   // the boxes reach the cells below the normal doubles
 }
 
 }  // namespace

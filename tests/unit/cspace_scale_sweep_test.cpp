@@ -253,5 +253,96 @@ TEST(ScaleSweep, AnalysisOfAHugeOrTinyTranslatingMechanismIsRefusedNamingItsPart
   }
 }
 
+// A polygon cam turning about the origin and a flat-faced follower translating along y (limits
+// -2u .. 12u): a rotation-translation pair without arcs, which is built as written at any scale
+// (no normalisation: its translation chart is in mm, and at 10^-305 its culler's grid cells
+// fall below the smallest normal double).
+const char* polygon_cam_model = R"({
+  "hipair": 1, "name": "polygon-cam",
+  "units": { "length": "mm", "angle": "deg" },
+  "parameters": { "u": { "nominal": 1 } },
+  "parts": [
+    { "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } },
+      "loops": [ { "start": ["3*u", 0], "edges": [
+        { "line_to": ["u", "2*u"] }, { "line_to": ["-2*u", "u"] }, { "line_to": ["-2*u", "-2*u"] },
+        { "line_to": ["u", "-5*u/2"] }, { "line_to": ["3*u", 0] } ] } ] },
+    { "name": "follower", "motion": { "translation": { "direction": [0, 1], "limits": ["-2*u", "12*u"] } },
+      "loops": [ { "start": ["-4*u", "3*u"], "edges": [
+        { "line_to": ["4*u", "3*u"] }, { "line_to": ["4*u", "4*u"] }, { "line_to": ["u/2", "4*u"] },
+        { "line_to": ["u/2", "9*u"] }, { "line_to": ["-u/2", "9*u"] }, { "line_to": ["-u/2", "4*u"] },
+        { "line_to": ["-4*u", "4*u"] }, { "line_to": ["-4*u", "3*u"] } ] } ] } ],
+  "pairs": [ { "parts": ["cam", "follower"] } ] })";
+
+// The Geneva pair, the escapement's anchor against its balance and its banking pins, and the
+// polygon cam and follower above, times 10^-305 and 10^-320 exactly (decimal_scaled_model): the
+// same cells (kinds), the same number of contact edges and, at 80 generated rational chart points
+// (translation coordinates times the same power of ten), the same exact location as the unscaled
+// pair's, each free or blocked answer confirmed by the overlap oracle on the scaled model
+// (session 56, scale56: the culler's grid below DBL_MIN). The escape wheel against the anchor
+// (4 s a build) is left to scaled_escapement_analyze.
+TEST(ScaleSweep, ExamplePairsBelowTheSmallestNormalDoubleLocateAsUnscaled) {
+  struct Pair {
+    const char* file;
+    const char* first;
+    const char* second;
+  };
+  const Pair pairs[] = {{"geneva.json", "driver", "wheel"},
+                        {"escapement.json", "anchor", "balance"},
+                        {"escapement.json", "anchor", "banking"},
+                        {nullptr, "cam", "follower"}};
+  for (const Pair& pair : pairs) {
+    const Model unscaled = pair.file ? read_model_file(std::string(HIPAIR_EXAMPLES) + "/" + pair.file)
+                                     : at_scale(polygon_cam_model, 0);
+    const CSpace reference = CSpace::build(unscaled, pair.first, pair.second);
+    ASSERT_TRUE(reference.complete());
+    std::mt19937_64 random(5602);
+    std::vector<ChartPoint> points;
+    for (int i = 0; i < 80; ++i) points.push_back(random_tile_point(reference, random));
+    std::size_t reference_edges = 0;
+    for (const CSpaceEdge& edge : reference.edges()) reference_edges += edge.role == EdgeRole::contact;
+    for (long k : {-305L, -320L}) {
+      SCOPED_TRACE(std::string(pair.file ? pair.file : "polygon cam") + " " + pair.first + "/" + pair.second + " x 1e" + std::to_string(k));
+      const Model model = decimal_scaled_model(unscaled, -k);
+      const Rational factor = power_of_ten_rational(k);
+      const CSpace space = CSpace::build(model, pair.first, pair.second);
+      ASSERT_TRUE(space.complete());
+      ASSERT_EQ(space.cells().size(), reference.cells().size());
+      for (std::size_t c = 0; c < space.cells().size(); ++c) EXPECT_EQ(space.cells()[c].kind, reference.cells()[c].kind);
+      std::size_t edges = 0;
+      for (const CSpaceEdge& edge : space.edges()) edges += edge.role == EdgeRole::contact;
+      // (the polygon cam at 10^-320: its translation chart, ~2^-1060 mm wide, holds cells no finer
+      // than the subnormal spacing 2^-1074, so the cull keeps its curves in wider windows, which
+      // split the same contact curves at more vertices: 30 edges for 10)
+      if (pair.file == nullptr && k == -320)
+        EXPECT_GE(edges, reference_edges);
+      else
+        EXPECT_EQ(edges, reference_edges);
+      ASSERT_EQ(space.charts().size(), reference.charts().size());
+      std::vector<std::size_t> both{*model.find_part(pair.first), *model.find_part(pair.second)};
+      const Model oracle_model = scaled_model(model, normalising_shift(model, both));
+      const cspace::PairAxes axes = cspace::pair_axes(oracle_model, both[0], both[1]);
+      int free = 0, blocked = 0;
+      for (const ChartPoint& p : points) {
+        const CSpaceChart& chart = space.charts()[p.chart];
+        auto scaled = [&](AxisKind kind, const Rational& v) {
+          return kind == AxisKind::translation ? Rational(v * factor) : v;
+        };
+        const ChartPoint q{p.chart, scaled(chart.x_kind, p.x), scaled(chart.y_kind, p.y)};
+        const Location want = reference.locate(p), got = space.locate(q);
+        EXPECT_EQ(got.kind, want.kind) << "at " << p.x << ", " << p.y << " of chart " << p.chart;
+        EXPECT_EQ(got.cell, want.cell) << "at " << p.x << ", " << p.y << " of chart " << p.chart;
+        if (got.kind != Location::Kind::free && got.kind != Location::Kind::blocked) continue;
+        const cspace::Overlap overlap = cspace::classify_overlap(
+            oracle_model, axes, axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+            axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+        EXPECT_EQ(overlap, got.kind == Location::Kind::free ? cspace::Overlap::apart : cspace::Overlap::overlapping)
+            << "at " << q.x << ", " << q.y;
+        (got.kind == Location::Kind::free ? free : blocked) += 1;
+      }
+      EXPECT_GT(free + blocked, 0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hipair

@@ -323,5 +323,54 @@ TEST(DecimalUnit, RescaledParametricFormIsTheFormTimesThePower) {
   }
 }
 
+// A pair of spur gears (flank_radius form, gear-train.json's A and B) written at 10^K mm, K = -300,
+// -320, 400: the tolerance analysis's rescaled copy (units of 10^K mm) has the generic form, with
+// the unscaled pair's flank sides (every edge of both gears within 1e-12 of the unscaled form's in
+// doubles). Until session 56 (scale56) the sides were chosen only in the file's doubles, where the
+// flank crossings underflow or overflow: `tolerance` of gear-train.json x 1e-300 was refused,
+// "feature template spur_gear ... has an exact form only".
+TEST(DecimalUnit, SpurGearsAtAnExtremeScaleAreGenericOnTheRescaledCopy) {
+  auto gears = [](const std::string& scale) {
+    auto l = [&](const std::string& length) { return "\"(" + length + ")*(" + scale + ")\""; };
+    auto gear = [&](const std::string& name, const std::string& x, int teeth, const std::string& phase) {
+      const std::string pitch = std::to_string(teeth);
+      return R"({ "name": ")" + name + R"(", "motion": { "rotation": { "pivot": [)" + l(x) + ", " + l("0") +
+             R"(] } }, "features": [ { "spur_gear": { "center": [)" + l(x) + ", " + l("0") + R"(], "teeth": )" +
+             std::to_string(teeth) + R"(, "pitch_radius": )" + l(pitch) + R"(, "addendum": )" +
+             l("2") + R"(, "dedendum": )" + l("2.5") + R"(, "tooth_thickness": )" + l("pi - 0.1") +
+             R"(, "flank_radius": )" + l("4") + R"(, "pressure_angle": "20 deg", "phase": ")" + phase + R"(" } } ] })";
+    };
+    return R"({ "hipair": 1, "name": "gears", "units": { "length": "mm", "angle": "rad" }, "parts": [ )" +
+           gear("A", "0", 10, "0") + ", " + gear("B", "22", 12, "pi + pi / 12") +
+           R"( ], "pairs": [ { "parts": ["A", "B"] } ] })";
+  };
+  const model_detail::ParametricModel unit = model_detail::ParametricModel::read(gears("1"));
+  ASSERT_TRUE(unit.generic());
+  const std::vector<double> nominal(unit.parameter_count(), 0.0);
+  for (long k : {-300L, -320L, 400L}) {
+    SCOPED_TRACE("x 1e" + std::to_string(k));
+    const model_detail::ParametricModel form = model_detail::ParametricModel::read(gears("1e" + std::to_string(k)));
+    ASSERT_EQ(kinematic_decimal_exponent(form.nominal()), k);
+    const model_detail::ParametricModel scaled = form.rescaled(k);
+    ASSERT_TRUE(scaled.generic()) << scaled.exact_only_feature();
+    for (std::size_t part = 0; part < 2; ++part) {
+      const auto a = unit.part_geometry<double>(part, nominal);
+      const auto b = scaled.part_geometry<double>(part, nominal);
+      auto near = [](double x, double y) { return std::abs(y - x) <= 1e-12 * (std::abs(x) + 1); };
+      ASSERT_EQ(a.loops.size(), b.loops.size());
+      for (std::size_t loop = 0; loop < a.loops.size(); ++loop) {
+        ASSERT_EQ(a.loops[loop].size(), b.loops[loop].size());
+        for (std::size_t e = 0; e < a.loops[loop].size(); ++e) {
+          const auto &x = a.loops[loop][e], &y = b.loops[loop][e];
+          EXPECT_EQ(x.arc, y.arc);
+          EXPECT_TRUE(near(x.source.x, y.source.x) && near(x.source.y, y.source.y) && near(x.target.x, y.target.x) &&
+                      near(x.target.y, y.target.y))
+              << "part " << part << " edge " << e;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hipair

@@ -255,7 +255,13 @@ class RecipeBuilder {
   // nearer the pitch point) and the arc's turning sense, decided at nominal. The two-arc
   // involute fit (no flank_radius) places its arcs through involute points computed in double
   // and switches at the base circle: exact form only.
-  bool spur_gear_sides(FeatureRecipe& feature) {
+  bool spur_gear_sides(FeatureRecipe& feature) { return spur_gear_sides(model_, feature); }
+ public:
+  // A spur gear's flank sides chosen at the nominal vector in doubles (the generic form's
+  // crossings); false when that form does not evaluate (the template is then exact only).
+  // Scale-free choices: a model drawn at an extreme scale chooses them again on its rescaled
+  // copy (ParametricModel::rescaled), where the doubles hold its lengths.
+  static bool spur_gear_sides(const ParametricModel& model_, FeatureRecipe& feature) {
     if (!feature.arguments.count("flank_radius")) return false;
     std::vector<double> p = model_.parameter_values<double>(std::vector<double>(model_.parameter_count(), 0.0));
     auto nearer = [](const SpurFlank<double>& a, const SpurFlank<double>& b, bool tip) {
@@ -271,6 +277,8 @@ class RecipeBuilder {
     feature.flank_ccw = a.x * b.y - a.y * b.x > 0;
     return std::isfinite(flank.tip.x) && std::isfinite(flank.root.x);
   }
+
+ private:
   Slot angle_slot(const JsonValue& value) {
     Slot slot = raw_slot(value);
     slot.formula = angle_formula(slot);
@@ -560,6 +568,21 @@ ParametricModel ParametricModel::rescaled(long exponent) const {
   scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*nominal_, exponent));
   RecipeScaler scaler{power_of_ten_rational(-exponent), {}};
   for (PartRecipe& part : scaled.parts_) scaler.part(part);
+  // The templates' generic forms evaluated in doubles at the file's scale (a spur gear's flank
+  // crossings at 1e-300 mm underflow: "exact form only"), so every template is judged again on
+  // the copy, by the reader's rule (session 56, scale56).
+  scaled.generic_ = true;
+  scaled.exact_only_feature_.clear();
+  for (PartRecipe& part : scaled.parts_)
+    for (FeatureRecipe& feature : part.features) {
+      const bool generic = feature.name == "circle" || feature.name == "pin" ||
+                           (feature.name == "ratchet_wheel" && feature.teeth > 0) ||
+                           (feature.name == "spur_gear" && feature.teeth > 0 && RecipeBuilder::spur_gear_sides(scaled, feature));
+      if (!generic && scaled.generic_) {
+        scaled.generic_ = false;
+        scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
+      }
+    }
   // Each length at the nominal vector, in doubles: finite and normal (or 0) once divided. A
   // formula that keeps the scale (a parameter of about 1e400 mm used as a length) cannot be
   // evaluated so: refused at its slot.
