@@ -368,9 +368,6 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
 /// driver is moved in `direction` by steps of `step` up to `travel`; the follower's free
 /// interval around its position is tracked with the exact overlap predicate. When it closes,
 /// returns the trap box around the closing (for certify_jam); nullopt when it never closes.
-/// The driver stays within its own motion limits: its last step ends on the limit, and the
-/// search ends there (nullopt when the motion is not blocked up to it).
-/// \throws GeometryError when `start` lies outside the driver's motion limits.
 std::optional<JamQuery> find_jam(const Model& model, const std::string& first,
                                  const std::string& second, const std::string& driver,
                                  const Rational& start, const Rational& follower_start,
