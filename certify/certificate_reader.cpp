@@ -268,7 +268,7 @@ Certificate read_certificate(std::string_view json_text) {
 
   for (const char* other : {"interference", "clearance", "jam", "free_passage", "tolerance", "planar_interference",
                             "planar_clearance"})
-    if (other != claim && root.find(other)) fail(*root.find(other), "section '" + std::string(other) + "' does not belong to a " + claim + " claim");
+    if (other != claim && root.find(other)) fail(*root.find(other), "section '" + std::string(other) + "' does not belong to the claim '" + claim + "'");
   const JsonValue& body = require(root, claim.c_str());
   // The witness of an interference claim (fixed-axis or planar): exactly one of a point inside
   // both parts or a transversal crossing of their boundaries.

@@ -302,15 +302,18 @@ bool certainly_free(const PairRoles& r, const Rational& x, const Rational& y) {
   }
 }
 
-bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
+PartRelation relation_at(const PairRoles& r, const Rational& x, const Rational& y) {
   auto exact_of = [](const Part& part, const Rational& value) {
     ExactPosition position = part.motion.kind == Motion::Kind::rotation ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
     return exact_map(part, &position);
   };
   auto placed = [](const verify::ExactMap& map) { return placement_about(map.pivot, map.c, map.s, map.shift); };
   verify::ExactMap other = r.has_follower ? exact_of(*r.other, y) : verify::ExactMap{};
-  return part_overlap(*r.driver, placed(exact_of(*r.driver, x)), *r.other, placed(other)).relation ==
-         PartRelation::overlapping;
+  return part_overlap(*r.driver, placed(exact_of(*r.driver, x)), *r.other, placed(other)).relation;
+}
+
+bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
+  return relation_at(r, x, y) == PartRelation::overlapping;
 }
 
 // Covers of a trap's cut and walls for a closing channel (certify_closing_jam): the pieces
@@ -866,6 +869,17 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   if (direction != 1 && direction != -1)
     throw NumericError("the jam direction must be +1 or -1, not " + std::to_string(direction));
   if (sgn(step) <= 0) throw NumericError("the step must be positive");
+  // The driver moves within its own motion limits (session 56, hunt56): until then the search
+  // drove a lever limited to [-30, 120] deg backward from 0 through its -30 deg limit, round to
+  // -5.452 rad, and reported the stop's far side as the jam of that motion; with a limit before
+  // the contact it searched past it and then "could not certify" the trap it found there.
+  const auto& driver_limits = d.motion.kind == Motion::Kind::rotation      ? d.motion.angle_limits
+                              : d.motion.kind == Motion::Kind::translation ? d.motion.translation_limits
+                                                                           : std::optional<RationalInterval>{};
+  if (driver_limits && (start < driver_limits->lo || start > driver_limits->hi))
+    throw GeometryError("the jam search's start " + to_decimal_string(start) + (d.motion.kind == Motion::Kind::rotation ? " rad" : " mm") +
+                        " lies outside the motion limits [" + to_decimal_string(driver_limits->lo) + ", " +
+                        to_decimal_string(driver_limits->hi) + "] of '" + d.name + "'");
   JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}, std::nullopt};
   Rational x = start, f = follower_start;
   // A follower resting on a contact may overlap by a rounding: nudge it off, either way.
@@ -879,10 +893,27 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   int last_side = 1;   // the follower's last move: 0 down, 1 up
   for (Rational moved = 0; moved < travel; moved += step) {
     Rational next = x + direction * step;
+    if (driver_limits) {
+      // the last step ends on the limit; standing on it, the driver goes no further
+      const Rational& end = direction > 0 ? driver_limits->hi : driver_limits->lo;
+      if (x == end) break;
+      if (direction > 0 ? next > end : next < end) next = end;
+    }
     if (!r.has_follower) {
       if (overlapping_at(r, next, 0)) {
-        query.trap.driver = direction > 0 ? RationalInterval{x, next} : RationalInterval{next, x};
-        query.start = JamStart{x, std::nullopt};
+        // The trap needs a free start (certify_jam): a grid point where the parts touch (a
+        // contact on the step grid: a square sliding into a square 1 mm away, steps of 0.01 mm;
+        // a lever resting on its stop) is none, and so is the rest of [x, next]. The start moves
+        // back towards the previous grid point (x - step/2, - 3/4 step, ...) to a configuration
+        // the exact predicate finds apart (session 56: until then such a jam was never certified).
+        Rational near = x;
+        for (int k = 1; k <= 8 && relation_at(r, near, 0) == PartRelation::touching; ++k) {
+          Rational back = x - direction * step * Rational((1L << k) - 1, 1L << k);
+          if (driver_limits && (back < driver_limits->lo || back > driver_limits->hi)) break;
+          near = back;
+        }
+        query.trap.driver = direction > 0 ? RationalInterval{near, next} : RationalInterval{next, near};
+        query.start = JamStart{near, std::nullopt};
         return query;
       }
     } else if (overlapping_at(r, next, f)) {

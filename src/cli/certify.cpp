@@ -319,9 +319,23 @@ int run(const CertifyArguments& arguments) {
                                    " driver steps, more than 10000000: give a --step of at least " +
                                    shown(Rational(travel / 10000000)) + " or a shorter --travel");
         }
+        // the driver moves within its motion limits (session 56): a start beyond them is an input
+        // error, and a search that reaches the limit unblocked says so
+        const std::optional<RationalInterval>& driver_limits = rotates(driver) ? driver.motion.angle_limits : driver.motion.translation_limits;
+        const std::string unit = rotates(driver) ? " rad" : " mm";
+        if (driver_limits && (start < driver_limits->lo || start > driver_limits->hi))
+          throw ModelError("", (arguments.start.empty() ? std::string("the start") : "--start " + arguments.start) + ": " +
+                                   to_decimal_string(start) + unit + " lies outside the motion limits [" +
+                                   to_decimal_string(driver_limits->lo) + ", " + to_decimal_string(driver_limits->hi) + "]" +
+                                   unit + " of '" + driver.name + "'");
         query = find_jam(model, first, second, driver.name, start, follower, direction, step, travel);
         if (!query) {
-          std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
+          const Rational limit = driver_limits ? (direction > 0 ? driver_limits->hi : driver_limits->lo) : Rational(0);
+          if (driver_limits && abs(limit - start) < travel + step)
+            std::cerr << "hipair: cannot certify: no jam found: '" << driver.name << "' reaches its motion limit "
+                      << to_decimal_string(limit) << unit << " without being blocked\n";
+          else
+            std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
           return 1;
         }
         certificate = certify_found_jam(model, first, second, *query, step, context);

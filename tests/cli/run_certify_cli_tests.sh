@@ -498,6 +498,81 @@ PY
     || fail "seed $seed: $name (weaker than a valid claim, with its own statement) is rejected: $(printf '%s' "$out" | head -c 300)"
 done <"$work/rounded/list.txt"
 
+# ------------------------------------------------------------------ the jam search within the driver's limits
+# Session 56 (hunt56): `certify --claim jam`'s search drove the driver through its own motion
+# limits. lever-stop.json's lever (limits [-30, 120] deg) driven backward from 0 went round
+# through -30 deg to -5.452 rad and certified the stop's far side (2 pi further on) as the jam of
+# that motion; from 1 rad forward it passed 120 deg and certified 6.333 rad; a lever limited to
+# 2 deg (before the stop at 0.0498 rad) got "cannot certify: some configuration of the trap's
+# cut..." for the trap it had found past the limit; a --start beyond the limits was taken as
+# given. Oracle (closed form, tests/fuzz/motion_certificate_alterations.py): the lever overlaps
+# the stop exactly for theta in (theta_c, theta_x), theta_c = atan(3/20) - atan(4/sqrt(1620)) ~
+# 0.049834, theta_x = atan(4/5) + atan(4/sqrt(640)) ~ 0.831557; a translating square 2 mm wide
+# at x = s .. s + 2 meets a fixed square at x >= 3, raised by 0.5 mm, at s = 1 (with the two
+# squares' edges collinear no jam of that pair is certified, by base56 either: not fixed).
+lever="$source/examples/models/lever-stop.json"
+jam_case() {   # NAME MODEL EXPECTED(limit VALUE | jam LO HI | refused) ARGS...
+  local name=$1 model=$2 expect=$3; shift 3
+  local lo hi limit
+  case $expect in limit) limit=$1; shift ;; jam) lo=$1 hi=$2; shift 2 ;; esac
+  rm -f "$work/jam-$name.json"
+  "$hipair" certify "$model" --claim jam --out "$work/jam-$name.json" "$@" >"$work/jam-$name.out" 2>"$work/jam-$name.err"
+  local code=$? err
+  err=$(cat "$work/jam-$name.err")
+  case $expect in
+    limit)
+      [ $code -eq 1 ] && [ "$err" = "hipair: cannot certify: no jam found: '${JAM_PART:-lever}' reaches its motion limit $limit without being blocked" ] \
+        || fail "jam $name ($*): exit $code, not 1 with the driver's limit $limit: $err $(cat "$work/jam-$name.out")"
+      [ -e "$work/jam-$name.json" ] && fail "jam $name: a certificate written" ;;
+    refused)
+      [ $code -eq 2 ] && [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] && grep -q "outside the motion limits" "$work/jam-$name.err" \
+        || fail "jam $name ($*): exit $code, not 2 with one line naming the limits: $err"
+      [ -e "$work/jam-$name.json" ] && fail "jam $name: a certificate written" ;;
+    jam)
+      [ $code -eq 0 ] || { fail "jam $name ($*): not certified (exit $code): $err"; return; }
+      "$verify" "$work/jam-$name.json" "$model" >/dev/null 2>&1 || fail "jam $name: hipair-verify rejects it"
+      # the cut (the trap's far end) lies past the contact by at most the search's step and its
+      # certify_found_jam extensions, and not before the contact
+      python3 - "$work/jam-$name.json" "$lo" "$hi" <<'PY' || fail "jam $name ($*): the trap is not at the contact: $(cat "$work/jam-$name.out")"
+import json, sys
+from fractions import Fraction as F
+c = json.load(open(sys.argv[1]))["jam"]
+lo, hi = map(F, c["trap"]["driver"])
+far = hi if c["direction"] > 0 else lo
+sys.exit(0 if F(sys.argv[2]) <= far <= F(sys.argv[3]) else 1)
+PY
+      ;;
+  esac
+}
+jam_case back-from-0 "$lever" limit "-0.523598775599 rad" --direction -1
+jam_case forward-from-1 "$lever" limit "2.09439510239 rad" --start 1
+jam_case back-from-1 "$lever" jam 0.8135 0.8316 --start 1 --direction -1
+jam_case forward-from-0 "$lever" jam 0.0498 0.068 --direction +1
+jam_case start-beyond "$lever" refused --start 3
+jam_case start-below "$lever" refused --start -1 --direction -1
+sed 's/"limits": \[-30, 120\]/"limits": [-30, 2]/' "$lever" >"$work/lever-2deg.json"
+jam_case limit-before-stop "$work/lever-2deg.json" limit "0.0349065850403 rad"
+# A lever resting on its stop (stop gap 0: the upper side on the stop face at theta = 0, the
+# search's first grid point) and a square meeting a square at s = 1 (a point of the 0.01 mm grid):
+# the trap's near end touches, so no start was free and no such jam was certified (base56).
+sed 's/"stop-gap":     { "nominal": 2,/"stop-gap":     { "nominal": 0,/' "$lever" >"$work/lever-gap0.json"
+jam_case resting-on-stop "$work/lever-gap0.json" jam 0 0.0181
+cat >"$work/slider-block.json" <<'EOF'
+{ "hipair": 1, "name": "slider-block",
+  "parts": [
+    { "name": "slider", "motion": { "translation": { "direction": [1, 0], "limits": [-10, LIMIT] } },
+      "loops": [ { "start": [0, 0], "edges": [ { "line_to": [2, 0] }, { "line_to": [2, 2] }, { "line_to": [0, 2] }, { "line_to": [0, 0] } ] } ] },
+    { "name": "block", "motion": "fixed",
+      "loops": [ { "start": [3, 0.5], "edges": [ { "line_to": [5, 0.5] }, { "line_to": [5, 2.5] }, { "line_to": [3, 2.5] }, { "line_to": [3, 0.5] } ] } ] }
+  ] }
+EOF
+sed 's/LIMIT/10/' "$work/slider-block.json" >"$work/slider-10.json"
+sed 's/LIMIT/0.5/' "$work/slider-block.json" >"$work/slider-05.json"
+jam_case slider-jam "$work/slider-10.json" jam 1 1.09
+JAM_PART=slider jam_case slider-limit "$work/slider-05.json" limit "0.5 mm"
+JAM_PART=slider jam_case slider-back "$work/slider-10.json" limit "-10 mm" --direction -1
+jam_case slider-start-beyond "$work/slider-05.json" refused --start 0.75
+
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"
   exit 1
