@@ -2,6 +2,7 @@
 // its initial configuration (or the one given) as an SVG picture.
 #include "cli/commands.hpp"
 
+#include "core/angle_limits.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_paths.hpp"
 #include "render/mechanism_svg.hpp"
@@ -124,6 +125,52 @@ void apply_configuration(const Model& model, const std::vector<std::string>& ite
   }
 }
 
+// The configuration drawn must be one the mechanism can take: a part placed outside its motion
+// limits is refused, as the reader refuses such an initial configuration and `certify --at`
+// such a position (until session 56 `--config lever=1e400` drew the lever through its stop,
+// exit 0). Exact, allowing for the roundings of the limits as read (rounding_slack) and of a
+// degree value (below 1e-18 rad, degrees_to_radians), so that a part placed at a limit written
+// the same way is inside: a rotating part's angle against its limits as written (they bound the
+// unwrapped angle), a pin-slot part's modulo whole turns (initial_angle_within_limits, as the
+// reader), offsets against their limits. Parts left at their initial configuration were checked
+// by the reader.
+void refuse_outside_limits(const Model& model, const std::vector<PartConfiguration>& configurations) {
+  const Rational degree_rounding(1, 1000000000000000000ul);
+  for (std::size_t k = 0; k < model.parts.size(); ++k) {
+    const Part& part = model.parts[k];
+    const Motion& motion = part.motion;
+    const PartConfiguration& c = configurations[k];
+    if (c.angle == part.initial.angle && c.offset == part.initial.offset) continue;
+    auto slack = [&](const char* limits) {
+      return motion.pointer.empty() ? Rational(0) : rounding_slack(model.roundings, motion.pointer + limits);
+    };
+    auto text = [](const RationalInterval& limits, const char* unit) {
+      return "[" + to_decimal_string(limits.lo) + ", " + to_decimal_string(limits.hi) + "] " + unit;
+    };
+    const bool pin_slot = motion.kind == Motion::Kind::pin_slot;
+    if (motion.angle_limits && (motion.kind == Motion::Kind::rotation || pin_slot)) {
+      const RationalInterval& limits = *motion.angle_limits;
+      bool inside;
+      if (pin_slot) {
+        inside = initial_angle_within_limits(c.angle, limits, pin_slot_limits_slack(model.roundings, motion), degree_rounding);
+      } else {
+        const Rational allowed = slack("/rotation/limits/") + degree_rounding;
+        inside = limits.lo - allowed <= c.angle && c.angle <= limits.hi + allowed;
+      }
+      if (!inside)
+        throw ModelError("", "--config: part '" + part.name + "' at " + to_decimal_string(c.angle) +
+                                 " rad lies outside its angle limits " + text(limits, "rad") +
+                                 (pin_slot ? ", also after whole turns" : ""));
+    }
+    if (motion.translation_limits && (motion.kind == Motion::Kind::translation || pin_slot)) {
+      const Rational allowed = slack(pin_slot ? "/pin_slot/limits/" : "/translation/limits/");
+      if (c.offset < motion.translation_limits->lo - allowed || c.offset > motion.translation_limits->hi + allowed)
+        throw ModelError("", "--config: part '" + part.name + "' at offset " + to_decimal_string(c.offset) +
+                                 " mm lies outside its motion limits " + text(*motion.translation_limits, "mm"));
+    }
+  }
+}
+
 int run_show(const ShowOptions& options) {
   io::refuse_overwriting_input(options.svg, "--svg", options.model);
   io::refuse_unusable_output_files({{options.svg, "--svg"}});   // before reading and drawing
@@ -134,6 +181,7 @@ int run_show(const ShowOptions& options) {
   std::vector<PartConfiguration> configurations;
   for (const Part& part : model.parts) configurations.push_back(part.initial);
   apply_configuration(model, options.configuration, configurations);
+  refuse_outside_limits(model, configurations);
   render::MechanismSvgOptions drawing;
   drawing.labels = options.labels;
   drawing.pixel_width = options.width;

@@ -167,6 +167,25 @@ for case in "cam-follower.json --range 0:$((turns * 400))" "geneva.json --range=
   [ -e "$work/turns" ] && fail "tolerance $case: wrote its --out directory"
 done
 
+# `show --config` places a part only where its motion limits allow (session 56: lever=1e400 drew
+# the lever through its stop with exit 0): refused exactly beyond a limit, drawn exactly at it,
+# and the SVG not written
+lever="$source/examples/models/lever-stop.json"
+for case in "lever=1e400" "lever=-30.000000001deg" "lever=120.000000001" "lever=-0.5236rad"; do
+  rm -f "$work/limit.svg"
+  timeout 30 "$hipair" show "$lever" --config "$case" --svg "$work/limit.svg" >"$work/limit.out" 2>"$work/limit.err"
+  status=$?
+  [ $status -eq 2 ] || fail "show --config $case: exit $status, not 2: $(head -c 300 "$work/limit.err")"
+  [ "$(wc -l <"$work/limit.err")" -eq 1 ] || fail "show --config $case: not one line: $(head -c 300 "$work/limit.err")"
+  [ -e "$work/limit.svg" ] && fail "show --config $case: wrote its SVG"
+done
+grep -q "part 'lever' at .* lies outside its angle limits" "$work/limit.err" 2>/dev/null ||
+  grep -q "lever" "$work/limit.err" || fail "show --config: the message names no part: $(head -c 300 "$work/limit.err")"
+for case in "lever=-30" "lever=120deg" "lever=0.5rad" "lever=-30deg"; do
+  timeout 30 "$hipair" show "$lever" --config "$case" --svg "$work/limit.svg" >/dev/null 2>"$work/limit.err" ||
+    fail "show --config $case (inside the limits) refused: $(head -c 300 "$work/limit.err")"
+done
+
 if [ $failures -ne 0 ]; then
   echo "$failures hostile CLI check(s) failed (seed $seed)"
   exit 1
