@@ -1651,6 +1651,7 @@ Kinematic initial_kinematic(const Model& model, std::size_t part, const Simulati
 }  // namespace
 
 PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOptions& options) {
+  check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   SimulationSpec spec = simulation::start_simulation(s, model, options);
@@ -2807,6 +2808,7 @@ PlanarSystemSimulation& PlanarSystemSimulation::operator=(PlanarSystemSimulation
 PlanarSystemSimulation::~PlanarSystemSimulation() = default;
 
 PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const SimulationOptions& options) {
+  check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   SimulationSpec spec = simulation::start_simulation(s, model, options);

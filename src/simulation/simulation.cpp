@@ -2512,6 +2512,7 @@ void check_simulator_range(const Model& model) {
 }
 
 Simulation Simulation::create(const Model& model, const SimulationOptions& options) {
+  check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   SimulationSpec spec = simulation::start_simulation(s, model, options);

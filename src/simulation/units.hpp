@@ -13,14 +13,12 @@ inline double seconds_per(const SimulationSpec& spec) { return spec.time_unit ==
 inline double millinewtons_per(const SimulationSpec& spec) { return spec.force_unit == "mN" ? 1.0 : 1000.0; }
 
 /// The set-up every simulator's create starts with (the fixed-axis Simulation, PlanarSimulation,
-/// PlanarSystemSimulation): the model's initial coordinates checked against the doubles' range
-/// (check_simulator_range), the model and options kept, the model's units and their scales, and
-/// gravity in internal units (mm/s²). `State` is the simulator's state (its model, options,
-/// time_unit, force_unit, time_scale, force_scale and g[2]). Returns the model's simulation
-/// data, or the defaults when it has none.
+/// PlanarSystemSimulation), after its check_simulator_range: the model and options kept, the
+/// model's units and their scales, and gravity in internal units (mm/s²). `State` is the
+/// simulator's state (its model, options, time_unit, force_unit, time_scale, force_scale and
+/// g[2]). Returns the model's simulation data, or the defaults when it has none.
 template <class State>
 SimulationSpec start_simulation(State& s, const Model& model, const SimulationOptions& options) {
-  check_simulator_range(model);
   s.model = model;
   s.options = options;
   SimulationSpec spec = model.simulation.value_or(SimulationSpec{});

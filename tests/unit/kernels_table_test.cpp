@@ -399,7 +399,7 @@ TEST(ContactTable, ModelFeatureGeometryIsTheEdgesInEveryNumberType) {
     return Point{Rational(c.x + r * (1 - t * t) / w), Rational(c.y + r * 2 * t / w)};
   };
   auto angle = [](const Point& from, const Point& to) {
-    return std::atan2((to.y - from.y).get_d(), (to.x - from.x).get_d());
+    return std::atan2(Rational(to.y - from.y).get_d(), Rational(to.x - from.x).get_d());
   };
   auto to_double = [](const Rational& r) { return r.get_d(); };
   int large = 0, small = 0, full = 0;
