@@ -532,11 +532,7 @@ class Builder {
       for (const auto& h : around) {
         Incidence incidence;
         incidence.edge = edge_id.at(&*h);
-        bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
-        if (h->curve().is_vertical())
-          incidence.direction = source_is_smaller ? Direction::down : Direction::up;
-        else
-          incidence.direction = source_is_smaller ? Direction::left : Direction::right;
+        incidence.direction = leaving_direction(h->curve().is_vertical(), h->direction() == CGAL::ARR_LEFT_TO_RIGHT);
         incidence.wedge_face = face_id.at(&*h->face());
         out.around.push_back(incidence);
       }
@@ -544,18 +540,9 @@ class Builder {
       out.face_above = wedge_containing(around, out.around, v->point(), false);
     }
     debug_time("incidences");
-    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
-      Face& out = result_.faces[face_id.at(&*f)];
-      auto add_ccb = [&](Arrangement_2::Ccb_halfedge_const_circulator c) {
-        out.component_starts.push_back(out.boundary.size());
-        auto first = c;
-        do {
-          if (!c->is_fictitious()) out.boundary.emplace_back(edge_id.at(&*c), forward.at(&*c));
-        } while (++c != first);
-      };
-      if (f->has_outer_ccb()) add_ccb(f->outer_ccb());
-      for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner) add_ccb(*inner);
-    }
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
+      export_face_boundary(*f, result_.faces[face_id.at(&*f)], [&](const auto& c) { return edge_id.at(&*c); },
+                           [&](const auto& c) { return forward.at(&*c); });
   }
 
   // CGAL 5.5.1's incremental insertion can record one point as two vertices (docs/cspace.md,
@@ -753,32 +740,14 @@ class Builder {
   // a class, CGAL's comparisons to the right/left of the vertex.
   std::size_t wedge_containing(const std::vector<Arrangement_2::Halfedge_const_handle>& around,
                                const std::vector<Incidence>& incidences, const Point& p, bool below) {
-    const std::size_t n = incidences.size();
-    Direction reference = below ? Direction::down : Direction::up;
-    for (const auto& incidence : incidences)
-      if (incidence.direction == reference) return none;  // the ray runs along an edge
-    if (n == 1) return incidences[0].wedge_face;
-    auto key = [&](Direction d) {
-      // clockwise from the reference
-      if (below) return d == Direction::left ? 1 : d == Direction::up ? 2 : 3;
-      return d == Direction::right ? 1 : d == Direction::down ? 2 : 3;
-    };
     auto compare_right = traits().compare_y_at_x_right_2_object();
     auto compare_left = traits().compare_y_at_x_left_2_object();
-    // is the angle of a before the angle of b (clockwise from the reference)?
-    auto before = [&](std::size_t a, std::size_t b) {
-      Direction da = incidences[a].direction, db = incidences[b].direction;
-      if (da != db) return key(da) < key(db);
-      if (da == Direction::right)  // clockwise runs top to bottom
+    return wedge_around(incidences, below, [&](std::size_t a, std::size_t b, Direction side) {
+      if (side == Direction::right)  // clockwise runs top to bottom
         return compare_right(around[a]->curve(), around[b]->curve(), p) == CGAL::LARGER;
       // left: clockwise runs bottom to top
       return compare_left(around[a]->curve(), around[b]->curve(), p) == CGAL::SMALLER;
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t next = (i + 1) % n;
-      if (!before(i, next)) return incidences[i].wedge_face;  // the clockwise sweep wraps past the reference
-    }
-    throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
+    });
   }
 
   void fill_arc_numbers(const XCurve& arc, const Algebraic_real_1& x_min, const Algebraic_real_1& x_max,

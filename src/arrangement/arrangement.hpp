@@ -7,6 +7,7 @@
 #include "algebra/exact_real.hpp"
 #include "curves/contact_curves.hpp"
 
+#include <hipair/error.hpp>
 #include <hipair/rational.hpp>
 
 #include <array>
@@ -33,6 +34,44 @@ struct Incidence {
   Direction direction = Direction::right;
   std::size_t wedge_face = none;   ///< face between this edge and the next one clockwise
 };
+
+/// The direction in which an edge leaves a vertex, from the edge's halfedge that ends at the
+/// vertex: down or up along a vertical edge, else left or right (`source_is_smaller`: the
+/// halfedge runs from the edge's smaller end, so the edge leaves the vertex towards it).
+inline Direction leaving_direction(bool vertical, bool source_is_smaller) {
+  if (vertical) return source_is_smaller ? Direction::down : Direction::up;
+  return source_is_smaller ? Direction::left : Direction::right;
+}
+
+/// Which wedge around a vertex contains the ray straight down (`below`) or straight up from it:
+/// the face after the incidence at which the clockwise sweep from that reference direction wraps
+/// around; `none` when the ray runs along an edge. `incidences` are the vertex's, clockwise.
+/// `clockwise_before(a, b, side)` decides the order of incidences a and b that both leave on
+/// `side` (Direction::right: the upper curve first; Direction::left: the lower curve first) with
+/// the stage's exact comparison of the curves beside the vertex; every other order is fixed by
+/// the directions. One definition for the arrangement stages (algebraic, quadratic and
+/// circle-segment traits).
+template <class ClockwiseBefore>
+std::size_t wedge_around(const std::vector<Incidence>& incidences, bool below, ClockwiseBefore&& clockwise_before) {
+  const std::size_t n = incidences.size();
+  const Direction reference = below ? Direction::down : Direction::up;
+  for (const auto& incidence : incidences)
+    if (incidence.direction == reference) return none;   // the ray runs along an edge
+  if (n == 1) return incidences[0].wedge_face;
+  auto key = [&](Direction d) {   // clockwise from the reference
+    if (below) return d == Direction::left ? 1 : d == Direction::up ? 2 : 3;
+    return d == Direction::right ? 1 : d == Direction::down ? 2 : 3;
+  };
+  // is the angle of a before the angle of b (clockwise from the reference)?
+  auto before = [&](std::size_t a, std::size_t b) {
+    const Direction da = incidences[a].direction, db = incidences[b].direction;
+    if (da != db) return key(da) < key(db);
+    return clockwise_before(a, b, da);
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    if (!before(i, (i + 1) % n)) return incidences[i].wedge_face;   // the sweep wraps past the reference
+  throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
+}
 
 /// A vertex. Its x is an exact algebraic number. Its y is the `y_branch`-th (0-based,
 /// ascending) distinct real root of y_curve(x, y) in y: exact; as an algebraic number `y`
@@ -88,6 +127,24 @@ struct Face {
   std::vector<std::size_t> component_starts;            ///< index in `boundary` of each component
   std::vector<std::size_t> isolated_vertices;
 };
+
+/// The boundary of face `f` of a CGAL arrangement into `out`: its outer boundary (when it has
+/// one), then each hole's, each component in the arrangement's order with the fictitious
+/// halfedges left out, `component_starts` marking where each begins. `edge_of(h)` and
+/// `forward_of(h)` give the export's edge of a halfedge and whether the halfedge runs from the
+/// edge's min vertex to its max (the algebraic and the quadratic stages' export).
+template <class ArrangementFace, class EdgeOf, class ForwardOf>
+void export_face_boundary(const ArrangementFace& f, Face& out, EdgeOf&& edge_of, ForwardOf&& forward_of) {
+  auto add_ccb = [&](auto c) {
+    out.component_starts.push_back(out.boundary.size());
+    auto first = c;
+    do {
+      if (!c->is_fictitious()) out.boundary.emplace_back(edge_of(c), forward_of(c));
+    } while (++c != first);
+  };
+  if (f.has_outer_ccb()) add_ccb(f.outer_ccb());
+  for (auto inner = f.inner_ccbs_begin(); inner != f.inner_ccbs_end(); ++inner) add_ccb(*inner);
+}
 
 struct StageTimes {
   double curves_seconds = 0;        ///< curve analysis + x-monotone split + clipping

@@ -1076,11 +1076,9 @@ class Builder {
       for (const auto& h : around) {
         Incidence incidence;
         incidence.edge = edge_id(h);
-        bool source_is_smaller = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
-        if (result_.edges[incidence.edge].vertical)   // (is_vertical above, without CGAL's line)
-          incidence.direction = source_is_smaller ? Direction::down : Direction::up;
-        else
-          incidence.direction = source_is_smaller ? Direction::left : Direction::right;
+        // (the exported edge's vertical: is_vertical without CGAL's line)
+        incidence.direction =
+            leaving_direction(result_.edges[incidence.edge].vertical, h->direction() == CGAL::ARR_LEFT_TO_RIGHT);
         incidence.wedge_face = h->face()->data();
         out.around.push_back(incidence);
       }
@@ -1114,29 +1112,15 @@ class Builder {
   }
 
   // Which wedge around the vertex contains the straight-down (below) or straight-up direction?
-  // (As in algebraic_traits.cpp: angles clockwise from the reference direction.)
+  // (arrangement.hpp, wedge_around: angles clockwise from the reference direction.)
   std::size_t wedge_containing(const std::vector<typename Arrangement_2::Halfedge_const_handle>& around,
                                const std::vector<Incidence>& incidences, const Point& p, bool below) const {
-    const std::size_t n = incidences.size();
-    Direction reference = below ? Direction::down : Direction::up;
-    for (const auto& incidence : incidences)
-      if (incidence.direction == reference) return none;
-    if (n == 1) return incidences[0].wedge_face;
-    auto key = [&](Direction d) {
-      if (below) return d == Direction::left ? 1 : d == Direction::up ? 2 : 3;
-      return d == Direction::right ? 1 : d == Direction::down ? 2 : 3;
-    };
     auto compare_right = traits_.compare_y_at_x_right_2_object();
     auto compare_left = traits_.compare_y_at_x_left_2_object();
-    auto before = [&](std::size_t a, std::size_t b) {
-      Direction da = incidences[a].direction, db = incidences[b].direction;
-      if (da != db) return key(da) < key(db);
-      if (da == Direction::right) return compare_right(around[a]->curve(), around[b]->curve(), p) == CGAL::LARGER;
+    return wedge_around(incidences, below, [&](std::size_t a, std::size_t b, Direction side) {
+      if (side == Direction::right) return compare_right(around[a]->curve(), around[b]->curve(), p) == CGAL::LARGER;
       return compare_left(around[a]->curve(), around[b]->curve(), p) == CGAL::SMALLER;
-    };
-    for (std::size_t i = 0; i < n; ++i)
-      if (!before(i, (i + 1) % n)) return incidences[i].wedge_face;
-    throw GeometryError("internal: no wedge contains the vertical direction at a vertex");
+    });
   }
 
   // The support of an edge: for a piece of an input line, that line's primitive polynomial

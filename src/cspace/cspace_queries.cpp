@@ -31,8 +31,10 @@
 #include "cspace/start_filter.hpp"
 #include "algebra/interval_shift.hpp"
 #include "core/kept_per_thread.hpp"
+#include "core/mp_values.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact_geometry.hpp"
+#include "kernels/model_features.hpp"
 #include "kernels/implicit_curve.hpp"
 #include "kernels/interval.hpp"
 
@@ -150,11 +152,8 @@ std::optional<RInterval> evaluate_path_filtered(const std::vector<KInterval>& p,
 
 // ------------------------------------------------------------------ feature geometry
 
-template <class T, class Convert>
-kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id, Convert&& convert) {
-  const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
-  return cspace::feature_geometry<T>(edge, id.kind, convert);
-}
+// The pair's features as the kernels' body geometry: kernels::feature_geometry (model_features.hpp).
+using kernels::feature_geometry;
 
 // The contact frame of feature pair `pair` at chart values (x, y) of chart `c`, in T.
 template <class T, class Convert>
@@ -1251,21 +1250,9 @@ namespace {
 
 constexpr mpfr_prec_t precision = 160;
 
-// RAII for MPFI / MPFR values.
-struct Mpfi {
-  mpfi_t v;
-  explicit Mpfi(mpfr_prec_t bits = precision) { mpfi_init2(v, bits); }
-  ~Mpfi() { mpfi_clear(v); }
-  Mpfi(const Mpfi&) = delete;
-  Mpfi& operator=(const Mpfi&) = delete;
-};
-struct Mpfr {
-  mpfr_t v;
-  explicit Mpfr(mpfr_prec_t bits = precision) { mpfr_init2(v, bits); }
-  ~Mpfr() { mpfr_clear(v); }
-  Mpfr(const Mpfr&) = delete;
-  Mpfr& operator=(const Mpfr&) = delete;
-};
+// RAII for MPFI / MPFR values: core/mp_values.hpp.
+using Mpfi = MpfiValue;
+using Mpfr = MpfrValue;
 
 Rational to_rational(const mpfr_t value) {
   Rational r;

@@ -87,24 +87,6 @@ Point edge_tangent(const Edge& edge, const Point& at) {
   return Point{Rational(-left.x), Rational(-left.y)};
 }
 
-kernels::ArcSector<Rational> arc_sector(const Edge& edge) {
-  kernels::ArcSector<Rational> sector;
-  Point from_source = difference(edge.source, edge.center);
-  Point from_target = difference(edge.target, edge.center);
-  if (edge.is_full_circle()) {
-    sector.full = true;
-    sector.start = to_kernel(from_source);
-    sector.end = to_kernel(from_source);
-    return sector;
-  }
-  Point start = edge.ccw ? from_source : from_target;
-  Point end = edge.ccw ? from_target : from_source;
-  sector.start = to_kernel(start);
-  sector.end = to_kernel(end);
-  sector.large = sgn(cross(start, end)) < 0;
-  return sector;
-}
-
 bool sector_contains(const kernels::ArcSector<Rational>& sector, const Point& v) {
   if (sector.full) return true;
   Point start{sector.start.x, sector.start.y};

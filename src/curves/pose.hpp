@@ -7,6 +7,7 @@
 
 #include "kernels/contact.hpp"
 #include "kernels/contact_geometry.hpp"
+#include "kernels/model_features.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -118,41 +119,11 @@ std::string curve_label(const Model& model, const FeatureRef& first, const Featu
 /// (kernels/contact_table.hpp, kernels/contact_geometry.hpp).
 kernels::FeatureGeometry<Rational> feature_geometry(const BodyFeature& feature);
 
-/// The counter-clockwise sector of an arc edge seen from its centre (body frame).
-kernels::ArcSector<Rational> arc_sector(const Edge& edge);
-
-/// The body geometry of the feature of kind `kind` on `edge` (a vertex: the edge's source) in
-/// any number type T, `convert` taking the model's rationals to T: the one map from a model
-/// feature to the kernels' FeatureGeometry (curve generation, contact frames of the adaptor).
-template <class T, class Convert>
-kernels::FeatureGeometry<T> feature_geometry(const Edge& edge, FeatureKind kind, Convert&& convert) {
-  kernels::FeatureGeometry<T> f;
-  auto vec = [&](const auto& p) { return kernels::Vector<T>{convert(p.x), convert(p.y)}; };
-  switch (kind) {
-    case FeatureKind::vertex:
-      f.shape = kernels::FeatureShape::vertex;
-      f.point = vec(edge.source);
-      break;
-    case FeatureKind::segment:
-      f.shape = kernels::FeatureShape::segment;
-      f.point = vec(edge.source);
-      f.target = vec(edge.target);
-      break;
-    case FeatureKind::arc: {
-      f.shape = kernels::FeatureShape::arc;
-      f.center = vec(edge.center);
-      f.radius_squared = convert(edge.radius_squared);
-      f.convex = edge.ccw;
-      kernels::ArcSector<Rational> sector = arc_sector(edge);
-      f.sector.start = vec(sector.start);
-      f.sector.end = vec(sector.end);
-      f.sector.large = sector.large;
-      f.sector.full = sector.full;
-      break;
-    }
-  }
-  return f;
-}
+/// The counter-clockwise sector of an arc edge, and the body geometry of a model feature in any
+/// number type: the kernels' one map from a model feature to FeatureGeometry
+/// (kernels/model_features.hpp), used by curve generation and the adaptor's contact frames.
+using kernels::arc_sector;
+using kernels::feature_geometry;
 
 /// Exact square root of a non-negative rational when it is rational.
 std::optional<Rational> exact_square_root(const Rational& value);

@@ -41,6 +41,7 @@
 #include <hipair/simulation.hpp>
 
 #include "kernels/contact_geometry.hpp"
+#include "kernels/model_features.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
@@ -122,31 +123,10 @@ T number(const Rational& r) {
 }
 
 // A feature of the model in body coordinates (an arc with its centre, squared radius, side and
-// angular sector: the kernels' FeatureGeometry).
+// angular sector): the kernels' FeatureGeometry (kernels/model_features.hpp) in T.
 template <class T>
 kernels::FeatureGeometry<T> feature_geometry(const Model& model, const FeatureIdentity& id) {
-  const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
-  kernels::FeatureGeometry<T> f;
-  f.shape = kernels::FeatureShape::arc;
-  if (id.kind == FeatureKind::arc) {
-    f.center = kernels::Vector<T>{number<T>(edge.center.x), number<T>(edge.center.y)};
-    f.radius_squared = number<T>(edge.radius_squared);
-    f.convex = edge.ccw;
-    const Rational sx = edge.source.x - edge.center.x, sy = edge.source.y - edge.center.y;
-    const Rational tx = edge.target.x - edge.center.x, ty = edge.target.y - edge.center.y;
-    const bool full = edge.is_full_circle();
-    const Rational ax = full || edge.ccw ? sx : tx, ay = full || edge.ccw ? sy : ty;
-    const Rational bx = full || edge.ccw ? tx : sx, by = full || edge.ccw ? ty : sy;
-    f.sector.full = full;
-    f.sector.start = kernels::Vector<T>{number<T>(ax), number<T>(ay)};
-    f.sector.end = kernels::Vector<T>{number<T>(bx), number<T>(by)};
-    f.sector.large = !full && sgn(ax * by - ay * bx) < 0;
-    return f;
-  }
-  f.shape = id.kind == FeatureKind::vertex ? kernels::FeatureShape::vertex : kernels::FeatureShape::segment;
-  f.point = kernels::Vector<T>{number<T>(edge.source.x), number<T>(edge.source.y)};
-  f.target = kernels::Vector<T>{number<T>(edge.target.x), number<T>(edge.target.y)};
-  return f;
+  return kernels::feature_geometry<T>(model, id, [](const Rational& r) { return number<T>(r); });
 }
 
 // The contact function of a held pair at a pose of the planar part: the kernels' contact point
@@ -627,6 +607,20 @@ void run_steps(State& s, double t_end, const std::function<void(double)>& progre
     // no progress possible (t_end reached in the internal unit)
     if (s.t == before && s.events.size() == events) break;
   }
+}
+
+// The span (internal time) of the next step of either planar simulator towards t_limit (the
+// model's time unit; `limit`: it in internal time), at most the options' max_step; 0 (no step)
+// when there is nothing left to do. A step counts against max_steps.
+template <class State>
+double next_span(State& s, double t_limit, double& limit) {
+  limit = t_limit * s.time_scale;
+  double span = limit - s.t;
+  if (s.options.max_step > 0) span = std::min(span, s.options.max_step * s.time_scale);
+  if (!(span > 0)) return 0;
+  if (++s.steps > s.options.max_steps)
+    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
+  return span;
 }
 
 }  // namespace
@@ -1740,13 +1734,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
   check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
-  s.model = model;
-  s.options = options;
-  SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
-  s.time_unit = spec.time_unit;
-  s.force_unit = spec.force_unit;
-  s.time_scale = simulation::seconds_per(spec);
-  s.force_scale = simulation::millinewtons_per(spec);
+  SimulationSpec spec = simulation::start_simulation(s, model, options);
   const double fs = s.force_scale, ts = s.time_scale;
   std::optional<std::size_t> planar;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -1770,7 +1758,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     throw ModelError(spec.drivers.front().pointer, "a driven planar part among fixed parts only would jam: drivers of "
                                                    "planar parts are PlanarSystemSimulation's (several planar parts)");
   const Dynamics& dyn = checked_planar_dynamics(part);
-  s.mass = to_d(*dyn.mass);
+  simulation::set_planar_loads(s, dyn, fs, ts, s.g);
   {
     // the loads in exact rationals (the unit factors are exact: 1 or 1/1000 s, 1000 or 1 mN)
     const Rational ts_exact = spec.time_unit == "ms" ? Rational(1, 1000) : Rational(1);
@@ -1783,24 +1771,8 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     }
     if (dyn.torque) s.load_torque = *dyn.torque * fs_exact;
   }
-  s.inertia = to_d(*dyn.moment_of_inertia);
-  if (dyn.force) {
-    s.force[0] = to_d(dyn.force->x) * fs;
-    s.force[1] = to_d(dyn.force->y) * fs;
-  }
-  if (dyn.torque) s.torque = to_d(*dyn.torque) * fs;
-  if (dyn.damping) s.damping_rate = to_d(*dyn.damping) * fs * ts / s.mass;
-  s.g[0] = to_d(spec.gravity.x) / (ts * ts);
-  s.g[1] = to_d(spec.gravity.y) / (ts * ts);
-  s.accel[0] = s.g[0] + s.force[0] / s.mass;
-  s.accel[1] = s.g[1] + s.force[1] / s.mass;
-  s.alpha = s.torque / s.inertia;
   // springs: a torsional spring to the frame about the pivot; linear springs and dampers from a
   // point of the part to a point of a fixed part (a spring between two fixed parts acts on nothing)
-  if (dyn.torsional_spring) {
-    s.torsion_k = to_d(dyn.torsional_spring->stiffness) * fs;
-    s.torsion_rest = to_d(dyn.torsional_spring->rest);
-  }
   for (const auto& coupling : spec.couplings) {
     if (coupling.first != s.part && coupling.second != s.part) continue;
     const bool first = coupling.first == s.part;
@@ -1822,7 +1794,7 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
     s.reach = r.reach;
     s.reach_bound = r.bound;
   }
-  double accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
+  double accuracy = simulation::simulation_accuracy(options, spec);
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : accuracy * std::max(s.reach, 1.0);
   s.accuracy = accuracy;
   // held contacts are kept 3/4 delta apart and chords deviate at most delta / 2 from the path
@@ -1871,12 +1843,9 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
 
 void PlanarSimulation::step(double t_limit) {
   Impl& s = *impl_;
-  double limit = t_limit * s.time_scale;
-  double span = limit - s.t;
-  if (s.options.max_step > 0) span = std::min(span, s.options.max_step * s.time_scale);
+  double limit = 0;
+  const double span = next_span(s, t_limit, limit);
   if (!(span > 0)) return;
-  if (++s.steps > s.options.max_steps)
-    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
   // forces balanced and constant: a resting part stays
   bool event = !s.resting && (s.held.empty() && !s.integrated ? s.advance(span) : s.held_advance(span));
   if (!event) s.t = span == limit - s.t ? limit : s.t + span;
@@ -2950,16 +2919,8 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
   check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
-  s.model = model;
-  s.options = options;
-  SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
-  s.time_unit = spec.time_unit;
-  s.force_unit = spec.force_unit;
-  s.time_scale = simulation::seconds_per(spec);
-  s.force_scale = simulation::millinewtons_per(spec);
+  SimulationSpec spec = simulation::start_simulation(s, model, options);
   const double fs = s.force_scale, ts = s.time_scale;
-  s.g[0] = to_d(spec.gravity.x) / (ts * ts);
-  s.g[1] = to_d(spec.gravity.y) / (ts * ts);
   s.body_of.assign(model.parts.size(), no_index);
   double max_reach = 0, max_accel = 0;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -2974,21 +2935,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     const Dynamics& dyn = driven ? driver_dynamics : checked_planar_dynamics(part);
     Impl::Body b;
     b.part = p;
-    b.mass = to_d(*dyn.mass);
-    b.inertia = to_d(*dyn.moment_of_inertia);
-    if (dyn.force) {
-      b.force[0] = to_d(dyn.force->x) * fs;
-      b.force[1] = to_d(dyn.force->y) * fs;
-    }
-    if (dyn.torque) b.torque = to_d(*dyn.torque) * fs;
-    if (dyn.damping) b.damping_rate = to_d(*dyn.damping) * fs * ts / b.mass;
-    if (dyn.torsional_spring) {
-      b.torsion_k = to_d(dyn.torsional_spring->stiffness) * fs;
-      b.torsion_rest = to_d(dyn.torsional_spring->rest);
-    }
-    b.accel[0] = s.g[0] + b.force[0] / b.mass;
-    b.accel[1] = s.g[1] + b.force[1] / b.mass;
-    b.alpha = b.torque / b.inertia;
+    simulation::set_planar_loads(b, dyn, fs, ts, s.g);
     b.pivot[0] = to_d(part.motion.pivot.x);
     b.pivot[1] = to_d(part.motion.pivot.y);
     PlanarReach reach = planar_reach(part);
@@ -3033,7 +2980,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     sp.c = to_d(coupling.damping) * fs * ts;
     s.springs.push_back(sp);
   }
-  s.accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
+  s.accuracy = simulation::simulation_accuracy(options, spec);
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * std::max(max_reach, 1.0);
   s.rest_speed = std::sqrt(2 * max_accel * s.delta);
   s.hold_gap = 0.75 * s.delta;
@@ -3084,12 +3031,9 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
 
 void PlanarSystemSimulation::step(double t_limit) {
   Impl& s = *impl_;
-  double limit = t_limit * s.time_scale;
-  double span = limit - s.t;
-  if (s.options.max_step > 0) span = std::min(span, s.options.max_step * s.time_scale);
+  double limit = 0;
+  const double span = next_span(s, t_limit, limit);
   if (!(span > 0)) return;
-  if (++s.steps > s.options.max_steps)
-    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
   double before = s.t;
   bool event = s.advance(span);
   // the last step of a run ends at its limit exactly (the integrator's sum may differ by an ulp)

@@ -2515,16 +2515,8 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
   check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
-  s.model = model;
-  s.options = options;
-  SimulationSpec spec = model.simulation.value_or(SimulationSpec{});
-  s.time_unit = spec.time_unit;
-  s.force_unit = spec.force_unit;
-  s.time_scale = simulation::seconds_per(spec);
-  s.force_scale = simulation::millinewtons_per(spec);   // internal force: kg mm / s^2 = mN
-  s.accuracy = options.accuracy > 0 ? options.accuracy : spec.accuracy ? to_d(*spec.accuracy) : 1e-9;
-  s.g[0] = to_d(spec.gravity.x) / (s.time_scale * s.time_scale);
-  s.g[1] = to_d(spec.gravity.y) / (s.time_scale * s.time_scale);
+  SimulationSpec spec = simulation::start_simulation(s, model, options);
+  s.accuracy = simulation::simulation_accuracy(options, spec);
   const double fs = s.force_scale, ts = s.time_scale;
 
   s.part_dof.assign(model.parts.size(), -1);

@@ -5,6 +5,7 @@
 #include <hipair/sliced.hpp>
 
 #include "kernels/contact_geometry.hpp"
+#include "kernels/model_features.hpp"
 
 namespace hipair {
 namespace {
@@ -13,28 +14,9 @@ using V = kernels::Vector<Rational>;
 
 V vec(const Point& p) { return V{p.x, p.y}; }
 
-// The body geometry of a feature for the frame formulas (the arc sector is not needed there).
+// The body geometry of a feature for the frame formulas (kernels/model_features.hpp).
 kernels::FeatureGeometry<Rational> geometry_of(const Model& model, const FeatureIdentity& id) {
-  const Edge& edge = model.parts.at(id.part).loops.at(id.loop).edges.at(id.edge);
-  kernels::FeatureGeometry<Rational> f;
-  switch (id.kind) {
-    case FeatureKind::vertex:
-      f.shape = kernels::FeatureShape::vertex;
-      f.point = vec(edge.source);
-      break;
-    case FeatureKind::segment:
-      f.shape = kernels::FeatureShape::segment;
-      f.point = vec(edge.source);
-      f.target = vec(edge.target);
-      break;
-    case FeatureKind::arc:
-      f.shape = kernels::FeatureShape::arc;
-      f.center = vec(edge.center);
-      f.radius_squared = edge.radius_squared;
-      f.convex = edge.ccw;
-      break;
-  }
-  return f;
+  return kernels::feature_geometry<Rational>(model, id, [](const Rational& r) { return r; });
 }
 
 }  // namespace

@@ -188,9 +188,7 @@ using tolerance_detail::CurveSolver;
 using Interval = kernels::Interval;
 constexpr double pi = std::numbers::pi;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using tolerance_detail::seconds_since;
 
 // CPU time of the calling thread, or of the whole process (s).
 double cpu_seconds(bool process = false) {

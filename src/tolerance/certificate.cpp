@@ -23,10 +23,6 @@ namespace {
 using verify::Interval;
 using verify::Jet;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 double approx(const Interval& x) { return x.is_bounded() ? x.middle().get_d() : std::nan(""); }
 
 // x rounded down (or up) to a multiple of 10^-14: short exact rationals in the certificate.
@@ -184,22 +180,11 @@ class Producer {
       return result;
     }
     const Model& m = request_.model->nominal();
-    Certificate c;
-    c.claim = ClaimKind::tolerance;
-    c.model_name = m.name;
-    c.model_file = request_.model_file;
-    c.content_hash = m.content_hash;
-    for (const Parameter& p : m.parameters) c.parameters.push_back({p.name, p.nominal, false});
-    c.roundings = m.roundings;
-    c.first = claim_.driver;
-    c.second = claim_.follower;
-    c.tolerance = claim_;
-    file_scale_margins(m, *c.tolerance);
-    c.statement = certificate_statement(c, m);
-    auto verify_start = std::chrono::steady_clock::now();
-    VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), request_.model_text,
-                                                      request_.model_file);
-    result.seconds_verify = seconds_since(verify_start);
+    ToleranceClaim claim = claim_;
+    file_scale_margins(m, claim);
+    CheckedCertificate checked = checked_tolerance_certificate(m, claim, request_.model_text, request_.model_file);
+    const VerificationResult& check = checked.check;
+    result.seconds_verify = checked.seconds_verify;
     // A no_jam certificate whose evidence passes checks 1-6 is "valid" when the verifier's check 7
     // proves a free follower path across the range, otherwise "unproven" (docs/certify.md).
     if (!check.valid && !check.unproven)
@@ -210,7 +195,7 @@ class Producer {
       std::size_t at = check.summary.find("; not proved: ");
       result.reason = at == std::string::npos ? check.summary : check.summary.substr(at + 2);
     }
-    result.certificate = std::move(c);
+    result.certificate = std::move(checked.certificate);
     return result;
   }
 
@@ -958,6 +943,26 @@ class Producer {
 };
 
 }  // namespace
+
+CheckedCertificate checked_tolerance_certificate(const Model& model, const ToleranceClaim& claim,
+                                                 const std::string& model_text, const std::string& model_file) {
+  CheckedCertificate out;
+  Certificate& c = out.certificate;
+  c.claim = ClaimKind::tolerance;
+  c.model_name = model.name;
+  c.model_file = model_file;
+  c.content_hash = model.content_hash;
+  for (const Parameter& p : model.parameters) c.parameters.push_back({p.name, p.nominal, false});
+  c.roundings = model.roundings;
+  c.first = claim.driver;
+  c.second = claim.follower;
+  c.tolerance = claim;
+  c.statement = certificate_statement(c, model);
+  auto verify_start = std::chrono::steady_clock::now();
+  out.check = check_certificate_text(read_certificate(write_certificate(c)), model_text, model_file);
+  out.seconds_verify = seconds_since(verify_start);
+  return out;
+}
 
 ToleranceCertification certify_no_jam(const CertifyRequest& request) { return Producer(request).run(); }
 

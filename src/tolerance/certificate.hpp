@@ -9,6 +9,7 @@
 #include <hipair/cspace.hpp>
 #include <hipair/tolerance.hpp>
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -71,6 +72,25 @@ struct ThresholdBracket {
 };
 ThresholdBracket bracket_threshold(const CertifyRequest& request, const Rational& below, const Rational& above,
                                    double relative, std::size_t max_steps = 80);
+
+/// Seconds of the steady clock since `start` (the producers' and the analysis's timings).
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// A tolerance certificate and the verifier's re-check of its written text.
+struct CheckedCertificate {
+  Certificate certificate;
+  VerificationResult check;
+  double seconds_verify = 0;   ///< the re-check's time
+};
+
+/// The tolerance certificate of `claim` about the nominal model `model` (whose file is
+/// `model_file` with text `model_text`), written, read back and checked by the verifier's code
+/// (check_certificate_text): what both producers (certify_no_jam, the no-interference search)
+/// hand back once their leaves cover the region. The caller judges the check.
+CheckedCertificate checked_tolerance_certificate(const Model& model, const ToleranceClaim& claim,
+                                                 const std::string& model_text, const std::string& model_file);
 
 /// Runs the branch-and-bound; a certificate it returns has been re-checked by the verifier's
 /// code. \throws GeometryError when a produced certificate fails the re-check (a bug).

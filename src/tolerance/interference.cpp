@@ -8,6 +8,7 @@
 // doubles it uses to rank them); it decides nothing: the certificate is re-checked from its JSON
 // text, and an interference is reported only with an exact witness.
 #include "certify/tolerance_check.hpp"
+#include "tolerance/certificate.hpp"
 #include "model/parametric/parametric.hpp"
 
 #include <hipair/error.hpp>
@@ -28,9 +29,7 @@ namespace {
 
 using verify::Interval;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using tolerance_detail::seconds_since;
 
 // x rounded down to a multiple of 10^-12 (short rationals for the exact witness's tangents).
 Rational grid(double x) {
@@ -121,24 +120,13 @@ class InterferenceProducer {
       result.reason = reason_;
       return result;
     }
-    const Model& m = model_->nominal();
-    Certificate c;
-    c.claim = ClaimKind::tolerance;
-    c.model_name = m.name;
-    c.model_file = source_;
-    c.content_hash = m.content_hash;
-    for (const Parameter& p : m.parameters) c.parameters.push_back({p.name, p.nominal, false});
-    c.roundings = m.roundings;
-    c.first = claim_.driver;
-    c.second = claim_.follower;
-    c.tolerance = claim_;
-    c.statement = certificate_statement(c, m);
-    auto verify_start = std::chrono::steady_clock::now();
-    VerificationResult check = check_certificate_text(read_certificate(write_certificate(c)), text_, source_);
-    result.seconds_verify = seconds_since(verify_start);
-    if (!check.valid) throw GeometryError("no-interference certificate failed its own check (a producer bug): " + check.reason);
+    tolerance_detail::CheckedCertificate checked =
+        tolerance_detail::checked_tolerance_certificate(model_->nominal(), claim_, text_, source_);
+    result.seconds_verify = checked.seconds_verify;
+    if (!checked.check.valid)
+      throw GeometryError("no-interference certificate failed its own check (a producer bug): " + checked.check.reason);
     result.outcome = ToleranceCertification::Outcome::certified;
-    result.certificate = std::move(c);
+    result.certificate = std::move(checked.certificate);
     return result;
   }
 

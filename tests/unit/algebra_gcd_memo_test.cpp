@@ -7,6 +7,7 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/modular_gcd.hpp"
 #include "algebra/polynomial.hpp"
+#include "random_integers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -88,11 +89,9 @@ Polynomial times(const Polynomial& p, const Polynomial& q) {
 
 // A random integer of about `bits` bits (either sign, never zero when `nonzero`).
 mpz_class random_integer(std::mt19937_64& random, int bits, bool nonzero) {
-  mpz_class v = 0;
-  for (int b = 0; b < bits; b += 32) v = (v << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
-  v >>= static_cast<unsigned long>((bits + 31) / 32 * 32 - bits);
+  mpz_class v = test_random::below_power_of_two(random, bits);
   if (nonzero && v == 0) v = 1;
-  return random() % 2 ? v : mpz_class(-v);
+  return test_random::random_sign(random, v);
 }
 
 // Random factors of degree 1 to 4 with coefficients of 1 to 300 bits (leading coefficients of

@@ -5,6 +5,7 @@
 #include "algebra/exact_real.hpp"
 #include "kinematics/engine.hpp"
 #include "chain_states.hpp"
+#include "random_integers.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/model.hpp>
@@ -175,10 +176,7 @@ TEST(AnalyzeFastPaths, FractionFreeSlopesAreTheRationalOnes) {
   using namespace kinematics_detail;
   std::mt19937_64 random(20261130);
   auto integer = [&](int bits) {
-    mpz_class value = 0;
-    for (int b = 0; b < bits; b += 32) value = (value << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
-    if (bits > 0) value >>= (32 * ((bits + 31) / 32) - bits);
-    return random() % 2 ? value : mpz_class(-value);
+    return test_random::random_sign(random, test_random::below_power_of_two(random, bits));
   };
   auto rational = [&]() {
     switch (random() % 5) {

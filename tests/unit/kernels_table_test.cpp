@@ -2,14 +2,19 @@
 // polynomials of the chart coordinates and in rationals at a configuration, the
 // exact-versus-squared policy (the squared form is the product of the two tangency branches),
 // the existence rule against the table of docs/contact-kernels.md, the reflex rule, and the
-// (1 + t^2) normalisation (kernels/weights.hpp).
+// (1 + t^2) normalisation (kernels/weights.hpp); a model edge as the kernels' feature geometry
+// (kernels/model_features.hpp).
 #include "algebra/polynomial.hpp"
 #include "kernels/contact_table.hpp"
+#include "kernels/model_features.hpp"
 #include "kernels/weights.hpp"
+#include "random_integers.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <optional>
 #include <random>
 
@@ -333,11 +338,7 @@ Matrix plain_normalized(Matrix c) {
 TEST(ContactTable, HalfAngleWeightTestsAreTheLongDivisionsRemainders) {
   using namespace weight_oracle;
   std::mt19937_64 random(550055);
-  auto big = [&](int bits) {
-    mpz_class v = 0;
-    for (int b = 0; b < bits; b += 32) v = (v << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
-    return random() % 2 ? v : mpz_class(-v);
-  };
+  auto big = [&](int bits) { return test_random::random_sign(random, test_random::whole_words(random, bits)); };
   int divisible_x = 0, divisible_y = 0, not_x = 0, not_y = 0;
   for (int trial = 0; trial < 1500; ++trial) {
     Matrix p(1 + random() % 6);
@@ -382,6 +383,104 @@ TEST(ContactTable, HalfAngleWeightTestsAreTheLongDivisionsRemainders) {
   EXPECT_GT(divisible_y, 300);
   EXPECT_GT(not_x, 300);
   EXPECT_GT(not_y, 300);
+}
+
+
+// The one map from a model feature to the kernels' body geometry (kernels/model_features.hpp)
+// on generated edges: an arc's sector against the closed form (its ends are the exact radii to
+// the arc's ends, counter-clockwise from the source of a counter-clockwise arc and from the
+// target of a clockwise one; `large` exactly when the counter-clockwise angle between them,
+// from atan2 well away from pi, exceeds pi), a full circle's, segments' and vertices' points,
+// the same geometry in doubles as the rationals' conversion, and the model overload's edge.
+TEST(ContactTable, ModelFeatureGeometryIsTheEdgesInEveryNumberType) {
+  Random random;
+  auto on_circle = [](const Point& c, const Rational& r, const Rational& t) {   // c + r (cos, sin) of 2 atan t
+    Rational w = 1 + t * t;
+    return Point{Rational(c.x + r * (1 - t * t) / w), Rational(c.y + r * 2 * t / w)};
+  };
+  auto angle = [](const Point& from, const Point& to) {
+    return std::atan2(Rational(to.y - from.y).get_d(), Rational(to.x - from.x).get_d());
+  };
+  auto to_double = [](const Rational& r) { return r.get_d(); };
+  int large = 0, small = 0, full = 0;
+  Model model;
+  model.parts.resize(1);
+  model.parts[0].loops.resize(1);
+  for (int trial = 0; trial < 600; ++trial) {
+    Edge edge;
+    edge.kind = Edge::Kind::arc;
+    edge.center = Point{random.rational(40), random.rational(40)};
+    const Rational r = random.rational(8) + 9;
+    edge.radius_squared = r * r;
+    edge.ccw = random.integer(0, 1) == 1;
+    edge.source = on_circle(edge.center, r, random.rational(4));
+    edge.target = random.integer(0, 9) == 0 ? edge.source : on_circle(edge.center, r, random.rational(4));
+    const kernels::ArcSector<Rational> sector = kernels::arc_sector(edge);
+    const FeatureGeometry<Rational> exact = kernels::feature_geometry<Rational>(edge, FeatureKind::arc, [](const Rational& x) { return x; });
+    const Point& from = edge.ccw || edge.is_full_circle() ? edge.source : edge.target;
+    const Point& to = edge.ccw || edge.is_full_circle() ? edge.target : edge.source;
+    EXPECT_EQ(sector.start.x, from.x - edge.center.x) << "trial " << trial;
+    EXPECT_EQ(sector.start.y, from.y - edge.center.y) << "trial " << trial;
+    EXPECT_EQ(sector.end.x, to.x - edge.center.x) << "trial " << trial;
+    EXPECT_EQ(sector.end.y, to.y - edge.center.y) << "trial " << trial;
+    EXPECT_EQ(sector.full, edge.is_full_circle()) << "trial " << trial;
+    if (edge.is_full_circle()) {
+      EXPECT_FALSE(sector.large) << "trial " << trial;
+      ++full;
+    } else {
+      double sweep = angle(edge.center, to) - angle(edge.center, from);
+      if (sweep < 0) sweep += 2 * std::numbers::pi;
+      if (std::abs(sweep - std::numbers::pi) > 1e-6) {
+        EXPECT_EQ(sector.large, sweep > std::numbers::pi) << "trial " << trial << " sweep " << sweep;
+        (sector.large ? large : small) += 1;
+      }
+    }
+    EXPECT_EQ(exact.shape, FeatureShape::arc);
+    EXPECT_EQ(exact.center.x, edge.center.x);
+    EXPECT_EQ(exact.center.y, edge.center.y);
+    EXPECT_EQ(exact.radius_squared, edge.radius_squared);
+    EXPECT_EQ(exact.convex, edge.ccw);
+    EXPECT_EQ(exact.sector.start.x, sector.start.x);
+    EXPECT_EQ(exact.sector.end.y, sector.end.y);
+    EXPECT_EQ(exact.sector.large, sector.large);
+    EXPECT_EQ(exact.sector.full, sector.full);
+    // the same map in doubles: every number the rationals' conversion, every flag the same
+    const FeatureGeometry<double> approx = kernels::feature_geometry<double>(edge, FeatureKind::arc, to_double);
+    EXPECT_EQ(approx.center.x, exact.center.x.get_d());
+    EXPECT_EQ(approx.center.y, exact.center.y.get_d());
+    EXPECT_EQ(approx.radius_squared, exact.radius_squared.get_d());
+    EXPECT_EQ(approx.sector.start.x, exact.sector.start.x.get_d());
+    EXPECT_EQ(approx.sector.start.y, exact.sector.start.y.get_d());
+    EXPECT_EQ(approx.sector.end.x, exact.sector.end.x.get_d());
+    EXPECT_EQ(approx.sector.end.y, exact.sector.end.y.get_d());
+    EXPECT_EQ(approx.sector.large, exact.sector.large);
+    EXPECT_EQ(approx.convex, exact.convex);
+    // a segment of the same ends, and its source as a vertex; through the model overload
+    Edge segment = edge;
+    segment.kind = Edge::Kind::segment;
+    model.parts[0].loops[0].edges = {edge, segment};
+    const FeatureGeometry<Rational> seg =
+        kernels::feature_geometry<Rational>(model, FeatureIdentity{0, 0, 1, FeatureKind::segment}, [](const Rational& x) { return x; });
+    EXPECT_EQ(seg.shape, FeatureShape::segment);
+    EXPECT_EQ(seg.point.x, edge.source.x);
+    EXPECT_EQ(seg.point.y, edge.source.y);
+    EXPECT_EQ(seg.target.x, edge.target.x);
+    EXPECT_EQ(seg.target.y, edge.target.y);
+    const FeatureGeometry<double> vertex =
+        kernels::feature_geometry<double>(model, FeatureIdentity{0, 0, 0, FeatureKind::vertex}, to_double);
+    EXPECT_EQ(vertex.shape, FeatureShape::vertex);
+    EXPECT_EQ(vertex.point.x, edge.source.x.get_d());
+    EXPECT_EQ(vertex.point.y, edge.source.y.get_d());
+    const FeatureGeometry<Rational> by_model =
+        kernels::feature_geometry<Rational>(model, FeatureIdentity{0, 0, 0, FeatureKind::arc}, [](const Rational& x) { return x; });
+    EXPECT_EQ(by_model.sector.start.x, exact.sector.start.x);
+    EXPECT_EQ(by_model.sector.large, exact.sector.large);
+  }
+  EXPECT_GT(large, 100);
+  EXPECT_GT(small, 100);
+  EXPECT_GT(full, 20);
+  EXPECT_THROW(kernels::feature_geometry<double>(model, FeatureIdentity{0, 0, 2, FeatureKind::vertex}, to_double),
+               std::out_of_range);
 }
 
 }  // namespace

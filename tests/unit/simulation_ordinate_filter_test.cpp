@@ -5,6 +5,7 @@
 // escapement (held contacts on its locking faces, vertical edges) with friction and without.
 #include "simulation/ordinate_filter.hpp"
 #include "simulation_side_by_side.hpp"
+#include "random_integers.hpp"
 
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
@@ -29,11 +30,7 @@ namespace {
 // neighbours, halves between neighbours, zero.
 TEST(SimulationOrdinateFilter, DirectedConversionsBoundEveryRational) {
   std::mt19937_64 random(20261201);
-  auto big = [&](int bits) {
-    mpz_class z = 0;
-    for (int i = 0; i < bits; i += 32) z = (z << 32) + static_cast<unsigned long>(random() & 0xffffffffu);
-    return z;
-  };
+  auto big = [&](int bits) { return test_random::whole_words(random, bits); };
   int checked = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     Rational r;
