@@ -14,7 +14,7 @@
 //   - threads reading random vertices of a fresh space through vertex(id) while others read
 //     vertices() all see the raw vertices' numbers, and every vertex is copied exactly once.
 #include "cspace/builder_impl.hpp"
-#include "polygon_loop_json.hpp"
+#include "star_slider_pairs.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -27,6 +27,7 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -35,13 +36,6 @@
 namespace hipair {
 namespace {
 
-using test_loops::Points;
-
-Model sliders(const Points& a, const Points& b) { return read_model(test_loops::sliders_json(a, b)); }
-
-Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, const Rational& scale) {
-  return test_loops::grid_star(random, k, cx, cy, radius, q, scale);
-}
 
 // Whether public vertex i's numbers are its raw vertex's (the exact route), field by field.
 ::testing::AssertionResult equals_raw(const CSpace& space, const CSpaceVertex& vertex, std::size_t i) {
@@ -112,22 +106,12 @@ TEST(CSpaceVertexNumberLazy, OneVertexReadCopiesThatVertexOnlyAndEqualsTheRawVer
   std::mt19937_64 random(4646);
   int checked = 0;
   std::size_t read = 0;
-  const Rational tiny = Rational(1) / (mpz_class(1) << 100), huge = Rational(mpz_class(1) << 100);
   for (int instance = 0; instance < 30; ++instance) {
     SCOPED_TRACE("instance " + std::to_string(instance));
-    int ka = 3 + static_cast<int>(random() % 8), kb = 3 + static_cast<int>(random() % 8);
-    long q = instance % 3 == 0 ? 1 : instance % 3 == 1 ? 16 : 97;
-    Rational scale = instance % 5 == 3 ? tiny : instance % 5 == 4 ? huge : Rational(1);
-    Points a = random_star(random, ka, 0, 0, 3 + static_cast<double>(random() % 4), q, scale);
-    Points b = random_star(random, kb, static_cast<double>(random() % 7) - 3, static_cast<double>(random() % 7) - 3,
-                           2 + static_cast<double>(random() % 5), q, scale);
-    CSpace space;
-    try {
-      space = CSpace::build(sliders(a, b), "a", "b");
-    } catch (const ModelError&) {
-      continue;   // rounding made a polygon degenerate: not a test case
-    }
-    read += check_fresh_space(space, random);
+    const test_loops::StarPair pair = test_loops::generated_star_pair(random, instance, false);
+    const std::optional<CSpace> space = test_loops::star_slider_space(pair.a, pair.b);
+    if (!space) continue;
+    read += check_fresh_space(*space, random);
     ++checked;
   }
   EXPECT_GE(checked, 24);
@@ -169,13 +153,9 @@ TEST(CSpaceVertexNumberLazy, ThreadsReadingOneVertexAndAllAtOnceSeeTheRawNumbers
   std::mt19937_64 random(846);
   int checked = 0;
   for (int instance = 0; instance < 8; ++instance) {
-    Points a = random_star(random, 7, 0, 0, 4, 16, 1), b = random_star(random, 9, 1, -1, 5, 16, 1);
-    CSpace space;
-    try {
-      space = CSpace::build(sliders(a, b), "a", "b");
-    } catch (const ModelError&) {
-      continue;
-    }
+    const std::optional<CSpace> built = test_loops::random_star_slider_space(random);
+    if (!built) continue;
+    const CSpace& space = *built;
     const std::size_t n = implementation(space).vertices.size();
     ASSERT_GT(n, 0u);
     std::atomic<std::size_t> copied{0}, wrong{0};

@@ -16,7 +16,7 @@
 // none (checked before the first read); each cell's sample is its first face's (in chart, then
 // face order), and, independently of that, exact point location at the sample finds the cell.
 #include "cspace/builder_impl.hpp"
-#include "polygon_loop_json.hpp"
+#include "star_slider_pairs.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -36,8 +37,6 @@ namespace hipair {
 namespace {
 
 using test_loops::Points;
-
-Model sliders(const Points& a, const Points& b) { return read_model(test_loops::sliders_json(a, b)); }
 
 Points random_star(std::mt19937_64& random, int k, double cx, double cy, double radius, long q, const Rational& scale) {
   return test_loops::grid_star(random, k, cx, cy, radius, q, scale);
@@ -135,21 +134,10 @@ TEST(CSpaceVertexNumbers, GeneratedTranslatingPairsEqualTheRawVerticesAndLieOnTh
   const Rational tiny = Rational(1) / (mpz_class(1) << 100), huge = Rational(mpz_class(1) << 100);
   for (int instance = 0; instance < 30; ++instance) {
     SCOPED_TRACE("instance " + std::to_string(instance));
-    int ka = 3 + static_cast<int>(random() % 8), kb = 3 + static_cast<int>(random() % 8);
-    long q = instance % 3 == 0 ? 1 : instance % 3 == 1 ? 16 : 97;
-    Rational scale = instance % 5 == 3 ? tiny : instance % 5 == 4 ? huge : Rational(1);
-    Points a = random_star(random, ka, 0, 0, 3 + static_cast<double>(random() % 4), q, scale);
-    Points b = instance % 7 == 6 ? a   // equal polygons
-                                 : random_star(random, kb, static_cast<double>(random() % 7) - 3,
-                                               static_cast<double>(random() % 7) - 3, 2 + static_cast<double>(random() % 5), q,
-                                               scale);
-    try {
-      Model model = sliders(a, b);
-      CSpace space = CSpace::build(model, "a", "b");
-      check_space(space, true, instance % 2 == 0);
+    const test_loops::StarPair pair = test_loops::generated_star_pair(random, instance, instance % 7 == 6);   // 6: equal polygons
+    if (std::optional<CSpace> space = test_loops::star_slider_space(pair.a, pair.b)) {
+      check_space(*space, true, instance % 2 == 0);
       ++checked;
-    } catch (const ModelError&) {
-      // rounding made a polygon degenerate (repeated vertex, self-touching): not a test case
     }
   }
   EXPECT_GE(checked, 24);
@@ -168,7 +156,7 @@ TEST(CSpaceVertexNumbers, GeneratedTranslatingPairsEqualTheRawVerticesAndLieOnTh
   for (const Rational& s : {Rational(1), tiny, huge})
     for (std::size_t k = 0; k < cases.size(); ++k) {
       SCOPED_TRACE("case " + std::to_string(k) + " scale " + s.get_str().substr(0, 12));
-      Model model = sliders(scaled(cases[k].first, s), scaled(cases[k].second, s));
+      Model model = test_loops::slider_pair_model(scaled(cases[k].first, s), scaled(cases[k].second, s));
       CSpace space = CSpace::build(model, "a", "b");
       check_space(space, true, k % 2 == 0);
     }
@@ -195,13 +183,9 @@ TEST(CSpaceVertexNumbers, DegenerateCorpusSpacesOfSeveralChartsEqualTheRawVertic
 TEST(CSpaceVertexNumbers, ThreadsReadingAFreshSpaceAtOnceSeeTheWrittenNumbers) {
   std::mt19937_64 random(8);
   for (int instance = 0; instance < 6; ++instance) {
-    Points a = random_star(random, 7, 0, 0, 4, 16, 1), b = random_star(random, 9, 1, -1, 5, 16, 1);
-    CSpace space;
-    try {
-      space = CSpace::build(sliders(a, b), "a", "b");
-    } catch (const ModelError&) {
-      continue;
-    }
+    const std::optional<CSpace> built = test_loops::random_star_slider_space(random);
+    if (!built) continue;
+    const CSpace& space = *built;
     std::vector<const CSpaceVertex*> seen(4, nullptr);
     std::vector<std::string> first_x(4);
     std::vector<std::thread> threads;
@@ -272,11 +256,9 @@ TEST(CSpaceVertexNumbers, CellSamplesWrittenOnFirstReadAreTheirFirstFacesAndLieI
     Points b = instance % 5 == 4 ? a
                                  : random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 7) - 3,
                                                static_cast<double>(random() % 7) - 3, 2 + static_cast<double>(random() % 5), q, 1);
-    try {
-      check_cell_samples(CSpace::build(sliders(a, b), "a", "b"), instance % 2 == 0);
+    if (std::optional<CSpace> space = test_loops::star_slider_space(a, b)) {
+      check_cell_samples(*space, instance % 2 == 0);
       ++checked;
-    } catch (const ModelError&) {
-      // rounding made a polygon degenerate: not a test case
     }
   }
   EXPECT_GE(checked, 12);
@@ -284,7 +266,7 @@ TEST(CSpaceVertexNumbers, CellSamplesWrittenOnFirstReadAreTheirFirstFacesAndLieI
   const Points slot{{0, 0}, {6, 0}, {6, 1}, {4, 1}, {4, 3}, {2, 3}, {2, 1}, {0, 1}};
   const Points square{{0, 0}, {2, 0}, {2, 2}, {0, 2}};
   const Rational tiny = Rational(1) / (mpz_class(1) << 100);
-  check_cell_samples(CSpace::build(sliders(scaled(square, tiny, 2 * tiny, tiny), scaled(slot, tiny)), "a", "b"), true);
+  check_cell_samples(CSpace::build(test_loops::slider_pair_model(scaled(square, tiny, 2 * tiny, tiny), scaled(slot, tiny)), "a", "b"), true);
   // the corpus: rotating and mixed pairs of several charts, 1-D spaces
   std::size_t spaces = 0, one_dimensional = 0;
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate")) {
@@ -302,13 +284,9 @@ TEST(CSpaceVertexNumbers, CellSamplesWrittenOnFirstReadAreTheirFirstFacesAndLieI
 TEST(CSpaceVertexNumbers, ThreadsReadingAFreshSpaceAtOnceSeeTheWrittenCellSamples) {
   std::mt19937_64 random(56);
   for (int instance = 0; instance < 6; ++instance) {
-    Points a = random_star(random, 7, 0, 0, 4, 16, 1), b = random_star(random, 9, 1, -1, 5, 16, 1);
-    CSpace space;
-    try {
-      space = CSpace::build(sliders(a, b), "a", "b");
-    } catch (const ModelError&) {
-      continue;
-    }
+    const std::optional<CSpace> built = test_loops::random_star_slider_space(random);
+    if (!built) continue;
+    const CSpace& space = *built;
     std::vector<std::string> samples(4);
     std::vector<std::thread> threads;
     for (std::size_t t = 0; t < 4; ++t)

@@ -18,6 +18,7 @@
 //   turns a limited rotation is refused with one clear message.
 #include "core/angle_sign.hpp"
 #include "kinematics/engine.hpp"
+#include "kinematics_axis_lines.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/error.hpp>
@@ -36,17 +37,6 @@
 
 namespace hipair::kinematics_detail {
 namespace {
-
-AxisLine full_turn_line() {
-  AxisLine line;
-  line.rotation = true;
-  line.cyclic = true;
-  line.pieces = {ChartAxis{ChartAxis::Kind::rotation, false, Rational(-1), Rational(1)},
-                 ChartAxis{ChartAxis::Kind::rotation, true, Rational(-1), Rational(1)}};
-  line.half_turns = {0, 1};
-  line.offsets = {0.0, std::numbers::pi};
-  return line;
-}
 
 Rational power_of_ten(long e) {
   mpz_class p;
@@ -177,7 +167,7 @@ std::size_t count_from_ends(const DriverPlan& plan, int direction) {
 
 TEST(KinematicsDriverPlan, FullTurnRangesAtEveryMagnitudeAgainstRationalCharts) {
   std::mt19937_64 random(5601);
-  const AxisLine line = full_turn_line();
+  const AxisLine line = test_axes::full_turn();
   int counted = 0;
   for (int i = 0; i < 240; ++i) {
     const long e = i % 6 == 0 ? 1000 : static_cast<long>(random() % 701) - 300;   // the reader's limit, and 10^-300 .. 10^400
@@ -216,7 +206,7 @@ TEST(KinematicsDriverPlan, FullTurnRangesAtEveryMagnitudeAgainstRationalCharts) 
 
 TEST(KinematicsDriverPlan, StartsOnSeamsAndAtHalfTurnMultiples) {
   std::mt19937_64 random(5602);
-  const AxisLine line = full_turn_line();
+  const AxisLine line = test_axes::full_turn();
   for (int i = 0; i < 120; ++i) {
     const long e = static_cast<long>(random() % 400);
     // a start within 2^-100 rad of k pi + pi / 2 (a seam: its half-angle tangent rounds to +-1)
@@ -252,7 +242,7 @@ TEST(KinematicsDriverPlan, StartsOnSeamsAndAtHalfTurnMultiples) {
 
 TEST(KinematicsDriverPlan, WholeTurnsEndExactlyWhereTheyStart) {
   std::mt19937_64 random(5603);
-  const AxisLine line = full_turn_line();
+  const AxisLine line = test_axes::full_turn();
   for (int i = 0; i < 100; ++i) {
     const long e = static_cast<long>(random() % 1301) - 300;
     const Rational a = random_rational(random, e);

@@ -12,6 +12,7 @@
 // near-ties 2^-1030 ... off them (past the enclosures' 2^-1024), and on a rotation near-ties, each
 // sign from the oracle or the closed form.
 #include "kinematics/axis.hpp"
+#include "kinematics_axis_lines.hpp"
 
 #include <gtest/gtest.h>
 #include <mpfr.h>
@@ -27,17 +28,6 @@ namespace algebra = cspace::algebra;
 using algebra::Polynomial;
 
 constexpr double pi_d = std::numbers::pi;
-
-AxisLine cyclic_line() {
-  AxisLine line;
-  line.rotation = true;
-  line.cyclic = true;
-  line.pieces = {ChartAxis{ChartAxis::Kind::rotation, false, Rational(-1), Rational(1)},
-                 ChartAxis{ChartAxis::Kind::rotation, true, Rational(-1), Rational(1)}};
-  line.half_turns = {0, 1};
-  line.offsets = {0.0, pi_d};
-  return line;
-}
 
 AxisLine translation_line() {
   AxisLine line;
@@ -131,7 +121,7 @@ Position generated_position(std::mt19937_64& random, const AxisLine& line) {
 
 TEST(KinematicsExactRest, RotatingRestAgainstCertifiedAngle) {
   std::mt19937_64 random(49);
-  AxisLine line = cyclic_line();
+  AxisLine line = test_axes::full_turn();
   int cases = 0;
   for (int i = 0; i < 120; ++i) {
     Position p = generated_position(random, line);
@@ -235,7 +225,7 @@ TEST(KinematicsExactRest, PushTowardsTheNearerEnd) {
   }
   // a rotation: b at 0, c at 2 atan(sqrt c), a at -2 atan(t_a) with the rational t_a 2^-k from
   // sqrt c on either side: the way down longer or shorter by about 2^-k
-  AxisLine line = cyclic_line();
+  AxisLine line = test_axes::full_turn();
   for (int i = 0; i < 40; ++i) {
     Rational root_c(static_cast<long>(random() % 997) + 1, 1009);
     Real alg = square_root(root_c);   // t_c = sqrt(c): angle 2 atan(sqrt c) in (0, pi/2)
@@ -298,7 +288,7 @@ TEST(KinematicsExactRest, PushTiesOfIrrationalMiddles) {
       EXPECT_TRUE(decided);
     }
   }
-  AxisLine line = cyclic_line();
+  AxisLine line = test_axes::full_turn();
   for (int i = 0; i < 10; ++i) {
     Rational q(static_cast<long>(random() % 97) + 3, 1009);   // sqrt q < 0.32, not a square
     const double sqrt_q = std::sqrt(q.get_d());
