@@ -77,7 +77,7 @@ Rational squared_length(const Point& v) { return dot(v, v); }
 Interval radial_range(const BodyFeature& feature, const Point& center) {
   const Edge& edge = *feature.edge;
   if (feature.ref.kind == FeatureRef::Kind::vertex)
-    return root_of(squared_length(difference(feature.point, center)));
+    return root_of(squared_length(difference(feature.point(), center)));
   Interval source = root_of(squared_length(difference(edge.source, center)));
   Interval target = root_of(squared_length(difference(edge.target, center)));
   if (feature.ref.kind == FeatureRef::Kind::segment) {
@@ -133,7 +133,7 @@ Interval enclose_dot(const Point& unit, const Point& p) {
 
 Interval projection_range(const BodyFeature& feature, const Point& unit) {
   const Edge& edge = *feature.edge;
-  if (feature.ref.kind == FeatureRef::Kind::vertex) return enclose_dot(unit, feature.point);
+  if (feature.ref.kind == FeatureRef::Kind::vertex) return enclose_dot(unit, feature.point());
   Interval range = kernels::hull(enclose_dot(unit, edge.source), enclose_dot(unit, edge.target));
   if (feature.ref.kind == FeatureRef::Kind::segment) return range;
   kernels::ArcSector<Rational> sector = arc_sector(edge);
@@ -148,7 +148,7 @@ Interval projection_range(const BodyFeature& feature, const Point& unit) {
 AxisRanges axis_ranges(const BodyFeature& feature) {
   if (feature.ref.kind == FeatureRef::Kind::arc) throw GeometryError("internal: axis_ranges takes vertices and segments");
   const bool vertex = feature.ref.kind == FeatureRef::Kind::vertex;
-  const Point& p = vertex ? feature.point : feature.edge->source;
+  const Point& p = feature.point();   // a vertex, or a segment's start
   AxisRanges ranges{algebra::enclose_kernel(p.x), algebra::enclose_kernel(p.y)};
   if (!vertex) {
     ranges.x = kernels::hull(ranges.x, algebra::enclose_kernel(feature.edge->target.x));
@@ -1243,8 +1243,8 @@ FeatureDirections feature_directions(const Model& model, const BodyFeature& feat
     const Loop& loop = model.parts.at(feature.ref.part).loops.at(feature.ref.loop);
     const std::size_t n = loop.edges.size();
     d.vertex = true;
-    d.out = edge_tangent(loop.edges[feature.ref.edge], feature.point);
-    d.in = edge_tangent(loop.edges[(feature.ref.edge + n - 1) % n], feature.point);
+    d.out = edge_tangent(loop.edges[feature.ref.edge], feature.point());
+    d.in = edge_tangent(loop.edges[(feature.ref.edge + n - 1) % n], feature.point());
   } else if (feature.ref.kind == FeatureRef::Kind::segment) {
     d.segment = true;
     d.out = difference(feature.edge->target, feature.edge->source);
@@ -1425,17 +1425,19 @@ HomogeneousPoint homogeneous(const Point& p) {
   return h;
 }
 
-// A vertex feature: its point.
+// A vertex feature: its point (the part's edge end, kept by the generator: not a copy).
 struct FrontVertex {
-  HomogeneousPoint p;
+  const HomogeneousPoint* p;
 };
 
-// A segment feature: the ends' denominators W1, W2, the primitive direction D,
+// A segment feature: the ends' denominators W1, W2, the primitive direction D (the ends' and
+// the edge's direction, and k, kept by the generator and read through pointers: no copies),
 // cross((X1, Y1), D), dot((X1, Y1), D), dot((X2, Y2), D), and the chart shifts' products kx, ky,
 // gx, gy (integers over k > 0) for the other part's vertices.
 struct FrontSegment {
-  mpz_class w1, w2, dx, dy, cross1, dot1, dot2;
-  mpz_class kx, ky, gx, gy, k;
+  const mpz_class *w1, *w2, *dx, *dy, *k;
+  mpz_class cross1, dot1, dot2;
+  mpz_class kx, ky, gx, gy;
 };
 
 // The chart shifts' difference u = (vertex part's shift) - (segment part's shift) as integers
@@ -1472,14 +1474,15 @@ void front_direction(const HomogeneousPoint& q1, const HomogeneousPoint& q2, mpz
 }
 
 // The shifts' products with D are integers over u.k (any positive common factor: the forms are
-// made primitive afterwards). The edge is given by its ends q1, q2 and its D (dx, dy).
+// made primitive afterwards). The edge is given by its ends q1, q2 and its D (dx, dy); the
+// segment points to them and to u.k, which must outlive it.
 FrontSegment front_segment(const HomogeneousPoint& q1, const HomogeneousPoint& q2, const mpz_class& dx,
                            const mpz_class& dy, const IntegerShift& u) {
   FrontSegment s;
-  s.w1 = q1.w;
-  s.w2 = q2.w;
-  s.dx = dx;
-  s.dy = dy;
+  s.w1 = &q1.w;
+  s.w2 = &q2.w;
+  s.dx = &dx;
+  s.dy = &dy;
   // a b + sign c d in place (no temporary integers)
   auto combine = [](mpz_class& out, const mpz_class& a, const mpz_class& b, int sign, const mpz_class& c,
                     const mpz_class& d) {
@@ -1494,7 +1497,7 @@ FrontSegment front_segment(const HomogeneousPoint& q1, const HomogeneousPoint& q
   combine(s.ky, u.y1, dy, -1, u.y2, dx);
   combine(s.gx, u.x1, dx, 1, u.x2, dy);
   combine(s.gy, u.y1, dx, 1, u.y2, dy);
-  s.k = u.k;
+  s.k = &u.k;
   return s;
 }
 
@@ -1527,17 +1530,17 @@ IntegerPolynomial2 primitive_affine(mpz_class& c, mpz_class& cx, mpz_class& cy, 
 // left out, as convert_validity does): false when the features never touch within both (the curve is then not
 // kept; `curve` is left partly written).
 bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurve& curve) {
-  const HomogeneousPoint& p = vertex.p;
+  const HomogeneousPoint& p = *vertex.p;
   // (this thread's scratch integers, products accumulated in place with mpz_addmul /
   // mpz_submul: no integer allocated per call once they have grown)
   thread_local mpz_class c, cx, cy, scratch, ww1, pd;
   // value
-  mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w1.get_mpz_t());
-  mpz_mul(pd.get_mpz_t(), p.x.get_mpz_t(), s.dy.get_mpz_t());
-  mpz_submul(pd.get_mpz_t(), p.y.get_mpz_t(), s.dx.get_mpz_t());
-  mpz_mul(c.get_mpz_t(), pd.get_mpz_t(), s.w1.get_mpz_t());
+  mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w1->get_mpz_t());
+  mpz_mul(pd.get_mpz_t(), p.x.get_mpz_t(), s.dy->get_mpz_t());
+  mpz_submul(pd.get_mpz_t(), p.y.get_mpz_t(), s.dx->get_mpz_t());
+  mpz_mul(c.get_mpz_t(), pd.get_mpz_t(), s.w1->get_mpz_t());
   mpz_submul(c.get_mpz_t(), s.cross1.get_mpz_t(), p.w.get_mpz_t());
-  c *= s.k;
+  c *= *s.k;
   mpz_mul(cx.get_mpz_t(), s.kx.get_mpz_t(), ww1.get_mpz_t());
   mpz_mul(cy.get_mpz_t(), s.ky.get_mpz_t(), ww1.get_mpz_t());
   curve.polynomial = primitive_affine(c, cx, cy, scratch);
@@ -1545,11 +1548,11 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
   if (!value.is_zero() && value.degree_x() == 0 && value.degree_y() == 0) return false;   // a non-zero constant
   // along >= 0, then |d|^2 - along >= 0 (in this order; constant atoms tested, not kept)
   const bool constant_atoms = sgn(s.gx) == 0 && sgn(s.gy) == 0;
-  mpz_mul(pd.get_mpz_t(), p.x.get_mpz_t(), s.dx.get_mpz_t());
-  mpz_addmul(pd.get_mpz_t(), p.y.get_mpz_t(), s.dy.get_mpz_t());
-  mpz_mul(c.get_mpz_t(), pd.get_mpz_t(), s.w1.get_mpz_t());
+  mpz_mul(pd.get_mpz_t(), p.x.get_mpz_t(), s.dx->get_mpz_t());
+  mpz_addmul(pd.get_mpz_t(), p.y.get_mpz_t(), s.dy->get_mpz_t());
+  mpz_mul(c.get_mpz_t(), pd.get_mpz_t(), s.w1->get_mpz_t());
   mpz_submul(c.get_mpz_t(), s.dot1.get_mpz_t(), p.w.get_mpz_t());
-  c *= s.k;
+  c *= *s.k;
   if (constant_atoms) {
     if (sgn(c) < 0) return false;
   } else {
@@ -1559,12 +1562,12 @@ bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurv
     curve.validity.emplace_back().atoms.push_back(primitive_affine(c, cx, cy, scratch));   // (no initializer_list copy)
   }
   mpz_mul(c.get_mpz_t(), s.dot2.get_mpz_t(), p.w.get_mpz_t());
-  mpz_submul(c.get_mpz_t(), pd.get_mpz_t(), s.w2.get_mpz_t());
-  c *= s.k;
+  mpz_submul(c.get_mpz_t(), pd.get_mpz_t(), s.w2->get_mpz_t());
+  c *= *s.k;
   if (constant_atoms) {
     if (sgn(c) < 0) return false;
   } else {
-    mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w2.get_mpz_t());   // now W W2
+    mpz_mul(ww1.get_mpz_t(), p.w.get_mpz_t(), s.w2->get_mpz_t());   // now W W2
     mpz_mul(cx.get_mpz_t(), s.gx.get_mpz_t(), ww1.get_mpz_t());
     mpz_mul(cy.get_mpz_t(), s.gy.get_mpz_t(), ww1.get_mpz_t());
     mpz_neg(cx.get_mpz_t(), cx.get_mpz_t());
@@ -1879,6 +1882,10 @@ struct CurveGenerator::Data {
   std::vector<std::size_t> front_index_a, front_index_b;
   std::vector<FrontVertex> front_vertices_a, front_vertices_b;
   std::vector<FrontSegment> front_segments_a, front_segments_b;
+  // what the front end's features point to: per part, its edges' homogeneous ends (each edge's
+  // source, then the open edges' targets) and the chart shifts' difference over its k
+  std::vector<HomogeneousPoint> ends_a, ends_b;
+  IntegerShift front_shift_a, front_shift_b;
   std::uint64_t id = 0;   // this generator's number, unique in the process (FormedCurve::maker)
   // The parts' motions for the swept-region cull, chart independent: every generate() reads it
   // with its own chart box's travel (Culler::travel_over) instead of building a Culler again.
@@ -2062,15 +2069,15 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
                        const Shift& other, std::vector<Direction>& directions, std::vector<DirectedFeature>& vertices,
                        std::vector<DirectedFeature>& segments,
                        std::vector<std::size_t>& index, std::vector<FrontVertex>& front_vertices,
-                       std::vector<FrontSegment>& front_segments) {
-      const IntegerShift u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
+                       std::vector<FrontSegment>& front_segments, std::vector<HomogeneousPoint>& ends, IntegerShift& u) {
+      u = integer_shift(difference(other.x, own.x), difference(other.y, own.y));
       // every edge of the part once: its homogeneous ends, each made once (a closed loop's
       // target is the next edge's source) and read in place, and its direction
       const Part& part = model.parts.at(part_index);
       std::vector<std::size_t> loop_start;
       std::size_t edge_count = 0;
       for (const Loop& loop : part.loops) edge_count += loop.edges.size();
-      std::vector<HomogeneousPoint> ends;       // each edge's source, then the open edges' targets
+      // `ends`: each edge's source, then the open edges' targets (kept: the features point to them)
       std::vector<std::size_t> target_end;      // per edge: its target in `ends`
       ends.reserve(edge_count);
       target_end.reserve(edge_count);
@@ -2112,7 +2119,7 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
           const std::size_t previous = loop_start[ref.loop] + (ref.edge + n - 1) % n;
           vertices.push_back(DirectedFeature{static_cast<int>(i), &directions[e], &directions[previous]});
           index[i] = front_vertices.size();
-          front_vertices.push_back(FrontVertex{ends[e]});
+          front_vertices.push_back(FrontVertex{&ends[e]});
         } else {
           segments.push_back(DirectedFeature{static_cast<int>(i), &directions[e], nullptr});
           index[i] = front_segments.size();
@@ -2124,9 +2131,9 @@ CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const C
       }
     };
     prepare(axes.first, d.features_a, shift_a, shift_b, d.directions_a, d.vertices_a, d.segments_a, d.front_index_a, d.front_vertices_a,
-            d.front_segments_a);
+            d.front_segments_a, d.ends_a, d.front_shift_a);
     prepare(axes.second, d.features_b, shift_b, shift_a, d.directions_b, d.vertices_b, d.segments_b, d.front_index_b, d.front_vertices_b,
-            d.front_segments_b);
+            d.front_segments_b, d.ends_b, d.front_shift_b);
   }
   if (options.cull_blocked_space) {
     for (const BodyFeature& f : d.features_a) d.disks_a.push_back(body_disk(f));
@@ -2675,13 +2682,12 @@ std::vector<ChartAxis> rotation_charts(const Motion& motion) {
 template <class Visit>
 void for_each_curve_feature(const Model& model, std::size_t part_index, Visit&& visit) {
   const Part& part = model.parts.at(part_index);
-  BodyFeature feature;   // one, re-assigned: its point keeps its allocation
+  BodyFeature feature;   // one, re-assigned
   for (std::size_t l = 0; l < part.loops.size(); ++l)
     for (std::size_t e = 0; e < part.loops[l].edges.size(); ++e) {
       const Edge& edge = part.loops[l].edges[e];
       feature.ref = FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment};
       feature.edge = &edge;
-      feature.point = edge.source;
       visit(feature);
     }
 }

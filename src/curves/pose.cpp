@@ -256,15 +256,12 @@ std::vector<BodyFeature> part_features(const Model& model, std::size_t part_inde
         if (reflex) {
           if (reflex_skipped) ++*reflex_skipped;
         } else {
-          // built in place (a moved Point re-initialises its rationals)
-          BodyFeature& vertex = features.emplace_back(FeatureRef{part_index, l, e, FeatureRef::Kind::vertex}, &edge,
-                                                      edge.source, std::string{});
+          BodyFeature& vertex = features.emplace_back(FeatureRef{part_index, l, e, FeatureRef::Kind::vertex}, &edge, std::string{});
           if (labels) vertex.label = feature_label(model, vertex.ref);
         }
       }
       BodyFeature& curve = features.emplace_back(
-          FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment}, &edge,
-          edge.source, std::string{});
+          FeatureRef{part_index, l, e, edge.is_arc() ? FeatureRef::Kind::arc : FeatureRef::Kind::segment}, &edge, std::string{});
       if (labels) curve.label = edge_name(edge, l, e);
     }
   }

@@ -91,8 +91,10 @@ RigidMap world_map(const Part& part, bool moves, const ChartAxis& axis, const Ra
 struct BodyFeature {
   FeatureRef ref;
   const Edge* edge = nullptr;  ///< segment/arc: the edge; vertex: the edge it starts
-  Point point;                 ///< vertex: the vertex
   std::string label;           ///< "slot 2 wall", "corner of slot 2 wall and slot 2 bottom"
+  /// Vertex: the vertex; segment/arc: its start. Its edge's source (not a copy: a feature holds
+  /// no exact number of its own, session 57).
+  const Point& point() const { return edge->source; }
 };
 
 /// The features of part `part_index` that can take part in a contact: every segment and arc,
