@@ -2028,7 +2028,8 @@ std::shared_ptr<FormedCurve> reflected(const PairQuantities& q, bool x_half, boo
 
 CurveGenerator::CurveGenerator(const Model& model, const PairAxes& axes, const CurveOptions& options)
     : data_(new Data{model, axes, options, {}, {}, 0, {}, {}, {}, {}, {}, {}, true, {}, {},
-                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, 0, {}, {}, {}}) {
+                     formed_store(model, axes, options.cull_blocked_space), false, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {},
+                     {}, {}, 0, {}, {}, {}}) {
   Data& d = *data_;
   static std::atomic<std::uint64_t> generators{0};
   d.id = ++generators;
