@@ -66,6 +66,9 @@ class PinSlotSimulation {
   double chord_deviation() const;
   std::size_t part() const;
   const Model& model() const;
+  /// The model's time unit and force unit ("s", "N", ...).
+  const std::string& time_unit() const;
+  const std::string& force_unit() const;
 
   PinSlotSimulation(PinSlotSimulation&&) noexcept;
   PinSlotSimulation& operator=(PinSlotSimulation&&) noexcept;

@@ -804,5 +804,7 @@ double PinSlotSimulation::energy() const { return impl_->energy_of(impl_->y) / i
 double PinSlotSimulation::chord_deviation() const { return impl_->delta; }
 std::size_t PinSlotSimulation::part() const { return impl_->part; }
 const Model& PinSlotSimulation::model() const { return impl_->model; }
+const std::string& PinSlotSimulation::time_unit() const { return impl_->time_unit; }
+const std::string& PinSlotSimulation::force_unit() const { return impl_->force_unit; }
 
 }  // namespace hipair
