@@ -562,11 +562,15 @@ bool PinSlotSimulation::Impl::advance(double span) {
     // the far test: a pair whose features are certainly farther apart than twice the step's
     // travel bound (plus delta) is free over the step without a chord
     std::vector<bool> far(pairs.size(), false), flips(pairs.size(), false);
+    std::vector<SlicedConfiguration> to(pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) to[i] = relative(pairs[i], end, t + h);
     bool fits = true;
     for (std::size_t i = 0; i < pairs.size() && fits; ++i) {
       const double reach_i = travel(pairs[i], {&y, &mid, &end}, h);
       if (reach_i < std::numeric_limits<double>::max() / 4) {
-        far[i] = apart(pairs[i], pairs[i].q, Rational(2 * reach_i + delta));
+        // (and the end configuration's boundaries exactly apart: certified, whatever the bound)
+        far[i] = apart(pairs[i], pairs[i].q, Rational(2 * reach_i + delta)) &&
+                 apart(pairs[i], to[i], Rational(0));
       }
       if (far[i]) continue;
       // a chord turns the relative angle by at most pi/4 (it stays inside one chart) and lies
@@ -585,11 +589,9 @@ bool PinSlotSimulation::Impl::advance(double span) {
       continue;
     }
     // the chords of this step, tested exactly
-    std::vector<SlicedConfiguration> to(pairs.size());
     std::size_t first = no_index;
     SlicedMotionCrossing earliest;
     for (std::size_t i = 0; i < pairs.size(); ++i) {
-      to[i] = relative(pairs[i], end, t + h);
       if (far[i]) continue;
       SlicedMotion motion{pairs[i].q, to[i], static_cast<bool>(flips[i]), {}};
       ++chords;
@@ -618,9 +620,19 @@ bool PinSlotSimulation::Impl::advance(double span) {
     const double hc = h * u.get_d();
     const State4 at = flight(y, hc);
     check_limits(at, t + hc);
-    for (std::size_t i = 0; i < pairs.size(); ++i)
-      pairs[i].q = i == first ? earliest.before : far[i] ? relative(pairs[i], at, t + hc)
-                                                         : chord_point(pairs[i].q, to[i], flips[i], u);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (i == first || !far[i]) {
+        pairs[i].q = i == first ? earliest.before : chord_point(pairs[i].q, to[i], flips[i], u);
+        continue;
+      }
+      pairs[i].q = relative(pairs[i], at, t + hc);
+      if (!apart(pairs[i], pairs[i].q, Rational(0))) {
+        std::ostringstream out;
+        out << where(t + hc) << ": '" << model.parts[part].name << "' is not certainly apart from '"
+            << model.parts[pairs[i].other].name << "' at a state its far test covered (an internal error)";
+        throw NumericError(out.str());
+      }
+    }
     y = at;
     t += hc;
     step_guess = std::max(h, 1e-12);
