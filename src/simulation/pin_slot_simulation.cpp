@@ -20,7 +20,9 @@
 // from the integrated path is at most delta/2 (estimated from the path's midpoint, the deviation
 // of a quadratic path, doubled) and each chord is tested exactly by first_crossing; the state's
 // exact configuration in each pair is the chord's point at the certified free side of the first
-// crossing, so every accepted configuration is free.
+// crossing, so every accepted configuration is free. A pair whose boundaries are exactly farther
+// apart at the step's start than twice the step's travel bound (plus delta), and exactly apart at
+// its end, needs no chord (the far test: exact edge distances, a double travel bound).
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
