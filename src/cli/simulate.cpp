@@ -16,6 +16,7 @@
 #include "render/time_plot_svg.hpp"
 
 #include <hipair/error.hpp>
+#include <hipair/pin_slot_simulation.hpp>
 #include <hipair/simulation.hpp>
 
 #include <nlohmann/json.hpp>
@@ -1002,6 +1003,92 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   return 0;
 }
 
+// A model with a pin-in-slot part (docs/simulation.md, "Pin-in-slot parts"): PinSlotSimulation.
+// Outputs: trajectory.csv (s, psi and their rates, the drivers' angles), events.json/.txt,
+// positions.svg and velocities.svg.
+int run_pin_slot(const Model& model, const SimulateOptions& options) {
+  SimulationOptions sim_options;
+  sim_options.accuracy = options.accuracy;
+  sim_options.max_step = options.max_step;
+  sim_options.max_steps = options.max_steps;
+  if (options.region != "full") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
+  PinSlotSimulation simulation = PinSlotSimulation::create(model, sim_options);
+  const std::string& tu = simulation.time_unit();
+  const std::string& fu = simulation.force_unit();
+  std::vector<PinSlotState> samples{simulation.state()};
+  double cpu_start = thread_cpu_seconds();
+  ProgressLine line;
+  auto progress = [&](double t) {
+    samples.push_back(simulation.state());
+    line.show(t, options, tu, simulation.steps(), simulation.events().size());
+  };
+  run_within_budget(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
+  double seconds = thread_cpu_seconds() - cpu_start;
+  if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
+  const PinSlotState& end = simulation.state();
+  const std::string& name = model.parts[simulation.part()].name;
+  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(end.time) << " " << tu << " in "
+            << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
+            << " s CPU\n";
+  std::cout << "  " << name << ": slide " << shown(end.slide, 1) << " mm, angle " << number(end.angle)
+            << " rad; rates " << shown(end.slide_rate, 1) << " mm/" << tu << ", " << number(end.angle_rate) << " rad/"
+            << tu << "\n";
+  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
+  std::cout << "  collision tests: " << simulation.chord_tests() << " exact chord tests (chord deviation "
+            << shown(simulation.chord_deviation(), 1) << " mm)\n";
+  print_events(simulation.events(), tu, fu);
+  if (options.out.empty()) return 0;
+  std::vector<std::size_t> drivers;
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    if (p != simulation.part() && model.parts[p].motion.kind != Motion::Kind::fixed) drivers.push_back(p);
+  std::vector<io::RunFile> files;
+  const char* names[4] = {"slide", "angle", "slide_rate", "angle_rate"};
+  auto column = [](const PinSlotState& s, int i) {
+    const double values[4] = {s.slide, s.angle, s.slide_rate, s.angle_rate};
+    return values[i];
+  };
+  {
+    std::ostringstream csv;
+    csv << "time_" << tu;
+    for (int i = 0; i < 4; ++i) csv << "," << name << "_" << names[i];
+    for (std::size_t p : drivers) csv << "," << model.parts[p].name << "_angle";
+    csv << "\n";
+    for (const PinSlotState& s : samples) {
+      csv << number(s.time);
+      for (int i = 0; i < 4; ++i) csv << "," << number(column(s, i));
+      for (std::size_t p : drivers) csv << "," << number(s.position[p]);
+      csv << "\n";
+    }
+    files.push_back({"trajectory.csv", csv.str()});
+  }
+  add_event_files(files, model, simulation.events(), tu, fu,
+                  {{"t_end", end.time},
+                   {"steps", simulation.steps()},
+                   {"energy", simulation.energy()},
+                   {"chord_deviation_mm", simulation.chord_deviation()}});
+  if (!options.no_pictures) {
+    std::vector<double> event_times;
+    for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    for (int which = 0; which < 2; ++which) {
+      render::TimePlot plot;
+      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + name;
+      plot.x_label = "t (" + tu + ")";
+      plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
+      plot.event_times = event_times;
+      for (const PinSlotState& s : samples) plot.times.push_back(s.time);
+      for (int i = 2 * which; i < 2 * which + 2; ++i) {
+        render::TimeSeries series;
+        series.label = name + " " + names[i];
+        for (const PinSlotState& s : samples) series.values.push_back(column(s, i));
+        plot.series.push_back(series);
+      }
+      files.push_back({which == 0 ? "positions.svg" : "velocities.svg", render::time_plot_svg(plot)});
+    }
+  }
+  publish_run(files, options);
+  return 0;
+}
+
 // --t-end and --max-step, before anything is read or built: T positive and finite, H (when
 // given; CLI11 has checked it is a positive finite number) no smaller than T over the
 // simulator's step budget (SimulationOptions::max_steps, 2 000 000): a run that needs more
@@ -1084,6 +1171,8 @@ int run(const SimulateOptions& options) {
   for (const Part& part : model.parts) planar_count += part.motion.kind == Motion::Kind::planar;
   if (planar_count == 1) return run_planar<PlanarSimulation>(model, options);
   if (planar_count > 1) return run_planar<PlanarSystemSimulation>(model, options);
+  for (const Part& part : model.parts)
+    if (part.motion.kind == Motion::Kind::pin_slot) return run_pin_slot(model, options);
   bool terminal = isatty(2);
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;

@@ -229,9 +229,11 @@ void Reader::read_simulation(const JsonValue* value) {
       if (model_.parts[*index].motion.kind == Motion::Kind::planar)
         throw ModelError(member.value.pointer, "part '" + member.key +
                                                    "' is planar: its centre of mass is its pivot (set \"pivot\" there)");
-      if (model_.parts[*index].motion.kind != Motion::Kind::rotation)
+      if (model_.parts[*index].motion.kind != Motion::Kind::rotation &&
+          model_.parts[*index].motion.kind != Motion::Kind::pin_slot)
         throw ModelError(member.value.pointer, "part '" + member.key +
-                                                   "' does not rotate: a centre of mass only matters for a rotating part");
+                                                   "' does not rotate: a centre of mass only matters for a rotating "
+                                                   "or pin-slot part");
       spec.centers_of_mass.push_back(SimulationSpec::CenterOfMass{*index, point(member.value), member.value.pointer});
     }
   }

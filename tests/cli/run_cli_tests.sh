@@ -905,6 +905,30 @@ for command in tolerance analyze; do
   [ ! -e "$work/long-range" ] || fail "$command --range with a 100 000-digit number wrote its output directory"
 done
 
+# a pin-slot part (session 57): the cam strikes the follower three times in 0.1 s (Newton's law,
+# e = 0.5: each separation speed half its approach speed); at 0.3 s the bounces have become a
+# contact that would have to be sustained: exit 3, nothing written; the film advance (a cam with
+# a torque, a translating film) is refused at the cam's motion, exit 2
+"$hipair" simulate "$source/tests/data/simulation/pin-slot-cam.json" --t-end 0.1 --out "$work/sim-pin-slot" \
+  >"$work/sim-pin-slot.txt" 2>&1 || fail "simulate pin-slot-cam: $(tail -n 3 "$work/sim-pin-slot.txt")"
+python3 - "$work/sim-pin-slot/events.json" <<'PY' || fail "simulate pin-slot-cam: wrong impacts"
+import json, sys
+events = json.load(open(sys.argv[1]))["events"]
+ok = len(events) == 3 and all(e["kind"] == "impact" for e in events)
+ok = ok and all(abs(e["normal_speed_after"] - 0.5 * e["normal_speed_before"]) < 1e-6 * e["normal_speed_before"] for e in events)
+sys.exit(0 if ok else 1)
+PY
+[ -s "$work/sim-pin-slot/trajectory.csv" ] && head -1 "$work/sim-pin-slot/trajectory.csv" | grep -q "follower_slide,follower_angle" \
+  || fail "simulate pin-slot-cam: no trajectory columns"
+"$hipair" simulate "$source/tests/data/simulation/pin-slot-cam.json" --t-end 0.3 --out "$work/sim-pin-slot-long" \
+  >/dev/null 2>"$work/sim-pin-slot-long.err"
+[ $? -eq 3 ] || fail "simulate pin-slot-cam to 0.3 s: not a numeric error"
+grep -q "would have to be sustained" "$work/sim-pin-slot-long.err" || fail "simulate pin-slot-cam: $(cat "$work/sim-pin-slot-long.err")"
+[ ! -e "$work/sim-pin-slot-long" ] || fail "simulate pin-slot-cam to 0.3 s wrote its output directory"
+"$hipair" simulate "$source/examples/models/film-advance.json" --t-end 0.1 >/dev/null 2>"$work/sim-film.err"
+[ $? -eq 2 ] || fail "simulate film-advance: not a model error"
+grep -q "/parts/0/motion" "$work/sim-film.err" || fail "simulate film-advance: no pointer: $(cat "$work/sim-film.err")"
+
 if [ $failures -ne 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1

@@ -1,0 +1,296 @@
+// A pin-in-slot part simulated in its own coordinates (s, psi) (docs/simulation.md, "Pin-in-slot
+// parts"), against closed forms on generated cases: a follower dropped along its vertical slot
+// onto a cam at rest (impact at sqrt(2h/g), rebound e v, the next impact 2 e v / g later, every
+// accepted configuration exactly not overlapping by the overlap oracle, the same events whatever
+// the step limit); an eccentric cam turning at constant speed striking the follower where the
+// cam's kinematic function reaches its face (time, approach speed, Newton's law in (s, psi));
+// free flight on springs (s(t) = closed-form oscillation, energy kept with an offset centre of
+// mass, a slanted slot and gravity); refusals outside the class.
+#include <hipair/error.hpp>
+#include <hipair/model.hpp>
+#include <hipair/overlap.hpp>
+#include <hipair/pin_slot_simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include "simulation_planar_support.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+using planar_test::Lcg;
+using planar_test::num;
+
+// The follower: a block [-w, w] x [yb, yb + 8] on a pin at (0, 40), its slot along `dir`.
+struct Follower {
+  double w = 12, yb = 12, s0 = 0, mass = 0.01, inertia = 20;
+  std::string dir = "[0, 1]";
+  std::string extra_dynamics;   // more dynamics members (with a leading comma)
+  std::string json() const {
+    const std::string l = num(-w), r = num(w), b = num(yb), t = num(yb + 8);
+    return R"({ "name": "follower", "motion": { "pin_slot": { "pivot": [0, 40], "direction": )" + dir +
+           R"(, "angle_limits": [-1, 1], "limits": [-30, 30] } },
+      "initial": { "angle": 0, "offset": )" + num(s0) + R"( },
+      "dynamics": { "mass": )" + num(mass) + R"(, "moment_of_inertia": )" + num(inertia) + extra_dynamics + R"( },
+      "loops": [ { "start": [)" + l + ", " + b + R"(], "edges": [ { "line_to": [)" + r + ", " + b +
+           R"(], "label": "follower face" }, { "line_to": [)" + r + ", " + t + R"(] }, { "line_to": [)" + l + ", " + t +
+           R"(] }, { "line_to": [)" + l + ", " + b + R"(] } ] } ] })";
+  }
+};
+
+std::string model_json(const std::string& parts, const std::string& pairs, const std::string& simulation) {
+  return R"({ "hipair": 1, "name": "pin-slot test", "units": { "length": "mm", "angle": "rad" }, "parts": [ )" + parts +
+         R"( ], "pairs": [ )" + pairs + R"( ], "simulation": { )" + simulation + R"( } })";
+}
+
+// A fixed disc of radius r at the origin.
+std::string fixed_cam(double r) {
+  return R"({ "name": "cam", "motion": "fixed", "features": [ { "circle": { "center": [0, 0], "radius": )" + num(r) +
+         R"( } } ] })";
+}
+
+// Every accepted configuration is exactly free: the pin-slot part placed by its exact relative
+// configuration (pivot, rotation, shift) against the other part at its zero configuration.
+void expect_not_overlapping(const PinSlotSimulation& sim, const std::vector<std::size_t>& others) {
+  const Model& model = sim.model();
+  const Part& follower = model.parts[sim.part()];
+  const auto& qs = sim.state().pair_configurations;
+  ASSERT_EQ(qs.size(), others.size());
+  for (std::size_t i = 0; i < qs.size(); ++i) {
+    Rational c(-1), s(0);
+    if (!qs[i].angle.half_turn) {
+      const Rational& t = qs[i].angle.t;
+      c = (1 - t * t) / (1 + t * t);
+      s = 2 * t / (1 + t * t);
+      c.canonicalize();
+      s.canonicalize();
+    }
+    const Placement fp = placement_about(follower.motion.pivot, c, s, Point{qs[i].x, qs[i].y});
+    const PartOverlap o = part_overlap(model.parts[others[i]], Placement{}, follower, fp);
+    EXPECT_NE(o.relation, PartRelation::overlapping) << "at t = " << sim.state().time;
+  }
+}
+
+struct Drop {
+  double r = 10, h = 3, e = 0.6, g = 9810;
+  Follower f;
+  std::string json() const {
+    return model_json(fixed_cam(r) + ", " + f.json(), R"({ "parts": ["cam", "follower"], "restitution": )" + num(e) + " }",
+                      R"("gravity": [0, -)" + num(g) + R"(], "accuracy": 1e-10)");
+  }
+};
+
+Drop generated_drop(Lcg& rng) {
+  Drop d;
+  d.r = rng.uniform(6, 14);
+  d.h = rng.uniform(1, 6);
+  d.e = rng.uniform(0.3, 0.8);
+  d.f.w = rng.uniform(8, 16);
+  d.f.yb = rng.uniform(14, 20);
+  d.f.mass = rng.uniform(0.005, 0.05);
+  d.f.inertia = d.f.mass * rng.uniform(500, 2000);
+  d.f.s0 = d.r + d.h - d.f.yb;   // the face h above the disc's top
+  return d;
+}
+
+TEST(SimulationPinSlot, FollowerDroppedOntoACamAtRestHitsAtTheClosedFormTimeAndBounces) {
+  Lcg rng{57};
+  for (int c = 0; c < 6; ++c) {
+    const Drop d = generated_drop(rng);
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(d.json(), "<drop>"));
+    const double t1 = std::sqrt(2 * d.h / d.g), v1 = d.g * t1, t2 = t1 + 2 * d.e * v1 / d.g;
+    const double tol = 4 * sim.chord_deviation() / (d.e * v1) + 1e-8 * t2;
+    while (sim.events().size() < 2 && sim.state().time < 2 * t2) {
+      sim.step(2 * t2);
+      expect_not_overlapping(sim, {0});
+      EXPECT_EQ(sim.state().angle, 0.0);   // the load acts along the slot: no turn
+    }
+    const auto& ev = sim.events();
+    ASSERT_EQ(ev.size(), 2u) << "case " << c;
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_EQ(ev[0].features.size(), 1u);
+    EXPECT_NE(ev[0].features[0].find("follower face"), std::string::npos) << ev[0].features[0];
+    EXPECT_NEAR(ev[0].time, t1, tol) << "case " << c;
+    EXPECT_NEAR(ev[0].normal_speed_before, v1, 1e-6 * v1);
+    EXPECT_NEAR(ev[0].normal_speed_after, d.e * v1, 1e-6 * v1);
+    EXPECT_NEAR(ev[0].impulse, d.f.mass * (1 + d.e) * v1 / 1000, 1e-6 * d.f.mass * v1 / 1000);   // N s
+    EXPECT_NEAR(ev[0].normal[1], 1.0, 1e-9);
+    EXPECT_NEAR(ev[1].time, t2, tol) << "case " << c;
+    EXPECT_NEAR(ev[1].normal_speed_before, d.e * v1, 1e-6 * v1);
+  }
+}
+
+TEST(SimulationPinSlot, EventSequenceDoesNotDependOnTheStepSize) {
+  Lcg rng{11};
+  for (int c = 0; c < 3; ++c) {
+    const Drop d = generated_drop(rng);
+    const Model model = read_model(d.json(), "<drop>");
+    const double t1 = std::sqrt(2 * d.h / d.g), t_end = t1 * (1 + 2 * d.e + 2 * d.e * d.e) + t1 * d.e * d.e * d.e;
+    std::vector<std::vector<SimulationEvent>> runs;
+    double delta = 0;
+    for (double max_step : {0.0, 2e-3, 3e-4}) {
+      SimulationOptions o;
+      o.max_step = max_step;
+      PinSlotSimulation sim = PinSlotSimulation::create(model, o);
+      delta = sim.chord_deviation();
+      sim.run_until(t_end);
+      runs.push_back(sim.events());
+    }
+    ASSERT_EQ(runs[0].size(), 3u) << "case " << c;
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+      ASSERT_EQ(runs[r].size(), runs[0].size()) << "case " << c << " run " << r;
+      for (std::size_t i = 0; i < runs[0].size(); ++i) {
+        EXPECT_EQ(runs[r][i].kind, runs[0][i].kind);
+        EXPECT_EQ(runs[r][i].features, runs[0][i].features);
+        const double v = runs[0][i].normal_speed_before;
+        EXPECT_NEAR(runs[r][i].time, runs[0][i].time, 8 * delta / v + 1e-8 * t_end) << "case " << c << " event " << i;
+      }
+    }
+  }
+}
+
+TEST(SimulationPinSlot, CamAtConstantSpeedStrikesTheFollowerWhereItsKinematicFunctionReachesTheFace) {
+  Lcg rng{3};
+  for (int c = 0; c < 6; ++c) {
+    const double ecc = rng.uniform(2, 5), r = rng.uniform(8, 11), omega = rng.uniform(5, 20), e = rng.uniform(0.2, 0.9);
+    const double phi0 = -std::numbers::pi / 2 + rng.uniform(0, 0.3);
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.05);
+    f.inertia = f.mass * rng.uniform(500, 2000);
+    f.yb = 18;
+    const double H = r + rng.uniform(0.3, 0.9) * ecc;   // the face's height: the cam's top reaches it on its way up
+    f.s0 = H - f.yb;
+    const std::string cam = R"({ "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } }, "initial": { "angle": )" +
+                            num(phi0) + R"( }, "features": [ { "circle": { "center": [)" + num(ecc) + R"(, 0], "radius": )" +
+                            num(r) + R"( } } ] })";
+    const std::string json =
+        model_json(cam + ", " + f.json(), R"({ "parts": ["cam", "follower"], "restitution": )" + num(e) + " }",
+                   R"("drivers": [ { "part": "cam", "speed": )" + num(omega) + R"( } ], "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<cam>"));
+    // the cam's top, ecc sin(phi) + r, reaches the face H at phi* on the way up
+    const double phi_star = std::asin((H - r) / ecc), t_star = (phi_star - phi0) / omega;
+    const double px = ecc * std::cos(phi_star);       // the contact point's abscissa (the circle's top)
+    const double v_cam = omega * px;                  // the cam surface's normal speed there
+    while (sim.events().empty() && sim.state().time < 2 * t_star) {
+      sim.step(2 * t_star);
+      expect_not_overlapping(sim, {0});
+    }
+    ASSERT_EQ(sim.events().size(), 1u) << "case " << c;
+    const SimulationEvent& ev = sim.events()[0];
+    EXPECT_NEAR(ev.time, t_star, 4 * sim.chord_deviation() / v_cam + 1e-8 * t_star) << "case " << c;
+    EXPECT_NEAR(ev.normal_speed_before, v_cam, 1e-6 * v_cam);
+    EXPECT_NEAR(ev.normal_speed_after, e * v_cam, 1e-6 * v_cam);
+    EXPECT_NEAR(ev.point[0], px, 1e-5);
+    EXPECT_NEAR(ev.point[1], H, 1e-5);
+    // Newton's law in (s, psi): J = [1, px] (normal +y, lever px about the pin), M = diag(m, I_P + m s^2)
+    const double M22 = f.inertia + f.mass * f.s0 * f.s0;
+    const double lambda = (1 + e) * v_cam / (1 / f.mass + px * px / M22);
+    EXPECT_NEAR(sim.state().slide_rate, lambda / f.mass, 1e-6 * v_cam);
+    EXPECT_NEAR(sim.state().angle_rate, lambda * px / M22, 1e-6 * v_cam / std::abs(px));
+    EXPECT_NEAR(ev.impulse, lambda / 1000, 1e-6 * lambda / 1000);
+  }
+}
+
+TEST(SimulationPinSlot, FreeFlightOnSpringsFollowsTheClosedFormAndKeepsEnergy) {
+  Lcg rng{5};
+  for (int c = 0; c < 4; ++c) {
+    // a linear spring along a vertical slot, the centre of mass on the pin: s(t) = a cos(sqrt(k/m) t)
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.05);
+    f.inertia = f.mass * rng.uniform(500, 2000);
+    const double k = rng.uniform(0.5, 5), a = rng.uniform(1, 4);
+    f.s0 = a;
+    f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(k) + R"(, "rest": 0 })";
+    const std::string json = model_json(fixed_cam(2) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })", "");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<spring>"));
+    const double w = std::sqrt(k * 1000 / f.mass);
+    for (int i = 1; i <= 8; ++i) {
+      const double t = i * 0.37 / w;
+      sim.run_until(t);
+      EXPECT_NEAR(sim.state().slide, a * std::cos(w * sim.state().time), 1e-6 * a) << "case " << c;
+      EXPECT_NEAR(sim.state().slide_rate, -a * w * std::sin(w * sim.state().time), 1e-6 * a * w);
+      EXPECT_EQ(sim.state().angle, 0.0);
+    }
+  }
+  for (int c = 0; c < 4; ++c) {
+    // a slanted slot, an offset centre of mass, gravity, a torsional spring, a force: energy kept
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.05);
+    f.inertia = f.mass * rng.uniform(800, 2000);
+    f.dir = "[0.6, 0.8]";
+    f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(rng.uniform(0.5, 2)) + R"(, "rest": 1 }, )" +
+                       R"("torsional_spring": { "stiffness": )" + num(rng.uniform(50, 200)) + R"(, "rest": 0.1 }, )" +
+                       R"("force": [)" + num(rng.uniform(-0.05, 0.05)) + R"(, 0], "torque": )" + num(rng.uniform(-1, 1));
+    const std::string json =
+        model_json(fixed_cam(2) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",
+                   R"("gravity": [0, -9810], "centers_of_mass": { "follower": [)" + num(rng.uniform(-3, 3)) + ", " +
+                       num(rng.uniform(30, 38)) + R"(] }, "accuracy": 1e-11)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<energy>"));
+    const double e0 = sim.energy();
+    double moved = 0;
+    for (int i = 1; i <= 10; ++i) {
+      sim.run_until(0.02 * i);
+      moved = std::max(moved, std::abs(sim.state().angle));
+      EXPECT_NEAR(sim.energy(), e0, 1e-7 * (std::abs(e0) + 1)) << "case " << c;
+    }
+    EXPECT_GT(moved, 1e-3);   // the part does turn: the coupling terms are exercised
+    EXPECT_TRUE(sim.events().empty());
+  }
+}
+
+TEST(SimulationPinSlot, OutsideTheClassItRefusesWithClearMessages) {
+  Drop d;
+  d.e = 0;   // plastic: the contact would have to be sustained
+  d.f.s0 = d.r + 2 - d.f.yb;
+  PinSlotSimulation sim = PinSlotSimulation::create(read_model(d.json(), "<plastic>"));
+  try {
+    sim.run_until(0.1);
+    FAIL() << "a sustained contact ran";
+  } catch (const NumericError& e) {
+    EXPECT_NE(std::string(e.what()).find("would have to be sustained"), std::string::npos) << e.what();
+  }
+  // a moving part that is not a driver
+  const std::string cam = R"({ "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } }, "features": [
+      { "circle": { "center": [3, 0], "radius": 10 } } ], "dynamics": { "moment_of_inertia": 1 } })";
+  try {
+    PinSlotSimulation::create(read_model(model_json(cam + ", " + d.f.json(), R"({ "parts": ["cam", "follower"] })", ""), "<x>"));
+    FAIL() << "an undriven cam was taken";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/parts/0/motion"), std::string::npos) << e.what();
+  }
+  // no mass
+  Follower light = d.f;
+  light.mass = 0;
+  try {
+    PinSlotSimulation::create(
+        read_model(model_json(fixed_cam(10) + ", " + light.json(), R"({ "parts": ["cam", "follower"] })", ""), "<y>"));
+    FAIL() << "a massless follower was taken";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/parts/1/dynamics/mass"), std::string::npos) << e.what();
+  }
+  // a start overlapping the cam
+  Drop in = d;
+  in.f.s0 = in.r - 1 - in.f.yb;
+  try {
+    PinSlotSimulation::create(read_model(in.json(), "<z>"));
+    FAIL() << "an overlapping start was taken";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("starts overlapping"), std::string::npos) << e.what();
+  }
+  // leaving the slide limits is a GeometryError naming them
+  Follower rising = d.f;
+  rising.s0 = 25;
+  PinSlotSimulation far = PinSlotSimulation::create(
+      read_model(model_json(fixed_cam(1) + ", " + rising.json(), R"({ "parts": ["cam", "follower"] })",
+                            R"("gravity": [0, 9810])"),
+                 "<far>"));
+  EXPECT_THROW(far.run_until(1.0), GeometryError);
+}
+
+}  // namespace
+}  // namespace hipair
