@@ -33,6 +33,16 @@ struct SimulationOptions {
   /// Build each pair's C-space as an operating region around the initial configuration
   /// (CSpaceBuildOptions::operating_region); leaving it is a GeometryError.
   bool operating_region = false;
+  /// When operating_region is false: a pair whose two parts have more than this many boundary
+  /// edges in all (a gear pair, whose whole torus holds z1 z2 tooth encounters and takes minutes
+  /// to build) is built as its operating region, the other pairs whole. A motion cannot leave
+  /// the region without crossing contact space: the region holds the whole flooded channel of
+  /// the start. 0: every pair whole. `hipair simulate --region auto` (its default) sets 120, the
+  /// size above which `hipair analyze` draws a pair's operating region.
+  std::size_t operating_region_above_edges = 0;
+  /// Called with the progress of the pairs' C-space builds (CSpaceBuildOptions::progress; the
+  /// terminal's reporter is stderr_progress()); empty: none.
+  CSpaceProgress build_progress;
   /// The pairs' C-spaces take the filtered quadratic traits where it applies
   /// (CSpaceBuildOptions::quadratic_traits); false: CGAL's algebraic traits for every chart (for
   /// tests that compare the two: the same exact C-space, certified extents of other widths).

@@ -51,7 +51,8 @@ struct SimulateOptions {
   std::vector<std::string> overrides;
   bool allow_out_of_tolerance = false;
   std::string rounding;
-  std::string region = "full";
+  std::string region = "auto";   // --region: full, operating, or auto (operating for a large pair)
+  bool quiet = false;            // --quiet: no progress on the terminal
   bool no_pictures = false;
   std::string sweep;
   unsigned jobs = 0;
@@ -61,6 +62,16 @@ struct SimulateOptions {
   double fps = 25;                  // animation frames per second of playback
   double animation_duration = 0;    // playback seconds; 0: the simulated time (real time), at least 1 s
 };
+
+// --region: `operating` builds every pair's operating region, `full` every pair's whole space,
+// `auto` (the default) the operating region of a pair whose two parts have more than 120
+// boundary edges (a gear pair: its whole torus holds z1 z2 tooth encounters and takes minutes,
+// its channel seconds; the size above which `analyze` draws an operating region) and the
+// whole space of the others.
+void set_region(SimulationOptions& sim_options, const SimulateOptions& options) {
+  sim_options.operating_region = options.region == "operating";
+  sim_options.operating_region_above_edges = options.region == "auto" ? 120 : 0;
+}
 
 // Seconds per time unit of the model ("s" or "ms").
 double seconds_per_unit(const std::string& time_unit) { return time_unit == "ms" ? 1e-3 : 1.0; }
@@ -567,7 +578,7 @@ int run_sweep(const SimulateOptions& options) {
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
   sim_options.max_steps = options.max_steps;
-  sim_options.operating_region = options.region == "operating";
+  set_region(sim_options, options);
   std::vector<std::size_t> moving;
   for (std::size_t p = 0; p < models.front().parts.size(); ++p)
     if (models.front().parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
@@ -775,7 +786,8 @@ void run_within_budget(const Sim& simulation, const SimulateOptions& options, co
 }
 
 struct ProgressLine {
-  bool terminal = isatty(2);
+  explicit ProgressLine(const SimulateOptions& options) : terminal(isatty(2) && !options.quiet) {}
+  bool terminal;
   std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
   void show(double t, const SimulateOptions& options, const std::string& time_unit, std::size_t steps,
             std::size_t events) {
@@ -875,7 +887,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
   sim_options.max_steps = options.max_steps;
-  if (options.region != "full") throw ModelError("", "--region: a planar part's C-space has no operating region");
+  if (options.region == "operating") throw ModelError("", "--region: a planar part's C-space has no operating region");
   PlanarRun simulation = PlanarRun::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
@@ -886,7 +898,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   };
   std::vector<Sample> samples{{state_time(simulation), planar_states(simulation)}};
   double cpu_start = thread_cpu_seconds();
-  ProgressLine line;
+  ProgressLine line(options);
   auto progress = [&](double t) {
     samples.push_back({state_time(simulation), planar_states(simulation)});
     line.show(t, options, tu, simulation.steps(), simulation.events().size());
@@ -1173,13 +1185,16 @@ int run(const SimulateOptions& options) {
   if (planar_count > 1) return run_planar<PlanarSystemSimulation>(model, options);
   for (const Part& part : model.parts)
     if (part.motion.kind == Motion::Kind::pin_slot) return run_pin_slot(model, options);
-  bool terminal = isatty(2);
+  bool terminal = isatty(2) && !options.quiet;
   SimulationOptions sim_options;
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
   sim_options.max_steps = options.max_steps;
-  sim_options.operating_region = options.region == "operating";
+  set_region(sim_options, options);
+  // the builds' own progress line (per chart or tile of each pair: a gear pair's operating
+  // region takes seconds, a whole torus minutes), wiped when each build is done
   if (terminal) std::cerr << "simulate: building the pairs' C-spaces..." << std::flush;
+  if (terminal) sim_options.build_progress = stderr_progress();
   Simulation simulation = Simulation::create(model, sim_options);
   if (terminal) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
 
@@ -1188,7 +1203,7 @@ int run(const SimulateOptions& options) {
     if (model.parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
   std::vector<SimulationState> samples{simulation.state()};
   double cpu_start = thread_cpu_seconds();
-  ProgressLine line;
+  ProgressLine line(options);
   auto progress = [&](double t) {
     samples.push_back(simulation.state());
     line.show(t, options, simulation.time_unit(), simulation.steps(), simulation.events().size());
@@ -1343,8 +1358,11 @@ void register_simulate(CLI::App& app, Action& action) {
                       "Output directory: trajectory.csv, events.json/.txt, positions.svg, velocities.svg, animation.svg, cspace-*.svg")
       ->check(output_path());
   command->add_option("--region", options->region,
-                      "full: whole C-spaces (default); operating: operating regions around the initial configuration")
-      ->check(CLI::IsMember({"full", "operating"}));
+                      "auto: the operating region of a pair of more than 120 boundary edges (gears), the whole "
+                      "C-space of the others (default); full: whole C-spaces; operating: operating regions around "
+                      "the initial configuration")
+      ->check(CLI::IsMember({"auto", "full", "operating"}));
+  command->add_flag("--quiet", options->quiet, "No progress on the terminal");
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
   command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
       ->check(real_range(1.0, 240.0));

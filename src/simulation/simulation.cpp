@@ -41,6 +41,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -1080,7 +1081,10 @@ struct Simulation::Impl {
       std::optional<StatusOnlyCrossings> status_only;
       if (simulation::status_only_nudges()) status_only.emplace();
       MotionCrossing c = spaces[pair]->first_crossing(at);
-      if (c.status == CrossingStatus::outside_region) outside(pair, t);
+      // a trial beyond the built space (an operating region's border, reached by a nudge grown
+      // over many doublings) is not a configuration proven free: the nudge goes on, and one that
+      // finds none is the jam it is over the whole space (before: "leaves its built C-space")
+      if (c.status == CrossingStatus::outside_region) return false;
       if (blocked) *blocked = c.status == CrossingStatus::starts_in_contact && !c.grazing;
       return c.status == CrossingStatus::none;
     };
@@ -2619,8 +2623,34 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
   CSpaceBuildOptions build;
   build.operating_region = options.operating_region;
   build.quadratic_traits = options.quadratic_traits;
+  build.progress = options.build_progress;
   s.spaces.assign(model.pairs.size(), nullptr);
-  std::vector<PairBuild> built = CSpace::build_pairs(model, build);
+  // a pair of more than options.operating_region_above_edges boundary edges (a gear pair) is
+  // built as its operating region: the whole flooded channel of its start, so a motion from the
+  // start meets contact space before it can leave the region; the others whole, as before
+  auto large_pair = [&](const PairSpec& pair) {
+    std::size_t edges = 0;
+    for (std::size_t part : {pair.first, pair.second})
+      for (const Loop& loop : model.parts[part].loops) edges += loop.edges.size();
+    return edges > options.operating_region_above_edges;
+  };
+  std::vector<PairBuild> built;
+  if (!options.operating_region && options.operating_region_above_edges > 0 &&
+      std::any_of(model.pairs.begin(), model.pairs.end(), large_pair)) {
+    Model small = model, large = model;
+    small.pairs.clear();
+    large.pairs.clear();
+    for (const PairSpec& pair : model.pairs) (large_pair(pair) ? large : small).pairs.push_back(pair);
+    CSpaceBuildOptions region = build;
+    region.operating_region = true;
+    built = CSpace::build_pairs(large, region);
+    if (!small.pairs.empty()) {
+      std::vector<PairBuild> whole = CSpace::build_pairs(small, build);
+      built.insert(built.end(), std::make_move_iterator(whole.begin()), std::make_move_iterator(whole.end()));
+    }
+  } else {
+    built = CSpace::build_pairs(model, build);
+  }
   for (const PairBuild& b : built) {
     if (b.status != PairBuild::Status::built)
       throw GeometryError("simulation: the C-space of pair (" + b.first_part + ", " + b.second_part +
