@@ -1023,13 +1023,13 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   sim_options.accuracy = options.accuracy;
   sim_options.max_step = options.max_step;
   sim_options.max_steps = options.max_steps;
-  if (options.region != "full") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
+  if (options.region == "operating") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
   PinSlotSimulation simulation = PinSlotSimulation::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
   std::vector<PinSlotState> samples{simulation.state()};
   double cpu_start = thread_cpu_seconds();
-  ProgressLine line;
+  ProgressLine line(options);
   auto progress = [&](double t) {
     samples.push_back(simulation.state());
     line.show(t, options, tu, simulation.steps(), simulation.events().size());
