@@ -516,10 +516,12 @@ struct SlicedSpace::Impl {
   Near near(std::size_t i, int halvings) const {
     const sliced::Critical& c = critical[i];
     Near out;
-    // (narrowed by the pivot's lever: a point of the free part moves |q - pivot| dtheta, and
-    // dtheta <= 2 dt; a pivot 10^6 part sizes away swept the part across the plate's hole within
-    // 2^-16 of t, so no sample was steady and the outside cell split in five components)
-    Rational width = Rational(1) / (lever * Rational(mpz_class(1) << (10 + 2 * halvings)));
+    // The range found (separated from the other critical angles) is then narrowed by the pivot's
+    // lever: a point of the free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6
+    // part sizes away swept the part across the plate's hole within 2^-16 of t, so no sample was
+    // steady and the hole's cells ended at every critical angle (9 components for 5; with a
+    // clearance of 10^-9 the range next to a critical angle 10^-10 away moved the peg 10^-4).
+    Rational width = Rational(1) / Rational(mpz_class(1) << (10 + 2 * halvings));
     auto separated = [&](const Rational& lo, const Rational& hi) {
       for (std::size_t k = 0; k < critical.size(); ++k) {
         if (k == i || critical[k].half_turn) continue;
@@ -532,6 +534,7 @@ struct SlicedSpace::Impl {
       Rational d = width;
       for (std::size_t k = 0; k < critical.size(); ++k)
         while (!critical[k].half_turn && (critical[k].t.compare(-1 / d) <= 0 || critical[k].t.compare(1 / d) >= 0)) d /= 2;
+      d /= lever;
       out.flip = true;
       out.u_lo = -d;
       out.u_hi = d;
@@ -544,14 +547,17 @@ struct SlicedSpace::Impl {
     if (t.exact) {
       Rational d = width;
       while (!separated(t.lower - d, t.lower + d)) d /= 2;
+      d /= lever;
       lo = t.lower - d;
       hi = t.lower + d;
     } else {
       algebra::refine_dyadically(t, width);
       while (!t.exact && !separated(t.lower, t.upper)) algebra::refine_dyadically(t, (t.upper - t.lower) / 4);
+      if (!t.exact && lever != 1) algebra::refine_dyadically(t, (t.upper - t.lower) / lever);
       if (t.exact) {
         Rational d = width;
         while (!separated(t.lower - d, t.lower + d)) d /= 2;
+        d /= lever;
         lo = t.lower - d;
         hi = t.lower + d;
       } else {
