@@ -122,6 +122,23 @@ Rational reach(const Part& part, const Point& pivot, const Rational& unit) {
   return best;
 }
 
+// The lever of a free part about its pivot: 1 when the part's reach about its pivot is within
+// 16 times its reach about its own first vertex (the pivot on or near the part: every ordinary
+// model), else the least power of two at least the ratio. A pure rotation by dt of the
+// half-angle tangent moves the part's points by up to 2 dt reach(pivot): the crossings try
+// angle ranges narrowed by this factor, so that the part moves as little across them as a part
+// turning about a point of its own (session 57, hunt57: a peg-in-hole with the peg's pivot 10^6
+// mm away had 9 components for 5).
+Rational pivot_lever(const Part& free, const Rational& unit) {
+  if (free.loops.empty() || free.loops.front().edges.empty()) return 1;
+  const Rational own = reach(free, free.loops.front().edges.front().source, unit);
+  const Rational about_pivot = reach(free, free.motion.pivot, unit);
+  if (own <= 0 || about_pivot <= 16 * own) return 1;
+  Rational lever = 1;
+  while (lever * own < about_pivot) lever *= 2;
+  return lever;
+}
+
 struct UnionFind {
   std::vector<std::size_t> parent;
   std::size_t add() {
@@ -289,6 +306,9 @@ struct SlicedSpace::Impl {
   Rational bound;
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
   long length_unit_exponent = 0;   // lengths in units of 2^this mm (SlicedBuildOptions::normalise_lengths)
+  // The free part's lever about its pivot (pivot_lever): 1, or the power of two by which the
+  // crossings' angle ranges are narrowed for a pivot far from the part (session 57).
+  Rational lever = 1;
   // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
   // scale_free_factor k, the coordinates integers, then divided by the power of two that brings
   // them to an ordinary size, sliced::size_unit: `frame` = k / that unit): the parts times
@@ -496,6 +516,11 @@ struct SlicedSpace::Impl {
   Near near(std::size_t i, int halvings) const {
     const sliced::Critical& c = critical[i];
     Near out;
+    // The range found (separated from the other critical angles) is then narrowed by the pivot's
+    // lever: a point of the free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6
+    // part sizes away swept the part across the plate's hole within 2^-16 of t, so no sample was
+    // steady and the hole's cells ended at every critical angle (9 components for 5; with a
+    // clearance of 10^-9 the range next to a critical angle 10^-10 away moved the peg 10^-4).
     Rational width = Rational(1) / Rational(mpz_class(1) << (10 + 2 * halvings));
     auto separated = [&](const Rational& lo, const Rational& hi) {
       for (std::size_t k = 0; k < critical.size(); ++k) {
@@ -509,6 +534,7 @@ struct SlicedSpace::Impl {
       Rational d = width;
       for (std::size_t k = 0; k < critical.size(); ++k)
         while (!critical[k].half_turn && (critical[k].t.compare(-1 / d) <= 0 || critical[k].t.compare(1 / d) >= 0)) d /= 2;
+      d /= lever;
       out.flip = true;
       out.u_lo = -d;
       out.u_hi = d;
@@ -521,14 +547,17 @@ struct SlicedSpace::Impl {
     if (t.exact) {
       Rational d = width;
       while (!separated(t.lower - d, t.lower + d)) d /= 2;
+      d /= lever;
       lo = t.lower - d;
       hi = t.lower + d;
     } else {
       algebra::refine_dyadically(t, width);
       while (!t.exact && !separated(t.lower, t.upper)) algebra::refine_dyadically(t, (t.upper - t.lower) / 4);
+      if (!t.exact && lever != 1) algebra::refine_dyadically(t, (t.upper - t.lower) / lever);
       if (t.exact) {
         Rational d = width;
         while (!separated(t.lower - d, t.lower + d)) d /= 2;
+        d /= lever;
         lo = t.lower - d;
         hi = t.lower + d;
       } else {
@@ -574,13 +603,24 @@ struct SlicedSpace::Impl {
         frame_bound = reach(*frame_fixed, frame_pivot, frame_unit) + reach(*frame_free, frame_pivot, frame_unit) + 2 * frame_unit;
         if (!has_arc(*a) && !has_arc(*b)) frame_pair = sliced::polygonal_pair(*frame_fixed, *frame_free);
       }
+      // The critical angles do not depend on the pivot: the slice at theta about pivot P is the
+      // slice about P0 translated by (I - R(theta))(P - P0), the same contacts. A pivot far from
+      // the free part (its lever above 1) is moved to the part's first vertex for them: about
+      // a pivot 10^12 mm away the candidates' certification lost its intervals and kept 2 320
+      // critical angles for the peg-in-hole's 12 (session 57, hunt57).
+      std::optional<Part> near_pivot;
+      if (lever != 1 && !b->loops.empty() && !b->loops.front().edges.empty()) {
+        near_pivot = *b;
+        near_pivot->motion.pivot = b->loops.front().edges.front().source;
+        b = &*near_pivot;
+      }
       if (has_arc(*a) || has_arc(*b)) {
         if (options.progress) options.progress("critical angles");
         critical = sliced::critical_angles_with_arcs(*a, *b, cs);
       } else {
         pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);   // model units (steady_along)
         if (options.progress) options.progress("critical angles");
-        if (scaled_a) {
+        if (scaled_a || near_pivot) {
           sliced::PolygonalPair scaled = sliced::polygonal_pair(*a, *b);
           critical = sliced::critical_angles(scaled, cs);
         } else {
@@ -836,6 +876,7 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   // the box's free margin, its outer cell's samples and the crossings' nudges follow the parts)
   impl->unit = sliced::length_unit(a, b);
   impl->bound = reach(a, b.motion.pivot, impl->unit) + reach(b, b.motion.pivot, impl->unit) + 2 * impl->unit;
+  impl->lever = pivot_lever(b, impl->unit);
   impl->motion.emplace(impl->model, *fixed, *free);
   if (options.cell_structure) impl->build_structure();
   impl->stats.seconds_total = seconds_since(start);
