@@ -405,6 +405,18 @@ Rational boundary_distance_lower_bound(const IntervalPart& shape_a, const Interv
       });
 }
 
+Rational point_boundary_distance_lower_bound(const IntervalPart& shape, const IntervalMap& map, const Point& p,
+                                             const Rational& enough) {
+  std::optional<Rational> best = enough;
+  P q = exact(p);
+  for (const auto& loop : shape.loops)
+    for (IntervalEdge e : loop) {
+      pose_edge(shape, map, e);
+      point_to_edge(q, e, best);
+    }
+  return *best;
+}
+
 Rational reach(const IntervalPart& shape) {
   Rational best(0);
   for (const auto& loop : shape.loops)
