@@ -342,11 +342,12 @@ std::optional<BlockedPiece> blocking_point(const PairRoles& r, const RationalInt
   }
 }
 
-// The piece's witness: a crossing (blocking_crossing), else a point inside both parts.
+// The piece's witness: a crossing (blocking_crossing), else, with `points`, a point inside both parts.
 std::optional<BlockedPiece> blocking_piece(const PairRoles& r, const RationalInterval& driver_range,
-                                           const std::optional<RationalInterval>& other_range) {
+                                           const std::optional<RationalInterval>& other_range, bool points) {
   if (auto crossing = blocking_crossing(r, driver_range, other_range))
     return BlockedPiece{{Rational(0), Rational(0)}, *crossing, std::nullopt};
+  if (!points) return std::nullopt;
   return blocking_point(r, driver_range, other_range);
 }
 
@@ -684,11 +685,13 @@ using FreeConfigurations = std::vector<std::pair<Rational, Rational>>;   // (dri
 
 // certify_jam's work on a pair at the origin; `march`: cover the cut and walls with MarchCover
 // (certify_closing_jam) instead of cover() with blocking_crossing; `seen`: free configurations
-// met so far (cover()'s), read and added to.
+// met so far (cover()'s), read and added to; `points`: pieces a crossing does not prove may be
+// proved by a point inside both parts (format version 2; certify_trap_with_points).
 std::optional<Certificate> certify_trap(const Model& model, const std::string& first, const std::string& second,
                                         const JamQuery& query, const CertifyContext& context,
                                         const IntervalSearchOptions& options, const Shapes* march = nullptr,
-                                        std::size_t* budget = nullptr, FreeConfigurations* seen = nullptr) {
+                                        std::size_t* budget = nullptr, FreeConfigurations* seen = nullptr,
+                                        bool points = false) {
   // march (certify_closing_jam): its start, checked there, is the certificate's; no grid
   Certificate c = start_certificate(model, context, ClaimKind::jam, first, second);
   PairRoles r = pair_roles(model, first, second, query.driver, query.follower);
@@ -702,7 +705,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
   Rational far = c.direction > 0 ? c.trap.driver.hi : c.trap.driver.lo;
   RationalInterval cut_at{far, far};
   if (!r.has_follower) {
-    auto piece = blocking_piece(r, cut_at, std::nullopt);
+    auto piece = blocking_piece(r, cut_at, std::nullopt, points);
     if (!piece) return std::nullopt;
     c.cut.push_back(std::move(*piece));
   } else {
@@ -740,7 +743,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                     [&](const RationalInterval& piece) { return std::make_pair(cut_at, piece); },
                                     Rational(1, 1000000000))
                  : !cover(band, c.cut, options.max_boxes,
-                          [&](const RationalInterval& piece) { return blocking_piece(r, cut_at, piece); },
+                          [&](const RationalInterval& piece) { return blocking_piece(r, cut_at, piece, points); },
                           [&](const Rational& y) { return free_at(far, y); }))
       return std::nullopt;
     for (int upper = 0; upper < 2; ++upper) {
@@ -753,7 +756,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                       [&](const RationalInterval& piece) { return std::make_pair(piece, wall_at); },
                                       Rational(1, 100000))
                    : !cover(c.trap.driver, wall, options.max_boxes,
-                            [&](const RationalInterval& piece) { return blocking_piece(r, piece, wall_at); },
+                            [&](const RationalInterval& piece) { return blocking_piece(r, piece, wall_at, points); },
                             [&](const Rational& x) { return free_at(x, at); }))
         return std::nullopt;
     }
@@ -794,6 +797,16 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
 }  // namespace
 
 namespace {
+// certify_trap with crossings only, then, when that fails, with point pieces too: every trap that
+// crossings prove keeps the certificate it had (version 1, byte for byte), and point pieces
+// (version 2) appear only where they are needed — flush faces, whose boundaries never cross.
+std::optional<Certificate> certify_trap_with_points(const Model& model, const std::string& first, const std::string& second,
+                                                    const JamQuery& query, const CertifyContext& context,
+                                                    const IntervalSearchOptions& options, FreeConfigurations* seen) {
+  if (auto c = certify_trap(model, first, second, query, context, options, nullptr, nullptr, seen)) return c;
+  return certify_trap(model, first, second, query, context, options, nullptr, nullptr, seen, true);
+}
+
 // A jam certificate produced on the pair moved to the origin (pair_moved_to_origin): its pieces'
 // witness points, world points of the moved model, moved back to the model's (the verifier
 // moves them again with the pair).
@@ -813,7 +826,7 @@ std::optional<Certificate> certify_jam(const Model& model, const std::string& fi
                                        const IntervalSearchOptions& options) {
   if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
     return checked_as_given(points_moved_back(certify_jam(*moved, first, second, query, context, options), model, first, second), model);
-  return certify_trap(model, first, second, query, context, options);
+  return certify_trap_with_points(model, first, second, query, context, options, nullptr);
 }
 
 namespace {
@@ -825,7 +838,7 @@ std::optional<Certificate> certify_jam_seeing(const Model& model, const std::str
   if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
     return checked_as_given(
         points_moved_back(certify_jam_seeing(*moved, first, second, query, context, options, seen), model, first, second), model);
-  return certify_trap(model, first, second, query, context, options, nullptr, nullptr, &seen);
+  return certify_trap_with_points(model, first, second, query, context, options, &seen);
 }
 }  // namespace
 

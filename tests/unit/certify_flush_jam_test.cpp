@@ -14,7 +14,11 @@
 //    swapped, the piece dropped, the version lowered to 1;
 //  - near misses: the same block raised so that its lowest point lies a gap of 10^-20 of the
 //    size, or of 0 (sliding along the slider's top face), above the slider: no jam found, the flush
-//    case's trap not certified, and the flush case's certificate rejected on that model.
+//    case's trap not certified, and the flush case's certificate rejected on that model;
+//  - the point test over a range of poses (verify::jam_point_failure, the verifier's check of a
+//    piece with a range): a point holds exactly when it stays strictly inside the slider over the
+//    whole range (closed form: hi < px < lo + W), with range ends on, 10^-20 inside and 10^-20
+//    outside the point's exit and entry.
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -22,6 +26,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
+
+#include "certify/planar_check.hpp"
 #include <string>
 
 #include "certificate_test_support.hpp"
@@ -190,6 +197,39 @@ TEST(CertifyFlushJam, GeneratedFlushFaceJamsAreCertifiedVerifiedAndEveryMutantIs
     }
   std::printf("[ flush ] %d flush jams certified and verified, %d mutants rejected, %d near misses not certified\n",
               certified, mutants, near_misses);
+}
+
+TEST(CertifyFlushJam, APointHoldsOverARangeExactlyWhenItStaysInsideThroughout) {
+  std::mt19937_64 random(5702);
+  int held = 0, refused = 0;
+  for (int n = 0; n < 12; ++n) {
+    FlushCase f = generated(random, n % 2);
+    Model model = read_model(model_text(f), "flush.json");
+    const Part& slider = model.parts[*model.find_part("slider")];
+    const Part& block = model.parts[*model.find_part("block")];
+    // a point inside the block, just behind its face: inside the slider for offsets s with
+    // px - W < s < px
+    Point p{f.G + f.A / 7, f.Y + f.H / 3};
+    Rational enter = p.x - f.W, leave = p.x, tiny = pow10(-20);
+    std::vector<Rational> ends{enter, Rational(enter - tiny), Rational(enter + tiny), leave, Rational(leave - tiny),
+                               Rational(leave + tiny), Rational((enter + leave) / 2)};
+    for (const Rational& lo : ends)
+      for (const Rational& hi : ends) {
+        if (!(lo < hi)) continue;
+        bool truth = enter < lo && hi < leave;
+        std::string why = verify::jam_point_failure(slider, block, RationalInterval{lo, hi}, std::nullopt, p);
+        EXPECT_EQ(why.empty(), truth) << "case " << n << " range [" << to_exact_string(lo) << ", " << to_exact_string(hi)
+                                      << "]: " << why;
+        (truth ? held : refused) += 1;
+      }
+    // the point on the block's face or outside it: never
+    for (const Point& q : {Point{f.G, p.y}, Point{Rational(f.G - tiny), p.y}})
+      EXPECT_FALSE(verify::jam_point_failure(slider, block, RationalInterval{Rational(q.x - f.W / 2), Rational(q.x - f.W / 3)},
+                                             std::nullopt, q)
+                       .empty())
+          << "case " << n;
+  }
+  std::printf("[ flush ] point over a range: %d held, %d refused, as the closed form says\n", held, refused);
 }
 
 }  // namespace
