@@ -82,11 +82,22 @@ CrossingWitness crossing_of(const JsonValue& value) {
   if (const JsonValue* along = value.find("along")) witness.along = interval_of(*along);
   return witness;
 }
-std::vector<BlockedPiece> pieces_of(const JsonValue& value, bool with_range) {
+// A jam piece's witness: a crossing, or (version 2) a point inside both parts over the piece.
+std::vector<BlockedPiece> pieces_of(const JsonValue& value, bool with_range, int version) {
   std::vector<BlockedPiece> list;
   for (const JsonValue& item : array(value).items) {
-    check_keys(item, {"range", "crossing"});
-    BlockedPiece piece{{Rational(0), Rational(0)}, crossing_of(require(item, "crossing"))};
+    check_keys(item, {"range", "crossing", "point"});
+    BlockedPiece piece{{Rational(0), Rational(0)}, {}, std::nullopt};
+    const JsonValue* crossing = item.find("crossing");
+    const JsonValue* point = item.find("point");
+    if (bool(crossing) == bool(point)) fail(item, "give exactly one witness of the piece: 'crossing' or 'point'");
+    if (crossing) {
+      piece.crossing = crossing_of(*crossing);
+    } else {
+      if (version < 2) fail(*point, "a piece's 'point' witness needs \"hipair_certificate\": 2");
+      array(*point, 2);
+      piece.point = Point{rational(point->items[0]), rational(point->items[1])};
+    }
     if (with_range) piece.range = interval_of(require(item, "range"));
     else if (item.find("range")) fail(item, "a 1-D cut piece has no range");
     list.push_back(std::move(piece));
@@ -228,7 +239,11 @@ Certificate read_certificate(std::string_view json_text) {
   check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", "interference", "clearance", "jam",
                     "free_passage", "tolerance", "planar_interference", "planar_clearance"});
   const JsonValue& version = require(root, "hipair_certificate");
-  if (!version.is_number() || version.text != "1") fail(version, "unsupported certificate version (expected 1)");
+  // version 2 (session 57): jam pieces may carry a 'point' witness; every version-1 certificate
+  // reads the same as version 2
+  if (!version.is_number() || (version.text != "1" && version.text != "2"))
+    fail(version, "unsupported certificate version (expected 1 or 2)");
+  int format = version.text == "2" ? 2 : 1;
   std::string claim = text(require(root, "claim"));
   if (claim == "interference") c.claim = ClaimKind::interference;
   else if (claim == "clearance") c.claim = ClaimKind::clearance;
@@ -338,10 +353,10 @@ Certificate read_certificate(std::string_view json_text) {
         if (two) c.start->follower = rational(require(start, "follower"));
         else if (start.find("follower")) fail(start, "no follower in a pair with a fixed part");
       }
-      c.cut = pieces_of(require(body, "cut"), two);
+      c.cut = pieces_of(require(body, "cut"), two, format);
       if (two) {
-        c.lower_wall = pieces_of(require(body, "lower_wall"), true);
-        c.upper_wall = pieces_of(require(body, "upper_wall"), true);
+        c.lower_wall = pieces_of(require(body, "lower_wall"), true, format);
+        c.upper_wall = pieces_of(require(body, "upper_wall"), true, format);
       } else if (body.find("lower_wall") || body.find("upper_wall")) {
         fail(body, "a jam against a fixed part has no walls");
       }

@@ -43,7 +43,10 @@ std::string pieces(const std::vector<BlockedPiece>& list, bool with_range, const
   for (std::size_t i = 0; i < list.size(); ++i) {
     out += (i ? ",\n" : "\n") + indent + "  {";
     if (with_range) out += "\"range\": " + interval(list[i].range) + ", ";
-    out += "\"crossing\": " + crossing(list[i].crossing) + "}";
+    if (list[i].point)
+      out += "\"point\": [" + number(list[i].point->x) + ", " + number(list[i].point->y) + "]}";
+    else
+      out += "\"crossing\": " + crossing(list[i].crossing) + "}";
   }
   return out + (list.empty() ? "]" : "\n" + indent + "]");
 }
@@ -122,7 +125,12 @@ std::string tolerance(const ToleranceClaim& t) {
 
 std::string write_certificate(const Certificate& c) {
   std::ostringstream out;
-  out << "{\n  \"hipair_certificate\": 1,\n  \"claim\": " << quoted(to_string(c.claim)) << ",\n";
+  // version 2 only when a jam piece has a point witness: every other certificate is written as
+  // before (and reads with a version-1 verifier)
+  bool point_pieces = false;
+  for (const auto* list : {&c.cut, &c.lower_wall, &c.upper_wall})
+    for (const BlockedPiece& piece : *list) point_pieces = point_pieces || bool(piece.point);
+  out << "{\n  \"hipair_certificate\": " << (point_pieces ? 2 : 1) << ",\n  \"claim\": " << quoted(to_string(c.claim)) << ",\n";
   out << "  \"statement\": " << quoted(c.statement) << ",\n";
   // no "file" for a model read from text (the reader refuses an empty file name)
   out << "  \"model\": {\n    \"name\": " << quoted(c.model_name) << ",\n";

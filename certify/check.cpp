@@ -423,6 +423,64 @@ void check_blocked(const Certificate& c, const Model& model, const Roles& r, con
     reject(where + ": the feature pair " + describe(w.edge) + " / " + describe(w.across) + " does not block: " + why);
 }
 
+std::pair<ExactPosition, Rational> near_position(const Part& part, const Rational& value);
+
+// A pose of `part` near the middle of `range` (exact: rational cos, sin and shift), and the
+// range widened to hold it (a rotation's exact pose lies within near_position's error of the
+// middle, up to whole turns). The motion limits play no part: the pose only anchors the
+// connectedness argument of check_point_blocked.
+ExactMap pose_near(const Part& part, const RationalInterval& range, RationalInterval& widened) {
+  ExactMap map;
+  widened = range;
+  if (!moves(part)) return map;
+  Rational middle = (range.lo + range.hi) / 2;
+  if (!rotates(part)) {
+    map.shift = Point{Rational(middle * part.motion.direction.x), Rational(middle * part.motion.direction.y)};
+    return map;
+  }
+  auto [position, error] = near_position(part, middle);
+  const Rational& t = position.value;
+  Rational w = 1 + t * t;
+  map.c = (1 - t * t) / w * (position.half_turn ? -1 : 1);
+  map.s = 2 * t / w * (position.half_turn ? -1 : 1);
+  map.pivot = part.motion.pivot;
+  widened = RationalInterval{range.lo - error, range.hi + error};
+  return map;
+}
+
+// Is every configuration of the box (driver x follower; the follower absent when fixed) blocked
+// because the world point `point` lies strictly inside both parts? (format version 2: flush
+// faces, whose boundaries meet only along collinear edges, have no transversal crossing.) The
+// box, widened to hold an exact configuration near its middle, is connected; at that
+// configuration the point lies strictly inside both parts (exact point location), and over the
+// whole widened box its certified distance from each part's boundary is positive. A point that
+// never meets a boundary along a connected set of poses never changes sides: it is strictly
+// inside both parts, which overlap, at every configuration of the box.
+void check_point_blocked(const Part& driver_part, const Part& other_part, const RationalInterval& driver,
+                         const std::optional<RationalInterval>& follower, const Point& point, const std::string& where) {
+  std::string at = "(" + show(point.x) + ", " + show(point.y) + ")";
+  if (moves(other_part) != bool(follower)) reject(where + ": the piece has a follower range exactly when the follower moves");
+  for (const Part* part : {&driver_part, &other_part}) {
+    RationalInterval range = part == &driver_part ? driver : follower ? *follower : RationalInterval{0, 0};
+    RationalInterval widened;
+    ExactMap exact = pose_near(*part, range, widened);
+    Rational bound = point_boundary_distance_lower_bound(shape_of(*part), map_over(*part, widened), point, Rational(1));
+    if (sgn(bound) <= 0)
+      reject(where + ": the witness point " + at + " is not certainly off the boundary of '" + part->name +
+             "' over the piece's configurations");
+    if (locate(place(*part, exact), point) <= 0)
+      reject(where + ": the witness point " + at + " is not strictly inside '" + part->name + "'");
+  }
+}
+
+// A piece's witness: a crossing (check_blocked) or a point inside both parts (check_point_blocked).
+void check_piece(const Certificate& c, const Model& model, const Roles& r, const RationalInterval& driver,
+                 const std::optional<RationalInterval>& follower, const BlockedPiece& piece, const Point& moved_by,
+                 const std::string& where) {
+  if (piece.point) check_point_blocked(*r.driver, *r.other, driver, follower, Point{piece.point->x - moved_by.x, piece.point->y - moved_by.y}, where);
+  else check_blocked(c, model, r, driver, follower, piece.crossing, where);
+}
+
 // Pieces must cover [lo, hi] in order without gaps.
 void check_cover(const std::vector<BlockedPiece>& pieces, const RationalInterval& range, const std::string& what) {
   if (pieces.empty()) reject(what + " has no pieces");
@@ -444,7 +502,9 @@ void check_cover(const std::vector<BlockedPiece>& pieces, const RationalInterval
   }
 }
 
-std::string check_jam(const Certificate& c, const Model& model) {
+// `moved_by`: the vector by which `model` was moved to the origin (pair_moved_to_origin; zero
+// when it was not): piece points are world points of the model as given.
+std::string check_jam(const Certificate& c, const Model& model, const Point& moved_by) {
   Roles r = roles(c, model);
   const RationalInterval& span = c.trap.driver;
   if (span.lo >= span.hi) reject("the trap's driver range must have lo < hi");
@@ -455,7 +515,7 @@ std::string check_jam(const Certificate& c, const Model& model) {
   RationalInterval cut_at{far, far};
   if (!r.has_follower) {
     if (c.cut.size() != 1) reject("a jam against a fixed part has exactly one cut piece");
-    check_blocked(c, model, r, cut_at, std::nullopt, c.cut[0].crossing, "the cut");
+    check_piece(c, model, r, cut_at, std::nullopt, c.cut[0], moved_by, "the cut");
   } else {
     const RationalInterval& band = *c.trap.follower;
     if (band.lo >= band.hi) reject("the trap's follower range must have lo < hi");
@@ -466,7 +526,7 @@ std::string check_jam(const Certificate& c, const Model& model) {
              (rotates(*r.other) ? " in every turn" : "") + ": the trap holds no configuration of the mechanism");
     check_cover(c.cut, band, "the cut");
     for (std::size_t i = 0; i < c.cut.size(); ++i)
-      check_blocked(c, model, r, cut_at, c.cut[i].range, c.cut[i].crossing, "cut piece " + std::to_string(i));
+      check_piece(c, model, r, cut_at, c.cut[i].range, c.cut[i], moved_by, "cut piece " + std::to_string(i));
     for (int upper = 0; upper < 2; ++upper) {
       const Rational& at = upper ? band.hi : band.lo;
       if (wall_closed_by_limit(*r.other, band, upper)) continue;
@@ -474,7 +534,7 @@ std::string check_jam(const Certificate& c, const Model& model) {
       std::string name = upper ? "the upper wall" : "the lower wall";
       check_cover(wall, span, name);
       for (std::size_t i = 0; i < wall.size(); ++i)
-        check_blocked(c, model, r, wall[i].range, RationalInterval{at, at}, wall[i].crossing, name + " piece " + std::to_string(i));
+        check_piece(c, model, r, wall[i].range, RationalInterval{at, at}, wall[i], moved_by, name + " piece " + std::to_string(i));
     }
   }
   // the trap holds a configuration of the mechanism: else "cannot pass" is an empty claim
@@ -653,6 +713,23 @@ std::string start_failure(const Part& driver, const Part& other, const Configura
 
 }  // namespace
 
+std::optional<Point> pair_translation(const Model& model, const std::string& first, const std::string& second) {
+  std::vector<std::size_t> pair;
+  for (std::size_t k = 0; k < model.parts.size(); ++k)
+    if (model.parts[k].name == first || model.parts[k].name == second) pair.push_back(k);
+  return normalising_translation(model, pair);
+}
+
+std::string jam_point_failure(const Part& driver, const Part& other, const RationalInterval& driver_range,
+                              const std::optional<RationalInterval>& follower_range, const Point& point) {
+  try {
+    check_point_blocked(driver, other, driver_range, follower_range, point, "the piece");
+  } catch (const Rejection& rejection) {
+    return rejection.reason;
+  }
+  return "";
+}
+
 std::string jam_start_failure(const Part& driver, const Part& other, const ConfigurationBox& trap,
                               const std::optional<JamStart>& start) {
   return start_failure(driver, other, trap, start);
@@ -681,7 +758,12 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
     switch (certificate.claim) {
       case ClaimKind::interference: result.summary = check_interference(certificate, model); break;
       case ClaimKind::clearance: result.summary = check_clearance(certificate, posed); break;
-      case ClaimKind::jam: result.summary = check_jam(certificate, posed); break;
+      case ClaimKind::jam: {
+        Point by{Rational(0), Rational(0)};
+        if (moved) by = *pair_translation(model, certificate.first, certificate.second);
+        result.summary = check_jam(certificate, posed, by);
+        break;
+      }
       case ClaimKind::free_passage: result.summary = check_free_passage(certificate, posed); break;
       case ClaimKind::planar_interference: result.summary = check_planar(certificate, model); break;
       case ClaimKind::planar_clearance: result.summary = check_planar(certificate, posed); break;

@@ -405,6 +405,21 @@ Rational boundary_distance_lower_bound(const IntervalPart& shape_a, const Interv
       });
 }
 
+Rational point_boundary_distance_lower_bound(const IntervalPart& shape, const IntervalMap& map, const Point& p,
+                                             const Rational& enough) {
+  // The point taken into the shape's frame by the inverse maps, v = R^T (p - pivot - shift), an
+  // enclosure of its preimages over every pose; its distance from the shape's (unposed) edges is
+  // the distance sought (the maps are rigid). Posing the edges instead enclosed each edge's ends
+  // separately: a segment translated over [lo, hi] got a direction 2 (hi - lo) wide, and a point
+  // 10^-20 inside a slider over a range of 1 mm was not certainly off its boundary.
+  std::optional<Rational> best = enough;
+  P d = exact(p) - shape.pivot - map.shift;
+  P v{map.c * d.x + map.s * d.y, map.c * d.y - map.s * d.x};
+  for (const auto& loop : shape.loops)
+    for (const IntervalEdge& e : loop) point_to_edge(v, e, best);
+  return *best;
+}
+
 Rational reach(const IntervalPart& shape) {
   Rational best(0);
   for (const auto& loop : shape.loops)

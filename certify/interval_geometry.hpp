@@ -87,6 +87,11 @@ Rational boundary_distance_lower_bound(const IntervalPart& a, const IntervalPart
 Rational boundary_distance_lower_bound(const IntervalPart& shape_a, const IntervalMap& map_a, const IntervalPart& shape_b,
                                        const IntervalMap& map_b, const Rational& enough, std::string* closest = nullptr);
 
+/// A certified lower bound of the distance from the exact point `p` to the boundary of the
+/// shape posed by every map of `map`, capped at `enough` (0 when they may meet).
+Rational point_boundary_distance_lower_bound(const IntervalPart& shape, const IntervalMap& map, const Point& p,
+                                             const Rational& enough);
+
 /// An upper bound of the distance of every point of a shape from its pivot.
 Rational reach(const IntervalPart& shape);
 

@@ -84,6 +84,20 @@ bool band_meets_limits(const Part& follower, const RationalInterval& band);
 std::string jam_start_failure(const Part& driver, const Part& other, const ConfigurationBox& trap,
                               const std::optional<JamStart>& start);
 
+/// Why the world point `point` (of the model checked) is not a witness that every configuration
+/// of the box driver_range x follower_range (no follower range: the other part is fixed) is
+/// blocked ("" when it is): at an exact configuration near the box's middle the point lies
+/// strictly inside both parts (exact), and over the box widened to hold that configuration its
+/// certified distance from both boundaries is positive. Shared by certify_jam, which tries
+/// candidate points with it, and the verifier (jam pieces of format version 2, session 57).
+std::string jam_point_failure(const Part& driver, const Part& other, const RationalInterval& driver_range,
+                              const std::optional<RationalInterval>& follower_range, const Point& point);
+
+/// The vector pair_moved_to_origin (src/core/model_scale.hpp) subtracts from the model to check
+/// the pair of parts `first` and `second`, or nullopt when it does not move it: jam pieces'
+/// witness points are world points of the model as given, moved with the pair.
+std::optional<Point> pair_translation(const Model& model, const std::string& first, const std::string& second);
+
 /// An MPFI enclosure of the angle 2 atan(t) (+ pi when `half_turn`) of a half-angle tangent.
 Interval angle_of_tangent(const Rational& tangent, bool half_turn);
 

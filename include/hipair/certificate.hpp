@@ -87,10 +87,14 @@ struct CrossingWitness {
 };
 
 /// A piece of a jam wall: every configuration of the wall with its running coordinate in
-/// `range` is blocked because `crossing` crosses there.
+/// `range` is blocked because `crossing` crosses there, or (format version 2, `point` set and
+/// `crossing` unused) because the world point `point` lies strictly inside both parts for every
+/// configuration of the piece: the witness of flush faces, whose boundaries meet only along
+/// collinear edges and never cross (docs/certify.md, "Jam").
 struct BlockedPiece {
   RationalInterval range;
   CrossingWitness crossing;
+  std::optional<Point> point;
 };
 
 /// A box of configurations: driver coordinate in `driver`, follower coordinate in `follower`
@@ -372,6 +376,13 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first,
                                  const std::string& second, const std::string& driver,
                                  const Rational& start, const Rational& follower_start,
                                  int direction, const Rational& step, const Rational& travel);
+
+/// True when the pair's configurations recur every whole turn of the driver: it rotates without
+/// angle limits and `other` is fixed. find_jam then searches a travel longer than
+/// periodic_jam_travel() as that travel (a path of a whole turn meets every configuration).
+bool periodic_jam_search(const Part& driver, const Part& other);
+/// 710/113 rad: just over a whole turn (2 pi < 710/113 < 2 pi + 6e-7).
+Rational periodic_jam_travel();
 
 /// Certifies a trap find_jam found, searched with driver steps of `step`: the trap itself, or,
 /// where its cut is too shallow to certify (the channel closes within a rounding of the step's

@@ -263,20 +263,23 @@ std::optional<CrossingWitness> blocking_crossing(const PairRoles& r, const Ratio
 // Covers `range` left to right with pieces blocked over make_box(piece range).
 // `free_at(v)`: the configuration at value v of the range is certainly free (the verifier's
 // start test: parts certainly apart, exact nesting test). Each piece proved blocked holds only
-// configurations where the parts overlap strictly (a transversal crossing), so a free one makes
+// configurations where the parts overlap strictly (a transversal crossing, or a point inside
+// both), so a free one makes
 // the cover impossible: the cover is given up at the first failed piece whose middle is free.
 // The verdict is the one the bisection would reach (no cover), sooner: a trap whose cut or wall
 // the free channel crosses (a zero-backlash mesh's closing missed by find_jam's grid) bisected
 // toward the channel's edge down to 1e-12 (16 x 15 spur gears: 17 s in five such traps).
+// `blocked(piece)` gives the piece's witness (its range is set here).
 bool cover(const RationalInterval& range, std::vector<BlockedPiece>& pieces, std::size_t max_pieces,
-           const std::function<std::optional<CrossingWitness>(const RationalInterval&)>& blocked,
+           const std::function<std::optional<BlockedPiece>(const RationalInterval&)>& blocked,
            const std::function<bool(const Rational&)>& free_at) {
   std::vector<RationalInterval> stack{range};
   while (!stack.empty()) {
     RationalInterval piece = stack.back();
     stack.pop_back();
-    if (auto crossing = blocked(piece)) {
-      pieces.push_back({piece, *crossing});
+    if (auto witness = blocked(piece)) {
+      witness->range = piece;
+      pieces.push_back(std::move(*witness));
       continue;
     }
     if (pieces.size() + stack.size() >= max_pieces || piece.hi - piece.lo < Rational(1, 1000000000000)) return false;
@@ -314,6 +317,38 @@ PartRelation relation_at(const PairRoles& r, const Rational& x, const Rational& 
 
 bool overlapping_at(const PairRoles& r, const Rational& x, const Rational& y) {
   return relation_at(r, x, y) == PartRelation::overlapping;
+}
+
+// A point strictly inside both parts at every configuration of the box (driver range x other
+// range; format version 2): flush faces — a slider pushed into a block of its own height — meet
+// only along collinear edges, so no crossing blocks them. The candidate is the exact overlap's
+// witness at the box's middle configuration; it is kept when the verifier's test holds
+// (jam_point_failure: strictly inside both there, off both boundaries over the box).
+std::optional<BlockedPiece> blocking_point(const PairRoles& r, const RationalInterval& driver_range,
+                                           const std::optional<RationalInterval>& other_range) {
+  auto exact_of = [](const Part& part, const Rational& value) {
+    ExactPosition position = part.motion.kind == Motion::Kind::rotation ? exact_position_from_angle(value) : ExactPosition{value, true, false, {}, {}};
+    return exact_map(part, &position);
+  };
+  auto placed = [](const verify::ExactMap& map) { return placement_about(map.pivot, map.c, map.s, map.shift); };
+  try {
+    verify::ExactMap other = other_range ? exact_of(*r.other, middle(*other_range)) : verify::ExactMap{};
+    PartOverlap overlap = part_overlap(*r.driver, placed(exact_of(*r.driver, middle(driver_range))), *r.other, placed(other), true);
+    if (overlap.relation != PartRelation::overlapping || !overlap.witness) return std::nullopt;
+    if (!verify::jam_point_failure(*r.driver, *r.other, driver_range, other_range, *overlap.witness).empty()) return std::nullopt;
+    return BlockedPiece{{Rational(0), Rational(0)}, {}, *overlap.witness};
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+// The piece's witness: a crossing (blocking_crossing), else, with `points`, a point inside both parts.
+std::optional<BlockedPiece> blocking_piece(const PairRoles& r, const RationalInterval& driver_range,
+                                           const std::optional<RationalInterval>& other_range, bool points) {
+  if (auto crossing = blocking_crossing(r, driver_range, other_range))
+    return BlockedPiece{{Rational(0), Rational(0)}, *crossing, std::nullopt};
+  if (!points) return std::nullopt;
+  return blocking_point(r, driver_range, other_range);
 }
 
 // Covers of a trap's cut and walls for a closing channel (certify_closing_jam): the pieces
@@ -387,7 +422,7 @@ class MarchCover {
       // every pair only when the proved pairs failed twice here (their region ends) or none is known
       if (!witness && (hints_.empty() || failures >= 2)) witness = scan(driver_range, other_range);
       if (witness) {
-        pieces.push_back({piece, *witness});
+        pieces.push_back({piece, *witness, std::nullopt});
         width = grow ? Rational(2 * (end - position)) : Rational(end - position);
         grow = failures == 0;
         failures = 0;
@@ -405,7 +440,7 @@ class MarchCover {
           RationalInterval low{position, std::min(Rational(position + 2 * floor), range.hi)};
           auto [low_driver, low_other] = box(low);
           if (std::optional<CrossingWitness> found = scan(low_driver, low_other)) {
-            pieces.push_back({low, *found});
+            pieces.push_back({low, *found, std::nullopt});
             width = low.hi - low.lo;
             grow = true;
             failures = 0;
@@ -650,11 +685,13 @@ using FreeConfigurations = std::vector<std::pair<Rational, Rational>>;   // (dri
 
 // certify_jam's work on a pair at the origin; `march`: cover the cut and walls with MarchCover
 // (certify_closing_jam) instead of cover() with blocking_crossing; `seen`: free configurations
-// met so far (cover()'s), read and added to.
+// met so far (cover()'s), read and added to; `points`: pieces a crossing does not prove may be
+// proved by a point inside both parts (format version 2; certify_trap_with_points).
 std::optional<Certificate> certify_trap(const Model& model, const std::string& first, const std::string& second,
                                         const JamQuery& query, const CertifyContext& context,
                                         const IntervalSearchOptions& options, const Shapes* march = nullptr,
-                                        std::size_t* budget = nullptr, FreeConfigurations* seen = nullptr) {
+                                        std::size_t* budget = nullptr, FreeConfigurations* seen = nullptr,
+                                        bool points = false) {
   // march (certify_closing_jam): its start, checked there, is the certificate's; no grid
   Certificate c = start_certificate(model, context, ClaimKind::jam, first, second);
   PairRoles r = pair_roles(model, first, second, query.driver, query.follower);
@@ -668,9 +705,9 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
   Rational far = c.direction > 0 ? c.trap.driver.hi : c.trap.driver.lo;
   RationalInterval cut_at{far, far};
   if (!r.has_follower) {
-    auto crossing = blocking_crossing(r, cut_at, std::nullopt);
-    if (!crossing) return std::nullopt;
-    c.cut.push_back({{0, 0}, *crossing});
+    auto piece = blocking_piece(r, cut_at, std::nullopt, points);
+    if (!piece) return std::nullopt;
+    c.cut.push_back(std::move(*piece));
   } else {
     const RationalInterval& band = *c.trap.follower;
     if (!verify::band_meets_limits(*r.other, band)) {
@@ -706,7 +743,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                     [&](const RationalInterval& piece) { return std::make_pair(cut_at, piece); },
                                     Rational(1, 1000000000))
                  : !cover(band, c.cut, options.max_boxes,
-                          [&](const RationalInterval& piece) { return blocking_crossing(r, cut_at, piece); },
+                          [&](const RationalInterval& piece) { return blocking_piece(r, cut_at, piece, points); },
                           [&](const Rational& y) { return free_at(far, y); }))
       return std::nullopt;
     for (int upper = 0; upper < 2; ++upper) {
@@ -719,7 +756,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                       [&](const RationalInterval& piece) { return std::make_pair(piece, wall_at); },
                                       Rational(1, 100000))
                    : !cover(c.trap.driver, wall, options.max_boxes,
-                            [&](const RationalInterval& piece) { return blocking_crossing(r, piece, wall_at); },
+                            [&](const RationalInterval& piece) { return blocking_piece(r, piece, wall_at, points); },
                             [&](const Rational& x) { return free_at(x, at); }))
         return std::nullopt;
     }
@@ -759,12 +796,37 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
 }
 }  // namespace
 
+namespace {
+// certify_trap with crossings only, then, when that fails, with point pieces too: every trap that
+// crossings prove keeps the certificate it had (version 1, byte for byte), and point pieces
+// (version 2) appear only where they are needed — flush faces, whose boundaries never cross.
+std::optional<Certificate> certify_trap_with_points(const Model& model, const std::string& first, const std::string& second,
+                                                    const JamQuery& query, const CertifyContext& context,
+                                                    const IntervalSearchOptions& options, FreeConfigurations* seen) {
+  if (auto c = certify_trap(model, first, second, query, context, options, nullptr, nullptr, seen)) return c;
+  return certify_trap(model, first, second, query, context, options, nullptr, nullptr, seen, true);
+}
+
+// A jam certificate produced on the pair moved to the origin (pair_moved_to_origin): its pieces'
+// witness points, world points of the moved model, moved back to the model's (the verifier
+// moves them again with the pair).
+std::optional<Certificate> points_moved_back(std::optional<Certificate> c, const Model& model, const std::string& first,
+                                             const std::string& second) {
+  if (!c) return c;
+  std::optional<Point> by = verify::pair_translation(model, first, second);
+  for (auto* list : {&c->cut, &c->lower_wall, &c->upper_wall})
+    for (BlockedPiece& piece : *list)
+      if (piece.point && by) piece.point = Point{piece.point->x + by->x, piece.point->y + by->y};
+  return c;
+}
+}  // namespace
+
 std::optional<Certificate> certify_jam(const Model& model, const std::string& first, const std::string& second,
                                        const JamQuery& query, const CertifyContext& context,
                                        const IntervalSearchOptions& options) {
   if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
-    return checked_as_given(certify_jam(*moved, first, second, query, context, options), model);
-  return certify_trap(model, first, second, query, context, options);
+    return checked_as_given(points_moved_back(certify_jam(*moved, first, second, query, context, options), model, first, second), model);
+  return certify_trap_with_points(model, first, second, query, context, options, nullptr);
 }
 
 namespace {
@@ -774,8 +836,9 @@ std::optional<Certificate> certify_jam_seeing(const Model& model, const std::str
                                               const IntervalSearchOptions& options, FreeConfigurations& seen) {
   // (the copy moved to the origin is the same at every call: its configurations are the model's)
   if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
-    return checked_as_given(certify_jam_seeing(*moved, first, second, query, context, options, seen), model);
-  return certify_trap(model, first, second, query, context, options, nullptr, nullptr, &seen);
+    return checked_as_given(
+        points_moved_back(certify_jam_seeing(*moved, first, second, query, context, options, seen), model, first, second), model);
+  return certify_trap_with_points(model, first, second, query, context, options, &seen);
 }
 }  // namespace
 
@@ -857,6 +920,12 @@ std::optional<Certificate> certify_detail::certify_closing_jam(
   return std::nullopt;
 }
 
+bool periodic_jam_search(const Part& driver, const Part& other) {
+  return driver.motion.kind == Motion::Kind::rotation && !driver.motion.angle_limits && other.motion.kind == Motion::Kind::fixed;
+}
+
+Rational periodic_jam_travel() { return Rational(710, 113); }
+
 std::optional<JamQuery> find_jam(const Model& model, const std::string& first, const std::string& second,
                                  const std::string& driver, const Rational& start, const Rational& follower_start,
                                  int direction, const Rational& step, const Rational& travel) {
@@ -881,6 +950,8 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
                         " lies outside the motion limits [" + to_decimal_string(driver_limits->lo) + ", " +
                         to_decimal_string(driver_limits->hi) + "] of '" + d.name + "'");
   JamQuery query{d.name, r.has_follower ? o.name : "", direction, {}, std::nullopt};
+  // (session 57: `--travel 1e30` against a fixed part stepped through 10^30 rad of repeats)
+  const Rational searched = periodic_jam_search(d, o) ? std::min(travel, periodic_jam_travel()) : travel;
   Rational x = start, f = follower_start;
   // A follower resting on a contact may overlap by a rounding: nudge it off, either way.
   for (Rational nudge(1, 10000000000); overlapping_at(r, x, f) && nudge < Rational(1, 100); nudge *= 10) {
@@ -891,7 +962,7 @@ std::optional<JamQuery> find_jam(const Model& model, const std::string& first, c
   const auto& limits = o.motion.kind == Motion::Kind::rotation ? o.motion.angle_limits : o.motion.translation_limits;
   Rational follower_step = step / 4, follower_span = o.motion.kind == Motion::Kind::rotation ? Rational(1) : Rational(10);
   int last_side = 1;   // the follower's last move: 0 down, 1 up
-  for (Rational moved = 0; moved < travel; moved += step) {
+  for (Rational moved = 0; moved < searched; moved += step) {
     Rational next = x + direction * step;
     if (driver_limits) {
       // the last step ends on the limit; standing on it, the driver goes no further

@@ -303,6 +303,17 @@ int run(const CertifyArguments& arguments) {
         if (sgn(step) <= 0) throw ModelError("", "--step " + arguments.step + ": the step must be positive" + rounded(arguments.step));
         if (sgn(travel) <= 0)
           throw ModelError("", "--travel " + arguments.travel + ": the travel must be positive" + rounded(arguments.travel));
+        // A rotating driver's step of a whole turn or more samples no motion: a contact anywhere
+        // in the turns between two samples is never seen (session 57: `--travel 1e30 --step 1e24`
+        // on the cam-follower stepped 10^6 times at angles up to 10^30 rad, for minutes).
+        const Rational whole_turn(6283185307, 1000000000);   // just below 2 pi
+        if (rotates(driver) && step >= whole_turn)
+          throw ModelError("", "--step " + arguments.step + ": a step of a whole turn (6.283185307 rad) or more samples no motion of '" +
+                                   driver.name + "': give a --step of a fraction of a turn");
+        // A driver turning without limits against a fixed part meets every configuration of the
+        // pair within one turn (poses repeat every 2 pi): a longer travel is searched as one turn.
+        const bool one_turn = periodic_jam_search(driver, other) && travel > periodic_jam_travel();
+        if (one_turn) travel = periodic_jam_travel();
         // the search takes up to travel / step driver steps (about 50 us each): more than 10^7 is
         // refused at once (session 33: `--step 1e-300` searched 6e300 steps, without end)
         const Rational search_steps = travel / step;
@@ -334,6 +345,9 @@ int run(const CertifyArguments& arguments) {
           if (driver_limits && abs(limit - start) < travel + step)
             std::cerr << "hipair: cannot certify: no jam found: '" << driver.name << "' reaches its motion limit "
                       << to_decimal_string(limit) << unit << " without being blocked\n";
+          else if (one_turn)
+            std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within a whole turn of '" << driver.name
+                      << "' (it turns without limits against a fixed part: every configuration of the pair recurs each turn)\n";
           else
             std::cerr << "hipair: cannot certify: no jam found: the motion was not blocked within the travel\n";
           return 1;

@@ -572,6 +572,43 @@ jam_case slider-jam "$work/slider-10.json" jam 1 1.09
 JAM_PART=slider jam_case slider-limit "$work/slider-05.json" limit "0.5 mm"
 JAM_PART=slider jam_case slider-back "$work/slider-10.json" limit "-10 mm" --direction -1
 jam_case slider-start-beyond "$work/slider-05.json" refused --start 0.75
+# Flush faces (session 57, cert57): the block of the slider's own height (y 0..2) meets it only
+# along collinear edges, so no crossing blocks the cut; the cut's piece is a point inside both
+# (format version 2). Until session 57: "cannot certify: some configuration ... not certainly blocked".
+sed 's/\[3, 0.5\]/[3, 0]/g; s/\[5, 0.5\]/[5, 0]/; s/\[5, 2.5\]/[5, 2]/; s/\[3, 2.5\]/[3, 2]/; s/LIMIT/10/' \
+  "$work/slider-block.json" >"$work/slider-flush.json"
+jam_case slider-flush "$work/slider-flush.json" jam 1 1.09
+grep -q '"hipair_certificate": 2' "$work/jam-slider-flush.json" && grep -q '"point": \[' "$work/jam-slider-flush.json" \
+  || fail "jam slider-flush: not a version-2 certificate with a point piece: $(cat "$work/jam-slider-flush.json")"
+# ... and a block raised 1e-20 above the slider's top (a near miss) or onto it (sliding along it): no jam
+for raise in 2.00000000000000000001 2; do
+  sed "s/\[3, 0.5\]/[3, $raise]/g; s/\[5, 0.5\]/[5, $raise]/; s/\[5, 2.5\]/[5, 4]/; s/\[3, 2.5\]/[3, 4]/; s/LIMIT/10/" \
+    "$work/slider-block.json" >"$work/slider-miss.json"
+  rm -f "$work/jam-miss.json"
+  "$hipair" certify "$work/slider-miss.json" --claim jam --out "$work/jam-miss.json" >/dev/null 2>"$work/jam-miss.err"
+  [ $? -eq 1 ] && [ ! -e "$work/jam-miss.json" ] || fail "jam near miss (block at y $raise): certified or not exit 1: $(cat "$work/jam-miss.err")"
+  "$verify" "$work/jam-slider-flush.json" "$work/slider-miss.json" >/dev/null 2>&1 && fail "the flush certificate verifies on the near miss at y $raise"
+done
+# Huge travels (session 57): a rotating driver's step of a whole turn or more is refused at once
+# (the cam-follower's `--travel 1e30 --step 1e24` ran for minutes), and a driver turning without
+# limits against a fixed part is searched over one turn whatever the travel.
+certify_refused cam-turn-step 2 "--step 1e24: a step of a whole turn (6.283185307 rad) or more samples no motion of 'cam'" \
+  "$source/examples/models/cam-follower.json" --claim jam --pair cam:follower --travel 1e30 --step 1e24
+cat >"$work/spinner.json" <<'EOF'
+{ "hipair": 1, "name": "spinner",
+  "parts": [
+    { "name": "arm", "motion": { "rotation": { "pivot": [0, 0] } },
+      "loops": [ { "start": [0, -1], "edges": [ { "line_to": [10, -1] }, { "line_to": [10, 1] }, { "line_to": [0, 1] }, { "line_to": [0, -1] } ] } ] },
+    { "name": "post", "motion": "fixed",
+      "loops": [ { "start": [20, 0], "edges": [ { "line_to": [22, 0] }, { "line_to": [22, 2] }, { "line_to": [20, 2] }, { "line_to": [20, 0] } ] } ] }
+  ] }
+EOF
+rm -f "$work/jam-spinner.json"
+"$hipair" certify "$work/spinner.json" --claim jam --travel 1e30 --step 0.01 --out "$work/jam-spinner.json" >/dev/null 2>"$work/jam-spinner.err"
+[ $? -eq 1 ] && grep -qF "not blocked within a whole turn of 'arm'" "$work/jam-spinner.err" && [ ! -e "$work/jam-spinner.json" ] \
+  || fail "spinner --travel 1e30: not the one-turn verdict: $(cat "$work/jam-spinner.err")"
+sed 's/\[20, 0\]/[8, 2]/g; s/\[22, 0\]/[12, 2]/; s/\[22, 2\]/[12, 4]/; s/\[20, 2\]/[8, 4]/' "$work/spinner.json" >"$work/spinner-post.json"
+jam_case spinner-post "$work/spinner-post.json" jam 0 0.13 --travel 1e30 --step 0.01
 
 if [ $failures -ne 0 ]; then
   echo "$failures certify CLI check(s) failed"

@@ -103,7 +103,26 @@ TEST(CertifyFormat, ReaderIsStrict) {
       EXPECT_EQ(error.pointer(), pointer) << error.what();
     }
   };
-  rejects("\"hipair_certificate\": 1", "\"hipair_certificate\": 2", "/hipair_certificate");
+  rejects("\"hipair_certificate\": 1", "\"hipair_certificate\": 3", "/hipair_certificate");
+  // version 2 (session 57): a jam piece may carry a point instead of a crossing, never both,
+  // and only in a version-2 certificate
+  rejects("{\"crossing\": {\"edge\"", "{\"point\": [\"1\", \"2\"], \"crossing\": {\"edge\"", "/jam/cut/0");
+  rejects("{\"crossing\": {\"edge\": {\"part\": \"lever\", \"loop\": 0, \"edge\": 2, \"label\": \"upper side\"}, \"along\"",
+          "{\"point\": [\"1\", \"2\"], \"ignored\": {\"edge\": {\"part\": \"lever\", \"loop\": 0, \"edge\": 2, \"label\": \"upper side\"}, \"along\"",
+          "/jam/cut/0/ignored");
+  {
+    std::string changed = text;
+    changed.replace(changed.find("{\"crossing\": {\"edge\""), 0, "{\"point\": [\"1\", \"2\"]}, ");
+    try {
+      read_certificate(changed);
+      ADD_FAILURE() << "accepted a point piece in a version-1 certificate";
+    } catch (const ModelError& error) {
+      EXPECT_EQ(error.pointer(), "/jam/cut/0/point") << error.what();
+    }
+    changed.replace(changed.find("\"hipair_certificate\": 1"), 23, "\"hipair_certificate\": 2");
+    EXPECT_EQ(read_certificate(changed).cut.size(), 2u);
+    EXPECT_TRUE(read_certificate(changed).cut[0].point);
+  }
   rejects("\"claim\": \"jam\"", "\"claim\": \"jammed\"", "/claim");
   rejects("\"direction\": 1", "\"direction\": 2", "/jam/direction");
   rejects("\"direction\": 1", "\"direction\": 1, \"extra\": 0", "/jam/extra");
