@@ -545,6 +545,14 @@ void ParametricModel::check_choices(const std::vector<double>& lo, const std::ve
   std::vector<I> box(n);
   for (std::size_t i = 0; i < n; ++i) box[i] = I(lo[i], hi[i]);
   std::vector<I> p = parameter_values(box);
+  // whether a formula reads a parameter that varies in the box (directly or through a derived one)
+  std::function<bool(const Formula&)> varies = [&](const Formula& f) -> bool {
+    if (f.op == Formula::Op::parameter)
+      return lo[f.parameter] != hi[f.parameter] || (derived_[f.parameter] && varies(*parameter_nominals_[f.parameter].formula));
+    for (const FormulaPtr& argument : f.arguments)
+      if (varies(*argument)) return true;
+    return false;
+  };
   for (const PartRecipe& part : parts_)
     for (const FeatureRecipe& feature : part.features) {
       if (feature.ccw.empty()) continue;
@@ -562,15 +570,20 @@ void ParametricModel::check_choices(const std::vector<double>& lo, const std::ve
           I t = value("tip_angle");
           if (top && !(t.lo > 0))
             refuse("tip_angle", "tip_angle may reach 0 within the box (the nominal teeth have flat tops)");
-          if (!top && !(t.lo == 0 && t.hi == 0))
+          if (!top && varies(*feature.arguments.at("tip_angle").number.formula))
             refuse("tip_angle", "tip_angle is 0 at nominal (pointed teeth) and varies within the box");
         } else if (feature.name == "geneva_driver" && feature.edge_counts.size() == 2) {
           bool inner_arc = feature.edge_counts[1] == 4;
+          if (!inner_arc) {
+            // 0 at nominal: kept exactly when its formula reads no parameter varying in the box
+            const Slot& slot = feature.arguments.at("lock_inner_radius").number;
+            if (varies(*slot.formula))
+              refuse("lock_inner_radius", "lock_inner_radius is 0 at nominal (a sector) and varies within the box");
+            continue;
+          }
           I r = value("lock_inner_radius");
-          if (inner_arc && !(r.lo > 0))
+          if (!(r.lo > 0))
             refuse("lock_inner_radius", "lock_inner_radius may reach 0 within the box (the nominal crescent has an inner arc)");
-          if (!inner_arc && !(r.lo == 0 && r.hi == 0))
-            refuse("lock_inner_radius", "lock_inner_radius is 0 at nominal (a sector) and varies within the box");
         } else if (feature.name == "spur_gear" && !feature.arguments.count("flank_radius")) {
           using A = Arithmetic<I>;
           bool radial = involute_radial(feature);
@@ -583,14 +596,64 @@ void ParametricModel::check_choices(const std::vector<double>& lo, const std::ve
             refuse("dedendum", std::string("the root circle may cross the base circle within the box (at nominal it lies ") +
                                    (radial ? "inside" : "outside") + " it: the flank " +
                                    (radial ? "has" : "has no") + " radial segment)");
-          InvoluteFlank<I> flank = involute_flank(feature, p, radial);
-          for (std::size_t i = radial ? 1 : 0; i < flank.pieces; ++i) {
-            const kernels::Vector<I>& from = i == 0 ? flank.start : flank.ends[i - 1];
-            I turn = kernels::cross(from - flank.centres[i], flank.ends[i] - flank.centres[i]);
-            bool ccw = feature.ccw.at(0).at(i);
-            if (ccw ? !(turn.lo > 0) : !(turn.hi < 0))
-              refuse("", "a flank arc's turning sense may change within the box (the arc degenerates)");
-          }
+          // Each flank arc is tangent at the pitch point P to the normal's perpendicular, centre
+          // c = P + s n with s = |d|^2 / (2 d.n), d = (far end) - P: its turning sense from the
+          // far end to P is sign(d.n) sign(n x d), from P to the far end the opposite (enclosed
+          // so, without the dependency of c on d). Where the enclosures over a box leave a sign
+          // open, the box is bisected (its varying parameters in turn, 2^14 boxes at most).
+          // the varying parameters the canonical flank reads (not the centre's nor the phase's)
+          std::vector<char> read(n, 0);
+          std::function<void(const Formula&)> mark = [&](const Formula& f) {
+            if (f.op == Formula::Op::parameter) {
+              read[f.parameter] = 1;
+              if (derived_[f.parameter]) mark(*parameter_nominals_[f.parameter].formula);
+            }
+            for (const FormulaPtr& argument : f.arguments) mark(*argument);
+          };
+          for (const char* key : {"pitch_radius", "addendum", "dedendum", "tooth_thickness", "pressure_angle"})
+            if (feature.arguments.count(key)) mark(*feature.arguments.at(key).number.formula);
+          std::vector<std::size_t> moving;
+          for (std::size_t i = 0; i < n; ++i)
+            if (lo[i] != hi[i] && read[i]) moving.push_back(i);
+          std::function<bool(std::vector<I>&, int)> senses_kept = [&](std::vector<I>& sub, int depth) -> bool {
+            std::vector<I> q = parameter_values(sub);
+            InvoluteFlank<I> flank = involute_flank(feature, q, radial);
+            const kernels::Vector<I>& pitch_point = flank.ends[flank.pieces - 2];
+            auto number = [&](const char* key) { return slot_value(feature.arguments.at(key).number, q); };
+            I pitch_q = number("pitch_radius");
+            I alpha_q = pressure != feature.arguments.end() ? slot_value(pressure->second.number, q)
+                                                            : I(A::constant(Rational(1, 9)) * A::pi());
+            I beta = number("tooth_thickness") / (pitch_q + pitch_q);
+            kernels::Vector<I> normal{-A::sin(alpha_q - beta), A::cos(alpha_q - beta)};
+            bool open = false;
+            for (std::size_t i = radial ? 1 : 0; i < flank.pieces; ++i) {
+              bool towards_pitch = i + 2 == flank.pieces;   // the lower arc runs to P
+              kernels::Vector<I> far = towards_pitch ? (i == 0 ? flank.start : flank.ends[i - 1]) : flank.ends[i];
+              kernels::Vector<I> d = far - pitch_point;
+              I along = kernels::dot(d, normal), across = kernels::cross(normal, d);
+              if (!((along.lo > 0 || along.hi < 0) && (across.lo > 0 || across.hi < 0))) {
+                open = true;
+                continue;
+              }
+              bool sense = (along.lo > 0) == (across.lo > 0);   // sign(d.n) sign(n x d) > 0
+              if (!towards_pitch) sense = !sense;
+              if (sense != feature.ccw.at(0).at(i)) return false;   // certainly changed
+            }
+            if (!open) return true;
+            if (moving.empty() || depth >= 14) return false;
+            std::size_t k = moving[static_cast<std::size_t>(depth) % moving.size()];
+            I whole = sub[k];
+            double middle = 0.5 * (whole.lo + whole.hi);
+            sub[k] = I(whole.lo, middle);
+            bool kept = senses_kept(sub, depth + 1);
+            sub[k] = I(middle, whole.hi);
+            kept = kept && senses_kept(sub, depth + 1);
+            sub[k] = whole;
+            return kept;
+          };
+          std::vector<I> whole_box = box;
+          if (!senses_kept(whole_box, 0))
+            refuse("", "a flank arc's turning sense may change within the box (the arc degenerates)");
         }
       } catch (const ModelError&) {
         throw;
