@@ -11,6 +11,7 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <set>
@@ -414,6 +415,20 @@ ToleranceEvaluator::ToleranceEvaluator(std::shared_ptr<const model_detail::Param
       reject("wrong parameter box: '" + name + "' varies over " + show(claim.box[i]) + ", but " +
              to_exact_string(claim.scale) + " x its tolerance range is " + show(expected));
     varied_.push_back(static_cast<std::size_t>(p - m.parameters.data()));
+  }
+  {
+    // A template's generic form follows its nominal shape: a box that may change it is refused
+    // (the box's ends rounded outwards to doubles).
+    std::vector<double> lo(m.parameters.size(), 0.0), hi(m.parameters.size(), 0.0);
+    for (std::size_t i = 0; i < varied_.size(); ++i) {
+      lo[varied_[i]] = std::nextafter(claim.box[i].lo.get_d(), -HUGE_VAL);
+      hi[varied_[i]] = std::nextafter(claim.box[i].hi.get_d(), HUGE_VAL);
+    }
+    try {
+      model_->check_choices(lo, hi);
+    } catch (const ModelError& error) {
+      reject(error.what());
+    }
   }
   if (claim.sides.empty() && claim.property == "no_jam") reject("no contact sides");
   for (std::size_t s = 0; s < claim.sides.size(); ++s) {

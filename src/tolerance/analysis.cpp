@@ -345,6 +345,8 @@ class Analysis {
       result_.sigma.push_back(dist_[i].sigma);
       result_.mean_shift.push_back(dist_[i].mean);
     }
+    // The generic forms follow the templates' nominal shapes: a box that may change one refused.
+    model_->check_choices(box_.lo, box_.hi);
     if (given) {
       space_ = std::make_unique<CSpace>(*given);
     } else {
@@ -1114,6 +1116,7 @@ class Analysis {
         scaled.hi[i] = varied[i] ? tolerance_detail::round_to_double(scale * (p.range.hi - p.nominal), true) : 0;
       }
       try {
+        model_->check_choices(scaled.lo, scaled.hi);   // (a template's shape kept over the scaled box)
         std::size_t boxes = 0;
         // Separation needs no tight band: a coarse accuracy subdivides less and fails less.
         double accuracy = std::max(options_.relative_accuracy, 1.0);

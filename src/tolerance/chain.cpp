@@ -371,6 +371,8 @@ class ChainAnalysis {
       result.sigma.push_back(d.sigma);
       result.mean_shift.push_back(d.mean);
     }
+    // the templates' nominal shapes kept over the box (as a single pair's analysis checks)
+    parametric->check_choices(out.box.lo, out.box.hi);
     auto solver = std::make_shared<CurveSolver>(parametric);
     solver->set_compact_jets(options_.fast_paths);
     solver->set_second_order(false);

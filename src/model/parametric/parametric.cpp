@@ -2,6 +2,7 @@
 // exact evaluation at a parameter vector (ExactEvaluator), which repeats the reader's steps on
 // the recorded slots. See parametric.hpp.
 #include "model/parametric/parametric.hpp"
+#include "model/parametric/number_traits.hpp"
 #include "model/parametric/self_check.hpp"
 
 #include "model/exact_trig.hpp"
@@ -278,6 +279,25 @@ class RecipeBuilder {
     return std::isfinite(flank.tip.x) && std::isfinite(flank.root.x);
   }
 
+  // Whether a template occurrence has the generic form: circle and pin; the toothed templates
+  // with a tooth (slot) count that is not toleranced; spur_gear with flank_radius when its
+  // crossings evaluate at nominal; the others once their nominal structure is recorded.
+  static bool has_generic_form(const ParametricModel& model, FeatureRecipe& feature) {
+    const std::string& name = feature.name;
+    if (name == "circle" || name == "pin") return true;
+    if (name == "ratchet_wheel") return feature.teeth > 0;
+    if (name == "spur_gear" && feature.arguments.count("flank_radius"))
+      return feature.teeth > 0 && spur_gear_sides(model, feature);
+    if (feature.ccw.size() != feature.loop_count) return false;
+    if (name == "geneva_driver" || name == "anchor" || name == "balance") return true;
+    if (feature.teeth <= 0) return false;
+    std::size_t n = static_cast<std::size_t>(feature.teeth), edges = feature.edge_counts[0];
+    if (name == "geneva_wheel") return edges == 6 * n;
+    if (name == "escape_wheel") return edges % n == 0 && edges / n >= 2 && edges / n <= 4;
+    if (name == "spur_gear") return edges == 6 * n || edges == 8 * n;
+    return false;
+  }
+
  private:
   Slot angle_slot(const JsonValue& value) {
     Slot slot = raw_slot(value);
@@ -349,15 +369,10 @@ class RecipeBuilder {
           }
           feature.arguments.emplace(argument.key, std::move(a));
         }
-        if (feature.name == "ratchet_wheel" || feature.name == "spur_gear")
+        if (feature.name == "ratchet_wheel" || feature.name == "spur_gear" || feature.name == "escape_wheel")
           feature.teeth = fixed_count(feature, "teeth");
-        bool generic = feature.name == "circle" || feature.name == "pin" ||
-                       (feature.name == "ratchet_wheel" && feature.teeth > 0) ||
-                       (feature.name == "spur_gear" && feature.teeth > 0 && spur_gear_sides(feature));
-        if (!generic && model_.generic_) {
-          model_.generic_ = false;
-          model_.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
-        }
+        if (feature.name == "geneva_wheel") feature.teeth = fixed_count(feature, "slots");
+        feature.loop_count = feature.name == "geneva_driver" ? 2 : 1;
         recipe.features.push_back(std::move(feature));
       }
     }
@@ -384,6 +399,21 @@ class RecipeBuilder {
     const Part& read = model_.nominal_->parts[index];
     Part mine;
     mine.loops = exact_loops(recipe, *exact_);
+    // Each template's loops as expanded at nominal (template order and orientation): the
+    // structure its generic form follows; then whether it has one.
+    std::size_t next = recipe.loops.size();
+    for (FeatureRecipe& feature : recipe.features) {
+      for (std::size_t l = 0; l < feature.loop_count && next < mine.loops.size(); ++l, ++next) {
+        feature.edge_counts.push_back(mine.loops[next].edges.size());
+        std::vector<bool> senses;
+        for (const Edge& edge : mine.loops[next].edges) senses.push_back(edge.ccw);
+        feature.ccw.push_back(std::move(senses));
+      }
+      if (!has_generic_form(model_, feature) && model_.generic_) {
+        model_.generic_ = false;
+        model_.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
+      }
+    }
     if (mine.loops.size() != read.loops.size())
       throw ModelError(read.pointer, "internal error: the parametric form of the part has " +
                                          std::to_string(mine.loops.size()) + " loops, the model " +
@@ -506,6 +536,133 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
   return model;
 }
 
+void ParametricModel::check_choices(const std::vector<double>& lo, const std::vector<double>& hi) const {
+  using I = kernels::Interval;
+  using namespace parametric_detail;
+  std::size_t n = parameter_count();
+  if (lo.size() != n || hi.size() != n)
+    throw ModelError("/parameters", "expected a box of " + std::to_string(n) + " parameter deviations");
+  std::vector<I> box(n);
+  for (std::size_t i = 0; i < n; ++i) box[i] = I(lo[i], hi[i]);
+  std::vector<I> p = parameter_values(box);
+  // whether a formula reads a parameter that varies in the box (directly or through a derived one)
+  std::function<bool(const Formula&)> varies = [&](const Formula& f) -> bool {
+    if (f.op == Formula::Op::parameter)
+      return lo[f.parameter] != hi[f.parameter] || (derived_[f.parameter] && varies(*parameter_nominals_[f.parameter].formula));
+    for (const FormulaPtr& argument : f.arguments)
+      if (varies(*argument)) return true;
+    return false;
+  };
+  for (const PartRecipe& part : parts_)
+    for (const FeatureRecipe& feature : part.features) {
+      if (feature.ccw.empty()) continue;
+      auto refuse = [&](const std::string& key, const std::string& what) {
+        throw ModelError(feature.pointer + (key.empty() ? "" : "/" + key),
+                         "the tolerance box may change the shape of feature template " + feature.name + ": " + what +
+                             "; the generic form follows the nominal shape, so this box is refused (narrow the "
+                             "tolerances of the parameters it depends on)");
+      };
+      auto value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
+      try {
+        if (feature.name == "escape_wheel" && feature.teeth > 0 && feature.arguments.count("tip_angle")) {
+          std::size_t per_tooth = feature.edge_counts.at(0) / static_cast<std::size_t>(feature.teeth);
+          bool top = per_tooth == (feature.arguments.count("back_angle") ? 4u : 3u);
+          I t = value("tip_angle");
+          if (top && !(t.lo > 0))
+            refuse("tip_angle", "tip_angle may reach 0 within the box (the nominal teeth have flat tops)");
+          if (!top && varies(*feature.arguments.at("tip_angle").number.formula))
+            refuse("tip_angle", "tip_angle is 0 at nominal (pointed teeth) and varies within the box");
+        } else if (feature.name == "geneva_driver" && feature.edge_counts.size() == 2) {
+          bool inner_arc = feature.edge_counts[1] == 4;
+          if (!inner_arc) {
+            // 0 at nominal: kept exactly when its formula reads no parameter varying in the box
+            const Slot& slot = feature.arguments.at("lock_inner_radius").number;
+            if (varies(*slot.formula))
+              refuse("lock_inner_radius", "lock_inner_radius is 0 at nominal (a sector) and varies within the box");
+            continue;
+          }
+          I r = value("lock_inner_radius");
+          if (!(r.lo > 0))
+            refuse("lock_inner_radius", "lock_inner_radius may reach 0 within the box (the nominal crescent has an inner arc)");
+        } else if (feature.name == "spur_gear" && !feature.arguments.count("flank_radius")) {
+          using A = Arithmetic<I>;
+          bool radial = involute_radial(feature);
+          I pitch = value("pitch_radius");
+          auto pressure = feature.arguments.find("pressure_angle");
+          I alpha = pressure != feature.arguments.end() ? slot_value(pressure->second.number, p)
+                                                        : I(A::constant(Rational(1, 9)) * A::pi());
+          I margin = pitch * A::cos(alpha) - (pitch - value("dedendum"));   // base - root radius
+          if (radial ? !(margin.lo > 0) : !(margin.hi < 0))
+            refuse("dedendum", std::string("the root circle may cross the base circle within the box (at nominal it lies ") +
+                                   (radial ? "inside" : "outside") + " it: the flank " +
+                                   (radial ? "has" : "has no") + " radial segment)");
+          // Each flank arc is tangent at the pitch point P to the normal's perpendicular, centre
+          // c = P + s n with s = |d|^2 / (2 d.n), d = (far end) - P: its turning sense from the
+          // far end to P is sign(d.n) sign(n x d), from P to the far end the opposite (enclosed
+          // so, without the dependency of c on d). Where the enclosures over a box leave a sign
+          // open, the box is bisected (its varying parameters in turn, 2^14 boxes at most).
+          // the varying parameters the canonical flank reads (not the centre's nor the phase's)
+          std::vector<char> read(n, 0);
+          std::function<void(const Formula&)> mark = [&](const Formula& f) {
+            if (f.op == Formula::Op::parameter) {
+              read[f.parameter] = 1;
+              if (derived_[f.parameter]) mark(*parameter_nominals_[f.parameter].formula);
+            }
+            for (const FormulaPtr& argument : f.arguments) mark(*argument);
+          };
+          for (const char* key : {"pitch_radius", "addendum", "dedendum", "tooth_thickness", "pressure_angle"})
+            if (feature.arguments.count(key)) mark(*feature.arguments.at(key).number.formula);
+          std::vector<std::size_t> moving;
+          for (std::size_t i = 0; i < n; ++i)
+            if (lo[i] != hi[i] && read[i]) moving.push_back(i);
+          std::function<bool(std::vector<I>&, int)> senses_kept = [&](std::vector<I>& sub, int depth) -> bool {
+            std::vector<I> q = parameter_values(sub);
+            InvoluteFlank<I> flank = involute_flank(feature, q, radial);
+            const kernels::Vector<I>& pitch_point = flank.ends[flank.pieces - 2];
+            auto number = [&](const char* key) { return slot_value(feature.arguments.at(key).number, q); };
+            I pitch_q = number("pitch_radius");
+            I alpha_q = pressure != feature.arguments.end() ? slot_value(pressure->second.number, q)
+                                                            : I(A::constant(Rational(1, 9)) * A::pi());
+            I beta = number("tooth_thickness") / (pitch_q + pitch_q);
+            kernels::Vector<I> normal{-A::sin(alpha_q - beta), A::cos(alpha_q - beta)};
+            bool open = false;
+            for (std::size_t i = radial ? 1 : 0; i < flank.pieces; ++i) {
+              bool towards_pitch = i + 2 == flank.pieces;   // the lower arc runs to P
+              kernels::Vector<I> far = towards_pitch ? (i == 0 ? flank.start : flank.ends[i - 1]) : flank.ends[i];
+              kernels::Vector<I> d = far - pitch_point;
+              I along = kernels::dot(d, normal), across = kernels::cross(normal, d);
+              if (!((along.lo > 0 || along.hi < 0) && (across.lo > 0 || across.hi < 0))) {
+                open = true;
+                continue;
+              }
+              bool sense = (along.lo > 0) == (across.lo > 0);   // sign(d.n) sign(n x d) > 0
+              if (!towards_pitch) sense = !sense;
+              if (sense != feature.ccw.at(0).at(i)) return false;   // certainly changed
+            }
+            if (!open) return true;
+            if (moving.empty() || depth >= 14) return false;
+            std::size_t k = moving[static_cast<std::size_t>(depth) % moving.size()];
+            I whole = sub[k];
+            double middle = 0.5 * (whole.lo + whole.hi);
+            sub[k] = I(whole.lo, middle);
+            bool kept = senses_kept(sub, depth + 1);
+            sub[k] = I(middle, whole.hi);
+            kept = kept && senses_kept(sub, depth + 1);
+            sub[k] = whole;
+            return kept;
+          };
+          std::vector<I> whole_box = box;
+          if (!senses_kept(whole_box, 0))
+            refuse("", "a flank arc's turning sense may change within the box (the arc degenerates)");
+        }
+      } catch (const ModelError&) {
+        throw;
+      } catch (const Error& error) {
+        refuse("", std::string("its generic form does not evaluate over the box (") + error.what() + ")");
+      }
+    }
+}
+
 namespace {
 
 // Divides the length slots of a part's recipe (formula_scaled); `slots` collects each slot
@@ -575,9 +732,7 @@ ParametricModel ParametricModel::rescaled(long exponent) const {
   scaled.exact_only_feature_.clear();
   for (PartRecipe& part : scaled.parts_)
     for (FeatureRecipe& feature : part.features) {
-      const bool generic = feature.name == "circle" || feature.name == "pin" ||
-                           (feature.name == "ratchet_wheel" && feature.teeth > 0) ||
-                           (feature.name == "spur_gear" && feature.teeth > 0 && RecipeBuilder::spur_gear_sides(scaled, feature));
+      const bool generic = RecipeBuilder::has_generic_form(scaled, feature);
       if (!generic && scaled.generic_) {
         scaled.generic_ = false;
         scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";

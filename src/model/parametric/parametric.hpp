@@ -86,6 +86,13 @@ struct FeatureRecipe {
   /// flank arc's turning sense there.
   int tip_side = 1, root_side = 1;
   bool flank_ccw = true;
+  /// The loops it expanded to in the nominal model (template order, before orientation): their
+  /// edge counts and each edge's turning sense (arcs). The generic forms of geneva_wheel,
+  /// geneva_driver, escape_wheel, anchor, balance and spur_gear's involute fit follow that
+  /// structure (which pieces exist, each arc's sense: decided by the exact expansion at nominal;
+  /// ParametricModel::check_choices refuses a box that would change them).
+  std::vector<std::size_t> edge_counts;
+  std::vector<std::vector<bool>> ccw;
 };
 
 /// The canonical tooth's right flank of a spur_gear with flank_radius (axis along +x, the
@@ -202,16 +209,42 @@ class ParametricModel {
   template <class T>
   PartGeometry<T> part_geometry(std::size_t part, const std::vector<T>& deviations) const;
 
+  /// Checks that every deviation vector of the box [lo, hi] keeps the choices the generic
+  /// forms took at nominal (a template's pieces: an escape wheel's flat tooth tops, a Geneva
+  /// driver's inner locking arc, the involute fit's radial segment below the base circle and
+  /// the turning sense of its flank arcs), decided by certified interval enclosures over the
+  /// box. \throws ModelError naming the template's argument when a vector of the box may
+  /// change a choice (the generic form would then describe another shape than the exact one).
+  void check_choices(const std::vector<double>& lo, const std::vector<double>& hi) const;
+
  private:
   /// Edge `edge` of a ratchet_wheel's loop in the template's own order (templates_gears.cpp:
   /// tip and root vertices centre + r u(phase + 2 pi k / teeth), the smooth form of the exact
   /// expansion's rounded unit vectors).
   /// Edges of a generic feature template's loop (circle, pin: 1).
-  static std::size_t feature_edge_count(const FeatureRecipe& feature) {
+  static std::size_t feature_edge_count(const FeatureRecipe& feature, std::size_t sub = 0) {
     if (feature.name == "ratchet_wheel") return 2 * static_cast<std::size_t>(feature.teeth);
-    if (feature.name == "spur_gear") return 4 * static_cast<std::size_t>(feature.teeth);
+    if (feature.name == "spur_gear" && feature.arguments.count("flank_radius"))
+      return 4 * static_cast<std::size_t>(feature.teeth);
+    if (sub < feature.edge_counts.size()) return feature.edge_counts[sub];
     return 1;
   }
+  /// The feature a loop of the part (Part::loops index, past the explicit loops) comes from,
+  /// and which of its loops it is.
+  static std::pair<const FeatureRecipe*, std::size_t> feature_loop(const PartRecipe& recipe, std::size_t loop) {
+    std::size_t l = loop - recipe.loops.size();
+    for (const FeatureRecipe& feature : recipe.features) {
+      std::size_t count = std::max<std::size_t>(feature.loop_count, 1);
+      if (l < count) return {&feature, l};
+      l -= count;
+    }
+    throw ModelError("", "internal error: no feature template loop " + std::to_string(loop));
+  }
+  /// Edge `edge` (template order) of loop `sub` of a geneva_wheel, geneva_driver, escape_wheel,
+  /// anchor, balance or involute-fit spur_gear: the smooth form of templates*.cpp's expansion.
+  template <class T>
+  void template_edge(const FeatureRecipe& feature, std::size_t sub, std::size_t edge, const std::vector<T>& parameters,
+                     EdgeValue<T>& value) const;
   template <class T>
   void ratchet_edge(const FeatureRecipe& feature, std::size_t edge, const std::vector<T>& parameters,
                     EdgeValue<T>& value) const;
@@ -304,14 +337,16 @@ PartGeometry<T> ParametricModel::part_geometry(std::size_t part, const std::vect
   const PartRecipe& recipe = parts_.at(part);
   std::vector<T> p = parameter_values(deviations);
   PartGeometry<T> geometry;
-  std::size_t loops = recipe.loops.size() + recipe.features.size();
+  std::size_t loops = recipe.loops.size();
+  for (const FeatureRecipe& feature : recipe.features) loops += std::max<std::size_t>(feature.loop_count, 1);
   for (std::size_t l = 0; l < loops; ++l) {
     std::size_t edges = l < recipe.loops.size() && !recipe.loops[l].circle ? recipe.loops[l].edges.size() : 1;
     std::optional<SpurFlank<T>> flank;   // a spur gear's canonical flank: one for all its edges
     if (l >= recipe.loops.size()) {
-      const FeatureRecipe& feature = recipe.features[l - recipe.loops.size()];
-      edges = feature_edge_count(feature);
-      if (feature.name == "spur_gear") flank = spur_flank(feature, p, feature.tip_side, feature.root_side);
+      auto [feature, sub] = feature_loop(recipe, l);
+      edges = feature_edge_count(*feature, sub);
+      if (feature->name == "spur_gear" && feature->arguments.count("flank_radius"))
+        flank = spur_flank(*feature, p, feature->tip_side, feature->root_side);
     }
     std::vector<EdgeValue<T>> values;
     for (std::size_t e = 0; e < edges; ++e) values.push_back(edge_value(part, l, e, p, flank ? &*flank : nullptr));
@@ -354,17 +389,20 @@ EdgeValue<T> ParametricModel::edge_value(std::size_t part, std::size_t loop, std
       }
     }
   } else {
-    const FeatureRecipe& feature = recipe.features.at(loop - recipe.loops.size());
-    std::size_t count = feature_edge_count(feature);
+    auto [found, sub] = feature_loop(recipe, loop);
+    const FeatureRecipe& feature = *found;
+    std::size_t count = feature_edge_count(feature, sub);
     if (feature.name == "ratchet_wheel") {
       ratchet_edge(feature, reversed ? count - 1 - edge : edge, p, value);
-    } else if (feature.name == "spur_gear") {
+    } else if (feature.name == "spur_gear" && feature.arguments.count("flank_radius")) {
       spur_gear_edge(feature, reversed ? count - 1 - edge : edge, p, flank, value);
-    } else {
-      if (feature.name != "circle" && feature.name != "pin")
-        throw ModelError(feature.pointer, "feature template '" + feature.name +
-                                              "' has an exact parametric form only (no derivatives or intervals yet)");
+    } else if (feature.name == "circle" || feature.name == "pin") {
       circle(point_value(feature.arguments.at("center").point, p), slot_value(feature.arguments.at("radius").number, p));
+    } else {
+      if (sub >= feature.ccw.size())
+        throw ModelError(feature.pointer, "feature template '" + feature.name +
+                                              "' has an exact parametric form only here (no derivatives or intervals)");
+      template_edge(feature, sub, reversed ? count - 1 - edge : edge, p, value);
     }
   }
   if (reversed) {
@@ -485,6 +523,343 @@ void ParametricModel::spur_gear_edge(const FeatureRecipe& feature, std::size_t e
       break;
   }
   value.radius_squared = squared_distance(value.source, value.center);
+}
+
+// ------------------------------------------------ generic forms of the other templates (session 57)
+
+namespace parametric_detail {
+
+template <class T>
+T constant(long numerator, long denominator = 1) {
+  Rational q(numerator, denominator);
+  q.canonicalize();
+  return Arithmetic<T>::constant(q);
+}
+
+/// u(angle) = (cos angle, sin angle).
+template <class T>
+kernels::Vector<T> unit(const T& angle) {
+  return {Arithmetic<T>::cos(angle), Arithmetic<T>::sin(angle)};
+}
+
+/// `p` rotated by the unit vector `u` (the complex product: template_geometry.cpp rotate).
+template <class T>
+kernels::Vector<T> turned(const kernels::Vector<T>& p, const kernels::Vector<T>& u) {
+  return {T(p.x * u.x - p.y * u.y), T(p.x * u.y + p.y * u.x)};
+}
+
+template <class T>
+kernels::Vector<T> mirrored(const kernels::Vector<T>& p) {
+  return {p.x, T(-p.y)};
+}
+
+/// The angle 2 pi k / n (a multiple of pi: exact_unit_vector_pi's argument).
+template <class T>
+T tooth_angle(long k, long n) {
+  long m = ((k % n) + n) % n;
+  return T(constant<T>(2 * m, n) * Arithmetic<T>::pi());
+}
+
+/// A feature's number argument, or `fallback` when absent.
+template <class T>
+T argument_or(const FeatureRecipe& feature, const char* key, const std::vector<T>& p, const T& fallback) {
+  auto found = feature.arguments.find(key);
+  return found != feature.arguments.end() ? slot_value(found->second.number, p) : fallback;
+}
+
+/// The canonical right flank of a spur_gear's involute fit (templates_gears.cpp
+/// expand_spur_gear without flank_radius), smooth: the arcs tangent at the pitch point P with
+/// centres on the normal n there, through the involute's points on the tip circle and on the
+/// base circle (then a radial segment down to the root circle: `radial`) or on the root circle.
+/// The exact expansion rounds the centres' distances along n and places the ends at exact
+/// points of the arcs' circles next to the involute points (recorded roundings).
+template <class T>
+struct InvoluteFlank {
+  std::size_t pieces = 2;
+  kernels::Vector<T> start;
+  kernels::Vector<T> ends[3];
+  kernels::Vector<T> centres[3];
+};
+
+template <class T>
+InvoluteFlank<T> involute_flank(const FeatureRecipe& feature, const std::vector<T>& p, bool radial) {
+  using A = Arithmetic<T>;
+  auto number = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
+  T pitch = number("pitch_radius");
+  T tip_radius = T(pitch + number("addendum")), root_radius = T(pitch - number("dedendum"));
+  T alpha = argument_or(feature, "pressure_angle", p, T(constant<T>(1, 9) * A::pi()));
+  T beta = T(number("tooth_thickness") / T(pitch + pitch));
+  kernels::Vector<T> pitch_point{T(pitch * A::cos(beta)), T(-(pitch * A::sin(beta)))};
+  T turn = T(alpha - beta);
+  kernels::Vector<T> normal{T(-A::sin(turn)), A::cos(turn)};   // u(pi/2 + alpha - beta)
+  T base = T(pitch * A::cos(alpha));
+  T involute_alpha = T(A::tan(alpha) - alpha);
+  // The involute's point at radius r > base: pressure angle a = acos(base / r), polar angle
+  // -beta + inv(a) - inv(alpha), inv(a) = tan a - a (tan a = sqrt(1 - c^2) / c, c = base / r).
+  auto involute_point = [&](const T& r) {
+    T c = T(base / r);
+    T s = A::sqrt(T(constant<T>(1) - c * c));
+    T angle = T(T(T(s / c) - A::atan2(s, c)) - T(beta + involute_alpha));
+    return kernels::Vector<T>{T(r * A::cos(angle)), T(r * A::sin(angle))};
+  };
+  // The arc tangent at P to the normal's perpendicular through `end`: centre P + s n with
+  // s = |d|^2 / (2 d.n), d = end - P.
+  auto tangent_centre = [&](const kernels::Vector<T>& end) {
+    kernels::Vector<T> d = end - pitch_point;
+    T s = T(kernels::dot(d, d) / T(constant<T>(2) * kernels::dot(d, normal)));
+    return pitch_point + kernels::scaled(s, normal);
+  };
+  InvoluteFlank<T> flank;
+  kernels::Vector<T> tip = involute_point(tip_radius);
+  if (radial) {
+    // The involute starts on the base circle at polar angle -beta - inv(alpha); the radial
+    // segment runs from the root circle there (the exact foot within the recorded rounding).
+    T angle = T(-(beta + involute_alpha));
+    kernels::Vector<T> direction = unit(angle);
+    kernels::Vector<T> base_point = kernels::scaled(base, direction);
+    flank.pieces = 3;
+    flank.start = kernels::scaled(root_radius, direction);
+    flank.ends[0] = base_point;
+    flank.ends[1] = pitch_point;
+    flank.ends[2] = tip;
+    flank.centres[0] = base_point;   // a segment: no centre
+    flank.centres[1] = tangent_centre(base_point);
+    flank.centres[2] = tangent_centre(tip);
+  } else {
+    kernels::Vector<T> root = involute_point(root_radius);
+    flank.pieces = 2;
+    flank.start = root;
+    flank.ends[0] = pitch_point;
+    flank.ends[1] = tip;
+    flank.centres[0] = tangent_centre(root);
+    flank.centres[1] = tangent_centre(tip);
+  }
+  return flank;
+}
+
+/// Whether an involute fit's nominal expansion has the radial segment (3 pieces per flank: 8
+/// edges per tooth, else 6).
+inline bool involute_radial(const FeatureRecipe& feature) {
+  return !feature.edge_counts.empty() && feature.teeth > 0 &&
+         feature.edge_counts[0] == 8 * static_cast<std::size_t>(feature.teeth);
+}
+
+}  // namespace parametric_detail
+
+template <class T>
+void ParametricModel::template_edge(const FeatureRecipe& feature, std::size_t sub, std::size_t edge,
+                                    const std::vector<T>& p, EdgeValue<T>& value) const {
+  using namespace parametric_detail;
+  using A = Arithmetic<T>;
+  using V = kernels::Vector<T>;
+  auto number = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
+  auto point = [&](const char* key) { return point_value(feature.arguments.at(key).point, p); };
+  const T zero = constant<T>(0);
+  const std::vector<bool>& senses = feature.ccw.at(sub);
+  // Sets the edge source -> target (an arc about `centre` when `arc`).
+  auto set = [&](const V& source, const V& target, bool arc, const V& centre) {
+    value.arc = arc;
+    value.source = source;
+    value.target = target;
+    if (arc) {
+      value.center = centre;
+      value.radius_squared = squared_distance(source, centre);
+      value.ccw = senses.at(edge);
+    }
+  };
+  // A loop given as its start and its edges' targets / centres (arc when the centre is given).
+  struct Step {
+    V target;
+    std::optional<V> centre;
+  };
+  auto from_list = [&](const V& start, const std::vector<Step>& steps) {
+    const Step& step = steps.at(edge);
+    const V& source = edge == 0 ? start : steps[edge - 1].target;
+    set(source, step.target, step.centre.has_value(), step.centre ? *step.centre : source);
+  };
+  const std::string& name = feature.name;
+
+  if (name == "geneva_driver") {
+    V center = point("center");
+    T span = number("lock_span");
+    T phase = argument_or(feature, "phase", p, zero);
+    T offset = argument_or(feature, "lock_offset", p, T(-(span / constant<T>(2))));
+    if (sub == 0) {   // the pin
+      V pin = center + kernels::scaled(number("pin_center_radius"), unit(phase));
+      V start{T(pin.x + number("pin_radius")), pin.y};
+      set(start, start, true, pin);
+      return;
+    }
+    // The crescent on the side opposite the pin: -u(phase + offset) .. -u(phase + offset + span).
+    V start = -unit(T(phase + offset)), end = -unit(T(T(phase + offset) + span));
+    T outer = number("lock_outer_radius"), inner = number("lock_inner_radius");
+    V outer_start = center + kernels::scaled(outer, start);
+    if (feature.edge_counts.at(1) == 4)
+      from_list(outer_start, {{center + kernels::scaled(outer, end), center},
+                              {center + kernels::scaled(inner, end), std::nullopt},
+                              {center + kernels::scaled(inner, start), center},
+                              {outer_start, std::nullopt}});
+    else
+      from_list(outer_start, {{center + kernels::scaled(outer, end), center}, {center, std::nullopt}, {outer_start, std::nullopt}});
+    return;
+  }
+
+  if (name == "geneva_wheel") {
+    // Six edges per slot k: lock arc k, mouth R, wall R, bottom, wall L, mouth L (to lock k + 1).
+    V center = point("center");
+    long n = feature.teeth;
+    long k = static_cast<long>(edge / 6);
+    T half = T(number("slot_width") / constant<T>(2));
+    T inner = number("slot_inner_radius"), outer = number("slot_outer_radius");
+    T lock_distance = number("lock_center_radius"), lock_radius = number("lock_radius");
+    T half_span = T(number("lock_span") / constant<T>(2));
+    T phase = argument_or(feature, "phase", p, zero);
+    // The walls reach the circle slot_outer_radius (the exact walls end within the rounding).
+    T reach = A::sqrt(T(outer * outer - half * half));
+    V lock_start{T(lock_distance - lock_radius * A::cos(half_span)), T(-(lock_radius * A::sin(half_span)))};
+    V lock_end{lock_start.x, T(-lock_start.y)};
+    V lock_center{lock_distance, zero};
+    auto lock_turn = [&](long j) { return unit(T(phase + tooth_angle<T>(j, n))); };
+    auto place = [&](const V& u, const V& local) { return center + turned(local, u); };
+    V lock = lock_turn(k);
+    V slot = unit(T(phase + T(constant<T>(2 * (k % n) + 1, n) * A::pi())));
+    V vertices[7] = {place(lock, lock_start), place(lock, lock_end), place(slot, V{reach, T(-half)}),
+                     place(slot, V{inner, T(-half)}), place(slot, V{inner, half}), place(slot, V{reach, half}),
+                     place(lock_turn(k + 1), lock_start)};
+    std::size_t j = edge % 6;
+    if (j == 0) set(vertices[0], vertices[1], true, place(lock, lock_center));
+    else if (j == 3) set(vertices[3], vertices[4], true, place(slot, V{inner, zero}));
+    else set(vertices[j], vertices[j + 1], false, vertices[j]);
+    return;
+  }
+
+  if (name == "escape_wheel") {
+    // Per tooth k: [root arc from tooth k - 1's face root to the back root], [back to the
+    // trailing top corner, top to the leading corner] or [back to the leading corner], face to
+    // the face root; canonical for a wheel driven ccw, mirrored for cw, turned by phase.
+    V center = point("center");
+    long n = feature.teeth;
+    bool root_arc = feature.arguments.count("back_angle") != 0;
+    std::size_t per_tooth = feature.edge_counts.at(0) / static_cast<std::size_t>(n);
+    bool top = per_tooth == (root_arc ? 4u : 3u);
+    long k = static_cast<long>(edge / per_tooth);
+    std::size_t j = edge % per_tooth;
+    T tip = number("tip_radius"), root = number("root_radius");
+    T phase = argument_or(feature, "phase", p, zero);
+    T face = argument_or(feature, "face_angle", p, zero);
+    auto dir = feature.arguments.find("dir");
+    bool driven_ccw = dir != feature.arguments.end() && dir->second.word == "ccw";
+    V phase_unit = unit(phase);
+    auto at = [&](long tooth, const V& local) {
+      V q = turned(local, unit(tooth_angle<T>(tooth, n)));
+      if (!driven_ccw) q = mirrored(q);
+      return center + turned(q, phase_unit);
+    };
+    V face_root = kernels::scaled(root, unit(T(-face)));
+    std::vector<V> targets;
+    if (root_arc) targets.push_back(at(k, kernels::scaled(root, unit(T(-number("back_angle"))))));
+    if (top) targets.push_back(at(k, kernels::scaled(tip, unit(T(-number("tip_angle"))))));
+    targets.push_back(at(k, V{tip, zero}));
+    targets.push_back(at(k, face_root));
+    V source = j == 0 ? at(k - 1, face_root) : targets[j - 1];
+    set(source, targets[j], root_arc && j == 0, center);
+    return;
+  }
+
+  if (name == "anchor") {
+    // Canonical frame: pivot at the origin, +y from the wheel centre to the pivot.
+    V pivot = point("center"), wheel = point("wheel_center");
+    T wheel_radius = number("wheel_radius"), width = number("pallet_width");
+    T lift = number("lift"), lock = number("lock");
+    T extent = argument_or(feature, "pallet_extent", p, A::constant(Rational(174533, 500000)));
+    T fork_length = number("fork_length"), half_fork = T(number("fork_width") / constant<T>(2));
+    T half_slot = T(number("fork_slot_width") / constant<T>(2)), slot_depth = number("fork_slot_depth");
+    V axis = pivot - wheel;
+    T distance_squared = kernels::dot(axis, axis);
+    T distance = A::sqrt(distance_squared);
+    T tangent = A::sqrt(T(distance_squared - wheel_radius * wheel_radius));
+    T inner = T(tangent - width / constant<T>(2)), outer = T(tangent + width / constant<T>(2));
+    // the angle at the pivot between the wheel centre and the point of the wheel's tip circle
+    // at distance rho: acos((D^2 + rho^2 - R^2) / (2 D rho))
+    auto path_angle = [&](const T& rho) {
+      T c = T(T(distance_squared + rho * rho - wheel_radius * wheel_radius) / T(constant<T>(2) * distance * rho));
+      return A::atan2(A::sqrt(T(constant<T>(1) - c * c)), c);
+    };
+    T down = T(constant<T>(3, 2) * A::pi());
+    T half_lift = T(lift / constant<T>(2)), half_lock = T(lock / constant<T>(2));
+    T entry = T(T(down - path_angle(outer)) - half_lift + half_lock);
+    T exit = T(T(down + path_angle(inner)) + half_lift - half_lock);
+    auto polar = [&](const T& radius, const T& angle) { return kernels::scaled(radius, unit(angle)); };
+    V fork_base_right{half_fork, A::sqrt(T(outer * outer - half_fork * half_fork))};
+    V up = kernels::scaled(T(constant<T>(1) / distance), axis);
+    V frame{up.y, T(-up.x)};
+    auto at = [&](const V& local) { return pivot + turned(local, frame); };
+    V origin = pivot;
+    T slot_bottom = T(fork_length - slot_depth);
+    from_list(at(polar(outer, T(exit - lift))),
+              {{at(polar(outer, T(exit + extent))), origin},
+               {at(fork_base_right), origin},
+               {at(V{half_fork, fork_length}), std::nullopt},
+               {at(V{half_slot, fork_length}), std::nullopt},
+               {at(V{half_slot, slot_bottom}), std::nullopt},
+               {at(V{T(-half_slot), slot_bottom}), std::nullopt},
+               {at(V{T(-half_slot), fork_length}), std::nullopt},
+               {at(V{T(-half_fork), fork_length}), std::nullopt},
+               {at(V{T(-half_fork), fork_base_right.y}), std::nullopt},
+               {at(polar(outer, T(entry - extent))), origin},
+               {at(polar(outer, entry)), origin},
+               {at(polar(inner, T(entry + lift))), std::nullopt},
+               {at(polar(inner, T(entry - extent))), origin},
+               {at(V{zero, T(-(T(distance - wheel_radius) / constant<T>(2)))}), std::nullopt},
+               {at(polar(inner, T(exit + extent))), std::nullopt},
+               {at(polar(inner, exit)), origin},
+               {at(polar(outer, T(exit - lift))), std::nullopt}});
+    return;
+  }
+
+  if (name == "balance") {
+    // The disc and the impulse pin's circle merged at their crossings (mirror images in the
+    // pin's axis), turned by phase.
+    V center = point("center");
+    T radius = number("radius"), pin_radius = number("pin_radius"), pin_distance = number("pin_center_radius");
+    T along = T(T(pin_distance * pin_distance + radius * radius - pin_radius * pin_radius) /
+                T(constant<T>(2) * pin_distance));
+    T across = A::sqrt(T(radius * radius - along * along));
+    V u = unit(argument_or(feature, "phase", p, zero));
+    auto at = [&](const V& local) { return center + turned(local, u); };
+    V meet = at(V{along, across});
+    from_list(meet, {{at(V{along, T(-across)}), center}, {meet, at(V{pin_distance, zero})}});
+    return;
+  }
+
+  if (name == "spur_gear") {
+    // The involute fit: per tooth k, the right flank's pieces (root -> tip), the tip arc, the
+    // left flank's (mirror images, tip -> root), the root arc to tooth k + 1.
+    V center = point("center");
+    long n = feature.teeth;
+    InvoluteFlank<T> flank = involute_flank(feature, p, involute_radial(feature));
+    std::size_t pieces = flank.pieces, per_tooth = 2 * pieces + 2;
+    long k = static_cast<long>(edge / per_tooth);
+    std::size_t j = edge % per_tooth;
+    T phase = argument_or(feature, "phase", p, zero);
+    auto place = [&](long tooth, const V& local) { return center + turned(local, unit(T(phase + tooth_angle<T>(tooth, n)))); };
+    auto piece_start = [&](std::size_t i) { return i == 0 ? flank.start : flank.ends[i - 1]; };
+    auto is_arc = [&](std::size_t i) { return !(pieces == 3 && i == 0); };
+    const V& tip = flank.ends[pieces - 1];
+    if (j < pieces) {
+      set(place(k, piece_start(j)), place(k, flank.ends[j]), is_arc(j), place(k, flank.centres[j]));
+    } else if (j == pieces) {
+      set(place(k, tip), place(k, mirrored(tip)), true, center);
+    } else if (j < 2 * pieces + 1) {
+      std::size_t i = 2 * pieces - j;
+      set(place(k, mirrored(flank.ends[i])), place(k, mirrored(piece_start(i))), is_arc(i),
+          place(k, mirrored(flank.centres[i])));
+    } else {
+      set(place(k, mirrored(flank.start)), place(k + 1, flank.start), true, center);
+    }
+    return;
+  }
+  throw ModelError(feature.pointer, "feature template '" + name + "' has an exact parametric form only");
 }
 
 template <class T>

@@ -1,0 +1,411 @@
+// The generic (double / interval / Jet) forms of the feature templates that had the exact form
+// only until session 57 (src/model/parametric/parametric.hpp template_edge; docs/tolerance.md
+// "The parametric model"): geneva_wheel, geneva_driver, escape_wheel, anchor, balance and the
+// spur_gear's two-arc involute fit. On generated models (each template's every dimension
+// toleranced, random tooth counts, phases, directions and centres), at random rational
+// deviation vectors inside the tolerance box and beyond it (up to 3 times its half-width, where
+// the exact expansion still exists), the interval form encloses every vertex of the exact
+// expansion (ParametricModel::exact_model: the template expanded exactly, its unit vectors,
+// lengths and crossings rounded within the recorded bounds) and the double form agrees with it;
+// the Jet form's derivatives equal central differences of exact expansions (h = 1e-4, within
+// 1e3 h^2 / 6 + 2e-9 / h). A box that would change a template's nominal shape is refused
+// (check_choices). On the three bundled examples the tolerance analysis keeps every Monte Carlo
+// sample in its certified band and its nominal motion is the kinematic analysis's.
+#include "generic_form_check.hpp"
+#include "tolerance_band_check.hpp"
+#include "tolerance/jet.hpp"
+#include "test_paths.hpp"
+
+#include <hipair/kinematics.hpp>
+#include <hipair/model.hpp>
+#include <hipair/tolerance.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <algorithm>
+#include <random>
+#include <string>
+
+namespace hipair {
+namespace {
+
+using model_detail::ParametricModel;
+
+std::string fixed(double value, int digits = 4) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
+
+// A parameter entry: nominal, symmetric tolerance, angle flag.
+std::string parameter(const std::string& name, double nominal, double tolerance, bool angle = false, int digits = 4) {
+  return "\"" + name + "\": {\"nominal\": " + fixed(nominal, digits) +
+         (tolerance > 0 ? ", \"tolerance\": " + fixed(tolerance, 5) : std::string()) + (angle ? ", \"angle\": true" : "") +
+         "}";
+}
+
+std::string model(const std::string& parameters, const std::string& parts) {
+  return R"({"hipair": 1, "name": "generated", "units": {"length": "mm", "angle": "deg"}, "parameters": {)" +
+         parameters + R"(}, "parts": [)" + parts + R"(], "pairs": []})";
+}
+
+// The Geneva pair of geneva-template.json, every dimension perturbed by up to 1 %, every one
+// toleranced, the wheel and the driver turned by random phases; the driver's locking disc a
+// crescent or (every third model) a sector (lock_inner_radius 0, not toleranced), with a
+// lock_offset about the default.
+std::string generated_geneva(std::mt19937& rng, int index) {
+  std::uniform_real_distribution<double> wiggle(-0.01, 0.01), phase(-180, 180), offset(-3, 3);
+  auto w = [&](double x) { return x * (1 + wiggle(rng)); };
+  bool sector = index % 3 == 2;
+  double span = w(283.1);   // deg (4.9416 rad)
+  std::string p = parameter("pin-radius", w(4.5), 0.02) + ", " + parameter("pin-center", w(56.5), 0.02) + ", " +
+                  parameter("lock-outer", w(46), 0.02) + ", " +
+                  (sector ? parameter("lock-inner", 0, 0) : parameter("lock-inner", w(36), 0.02)) + ", " +
+                  parameter("lock-span", span, 0.03, true) + ", " +
+                  parameter("lock-offset", -span / 2 + offset(rng), 0.05, true) + ", " +
+                  parameter("driver-phase", phase(rng), 0.05, true) + ", " + parameter("slot-width", w(10), 0.02) + ", " +
+                  parameter("slot-inner", w(20), 0.02) + ", " + parameter("slot-outer", w(60), 0.02) + ", " +
+                  parameter("lock-radius", w(46.683), 0.02) + ", " + parameter("lock-arc-span", w(90), 0.03, true) +
+                  ", " + parameter("wheel-phase", phase(rng), 0.05, true) + ", " + parameter("distance", w(80), 0.02) +
+                  ", " + parameter("cy", wiggle(rng) * 100, 0.01);
+  std::string parts =
+      R"({"name": "driver", "motion": {"rotation": {"pivot": ["distance", "cy"]}}, "features": [{"geneva_driver": {
+           "center": ["distance", "cy"], "pin_radius": "pin-radius", "pin_center_radius": "pin-center",
+           "lock_outer_radius": "lock-outer", "lock_inner_radius": "lock-inner", "lock_span": "lock-span",
+           "lock_offset": "lock-offset", "phase": "driver-phase"}}]},
+         {"name": "wheel", "motion": {"rotation": {"pivot": [0, "cy"]}}, "features": [{"geneva_wheel": {
+           "center": [0, "cy"], "slots": 4, "slot_width": "slot-width", "slot_inner_radius": "slot-inner",
+           "slot_outer_radius": "slot-outer", "lock_center_radius": "distance", "lock_radius": "lock-radius",
+           "lock_span": "lock-arc-span", "phase": "wheel-phase"}}]})";
+  return model(p, parts);
+}
+
+// The escapement's three templates, each dimension perturbed and toleranced: an escape wheel
+// of 9-30 teeth (driven either way; flat tops or pointed teeth; a root arc or ratchet teeth),
+// an anchor whose pivot lies in a random direction from the wheel's centre (its coordinates
+// expressions of a toleranced distance and angle), a balance roller at a random phase.
+std::string generated_escapement(std::mt19937& rng, int index) {
+  std::uniform_real_distribution<double> wiggle(-0.02, 0.02), unit(0, 1), phase(-180, 180);
+  auto w = [&](double x) { return x * (1 + wiggle(rng)); };
+  std::uniform_int_distribution<int> teeth(9, 30);
+  int z = teeth(rng);
+  double pitch = 360.0 / z;
+  double face = 0.05 * pitch + 0.15 * pitch * unit(rng);
+  bool top = index % 2 == 1, root_arc = index % 4 < 2;
+  double tip = top ? 0.05 * pitch + 0.2 * pitch * unit(rng) : 0;
+  double low = std::max(face, tip), back = low + 0.1 * pitch + (pitch + face - low - 0.2 * pitch) * unit(rng);
+  double radius = w(20);
+  std::string p = parameter("teeth", z, 0, false, 0) + ", " + parameter("tip-radius", radius, 0.02) + ", " +
+                  parameter("root-radius", radius * (0.7 + 0.15 * unit(rng)), 0.02) + ", " +
+                  parameter("face", face, 0.05, true) + ", " + parameter("wheel-phase", phase(rng), 0.05, true) + ", " +
+                  parameter("cx", wiggle(rng) * 100, 0.01) + ", " + parameter("cy", wiggle(rng) * 100, 0.01);
+  std::string wheel = R"({"escape_wheel": {"center": ["cx", "cy"], "teeth": "teeth", "tip_radius": "tip-radius",
+      "root_radius": "root-radius", "face_angle": "face", "phase": "wheel-phase", "dir": ")" +
+                      std::string(index % 3 == 0 ? "ccw" : "cw") + "\"";
+  if (top) {
+    p += ", " + parameter("tip-angle", tip, 0.03, true);
+    wheel += R"(, "tip_angle": "tip-angle")";
+  }
+  if (root_arc) {
+    p += ", " + parameter("back", back, 0.05, true);
+    wheel += R"(, "back_angle": "back")";
+  }
+  wheel += "}}";
+  // anchor: pivot at distance D = R / cos 30 deg (+-2 %) from the wheel's centre, direction theta
+  p += ", " + parameter("anchor-distance", w(radius / std::cos(M_PI / 6)), 0.02) + ", " +
+       parameter("theta", 90 + 40 * (unit(rng) - 0.5), 0.05, true) + ", " + parameter("pallet-width", w(3.6), 0.02) +
+       ", " + parameter("lift", w(6), 0.05, true) + ", " + parameter("lock", w(2), 0.05, true) + ", " +
+       parameter("extent", w(20), 0.1, true) + ", " + parameter("fork-length", w(21.7), 0.02) + ", " +
+       parameter("fork-width", w(5), 0.02) + ", " + parameter("slot-width", w(2.7), 0.02) + ", " +
+       parameter("slot-depth", w(2.4), 0.02);
+  std::string pivot = R"j(["cx + anchor-distance * cos(theta)", "cy + anchor-distance * sin(theta)"])j";
+  std::string anchor = R"({"anchor": {"center": )" + pivot + R"(, "wheel_center": ["cx", "cy"],
+      "wheel_radius": "tip-radius", "pallet_width": "pallet-width", "lift": "lift", "lock": "lock",
+      "pallet_extent": "extent", "fork_length": "fork-length", "fork_width": "fork-width",
+      "fork_slot_width": "slot-width", "fork_slot_depth": "slot-depth"}})";
+  // balance
+  p += ", " + parameter("disc", w(3), 0.02) + ", " + parameter("pin-radius", w(1.2), 0.01) + ", " +
+       parameter("pin-center", w(4), 0.02) + ", " + parameter("balance-phase", phase(rng), 0.05, true) + ", " +
+       parameter("bx", 60 + wiggle(rng) * 100, 0.01);
+  std::string balance = R"({"balance": {"center": ["bx", 0], "radius": "disc", "pin_radius": "pin-radius",
+      "pin_center_radius": "pin-center", "phase": "balance-phase"}})";
+  std::string parts = R"({"name": "wheel", "motion": {"rotation": {"pivot": ["cx", "cy"]}}, "features": [)" + wheel +
+                      R"(]}, {"name": "anchor", "motion": {"rotation": {"pivot": )" + pivot +
+                      R"(}}, "features": [)" + anchor + R"(]}, {"name": "balance", "motion": {"rotation": {"pivot": ["bx", 0]}},
+                      "features": [)" + balance + "]}";
+  return model(p, parts);
+}
+
+// A spur gear with the two-arc involute fit (no flank_radius): z teeth of module m (addendum m,
+// dedendum 1.25 m), pressure angle 16-24 deg, every dimension toleranced; `radial`: the root
+// circle inside the base circle (the flank's radial segment), else outside, each by at least
+// 0.1 m (so that the box keeps the choice).
+std::string generated_involute_gear(std::mt19937& rng, bool radial) {
+  std::uniform_int_distribution<int> teeth(8, 90), modulus(1, 4), pressure(16, 24), phase(-180, 180), offset(-20, 20);
+  int z = 0, a = 0;
+  for (;;) {
+    z = teeth(rng);
+    a = pressure(rng);
+    double margin = 1.25 - z * (1 - std::cos(a * M_PI / 180)) / 2;   // (base - root) / m
+    if (radial ? margin > 0.1 : margin < -0.3) break;
+  }
+  int m = modulus(rng);
+  std::string p = parameter("m", m, 0.001) + ", " + parameter("z", z, 0, false, 0) + ", " +
+                  parameter("alpha", a, 0.2, true) + ", " + parameter("thin", 0.05, 0.02) + ", " +
+                  parameter("phase", phase(rng), 0.1, true) + ", " + parameter("cx", offset(rng), 0.01);
+  std::string parts = R"({"name": "gear", "motion": {"rotation": {"pivot": ["cx", 3]}},
+      "features": [{"spur_gear": {"center": ["cx", 3], "teeth": "z", "pitch_radius": "m * z / 2", "addendum": "m",
+                    "dedendum": "1.25 * m", "tooth_thickness": "pi * m / 2 - thin", "pressure_angle": "alpha",
+                    "phase": "phase"}}]})";
+  return model(p, parts);
+}
+
+// A deviation vector: each toleranced parameter at a random rational point of `factor` times its
+// tolerance range about the nominal (1: in the box).
+std::vector<Rational> random_deviations(const ParametricModel& form, std::mt19937& rng, int factor) {
+  std::uniform_int_distribution<int> u(0, 1000);
+  std::vector<Rational> deviations(form.parameter_count(), Rational(0));
+  for (std::size_t i = 0; i < deviations.size(); ++i) {
+    const Parameter& p = form.nominal().parameters[i];
+    if (p.range.lo == p.range.hi) continue;
+    Rational lo = factor * (p.range.lo - p.nominal), hi = factor * (p.range.hi - p.nominal);
+    deviations[i] = lo + Rational(u(rng), 1000) * (hi - lo);
+    deviations[i].canonicalize();
+  }
+  return deviations;
+}
+
+struct Counts {
+  std::size_t inside = 0, beyond = 0, beyond_invalid = 0;
+};
+
+// The generic forms against the exact form at 3 vectors in the box and 3 beyond it (up to 3
+// times the tolerances; skipped where the exact expansion refuses the vector), and the box kept.
+// `box_check`: the box is expected to pass check_choices (false: the involute fit without the
+// radial segment, whose flank-sense check is conservative — see the test below).
+void expect_generic_form_holds(const std::string& text, std::mt19937& rng, Counts& counts, bool box_check = true) {
+  SCOPED_TRACE(text);
+  ParametricModel form = ParametricModel::read(text);
+  ASSERT_TRUE(form.generic()) << form.exact_only_feature();
+  std::size_t n = form.parameter_count();
+  std::vector<double> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Parameter& p = form.nominal().parameters[i];
+    lo[i] = Rational(p.range.lo - p.nominal).get_d();
+    hi[i] = Rational(p.range.hi - p.nominal).get_d();
+  }
+  if (box_check) EXPECT_NO_THROW(form.check_choices(lo, hi));
+  test_generic::expect_generic_form_agrees(form, std::vector<Rational>(n, Rational(0)));
+  for (int trial = 0; trial < 3; ++trial) {
+    test_generic::expect_generic_form_agrees(form, random_deviations(form, rng, 1));
+    ++counts.inside;
+  }
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<Rational> deviations = random_deviations(form, rng, 3);
+    try {
+      (void)form.exact_model(deviations);
+    } catch (const ModelError&) {
+      ++counts.beyond_invalid;   // the template refuses the vector: no exact form to compare
+      continue;
+    }
+    test_generic::expect_generic_form_agrees(form, deviations);
+    ++counts.beyond;
+  }
+}
+
+// Every part's geometry as jets at the nominal vector against central differences of exact
+// expansions at +-h of each toleranced parameter: every edge's target and arc centre. h = 1e-4
+// as the neighbours', 1e-3 for the involute fit: its exact arc centres P + s n take s from
+// involute points computed in doubles through |d|^2 / (2 d.n), a few 1e-9 mm of noise (measured:
+// the differences drift from the derivative by 4e-6 at h = 1e-4 and 2e-5 at 1e-5, by 4e-8 at
+// 1e-3), which the bound's 2e-9 / h term does not cover at h = 1e-4.
+void expect_derivatives_are_finite_differences(const std::string& text, const Rational& h = Rational(1, 10000)) {
+  SCOPED_TRACE(text);
+  ParametricModel form = ParametricModel::read(text);
+  std::size_t n = form.parameter_count();
+  std::vector<tolerance_detail::Jet<double>> jets(n);
+  for (std::size_t i = 0; i < n; ++i) jets[i] = tolerance_detail::Jet<double>::variable(0.0, i, n);
+  std::vector<model_detail::PartGeometry<tolerance_detail::Jet<double>>> geometry;
+  for (std::size_t k = 0; k < form.nominal().parts.size(); ++k) geometry.push_back(form.part_geometry(k, jets));
+  double bound = 1e3 * h.get_d() * h.get_d() / 6 + 2e-9 / h.get_d();
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Parameter& p = form.nominal().parameters[i];
+    if (p.range.lo == p.range.hi) continue;
+    auto [a, b] = test_generic::exact_models_around(form, i, h);
+    auto difference = [&](const Rational& x, const Rational& y) { return Rational((x - y) / (2 * h)).get_d(); };
+    for (std::size_t k = 0; k < a.parts.size(); ++k)
+      for (std::size_t l = 0; l < a.parts[k].loops.size(); ++l) {
+        const auto& ea = a.parts[k].loops[l].edges;
+        const auto& eb = b.parts[k].loops[l].edges;
+        ASSERT_EQ(ea.size(), geometry[k].loops[l].size());
+        for (std::size_t e = 0; e < ea.size(); ++e) {
+          const auto& g = geometry[k].loops[l][e];
+          EXPECT_NEAR(g.target.x.partial(i), difference(ea[e].target.x, eb[e].target.x), bound)
+              << p.name << " part " << k << " loop " << l << " edge " << e;
+          EXPECT_NEAR(g.target.y.partial(i), difference(ea[e].target.y, eb[e].target.y), bound)
+              << p.name << " part " << k << " loop " << l << " edge " << e;
+          if (ea[e].kind == Edge::Kind::arc) {
+            EXPECT_NEAR(g.center.x.partial(i), difference(ea[e].center.x, eb[e].center.x), bound)
+                << p.name << " part " << k << " loop " << l << " edge " << e << " centre";
+            EXPECT_NEAR(g.center.y.partial(i), difference(ea[e].center.y, eb[e].center.y), bound)
+                << p.name << " part " << k << " loop " << l << " edge " << e << " centre";
+          }
+          ++checked;
+        }
+      }
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(checked, 0u);
+}
+
+TEST(ParametricTemplates, GenevaWheelAndDriverAgreeWithTheExactFormInAndBeyondTheBox) {
+  std::mt19937 rng(57);
+  Counts counts;
+  for (int round = 0; round < 6; ++round) {
+    expect_generic_form_holds(generated_geneva(rng, round), rng, counts);
+    if (HasFailure()) return;
+  }
+  EXPECT_EQ(counts.inside, 18u);
+  EXPECT_GE(counts.beyond, 6u);
+}
+
+TEST(ParametricTemplates, EscapementTemplatesAgreeWithTheExactFormInAndBeyondTheBox) {
+  std::mt19937 rng(58);
+  Counts counts;
+  for (int round = 0; round < 8; ++round) {
+    expect_generic_form_holds(generated_escapement(rng, round), rng, counts);
+    if (HasFailure()) return;
+  }
+  EXPECT_EQ(counts.inside, 24u);
+  EXPECT_GE(counts.beyond, 8u);
+}
+
+TEST(ParametricTemplates, InvoluteFitAgreesWithTheExactFormInAndBeyondTheBox) {
+  std::mt19937 rng(59);
+  Counts counts;
+  for (int round = 0; round < 8; ++round) {
+    // Known weakness (session 57): for gears whose root circle lies outside the base circle the
+    // flank arcs' turning-sense check (check_choices, bisecting the box 2^14 times at most) can
+    // stay undecided and refuse a box that keeps the shape (62 teeth, 23 deg): a refusal, never
+    // a wrong band; the generic form's agreement is checked on every gear.
+    expect_generic_form_holds(generated_involute_gear(rng, round % 2 == 0), rng, counts, round % 2 == 0);
+    if (HasFailure()) return;
+  }
+  EXPECT_EQ(counts.inside, 24u);
+  EXPECT_GE(counts.beyond, 8u);
+}
+
+TEST(ParametricTemplates, DerivativesEqualFiniteDifferencesOfExactExpansions) {
+  std::mt19937 rng(60);
+  for (int round = 0; round < 2; ++round) {
+    expect_derivatives_are_finite_differences(generated_geneva(rng, round + 1));
+    expect_derivatives_are_finite_differences(generated_escapement(rng, round + 1));
+    expect_derivatives_are_finite_differences(generated_involute_gear(rng, round == 0), Rational(1, 1000));
+    if (HasFailure()) return;
+  }
+}
+
+// A box that would change a template's nominal shape is refused, naming the argument: the
+// involute fit's root circle crossing the base circle, an escape wheel's flat tops shrinking to
+// points, a Geneva driver's crescent losing its inner arc.
+TEST(ParametricTemplates, ABoxThatChangesATemplatesShapeIsRefused) {
+  auto refused = [](const std::string& text, const std::string& argument) {
+    SCOPED_TRACE(text);
+    ParametricModel form = ParametricModel::read(text);
+    ASSERT_TRUE(form.generic()) << form.exact_only_feature();
+    std::size_t n = form.parameter_count();
+    std::vector<double> lo(n), hi(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Parameter& p = form.nominal().parameters[i];
+      lo[i] = Rational(p.range.lo - p.nominal).get_d();
+      hi[i] = Rational(p.range.hi - p.nominal).get_d();
+    }
+    try {
+      form.check_choices(lo, hi);
+      ADD_FAILURE() << "not refused";
+    } catch (const ModelError& error) {
+      EXPECT_NE(std::string(error.what()).find(argument), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("may change the shape"), std::string::npos) << error.what();
+    }
+  };
+  // z = 41, 20 deg: base - root = m (1.25 - 41 (1 - cos 20 deg) / 2) = 0.0138 m; the pressure
+  // angle's tolerance of 1 deg moves the base circle across the root circle.
+  refused(model(parameter("alpha", 20, 1, true),
+                R"({"name": "g", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"spur_gear": {"center": [0, 0],
+                   "teeth": 41, "pitch_radius": 41, "addendum": 2, "dedendum": 2.5, "tooth_thickness": "pi - 0.1",
+                   "pressure_angle": "alpha"}}]})"),
+          "/dedendum");
+  refused(model(parameter("tip", 0.5, 0.6, true),
+                R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"escape_wheel": {"center": [0, 0],
+                   "teeth": 15, "tip_radius": 20, "root_radius": 15, "face_angle": 4, "tip_angle": "tip"}}]})"),
+          "/tip_angle");
+  refused(model(parameter("inner", 0.01, 0.02),
+                R"({"name": "d", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"geneva_driver": {"center": [0, 0],
+                   "pin_radius": 4.5, "pin_center_radius": 56.5, "lock_outer_radius": 46, "lock_inner_radius": "inner",
+                   "lock_span": 283}}]})"),
+          "/lock_inner_radius");
+}
+
+// The three bundled examples refused until session 57: every Monte Carlo sample inside the
+// certified band, and the nominal motion the kinematic analysis's (analyze_kinematics on the
+// pair, as `hipair analyze` of the pair, by the contact kernels' slicer where the single pair's
+// analysis slices its C-space) at every position.
+void expect_example_analysis_holds(const std::string& file, const std::string& driver, const std::string& follower,
+                                   std::size_t positions, std::size_t minimum_contact, bool chain) {
+  SCOPED_TRACE(file);
+  ToleranceOptions options;
+  options.driver = driver;
+  options.follower = follower;
+  options.positions = positions;
+  options.monte_carlo = 12;
+  options.threads = 1;
+  options.chain = chain;
+  std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / file;
+  ToleranceResult result = analyze_tolerances(path, options);
+  EXPECT_GE(test_band::expect_certified_band_holds(result), minimum_contact);
+  EXPECT_FALSE(result.regions.empty());
+  // the kinematic analysis of the pair alone
+  Model pair = read_model_file(path);
+  std::optional<std::size_t> d = pair.find_part(driver), f = pair.find_part(follower);
+  ASSERT_TRUE(d && f);
+  std::size_t di = *d, fi = *f;
+  std::erase_if(pair.pairs, [&](const PairSpec& p) {
+    return !((p.first == di && p.second == fi) || (p.first == fi && p.second == di));
+  });
+  KinematicsOptions k;
+  k.driver = driver;
+  k.steps_per_cycle = static_cast<unsigned>(positions);
+  k.reversal = false;
+  k.method = SliceMethod::kernels;
+  KinematicsResult kinematics = analyze_kinematics(pair, k);
+  auto at = std::find(kinematics.followers.begin(), kinematics.followers.end(), follower);
+  ASSERT_NE(at, kinematics.followers.end());
+  std::size_t index = static_cast<std::size_t>(at - kinematics.followers.begin());
+  ASSERT_EQ(kinematics.samples.size(), result.samples.size());
+  for (std::size_t i = 0; i < result.samples.size(); ++i) {
+    EXPECT_NEAR(result.samples[i].driver, kinematics.samples[i].driver, 1e-12) << i;
+    EXPECT_NEAR(result.samples[i].nominal, kinematics.samples[i].positions[index], 1e-9) << "driver " << result.samples[i].driver;
+  }
+}
+
+TEST(ParametricTemplates, GenevaTemplateExampleHoldsEveryMonteCarloSample) {
+  expect_example_analysis_holds("geneva-template.json", "driver", "wheel", 72, 10, false);
+}
+
+TEST(ParametricTemplates, EscapementExampleHoldsEveryMonteCarloSample) {
+  expect_example_analysis_holds("escapement.json", "escape-wheel", "anchor", 72, 5, false);
+}
+
+// The single pair's analysis slices the gears' exact C-space at every position (minutes): the
+// assembly chain's kernel path here.
+TEST(ParametricTemplates, SpurGearsExampleHoldsEveryMonteCarloSample) {
+  expect_example_analysis_holds("spur-gears.json", "pinion", "gear", 24, 20, true);
+}
+
+}  // namespace
+}  // namespace hipair
