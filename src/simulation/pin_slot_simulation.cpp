@@ -28,6 +28,9 @@
 
 #include "simulation/units.hpp"
 
+#include "kernels/distance.hpp"
+#include "kernels/vector.hpp"
+
 #include <boost/numeric/odeint.hpp>
 
 #include <algorithm>
@@ -164,23 +167,10 @@ Box edge_box(const Edge& e, const Point& pivot, const Rational& c, const Rationa
   return b;
 }
 
-using P2 = std::array<Rational, 2>;
-
-Rational d2(const P2& a, const P2& b) { return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]); }
-
-// The squared distance of p from the segment [a, b], exact.
-Rational point_segment_d2(const P2& p, const P2& a, const P2& b) {
-  const Rational ex = b[0] - a[0], ey = b[1] - a[1], len2 = ex * ex + ey * ey;
-  if (sgn(len2) == 0) return d2(p, a);
-  Rational u = ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / len2;
-  if (u < 0) u = 0;
-  if (u > 1) u = 1;
-  return d2(p, P2{a[0] + u * ex, a[1] + u * ey});
-}
-
-int orientation(const P2& a, const P2& b, const P2& c) {
-  return sgn((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-}
+using P2 = kernels::Vector<Rational>;
+using kernels::point_segment_squared_distance;
+using kernels::segment_segment_squared_distance;
+using kernels::squared_distance;
 
 // A placed edge: a segment [a, b], or (arc) the whole circle of centre m and squared radius r2
 // (the arc lies on it, so a distance from the circle bounds the arc's from below).
@@ -193,15 +183,10 @@ struct PlacedEdge {
 // Are the two edges certainly farther apart than d >= 0? Exact.
 bool edges_apart(const PlacedEdge& e, const PlacedEdge& f, const Rational& d) {
   if (!e.arc && !f.arc) {
-    const int o1 = orientation(e.a, e.b, f.a), o2 = orientation(e.a, e.b, f.b);
-    const int o3 = orientation(f.a, f.b, e.a), o4 = orientation(f.a, f.b, e.b);
-    if (o1 * o2 <= 0 && o3 * o4 <= 0) return false;   // they meet (or are collinear: not decided here)
-    const Rational m = std::min({point_segment_d2(e.a, f.a, f.b), point_segment_d2(e.b, f.a, f.b),
-                                 point_segment_d2(f.a, e.a, e.b), point_segment_d2(f.b, e.a, e.b)});
-    return m > d * d;
+    return segment_segment_squared_distance(e.a, e.b, f.a, f.b) > d * d;
   }
   if (e.arc && f.arc) {
-    const Rational c2 = d2(e.m, f.m);
+    const Rational c2 = squared_distance(e.m, f.m);
     const Rational out = e.r_up + f.r_up + d;
     if (c2 > out * out) return true;
     for (const auto& [big, small] : {std::pair{&e, &f}, std::pair{&f, &e}}) {
@@ -213,9 +198,9 @@ bool edges_apart(const PlacedEdge& e, const PlacedEdge& f, const Rational& d) {
   const PlacedEdge& seg = e.arc ? f : e;
   const PlacedEdge& circle = e.arc ? e : f;
   const Rational out = circle.r_up + d;
-  if (point_segment_d2(circle.m, seg.a, seg.b) > out * out) return true;   // outside the circle
+  if (point_segment_squared_distance(circle.m, seg.a, seg.b) > out * out) return true;   // outside the circle
   const Rational in = circle.r_lo - d;
-  return sgn(in) > 0 && std::max(d2(seg.a, circle.m), d2(seg.b, circle.m)) < in * in;   // inside it
+  return sgn(in) > 0 && std::max(squared_distance(seg.a, circle.m), squared_distance(seg.b, circle.m)) < in * in;   // inside it
 }
 
 PlacedEdge placed_edge(const Edge& e, const Point& pivot, const Rational& c, const Rational& s, const Rational& sx,

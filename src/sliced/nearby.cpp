@@ -3,6 +3,8 @@
 
 #include "sliced/motion.hpp"
 
+#include "kernels/distance.hpp"
+
 #include <algorithm>
 #include <optional>
 
@@ -44,19 +46,6 @@ bool in_sector(const Arc& a, const Point& direction) {
   if (a.full) return true;
   int s1 = sgn(cross(a.from, direction)), s2 = sgn(cross(direction, a.to));
   return a.reflex ? (s1 >= 0 || s2 >= 0) : (s1 >= 0 && s2 >= 0);
-}
-
-// Squared distance from p to segment [a, b].
-Rational point_segment2(const Point& p, const Point& a, const Point& b) {
-  Point d = minus(b, a), q = minus(p, a);
-  Rational along = dot(q, d), length2 = dot(d, d);
-  if (sgn(along) <= 0) return dot(q, q);
-  if (along >= length2) {
-    Point r = minus(p, b);
-    return dot(r, r);
-  }
-  Rational c = cross(q, d);
-  return c * c / length2;
 }
 
 // Sign of a + b sqrt(c), c >= 0.
@@ -145,7 +134,7 @@ std::vector<NearPair> near_features(const Model& model, std::size_t fixed, std::
     const Features& es = side ? fa : fb;
     for (const auto& [p, vid] : vs.vertices) {
       for (const auto& [seg, sid] : es.segments) {
-        Rational d2 = point_segment2(p, seg.first, seg.second);
+        Rational d2 = kernels::point_segment_squared_distance(p, seg.first, seg.second);
         side ? keep(sid, vid, root_bounds(d2), d2 <= delta * delta) : keep(vid, sid, root_bounds(d2), d2 <= delta * delta);
       }
       for (const auto& [arc, aid] : es.arcs) {
@@ -164,7 +153,7 @@ std::vector<NearPair> near_features(const Model& model, std::size_t fixed, std::
         Rational k = cross(d, w), length2 = dot(d, d);
         Bounds h = root_bounds(k * k / length2), r = root_bounds(arc.r2);
         Rational lo = std::max(Rational(0), Rational(h.lo - r.hi));
-        Rational hi = std::min(root_bounds(point_segment2(arc.source, seg.first, seg.second)).hi,
+        Rational hi = std::min(root_bounds(kernels::point_segment_squared_distance(arc.source, seg.first, seg.second)).hi,
                                std::min(point_arc(seg.first, arc, delta).distance.hi, point_arc(seg.second, arc, delta).distance.hi));
         if (arc.full) hi = std::min(point_arc(seg.first, arc, delta).distance.hi, point_arc(seg.second, arc, delta).distance.hi);
         Rational along = dot(w, d);

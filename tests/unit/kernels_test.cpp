@@ -7,19 +7,24 @@
 #include "algebra/polynomial.hpp"
 #include "curves/pose.hpp"
 #include "kernels/contact.hpp"
+#include "kernels/distance.hpp"
 #include "kernels/interval.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/squared_distance_2.h>
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
+#include <string>
 
 namespace hipair::cspace {
 namespace {
@@ -1121,6 +1126,59 @@ TEST(Kernels, ChartLayoutTranslationAgainstFixedPart) {
   }
   EXPECT_TRUE(at_8);
   EXPECT_TRUE(at_12);
+}
+
+// kernels/distance.hpp against CGAL's exact squared distances (Simple_cartesian over mpq):
+// generated segment pairs on a small grid (so that touching, crossing, collinear overlapping,
+// collinear disjoint, parallel and degenerate segments all occur often) and with random
+// 40-bit rational coordinates, each scaled by 1, 10^-300 and 10^400 (the distance scales by
+// the factor squared, exactly).
+TEST(Kernels, ExactSegmentDistancesMatchCgal) {
+  using K = CGAL::Simple_cartesian<mpq_class>;
+  std::mt19937 engine{20261205};
+  std::uniform_int_distribution<int> grid(-3, 3);
+  const Rational scales[] = {Rational(1), Rational(1, 1) / Rational(mpz_class("1" + std::string(300, '0'))),
+                             Rational(mpz_class("1" + std::string(400, '0')))};
+  int touching = 0, collinear = 0, apart = 0;
+  for (int n = 0; n < 3000; ++n) {
+    std::array<Point, 4> p;
+    for (Point& q : p) {
+      if (n < 2000) {
+        const int x = grid(engine), y = grid(engine);
+        q = n % 8 == 0 ? pt(x, 2 * x + 1) : pt(x, y);   // every eighth pair on one line
+      } else {
+        q = pt(frac(static_cast<long>(engine() % (1u << 20)) - (1 << 19), 1 + static_cast<long>(engine() % 4096)),
+               frac(static_cast<long>(engine() % (1u << 20)) - (1 << 19), 1 + static_cast<long>(engine() % 4096)));
+      }
+    }
+    for (const Rational& scale : scales) {
+      std::array<Point, 4> s;
+      for (int k = 0; k < 4; ++k) s[k] = pt(p[k].x * scale, p[k].y * scale);
+      auto cgal_point = [](const Point& q) { return K::Point_2(q.x, q.y); };
+      const Rational ours = kernels::segment_segment_squared_distance(s[0], s[1], s[2], s[3]);
+      const bool a_point = s[0] == s[1], b_point = s[2] == s[3];
+      mpq_class theirs;
+      if (a_point && b_point) theirs = CGAL::squared_distance(cgal_point(s[0]), cgal_point(s[2]));
+      else if (a_point) theirs = CGAL::squared_distance(cgal_point(s[0]), K::Segment_2(cgal_point(s[2]), cgal_point(s[3])));
+      else if (b_point) theirs = CGAL::squared_distance(cgal_point(s[2]), K::Segment_2(cgal_point(s[0]), cgal_point(s[1])));
+      else theirs = CGAL::squared_distance(K::Segment_2(cgal_point(s[0]), cgal_point(s[1])),
+                                           K::Segment_2(cgal_point(s[2]), cgal_point(s[3])));
+      ASSERT_EQ(ours, theirs) << "case " << n;
+      if (!b_point)
+        ASSERT_EQ(kernels::point_segment_squared_distance(s[0], s[2], s[3]),
+                  mpq_class(CGAL::squared_distance(cgal_point(s[0]), K::Segment_2(cgal_point(s[2]), cgal_point(s[3])))))
+            << "case " << n;
+      if (scale == 1) {
+        touching += sgn(ours) == 0;
+        apart += sgn(ours) > 0;
+        collinear += kernels::orientation(s[0], s[1], s[2]) == 0 && kernels::orientation(s[0], s[1], s[3]) == 0 &&
+                     !a_point && !b_point;
+      }
+    }
+  }
+  EXPECT_GT(touching, 300);   // every kind exercised
+  EXPECT_GT(apart, 300);
+  EXPECT_GT(collinear, 150);
 }
 
 }  // namespace
