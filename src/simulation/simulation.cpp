@@ -130,6 +130,7 @@ struct Active {
   // translating one (a length: a model scaled by L has its tolerances scaled by L)
   double unit = 1;
   bool at_vertex = false;    // taken up (or kept) at a contact-change vertex: valid up to the vertex
+  int vertex_end = 0;        // at_vertex, non-vertical: that vertex's end of the edge (-1 lower abscissa, +1 upper)
   bool wedge = false;        // held at (or kept back from) a wedge's vertex: valid within 1e-10 of it
   std::vector<FeatureId> features;   // a contact without an edge (1-D pair): its feature pairs
   // Coulomb state (pairs with friction): simulation::stick or slip_positive / slip_negative,
@@ -1712,8 +1713,13 @@ struct Simulation::Impl {
       b.edge = EdgeId(e);
       b.chart = edge.chart;
       // the configuration is at the vertex to the bisection's resolution: accept the new edge
-      // within three times the old edge's slack of its certified extent
-      b.slack = 3 * a.slack;
+      // within three times the edge slack of its certified extent. Not three times the old
+      // contact's slack: that grew threefold at every contact change (3^7 edge slacks, 2.2e-6,
+      // after seven in a gear pair's mesh), and a contact taken up at a vertex is valid within
+      // its slack past either end of its edge, so the motion ran 6.7e-7 past the far end of a
+      // tooth's contact edge into the next tooth's blocked space without an edge end, and the
+      // nudge found free space only beyond it ("a jammed contact change", session 57)
+      b.slack = 3 * edge_slack;
       b.at_vertex = true;
       if (edge.vertical) {
         b.point = true;
@@ -1780,6 +1786,7 @@ struct Simulation::Impl {
     // is put on the vertex (place_at_vertex: where the pair's free coordinates can reach it)
     active[k].slack = std::max(old.slack, 3 * edge_slack);
     active[k].at_vertex = true;
+    mark_vertex_end(active[k]);
     // the placement takes k's row at its end vertex wherever the cut left the configuration past
     // it (the event says the pair is at the vertex; its curve's value there, continued along the
     // tangent, puts the configuration on it), then k keeps the slack above
@@ -1836,6 +1843,7 @@ struct Simulation::Impl {
       }
       if (after <= vtol || settles(c)) {
         active.push_back(c);
+        mark_vertex_end(active.back());
         edge_event(c, SimulationEvent::Kind::contact);
       }
     }
@@ -1900,6 +1908,28 @@ struct Simulation::Impl {
     double h, gval;
     if (!row(a, q, v, G, h, gval)) return;
     q[a.ydof] -= gval / G[a.ydof];
+  }
+
+  // The end of non-vertical held contact `a`'s edge nearer the configuration: the vertex where
+  // it is taken up or kept (at_vertex).
+  void mark_vertex_end(Active& a) const {
+    if (a.point) return;
+    const CSpaceChart& chart = chart_of(a);
+    const double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+    a.vertex_end = tx > 0.5 * (a.x_lo + a.x_hi) ? 1 : -1;
+  }
+
+  // Whether the configuration lies past the end of non-vertical held contact `a`'s edge that is
+  // not the vertex it was taken up (or kept) at: its slack holds about that vertex only (the
+  // configuration there is on either side of it by rounding). Past the far end the contact
+  // ends, as any held contact past its edge: a gear pair's contact on a tooth's base-circle
+  // corner ran 9.7e-10 past its far end, inside the next tooth's blocked space, and the nudge
+  // found free space only beyond it ("a jammed contact change", session 57).
+  bool past_far_end(const Active& a) const {
+    if (a.point || !a.at_vertex || a.vertex_end == 0) return false;
+    const CSpaceChart& chart = chart_of(a);
+    const double tx = to_chart(chart.x_kind, chart.x_half_turn, q[a.xdof]);
+    return a.vertex_end > 0 ? tx < a.x_lo : tx > a.x_hi;
   }
 
   // How far the configuration lies past the nearer end of non-vertical held contact `a`'s edge
@@ -2393,7 +2423,10 @@ struct Simulation::Impl {
     // contact taken up at a vertex is. Before, its row failed there, the projection skipped it,
     // and the state kept the step's drift off the curve (the Geneva drive at accuracy 1e-3:
     // 0.043 rad into slot 2's wall L at 1.62378 s, from where nudge_free found no free state).
-    if (cut == Cut::edge_end) active[cut_active].at_vertex = true;
+    if (cut == Cut::edge_end) {
+      active[cut_active].at_vertex = true;
+      mark_vertex_end(active[cut_active]);
+    }
     const Vec cut_q = q;
     project_active();
     if (cut == Cut::edge_end && abscissa_shift(active[cut_active], cut_q) > slack_of(active[cut_active])) {
@@ -2424,7 +2457,7 @@ struct Simulation::Impl {
       if (k >= active.size()) continue;
       Vec G;
       double h, gval;
-      if (!row(active[k], q, v, G, h, gval) || (!active[k].at_vertex && past_end(active[k]) > 0))
+      if (!row(active[k], q, v, G, h, gval) || (!active[k].at_vertex && past_end(active[k]) > 0) || past_far_end(active[k]))
         release(k, SimulationEvent::Kind::edge_end);
     }
     for (std::size_t pair = 0; pair < spaces.size(); ++pair) {
