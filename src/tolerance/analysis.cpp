@@ -15,6 +15,7 @@
 #include "tolerance/solver.hpp"
 #include "tolerance/stage.hpp"
 
+#include <hipair/cspace_region.hpp>
 #include <hipair/cspace_slice.hpp>
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
@@ -347,8 +348,27 @@ class Analysis {
     }
     // The generic forms follow the templates' nominal shapes: a box that may change one refused.
     model_->check_choices(box_.lo, box_.hi);
+    std::size_t edges = 0;
+    for (std::size_t part : {driver_, follower_})
+      for (const Loop& loop : m.parts[part].loops) edges += loop.edges.size();
     if (given) {
       space_ = std::make_unique<CSpace>(*given);
+    } else if (edges > 120) {
+      // A large pair (a gear pair's z1 z2 tooth encounters): the nominal path is analyze's, on
+      // the contact kernels, and the exact C-space is its operating region along that path (the
+      // tiles of the path's channel the path runs through), as analyze draws it; the whole space
+      // of the 18 x 27 spur gears took minutes to build and slice.
+      kernel_path_ = path_kinematics(SliceMethod::kernels, {});
+      std::vector<std::array<double, 2>> along;
+      std::string x_part, y_part;
+      for (const PairPath& path : kernel_path_->paths) {
+        if (path.y_part.empty()) continue;
+        x_part = path.x_part;
+        y_part = path.y_part;
+        for (const PathPoint& point : path.points) along.push_back({point.x, point.y});
+      }
+      if (along.empty()) throw GeometryError("the nominal path of pair " + pair_first_ + ":" + pair_second_ + " is empty");
+      space_ = std::make_unique<CSpace>(build_operating_region_along(m, x_part, y_part, along));
     } else {
       // the build's progress, as its stage's
       space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_, reporting(bar_.within())));
@@ -436,14 +456,15 @@ class Analysis {
     throw ModelError("/pairs", "no pair of two parts with rotation or translation motions matches the driver and pair asked for");
   }
 
-  void nominal_path() {
+  // The nominal mechanism's kinematics over the range, on the analysed pair only.
+  KinematicsResult path_kinematics(SliceMethod method, const std::vector<CSpace>& spaces) {
     const Model& m = model_->nominal();
     KinematicsOptions k;
     k.driver = result_.driver;
     k.range = tolerance_detail::range_in_unit(options_, result_.driver_rotates, model_->length_exponent());
     k.steps_per_cycle = static_cast<unsigned>(std::max<std::size_t>(8, options_.positions));
     k.reversal = false;
-    k.method = SliceMethod::cspace;
+    k.method = method;
     // the sweep's progress within its stage of the bar (a long --range ran minutes at "2%")
     k.progress = bar_.within();
     // Only the analysed pair: a model holding more parts is cut to the two.
@@ -452,7 +473,11 @@ class Analysis {
     for (const PairSpec& pair : m.pairs)
       if ((pair.first == driver_ && pair.second == follower_) || (pair.first == follower_ && pair.second == driver_))
         pair_model.pairs.push_back(pair);
-    KinematicsResult kinematics = analyze_kinematics(pair_model, k, {*space_});
+    return analyze_kinematics(pair_model, k, spaces);
+  }
+
+  void nominal_path() {
+    KinematicsResult kinematics = kernel_path_ ? std::move(*kernel_path_) : path_kinematics(SliceMethod::cspace, {*space_});
     auto follower_index = std::find(kinematics.followers.begin(), kinematics.followers.end(), result_.follower);
     if (follower_index == kinematics.followers.end())
       throw GeometryError("the follower '" + result_.follower + "' is not moved by the driver over the range");
@@ -1465,6 +1490,8 @@ class Analysis {
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::shared_ptr<CurveSolver> solver_;
   std::unique_ptr<CSpace> space_;
+  // a large pair's nominal kinematics on the contact kernels, computed before its space
+  std::optional<KinematicsResult> kernel_path_;
   ToleranceResult result_;
   std::vector<Distribution> dist_;
   Box box_;
