@@ -26,6 +26,7 @@
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
+#include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
 
 #include "kernels/distance.hpp"
@@ -60,43 +61,8 @@ SlicedAngle exact_angle(double theta) {
   return a;
 }
 
-std::pair<Rational, Rational> cos_sin(const SlicedAngle& a) {
-  if (a.half_turn) return {Rational(-1), Rational(0)};
-  Rational d = 1 + a.t * a.t;
-  Rational c = (1 - a.t * a.t) / d, s = 2 * a.t / d;
-  c.canonicalize();
-  s.canonicalize();
-  return {c, s};
-}
-
-// B (pivot pb, world configuration b) relative to A (pivot pa, world configuration a) held at its
-// zero configuration, exactly (as PlanarSystemSimulation's pairs of moving parts).
-SlicedConfiguration relative_configuration(const Point& pa, const SlicedConfiguration& a, const Point& pb,
-                                           const SlicedConfiguration& b) {
-  SlicedConfiguration r;
-  auto [c, s] = cos_sin(a.angle);
-  Rational dx = pb.x - pa.x + b.x - a.x, dy = pb.y - pa.y + b.y - a.y;
-  r.x = pa.x - pb.x + c * dx + s * dy;
-  r.y = pa.y - pb.y - s * dx + c * dy;
-  r.x.canonicalize();
-  r.y.canonicalize();
-  const SlicedAngle &ta = a.angle, &tb = b.angle;
-  if (ta.half_turn && tb.half_turn) {
-    r.angle.t = 0;
-  } else if (ta.half_turn) {
-    if (sgn(tb.t) == 0) r.angle.half_turn = true;
-    else r.angle.t = -1 / tb.t;
-  } else if (tb.half_turn) {
-    if (sgn(ta.t) == 0) r.angle.half_turn = true;
-    else r.angle.t = 1 / ta.t;
-  } else {
-    Rational den = 1 + ta.t * tb.t;
-    if (sgn(den) == 0) r.angle.half_turn = true;
-    else r.angle.t = (tb.t - ta.t) / den;
-  }
-  r.angle.t.canonicalize();
-  return r;
-}
+using simulation_detail::cos_sin;
+using simulation_detail::relative_configuration;
 
 // The chart coordinate of a configuration's angle: tan(theta/2), or (flip) tan((theta - pi)/2).
 Rational chart_w(const SlicedAngle& a, bool flip) {
