@@ -63,6 +63,16 @@ struct SimulateOptions {
   double animation_duration = 0;    // playback seconds; 0: the simulated time (real time), at least 1 s
 };
 
+// The run's accuracy and step limits (--accuracy, --max-step, --max-steps), as every simulator
+// takes them.
+SimulationOptions stepping_options(const SimulateOptions& options) {
+  SimulationOptions sim_options;
+  sim_options.accuracy = options.accuracy;
+  sim_options.max_step = options.max_step;
+  sim_options.max_steps = options.max_steps;
+  return sim_options;
+}
+
 // --region: `operating` builds every pair's operating region, `full` every pair's whole space,
 // `auto` (the default) the operating region of a pair whose two parts have more than 120
 // boundary edges (a gear pair: its whole torus holds z1 z2 tooth encounters and takes minutes,
@@ -574,10 +584,7 @@ int run_sweep(const SimulateOptions& options) {
     }
   }
   LengthDisplayScope length_display(length_exponent);   // shown(), the STEP of --works-advance
-  SimulationOptions sim_options;
-  sim_options.accuracy = options.accuracy;
-  sim_options.max_step = options.max_step;
-  sim_options.max_steps = options.max_steps;
+  SimulationOptions sim_options = stepping_options(options);
   set_region(sim_options, options);
   std::vector<std::size_t> moving;
   for (std::size_t p = 0; p < models.front().parts.size(); ++p)
@@ -883,10 +890,7 @@ double state_time(const PlanarSystemSimulation& s) { return s.state().time; }
 // velocities.svg, animation.svg.
 template <class PlanarRun>
 int run_planar(const Model& model, const SimulateOptions& options) {
-  SimulationOptions sim_options;
-  sim_options.accuracy = options.accuracy;
-  sim_options.max_step = options.max_step;
-  sim_options.max_steps = options.max_steps;
+  SimulationOptions sim_options = stepping_options(options);
   if (options.region == "operating") throw ModelError("", "--region: a planar part's C-space has no operating region");
   PlanarRun simulation = PlanarRun::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
@@ -1019,10 +1023,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 // Outputs: trajectory.csv (s, psi and their rates, the drivers' angles), events.json/.txt,
 // positions.svg and velocities.svg.
 int run_pin_slot(const Model& model, const SimulateOptions& options) {
-  SimulationOptions sim_options;
-  sim_options.accuracy = options.accuracy;
-  sim_options.max_step = options.max_step;
-  sim_options.max_steps = options.max_steps;
+  SimulationOptions sim_options = stepping_options(options);
   if (options.region == "operating") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
   PinSlotSimulation simulation = PinSlotSimulation::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
@@ -1186,10 +1187,7 @@ int run(const SimulateOptions& options) {
   for (const Part& part : model.parts)
     if (part.motion.kind == Motion::Kind::pin_slot) return run_pin_slot(model, options);
   bool terminal = isatty(2) && !options.quiet;
-  SimulationOptions sim_options;
-  sim_options.accuracy = options.accuracy;
-  sim_options.max_step = options.max_step;
-  sim_options.max_steps = options.max_steps;
+  SimulationOptions sim_options = stepping_options(options);
   set_region(sim_options, options);
   // the builds' own progress line (per chart or tile of each pair: a gear pair's operating
   // region takes seconds, a whole torus minutes), wiped when each build is done
