@@ -241,6 +241,8 @@ struct PinSlotSimulation::Impl {
   }
   // the world configuration of the pin-slot part as a planar part about P, exact
   SlicedConfiguration follower_configuration(const State4& s) const {
+    // (before any double becomes a Rational: GMP's mpq_set_d(inf) raises SIGFPE)
+    if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     SlicedConfiguration c;
     c.angle = exact_angle(s[1]);
     auto [cs, sn] = cos_sin(c.angle);
@@ -250,7 +252,6 @@ struct PinSlotSimulation::Impl {
     c.y = slide * (sn * dir.x + cs * dir.y);
     c.x.canonicalize();
     c.y.canonicalize();
-    if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     return c;
   }
   SlicedConfiguration relative(const Pair& p, const State4& s, double time) const {
@@ -279,22 +280,51 @@ struct PinSlotSimulation::Impl {
     Q[0] = F[0] * u[0] + F[1] * u[1] - k_lin * (s[0] - rest_lin) + mass * s[3] * s[3] * (b + s[0]);
     Q[1] = F[0] * kw[0] + F[1] * kw[1] + torque - k_tor * (s[1] - rest_tor) - 2 * mass * (b + s[0]) * s[2] * s[3];
   }
+  // M^-1 v for the mass matrix M = [[m, m e], [m e, M22]] at slide s0, by the Schur complement
+  // D = M22 - m e^2 = I_c + m (b + s0)^2 > 0 (|d| = 1: |c - P|^2 = e^2 + b^2): x1 = (v1 - e v0) / D,
+  // x0 = v0 / m - e x1. Never through det M = m M22 - (m e)^2 and M22 v0: those products of a mass,
+  // a moment of inertia and a force leave the doubles' range long before the data do (lengths
+  // 10^-150 gave no motion at all: M22 Q_s underflowed to 0; 10^150 or a mass 10^160 gave inf).
+  void inverse_mass_times(double s0, const double v[2], double x[2]) const {
+    const double D = inertia_c + mass * (b + s0) * (b + s0);
+    x[1] = (v[1] - e * v[0]) / D;
+    x[0] = v[0] / mass - e * x[1];
+  }
   void rhs(const State4& s, State4& ds) const {
-    double M[2][2], Q[2];
+    double M[2][2], Q[2], a[2];
     dynamics(s, M, Q);
-    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    inverse_mass_times(s[0], Q, a);
     ds[0] = s[2];
     ds[1] = s[3];
-    ds[2] = (M[1][1] * Q[0] - M[0][1] * Q[1]) / det;
-    ds[3] = (M[0][0] * Q[1] - M[1][0] * Q[0]) / det;
+    ds[2] = a[0];
+    ds[3] = a[1];
   }
-  State4 flight(const State4& from, double span) const {
+  // Thrown by flight(.., capped) when the integration over its span needs more than flight_evaluations
+  // right-hand sides: a load so violent (a torque of 10^100 N mm) that the part turns many times
+  // within the span, which the adaptive stepper then follows in ever smaller steps for hours.
+  struct FlightTooLong {};
+  static constexpr long flight_evaluations = 60000;
+  static constexpr double short_flight = 0x1p-20;
+  State4 flight(const State4& from, double span, bool capped = false) const {
     State4 s = from;
     if (span <= 0) return s;
     namespace ode = boost::numeric::odeint;
     auto stepper = ode::make_controlled(accuracy, accuracy, ode::runge_kutta_dopri5<State4>());
-    ode::integrate_adaptive(stepper, [this](const State4& x, State4& dx, double) { rhs(x, dx); }, s, 0.0, span,
-                            span / 8);
+    long evaluations = 0;
+    // odeint's integrate_adaptive compares times absolutely (t1 - t0 > machine epsilon): a span
+    // below 2.2e-16 s was not integrated at all (a follower that a torque of 10^30 N mm turns
+    // within 10^-16 s stood still while the time ran on), and up to 2.2e-16 s of a short span was
+    // left out. A short span is integrated in the scaled time u = tau / span, over [0, 1].
+    const double scale = span < short_flight ? span : 1.0;
+    ode::integrate_adaptive(
+        stepper,
+        [this, &evaluations, capped, scale](const State4& x, State4& dx, double) {
+          if (capped && ++evaluations > flight_evaluations) throw FlightTooLong{};
+          rhs(x, dx);
+          if (scale != 1.0)
+            for (double& v : dx) v *= scale;
+        },
+        s, 0.0, span / scale, span / scale / 8);
     return s;
   }
   double potential(const State4& s) const {
@@ -459,10 +489,6 @@ void PinSlotSimulation::Impl::impact(std::size_t pi, const std::vector<SlicedFea
         << "' has no contact frame (a vertex meeting a vertex)";
     throw NumericError(out.str());
   }
-  double M[2][2], Q[2];
-  dynamics(y, M, Q);
-  const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-  const double Minv[2][2] = {{M[1][1] / det, -M[0][1] / det}, {-M[1][0] / det, M[0][0] / det}};
   auto speed = [&](const Row& r) { return r.J[0] * y[2] + r.J[1] * y[3] - r.v_other; };
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
@@ -474,7 +500,8 @@ void PinSlotSimulation::Impl::impact(std::size_t pi, const std::vector<SlicedFea
       const double v = speed(r);
       const double target = before[i] < 0 ? -p.restitution * before[i] : 0.0;
       if (v >= target - 1e-12 * (std::abs(target) + std::abs(before[i]))) continue;
-      const double mj[2] = {Minv[0][0] * r.J[0] + Minv[0][1] * r.J[1], Minv[1][0] * r.J[0] + Minv[1][1] * r.J[1]};
+      double mj[2];
+      inverse_mass_times(y[0], r.J, mj);
       const double k = r.J[0] * mj[0] + r.J[1] * mj[1];
       double lambda = (target - v) / k;
       if (total[i] + lambda < 0) lambda = -total[i];
@@ -521,7 +548,21 @@ bool PinSlotSimulation::Impl::advance(double span) {
   for (int attempt = 0;; ++attempt) {
     if (attempt > 2000 || !(h > 0))
       throw NumericError(where(t) + ": no chord within the chord deviation (the step size underflows)");
-    const State4 mid = flight(y, h / 2), end = flight(mid, h / 2);
+    // a step too long for a violent load (a torque of 10^100 N mm) overflows or turns the part many
+    // times: shorter steps reach the limits, which then stop the run naming them
+    State4 mid, end;
+    try {
+      mid = flight(y, h / 2, true);
+      end = flight(mid, h / 2, true);
+    } catch (const FlightTooLong&) {
+      h /= 2;
+      continue;
+    }
+    auto finite = [](const State4& s) { return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); }); };
+    if (!finite(mid) || !finite(end)) {
+      h /= 2;
+      continue;
+    }
     // the far test: a pair whose features are certainly farther apart than twice the step's
     // travel bound (plus delta) is free over the step without a chord
     std::vector<bool> far(pairs.size(), false), flips(pairs.size(), false);
