@@ -228,7 +228,18 @@ struct PinSlotSimulation::Impl {
     std::vector<PlacedEdge> other_edges;   // and its edges
   };
   std::vector<Pair> pairs;
-  double delta = 0, accuracy = 1e-9, reach = 0, rest_speed = 0;
+  double delta = 0, accuracy = 1e-9, rest_speed = 0;
+  // the part's reach from its pin at slide 0 (its points' and arcs' largest distance from P)
+  double part_reach = 0;
+  // the part's reach from the pin's line position at the states given: part_reach plus their
+  // largest |slide| (until session 58 the largest |slide limit|: a slot with limits of 1e9 mm made
+  // the chord deviation 1 mm and the rest speed 140 mm/s, and the run stopped at the pin-slot
+  // cam's second impact as a contact that would have to be sustained)
+  double reach_at(std::initializer_list<const State4*> states) const {
+    double slide = 0;
+    for (const State4* x : states) slide = std::max(slide, std::abs((*x)[0]));
+    return part_reach + slide;
+  }
   double t = 0;
   State4 y{};
   std::vector<SimulationEvent> events;
@@ -359,7 +370,7 @@ struct PinSlotSimulation::Impl {
     };
     const auto a = rel(s0, t), m = rel(sm, t + h / 2), z = rel(s1, t + h);
     const double dx = m[0] - (a[0] + z[0]) / 2, dy = m[1] - (a[1] + z[1]) / 2, dw = m[2] - (a[2] + z[2]) / 2;
-    return 2 * (std::hypot(dx, dy) + 2 * reach * std::abs(dw));
+    return 2 * (std::hypot(dx, dy) + 2 * reach_at({&s0, &sm, &s1}) * std::abs(dw));
   }
   void check_limits(const State4& s, double time) const {
     const Part& pp = model.parts[part];
@@ -416,6 +427,7 @@ struct PinSlotSimulation::Impl {
       arm = std::hypot(P[0] - C.x.get_d(), P[1] - C.y.get_d());
     }
     double out = 0;
+    const double reach = reach_at(states);
     for (const State4* s : states) {
       State4 ds;
       rhs(*s, ds);
@@ -753,7 +765,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   s.angle_limits = motion.angle_limits;
   s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0};
   s.check_limits(s.y, 0);
-  // the part's reach from its pivot at the largest slide (for the angle's share of a chord's deviation)
+  // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
   double reach = 0;
   for (const Loop& loop : fp.loops)
     for (const Edge& edge : loop.edges) {
@@ -763,14 +775,13 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
         reach = std::max(reach, std::hypot(edge.center.x.get_d() - s.P[0], edge.center.y.get_d() - s.P[1]) +
                                     std::sqrt(edge.radius_squared.get_d()));
     }
-  double slide_reach = std::abs(s.y[0]);
-  if (s.slide_limits)
-    slide_reach = std::max(std::abs(s.slide_limits->lo.get_d()), std::abs(s.slide_limits->hi.get_d()));
-  s.reach = std::max(reach + slide_reach, 1e-300);
-  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * s.reach;
+  s.part_reach = std::max(reach, 1e-300);
+  // the run's length scale: the part's reach at its initial slide (not its limits': see reach_at)
+  const double size = s.reach_at({&s.y});
+  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * size;
   // the rest speed: the speed a load gains over the chord deviation
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
-  load += (std::abs(s.torque) / s.inertia_c) * s.reach;
+  load += (std::abs(s.torque) / s.inertia_c) * size;
   s.rest_speed = std::sqrt(2 * load * s.delta);
   // the pairs
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {

@@ -14,7 +14,8 @@ its files, and the scaled models give the unscaled run's three impacts at the sa
 by this script and fixed in session 58: lengths x 10^-150 ran "successfully" with the follower
 never moving; lengths x 10^150, masses x 10^200 and loads of 10^100 stopped with "not finite"; a
 torque of 10^30 N mm left the follower standing while the time ran on; a driver of 10^300 rad/s
-or a torque of 10^100 ran for hours.
+or a torque of 10^100 ran for hours; slide limits of 10^9 mm stopped the run at the second impact
+(the chord deviation and the rest speed took the limits as the part's size).
 """
 import copy
 import json
@@ -90,6 +91,8 @@ def main(argv):
         'region-full': (None, ['--region', 'full'], 0, ''),
         'max-steps-1': (None, ['--max-steps', '1'], 'nonzero', '--max-steps'),
         'at-slide-limit': (lambda m: follower(m)['initial'].__setitem__('offset', 30), [], 0, ''),
+        'limits-1e9': (slot('limits', [-1e9, 1e9]), [], 'same', ''),
+        'limits-1e300': (slot('limits', [-1e300, 1e300]), [], 'same', ''),
         'mass-1e200': (lambda m: (follower(m)['dynamics'].__setitem__('mass', 1e198),
                                   follower(m)['dynamics'].__setitem__('moment_of_inertia', 1e201),
                                   follower(m)['dynamics']['torsional_spring'].__setitem__('stiffness', 2e201)),

@@ -248,7 +248,7 @@ TEST(SimulationPinSlot, FreeFlightOnSpringsFollowsTheClosedFormAndKeepsEnergy) {
 // gravity, restitution 0.5, the centre of mass off the pin) with every length times L, every
 // mass times M (so that forces scale by M L, torques, inertias and torsional stiffness by M L^2:
 // the same motion), written exactly ("(x)*2^-500").
-std::string scaled_cam(const std::string& L, const std::string& M) {
+std::string scaled_cam(const std::string& L, const std::string& M, const std::string& limit = "30") {
   auto len = [&](const std::string& x) { return "\"(" + x + ")*" + L + "\""; };
   auto pt = [&](const std::string& x, const std::string& y) { return "[" + len(x) + ", " + len(y) + "]"; };
   const std::string L2 = "(" + L + ")^2";
@@ -257,7 +257,7 @@ std::string scaled_cam(const std::string& L, const std::string& M) {
                           R"(, "radius": )" + len("10") + R"( } } ] })";
   const std::string follower =
       R"({ "name": "follower", "motion": { "pin_slot": { "pivot": )" + pt("0", "40") + R"(, "direction": [0, 1],
-        "angle_limits": [-0.5, 0.5], "limits": [)" + len("-30") + ", " + len("30") + R"(] } },
+        "angle_limits": [-0.5, 0.5], "limits": [)" + len("-" + limit) + ", " + len(limit) + R"(] } },
       "initial": { "angle": 0, "offset": )" + len("-4") + R"( },
       "dynamics": { "mass": "0.01*)" + M + R"(", "moment_of_inertia": "12*)" + M + "*" + L2 +
       R"(", "torsional_spring": { "stiffness": "20*)" + M + "*" + L2 + R"(", "rest": 0 } },
@@ -299,6 +299,28 @@ TEST(SimulationPinSlot, ScaledByPowersOfTwoTheRunIsTheUnscaledRunScaled) {
     }
     EXPECT_NEAR(sim.state().slide / scale.length, base.state().slide, 1e-9 * std::abs(base.state().slide));
     EXPECT_NEAR(sim.state().angle, base.state().angle, 1e-9);
+    EXPECT_EQ(sim.steps(), base.steps());
+  }
+}
+
+// Session 58 (hunt58): the slot's limits far beyond the run's slides change nothing. Until then
+// the chord deviation, the rest speed and the far test's reach took the largest |limit| as the
+// part's slide: limits of 1e6 mm made 20x the steps, 1e9 mm stopped the run at the second
+// impact and 1e12 mm at the first ("a contact that would have to be sustained").
+TEST(SimulationPinSlot, TheSlotsLimitsBeyondTheMotionDoNotChangeTheRun) {
+  PinSlotSimulation base = PinSlotSimulation::create(read_model(scaled_cam("1", "1"), "<30>"));
+  base.run_until(0.1);
+  ASSERT_EQ(base.events().size(), 3u);
+  for (const char* limit : {"1e6", "1e9", "1e12", "1e300"}) {
+    SCOPED_TRACE(limit);
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(scaled_cam("1", "1", limit), "<wide>"));
+    EXPECT_EQ(sim.chord_deviation(), base.chord_deviation());
+    sim.run_until(0.1);
+    ASSERT_EQ(sim.events().size(), base.events().size());
+    for (std::size_t i = 0; i < base.events().size(); ++i) {
+      EXPECT_EQ(sim.events()[i].features, base.events()[i].features);
+      EXPECT_EQ(sim.events()[i].time, base.events()[i].time) << "event " << i;
+    }
     EXPECT_EQ(sim.steps(), base.steps());
   }
 }
