@@ -228,7 +228,18 @@ struct PinSlotSimulation::Impl {
     std::vector<PlacedEdge> other_edges;   // and its edges
   };
   std::vector<Pair> pairs;
-  double delta = 0, accuracy = 1e-9, reach = 0, rest_speed = 0;
+  double delta = 0, accuracy = 1e-9, rest_speed = 0;
+  // the part's reach from its pin at slide 0 (its points' and arcs' largest distance from P)
+  double part_reach = 0;
+  // the part's reach from the pin's line position at the states given: part_reach plus their
+  // largest |slide| (until session 58 the largest |slide limit|: a slot with limits of 1e9 mm made
+  // the chord deviation 1 mm and the rest speed 140 mm/s, and the run stopped at the pin-slot
+  // cam's second impact as a contact that would have to be sustained)
+  double reach_at(std::initializer_list<const State4*> states) const {
+    double slide = 0;
+    for (const State4* x : states) slide = std::max(slide, std::abs((*x)[0]));
+    return part_reach + slide;
+  }
   double t = 0;
   State4 y{};
   std::vector<SimulationEvent> events;
@@ -241,6 +252,8 @@ struct PinSlotSimulation::Impl {
   }
   // the world configuration of the pin-slot part as a planar part about P, exact
   SlicedConfiguration follower_configuration(const State4& s) const {
+    // (before any double becomes a Rational: GMP's mpq_set_d(inf) raises SIGFPE)
+    if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     SlicedConfiguration c;
     c.angle = exact_angle(s[1]);
     auto [cs, sn] = cos_sin(c.angle);
@@ -250,7 +263,6 @@ struct PinSlotSimulation::Impl {
     c.y = slide * (sn * dir.x + cs * dir.y);
     c.x.canonicalize();
     c.y.canonicalize();
-    if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     return c;
   }
   SlicedConfiguration relative(const Pair& p, const State4& s, double time) const {
@@ -279,22 +291,51 @@ struct PinSlotSimulation::Impl {
     Q[0] = F[0] * u[0] + F[1] * u[1] - k_lin * (s[0] - rest_lin) + mass * s[3] * s[3] * (b + s[0]);
     Q[1] = F[0] * kw[0] + F[1] * kw[1] + torque - k_tor * (s[1] - rest_tor) - 2 * mass * (b + s[0]) * s[2] * s[3];
   }
+  // M^-1 v for the mass matrix M = [[m, m e], [m e, M22]] at slide s0, by the Schur complement
+  // D = M22 - m e^2 = I_c + m (b + s0)^2 > 0 (|d| = 1: |c - P|^2 = e^2 + b^2): x1 = (v1 - e v0) / D,
+  // x0 = v0 / m - e x1. Never through det M = m M22 - (m e)^2 and M22 v0: those products of a mass,
+  // a moment of inertia and a force leave the doubles' range long before the data do (lengths
+  // 10^-150 gave no motion at all: M22 Q_s underflowed to 0; 10^150 or a mass 10^160 gave inf).
+  void inverse_mass_times(double s0, const double v[2], double x[2]) const {
+    const double D = inertia_c + mass * (b + s0) * (b + s0);
+    x[1] = (v[1] - e * v[0]) / D;
+    x[0] = v[0] / mass - e * x[1];
+  }
   void rhs(const State4& s, State4& ds) const {
-    double M[2][2], Q[2];
+    double M[2][2], Q[2], a[2];
     dynamics(s, M, Q);
-    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    inverse_mass_times(s[0], Q, a);
     ds[0] = s[2];
     ds[1] = s[3];
-    ds[2] = (M[1][1] * Q[0] - M[0][1] * Q[1]) / det;
-    ds[3] = (M[0][0] * Q[1] - M[1][0] * Q[0]) / det;
+    ds[2] = a[0];
+    ds[3] = a[1];
   }
-  State4 flight(const State4& from, double span) const {
+  // Thrown by flight(.., capped) when the integration over its span needs more than flight_evaluations
+  // right-hand sides: a load so violent (a torque of 10^100 N mm) that the part turns many times
+  // within the span, which the adaptive stepper then follows in ever smaller steps for hours.
+  struct FlightTooLong {};
+  static constexpr long flight_evaluations = 60000;
+  static constexpr double short_flight = 0x1p-20;
+  State4 flight(const State4& from, double span, bool capped = false) const {
     State4 s = from;
     if (span <= 0) return s;
     namespace ode = boost::numeric::odeint;
     auto stepper = ode::make_controlled(accuracy, accuracy, ode::runge_kutta_dopri5<State4>());
-    ode::integrate_adaptive(stepper, [this](const State4& x, State4& dx, double) { rhs(x, dx); }, s, 0.0, span,
-                            span / 8);
+    long evaluations = 0;
+    // odeint's integrate_adaptive compares times absolutely (t1 - t0 > machine epsilon): a span
+    // below 2.2e-16 s was not integrated at all (a follower that a torque of 10^30 N mm turns
+    // within 10^-16 s stood still while the time ran on), and up to 2.2e-16 s of a short span was
+    // left out. A short span is integrated in the scaled time u = tau / span, over [0, 1].
+    const double scale = span < short_flight ? span : 1.0;
+    ode::integrate_adaptive(
+        stepper,
+        [this, &evaluations, capped, scale](const State4& x, State4& dx, double) {
+          if (capped && ++evaluations > flight_evaluations) throw FlightTooLong{};
+          rhs(x, dx);
+          if (scale != 1.0)
+            for (double& v : dx) v *= scale;
+        },
+        s, 0.0, span / scale, span / scale / 8);
     return s;
   }
   double potential(const State4& s) const {
@@ -329,7 +370,7 @@ struct PinSlotSimulation::Impl {
     };
     const auto a = rel(s0, t), m = rel(sm, t + h / 2), z = rel(s1, t + h);
     const double dx = m[0] - (a[0] + z[0]) / 2, dy = m[1] - (a[1] + z[1]) / 2, dw = m[2] - (a[2] + z[2]) / 2;
-    return 2 * (std::hypot(dx, dy) + 2 * reach * std::abs(dw));
+    return 2 * (std::hypot(dx, dy) + 2 * reach_at({&s0, &sm, &s1}) * std::abs(dw));
   }
   void check_limits(const State4& s, double time) const {
     const Part& pp = model.parts[part];
@@ -386,6 +427,7 @@ struct PinSlotSimulation::Impl {
       arm = std::hypot(P[0] - C.x.get_d(), P[1] - C.y.get_d());
     }
     double out = 0;
+    const double reach = reach_at(states);
     for (const State4* s : states) {
       State4 ds;
       rhs(*s, ds);
@@ -459,10 +501,6 @@ void PinSlotSimulation::Impl::impact(std::size_t pi, const std::vector<SlicedFea
         << "' has no contact frame (a vertex meeting a vertex)";
     throw NumericError(out.str());
   }
-  double M[2][2], Q[2];
-  dynamics(y, M, Q);
-  const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-  const double Minv[2][2] = {{M[1][1] / det, -M[0][1] / det}, {-M[1][0] / det, M[0][0] / det}};
   auto speed = [&](const Row& r) { return r.J[0] * y[2] + r.J[1] * y[3] - r.v_other; };
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
@@ -474,7 +512,8 @@ void PinSlotSimulation::Impl::impact(std::size_t pi, const std::vector<SlicedFea
       const double v = speed(r);
       const double target = before[i] < 0 ? -p.restitution * before[i] : 0.0;
       if (v >= target - 1e-12 * (std::abs(target) + std::abs(before[i]))) continue;
-      const double mj[2] = {Minv[0][0] * r.J[0] + Minv[0][1] * r.J[1], Minv[1][0] * r.J[0] + Minv[1][1] * r.J[1]};
+      double mj[2];
+      inverse_mass_times(y[0], r.J, mj);
       const double k = r.J[0] * mj[0] + r.J[1] * mj[1];
       double lambda = (target - v) / k;
       if (total[i] + lambda < 0) lambda = -total[i];
@@ -521,7 +560,21 @@ bool PinSlotSimulation::Impl::advance(double span) {
   for (int attempt = 0;; ++attempt) {
     if (attempt > 2000 || !(h > 0))
       throw NumericError(where(t) + ": no chord within the chord deviation (the step size underflows)");
-    const State4 mid = flight(y, h / 2), end = flight(mid, h / 2);
+    // a step too long for a violent load (a torque of 10^100 N mm) overflows or turns the part many
+    // times: shorter steps reach the limits, which then stop the run naming them
+    State4 mid, end;
+    try {
+      mid = flight(y, h / 2, true);
+      end = flight(mid, h / 2, true);
+    } catch (const FlightTooLong&) {
+      h /= 2;
+      continue;
+    }
+    auto finite = [](const State4& s) { return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); }); };
+    if (!finite(mid) || !finite(end)) {
+      h /= 2;
+      continue;
+    }
     // the far test: a pair whose features are certainly farther apart than twice the step's
     // travel bound (plus delta) is free over the step without a chord
     std::vector<bool> far(pairs.size(), false), flips(pairs.size(), false);
@@ -712,7 +765,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   s.angle_limits = motion.angle_limits;
   s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0};
   s.check_limits(s.y, 0);
-  // the part's reach from its pivot at the largest slide (for the angle's share of a chord's deviation)
+  // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
   double reach = 0;
   for (const Loop& loop : fp.loops)
     for (const Edge& edge : loop.edges) {
@@ -722,14 +775,13 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
         reach = std::max(reach, std::hypot(edge.center.x.get_d() - s.P[0], edge.center.y.get_d() - s.P[1]) +
                                     std::sqrt(edge.radius_squared.get_d()));
     }
-  double slide_reach = std::abs(s.y[0]);
-  if (s.slide_limits)
-    slide_reach = std::max(std::abs(s.slide_limits->lo.get_d()), std::abs(s.slide_limits->hi.get_d()));
-  s.reach = std::max(reach + slide_reach, 1e-300);
-  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * s.reach;
+  s.part_reach = std::max(reach, 1e-300);
+  // the run's length scale: the part's reach at its initial slide (not its limits': see reach_at)
+  const double size = s.reach_at({&s.y});
+  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * size;
   // the rest speed: the speed a load gains over the chord deviation
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
-  load += (std::abs(s.torque) / s.inertia_c) * s.reach;
+  load += (std::abs(s.torque) / s.inertia_c) * size;
   s.rest_speed = std::sqrt(2 * load * s.delta);
   // the pairs
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {

@@ -24,6 +24,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <optional>
 #include <algorithm>
@@ -349,6 +351,26 @@ TEST(ParametricTemplates, ABoxThatChangesATemplatesShapeIsRefused) {
                    "pin_radius": 4.5, "pin_center_radius": 56.5, "lock_outer_radius": 46, "lock_inner_radius": "inner",
                    "lock_span": 283}}]})"),
           "/lock_inner_radius");
+  // Values the template refuses (session 58, hunt58: analysed until then): an escape wheel's
+  // face_angle of 0 +- 0.5 deg reaches negative angles ("must not be negative"); the escapement
+  // example's anchor with lock 0.02 +- 0.05 deg reaches a negative lock.
+  refused(model(parameter("face", 0, 0.5, true),
+                R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"escape_wheel": {"center": [0, 0],
+                   "teeth": 15, "tip_radius": 20, "root_radius": 15, "face_angle": "face"}}]})"),
+          "/face_angle");
+  std::ifstream file(std::filesystem::path(HIPAIR_EXAMPLES) / "escapement.json");
+  std::string escapement((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string lock = R"("lock": { "nominal": 2, "angle": true, "tolerance": 0.05 })";
+  ASSERT_NE(escapement.find(lock), std::string::npos);
+  refused(escapement.replace(escapement.find(lock), lock.size(), R"("lock": { "nominal": 0.02, "angle": true, "tolerance": 0.05 })"),
+          "/lock");
+  // ... and a box clear of them is kept: face_angle 0.5 +- 0.4 deg (a box ending exactly at 0 is
+  // refused: the analysis's box is the doubles' outward rounding of the exact one)
+  ParametricModel kept = ParametricModel::read(model(parameter("face", 0.5, 0.4, true),
+      R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"escape_wheel": {"center": [0, 0],
+         "teeth": 15, "tip_radius": 20, "root_radius": 15, "face_angle": "face"}}]})"));
+  EXPECT_NO_THROW(kept.check_choices({Rational(kept.nominal().parameters[0].range.lo - kept.nominal().parameters[0].nominal).get_d()},
+                                     {Rational(kept.nominal().parameters[0].range.hi - kept.nominal().parameters[0].nominal).get_d()}));
 }
 
 // The three bundled examples refused until session 57: every Monte Carlo sample inside the

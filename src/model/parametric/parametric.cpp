@@ -564,6 +564,24 @@ void ParametricModel::check_choices(const std::vector<double>& lo, const std::ve
       };
       auto value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
       try {
+        // values the template itself refuses (session 58, hunt58: an escape wheel's face_angle of
+        // 0 +- 0.05 deg was analysed, though every negative value in the box is refused by the
+        // reader, "must not be negative"); the exact expansion has no shape there to follow
+        auto refuse_below = [&](const char* key, bool strict, const char* what) {
+          if (!feature.arguments.count(key)) return;
+          const I v = value(key);
+          if (strict ? !(v.lo > 0) : !(v.lo >= 0))
+            refuse(key, std::string(key) + " may become " + (strict ? "zero or negative" : "negative") +
+                            " within the box, which the template refuses (" + what + ")");
+        };
+        if (feature.name == "escape_wheel") {
+          refuse_below("face_angle", false, "must not be negative");
+          refuse_below("tip_angle", false, "must not be negative");
+        } else if (feature.name == "anchor") {
+          refuse_below("lift", true, "must be positive");
+          refuse_below("lock", false, "must not be negative");
+          refuse_below("pallet_extent", true, "must be positive");
+        }
         if (feature.name == "escape_wheel" && feature.teeth > 0 && feature.arguments.count("tip_angle")) {
           std::size_t per_tooth = feature.edge_counts.at(0) / static_cast<std::size_t>(feature.teeth);
           bool top = per_tooth == (feature.arguments.count("back_angle") ? 4u : 3u);
