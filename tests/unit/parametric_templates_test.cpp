@@ -392,6 +392,75 @@ TEST(ParametricTemplates, InvoluteFlankSensesOutsideTheBaseCircleAreDecided) {
   }
 }
 
+// A pair of external spur gears as examples/models/spur-gears.json (two-arc involute fits at the
+// standard centre distance m (z1 + z2) / 2, the backlash b0 along the pitch circle from thinning
+// each tooth by b0 / 2): module m, z1 and z2 teeth, pressure angle `alpha` degrees; the backlash
+// toleranced by +- tb and the centre distance by +- ta, nothing else.
+std::string generated_gear_pair(int m, int z1, int z2, int alpha, double b0, double tb, double ta) {
+  auto gear = [&](const std::string& name, const std::string& teeth, const std::string& centre, const std::string& phase) {
+    return R"({"name": ")" + name + R"(", "motion": {"rotation": {"pivot": [)" + centre + R"(, 0]}}, "features": [
+        {"spur_gear": {"center": [)" + centre + R"(, 0], "teeth": ")" + teeth + R"(", "pitch_radius": "module * )" + teeth +
+           R"( / 2", "addendum": "module", "dedendum": "1.25 * module", "tooth_thickness": "pi * module / 2 - backlash / 2",
+           "pressure_angle": "pressure-angle", "phase": )" + phase + "}}]}";
+  };
+  std::string parameters = R"("module": {"nominal": )" + std::to_string(m) + R"(}, "teeth-1": {"nominal": )" +
+                           std::to_string(z1) + R"(}, "teeth-2": {"nominal": )" + std::to_string(z2) +
+                           R"(}, "pressure-angle": {"nominal": ")" + std::to_string(alpha) + R"( deg", "angle": true}, )" +
+                           R"("backlash": {"nominal": )" + fixed(b0) + R"(, "tolerance": )" + fixed(tb) + "}, " +
+                           R"("center-distance": {"nominal": "module * (teeth-1 + teeth-2) / 2", "tolerance": )" + fixed(ta) + "}";
+  return R"({"hipair": 1, "name": "generated gears", "units": {"length": "mm", "angle": "rad"}, "parameters": {)" +
+         parameters + R"(}, "parts": [)" + gear("pinion", "teeth-1", "0", "0") + ", " +
+         gear("gear", "teeth-2", "\"center-distance\"", "\"pi + pi / teeth-2\"") +
+         R"(], "pairs": [{"parts": ["pinion", "gear"]}]})";
+}
+
+// Session 58: the jamming threshold of large gear pairs (> 120 boundary edges: the jam is
+// confirmed on the exact kernel slice of the worst-case pair, docs/tolerance.md "Large pairs")
+// against the closed form of involute gearing: the circular backlash at the pitch circle closes
+// by tb (both teeth thickened by tb / 2) plus 2 ta tan(alpha) (the centre distance shortened by
+// ta), so the tolerances close it at the scale b0 / (tb + 2 ta tan alpha). The two-arc fit is
+// not an involute: along the path its play varies by (largest - smallest) / smallest, where an
+// involute pair's is constant, and the linearised threshold may differ from the closed form by
+// that share plus as much again for the closing rate (the fit's flank normal off the line of
+// action by as much). Exact: the worst-case pair at a scale a little above the linearised one
+// has no free interval in the nominal channel, and the certified enclosures stay apart below.
+TEST(ParametricTemplates, GearPairJammingThresholdIsTheBacklashClosedForm) {
+  std::mt19937 rng(581);
+  std::uniform_int_distribution<int> teeth(12, 24), pressure(18, 24), tenths(1, 4);
+  for (int round = 0; round < 2; ++round) {
+    int m = 2, z1 = teeth(rng), z2 = teeth(rng), alpha = pressure(rng);
+    double b0 = 0.05 * tenths(rng), tb = 0.005 * tenths(rng), ta = 0.005 * tenths(rng);
+    std::string text = generated_gear_pair(m, z1, z2, alpha, b0, tb, ta);
+    SCOPED_TRACE(text);
+    ToleranceOptions options;
+    options.threshold = true;
+    options.threads = 1;
+    options.range = std::make_pair(Rational(0), Rational(4 * 314159, 100000 * z1));   // two tooth pitches
+    options.positions = 720;
+    ToleranceResult r = analyze_tolerances_text(text, options);
+    ASSERT_TRUE(r.threshold && r.threshold->found);
+    const JammingThreshold& t = *r.threshold;
+    double closed = b0 / (tb + 2 * ta * std::tan(alpha * M_PI / 180));
+    double r2 = m * z2 / 2.0;
+    double smallest = 1e300, largest = 0;
+    for (const VariationSample& sample : r.samples)
+      if (sample.play > 0) {
+        smallest = std::min(smallest, sample.play * r2);
+        largest = std::max(largest, sample.play * r2);
+      }
+    ASSERT_GT(largest, 0);
+    double fit = (largest - smallest) / smallest;
+    std::printf("z %d x %d, %d deg, b0 %.3f tb %.3f ta %.3f: linearised %.6f closed %.6f (fit %.5f), certified open "
+                "%.6f, confirmed %d at %.6f\n",
+                z1, z2, alpha, b0, tb, ta, t.scale, closed, fit, t.certified_open_scale, t.confirmed, t.confirmed_scale);
+    EXPECT_NEAR(t.scale / closed, 1, 2 * fit + 1e-3) << t.evidence;
+    EXPECT_TRUE(t.confirmed) << t.evidence;
+    EXPECT_NE(t.evidence.find("exact slice (contact kernels"), std::string::npos) << t.evidence;
+    EXPECT_GT(t.certified_open_scale, 0);
+    EXPECT_LT(t.certified_open_scale, t.confirmed_scale);
+  }
+}
+
 TEST(ParametricTemplates, DerivativesEqualFiniteDifferencesOfExactExpansions) {
   std::mt19937 rng(60);
   for (int round = 0; round < 2; ++round) {
