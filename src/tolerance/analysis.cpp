@@ -9,7 +9,6 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
-#include "kinematics/slice.hpp"
 #include "tolerance/progress.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/sampling.hpp"
@@ -19,6 +18,7 @@
 #include <hipair/cspace_region.hpp>
 #include <hipair/cspace_slice.hpp>
 #include <hipair/error.hpp>
+#include <hipair/kernel_slice.hpp>
 #include <hipair/kinematics.hpp>
 
 #include <algorithm>
@@ -1000,49 +1000,21 @@ class Analysis {
   // (touching, or its touching undecided) counts as open. nullopt: no chart holds the position.
   std::optional<std::size_t> kernel_free_intervals_in_channel(const Model& other, const SampleState& state,
                                                               std::size_t& points) const {
-    using namespace kinematics_detail;
-    std::size_t pair = other.pairs.size();
-    for (std::size_t p = 0; p < other.pairs.size(); ++p)
-      if ((other.pairs[p].first == driver_ && other.pairs[p].second == follower_) ||
-          (other.pairs[p].first == follower_ && other.pairs[p].second == driver_))
-        pair = p;
-    if (pair == other.pairs.size()) return std::nullopt;
-    std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(other, pair, follower_);
-    const Rational& t = state.driver_chart.t;
-    std::optional<std::size_t> driver_chart, follower_chart;
-    for (std::size_t c = 0; c < slicer->other_charts().size() && !driver_chart; ++c) {
-      const ChartAxis& axis = slicer->other_charts()[c];
-      if (axis.half_turn == state.driver_chart.half && axis.lo <= t && t <= axis.hi) driver_chart = c;
-    }
-    for (std::size_t c = 0; c < slicer->follower_charts().size() && !follower_chart; ++c) {
-      const ChartAxis& axis = slicer->follower_charts()[c];
-      const Rational& f = state.follower_chart.t;
-      if (axis.half_turn == state.follower_chart.half && axis.lo <= f && f <= axis.hi) follower_chart = c;
-    }
-    if (!driver_chart || !follower_chart) return std::nullopt;
-    ChartSlice slice = slicer->slice(*driver_chart, t, *follower_chart);
-    points = slice.points.size();
-    auto number = [](const Real& r) {
-      AlgebraicNumber a;
-      a.polynomial = r.polynomial;
-      a.lower = r.lower;
-      a.upper = r.upper;
-      a.exact = r.exact;
-      return a;
-    };
-    std::vector<AlgebraicNumber> at;
-    for (const SlicePoint& point : slice.points) at.push_back(number(point.value));
+    std::optional<KernelSlice> slice = kernel_slice(other, driver_, follower_, state.driver_chart.t, state.driver_chart.half,
+                                                    state.follower_chart.t, state.follower_chart.half);
+    if (!slice) return std::nullopt;
+    points = slice->points.size();
     const AlgebraicNumber& lower = state.lower.exact;
     const AlgebraicNumber& upper = state.upper.exact;
+    const std::vector<KernelSlice::Point>& at = slice->points;
     std::size_t open = 0;
-    for (std::size_t j = 0; j < slice.points.size(); ++j)
-      if ((slice.points[j].touching || slice.points[j].undecided) && tolerance_detail::compare(at[j], lower) > 0 &&
-          tolerance_detail::compare(at[j], upper) < 0)
+    for (const KernelSlice::Point& point : at)
+      if (point.may_touch && tolerance_detail::compare(point.at, lower) > 0 && tolerance_detail::compare(point.at, upper) < 0)
         ++open;
-    for (std::size_t j = 0; j < slice.kinds.size(); ++j) {
-      if (slice.kinds[j] != SliceKind::free && slice.kinds[j] != SliceKind::empty) continue;
-      bool below_upper = j == 0 || tolerance_detail::compare(at[j - 1], upper) < 0;      // a < upper
-      bool above_lower = j == at.size() || tolerance_detail::compare(at[j], lower) > 0;  // b > lower
+    for (std::size_t j = 0; j < slice->kinds.size(); ++j) {
+      if (slice->kinds[j] != KernelSlice::Kind::free && slice->kinds[j] != KernelSlice::Kind::outside) continue;
+      bool below_upper = j == 0 || tolerance_detail::compare(at[j - 1].at, upper) < 0;      // a < upper
+      bool above_lower = j == at.size() || tolerance_detail::compare(at[j].at, lower) > 0;  // b > lower
       if (below_upper && above_lower) ++open;
     }
     return open;
