@@ -13,9 +13,11 @@
 // sample in its certified band and its nominal motion is the kinematic analysis's.
 #include "generic_form_check.hpp"
 #include "tolerance_band_check.hpp"
+#include "tolerance/exact_order.hpp"
 #include "tolerance/jet.hpp"
 #include "test_paths.hpp"
 
+#include <hipair/kernel_slice.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 #include <hipair/tolerance.hpp>
@@ -459,6 +461,41 @@ TEST(ParametricTemplates, GearPairJammingThresholdIsTheBacklashClosedForm) {
     EXPECT_GT(t.certified_open_scale, 0);
     EXPECT_LT(t.certified_open_scale, t.confirmed_scale);
   }
+}
+
+// The kernel slice the large pairs' jam confirmation reads (hipair::kernel_slice) against the
+// slices of the whole exact C-space: at rational driver values of the Geneva pair, in each chart,
+// every interval of the C-space slice is free exactly where the kernel slice is free at its
+// sample (exact comparisons).
+TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSlice) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json");
+  CSpace space = CSpace::build(model, "driver", "wheel");
+  std::size_t x = *model.find_part(space.x_part()), y = *model.find_part(space.y_part());
+  std::size_t compared = 0;
+  for (int k = -9; k <= 9; k += 2) {
+    Rational value(k, 10);
+    for (const Slice& s : space.slice(SliceAxis::x, value)) {
+      const CSpaceChart& chart = space.charts()[s.chart];
+      std::optional<KernelSlice> kernel =
+          kernel_slice(model, x, y, value, chart.x_half_turn, s.intervals.front().sample, chart.y_half_turn);
+      ASSERT_TRUE(kernel);
+      for (const Slice::Interval& interval : s.intervals) {
+        std::size_t below = 0;
+        bool on_point = false;
+        for (const KernelSlice::Point& p : kernel->points) {
+          int c = tolerance_detail::compare(p.at, interval.sample);
+          if (c < 0) ++below;
+          if (c == 0) on_point = true;
+        }
+        if (on_point) continue;
+        EXPECT_EQ(interval.kind == CellKind::free, kernel->kinds[below] == KernelSlice::Kind::free)
+            << "driver chart value " << to_exact_string(value) << ", chart " << s.chart << ", sample "
+            << to_exact_string(interval.sample);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 20u);
 }
 
 TEST(ParametricTemplates, DerivativesEqualFiniteDifferencesOfExactExpansions) {
