@@ -76,9 +76,9 @@ struct SlicedLocation {
 struct SlicedConnection {
   std::size_t left_cell = no_index;
   std::size_t right_cell = no_index;
-  /// A witness: configurations at an angle inside the left interval and one inside the right, at one
-  /// offset (two about a pivot far from the part: docs/cspace.md); the straight motion between them
-  /// (through the half turn when `through_half_turn`) is certified free (a pure rotation at one offset).
+  /// A witness of the connection: the same offset (x, y) at an angle inside the left interval
+  /// and one inside the right interval; the pure rotation between them (through the half turn
+  /// when `through_half_turn`) is certified free (no vertex–edge contact line passes the offset).
   SlicedConfiguration left_witness, right_witness;
   bool through_half_turn = false;
 };

@@ -1243,8 +1243,9 @@ class CurveFinder {
   // that range, roots isolated in it, no half turn.
   void restrict_to(const Rational& lo, const Rational& hi) { range_ = std::make_pair(lo, hi); }
 
-  // Narrow the restricted range to where the part's curves can meet the window (see run();
-  // pin-slot parts far from their pivot, session 58).
+  // Narrow the restricted range to where the part's curves can meet the window (run_narrowed;
+  // pin-slot parts far from their pivot, session 58; with the filters only: the plain exact
+  // path, filters off, is the tests' oracle).
   void narrow_to_window(bool on) { narrow_ = on; }
 
   // The interval filter and the oracle's memory (on by default; off: the plain exact path).
@@ -1263,7 +1264,7 @@ class CurveFinder {
         if (curves_[id].extra) return false;
       return true;
     };
-    if (narrow_ && range_ && window_) return run_narrowed(skip);
+    if (narrow_ && filters_ && range_ && window_) return run_narrowed(skip);   // (filters off: the plain path)
     for (std::size_t i = 0; i < n; ++i)
       if (!skip({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
     for (std::size_t i = 0; i < n; ++i)
