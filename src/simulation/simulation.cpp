@@ -1462,17 +1462,23 @@ struct Simulation::Impl {
   // The tangential curvature term T' qdot of held contact `a` at (qs, vs) (tangent row T there):
   // the rate at which its relative sliding speed T v changes at constant velocities, a forward
   // (or, past its edge's end, backward) difference of the tangent row along the velocities over
-  // a move of 1e-7 (chart units). Only a contact at rest at a step's start takes it
+  // a move of 1e-7: 1e-7 rad of the fastest rotating coordinate, or where none turns, 1e-7 of
+  // the chart box's extent of a translating abscissa (`unit`): the same motion at every length
+  // scale (a translation's speed scales with the model, a rotation's does not, so a translating
+  // coordinate's speed is not compared with a rotation's). Only a contact at rest at a step's start takes it
   // (Friction::bias): there the direction it begins to slide in is decided by the sign of
   // T a + T' v, and T' v is what turns the sliding speed of two gear flanks through the pitch
   // point (about 1e3 mm/s^2 for the 7 x 9 example, where T a alone is of rounding size and
   // picked either direction: docs/simulation.md, session 58, slip58). 0 where the velocities
   // vanish or the shifted state has no row.
   double tangent_drift(const Active& a, const Vec& qs, const Vec& vs, const Eigen::VectorXd& T) const {
-    double vmax = 0;
-    for (double x : vs) vmax = std::max(vmax, std::abs(x));
-    if (vmax == 0) return 0;
-    const double dt = 1e-7 / vmax;
+    double rate = 0;   // the fastest coordinate's speed in its own scale (per time unit)
+    for (std::size_t i = 0; i < vs.size(); ++i)
+      if (dofs[i].rotation) rate = std::max(rate, std::abs(vs[i]));
+    if (rate == 0 && a.xdof >= 0 && !dofs[static_cast<std::size_t>(a.xdof)].rotation)
+      for (std::size_t i = 0; i < vs.size(); ++i) rate = std::max(rate, std::abs(vs[i]) / a.unit);
+    if (rate == 0) return 0;
+    const double dt = 1e-7 / rate;
     std::vector<FeatureId> features;
     features_of(a, features);
     for (const double sign : {1.0, -1.0}) {
