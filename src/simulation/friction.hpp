@@ -216,8 +216,8 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
       double limit = c.mu_static * N;
       if (std::abs(s.f(i)) > limit + 1e-9 * (limit + std::abs(s.f(i))) + 1e-300) return false;
     } else if (!c.decided && (st == slip_positive || st == slip_negative)) {
-      double vt = c.T.dot(s.x);
-      double scale = c.T.cwiseAbs().dot(s.x.cwiseAbs());
+      double vt = c.T.dot(s.x) + c.bias;
+      double scale = c.T.cwiseAbs().dot(s.x.cwiseAbs()) + std::abs(c.bias);
       if (st * vt < -1e-9 * scale) return false;
     }
   }

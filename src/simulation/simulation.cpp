@@ -678,6 +678,7 @@ struct Simulation::Impl {
           // at a step's start: a sliding contact keeps its direction; one at rest is decided
           c.decided = sliding;
           c.state = sliding ? (vt > 0 ? simulation::slip_positive : simulation::slip_negative) : simulation::stick;
+          if (!sliding) c.bias = tangent_drift(active[k], qs, vs, c.T);
         } else {
           c.decided = true;
           c.state = active[k].coulomb_known ? active[k].coulomb
@@ -1458,6 +1459,43 @@ struct Simulation::Impl {
   }
 
   // tolerance of "no relative tangential velocity" for tangent row T (mm per second)
+  // The tangential curvature term T' qdot of held contact `a` at (qs, vs) (tangent row T there):
+  // the rate at which its relative sliding speed T v changes at constant velocities, a forward
+  // (or, past its edge's end, backward) difference of the tangent row along the velocities over
+  // a move of 1e-7: 1e-7 rad of the fastest rotating coordinate, or where none turns, 1e-7 of
+  // the chart box's extent of a translating abscissa (`unit`): the same motion at every length
+  // scale (a translation's speed scales with the model, a rotation's does not, so a translating
+  // coordinate's speed is not compared with a rotation's). Only a contact at rest at a step's start takes it
+  // (Friction::bias): there the direction it begins to slide in is decided by the sign of
+  // T a + T' v, and T' v is what turns the sliding speed of two gear flanks through the pitch
+  // point (about 1e3 mm/s^2 for the 7 x 9 example, where T a alone is of rounding size and
+  // picked either direction: docs/simulation.md, session 58, slip58). 0 where the velocities
+  // vanish or the shifted state has no row.
+  double tangent_drift(const Active& a, const Vec& qs, const Vec& vs, const Eigen::VectorXd& T) const {
+    double rate = 0;   // the fastest coordinate's speed in its own scale (per time unit)
+    for (std::size_t i = 0; i < vs.size(); ++i)
+      if (dofs[i].rotation) rate = std::max(rate, std::abs(vs[i]));
+    if (rate == 0 && a.xdof >= 0 && !dofs[static_cast<std::size_t>(a.xdof)].rotation)
+      for (std::size_t i = 0; i < vs.size(); ++i) rate = std::max(rate, std::abs(vs[i]) / a.unit);
+    if (rate == 0) return 0;
+    const double dt = 1e-7 / rate;
+    std::vector<FeatureId> features;
+    features_of(a, features);
+    for (const double sign : {1.0, -1.0}) {
+      Vec shifted = qs;
+      for (std::size_t i = 0; i < shifted.size(); ++i) shifted[i] += sign * dt * vs[i];
+      Vec G;
+      double h, gval;
+      if (!row(a, shifted, vs, G, h, gval)) continue;
+      simulation::Friction moved;
+      friction_of(a.pair, features, G, shifted, moved);
+      if (!moved.on || moved.T.size() != T.size()) continue;
+      const Eigen::VectorXd vel = Eigen::Map<const Eigen::VectorXd>(vs.data(), static_cast<Eigen::Index>(vs.size()));
+      return sign * (moved.T - T).dot(vel) / dt;
+    }
+    return 0;
+  }
+
   double tangential_tolerance(const Eigen::VectorXd& T) const { return velocity_tolerance() * (1 + T.cwiseAbs().sum()); }
 
   Eigen::VectorXd inverse_masses() const {

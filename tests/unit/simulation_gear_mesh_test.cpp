@@ -29,8 +29,10 @@
 //   every seed;
 // - against the whole space (7 x 9, 128 edges, an operating region by default, to 0.15 s,
 //   one tooth change): the same events (kinds, features), at the same times within the
-//   accuracy per step (1e-9 s times the steps), the same end state within 1e-6 rad, and no
-//   accepted state of the region's run overlapping (as above).
+//   accuracy per step (1e-9 s times the steps; Coulomb events too), the same end state within
+//   1e-6 rad, no accepted state of the region's run overlapping (as above), and at a handover
+//   of both flanks' arcs (tangent-continuous: the sliding speed is) the new contact sliding the
+//   way the old one did (session 58, slip58).
 #include "test_paths.hpp"
 
 #include <hipair/error.hpp>
@@ -399,21 +401,39 @@ TEST(SimulationGearMesh, TheOperatingRegionRunsAsTheWholeSpace) {
   // the two runs' steps differ in their last bits (the crossing queries' subdivisions meet the
   // tiles' seams): event times agree to the accuracy per step taken
   const double time_tolerance = kAccuracy * static_cast<double>(whole.states.size());
-  // A Coulomb event (slip, stick) is where the relative sliding speed crosses zero: next to the
-  // pitch point, just after a flank's arcs hand over there with an impulse of rounding size
-  // (1e-10 N s), its time moves by that speed's rounding over its slope, not by the accuracy
-  // per step: the base build of session 58 put the slip after the 0.1368 s handover 8.8e-6 s
-  // apart in the two runs at backlash 0.101 mm (5e-9 at 0.1 mm), and session 58's cut at 1e-9
-  // past a far end (not 3e-9) 5e-7 apart at 0.1 mm. Its kind, features and order are compared,
-  // its time only with the events around it.
-  auto coulomb = [](const SimulationEvent& e) {
-    return e.kind == SimulationEvent::Kind::slip || e.kind == SimulationEvent::Kind::stick;
-  };
+  // A Coulomb event (slip, stick) included: the relative sliding speed of the drive flanks
+  // crosses zero at the pitch point with a slope of about 1e3 mm/s^2 (not a near-tangent
+  // crossing), at the 0.1368 s handover of the flanks' arcs. Before session 58 (slip58) the
+  // contact taken up there was decided at rest without the tangent's curvature term and slid the
+  // wrong way for one step (its event 1e-7 s apart in the two runs at backlash 0.1 mm, 9.6e-8 at
+  // 0.101 mm, the step lengths); now within the at-rest band (sliding speed 2.1e-5 over that
+  // slope: 2e-8 s) of each other.
   for (std::size_t k = 0; k < whole.events.size(); ++k) {
     EXPECT_EQ(region.events[k].kind, whole.events[k].kind) << "event " << k;
     EXPECT_EQ(region.events[k].features, whole.events[k].features) << "event " << k;
-    if (!coulomb(whole.events[k]))
-      EXPECT_NEAR(region.events[k].time, whole.events[k].time, time_tolerance) << "event " << k;
+    EXPECT_NEAR(region.events[k].time, whole.events[k].time, time_tolerance) << "event " << k;
+  }
+  // Where a sliding contact hands over to the next arcs of both flanks (arc tangent to arc on
+  // both sides of an edge end: the profiles are tangent-continuous there, so is the sliding
+  // speed) the new contact slides the way the old one did: before slip58 the contact taken up at
+  // the pitch point was decided at rest without the tangent's curvature term and slid the other
+  // way for a step (a slip +1 at 0.1367683 s after the old contact's slip -1).
+  for (const GearRun* run : {&region, &whole}) {
+    const std::vector<SimulationEvent>& ev = run->events;
+    int sliding = 0;   // the last slip direction of the contact held before
+    for (std::size_t k = 0; k < ev.size(); ++k) {
+      if (ev[k].kind == SimulationEvent::Kind::stick) sliding = 0;
+      if (ev[k].kind != SimulationEvent::Kind::slip || ev[k].features.empty()) continue;
+      bool tangent_handover = false;
+      for (std::size_t j = 0; j < k; ++j)
+        if (ev[j].kind == SimulationEvent::Kind::edge_end && ev[j].time == ev[k].time && !ev[j].features.empty() &&
+            ev[j].features.front().find("(arc tangent to arc)") != std::string::npos &&
+            ev[k].features.front().find("(arc tangent to arc)") != std::string::npos)
+          tangent_handover = true;
+      if (tangent_handover)
+        EXPECT_EQ(ev[k].slip_direction, sliding) << (run == &region ? "region" : "whole") << " event " << k << " at t = " << ev[k].time;
+      sliding = ev[k].slip_direction;
+    }
   }
   // (tighter than the event-time tolerance times the gears' speeds, about 3e-6 rad)
   EXPECT_NEAR(region.states.back().pinion, whole.states.back().pinion, 1e-6);

@@ -149,6 +149,46 @@ TEST(SimulationRatchetTouch, ScotchYokeSlipChangeAtTheStepStartMovesOn) {
   EXPECT_TRUE(impact_l);
 }
 
+// The scotch yoke's crank pin (radius rho = 5 at crank radius r = 30) slides on a vertical slot
+// wall of the horizontally translating yoke: its material point at the contact, (r cos theta +-
+// rho, r sin theta), moves along the wall at omega (r cos theta +- rho), so the sliding reverses
+// where cos theta = -+rho / r, with slope omega^2 r sin theta (about 4e3 mm/s^2 here) from the
+// tangent's curvature alone. Each reversal (a slip event without an impact at its time) must come
+// where that sliding speed is within the simulator's at-rest band, bounded by
+// sqrt(accuracy) 1e-2 (1 + |v|max) (1 + |T|1) with |T|1 <= r + rho. Before session 58 (slip58)
+// the contact at rest was decided without the curvature term and kept sliding the old way: the
+// first reversal came at 0.18928 s, crank 1.47042 rad, sliding at -22.8 mm/s (the crossing is at
+// acos(1/6) = 1.40335 rad, 0.18341 s).
+TEST(SimulationRatchetTouch, ScotchYokeSlipReversesWhereThePinStopsSliding) {
+  Simulation s = simulation_of(std::filesystem::path(HIPAIR_EXAMPLES) / "scotch-yoke.json", 1e-9, 200000);
+  const double r = 30, rho = 5;
+  double t_before = s.state().time, theta_before = s.state().position[0], omega_before = s.state().velocity[0];
+  double vmax_before = std::max(std::abs(s.state().velocity[0]), std::abs(s.state().velocity[1]));
+  std::size_t seen = 0, reversals = 0;
+  while (s.state().time < 0.45) {
+    ASSERT_NO_THROW(s.step()) << "at t = " << s.state().time;
+    for (; seen < s.events().size(); ++seen) {
+      const SimulationEvent& e = s.events()[seen];
+      if (e.kind != SimulationEvent::Kind::slip) continue;
+      const bool at_impact = std::any_of(s.events().begin(), s.events().end(), [&](const SimulationEvent& o) {
+        return o.kind == SimulationEvent::Kind::impact && o.time == e.time;
+      });
+      if (at_impact) continue;
+      ASSERT_EQ(e.time, t_before) << "a Coulomb change is decided at a step's start";
+      ++reversals;
+      const double sliding = std::min(std::abs(omega_before * (r * std::cos(theta_before) + rho)),
+                                      std::abs(omega_before * (r * std::cos(theta_before) - rho)));
+      const double band = std::sqrt(1e-9) * 1e-2 * (1 + vmax_before) * (1 + r + rho);
+      EXPECT_LE(sliding, band) << "slip at t = " << e.time << ", crank " << theta_before << " rad";
+    }
+    t_before = s.state().time;
+    theta_before = s.state().position[0];
+    omega_before = s.state().velocity[0];
+    vmax_before = std::max(std::abs(s.state().velocity[0]), std::abs(s.state().velocity[1]));
+  }
+  EXPECT_EQ(reversals, 2u);   // 0.18341 s on wall L, 0.39562 s on wall R
+}
+
 // Generated states of the ratchet (wheel over a turn, pawl within its limits, velocities up to
 // +-10 deg/s, torques +-5..50 N mm, accuracies 1e-3, 1e-6, 1e-9): every run ends within 3000
 // steps, at 0.5 s or with a reported error (a pair leaving its built space at the pawl's limit,
