@@ -325,8 +325,11 @@ struct PinSlotSimulation::Impl {
   // A held (sustained) contact: a feature pair of a pair kept at the hold gap, its force the
   // multiplier of its bilateral row within a step, decided by the contact LCP at each step's start.
   struct Held {
-    std::size_t pair = 0;   // into pairs
-    SlicedFeaturePair features;
+    std::size_t pair = 0;   // into pairs (no_index for a limit)
+    // 0: a contact; a limit of the part's own coordinates: 1 the slide's upper end, 2 its lower
+    // end, 3 the upper angle limit, 4 the lower (its gap hi - s, s - lo, or reach x the angle's)
+    int limit = 0;
+    SlicedFeaturePair features;   // (a limit: its label only)
     kernels::FeatureGeometry<double> fixed_geometry, free_geometry;   // body coordinates
     double force = 0;   // internal units (mN), the last multiplier
   };
@@ -339,6 +342,7 @@ struct PinSlotSimulation::Impl {
   };
   double delta = 0, accuracy = 1e-9, reach = 0, rest_speed = 0, hold_gap = 0;
   double forced_step = 0;   // a step length located by bisection (a held contact's force or edge ends there)
+  int pending_limit = 0;    // the limit the forced step ends at (struck when the step is accepted)
   double t = 0;
   State4 y{};
   std::vector<SimulationEvent> events;
@@ -416,7 +420,32 @@ struct PinSlotSimulation::Impl {
     follower.origin = {constant(P[0]) + slide * u.x, constant(P[1]) + slide * u.y};
     return {other, follower};
   }
+  // The limit a state lies beyond (0: none; exact comparisons of the state's doubles).
+  int outside_limit(const State4& s) const {
+    if (slide_limits && Rational(s[0]) > slide_limits->hi) return 1;
+    if (slide_limits && Rational(s[0]) < slide_limits->lo) return 2;
+    if (angle_limits && Rational(s[1]) > angle_limits->hi) return 3;
+    if (angle_limits && Rational(s[1]) < angle_limits->lo) return 4;
+    return 0;
+  }
+  std::string limit_label(int limit) const {
+    const Part& pp = model.parts[part];
+    static const char* const names[] = {"", "slide limit (upper end)", "slide limit (lower end)", "angle limit (upper)",
+                                        "angle limit (lower)"};
+    return pp.name + " " + names[limit] + " " + pp.motion.pointer + (limit <= 2 ? "/limits" : "/angle_limits");
+  }
+  HeldRow limit_row(int limit, const State4& s) const {
+    HeldRow row;
+    switch (limit) {
+      case 1: row.g = slide_limits->hi.get_d() - s[0], row.J[0] = -1; break;
+      case 2: row.g = s[0] - slide_limits->lo.get_d(), row.J[0] = 1; break;
+      case 3: row.g = (angle_limits->hi.get_d() - s[1]) * reach, row.J[1] = -reach; break;
+      default: row.g = (s[1] - angle_limits->lo.get_d()) * reach, row.J[1] = reach; break;
+    }
+    return row;
+  }
   HeldRow held_row(const Held& h, const State4& s, double time) const {
+    if (h.limit) return limit_row(h.limit, s);
     const std::size_t dr = driver_of[pairs[h.pair].other];
     HeldRow row;
     row.omega = dr == no_index ? 0.0 : drivers[dr].omega;
@@ -549,7 +578,8 @@ struct PinSlotSimulation::Impl {
       for (std::size_t i = 0; i < held.size(); ++i) held[i].force = lambda(static_cast<Eigen::Index>(i));
     }
     for (const Held& h : held)
-      public_state.contacts.push_back(PinSlotContact{pairs[h.pair].index, h.features.label, h.force / force_scale});
+      public_state.contacts.push_back(
+          PinSlotContact{h.limit ? no_index : pairs[h.pair].index, h.features.label, h.force / force_scale});
   }
   // Are the parts of the pair certainly farther apart than d at configuration q (exact: every
   // edge box of the pin-slot part placed at q against every edge box of the other part)?
@@ -621,12 +651,13 @@ struct PinSlotSimulation::Impl {
     std::size_t pair = 0;   // into pairs
     double restitution = 0;
     bool held = false;   // a held contact's row (plastic, no event)
+    int limit = 0;       // a limit's row (Held::limit)
   };
   std::vector<Row> contact_rows(std::size_t pi, const std::vector<SlicedFeaturePair>& features) const;
   // Newton impacts of the touching feature pairs at the current state (sequential impulses),
   // the held contacts plastic rows among them; the pairs left slower than the rest speed are held.
   using Touching = std::vector<std::pair<std::size_t, std::vector<SlicedFeaturePair>>>;   // (pair, feature pairs)
-  void impact(const Touching& touching);
+  void impact(const Touching& touching, int limit = 0);
   bool is_held(std::size_t pi, const SlicedFeaturePair& f) const {
     for (const Held& h : held)
       if (h.pair == pi && h.features.fixed == f.fixed && h.features.free == f.free) return true;
@@ -669,6 +700,7 @@ struct PinSlotSimulation::Impl {
 };
 
 bool PinSlotSimulation::Impl::held_valid(const Held& h, const State4& s, double time) const {
+  if (h.limit) return true;
   const double zero[3] = {0, 0, 0};
   const auto [pa, pb] = held_poses(h, s, time, zero);
   using kernels::FeatureShape;
@@ -793,8 +825,8 @@ SimulationEvent PinSlotSimulation::Impl::held_event(SimulationEvent::Kind kind, 
   SimulationEvent ev;
   ev.kind = kind;
   ev.time = time / time_scale;
-  ev.pair = pairs[h.pair].index;
-  ev.first_part = model.parts[pairs[h.pair].other].name;
+  ev.pair = h.limit ? no_index : pairs[h.pair].index;
+  ev.first_part = model.parts[h.limit ? part : pairs[h.pair].other].name;
   ev.second_part = model.parts[part].name;
   ev.features = {h.features.label};
   ev.normal_force = h.force / force_scale;
@@ -905,8 +937,20 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
   return rows;
 }
 
-void PinSlotSimulation::Impl::impact(const Touching& touching) {
+void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   std::vector<Row> rows;
+  if (limit) {   // a slot end or angle limit struck: a plastic row of the part's own coordinate
+    const HeldRow lr = limit_row(limit, y);
+    Row row{};
+    row.J[0] = lr.J[0];
+    row.J[1] = lr.J[1];
+    row.v_other = 0;
+    row.label = limit_label(limit);
+    row.feature.label = row.label;
+    row.pair = no_index;
+    row.limit = limit;
+    rows.push_back(row);
+  }
   for (const auto& [pi, features] : touching) {
     std::vector<SlicedFeaturePair> fresh;
     for (const SlicedFeaturePair& f : features)
@@ -930,6 +974,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching) {
     row.label = h.features.label;
     row.feature = h.features;
     row.pair = h.pair;
+    row.limit = h.limit;
     row.held = true;
     rows.push_back(row);
   }
@@ -973,12 +1018,11 @@ void PinSlotSimulation::Impl::impact(const Touching& touching) {
   }
   for (std::size_t i = 0; i < fresh_rows; ++i) {
     if (total[i] <= 0) continue;
-    const Pair& p = pairs[rows[i].pair];
     SimulationEvent ev;
     ev.kind = SimulationEvent::Kind::impact;
     ev.time = t / time_scale;
-    ev.pair = p.index;
-    ev.first_part = model.parts[p.other].name;
+    ev.pair = rows[i].limit ? no_index : pairs[rows[i].pair].index;
+    ev.first_part = model.parts[rows[i].limit ? part : pairs[rows[i].pair].other].name;
     ev.second_part = model.parts[part].name;
     ev.features = {rows[i].label};
     ev.impulse = total[i] / (force_scale * time_scale);
@@ -1001,6 +1045,16 @@ void PinSlotSimulation::Impl::impact(const Touching& touching) {
   bool added = false;
   for (std::size_t i = 0; i < fresh_rows; ++i) {
     if (speed(rows[i]) > rest_speed) continue;
+    if (rows[i].limit) {
+      Held h;
+      h.pair = no_index;
+      h.limit = rows[i].limit;
+      h.features.label = rows[i].label;
+      held.push_back(std::move(h));
+      added = true;
+      events.push_back(held_event(SimulationEvent::Kind::contact, held.back(), y, t));
+      continue;
+    }
     const Pair& p = pairs[rows[i].pair];
     Held h;
     h.pair = rows[i].pair;
@@ -1049,6 +1103,18 @@ bool PinSlotSimulation::Impl::advance(double span) {
         (held_conditions(flight(y, m, t), t + m) ? lo : hi) = m;
       }
       forced_step = h = hi;
+      continue;
+    }
+    if (!(h == forced_step && pending_limit) && outside_limit(unprojected)) {
+      // the part reaches a slot end or angle limit within the step: the last state inside by
+      // bisection (to 2^-30 of the step), where the limit is struck
+      double lo = 0, hi = h;
+      while (hi - lo > 0x1p-30 * h) {
+        const double m = (lo + hi) / 2;
+        (outside_limit(flight(y, m, t)) ? hi : lo) = m;
+      }
+      pending_limit = outside_limit(flight(y, hi, t));
+      forced_step = h = lo;
       continue;
     }
     const State4 end = project(unprojected, t + h);
@@ -1110,7 +1176,13 @@ bool PinSlotSimulation::Impl::advance(double span) {
       t += h;
       for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i].q = to[i];
       step_guess = 2 * h;
+      const int limit = h == forced_step ? pending_limit : 0;
       forced_step = 0;
+      pending_limit = 0;
+      if (limit) {
+        impact({}, limit);
+        return true;
+      }
       return false;
     }
     // the first contact: every pair's state is its chord's point at the crossing's free side
@@ -1158,6 +1230,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     }
     step_guess = std::max(h, 1e-12);
     forced_step = 0;
+    pending_limit = 0;
     impact(touching);
     return true;
   }
@@ -1209,8 +1282,12 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   if (!spec.couplings.empty())
     throw ModelError(spec.couplings.front().pointer, "a pin-slot simulation takes no springs between parts "
                                                      "(the pin-slot part's own springs act on s and psi)");
-  if (!spec.velocities.empty())
-    throw ModelError(spec.velocities.front().pointer, "a pin-slot simulation starts at rest (the drivers move at their speed)");
+  std::vector<const SimulationSpec::Velocity*> own_velocity;
+  for (const SimulationSpec::Velocity& v : spec.velocities) {
+    if (v.part != found)
+      throw ModelError(v.pointer, "beside the pin-slot part only drivers move (at their speed): no initial velocity");
+    own_velocity.push_back(&v);
+  }
   // the pin-slot part's dynamics
   const Part& fp = model.parts[found];
   if (!fp.dynamics || !fp.dynamics->mass || !fp.dynamics->moment_of_inertia)
@@ -1254,6 +1331,10 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   s.slide_limits = motion.translation_limits;
   s.angle_limits = motion.angle_limits;
   s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0};
+  if (own_velocity.size() == 2) {   // {"slide": v, "angle": omega}
+    s.y[2] = own_velocity[0]->value.get_d() / ts;
+    s.y[3] = own_velocity[1]->value.get_d() / ts;
+  }
   s.check_limits(s.y, 0);
   // the part's reach from its pivot at the largest slide (for the angle's share of a chord's deviation)
   double reach = 0;

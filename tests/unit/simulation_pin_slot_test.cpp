@@ -475,14 +475,77 @@ TEST(SimulationPinSlot, OutsideTheClassItRefusesWithClearMessages) {
   } catch (const ModelError& e) {
     EXPECT_NE(std::string(e.what()).find("starts overlapping"), std::string::npos) << e.what();
   }
-  // leaving the slide limits is a GeometryError naming them
-  Follower rising = d.f;
-  rising.s0 = 25;
-  PinSlotSimulation far = PinSlotSimulation::create(
-      read_model(model_json(fixed_cam(1) + ", " + rising.json(), R"({ "parts": ["cam", "follower"] })",
-                            R"("gravity": [0, 9810])"),
-                 "<far>"));
-  EXPECT_THROW(far.run_until(1.0), GeometryError);
+  // an initial velocity of a pin-slot part names its two rates only
+  try {
+    read_model(model_json(fixed_cam(1) + ", " + d.f.json(), R"({ "parts": ["cam", "follower"] })",
+                          R"("velocities": { "follower": { "x": 1 } })"),
+               "<v>");
+    FAIL() << "a planar velocity was taken for a pin-slot part";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/simulation/velocities/follower"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SimulationPinSlot, SlotEndsAndAngleLimitsAreStopsAndInitialVelocitiesStartTheMotion) {
+  Lcg rng{63};
+  for (int c = 0; c < 3; ++c) {
+    // thrown up its slot (rate v0) under a load g along it: the slot's upper end 30 is struck at
+    // 30 - s0 = v0 t + g t^2 / 2, plastically, and the part rests there carrying m g
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.05);
+    f.inertia = f.mass * rng.uniform(500, 2000);
+    f.s0 = rng.uniform(10, 25);
+    const double v0 = rng.uniform(-50, 200), g = rng.uniform(2000, 10000);
+    const std::string json = model_json(fixed_cam(1) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",
+                                        R"("gravity": [0, )" + num(g) + R"(], "velocities": { "follower": { "slide": )" +
+                                            num(v0) + R"( } }, "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<end>"));
+    EXPECT_NEAR(sim.state().slide_rate, v0, 1e-12 * std::abs(v0));
+    const double D = 30 - f.s0, t1 = (-v0 + std::sqrt(v0 * v0 + 2 * g * D)) / g, v1 = v0 + g * t1;
+    sim.run_until(t1 + 0.05);
+    const auto& ev = sim.events();
+    ASSERT_EQ(ev.size(), 2u) << "case " << c;
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_NE(ev[0].features[0].find("slide limit (upper end)"), std::string::npos) << ev[0].features[0];
+    EXPECT_NEAR(ev[0].time, t1, 1e-8 * t1 + 1e-12) << "case " << c;
+    EXPECT_NEAR(ev[0].normal_speed_before, v1, 1e-6 * v1);
+    EXPECT_NEAR(ev[0].impulse, f.mass * v1 / 1000, 1e-6 * f.mass * v1 / 1000);
+    EXPECT_EQ(ev[1].kind, SimulationEvent::Kind::contact);
+    ASSERT_EQ(sim.state().contacts.size(), 1u);
+    EXPECT_EQ(sim.state().contacts[0].pair, no_index);
+    EXPECT_NEAR(sim.state().contacts[0].normal_force, f.mass * g / 1000, 1e-9 * f.mass * g / 1000);
+    EXPECT_NEAR(sim.state().slide, 30 - hold_gap(sim), 1e-3 * hold_gap(sim));
+    EXPECT_EQ(sim.state().slide_rate, 0.0);
+    expect_not_overlapping(sim, {0});
+  }
+  for (int c = 0; c < 3; ++c) {
+    // turned by a torque T from a rate w0 (no other load): I psi'' = T, the angle limit 1 struck
+    // at 1 = w0 t + T t^2 / (2 I), held with T = the limit's force times the part's reach
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.05);
+    f.inertia = f.mass * rng.uniform(500, 2000);
+    const double T = rng.uniform(5, 50), w0 = rng.uniform(-5, 20);
+    f.extra_dynamics = ", \"torque\": " + num(T);
+    const std::string json = model_json(fixed_cam(1) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",
+                                        R"("velocities": { "follower": { "angle": )" + num(w0) + R"( } }, "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<angle>"));
+    const double a = 1000 * T / f.inertia, t1 = (-w0 + std::sqrt(w0 * w0 + 2 * a)) / a, w1 = w0 + a * t1;
+    sim.run_until(t1 + 0.05);
+    const auto& ev = sim.events();
+    ASSERT_EQ(ev.size(), 2u) << "case " << c;
+    EXPECT_NE(ev[0].features[0].find("angle limit (upper)"), std::string::npos) << ev[0].features[0];
+    EXPECT_NEAR(ev[0].time, t1, 1e-8 * t1) << "case " << c;
+    ASSERT_EQ(sim.state().contacts.size(), 1u);
+    // the limit's row is reach x psi (mm): the approach speed is reach w1, the impulse times
+    // reach removes the angular momentum I w1, and the held force times reach balances T
+    const double reach = ev[0].normal_speed_before / w1;
+    EXPECT_GT(reach, 28);   // at least the block's far corner from the pin
+    EXPECT_NEAR(ev[0].impulse * 1000 * reach, f.inertia * w1, 1e-6 * f.inertia * w1);
+    EXPECT_NEAR(sim.state().contacts[0].normal_force * reach, T, 1e-9 * T);
+    EXPECT_NEAR(sim.state().angle, 1 - hold_gap(sim) / reach, 1e-3 * hold_gap(sim) / reach);
+    EXPECT_EQ(sim.state().angle_rate, 0.0);
+    expect_not_overlapping(sim, {0});
+  }
 }
 
 }  // namespace
