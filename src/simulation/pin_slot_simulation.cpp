@@ -23,6 +23,13 @@
 // crossing, so every accepted configuration is free. A pair whose boundaries are exactly farther
 // apart at the step's start than twice the step's travel bound (plus delta), and exactly apart at
 // its end, needs no chord (the far test: exact edge distances, a double travel bound).
+//
+// Sustained contact (session 58): a contact an impact leaves slower than the rest speed is held
+// — a bilateral row of its features' signed gap g(s, psi, phi) within a step (J, the driver's
+// share and the curvature term from a second-order forward-mode evaluation, Taylor2), the state
+// projected onto the hold gap 3/4 delta after each step, its force from the contact LCP (J M^-1
+// J^T over (s, psi)) at each step's start, lifting off where it would turn negative. The slot's
+// ends and angle limits are plastic stops held the same way.
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
