@@ -7,6 +7,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "algebra/near_quotient.hpp"
+#include "algebra/small_integers.hpp"
 
 #include <CGAL/Arr_circle_segment_traits_2.h>
 #include <CGAL/Arr_curve_data_traits_2.h>
@@ -675,18 +676,110 @@ class Builder {
       else
         bound_exchanged(g0, gx, gy);
     };
-    static const mpz_class zero(0);
-    mpz_neg(minus_x_lo_num.get_mpz_t(), box_.x_lo.get_num_mpz_t());
-    mpz_neg(minus_y_lo_num.get_mpz_t(), box_.y_lo.get_num_mpz_t());
-    mpz_neg(minus_x_hi_den.get_mpz_t(), box_.x_hi.get_den_mpz_t());
-    mpz_neg(minus_y_hi_den.get_mpz_t(), box_.y_hi.get_den_mpz_t());
-    bound(minus_x_lo_num, box_.x_lo.get_den(), zero);   // x_lo.den x - x_lo.num >= 0
-    bound(box_.x_hi.get_num(), minus_x_hi_den, zero);   // x_hi.num - x_hi.den x >= 0
-    bound(minus_y_lo_num, zero, box_.y_lo.get_den());
-    bound(box_.y_hi.get_num(), zero, minus_y_hi_den);
-    for (const auto& clause : clauses) {
-      const IntegerPolynomial2& g = clause.atoms[0];
-      bound(coefficient(g, 0, 0), coefficient(g, 1, 0), coefficient(g, 0, 1));
+    // The same bounds in machine integers (algebra/small_integers.hpp): the same integer
+    // expressions, exact in __int128 with every operation checked for overflow; false (nothing
+    // written) when an integer read is not below 2^62 or an expression overflows, and the
+    // bounds are then computed in GMP's integers below.
+    auto small_bounds = [&]() -> bool {
+      namespace si = algebra::small_integers;
+      si::Wide s_k0, s_kx, s_ky;
+      if (!si::read(k0.get_mpz_t(), s_k0) || !si::read(kx.get_mpz_t(), s_kx) || !si::read(ky.get_mpz_t(), s_ky))
+        return false;
+      bool s_has_lo = false, s_has_hi = false, s_empty = false, fits = true;
+      si::Wide s_lo_num = 0, s_lo_den = 1, s_hi_num = 0, s_hi_den = 1;
+      auto exchanged = [&](si::Wide g0, si::Wide gx, si::Wide gy) {   // bound_exchanged's steps
+        si::Wide p, q, t1, t2;
+        if (!fits) return;
+        if (!si::cross(g0, s_ky, gy, s_k0, p) || !si::cross(gx, s_ky, gy, s_kx, q) ||
+            (sy < 0 && (!si::sub(0, p, p) || !si::sub(0, q, q)))) {
+          fits = false;
+          return;
+        }
+        const int sq = si::sign(q);
+        if (sq == 0) {
+          if (p < 0) s_empty = true;
+          return;
+        }
+        if (!(sq > 0 ? si::sub(0, p, p) : si::sub(0, q, q))) {
+          fits = false;
+          return;
+        }
+        if (sq > 0) {   // x >= p / q
+          if (s_has_lo) {
+            if (!si::mul(p, s_lo_den, t1) || !si::mul(s_lo_num, q, t2)) {
+              fits = false;
+              return;
+            }
+            if (!(t2 < t1)) return;
+          }
+          s_has_lo = true;
+          s_lo_num = p;
+          s_lo_den = q;
+        } else {        // x <= p / q
+          if (s_has_hi) {
+            if (!si::mul(p, s_hi_den, t1) || !si::mul(s_hi_num, q, t2)) {
+              fits = false;
+              return;
+            }
+            if (!(t1 < t2)) return;
+          }
+          s_has_hi = true;
+          s_hi_num = p;
+          s_hi_den = q;
+        }
+      };
+      auto small_bound = [&](si::Wide g0, si::Wide gx, si::Wide gy) {
+        if (vertical)
+          exchanged(g0, gy, gx);
+        else
+          exchanged(g0, gx, gy);
+      };
+      si::Wide x_lo_num, x_lo_den, x_hi_num, x_hi_den, y_lo_num, y_lo_den, y_hi_num, y_hi_den;
+      if (!si::read(box_.x_lo.get_num_mpz_t(), x_lo_num) || !si::read(box_.x_lo.get_den_mpz_t(), x_lo_den) ||
+          !si::read(box_.x_hi.get_num_mpz_t(), x_hi_num) || !si::read(box_.x_hi.get_den_mpz_t(), x_hi_den) ||
+          !si::read(box_.y_lo.get_num_mpz_t(), y_lo_num) || !si::read(box_.y_lo.get_den_mpz_t(), y_lo_den) ||
+          !si::read(box_.y_hi.get_num_mpz_t(), y_hi_num) || !si::read(box_.y_hi.get_den_mpz_t(), y_hi_den))
+        return false;
+      small_bound(-x_lo_num, x_lo_den, 0);   // (below 2^62 in magnitude: negated exactly)
+      small_bound(x_hi_num, -x_hi_den, 0);
+      small_bound(-y_lo_num, 0, y_lo_den);
+      small_bound(y_hi_num, 0, -y_hi_den);
+      for (const auto& clause : clauses) {
+        const IntegerPolynomial2& g = clause.atoms[0];
+        si::Wide g0, gx, gy;
+        if (!si::read(coefficient(g, 0, 0).get_mpz_t(), g0) || !si::read(coefficient(g, 1, 0).get_mpz_t(), gx) ||
+            !si::read(coefficient(g, 0, 1).get_mpz_t(), gy))
+          return false;
+        small_bound(g0, gx, gy);
+      }
+      if (!fits) return false;
+      has_lo = s_has_lo;
+      has_hi = s_has_hi;
+      empty = s_empty;
+      if (has_lo) {
+        si::write(lo_num.get_mpz_t(), s_lo_num);
+        si::write(lo_den.get_mpz_t(), s_lo_den);
+      }
+      if (has_hi) {
+        si::write(hi_num.get_mpz_t(), s_hi_num);
+        si::write(hi_den.get_mpz_t(), s_hi_den);
+      }
+      return true;
+    };
+    if (!small_bounds()) {
+      static const mpz_class zero(0);
+      mpz_neg(minus_x_lo_num.get_mpz_t(), box_.x_lo.get_num_mpz_t());
+      mpz_neg(minus_y_lo_num.get_mpz_t(), box_.y_lo.get_num_mpz_t());
+      mpz_neg(minus_x_hi_den.get_mpz_t(), box_.x_hi.get_den_mpz_t());
+      mpz_neg(minus_y_hi_den.get_mpz_t(), box_.y_hi.get_den_mpz_t());
+      bound(minus_x_lo_num, box_.x_lo.get_den(), zero);   // x_lo.den x - x_lo.num >= 0
+      bound(box_.x_hi.get_num(), minus_x_hi_den, zero);   // x_hi.num - x_hi.den x >= 0
+      bound(minus_y_lo_num, zero, box_.y_lo.get_den());
+      bound(box_.y_hi.get_num(), zero, minus_y_hi_den);
+      for (const auto& clause : clauses) {
+        const IntegerPolynomial2& g = clause.atoms[0];
+        bound(coefficient(g, 0, 0), coefficient(g, 1, 0), coefficient(g, 0, 1));
+      }
     }
     if (empty || !has_lo || !has_hi) {
       if (!empty && (!has_lo || !has_hi)) throw GeometryError("internal: a clipped contact segment is unbounded");

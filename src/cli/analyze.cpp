@@ -60,24 +60,10 @@ struct AnalyzeOptions {
   std::set<std::string> given;   // the long options given on the command line
 };
 
-std::string trim(const std::string& text) {
-  std::size_t first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  std::size_t last = text.find_last_not_of(" \t");
-  return text.substr(first, last - first + 1);
-}
-
 // A number with an optional unit suffix: angles in the model's unit unless "deg"/"rad" is
 // given; converted to rad (degrees through a double: a driver position, rounded anyway).
 Rational coordinate_value(const std::string& text, bool angle, const std::string& unit, const std::string& what) {
-  std::string body = trim(text), suffix = angle ? unit : "mm";
-  for (const char* word : {"deg", "rad", "mm"}) {
-    std::string w = word;
-    if (body.size() > w.size() && body.compare(body.size() - w.size(), w.size(), w) == 0) {
-      suffix = w;
-      body = trim(body.substr(0, body.size() - w.size()));
-    }
-  }
+  const auto [body, suffix] = split_unit_suffix(text, {"deg", "rad", "mm"}, angle ? unit : "mm");
   Rational value;
   try {
     value = parse_rational(body);

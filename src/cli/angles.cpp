@@ -73,4 +73,25 @@ std::string angle_label(const std::string& text, const ExactPosition& position) 
   return text + " is taken as " + exact + " rad";
 }
 
+std::string trim(const std::string& text) {
+  std::size_t first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  std::size_t last = text.find_last_not_of(" \t");
+  return text.substr(first, last - first + 1);
+}
+
+SuffixedNumber split_unit_suffix(const std::string& text, std::initializer_list<const char*> units,
+                                 const std::string& fallback) {
+  SuffixedNumber number{trim(text), fallback};
+  for (const char* word : units) {
+    const std::string w = word;
+    std::string& body = number.body;
+    if (body.size() > w.size() && body.compare(body.size() - w.size(), w.size(), w) == 0) {
+      number.unit = w;
+      body = trim(body.substr(0, body.size() - w.size()));
+    }
+  }
+  return number;
+}
+
 }  // namespace hipair::cli

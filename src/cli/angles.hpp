@@ -4,6 +4,7 @@
 #include <hipair/certificate.hpp>
 #include <hipair/rational.hpp>
 
+#include <initializer_list>
 #include <string>
 
 namespace hipair::cli {
@@ -41,5 +42,18 @@ ExactPosition exact_position_from_text(const std::string& text, const std::strin
 /// as given, a whole quarter turn in degrees), else "45deg is taken as 0.785398163397448309 rad"
 /// with the rational angle `position` records (exactly: a decimal on the 10^-18 rad grid).
 std::string angle_label(const std::string& text, const ExactPosition& position);
+
+/// `text` without leading and trailing blanks and tabs.
+std::string trim(const std::string& text);
+
+/// A number followed by an optional unit word ("12.5deg", "3 mm"): the text trimmed, then each of
+/// `units` in turn split off (and the rest trimmed again) where the text ends with it; `unit` is
+/// the last one split off, `fallback` when none was.
+struct SuffixedNumber {
+  std::string body;
+  std::string unit;
+};
+SuffixedNumber split_unit_suffix(const std::string& text, std::initializer_list<const char*> units,
+                                 const std::string& fallback);
 
 }  // namespace hipair::cli

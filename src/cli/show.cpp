@@ -29,24 +29,9 @@ struct ShowOptions {
   double width = 900;
 };
 
-std::string trim(const std::string& text) {
-  std::size_t first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  std::size_t last = text.find_last_not_of(" \t");
-  return text.substr(first, last - first + 1);
-}
-
 // An angle in the model's angle unit, or with an explicit "deg"/"rad" suffix, to rad.
 Rational angle_value(const std::string& text, const std::string& unit, const std::string& item) {
-  std::string body = trim(text);
-  std::string suffix = unit;
-  for (const char* word : {"deg", "rad"}) {
-    std::string w = word;
-    if (body.size() > w.size() && body.compare(body.size() - w.size(), w.size(), w) == 0) {
-      suffix = w;
-      body = trim(body.substr(0, body.size() - w.size()));
-    }
-  }
+  const auto [body, suffix] = split_unit_suffix(text, {"deg", "rad"}, unit);
   Rational value;
   try {
     value = parse_rational(body);

@@ -1025,6 +1025,24 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 int run_pin_slot(const Model& model, const SimulateOptions& options) {
   SimulationOptions sim_options = stepping_options(options);
   if (options.region == "operating") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
+  // Each step's chord turns the pair's relative angle by at most π/4 (docs/simulation.md,
+  // "Pin-in-slot parts"): a driver at 10^300 rad/s made steps of 10^-300 s, each with its exact
+  // chord tests, and the run went on for hours towards its budget. Refused at once, naming it.
+  if (model.simulation)
+    for (const SimulationSpec::Driver& driver : model.simulation->drivers) {
+      if (!driver.profile.empty()) continue;   // (refused by the simulator)
+      const double speed = std::abs(driver.speed.get_d()), steps = options.t_end * speed / (std::numbers::pi / 4);
+      if (!(steps > static_cast<double>(options.max_steps))) continue;
+      const std::string& tu = model.simulation->time_unit;
+      throw ModelError(driver.pointer, "driver '" + model.parts[driver.part].name + "' turns at " + number(speed) +
+                                           " rad/" + tu + ": a pin-slot run's chords turn the pair by at most π/4, so --t-end " +
+                                           number(options.t_end) + " " + tu + " needs at least about " +
+                                           (std::isfinite(steps) ? number(steps) : std::string("1e308")) +
+                                           " steps, beyond the step budget (--max-steps " +
+                                           std::to_string(options.max_steps) + "); nothing was run: give a --t-end of at most " +
+                                           number(static_cast<double>(options.max_steps) * std::numbers::pi / 4 / speed) +
+                                           " " + tu + ", a larger --max-steps or a slower driver");
+    }
   PinSlotSimulation simulation = PinSlotSimulation::create(model, sim_options);
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
@@ -1248,7 +1266,11 @@ int run(const SimulateOptions& options) {
               << (model.parts[p].motion.kind == Motion::Kind::rotation ? " rad" : " mm") << ", velocity "
               << shown(simulation.state().velocity[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
               << " per " << tu << "\n";
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
+  // kinetic + potential, the potential of a constant torque T (or force F) being -T theta
+  // (-F x): the total is negative once a driving torque has given less kinetic energy than the
+  // work it did (spur-gears.json: -132.6 N·mm at 0.3 s, kinetic 240.0, the torque's -372.6)
+  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu
+            << "·mm (kinetic + potential; a constant torque's potential is -T·angle)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 

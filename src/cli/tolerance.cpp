@@ -63,13 +63,6 @@ struct ToleranceCliOptions {
   bool allow_out_of_tolerance = false;
 };
 
-std::string trim(const std::string& text) {
-  std::size_t first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  std::size_t last = text.find_last_not_of(" \t");
-  return text.substr(first, last - first + 1);
-}
-
 // "A:B" -> (A, B), both non-empty. \throws ModelError naming the option.
 std::pair<std::string, std::string> split_pair(const std::string& text, const std::string& option) {
   std::size_t colon = text.find(':');
@@ -80,15 +73,8 @@ std::pair<std::string, std::string> split_pair(const std::string& text, const st
 
 // A driver coordinate: rad by default for a rotating driver ("deg" suffix accepted), mm else.
 Rational coordinate(const std::string& text, const std::string& option) {
-  std::string body = trim(text);
-  bool degrees = false;
-  for (const char* unit : {"deg", "rad", "mm"}) {
-    std::string u = unit;
-    if (body.size() > u.size() && body.compare(body.size() - u.size(), u.size(), u) == 0) {
-      degrees = u == "deg";
-      body = trim(body.substr(0, body.size() - u.size()));
-    }
-  }
+  const auto [body, unit] = split_unit_suffix(text, {"deg", "rad", "mm"}, "");
+  const bool degrees = unit == "deg";
   Rational value;
   try {
     value = parse_rational(body);

@@ -19,14 +19,16 @@ long binary_exponent(const Rational& value) {
          static_cast<long>(mpz_sizeinbase(value.get_den_mpz_t(), 2));
 }
 
-// The exact axis-aligned box of the points seen (empty until the first).
+// The exact axis-aligned box of the points seen (empty until the first): its sides are the
+// extreme coordinates themselves, read in place (the points must outlive the box; no rational
+// is copied per improvement).
 struct BoundingBox {
-  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
+  const Rational *x_lo = nullptr, *x_hi = nullptr, *y_lo = nullptr, *y_hi = nullptr;
   void see(const Point& p) {
-    if (!x_lo || p.x < *x_lo) x_lo = p.x;
-    if (!x_hi || p.x > *x_hi) x_hi = p.x;
-    if (!y_lo || p.y < *y_lo) y_lo = p.y;
-    if (!y_hi || p.y > *y_hi) y_hi = p.y;
+    if (!x_lo || p.x < *x_lo) x_lo = &p.x;
+    if (!x_hi || p.x > *x_hi) x_hi = &p.x;
+    if (!y_lo || p.y < *y_lo) y_lo = &p.y;
+    if (!y_hi || p.y > *y_hi) y_hi = &p.y;
   }
   bool empty() const { return !x_lo; }
   /// The larger side. \pre !empty()

@@ -24,7 +24,7 @@ std::string CSpaceBuildProgress::text() const {
       return pair + "classifying chart " + std::to_string(chart) + "/" + std::to_string(charts) + ": " +
              std::to_string(100 * done / std::max<std::size_t>(total, 1)) + "%" +
              (coefficient_bits > 300 ? " (exact signs, coefficients of up to " + std::to_string(coefficient_bits) +
-                                           " bits: lengths of very different scales)"
+                                           " bits)"
                                      : "");
     case Stage::done:
       break;

@@ -4,6 +4,7 @@
 #include "cspace/builder_impl.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/proportional.hpp"
+#include "algebra/small_integers.hpp"
 #include "cspace/angle_filter.hpp"
 #include "cspace/label_filter.hpp"
 #include "cspace/quadratic_root.hpp"
@@ -275,6 +276,73 @@ const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std:
   return f.coefficients[i][j];
 }
 
+bool linear_atom(const IntegerPolynomial2& p) {
+  return p.degree_x() <= 1 && p.degree_y() <= 1 && sgn(coefficient_of(p, 1, 1)) == 0;
+}
+
+// valid_point_in_box's search in machine integers (algebra/small_integers.hpp): the same signs
+// of the same integer expressions, each computed exactly in __int128 with every operation
+// checked for overflow. Nothing (the caller takes its GMP path) when an integer read is not
+// below 2^62, an expression overflows, or a non-linear atom would have to be evaluated.
+std::optional<bool> valid_point_in_box_small(const ContactCurve& curve, const raw::Box& box, const mpz_class& a_z,
+                                             const mpz_class& b_z, const mpz_class& c_z) {
+  namespace si = algebra::small_integers;
+  si::Wide a, b, c;
+  si::Wide bounds[8];   // x_lo, x_hi, y_lo, y_hi: numerator, denominator
+  const Rational* sides[4] = {&box.x_lo, &box.x_hi, &box.y_lo, &box.y_hi};
+  if (!si::read(a_z.get_mpz_t(), a) || !si::read(b_z.get_mpz_t(), b) || !si::read(c_z.get_mpz_t(), c)) return std::nullopt;
+  for (int i = 0; i < 4; ++i)
+    if (!si::read(sides[i]->get_num_mpz_t(), bounds[2 * i]) || !si::read(sides[i]->get_den_mpz_t(), bounds[2 * i + 1]))
+      return std::nullopt;
+  // sgn(num bound_den - bound_num det) (num / det against the bound, times sgn(det))
+  auto against = [&](si::Wide num, si::Wide det, int side, int& out) {
+    si::Wide t;
+    if (!si::cross(num, bounds[2 * side + 1], bounds[2 * side], det, t)) return false;
+    out = si::sign(t);
+    return true;
+  };
+  for (const auto& clause : curve.validity)
+    for (const auto& atom : clause.atoms) {
+      if (!linear_atom(atom)) continue;
+      si::Wide d, e, g, det, x_num, y_num;
+      if (!si::read(coefficient_of(atom, 1, 0).get_mpz_t(), d) || !si::read(coefficient_of(atom, 0, 1).get_mpz_t(), e) ||
+          !si::read(coefficient_of(atom, 0, 0).get_mpz_t(), g) || !si::cross(a, e, b, d, det))
+        return std::nullopt;
+      const int s = si::sign(det);
+      if (s == 0) continue;
+      if (!si::cross(b, g, c, e, x_num) || !si::cross(c, d, a, g, y_num)) return std::nullopt;
+      // x_lo <= x <= x_hi and y_lo <= y <= y_hi
+      int x_lo, y_lo, x_hi, y_hi;
+      if (!against(x_num, det, 0, x_lo) || !against(y_num, det, 2, y_lo)) return std::nullopt;
+      if (x_lo * s < 0 || y_lo * s < 0) continue;
+      if (!against(x_num, det, 1, x_hi) || !against(y_num, det, 3, y_hi)) return std::nullopt;
+      if (x_hi * s > 0 || y_hi * s > 0) continue;
+      // every clause: some atom >= 0 at the point (nothing: a non-linear atom, or an overflow)
+      auto valid = [&]() -> std::optional<bool> {
+        for (const auto& other : curve.validity) {
+          bool any = false;
+          for (const auto& p : other.atoms) {
+            if (!linear_atom(p)) return std::nullopt;
+            si::Wide pa, pb, pc, t, u;
+            if (!si::read(coefficient_of(p, 1, 0).get_mpz_t(), pa) || !si::read(coefficient_of(p, 0, 1).get_mpz_t(), pb) ||
+                !si::read(coefficient_of(p, 0, 0).get_mpz_t(), pc) || !si::mul(pa, x_num, t) || !si::mul(pb, y_num, u) ||
+                !si::add(t, u, t) || !si::mul(pc, det, u) || !si::add(t, u, t))
+              return std::nullopt;
+            if (si::sign(t) * s >= 0) {
+              any = true;
+              break;
+            }
+          }
+          if (!any) return false;
+        }
+        return true;
+      }();
+      if (!valid) return std::nullopt;
+      if (*valid) return true;
+    }
+  return false;
+}
+
 }  // namespace
 
 // An exact witness that the culling quadtree keeps a line: a point of the line inside the
@@ -282,7 +350,16 @@ const mpz_class& coefficient_of(const IntegerPolynomial2& f, std::size_t i, std:
 // meets the line of one of its linear atoms. The quadtree's interval enclosures contain the
 // exact values at that point, so the finest cell holding it survives every test (there is no
 // blocked test without a usable grid): the curve is kept with the same (empty) windows.
+// Machine integers first (valid_point_in_box_small), GMP's when they do not suffice.
 bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
+  const IntegerPolynomial2& f = curve.polynomial;
+  if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient_of(f, 1, 1)) != 0 || curve.validity.empty()) return false;
+  const mpz_class &a = coefficient_of(f, 1, 0), &b = coefficient_of(f, 0, 1), &c = coefficient_of(f, 0, 0);
+  if (const std::optional<bool> small = valid_point_in_box_small(curve, box, a, b, c)) return *small;
+  return valid_point_in_box_gmp(curve, box);
+}
+
+bool valid_point_in_box_gmp(const ContactCurve& curve, const raw::Box& box) {
   const IntegerPolynomial2& f = curve.polynomial;
   if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient_of(f, 1, 1)) != 0 || curve.validity.empty()) return false;
   const mpz_class &a = coefficient_of(f, 1, 0), &b = coefficient_of(f, 0, 1), &c = coefficient_of(f, 0, 0);
@@ -302,9 +379,6 @@ bool valid_point_in_box(const ContactCurve& curve, const raw::Box& box) {
     mpz_mul(t.get_mpz_t(), num.get_mpz_t(), bound.get_den_mpz_t());
     mpz_submul(t.get_mpz_t(), bound.get_num_mpz_t(), det.get_mpz_t());
     return sgn(t) * s <= 0;
-  };
-  auto linear_atom = [](const IntegerPolynomial2& p) {
-    return p.degree_x() <= 1 && p.degree_y() <= 1 && sgn(coefficient_of(p, 1, 1)) == 0;
   };
   for (const auto& clause : curve.validity)
     for (const auto& atom : clause.atoms) {
@@ -477,7 +551,18 @@ bool line_of(const IntegerPolynomial2& f, const mpz_class*& a, const mpz_class*&
 // c dx dy + a nx dy + b ny dx, with x = nx / dx, y = ny / dy and dx, dy > 0).
 // (Accumulated in place in this thread's two scratch integers: no integer allocated per call
 // once they have grown.)
+// Machine integers first (algebra/small_integers.hpp: exact, every operation checked for
+// overflow), these GMP integers when an integer is not below 2^62 or the value overflows.
 int sign_of_line_at(const mpz_class& a, const mpz_class& b, const mpz_class& c, const Rational& x, const Rational& y) {
+  {
+    namespace si = algebra::small_integers;
+    si::Wide sa, sb, sc, xn, xd, yn, yd, value, term;
+    if (si::read(a.get_mpz_t(), sa) && si::read(b.get_mpz_t(), sb) && si::read(c.get_mpz_t(), sc) &&
+        si::read(x.get_num_mpz_t(), xn) && si::read(x.get_den_mpz_t(), xd) && si::read(y.get_num_mpz_t(), yn) &&
+        si::read(y.get_den_mpz_t(), yd) && si::mul(sc, xd, value) && si::mul(sa, xn, term) && si::add(value, term, value) &&
+        si::mul(value, yd, value) && si::mul(sb, yn, term) && si::mul(term, xd, term) && si::add(value, term, value))
+      return si::sign(value);
+  }
   thread_local mpz_class value, term;
   mpz_mul(value.get_mpz_t(), c.get_mpz_t(), x.get_den_mpz_t());
   mpz_addmul(value.get_mpz_t(), a.get_mpz_t(), x.get_num_mpz_t());
@@ -615,6 +700,16 @@ void label_edges(ChartData& chart, bool by_support) {
       const Rational& y = data.sample_y.lower;
       for (std::size_t k : candidates) {
         if (!near(k)) continue;
+        if (x.exact) {
+          // a rational x (a chart side, a vertical contact line of a polygon pair): the same
+          // signs at the rational point (x.lower, y) that vanishes_at and valid_at take for an
+          // exact x, without their substitution polynomials (lines: sign_of_line_at)
+          const IntegerPolynomial2& f = chart.polynomials[k];
+          const mpz_class *a, *b, *c;
+          const int value = line_of(f, a, b, c) ? sign_of_line_at(*a, *b, *c, x.lower, y) : algebra::sign_at(f, x.lower, y);
+          if (value == 0 && valid_at_rational(chart.validity[k], x.lower, y)) data.curves.push_back(k);
+          continue;
+        }
         if (algebra::vanishes_at(chart.polynomials[k], x, y) && valid_at(chart.validity[k], x, y))
           data.curves.push_back(k);
       }

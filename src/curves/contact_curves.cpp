@@ -15,6 +15,7 @@
 #include "kernels/contact.hpp"
 #include "kernels/contact_table.hpp"
 #include "kernels/interval.hpp"
+#include "algebra/small_integers.hpp"
 
 #include <hipair/error.hpp>
 
@@ -25,9 +26,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <unordered_map>
 
@@ -1526,11 +1529,98 @@ IntegerPolynomial2 primitive_affine(mpz_class& c, mpz_class& cx, mpz_class& cy, 
   return p;
 }
 
+bool front_contact_gmp(const HomogeneousPoint& p, const FrontSegment& s, ContactCurve& curve);
+
+// primitive_affine of c + cx x + cy y given as machine integers below 2^63 in magnitude: the
+// same polynomial (the same content removed, the same trimming), its integers made from longs.
+IntegerPolynomial2 primitive_affine_small(long c, long cx, long cy) {
+  IntegerPolynomial2 p;
+  auto magnitude = [](long v) { return v < 0 ? 0 - static_cast<unsigned long>(v) : static_cast<unsigned long>(v); };
+  const unsigned long g = std::gcd(std::gcd(magnitude(c), magnitude(cx)), magnitude(cy));
+  if (g == 0) return p;   // the zero polynomial: no coefficients
+  if (g > 1) {            // (exact divisions: |v| / g of the magnitude, the sign kept)
+    const long sg = static_cast<long>(g);
+    c /= sg;
+    cx /= sg;
+    cy /= sg;
+  }
+  if (cx != 0) {
+    p.coefficients.resize(2);
+    p.coefficients[1].emplace_back(cx);
+  } else {
+    p.coefficients.resize(1);
+  }
+  auto& row = p.coefficients[0];
+  if (cy != 0) {
+    row.reserve(2);
+    row.emplace_back(c);
+    row.emplace_back(cy);
+  } else if (c != 0) {
+    row.emplace_back(c);
+  }
+  return p;
+}
+
+// front_contact in machine integers (algebra/small_integers.hpp): the same integer expressions,
+// exact in __int128 with every operation checked for overflow, and the same polynomials
+// (primitive_affine_small). Nothing written and std::nullopt when an integer read is not below
+// 2^62 or a form's coefficient does not fit a long: front_contact then takes its GMP path.
+std::optional<bool> front_contact_small(const HomogeneousPoint& p, const FrontSegment& s, ContactCurve& curve) {
+  namespace si = algebra::small_integers;
+  si::Wide px, py, pw, w1, w2, dx, dy, cross1, dot1, dot2, k, kx, ky, gx, gy;
+  if (!si::read(p.x.get_mpz_t(), px) || !si::read(p.y.get_mpz_t(), py) || !si::read(p.w.get_mpz_t(), pw) ||
+      !si::read(s.w1->get_mpz_t(), w1) || !si::read(s.w2->get_mpz_t(), w2) || !si::read(s.dx->get_mpz_t(), dx) ||
+      !si::read(s.dy->get_mpz_t(), dy) || !si::read(s.cross1.get_mpz_t(), cross1) || !si::read(s.dot1.get_mpz_t(), dot1) ||
+      !si::read(s.dot2.get_mpz_t(), dot2) || !si::read(s.k->get_mpz_t(), k) || !si::read(s.kx.get_mpz_t(), kx) ||
+      !si::read(s.ky.get_mpz_t(), ky) || !si::read(s.gx.get_mpz_t(), gx) || !si::read(s.gy.get_mpz_t(), gy))
+    return std::nullopt;
+  auto fits_long = [](si::Wide v) { return v >= std::numeric_limits<long>::min() + 1L && v <= std::numeric_limits<long>::max(); };
+  // value: ((P x D) W1 - cross1 W) k + kx W W1 x + ky W W1 y
+  si::Wide ww1, pd, c, cx, cy;
+  if (!si::mul(pw, w1, ww1) || !si::cross(px, dy, py, dx, pd) || !si::cross(pd, w1, cross1, pw, c) || !si::mul(c, k, c) ||
+      !si::mul(kx, ww1, cx) || !si::mul(ky, ww1, cy) || !fits_long(c) || !fits_long(cx) || !fits_long(cy))
+    return std::nullopt;
+  // along: ((P . D) W1 - dot1 W) k + gx W W1 x + gy W W1 y; the far end: (dot2 W - (P . D) W2) k - gx W W2 x - gy W W2 y
+  const bool constant_atoms = gx == 0 && gy == 0;
+  si::Wide pdot, near0, far0, nx = 0, ny = 0, fx = 0, fy = 0, ww2, t;
+  if (!si::mul(px, dx, pdot) || !si::mul(py, dy, t) || !si::add(pdot, t, pdot) || !si::cross(pdot, w1, dot1, pw, near0) ||
+      !si::mul(near0, k, near0) || !si::cross(dot2, pw, pdot, w2, far0) || !si::mul(far0, k, far0) || !fits_long(near0) ||
+      !fits_long(far0))
+    return std::nullopt;
+  if (!constant_atoms && (!si::mul(gx, ww1, nx) || !si::mul(gy, ww1, ny) || !si::mul(pw, w2, ww2) || !si::mul(gx, ww2, fx) ||
+                          !si::mul(gy, ww2, fy) || !fits_long(nx) || !fits_long(ny) || !fits_long(fx) || !fits_long(fy)))
+    return std::nullopt;
+  curve.polynomial = primitive_affine_small(static_cast<long>(c), static_cast<long>(cx), static_cast<long>(cy));
+  const IntegerPolynomial2& value = curve.polynomial;
+  if (!value.is_zero() && value.degree_x() == 0 && value.degree_y() == 0) return false;   // a non-zero constant
+  if (constant_atoms) {
+    if (near0 < 0) return false;
+  } else {
+    curve.validity.reserve(2);
+    curve.validity.emplace_back().atoms.push_back(
+        primitive_affine_small(static_cast<long>(near0), static_cast<long>(nx), static_cast<long>(ny)));
+  }
+  if (constant_atoms) {
+    if (far0 < 0) return false;
+  } else {
+    curve.validity.emplace_back().atoms.push_back(
+        primitive_affine_small(static_cast<long>(far0), -static_cast<long>(fx), -static_cast<long>(fy)));
+  }
+  return true;
+}
+
 // The contact of `vertex` on `segment` and its validity clauses (a constant atom that holds is
 // left out, as convert_validity does): false when the features never touch within both (the curve is then not
-// kept; `curve` is left partly written).
+// kept; `curve` is left partly written). Machine integers first (front_contact_small), GMP's
+// when they do not suffice.
 bool front_contact(const FrontVertex& vertex, const FrontSegment& s, ContactCurve& curve) {
   const HomogeneousPoint& p = *vertex.p;
+  if (const std::optional<bool> small = front_contact_small(p, s, curve)) return *small;
+  return front_contact_gmp(p, s, curve);
+}
+
+// front_contact in GMP integers (any size).
+bool front_contact_gmp(const HomogeneousPoint& p, const FrontSegment& s, ContactCurve& curve) {
   // (this thread's scratch integers, products accumulated in place with mpz_addmul /
   // mpz_submul: no integer allocated per call once they have grown)
   thread_local mpz_class c, cx, cy, scratch, ww1, pd;

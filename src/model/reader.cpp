@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -281,11 +282,15 @@ Model read_model_file(const std::filesystem::path& path, const ReadOptions& opti
   // read in blocks, at most 256 MiB: a device or pipe without end (/dev/zero) is refused instead
   // of read until memory runs out (session 33: `hipair cspace /dev/zero` hung)
   constexpr std::size_t most_bytes = std::size_t{256} << 20;
+  // (the block is not zeroed: filling 1 MiB with zeros was about 1 M instructions, more than a
+  // small translating pair's whole C-space build, docs/performance.md session 58; read() writes
+  // the gcount() bytes appended)
   std::string content;
-  std::vector<char> block(std::size_t{1} << 20);
+  constexpr std::size_t block_size = std::size_t{1} << 20;
+  const std::unique_ptr<char[]> block = std::make_unique_for_overwrite<char[]>(block_size);
   while (file) {
-    file.read(block.data(), static_cast<std::streamsize>(block.size()));
-    content.append(block.data(), static_cast<std::size_t>(file.gcount()));
+    file.read(block.get(), static_cast<std::streamsize>(block_size));
+    content.append(block.get(), static_cast<std::size_t>(file.gcount()));
     if (content.size() > most_bytes)
       throw IoError("cannot read model file '" + path.string() + "': it is larger than 256 MiB");
   }

@@ -104,6 +104,9 @@ SlicedConfiguration chord_point(const SlicedConfiguration& from, const SlicedCon
 }
 
 using State4 = std::array<double, 4>;   // s, psi, s', psi'
+bool finite(const State4& s) {
+  return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); });
+}
 
 // An axis-aligned box holding an edge, exact.
 struct Box {
@@ -347,9 +350,28 @@ struct PinSlotSimulation::Impl {
   struct HeldRow {
     double g = 0, J[2] = {0, 0}, g_phi = 0, kappa = 0, omega = 0;
   };
-  double delta = 0, accuracy = 1e-9, reach = 0, rest_speed = 0, hold_gap = 0;
+  double delta = 0, accuracy = 1e-9, rest_speed = 0, hold_gap = 0;
+  // the run's length scale: the part's reach at its initial slide (reach_at; the angle limits'
+  // rows are their angle gap times it)
+  double size = 0;
   double forced_step = 0;   // a step length located by bisection (a held contact's force or edge ends there)
   int pending_limit = 0;    // the limit the forced step ends at (struck when the step is accepted)
+  // the part's reach from its pin at slide 0 (its points' and arcs' largest distance from P)
+  double part_reach = 0;
+  // the part's reach from the pin's line position at the states given: part_reach plus their
+  // largest |slide| (until session 58 the largest |slide limit|: a slot with limits of 1e9 mm made
+  // the chord deviation 1 mm and the rest speed 140 mm/s, and the run stopped at the pin-slot
+  // cam's second impact as a contact that would have to be sustained)
+  double reach_at(std::initializer_list<const State4*> states) const {
+    double slide = 0;
+    for (const State4* x : states) slide = std::max(slide, std::abs((*x)[0]));
+    return part_reach + slide;
+  }
+  double reach_at(std::initializer_list<std::pair<const State4*, double>> states) const {
+    double slide = 0;
+    for (const auto& x : states) slide = std::max(slide, std::abs((*x.first)[0]));
+    return part_reach + slide;
+  }
   double t = 0;
   State4 y{};
   std::vector<SimulationEvent> events;
@@ -362,6 +384,8 @@ struct PinSlotSimulation::Impl {
   }
   // the world configuration of the pin-slot part as a planar part about P, exact
   SlicedConfiguration follower_configuration(const State4& s) const {
+    // (before any double becomes a Rational: GMP's mpq_set_d(inf) raises SIGFPE)
+    if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     SlicedConfiguration c;
     c.angle = exact_angle(s[1]);
     auto [cs, sn] = cos_sin(c.angle);
@@ -371,7 +395,6 @@ struct PinSlotSimulation::Impl {
     c.y = slide * (sn * dir.x + cs * dir.y);
     c.x.canonicalize();
     c.y.canonicalize();
-    if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     return c;
   }
   SlicedConfiguration relative(const Pair& p, const State4& s, double time) const {
@@ -399,6 +422,29 @@ struct PinSlotSimulation::Impl {
     M[1][1] = inertia_c + mass * (cp2 + 2 * s[0] * b + s[0] * s[0]);
     Q[0] = F[0] * u[0] + F[1] * u[1] - k_lin * (s[0] - rest_lin) + mass * s[3] * s[3] * (b + s[0]);
     Q[1] = F[0] * kw[0] + F[1] * kw[1] + torque - k_tor * (s[1] - rest_tor) - 2 * mass * (b + s[0]) * s[2] * s[3];
+  }
+  // M^-1 v for the mass matrix M = [[m, m e], [m e, M22]] at slide s0, by the Schur complement
+  // D = M22 - m e^2 = I_c + m (b + s0)^2 > 0 (|d| = 1: |c - P|^2 = e^2 + b^2): x1 = (v1 - e v0) / D,
+  // x0 = v0 / m - e x1. Never through det M = m M22 - (m e)^2 and M22 v0: those products of a mass,
+  // a moment of inertia and a force leave the doubles' range long before the data do (lengths
+  // 10^-150 gave no motion at all: M22 Q_s underflowed to 0; 10^150 or a mass 10^160 gave inf).
+  void inverse_mass_times(double s0, const double v[2], double x[2]) const {
+    const double D = inertia_c + mass * (b + s0) * (b + s0);
+    x[1] = (v[1] - e * v[0]) / D;
+    x[0] = v[0] / mass - e * x[1];
+  }
+  // M^-1 as a matrix, column by column through inverse_mass_times (its entries 1/m + e^2/D, -e/D
+  // and 1/D: never det M)
+  Eigen::Matrix2d inverse_mass(double s0) const {
+    Eigen::Matrix2d out;
+    for (int c = 0; c < 2; ++c) {
+      const double unit[2] = {c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0};
+      double x[2];
+      inverse_mass_times(s0, unit, x);
+      out(0, c) = x[0];
+      out(1, c) = x[1];
+    }
+    return out;
   }
   // The placements of a held contact's two parts along the straight motion (s, psi, phi) +
   // tau (ds, dpsi, dphi) at `time`.
@@ -446,8 +492,8 @@ struct PinSlotSimulation::Impl {
     switch (limit) {
       case 1: row.g = slide_limits->hi.get_d() - s[0], row.J[0] = -1; break;
       case 2: row.g = s[0] - slide_limits->lo.get_d(), row.J[0] = 1; break;
-      case 3: row.g = (angle_limits->hi.get_d() - s[1]) * reach, row.J[1] = -reach; break;
-      default: row.g = (s[1] - angle_limits->lo.get_d()) * reach, row.J[1] = reach; break;
+      case 3: row.g = (angle_limits->hi.get_d() - s[1]) * size, row.J[1] = -size; break;
+      default: row.g = (s[1] - angle_limits->lo.get_d()) * size, row.J[1] = size; break;
     }
     return row;
   }
@@ -471,14 +517,12 @@ struct PinSlotSimulation::Impl {
   }
   // The held contacts' bilateral multipliers at a state (the minimum-norm solution when their
   // rows are dependent) and the accelerations they give.
-  Eigen::VectorXd held_multipliers(const State4& s, double time, double M[2][2], double Q[2],
+  Eigen::VectorXd held_multipliers(const State4& s, double time, const double Q[2],
                                    std::vector<HeldRow>* rows_out = nullptr) const {
     std::vector<HeldRow> rows;
     for (const Held& h : held) rows.push_back(held_row(h, s, time));
     const auto k = static_cast<Eigen::Index>(rows.size());
-    Eigen::Matrix2d Mi;
-    Mi << M[0][0], M[0][1], M[1][0], M[1][1];
-    Mi = Mi.inverse().eval();
+    const Eigen::Matrix2d Mi = inverse_mass(s[0]);
     Eigen::MatrixXd J(k, 2);
     Eigen::VectorXd kappa(k);
     for (Eigen::Index i = 0; i < k; ++i) {
@@ -491,30 +535,72 @@ struct PinSlotSimulation::Impl {
     if (rows_out) *rows_out = std::move(rows);
     return A.completeOrthogonalDecomposition().solve(-b);
   }
-  void rhs(const State4& s, State4& ds, double time) const {
-    double M[2][2], Q[2];
-    dynamics(s, M, Q);
-    if (!held.empty()) {
-      std::vector<HeldRow> rows;
-      const Eigen::VectorXd lambda = held_multipliers(s, time, M, Q, &rows);
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        Q[0] += rows[i].J[0] * lambda(static_cast<Eigen::Index>(i));
-        Q[1] += rows[i].J[1] * lambda(static_cast<Eigen::Index>(i));
-      }
+  // The accelerations with the held contacts kept (J a = -kappa: the same as M^-1 (Q + J^T lambda)
+  // with held_multipliers' lambda), by the rows' null space: a = a_p + N z with a_p the rows'
+  // minimum-norm solution, N orthogonal to them and z from N^T (M a - Q) = 0. Not through
+  // Q + J^T lambda, whose terms cancel: a torque of 1e30 N mm held by an angle limit left round-off
+  // of 1e17 rad/s^2 along the held row, which the adaptive integration then followed in steps of
+  // 1e-13 s (a violent load held at a stop ran for hours).
+  void held_accelerations(const State4& s, double time, const double M[2][2], const double Q[2], double a[2]) const {
+    const auto k = static_cast<Eigen::Index>(held.size());
+    Eigen::MatrixXd J(k, 2);
+    Eigen::VectorXd kappa(k);
+    Eigen::Index widest = 0;
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const HeldRow row = held_row(held[static_cast<std::size_t>(i)], s, time);
+      J(i, 0) = row.J[0];
+      J(i, 1) = row.J[1];
+      kappa(i) = row.kappa;
+      if (J.row(i).cwiseAbs().maxCoeff() > J.row(widest).cwiseAbs().maxCoeff()) widest = i;
     }
-    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+    const Eigen::Vector2d ap = cod.solve(-kappa);
+    a[0] = ap(0);
+    a[1] = ap(1);
+    if (cod.rank() >= 2) return;   // the held rows fix both accelerations
+    const double N[2] = {-J(widest, 1), J(widest, 0)};
+    const double Ma[2] = {M[0][0] * ap(0) + M[0][1] * ap(1), M[1][0] * ap(0) + M[1][1] * ap(1)};
+    const double num = N[0] * (Q[0] - Ma[0]) + N[1] * (Q[1] - Ma[1]);
+    const double den = N[0] * (M[0][0] * N[0] + M[0][1] * N[1]) + N[1] * (M[1][0] * N[0] + M[1][1] * N[1]);
+    a[0] += N[0] * (num / den);
+    a[1] += N[1] * (num / den);
+  }
+  void rhs(const State4& s, State4& ds, double time) const {
+    double M[2][2], Q[2], a[2];
+    dynamics(s, M, Q);
+    if (held.empty()) inverse_mass_times(s[0], Q, a);
+    else held_accelerations(s, time, M, Q, a);
     ds[0] = s[2];
     ds[1] = s[3];
-    ds[2] = (M[1][1] * Q[0] - M[0][1] * Q[1]) / det;
-    ds[3] = (M[0][0] * Q[1] - M[1][0] * Q[0]) / det;
+    ds[2] = a[0];
+    ds[3] = a[1];
   }
-  State4 flight(const State4& from, double span, double t0) const {
+  // Thrown by flight(.., capped) when the integration over its span needs more than flight_evaluations
+  // right-hand sides: a load so violent (a torque of 10^100 N mm) that the part turns many times
+  // within the span, which the adaptive stepper then follows in ever smaller steps for hours.
+  struct FlightTooLong {};
+  static constexpr long flight_evaluations = 60000;
+  static constexpr double short_flight = 0x1p-20;
+  State4 flight(const State4& from, double span, double t0, bool capped = false) const {
     State4 s = from;
     if (span <= 0) return s;
     namespace ode = boost::numeric::odeint;
     auto stepper = ode::make_controlled(accuracy, accuracy, ode::runge_kutta_dopri5<State4>());
-    ode::integrate_adaptive(stepper, [this, t0](const State4& x, State4& dx, double tau) { rhs(x, dx, t0 + tau); }, s,
-                            0.0, span, span / 8);
+    long evaluations = 0;
+    // odeint's integrate_adaptive compares times absolutely (t1 - t0 > machine epsilon): a span
+    // below 2.2e-16 s was not integrated at all (a follower that a torque of 10^30 N mm turns
+    // within 10^-16 s stood still while the time ran on), and up to 2.2e-16 s of a short span was
+    // left out. A short span is integrated in the scaled time u = tau / span, over [0, 1].
+    const double scale = span < short_flight ? span : 1.0;
+    ode::integrate_adaptive(
+        stepper,
+        [this, &evaluations, capped, scale, t0](const State4& x, State4& dx, double u) {
+          if (capped && ++evaluations > flight_evaluations) throw FlightTooLong{};
+          rhs(x, dx, t0 + u * scale);
+          if (scale != 1.0)
+            for (double& v : dx) v *= scale;
+        },
+        s, 0.0, span / scale, span / scale / 8);
     return s;
   }
   double potential(const State4& s) const {
@@ -549,7 +635,7 @@ struct PinSlotSimulation::Impl {
     };
     const auto a = rel(s0, t), m = rel(sm, t + h / 2), z = rel(s1, t + h);
     const double dx = m[0] - (a[0] + z[0]) / 2, dy = m[1] - (a[1] + z[1]) / 2, dw = m[2] - (a[2] + z[2]) / 2;
-    return 2 * (std::hypot(dx, dy) + 2 * reach * std::abs(dw));
+    return 2 * (std::hypot(dx, dy) + 2 * reach_at({&s0, &sm, &s1}) * std::abs(dw));
   }
   void check_limits(const State4& s, double time) const {
     const Part& pp = model.parts[part];
@@ -581,7 +667,7 @@ struct PinSlotSimulation::Impl {
     if (!held.empty()) {   // the forces at this state (the bilateral multipliers of the held set)
       double M[2][2], Q[2];
       dynamics(y, M, Q);
-      const Eigen::VectorXd lambda = held_multipliers(y, t, M, Q);
+      const Eigen::VectorXd lambda = held_multipliers(y, t, Q);
       for (std::size_t i = 0; i < held.size(); ++i) held[i].force = lambda(static_cast<Eigen::Index>(i));
     }
     for (const Held& h : held)
@@ -640,6 +726,7 @@ struct PinSlotSimulation::Impl {
       arm = std::hypot(P[0] - C.x.get_d(), P[1] - C.y.get_d());
     }
     double out = 0;
+    const double reach = reach_at(states);
     for (const auto& [s, time] : states) {
       State4 ds;
       rhs(*s, ds, time);
@@ -674,7 +761,7 @@ struct PinSlotSimulation::Impl {
   double force_tolerance(const State4& s) const {
     double M[2][2], Q[2];
     dynamics(s, M, Q);
-    const double loads = std::abs(Q[0]) + std::abs(Q[1]) / std::max(reach, 1e-300) + mass * rest_speed * rest_speed / delta;
+    const double loads = std::abs(Q[0]) + std::abs(Q[1]) / reach_at({&s}) + mass * rest_speed * rest_speed / delta;
     return 1e-9 * loads;
   }
   // Whether every held contact's point lies within both its features (the contact table's
@@ -685,7 +772,7 @@ struct PinSlotSimulation::Impl {
     if (held.empty()) return true;
     double M[2][2], Q[2];
     dynamics(s, M, Q);
-    const Eigen::VectorXd lambda = held_multipliers(s, time, M, Q);
+    const Eigen::VectorXd lambda = held_multipliers(s, time, Q);
     const double tol = force_tolerance(s);
     for (Eigen::Index i = 0; i < lambda.size(); ++i)
       if (!(lambda(i) >= -tol)) return false;
@@ -763,9 +850,7 @@ State4 PinSlotSimulation::Impl::project(const State4& from, double time) const {
       std::vector<HeldRow> rows;
       for (const Held& h : held) rows.push_back(held_row(h, s, time));
       const auto k = static_cast<Eigen::Index>(rows.size());
-      Eigen::Matrix2d Mi;
-      Mi << M[0][0], M[0][1], M[1][0], M[1][1];
-      Mi = Mi.inverse().eval();
+      const Eigen::Matrix2d Mi = inverse_mass(s[0]);
       Eigen::MatrixXd J(k, 2);
       Eigen::VectorXd r(k);
       double worst = 0;
@@ -787,9 +872,7 @@ State4 PinSlotSimulation::Impl::project(const State4& from, double time) const {
     std::vector<HeldRow> rows;
     for (const Held& h : held) rows.push_back(held_row(h, s, time));
     const auto k = static_cast<Eigen::Index>(rows.size());
-    Eigen::Matrix2d Mi;
-    Mi << M[0][0], M[0][1], M[1][0], M[1][1];
-    Mi = Mi.inverse().eval();
+    const Eigen::Matrix2d Mi = inverse_mass(s[0]);
     Eigen::MatrixXd J(k, 2);
     Eigen::VectorXd v(k);
     for (Eigen::Index i = 0; i < k; ++i) {
@@ -857,7 +940,7 @@ void PinSlotSimulation::Impl::update_held() {
   double M[2][2], Q[2];
   dynamics(y, M, Q);
   std::vector<HeldRow> rows;
-  const Eigen::VectorXd bilateral = held_multipliers(y, t, M, Q, &rows);
+  const Eigen::VectorXd bilateral = held_multipliers(y, t, Q, &rows);
   const double tol = force_tolerance(y);
   bool negative = false;
   for (Eigen::Index i = 0; i < bilateral.size(); ++i) negative = negative || bilateral(i) < -tol;
@@ -867,9 +950,7 @@ void PinSlotSimulation::Impl::update_held() {
   }
   // the contact LCP: lambda >= 0, w = A lambda + b >= 0 (the gaps' accelerations), complementary
   const auto k = static_cast<Eigen::Index>(rows.size());
-  Eigen::Matrix2d Mi;
-  Mi << M[0][0], M[0][1], M[1][0], M[1][1];
-  Mi = Mi.inverse().eval();
+  const Eigen::Matrix2d Mi = inverse_mass(y[0]);
   Eigen::MatrixXd J(k, 2);
   Eigen::VectorXd kappa(k);
   for (Eigen::Index i = 0; i < k; ++i) {
@@ -987,8 +1068,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   }
   double M[2][2], Q[2];
   dynamics(y, M, Q);
-  const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-  const double Minv[2][2] = {{M[1][1] / det, -M[0][1] / det}, {-M[1][0] / det, M[0][0] / det}};
+  // (M^-1 by the Schur complement, inverse_mass_times: never det M)
+  const Eigen::Matrix2d Minv = inverse_mass(y[0]);
   auto speed = [&](const Row& r) { return r.J[0] * y[2] + r.J[1] * y[3] - r.v_other; };
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
@@ -1000,7 +1081,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   Eigen::VectorXd bv(k);
   for (Eigen::Index i = 0; i < k; ++i) {
     const Row& ri = rows[static_cast<std::size_t>(i)];
-    const double mj[2] = {Minv[0][0] * ri.J[0] + Minv[0][1] * ri.J[1], Minv[1][0] * ri.J[0] + Minv[1][1] * ri.J[1]};
+    double mj[2];
+    inverse_mass_times(y[0], ri.J, mj);
     for (Eigen::Index j = 0; j < k; ++j) {
       const Row& rj = rows[static_cast<std::size_t>(j)];
       A(i, j) = rj.J[0] * mj[0] + rj.J[1] * mj[1];
@@ -1020,8 +1102,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     if (!(lambda > 0)) continue;
     const Row& r = rows[i];
     total[i] = lambda;
-    y[2] += (Minv[0][0] * r.J[0] + Minv[0][1] * r.J[1]) * lambda;
-    y[3] += (Minv[1][0] * r.J[0] + Minv[1][1] * r.J[1]) * lambda;
+    y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
+    y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
   }
   for (std::size_t i = 0; i < fresh_rows; ++i) {
     if (total[i] <= 0) continue;
@@ -1097,31 +1179,61 @@ bool PinSlotSimulation::Impl::advance(double span) {
   double h = std::min(span, step_guess > 0 ? step_guess : span);
   if (options.max_step > 0) h = std::min(h, options.max_step * time_scale);
   if (forced_step > 0) h = std::min(h, forced_step);
+  // The part reaches a slot end or angle limit within [0, reached] of the step from y: the last
+  // state inside by bisection (to 2^-30 of the span), where the limit is struck at the end of a
+  // forced step. Only for a step that fits its chords and whose end (or first contact) lies beyond
+  // the limit, so that limits beyond the motion change nothing (not a trial step's overshoot).
+  // False when a flight is too long or the state beyond is not finite (a load too violent for the
+  // span: a shorter step). Every flight of a step is capped (flight_evaluations).
+  auto locate_limit = [&](double reached) {
+    double lo = 0, hi = reached;
+    State4 beyond;
+    try {
+      while (hi - lo > 0x1p-30 * reached) {
+        const double m = (lo + hi) / 2;
+        const State4 x = flight(y, m, t, true);
+        (!finite(x) || outside_limit(x) ? hi : lo) = m;
+      }
+      beyond = flight(y, hi, t, true);
+    } catch (const FlightTooLong&) {
+      return false;
+    }
+    if (!finite(beyond)) return false;
+    pending_limit = outside_limit(beyond);
+    forced_step = lo;
+    return true;
+  };
   for (int attempt = 0;; ++attempt) {
     if (attempt > 2000 || !(h > 0))
       throw NumericError(where(t) + ": no chord within the chord deviation (the step size underflows)");
-    const State4 mid = flight(y, h / 2, t), unprojected = flight(mid, h / 2, t + h / 2);
+    // a step too long for a violent load (a torque of 10^100 N mm) overflows or turns the part many
+    // times: shorter steps reach the limits, where the part stops
+    State4 mid, unprojected;
+    try {
+      mid = flight(y, h / 2, t, true);
+      unprojected = flight(mid, h / 2, t + h / 2, true);
+    } catch (const FlightTooLong&) {
+      h /= 2;
+      continue;
+    }
+    if (!finite(mid) || !finite(unprojected)) {
+      h /= 2;
+      continue;
+    }
     if (!held.empty() && h != forced_step && !held_conditions(unprojected, t + h)) {
       // a held contact's force turns negative or its point leaves its feature within the step:
       // the first such time by bisection (to 2^-30 of the step); the next step's start decides
       double lo = 0, hi = h;
-      while (hi - lo > 0x1p-30 * h) {
-        const double m = (lo + hi) / 2;
-        (held_conditions(flight(y, m, t), t + m) ? lo : hi) = m;
+      try {
+        while (hi - lo > 0x1p-30 * h) {
+          const double m = (lo + hi) / 2;
+          (held_conditions(flight(y, m, t, true), t + m) ? lo : hi) = m;
+        }
+      } catch (const FlightTooLong&) {
+        h /= 2;
+        continue;
       }
       forced_step = h = hi;
-      continue;
-    }
-    if (!(h == forced_step && pending_limit) && outside_limit(unprojected)) {
-      // the part reaches a slot end or angle limit within the step: the last state inside by
-      // bisection (to 2^-30 of the step), where the limit is struck
-      double lo = 0, hi = h;
-      while (hi - lo > 0x1p-30 * h) {
-        const double m = (lo + hi) / 2;
-        (outside_limit(flight(y, m, t)) ? hi : lo) = m;
-      }
-      pending_limit = outside_limit(flight(y, hi, t));
-      forced_step = h = lo;
       continue;
     }
     const State4 end = project(unprojected, t + h);
@@ -1178,6 +1290,10 @@ bool PinSlotSimulation::Impl::advance(double span) {
       if (c.status == CrossingStatus::crossing) crossings[i] = std::move(c);
     }
     if (first == no_index) {
+      if (!(h == forced_step && pending_limit) && outside_limit(unprojected)) {
+        h = locate_limit(h) ? forced_step : h / 2;
+        continue;
+      }
       check_limits(end, t + h);
       y = end;
       t += h;
@@ -1197,7 +1313,21 @@ bool PinSlotSimulation::Impl::advance(double span) {
     for (const Pair& p : pairs) kept.push_back(p.q);
     const Rational u = earliest.u_lower;
     const double hc = h * u.get_d();
-    const State4 at = flight(y, hc, t);
+    State4 at;
+    try {
+      at = flight(y, hc, t, true);
+    } catch (const FlightTooLong&) {
+      h /= 2;
+      continue;
+    }
+    if (!finite(at)) {
+      h /= 2;
+      continue;
+    }
+    if (outside_limit(at)) {   // the limit comes before the first contact
+      h = locate_limit(hc) ? forced_step : h / 2;
+      continue;
+    }
     check_limits(at, t + hc);
     // the pairs touching together: their crossings within the first one's bounds (several
     // contacts of one impact, e.g. a face landing on two supports at once)
@@ -1343,7 +1473,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     s.y[3] = own_velocity[1]->value.get_d() / ts;
   }
   s.check_limits(s.y, 0);
-  // the part's reach from its pivot at the largest slide (for the angle's share of a chord's deviation)
+  // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
   double reach = 0;
   for (const Loop& loop : fp.loops)
     for (const Edge& edge : loop.edges) {
@@ -1353,21 +1483,23 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
         reach = std::max(reach, std::hypot(edge.center.x.get_d() - s.P[0], edge.center.y.get_d() - s.P[1]) +
                                     std::sqrt(edge.radius_squared.get_d()));
     }
-  double slide_reach = std::abs(s.y[0]);
-  if (s.slide_limits)
-    slide_reach = std::max(std::abs(s.slide_limits->lo.get_d()), std::abs(s.slide_limits->hi.get_d()));
-  s.reach = std::max(reach + slide_reach, 1e-300);
-  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * s.reach;
+  s.part_reach = std::max(reach, 1e-300);
+  // the run's length scale: the part's reach at its initial slide (not its limits': see reach_at)
+  const double size = s.reach_at({&s.y});
+  s.size = size;
+  s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * size;
   // the rest speed: the speed a load gains over the chord deviation
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
-  load += (std::abs(s.torque) / s.inertia_c) * s.reach;
-  // (the springs' force at the largest stretch the limits allow, or at the start)
-  load += s.k_lin * (slide_reach + std::abs(s.rest_lin)) / s.mass;
+  load += (std::abs(s.torque) / s.inertia_c) * size;
+  // (the springs' force at the start's stretch, or the torsional one's at the angle limits if they
+  // are nearer than half a turn beyond the start: limits far beyond the motion change nothing)
+  load += s.k_lin * (std::abs(s.y[0]) + std::abs(s.rest_lin)) / s.mass;
   if (s.k_tor > 0) {
-    const double turn = s.angle_limits ? std::max(std::abs(s.angle_limits->lo.get_d() - s.rest_tor),
-                                                  std::abs(s.angle_limits->hi.get_d() - s.rest_tor))
-                                       : std::abs(s.y[1] - s.rest_tor) + std::numbers::pi;
-    load += s.k_tor * turn / s.inertia_c * s.reach;
+    double turn = std::abs(s.y[1] - s.rest_tor) + std::numbers::pi;
+    if (s.angle_limits)
+      turn = std::min(turn, std::max(std::abs(s.angle_limits->lo.get_d() - s.rest_tor),
+                                     std::abs(s.angle_limits->hi.get_d() - s.rest_tor)));
+    load += s.k_tor * turn / s.inertia_c * size;
   }
   s.rest_speed = std::sqrt(2 * load * s.delta);
   s.hold_gap = 0.75 * s.delta;

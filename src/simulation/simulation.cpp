@@ -491,8 +491,8 @@ struct Simulation::Impl {
       return std::min(ty - (a.y_lo - beyond), (a.y_hi + beyond) - ty);
     }
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
-    const double slack = abscissa_slack(a);
-    return std::min(tx - (a.x_lo - slack), (a.x_hi + slack) - tx);
+    const auto [below, above] = end_slacks(a, abscissa_slack(a));
+    return std::min(tx - (a.x_lo - below), (a.x_hi + above) - tx);
   }
 
   // How far past its edge's (double) abscissa extent a non-vertical held contact's row holds:
@@ -503,6 +503,21 @@ struct Simulation::Impl {
   // energy that moving back out gave it each time (session 36, docs/simulation.md).
   double abscissa_slack(const Active& a) const {
     return strict_rows && a.wedge ? std::min(slack_of(a), vertex_limit * a.unit) : slack_of(a);
+  }
+
+  // How far past the lower and the upper end of its edge's abscissa extent non-vertical held
+  // contact `a`'s row holds (`slack`: abscissa_slack, or the watch's slack_of): `slack` at both
+  // ends, but for a contact taken up (or kept) at a vertex (at_vertex, vertex_end) only about
+  // that vertex; past the other end at most the fixed edge slack, as for any held contact. A
+  // corner contact taken up at a vertex with three times the edge slack ran 3e-9 past its far
+  // end before the step's cut, exactly as far as the new contacts there reach with their own
+  // slack: at a vertex where the new contact's edge ends too (the free cell closing in a cusp,
+  // 6 x 8 teeth at t = 0.0700516 s) its row failed 1e-18 beyond that, no contact was taken up,
+  // and the pair was released into blocked space ("a jammed contact change", session 58).
+  std::pair<double, double> end_slacks(const Active& a, double slack) const {
+    if (a.point || !a.at_vertex || a.vertex_end == 0) return {slack, slack};
+    const double far = std::min(slack, edge_slack * a.unit);
+    return a.vertex_end > 0 ? std::pair{far, slack} : std::pair{slack, far};
   }
 
   // Whether some pair holds a wedge: two held contacts, or one kept back from a wedge's vertex.
@@ -529,8 +544,8 @@ struct Simulation::Impl {
     }
     const CSpaceChart& chart = chart_of(a);
     double tx = to_chart(chart.x_kind, chart.x_half_turn, qs[a.xdof]);
-    const double slack = abscissa_slack(a);
-    if (tx < a.x_lo - slack || tx > a.x_hi + slack) return false;
+    const auto [below, above] = end_slacks(a, abscissa_slack(a));
+    if (tx < a.x_lo - below || tx > a.x_hi + above) return false;
     // within the slack of an end: the nearest abscissa strictly inside (the ends are algebraic)
     const double at = tx;
     // (a fraction of the edge's own extent: scale-free already)
@@ -813,7 +828,8 @@ struct Simulation::Impl {
     const int dof = ordinate ? a.ydof : a.xdof;
     if (dof < 0) return 1;
     const CSpaceChart& chart = chart_of(a);
-    const double lo = (ordinate ? a.y_lo : a.x_lo) - slack_of(a), hi = (ordinate ? a.y_hi : a.x_hi) + slack_of(a);
+    const auto [below, above] = end_slacks(a, slack_of(a));
+    const double lo = (ordinate ? a.y_lo : a.x_lo) - below, hi = (ordinate ? a.y_hi : a.x_hi) + above;
     const AxisKind kind = ordinate ? chart.y_kind : chart.x_kind;
     const bool half_turn = ordinate ? chart.y_half_turn : chart.x_half_turn;
     const std::array<double, 6>& c = path.c[static_cast<std::size_t>(dof)];
@@ -1067,7 +1083,10 @@ struct Simulation::Impl {
   // the set with its contact normal (its held contacts', or its last impact's edge) and the move
   // is redone from the start along M^-1 G^T mu, A mu = 1 (A = G M^-1 G^T): every contact of the
   // set opens at the same rate.
-  void nudge_free(std::vector<std::pair<std::size_t, Vec>> set) {
+  //
+  // `alternative`: the set tried in its place where the nudge along `set` finds no free state
+  // (free_active: a pair held at a vertex of two contacts whose free cell is a cusp, below).
+  void nudge_free(std::vector<std::pair<std::size_t, Vec>> set, std::vector<std::pair<std::size_t, Vec>> alternative = {}) {
     const Vec start = q;
     double scale = 1;
     for (double x : q) scale = std::max(scale, std::abs(x));
@@ -1118,6 +1137,11 @@ struct Simulation::Impl {
         if (done || norm == 0 || k == 50) break;
         double eps = first * std::ldexp(1.0, k);
         for (std::size_t i = 0; i < dofs.size(); ++i) q[i] += eps * dir[i] / norm;
+      }
+      if (!done && !alternative.empty()) {
+        set = std::move(alternative);
+        alternative.clear();
+        continue;
       }
       if (!done) jammed(set.front().first);
       if (q == start) return;
@@ -1198,6 +1222,29 @@ struct Simulation::Impl {
       if (a.pair == pair) add(a);
     if (!in_active(pair) && pair < last_contact.size() && last_contact[pair]) add(*last_contact[pair]);
     return std::any_of(out.begin(), out.end(), [](double x) { return x != 0; });
+  }
+
+  // The rows of the contacts pair `pair` holds, each its own entry of a nudge's set, when it
+  // holds two or more whose rows are independent (else none): the nudge along them opens every
+  // contact at the same rate (nudge_direction). The sum of the rows (nudge_normal) opens a wedge
+  // whose free side is a convex corner (the ratchet's), but not a cusp: two contact curves of
+  // nearly the same slope meeting at a vertex with the free cell between them, only a sliver
+  // wide (a 6-tooth pinion's radial flank on the gear's tip corner meeting the back flanks'
+  // contact, 6 x 8 teeth at t = 0.0700516 s: the sum pointed along the pinion's axis alone, out
+  // of the sliver, and every trial up to 2^50 units in the last place was blocked).
+  std::vector<std::pair<std::size_t, Vec>> held_rows(std::size_t pair) const {
+    std::vector<std::pair<std::size_t, Vec>> out;
+    std::vector<const Active*> held;
+    for (const Active& a : active)
+      if (a.pair == pair) held.push_back(&a);
+    if (held.size() < 2 || !independent(held)) return out;
+    for (const Active* a : held) {
+      Vec G;
+      double h, gval;
+      if (!row(*a, q, v, G, h, gval)) return {};
+      out.emplace_back(pair, G);
+    }
+    return out;
   }
 
   // The direction of a nudge: M^-1 G for one pair (as always); for several, M^-1 G^T mu with
@@ -2464,7 +2511,7 @@ struct Simulation::Impl {
       if (!spaces[pair] || !in_active(pair)) continue;
       Vec sum;
       nudge_normal(pair, sum);   // the sum of its held contacts' rows, each scaled to 1
-      nudge_free(pair, sum);
+      nudge_free({{pair, sum}}, held_rows(pair));
     }
   }
 

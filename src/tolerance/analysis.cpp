@@ -18,6 +18,7 @@
 #include <hipair/cspace_region.hpp>
 #include <hipair/cspace_slice.hpp>
 #include <hipair/error.hpp>
+#include <hipair/kernel_slice.hpp>
 #include <hipair/kinematics.hpp>
 
 #include <algorithm>
@@ -354,6 +355,7 @@ class Analysis {
     if (given) {
       space_ = std::make_unique<CSpace>(*given);
     } else if (edges > 120) {
+      large_pair_ = true;
       // A large pair (a gear pair's z1 z2 tooth encounters): the nominal path is analyze's, on
       // the contact kernels, and the exact C-space is its operating region along that path (the
       // tiles of the path's channel the path runs through), as analyze draws it; the whole space
@@ -989,6 +991,35 @@ class Analysis {
     return request;
   }
 
+  // A large pair's jam confirmation without a C-space (session 58): the exact slice of the pair
+  // of `other` (a worst-case model) at the sample's driver chart coordinate, from the contact
+  // polynomials and the exact overlap oracle (the kernel slicer `hipair analyze` runs on large
+  // pairs), in the follower chart with the nominal chart's half turn; the number of its free
+  // intervals meeting the nominal channel's open interval (exact comparisons, exact_order.hpp),
+  // and in `points` the slice's size. A point inside the channel that may be a zero-clearance fit
+  // (touching, or its touching undecided) counts as open. nullopt: no chart holds the position.
+  std::optional<std::size_t> kernel_free_intervals_in_channel(const Model& other, const SampleState& state,
+                                                              std::size_t& points) const {
+    std::optional<KernelSlice> slice = kernel_slice(other, driver_, follower_, state.driver_chart.t, state.driver_chart.half,
+                                                    state.follower_chart.t, state.follower_chart.half);
+    if (!slice) return std::nullopt;
+    points = slice->points.size();
+    const AlgebraicNumber& lower = state.lower.exact;
+    const AlgebraicNumber& upper = state.upper.exact;
+    const std::vector<KernelSlice::Point>& at = slice->points;
+    std::size_t open = 0;
+    for (const KernelSlice::Point& point : at)
+      if (point.may_touch && tolerance_detail::compare(point.at, lower) > 0 && tolerance_detail::compare(point.at, upper) < 0)
+        ++open;
+    for (std::size_t j = 0; j < slice->kinds.size(); ++j) {
+      if (slice->kinds[j] != KernelSlice::Kind::free && slice->kinds[j] != KernelSlice::Kind::outside) continue;
+      bool below_upper = j == 0 || tolerance_detail::compare(at[j - 1].at, upper) < 0;      // a < upper
+      bool above_lower = j == at.size() || tolerance_detail::compare(at[j].at, lower) > 0;  // b > lower
+      if (below_upper && above_lower) ++open;
+    }
+    return open;
+  }
+
   // The slice of `space` (an exact C-space at other parameters) at the sample's driver chart
   // coordinate, in the (last) chart with the nominal chart's half turns.
   std::optional<Slice> slice_like(const CSpace& space, const SampleState& state) const {
@@ -1175,6 +1206,28 @@ class Analysis {
         worst = model_->exact_model(deviations);
       } catch (const ModelError& error) {
         result.evidence = std::string("the worst-case geometry is invalid: ") + error.what();
+        continue;
+      }
+      if (large_pair_) {
+        // A large pair: the exact slice at the critical position from the contact kernels (the
+        // whole worst-case C-space took minutes per scale; session 58).
+        std::size_t points = 0;
+        std::optional<std::size_t> open = kernel_free_intervals_in_channel(worst, state, points);
+        if (!open) continue;
+        result.confirmed_scale = factor.get_d();
+        result.worst_values.clear();
+        for (std::size_t i = 0; i < n; ++i)
+          if (deviations[i] != 0) result.worst_values.emplace_back(m.parameters[i].name, m.parameters[i].nominal + deviations[i]);
+        if (*open == 0) {
+          result.confirmed = true;
+          result.evidence = "exact slice (contact kernels and the exact overlap oracle) of the worst-case pair at tolerances x " +
+                            std::to_string(factor.get_d()) +
+                            " at the critical driver position: no free interval between the two sides of the nominal channel (" +
+                            std::to_string(points + 1) + " intervals, all blocked there)";
+          break;
+        }
+        result.evidence = "exact slice (contact kernels) of the worst-case pair at tolerances x " + std::to_string(factor.get_d()) +
+                          ": still " + std::to_string(*open) + " free interval(s) in the channel";
         continue;
       }
       CSpace space =
@@ -1492,6 +1545,7 @@ class Analysis {
   std::unique_ptr<CSpace> space_;
   // a large pair's nominal kinematics on the contact kernels, computed before its space
   std::optional<KinematicsResult> kernel_path_;
+  bool large_pair_ = false;   ///< > 120 boundary edges and no space given: analyze's kernel path (start())
   ToleranceResult result_;
   std::vector<Distribution> dist_;
   Box box_;

@@ -8,6 +8,7 @@
 #include "algebra/polynomial.hpp"
 #include <hipair/rational.hpp>
 #include <gtest/gtest.h>
+#include <initializer_list>
 #include <optional>
 #include <random>
 #include <vector>
@@ -116,11 +117,95 @@ TEST(CSpaceValidPoint, ShortcutEqualsTheRationalReferenceOnGeneratedLinesClauses
     }
     const bool expected = reference(curve, box);
     ASSERT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
+    ASSERT_EQ(valid_point_in_box_gmp(curve, box), expected) << "instance " << instance;
     (expected ? found : not_found) += 1;
   }
   EXPECT_GE(found, 2500);
   EXPECT_GE(not_found, 2000);
   EXPECT_GE(on_the_box, 4000);
+}
+
+// The machine-integer path (exact below 2^62 per integer, overflow-checked) against the
+// rational reference and the GMP path where it must give up or only just fits: every line,
+// atom and box integer drawn at a random scale 2^0 .. 2^70 (so that the integers read cross
+// 2^62 and the products cross 2^127 in both directions), with a common factor sometimes, and
+// boxes through meeting points.
+TEST(CSpaceValidPoint, MachineIntegersEqualTheReferenceAcrossTheirLimits) {
+  std::mt19937_64 random(58);
+  auto big = [&]() {
+    const int bits = static_cast<int>(random() % 71);
+    mpz_class v = 0;
+    for (int b = 0; b < bits; b += 32) v = (v << 32) + mpz_class(static_cast<unsigned long>(random() & 0xffffffffu));
+    if (bits > 0) v = v >> (((bits + 31) / 32) * 32 - bits);
+    return random() % 2 ? mpz_class(-v) : v;
+  };
+  auto linear_of = [](const mpz_class& a, const mpz_class& b, const mpz_class& c) {
+    IntegerPolynomial2 p;
+    if (a == 0 && b == 0 && c == 0) return p;
+    p.coefficients.resize(a != 0 ? 2 : 1);
+    if (a != 0) p.coefficients[1].push_back(a);
+    if (b != 0) p.coefficients[0] = {c, b};
+    else p.coefficients[0] = {c};
+    return p;
+  };
+  auto positive = [&]() {
+    mpz_class d = abs(big());
+    return d == 0 ? mpz_class(1) : d;
+  };
+  int found = 0, not_found = 0, large = 0;
+  for (int instance = 0; instance < 20000; ++instance) {
+    ContactCurve curve;
+    const mpz_class factor = random() % 4 == 0 ? positive() : mpz_class(1);
+    const mpz_class a = big() * factor, b = big() * factor, c = big() * factor;
+    curve.polynomial = linear_of(a, b, c);
+    const int clauses = 1 + static_cast<int>(random() % 3);
+    for (int k = 0; k < clauses; ++k) {
+      ValidityClause clause;
+      const int atoms = 1 + static_cast<int>(random() % 2);
+      for (int m = 0; m < atoms; ++m)
+        clause.atoms.push_back(random() % 8 == 0 ? circle(1 + static_cast<long>(random() % 20)) : linear_of(big(), big(), big()));
+      curve.validity.push_back(std::move(clause));
+    }
+    raw::Box box;
+    auto fraction = [&]() {
+      Rational q(big(), positive());
+      q.canonicalize();
+      return q;
+    };
+    box.x_lo = fraction();
+    box.y_lo = fraction();
+    box.x_hi = box.x_lo + abs(fraction()) + 1;
+    box.y_hi = box.y_lo + abs(fraction()) + 1;
+    if (random() % 2 == 0 && linear(curve.validity[0].atoms[0]) && curve.polynomial.degree_x() <= 1) {
+      const IntegerPolynomial2& atom = curve.validity[0].atoms[0];
+      const Rational fa(coefficient(curve.polynomial, 1, 0)), fb(coefficient(curve.polynomial, 0, 1)),
+          fc(coefficient(curve.polynomial, 0, 0));
+      const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
+      const Rational det = fa * e - fb * d;
+      if (det != 0) {
+        const Rational x = (fb * g - fc * e) / det, y = (fc * d - fa * g) / det;
+        const Rational side = abs(fraction()) + 1;
+        switch (random() % 4) {
+          case 0: box.x_hi = x; box.x_lo = x - side; break;
+          case 1: box.x_lo = x; box.x_hi = x + side; break;
+          case 2: box.y_hi = y; box.y_lo = y - side; break;
+          default: box.y_lo = y; box.y_hi = y + side; break;
+        }
+      }
+    }
+    for (const mpz_class* v : std::initializer_list<const mpz_class*>{&a, &b, &c, &box.x_lo.get_num(), &box.x_hi.get_den()})
+      if (mpz_sizeinbase(v->get_mpz_t(), 2) > 62) {
+        ++large;
+        break;
+      }
+    const bool expected = reference(curve, box);
+    ASSERT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
+    ASSERT_EQ(valid_point_in_box_gmp(curve, box), expected) << "instance " << instance;
+    (expected ? found : not_found) += 1;
+  }
+  EXPECT_GE(found, 1000);
+  EXPECT_GE(not_found, 1000);
+  EXPECT_GE(large, 2000);
 }
 
 }  // namespace

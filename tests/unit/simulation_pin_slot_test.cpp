@@ -445,6 +445,128 @@ TEST(SimulationPinSlot, RidingAndLiftOffEventsDoNotDependOnTheStepSize) {
   }
 }
 
+// The pin-slot cam of tests/data/simulation/pin-slot-cam.json (an eccentric disc driven at 10
+// rad/s strikes a follower hanging on a vertical slot three times in 0.1 s; a torsional spring,
+// gravity, restitution 0.5, the centre of mass off the pin) with every length times L, every
+// mass times M (so that forces scale by M L, torques, inertias and torsional stiffness by M L^2:
+// the same motion), written exactly ("(x)*2^-500").
+std::string scaled_cam(const std::string& L, const std::string& M, const std::string& limit = "30") {
+  auto len = [&](const std::string& x) { return "\"(" + x + ")*" + L + "\""; };
+  auto pt = [&](const std::string& x, const std::string& y) { return "[" + len(x) + ", " + len(y) + "]"; };
+  const std::string L2 = "(" + L + ")^2";
+  const std::string cam = R"({ "name": "cam", "motion": { "rotation": { "pivot": )" + pt("0", "0") +
+                          R"( } }, "initial": { "angle": -1.5 }, "features": [ { "circle": { "center": )" + pt("4", "0") +
+                          R"(, "radius": )" + len("10") + R"( } } ] })";
+  const std::string follower =
+      R"({ "name": "follower", "motion": { "pin_slot": { "pivot": )" + pt("0", "40") + R"(, "direction": [0, 1],
+        "angle_limits": [-0.5, 0.5], "limits": [)" + len("-" + limit) + ", " + len(limit) + R"(] } },
+      "initial": { "angle": 0, "offset": )" + len("-4") + R"( },
+      "dynamics": { "mass": "0.01*)" + M + R"(", "moment_of_inertia": "12*)" + M + "*" + L2 +
+      R"(", "torsional_spring": { "stiffness": "20*)" + M + "*" + L2 + R"(", "rest": 0 } },
+      "loops": [ { "start": )" + pt("-12", "18") + R"(, "edges": [ { "line_to": )" + pt("12", "18") +
+      R"(, "label": "face" }, { "line_to": )" + pt("12", "26") + R"( }, { "line_to": )" + pt("-12", "26") +
+      R"( }, { "line_to": )" + pt("-12", "18") + R"( } ] } ] })";
+  return model_json(cam + ", " + follower, R"({ "parts": ["cam", "follower"], "restitution": 0.5 })",
+                    R"("gravity": [0, )" + len("-9810") + R"(], "centers_of_mass": { "follower": )" + pt("1", "38") +
+                        R"( }, "drivers": [ { "part": "cam", "speed": 10 } ])");
+}
+
+// Session 58 (hunt58): the equations of motion were solved through det M = m M22 - (m e)^2 and
+// M22 Q_s, products of a mass, an inertia and a force: at lengths 1e-150 the follower did not move
+// at all (M22 Q_s underflowed to 0: no impact, the run "succeeded"), at 1e150 or with masses of 1e160
+// the run stopped with "not finite (a diverging integration)". Scaled by powers of two, every double
+// of the run scales exactly: the same events at the same times, the slide scaled.
+TEST(SimulationPinSlot, ScaledByPowersOfTwoTheRunIsTheUnscaledRunScaled) {
+  const double t_end = 0.1;
+  PinSlotSimulation base = PinSlotSimulation::create(read_model(scaled_cam("1", "1"), "<x1>"));
+  base.run_until(t_end);
+  ASSERT_EQ(base.events().size(), 3u);
+  struct Scale {
+    const char *L, *M;
+    double length, mass;
+  };
+  for (const Scale& scale : {Scale{"2^-500", "1", std::ldexp(1.0, -500), 1}, Scale{"2^500", "1", std::ldexp(1.0, 500), 1},
+                             Scale{"1", "2^600", 1, std::ldexp(1.0, 600)}, Scale{"2^-400", "2^-200", std::ldexp(1.0, -400), std::ldexp(1.0, -200)}}) {
+    SCOPED_TRACE(std::string("lengths x ") + scale.L + ", masses x " + scale.M);
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(scaled_cam(scale.L, scale.M), "<scaled>"));
+    sim.run_until(t_end);
+    ASSERT_EQ(sim.events().size(), base.events().size());
+    for (std::size_t i = 0; i < base.events().size(); ++i) {
+      const SimulationEvent &a = base.events()[i], &b = sim.events()[i];
+      EXPECT_EQ(b.kind, a.kind);
+      EXPECT_EQ(b.features, a.features);
+      EXPECT_NEAR(b.time, a.time, 1e-12 * t_end) << "event " << i;
+      EXPECT_NEAR(b.normal_speed_before / scale.length, a.normal_speed_before, 1e-9 * a.normal_speed_before);
+      EXPECT_NEAR(b.impulse / (scale.length * scale.mass), a.impulse, 1e-9 * a.impulse);
+    }
+    EXPECT_NEAR(sim.state().slide / scale.length, base.state().slide, 1e-9 * std::abs(base.state().slide));
+    EXPECT_NEAR(sim.state().angle, base.state().angle, 1e-9);
+    EXPECT_EQ(sim.steps(), base.steps());
+  }
+}
+
+// Session 58 (hunt58): the slot's limits far beyond the run's slides change nothing. Until then
+// the chord deviation, the rest speed and the far test's reach took the largest |limit| as the
+// part's slide: limits of 1e6 mm made 20x the steps, 1e9 mm stopped the run at the second
+// impact and 1e12 mm at the first ("a contact that would have to be sustained").
+TEST(SimulationPinSlot, TheSlotsLimitsBeyondTheMotionDoNotChangeTheRun) {
+  PinSlotSimulation base = PinSlotSimulation::create(read_model(scaled_cam("1", "1"), "<30>"));
+  base.run_until(0.1);
+  ASSERT_EQ(base.events().size(), 3u);
+  for (const char* limit : {"1e6", "1e9", "1e12", "1e300"}) {
+    SCOPED_TRACE(limit);
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(scaled_cam("1", "1", limit), "<wide>"));
+    EXPECT_EQ(sim.chord_deviation(), base.chord_deviation());
+    sim.run_until(0.1);
+    ASSERT_EQ(sim.events().size(), base.events().size());
+    for (std::size_t i = 0; i < base.events().size(); ++i) {
+      EXPECT_EQ(sim.events()[i].features, base.events()[i].features);
+      EXPECT_EQ(sim.events()[i].time, base.events()[i].time) << "event " << i;
+    }
+    EXPECT_EQ(sim.steps(), base.steps());
+  }
+}
+
+// Session 58 (hunt58): a violent load. A torque T on a follower whose centre of mass is its pin,
+// at slide 0, turns it by psi = T t^2 / (2 I) (no spring, no gravity, the cam far below) until it leaves its
+// angle limit 0.5 at t* = sqrt(I / T); a force F along the slot moves it by F t^2 / (2 m) out of
+// its slide limits. Until session 58 a step shorter than 2.2e-16 s was not integrated at all
+// (odeint compares times absolutely): at T = 1e30 N mm the follower stood still while the time
+// ran past t*, and at 1e100 the run went on for hours; at 1e300 "not finite".
+TEST(SimulationPinSlot, AViolentLoadLeavesTheLimitsAtTheClosedFormTime) {
+  for (int k : {10, 30, 60, 100, 300}) {
+    for (bool torque : {true, false}) {
+      Follower f;
+      f.s0 = torque ? 0 : 5;   // (turning at slide 0 about its centre of mass: no centrifugal slide)
+      const double load = std::pow(10.0, k);
+      f.extra_dynamics = torque ? R"(, "torque": 1e)" + std::to_string(k) : R"(, "force": [0, 1e)" + std::to_string(k) + "]";
+      SCOPED_TRACE(std::string(torque ? "torque" : "force") + " 1e" + std::to_string(k));
+      PinSlotSimulation sim =
+          PinSlotSimulation::create(read_model(model_json(fixed_cam(2) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })", ""), "<load>"));
+      // internal units mN (kg mm / s^2): the load times 1000 over the inertia (kg mm^2) or mass (kg)
+      const double a = load * 1000 / (torque ? f.inertia : f.mass), limit = torque ? 1.0 : 30.0 - f.s0;
+      const double t_star = std::sqrt(2 * limit / a);
+      // (since session 58 the slot's ends and angle limits are plastic stops: the part strikes the
+      // limit at t*, where the run stopped with "leaves its limits" before)
+      for (int n = 0; sim.events().empty(); ++n) {
+        ASSERT_LT(n, 100000) << "the limits were not reached";
+        sim.step(1.0);
+      }
+      const SimulationEvent& ev = sim.events()[0];
+      EXPECT_EQ(ev.kind, SimulationEvent::Kind::impact);
+      ASSERT_EQ(ev.features.size(), 1u);
+      EXPECT_NE(ev.features[0].find(torque ? "angle limit (upper)" : "slide limit (upper end)"), std::string::npos)
+          << ev.features[0];
+      // struck at t* (the bisection's 2^-30 of a step shorter than t*, the integration's 1e-9)
+      EXPECT_NEAR(ev.time, t_star, 1e-6 * t_star);
+      // at the closed-form speed a t* (the angle limit's row is reach x psi, the reach the part's at
+      // slide 0: the block's far corner (12, 12) from the pin (0, 40))
+      const double speed = (torque ? std::hypot(12.0, 28.0) : 1.0) * a * t_star;
+      EXPECT_NEAR(ev.normal_speed_before, speed, 1e-6 * speed);
+    }
+  }
+}
+
 TEST(SimulationPinSlot, OutsideTheClassItRefusesWithClearMessages) {
   Drop d;
   // a moving part that is not a driver

@@ -1,0 +1,35 @@
+#pragma once
+// One exact 1-D slice of a pair's C-space from the contact kernels (docs/kinematics.md, the
+// kernel slicer): no arrangement is built.
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+#include <hipair/rational.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace hipair {
+
+/// The slice of the pair of parts `other` and `follower` (model part indices) with `other` at
+/// chart value `other_t` of its chart with half turn `other_half` (tan(theta / 2) about 0 or
+/// about pi, or the offset), over the whole follower chart with half turn `follower_half` that
+/// holds `follower_t`: the contact points (exact, ascending) and the class of every interval
+/// between them, decided by the contact polynomials and the exact overlap oracle.
+struct KernelSlice {
+  struct Point {
+    AlgebraicNumber at;
+    /// Blocked on both sides and the parts may touch there (a zero-clearance fit, or not decided).
+    bool may_touch = false;
+  };
+  enum class Kind { free, blocked, touching, outside };
+  std::vector<Point> points;
+  std::vector<Kind> kinds;   ///< kinds[i] before points[i]; kinds.back() after the last
+};
+
+/// nullopt when the model has no pair of the two parts or no chart holds the values.
+std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, std::size_t follower, const Rational& other_t,
+                                        bool other_half, const Rational& follower_t, bool follower_half);
+
+}  // namespace hipair

@@ -1,0 +1,47 @@
+// hipair::kernel_slice (include/hipair/kernel_slice.hpp): one slice of the kernel slicer.
+#include <hipair/kernel_slice.hpp>
+
+#include "kinematics/slice.hpp"
+
+namespace hipair {
+
+std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, std::size_t follower, const Rational& other_t,
+                                        bool other_half, const Rational& follower_t, bool follower_half) {
+  using namespace kinematics_detail;
+  std::size_t pair = model.pairs.size();
+  for (std::size_t p = 0; p < model.pairs.size(); ++p)
+    if ((model.pairs[p].first == other && model.pairs[p].second == follower) ||
+        (model.pairs[p].first == follower && model.pairs[p].second == other))
+      pair = p;
+  if (pair == model.pairs.size()) return std::nullopt;
+  std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(model, pair, follower);
+  std::optional<std::size_t> other_chart, follower_chart;
+  for (std::size_t c = 0; c < slicer->other_charts().size() && !other_chart; ++c) {
+    const ChartAxis& axis = slicer->other_charts()[c];
+    if (axis.half_turn == other_half && axis.lo <= other_t && other_t <= axis.hi) other_chart = c;
+  }
+  for (std::size_t c = 0; c < slicer->follower_charts().size() && !follower_chart; ++c) {
+    const ChartAxis& axis = slicer->follower_charts()[c];
+    if (axis.half_turn == follower_half && axis.lo <= follower_t && follower_t <= axis.hi) follower_chart = c;
+  }
+  if (!other_chart || !follower_chart) return std::nullopt;
+  ChartSlice slice = slicer->slice(*other_chart, other_t, *follower_chart);
+  KernelSlice result;
+  for (const SlicePoint& point : slice.points) {
+    KernelSlice::Point p;
+    p.at.polynomial = point.value.polynomial;
+    p.at.lower = point.value.lower;
+    p.at.upper = point.value.upper;
+    p.at.exact = point.value.exact;
+    p.may_touch = point.touching || point.undecided;
+    result.points.push_back(std::move(p));
+  }
+  for (SliceKind kind : slice.kinds)
+    result.kinds.push_back(kind == SliceKind::free      ? KernelSlice::Kind::free
+                           : kind == SliceKind::blocked ? KernelSlice::Kind::blocked
+                           : kind == SliceKind::touching ? KernelSlice::Kind::touching
+                                                         : KernelSlice::Kind::outside);
+  return result;
+}
+
+}  // namespace hipair

@@ -1,0 +1,181 @@
+#!/usr/bin/env python3
+"""Hostile inputs to `hipair simulate` of a pin-in-slot part (session 58, hunt58).
+
+usage: pin_slot_hostile.py HIPAIR SOURCE_DIR WORKDIR
+
+Variants of tests/data/simulation/pin-slot-cam.json (a follower hanging on a vertical slot above
+an eccentric disc cam driven at 10 rad/s; three impacts in 0.1 s): bad dynamics data, violent
+loads, starts overlapping or outside the limits, drivers of 1e300 rad/s, bad --t-end, --accuracy
+and --region values, and the model scaled exactly (lengths x 10^-150 and 10^150, masses x 10^200).
+Each case must end within 60 s, without a crash, abort or uncaught exception; a refused or failed
+run exits 2 (input) or 3 (the run) with one line on stderr naming the place (a JSON pointer, an
+option, or the part and its limits) and writes no output directory; a run that succeeds writes
+its files, and the scaled models give the unscaled run's three impacts at the same times. Found
+by this script and fixed in session 58: lengths x 10^-150 ran "successfully" with the follower
+never moving; lengths x 10^150, masses x 10^200 and loads of 10^100 stopped with "not finite"; a
+torque of 10^30 N mm left the follower standing while the time ran on; a driver of 10^300 rad/s
+or a torque of 10^100 ran for hours; slide limits of 10^9 mm stopped the run at the second impact
+(the chord deviation and the rest speed took the limits as the part's size).
+"""
+import copy
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hunt_common import run, crash_problems  # noqa: E402
+
+
+def main(argv):
+    if len(argv) != 4:
+        print(__doc__)
+        return 2
+    hipair, source, work = argv[1:]
+    os.makedirs(work, exist_ok=True)
+    base_path = os.path.join(source, 'tests', 'data', 'simulation', 'pin-slot-cam.json')
+    base = json.load(open(base_path))
+
+    def variant(change):
+        m = copy.deepcopy(base)
+        change(m)
+        return m
+
+    def follower(m):
+        return m['parts'][1]
+
+    def dyn(key, value):
+        return lambda m: follower(m)['dynamics'].__setitem__(key, value)
+
+    def slot(key, value):
+        return lambda m: follower(m)['motion']['pin_slot'].__setitem__(key, value)
+
+    # name: (model change, extra arguments, expected exit, text the message must contain)
+    cases = {
+        'mass-0': (dyn('mass', 0), [], 2, '/parts/1/dynamics/mass'),
+        'mass-negative': (dyn('mass', -1), [], 2, '/parts/1/dynamics/mass'),
+        'inertia-0': (dyn('moment_of_inertia', 0), [], 2, '/parts/1/dynamics/moment_of_inertia'),
+        'inertia-below-centre': (lambda m: (m['simulation'].__setitem__('centers_of_mass', {'follower': [0, 22]}),
+                                            follower(m)['dynamics'].__setitem__('moment_of_inertia', 1)),
+                                 [], 2, '/parts/1/dynamics/moment_of_inertia'),
+        'spring-negative': (lambda m: follower(m)['dynamics']['torsional_spring'].__setitem__('stiffness', -20), [], 2,
+                            '/parts/1/dynamics/torsional_spring/stiffness'),
+        'spring-1e300': (lambda m: follower(m)['dynamics']['torsional_spring'].__setitem__('stiffness', 1e300), [], 2,
+                         '/parts/1/dynamics/torsional_spring'),
+        # (the slot's ends and angle limits are plastic stops since session 58, pinslot58: the run
+        # strikes them, 'stop', where it stopped with "leaves its angle/slide limits" before; under
+        # 1e100 and 1e300 the part then meets the cam at ~1e50 mm/s and the step underflows)
+        'torque-1e30': (dyn('torque', 1e30), [], 'stop', 'angle limit (upper)'),
+        'torque-1e100': (dyn('torque', 1e100), [], 3, 'the step size underflows'),
+        'torque-1e300': (dyn('torque', 1e300), [], 3, 'the step size underflows'),
+        'force-1e300': (dyn('force', [0, 1e300]), [], 'stop', 'slide limit (upper end)'),
+        # (pressed on the cam by 1e300 and held there: steps of 1e-151 s, a run of the step budget)
+        'gravity-1e300': (lambda m: m['simulation'].__setitem__('gravity', [0, -1e300]), ['--max-steps', '2000'], 3,
+                          '--max-steps'),
+        'driver-1e300': (lambda m: m['simulation']['drivers'][0].__setitem__('speed', 1e300), [], 2,
+                         '/simulation/drivers/0'),
+        'restitution-2': (lambda m: m['pairs'][0].__setitem__('restitution', 2), [], 2, '/pairs/0/restitution'),
+        'start-overlapping': (lambda m: follower(m)['initial'].__setitem__('offset', -20), [], 2, '/parts/1/initial'),
+        'start-outside-limits': (lambda m: follower(m)['initial'].__setitem__('offset', -40), [], 2,
+                                 '/parts/1/initial/offset'),
+        'angle-outside-limits': (lambda m: follower(m)['initial'].__setitem__('angle', 1), [], 2,
+                                 '/parts/1/initial/angle'),
+        'limits-one-value': (slot('limits', [0, 0]), [], 2, '/parts/1/motion/pin_slot/limits'),
+        'direction-zero': (slot('direction', [0, 0]), [], 2, '/parts/1/motion/pin_slot/direction'),
+        'no-dynamics': (lambda m: follower(m).pop('dynamics'), [], 2, '/parts/1/dynamics'),
+        'accuracy-0-in-model': (lambda m: m['simulation'].__setitem__('accuracy', 0), [], 2, '/simulation/accuracy'),
+        't-end-0': (None, ['--t-end=0'], 2, '--t-end'),
+        't-end-negative': (None, ['--t-end=-1'], 2, '--t-end'),
+        't-end-nan': (None, ['--t-end=nan'], 2, '--t-end'),
+        't-end-1e300': (None, ['--t-end=1e300'], 2, '/parts/1/dynamics/torsional_spring'),
+        'accuracy-0': (None, ['--accuracy', '0'], 'nonzero', '--accuracy'),
+        'region-operating': (None, ['--region', 'operating'], 2, '--region'),
+        'region-bogus': (None, ['--region', 'bogus'], 'nonzero', '--region'),
+        'region-full': (None, ['--region', 'full'], 0, ''),
+        'max-steps-1': (None, ['--max-steps', '1'], 'nonzero', '--max-steps'),
+        'at-slide-limit': (lambda m: follower(m)['initial'].__setitem__('offset', 30), [], 0, ''),
+        'limits-1e9': (slot('limits', [-1e9, 1e9]), [], 'same', ''),
+        'limits-1e300': (slot('limits', [-1e300, 1e300]), [], 'same', ''),
+        'mass-1e200': (lambda m: (follower(m)['dynamics'].__setitem__('mass', 1e198),
+                                  follower(m)['dynamics'].__setitem__('moment_of_inertia', 1e201),
+                                  follower(m)['dynamics']['torsional_spring'].__setitem__('stiffness', 2e201)),
+                       [], 'same', ''),
+    }
+    scaled = {}
+    for exponent in ('-150', '150'):
+        path = os.path.join(work, 'scaled%s.json' % exponent)
+        subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scale_model.py'),
+                        base_path, '1e' + exponent, path], check=True)
+        scaled['lengths-1e' + exponent] = path
+
+    def impacts(out):
+        return [e['time'] for e in json.load(open(os.path.join(out, 'events.json')))['events'] if e['kind'] == 'impact']
+
+    failures = 0
+
+    def one(name, path, extra, expect, text):
+        nonlocal failures
+        out = os.path.join(work, 'out-' + name)
+        shutil.rmtree(out, ignore_errors=True)
+        args = [hipair, 'simulate', path, '--quiet', '--no-pictures', '--out', out]
+        if not any(a.startswith('--t-end') for a in extra):
+            args += ['--t-end', '0.1']
+        start = time.time()
+        rc, so, se = run(args + extra, timeout=60)
+        seconds = time.time() - start
+        problems = crash_problems(rc, so + se)
+        lines = [line for line in se.splitlines() if line.strip()]
+        if not problems:
+            if expect == 'stop':
+                events = json.load(open(os.path.join(out, 'events.json')))['events'] if rc == 0 else []
+                if rc != 0:
+                    problems.append('exit %s, expected 0: %s' % (rc, se.strip()[-300:]))
+                elif not events or events[0]['kind'] != 'impact' or not any(text in f for f in events[0]['features']):
+                    problems.append('the first event is not the impact on %s' % text)
+            elif expect in (0, 'same'):
+                if rc != 0:
+                    problems.append('exit %s, expected 0: %s' % (rc, se.strip()[-300:]))
+                elif not os.path.exists(os.path.join(out, 'trajectory.csv')):
+                    problems.append('no trajectory.csv')
+                elif expect == 'same' and len(impacts(out)) != 3:
+                    problems.append('impacts at %s, the unscaled run has 3' % impacts(out))
+            else:
+                if rc == 0 or (expect != 'nonzero' and rc != expect):
+                    problems.append('exit %s, expected %s' % (rc, expect))
+                if len(lines) != 1:
+                    problems.append('%d lines on stderr' % len(lines))
+                if text not in se:
+                    problems.append('the message does not name %s' % text)
+                if os.path.exists(out):
+                    problems.append('output directory written')
+        status = 'ok' if not problems else 'PROBLEM ' + '; '.join(problems)
+        print('%-22s exit %-7s %5.1f s  %s | %s' % (name, rc, seconds, status, (lines[-1] if lines else '')[:160]))
+        failures += bool(problems)
+        return out
+
+    reference = one('unscaled', base_path, [], 0, '')
+    reference_impacts = impacts(reference)
+    for name, (change, extra, expect, text) in cases.items():
+        path = base_path
+        if change:
+            path = os.path.join(work, name + '.json')
+            json.dump(variant(change), open(path, 'w'), indent=1)
+        out = one(name, path, extra, expect, text)
+        if expect == 'same' and os.path.exists(os.path.join(out, 'events.json')):
+            if any(abs(a - b) > 1e-9 for a, b in zip(impacts(out), reference_impacts)):
+                print('  %s: impacts at %s, unscaled at %s' % (name, impacts(out), reference_impacts))
+                failures += 1
+    for name, path in scaled.items():
+        out = one(name, path, [], 'same', '')
+        if os.path.exists(os.path.join(out, 'events.json')):
+            if any(abs(a - b) > 1e-9 for a, b in zip(impacts(out), reference_impacts)):
+                print('  %s: impacts at %s, unscaled at %s' % (name, impacts(out), reference_impacts))
+                failures += 1
+    print('%d of %d cases failed' % (failures, len(cases) + len(scaled) + 1))
+    return 1 if failures else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv))
