@@ -76,9 +76,13 @@ struct SlicedLocation {
 struct SlicedConnection {
   std::size_t left_cell = no_index;
   std::size_t right_cell = no_index;
-  /// A witness of the connection: the same offset (x, y) at an angle inside the left interval
-  /// and one inside the right interval; the pure rotation between them (through the half turn
-  /// when `through_half_turn`) is certified free (no vertex–edge contact line passes the offset).
+  /// A witness of the connection: a configuration at an angle inside the left interval and one
+  /// inside the right interval; the straight motion between them (through the half turn when
+  /// `through_half_turn`) is certified free. For a part near its pivot both have the same offset
+  /// (x, y) (a pure rotation: no vertex–edge contact line passes the offset); for a part far from
+  /// its pivot (lever above 1) the offsets differ: the ends of the chord of a turn about the
+  /// part's own centre, certified by the exact first-contact query (docs/cspace.md, "A pivot far
+  /// from the free part").
   SlicedConfiguration left_witness, right_witness;
   bool through_half_turn = false;
 };

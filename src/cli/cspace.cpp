@@ -277,6 +277,10 @@ int run(const CSpaceCommandOptions& options) {
       }
     if (first == second) throw ModelError("", "--pair " + options.pair + ": a pair needs two different parts");
     require_feature_spread(model, *model.find_part(first), *model.find_part(second));   // before work (session 53)
+    // a planar part against a moving part: one message naming the pair (until session 58 "part
+    // 'peg' moves with more than one degree of freedom; its pair is not a fixed-axis pair")
+    if (auto refusal = planar_pair_not_built(model, *model.find_part(first), *model.find_part(second)))
+      throw GeometryError(*refusal);
     if (auto sliced = sliced_pair(model, first, second)) {
       refuse_options_that_do_not_apply(options, false, true, false);
       sliced_requests.push_back(*sliced);
@@ -303,9 +307,17 @@ int run(const CSpaceCommandOptions& options) {
     spaces = CSpace::build_all(model, build);
     if (build.operating_region)
       for (const CSpace& space : spaces) refuse_blocked_start(model, space);
-    if (spaces.empty() && sliced_requests.empty() && pin_requests.empty())
+    if (spaces.empty() && sliced_requests.empty() && pin_requests.empty()) {
+      // the first pair of a planar part against a moving part, named (session 58)
+      std::string unbuilt;
+      for (const PairSpec& pair : model.pairs)
+        if (auto refusal = planar_pair_not_built(model, pair.first, pair.second)) {
+          unbuilt = "; " + *refusal;
+          break;
+        }
       throw GeometryError("the model has no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
-                          "against a fixed part) and no pin-in-slot pair");
+                          "against a fixed part) and no pin-in-slot pair" + unbuilt);
+    }
   }
   std::vector<SlicedSpace> sliced_spaces;
   for (const auto& [fixed, free] : sliced_requests)

@@ -56,6 +56,39 @@ std::optional<std::pair<std::string, std::string>> sliced_pair(const Model& mode
   return std::nullopt;
 }
 
+std::optional<std::string> planar_pair_not_built(const Model& model, std::size_t first, std::size_t second) {
+  const Part& p = model.parts[first];
+  const Part& q = model.parts[second];
+  auto kind = [](Motion::Kind k) {
+    switch (k) {
+      case Motion::Kind::fixed: return "fixed";
+      case Motion::Kind::rotation: return "rotating";
+      case Motion::Kind::translation: return "translating";
+      case Motion::Kind::planar: return "planar";
+      case Motion::Kind::pin_slot: return "pin_slot";
+    }
+    return "?";
+  };
+  if (p.motion.kind != Motion::Kind::planar && q.motion.kind != Motion::Kind::planar) return std::nullopt;
+  for (const Part* part : {&p, &q})
+    if (part->motion.kind == Motion::Kind::fixed || part->motion.kind == Motion::Kind::pin_slot) return std::nullopt;
+  std::string where;
+  for (const PairSpec& pair : model.pairs)
+    if ((pair.first == first && pair.second == second) || (pair.first == second && pair.second == first)) {
+      where = " (" + pair.pointer + ")";
+      break;
+    }
+  const int dimensions = p.motion.degrees_of_freedom() + q.motion.degrees_of_freedom();
+  auto described = [&](const Part& part) {
+    return std::string(kind(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")";
+  };
+  const Part& planar = p.motion.kind == Motion::Kind::planar ? p : q;
+  const Part& other = &planar == &p ? q : p;
+  return "pair '" + p.name + "':'" + q.name + "'" + where + ": the " + described(planar) + " against the " +
+         described(other) + " has a C-space of " + std::to_string(dimensions) +
+         " dimensions, which hipair does not build (a planar part's pair is built against a fixed part)";
+}
+
 std::vector<std::pair<std::string, std::string>> sliced_pairs(const Model& model) {
   std::vector<std::pair<std::string, std::string>> out;
   for (const PairSpec& pair : model.pairs)

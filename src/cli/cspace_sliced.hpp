@@ -17,6 +17,12 @@ namespace hipair::cli {
 std::optional<std::pair<std::string, std::string>> sliced_pair(const Model& model, const std::string& first,
                                                                const std::string& second);
 
+/// The refusal of a planar part against a part that moves (rotating, translating or planar: a
+/// C-space of 4 or more dimensions, not built), naming the pair, its JSON pointer when the
+/// model lists it, and both parts' motions; nothing for any other pair (a pin_slot part's pair
+/// is refused by pin_slot_pair).
+std::optional<std::string> planar_pair_not_built(const Model& model, std::size_t first, std::size_t second);
+
 /// The model's 3-DOF pairs among its pairs (fixed part, planar part).
 std::vector<std::pair<std::string, std::string>> sliced_pairs(const Model& model);
 

@@ -1243,6 +1243,11 @@ class CurveFinder {
   // that range, roots isolated in it, no half turn.
   void restrict_to(const Rational& lo, const Rational& hi) { range_ = std::make_pair(lo, hi); }
 
+  // Narrow the restricted range to where the part's curves can meet the window (run_narrowed;
+  // pin-slot parts far from their pivot, session 58; with the filters only: the plain exact
+  // path, filters off, is the tests' oracle).
+  void narrow_to_window(bool on) { narrow_ = on; }
+
   // The interval filter and the oracle's memory (on by default; off: the plain exact path).
   void use_filters(bool on) {
     filters_ = on;
@@ -1259,6 +1264,7 @@ class CurveFinder {
         if (curves_[id].extra) return false;
       return true;
     };
+    if (narrow_ && filters_ && range_ && window_) return run_narrowed(skip);   // (filters off: the plain path)
     for (std::size_t i = 0; i < n; ++i)
       if (!skip({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
     for (std::size_t i = 0; i < n; ++i)
@@ -1931,6 +1937,8 @@ class CurveFinder {
   // Bit r of a curve pair's mask: their boxes over angle range r meet (and, with a window, each
   // meets the window's box: the hull of its edges').
   void compute_masks() {
+    outside_.clear();
+    in_window_.assign(curves_.size(), ~std::uint64_t(0));
     if (range_ && filters_ && interval_masks()) return;
     const std::size_t n = curves_.size();
     std::vector<std::vector<std::pair<Box, Box>>> boxes(n);
@@ -2008,6 +2016,7 @@ class CurveFinder {
     }
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = 0; b < n; ++b) masks_[a * n + b] &= in_window[a] & in_window[b];
+    in_window_ = std::move(in_window);
   }
   // The pairwise masks of boxes given as doubles (x lo, x hi, y lo, y hi per curve and range).
   void masks_from(const std::vector<std::array<double, 4>>& near) {
@@ -2085,10 +2094,71 @@ class CurveFinder {
     }
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = 0; b < n; ++b) masks_[a * n + b] &= in_window[a] & in_window[b];
+    in_window_ = std::move(in_window);
     return true;
   }
 
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
+
+  // run() for a pin-slot part far from its pivot (narrow_to_window). Its curves sweep
+  // |b - pivot| dtheta within an angle range: 10^6 mm from the pivot, each of the 64 mask ranges
+  // of +-8 degrees moves them 4 400 mm, so every curve's box meets every other's and the window's
+  // in the few ranges where they pass the window, and every pair and triple was solved exactly
+  // over the whole range (no answer within 200 s; session 57's film-advance with the follower's
+  // pivot at (10^6, 40)). Every event of a curve that is not a window edge lies on that curve
+  // inside the window (its conditions), so at an angle of a range where the curve's box meets
+  // the window's (`in_window_`, closed enclosures over closed ranges): the hull of those ranges
+  // holds all of them. The events of window edges alone (and the window's degeneracy) are found
+  // first over the whole range; then the range is narrowed to the hull (masks recomputed over
+  // the hull's 64 ranges) while that at least halves it, and the other events are found there:
+  // the same events, far fewer candidates.
+  template <class Skip>
+  std::vector<Critical> run_narrowed(Skip skip) {
+    const std::size_t n = curves_.size();
+    auto all_extra = [&](std::initializer_list<std::size_t> ids) {
+      return std::all_of(ids.begin(), ids.end(), [&](std::size_t id) { return curves_[id].extra; });
+    };
+    auto events = [&](bool window_edges_only) {
+      auto wanted = [&](std::initializer_list<std::size_t> ids) { return !skip(ids) && all_extra(ids) == window_edges_only; };
+      for (std::size_t i = 0; i < n; ++i)
+        if (wanted({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) {
+          if (i == j || mask(i, j) == 0 || !wanted({i, j})) continue;
+          for (std::size_t k = 0; k < curves_[i].ends.size(); ++k) end_on_curve(i, k, j);
+          if (i < j && (curves_[i].circle || curves_[j].circle)) tangent(i, j);
+        }
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) {
+          std::uint64_t mij = mask(i, j);
+          if (mij == 0) continue;
+          for (std::size_t k = j + 1; k < n; ++k) {
+            std::uint64_t m = mij & mask(i, k) & mask(j, k);
+            if (m != 0 && wanted({i, j, k})) concurrent(i, j, k, m);
+          }
+        }
+    };
+    events(true);
+    for (int step = 0; step < 64; ++step) {
+      std::uint64_t live = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!curves_[i].extra) live |= in_window_[i];
+      if (live == 0) return merged(std::move(found_));   // no curve ever meets the window
+      int r0 = 0, r1 = 63;
+      while (!((live >> r0) & 1)) ++r0;
+      while (!((live >> r1) & 1)) --r1;
+      if (r1 - r0 + 1 > 32) break;   // narrowing would not halve the range
+      const Rational width = range_->second - range_->first;
+      Rational lo = range_->first + width * Rational(r0, 64), hi = range_->first + width * Rational(r1 + 1, 64);
+      lo.canonicalize();
+      hi.canonicalize();
+      range_ = std::make_pair(lo, hi);
+      pieces_.clear();   // (the interval filter's enclosures are of the range's pieces)
+      compute_masks();
+    }
+    events(false);
+    return merged(std::move(found_));
+  }
 
   struct Window {
     Vec<Rational> d;
@@ -2101,6 +2171,8 @@ class CurveFinder {
   std::optional<std::pair<Rational, Rational>> range_;
   mutable std::vector<std::optional<Rotation<IV>>> pieces_;   // see certainly_no_root
   std::vector<std::size_t> outside_;   // curves never meeting the window's box
+  std::vector<std::uint64_t> in_window_;   // per curve: the mask ranges where its box meets the window's (all: no window)
+  bool narrow_ = false;                    // run_narrowed (narrow_to_window)
   bool only_extra_ = false;
   bool skip_conditions_ = false;   // while building an event's polynomial alone
   bool filters_ = true;            // the interval filter (restricted ranges) before exact polynomials
@@ -2154,6 +2226,20 @@ std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pi
   CurveFinder finder(other, pin, statistics);
   finder.use_filters(filters);
   if (tau_range) finder.restrict_to(tau_range->first, tau_range->second);
+  // a pin-slot part whose reach about its pivot exceeds 16 times its reach about its own first
+  // vertex (the pivot far from it; the film advance's follower: 0.7): the range narrowed to the
+  // window (run_narrowed). Ordinary parts keep the one pass over the whole range.
+  if (!pin.loops.empty() && !pin.loops.front().edges.empty()) {
+    const Point& first = pin.loops.front().edges.front().source;
+    Rational about_pivot = 0, own = 0;
+    for (const auto& loop : pin.loops)
+      for (const auto& e : loop.edges)
+        for (const Point* p : {&e.source, e.is_arc() ? &e.center : &e.source}) {
+          about_pivot = std::max(about_pivot, Rational(abs(p->x - pin.motion.pivot.x) + abs(p->y - pin.motion.pivot.y)));
+          own = std::max(own, Rational(abs(p->x - first.x) + abs(p->y - first.y)));
+        }
+    finder.narrow_to_window(about_pivot > 16 * own);
+  }
   const Vec<Rational> d{pin.motion.direction.x, pin.motion.direction.y};
   std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
   if (q_range) translating.emplace(Vec<Rational>{other.motion.direction.x, other.motion.direction.y}, *q_range);

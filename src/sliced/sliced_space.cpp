@@ -139,6 +139,26 @@ Rational pivot_lever(const Part& free, const Rational& unit) {
   return lever;
 }
 
+// The centre of the free part's bounding box (of its vertices and arc centres; rational): the
+// point about which its critical angles are computed, and about which its crossings turn when
+// its pivot is far from it (session 58).
+Point part_centre(const Part& part) {
+  std::optional<Rational> x_lo, x_hi, y_lo, y_hi;
+  auto add = [&](const Point& p) {
+    if (!x_lo || p.x < *x_lo) x_lo = p.x;
+    if (!x_hi || p.x > *x_hi) x_hi = p.x;
+    if (!y_lo || p.y < *y_lo) y_lo = p.y;
+    if (!y_hi || p.y > *y_hi) y_hi = p.y;
+  };
+  for (const auto& loop : part.loops)
+    for (const auto& e : loop.edges) {
+      add(e.source);
+      if (e.is_arc()) add(e.center);
+    }
+  if (!x_lo) return part.motion.pivot;
+  return Point{Rational((*x_lo + *x_hi) / 2), Rational((*y_lo + *y_hi) / 2)};
+}
+
 struct UnionFind {
   std::vector<std::size_t> parent;
   std::size_t add() {
@@ -309,6 +329,18 @@ struct SlicedSpace::Impl {
   // The free part's lever about its pivot (pivot_lever): 1, or the power of two by which the
   // crossings' angle ranges are narrowed for a pivot far from the part (session 57).
   Rational lever = 1;
+  // A pivot far from the free part (lever above 1): the crossings turn the part about its own
+  // bounding box's centre `reference` Q (model units, part_centre), not about the pivot P
+  // (session 58). The configuration (d, theta) about P places the part as (d - (I - R)(Q - P), theta) about Q
+  // (p -> P + R (p - P) + d is Q + R (p - Q) + d - (I - R)(Q - P)): the slices about Q are the
+  // model's translated, with the same cells and contacts, and a pure turn about Q by the range
+  // near() gives moves the part by at most its own size times that range. About P the same
+  // turn swept a peg 10^6 mm away across a hole 10^-9 wider than it, so the hole's cells were
+  // not linked (12 components for 5). `near_free`: the free part with its pivot at Q,
+  // `near_bound` its slices' box.
+  std::optional<Point> reference;
+  std::optional<Part> near_free;
+  Rational near_bound;
   // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
   // scale_free_factor k, the coordinates integers, then divided by the power of two that brings
   // them to an ordinary size, sliced::size_unit: `frame` = k / that unit): the parts times
@@ -343,10 +375,45 @@ struct SlicedSpace::Impl {
     return slice_of(model.parts[fixed], model.parts[free], bound, angle, "");
   }
 
-  // The slice at `angle` in the crossings' frame (the model's slice when there is no frame).
+  // The slice at `angle` in the crossings' frame (the model's slice when there is no frame;
+  // about the part's own vertex when its pivot is far: `reference`).
   std::shared_ptr<const CSpace> frame_slice(const SlicedAngle& angle) const {
-    if (!frame) return slice(angle);
+    if (!frame) return near_free ? slice_of(model.parts[fixed], *near_free, near_bound, angle, "near ") : slice(angle);
     return slice_of(*frame_fixed, *frame_free, frame_bound, angle, "frame ");
+  }
+
+  // (I - R(angle))(Q - P): the model's offset of the placement that is offset 0 about Q.
+  Point about_pivot(const SlicedAngle& angle) const {
+    auto [c, s] = sliced::rotation_of(angle);
+    const Point& P = model.parts[free].motion.pivot;
+    Rational vx = reference->x - P.x, vy = reference->y - P.y;
+    return Point{Rational(vx - (c * vx - s * vy)), Rational(vy - (s * vx + c * vy))};
+  }
+
+  // The chart's angle at chart coordinate u (the chart about pi when `flip`: u = -1/t).
+  static SlicedAngle chart_angle(const Rational& u, bool flip) {
+    if (!flip) return SlicedAngle{u, false};
+    if (sgn(u) == 0) return SlicedAngle{Rational(0), true};
+    return SlicedAngle{Rational(-1 / u), false};
+  }
+
+  // The model's configuration of an offset q about the reference Q at an angle.
+  Point from_reference(const Point& q, const SlicedAngle& angle) const {
+    Point v = about_pivot(angle);
+    return Point{Rational(q.x + v.x), Rational(q.y + v.y)};
+  }
+
+  // The turn about Q at offset q (model units, about Q) over [u_lo, u_hi] is approximated by
+  // the straight motion of the model's chart between its two ends (offsets about P, chart
+  // coordinates u_lo and u_hi): certified free by the exact first-contact query, ends included.
+  // The chord leaves the turn's curve by |Q - P| times the square of the range at most; near()
+  // narrows the range by the lever, so the chord moves the part hardly more than the turn.
+  bool chord_free(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
+    const Point a = from_reference(q, chart_angle(u_lo, flip)), b = from_reference(q, chart_angle(u_hi, flip));
+    sliced::StraightMotion m{a.x, a.y, u_lo, b.x, b.y, u_hi, flip, {}};
+    for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
+    sliced::MotionResult r = motion->first_contact(m);
+    return r.starts_apart && !r.found;
   }
 
   std::shared_ptr<const CSpace> slice_of(const Part& a, const Part& b, const Rational& box, const SlicedAngle& angle,
@@ -401,7 +468,9 @@ struct SlicedSpace::Impl {
 
   // steady() for a point q of the crossings' frame (the model's q / k): the scaled pair's
   // contact lines are the model's times k, so steady_along on it is the same exact test.
+  // A far pivot (`reference`): q is about Q, and the chord about P is checked (chord_free).
   bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip, bool exact_fallback) const {
+    if (reference) return chord_free(frame ? Point{Rational(q.x / *frame), Rational(q.y / *frame)} : q, u_lo, u_hi, flip);
     if (!frame) return steady(q, u_lo, u_hi, flip, exact_fallback);
     if (frame_pair && sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip)) return true;
     if (frame_pair && !exact_fallback) return false;
@@ -598,20 +667,24 @@ struct SlicedSpace::Impl {
         frame = *k * to_ordinary;
         frame_fixed = sliced::scaled_part(*a, to_ordinary);
         frame_free = sliced::scaled_part(*b, to_ordinary);
+        if (reference) frame_free->motion.pivot = part_centre(*frame_free);   // Q times frame
         frame_unit = sliced::length_unit(*frame_fixed, *frame_free);
         const Point& frame_pivot = frame_free->motion.pivot;
         frame_bound = reach(*frame_fixed, frame_pivot, frame_unit) + reach(*frame_free, frame_pivot, frame_unit) + 2 * frame_unit;
         if (!has_arc(*a) && !has_arc(*b)) frame_pair = sliced::polygonal_pair(*frame_fixed, *frame_free);
       }
       // The critical angles do not depend on the pivot: the slice at theta about pivot P is the
-      // slice about P0 translated by (I - R(theta))(P - P0), the same contacts. A pivot far from
-      // the free part (its lever above 1) is moved to the part's first vertex for them: about
-      // a pivot 10^12 mm away the candidates' certification lost its intervals and kept 2 320
-      // critical angles for the peg-in-hole's 12 (session 57, hunt57).
+      // slice about P0 translated by (I - R(theta))(P - P0), the same contacts. They are computed
+      // with the pivot moved to the centre of the part's bounding box: about a pivot 10^12 mm
+      // away the candidates' certification lost its intervals and kept 2 320 critical angles for
+      // the peg-in-hole's 12 (session 57, hunt57), and about the part's first vertex that of a
+      // hole 10^-9 wider than the peg kept 4 more than about its centre (certified over
+      // enclosures that widen with the distance from the pivot; session 58): the same list
+      // whatever the pivot.
       std::optional<Part> near_pivot;
-      if (lever != 1 && !b->loops.empty() && !b->loops.front().edges.empty()) {
+      if (const Point centre = part_centre(*b); centre.x != b->motion.pivot.x || centre.y != b->motion.pivot.y) {
         near_pivot = *b;
-        near_pivot->motion.pivot = b->loops.front().edges.front().source;
+        near_pivot->motion.pivot = centre;
         b = &*near_pivot;
       }
       if (has_arc(*a) || has_arc(*b)) {
@@ -705,7 +778,7 @@ struct SlicedSpace::Impl {
       // session 53), then, for polygonal pairs with a cell still without a link, the same rounds
       // with the exact pure-rotation check where the line test refuses (steady()).
       const bool polygonal = frame ? frame_pair.has_value() : pair.has_value();
-      for (int pass = 0; pass < (polygonal ? 2 : 1); ++pass)
+      for (int pass = 0; pass < (polygonal && !reference ? 2 : 1); ++pass)
       for (int round = 0; round < 4 && (left_done.size() < left_count || right_done.size() < right_count); ++round) {
         const bool exact_fallback = pass == 1;
         Near nr = near(i, round);
@@ -754,7 +827,10 @@ struct SlicedSpace::Impl {
           right_done.insert(b);
           Point w = q;   // the model's configuration
           if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
-          SlicedConnection link{a, b, SlicedConfiguration{w.x, w.y, nr.left}, SlicedConfiguration{w.x, w.y, nr.right}, nr.flip};
+          // about Q (a far pivot): the chord's two ends, the model's offsets about P
+          const Point wl = reference ? from_reference(w, nr.left) : w, wr = reference ? from_reference(w, nr.right) : w;
+          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip};
+          for (Rational* r : {&link.left_witness.x, &link.left_witness.y, &link.right_witness.x, &link.right_witness.y}) r->canonicalize();
           link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
           link.right_witness.angle.t.canonicalize();
           links.emplace(std::make_pair(a, b), link);
@@ -877,6 +953,12 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   impl->unit = sliced::length_unit(a, b);
   impl->bound = reach(a, b.motion.pivot, impl->unit) + reach(b, b.motion.pivot, impl->unit) + 2 * impl->unit;
   impl->lever = pivot_lever(b, impl->unit);
+  if (impl->lever != 1) {
+    impl->reference = part_centre(b);
+    impl->near_free = b;
+    impl->near_free->motion.pivot = *impl->reference;
+    impl->near_bound = reach(a, *impl->reference, impl->unit) + reach(b, *impl->reference, impl->unit) + 2 * impl->unit;
+  }
   impl->motion.emplace(impl->model, *fixed, *free);
   if (options.cell_structure) impl->build_structure();
   impl->stats.seconds_total = seconds_since(start);

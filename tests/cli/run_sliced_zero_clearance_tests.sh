@@ -11,6 +11,7 @@
 #  3. `show --svg` under a regular file is refused before the model is read (a broken model
 #     file is not what the message names), nothing written;
 #  4. `simulate --t-end 1e300` with pictures: the too-many-frames message names --t-end.
+#  (2b, session 58: a planar part against a rotating or translating part: the refusal names the pair.)
 # usage: run_sliced_zero_clearance_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
 # shellcheck source=seeded_test.sh
@@ -60,6 +61,30 @@ done
 model coincident "$(square 5)" "$(square 5)"
 "$hipair" cspace "$work/coincident.json" --stats >"$work/coincident.out" 2>&1 || fail "coincident: exit $?"
 grep -q "components 1;" "$work/coincident.out" || fail "coincident: $(grep components "$work/coincident.out")"
+
+# 2b. a planar part against a rotating or translating part (4 dimensions, not built): one message
+#     naming the pair and its JSON pointer, with --pair (either order) and without, exit
+#     non-zero, nothing written (session 58; until then "part 'peg' moves with more than one
+#     degree of freedom; its pair is not a fixed-axis pair", naming neither)
+for motion in '{"rotation": {"pivot": [0, 0]}}' '{"translation": {"direction": [1, 0]}}'; do
+  python3 - "$peg" "$work/moving-plate.json" "$motion" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+m["parts"][0]["motion"] = json.loads(sys.argv[3])
+json.dump(m, open(sys.argv[2], "w"))
+PY
+  for args in "--pair plate:peg" "--pair peg:plate" ""; do
+    rm -f "$work/moving.json"
+    # shellcheck disable=SC2086
+    "$hipair" cspace "$work/moving-plate.json" $args --json "$work/moving.json" >"$work/moving.out" 2>&1
+    code=$?
+    { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "planar against $motion ($args): exit $code"
+    [ "$(grep -c . "$work/moving.out")" = 1 ] || fail "planar against $motion ($args): not one line: $(head -c 400 "$work/moving.out")"
+    grep -Eq "pair '(plate':'peg|peg':'plate)' \(/pairs/0\): the planar part 'peg' \(/parts/1/motion\) against the (rotating|translating) part 'plate' \(/parts/0/motion\) has a C-space of 4 dimensions" \
+      "$work/moving.out" || fail "planar against $motion ($args): $(head -c 400 "$work/moving.out")"
+    [ -e "$work/moving.json" ] && fail "planar against $motion ($args): wrote the JSON"
+  done
+done
 
 # 3. show --svg under a regular file, before reading the model
 : >"$work/regular"
