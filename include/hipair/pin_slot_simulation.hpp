@@ -21,6 +21,13 @@
 
 namespace hipair {
 
+/// A held (sustained) contact of the pin-slot part at a state.
+struct PinSlotContact {
+  std::size_t pair = 0;   ///< index into Model::pairs
+  std::string feature;    ///< the feature pair's label
+  double normal_force = 0;   ///< force unit: the contact LCP's multiplier at the last step's start
+};
+
 /// The state of a pin-in-slot simulation, in the model's units (mm, rad, time unit).
 struct PinSlotState {
   double time = 0;
@@ -33,6 +40,9 @@ struct PinSlotState {
   /// relative to the other part; index = the pair's index among the simulated pairs, in model
   /// order): certified free (a contact is met on its chord's free side, 2^-crossing_bits before).
   std::vector<SlicedConfiguration> pair_configurations;
+  /// The held contacts (sustained contact: each kept at the hold gap 3/4 delta, its force from
+  /// the contact complementarity problem).
+  std::vector<PinSlotContact> contacts;
 };
 
 /// A simulation of one pin-in-slot part among fixed parts and parts rotating at a prescribed
@@ -40,8 +50,9 @@ struct PinSlotState {
 /// torque, a linear spring on s and a torsional spring on psi (Lagrange's equations, integrated
 /// with error control); every pair's contacts by straight chords in its exact 3-DOF C-space
 /// (SlicedSpace::first_crossing) within the chord deviation of the path; Newton impacts in
-/// (s, psi) with the driver's infinite inertia. A contact that would have to be sustained (an
-/// impact leaving less than the rest speed) stops the run with a NumericError naming the pair.
+/// (s, psi) with the driver's infinite inertia. A contact an impact leaves slower than the rest
+/// speed is held: sustained contact, its force from the contact LCP over (s, psi), lifting off
+/// where the force would turn negative.
 class PinSlotSimulation {
  public:
   struct Impl;
@@ -51,7 +62,7 @@ class PinSlotSimulation {
   static PinSlotSimulation create(const Model& model, const SimulationOptions& options = {});
   /// One step: free flight until `t_limit` (time unit) or the first contact.
   /// \throws GeometryError when the part leaves its slide or angle limits, NumericError for a
-  /// contact that would have to be sustained.
+  /// contact that would have to be sustained between feature kinds a held contact does not take.
   void step(double t_limit);
   void run_until(double t_end, const std::function<void(double)>& progress = {});
   const PinSlotState& state() const;

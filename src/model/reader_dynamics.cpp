@@ -175,6 +175,16 @@ void Reader::read_simulation(const JsonValue* value) {
         spec.velocities.push_back({*index, omega ? angle(*omega) : Rational(0), member.value.pointer});
         continue;
       }
+      if (motion.kind == Motion::Kind::pin_slot) {
+        // {"slide": v, "angle": omega}, each optional (0): the rates of s (mm / time unit) and psi
+        expect_object(member.value, "a pin-slot part's velocity {\"slide\": v, \"angle\": omega}");
+        check_keys(member.value, {"slide", "angle"});
+        const JsonValue* v = member.value.find("slide");
+        const JsonValue* omega = member.value.find("angle");
+        spec.velocities.push_back({*index, v ? number(*v) : Rational(0), member.value.pointer});
+        spec.velocities.push_back({*index, omega ? angle(*omega) : Rational(0), member.value.pointer});
+        continue;
+      }
       if (motion.kind != Motion::Kind::rotation && motion.kind != Motion::Kind::translation)
         throw ModelError(member.value.pointer, "part '" + member.key + "' has no single coordinate to give a velocity");
       if (driven.count(*index))

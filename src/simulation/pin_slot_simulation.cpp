@@ -23,13 +23,23 @@
 // crossing, so every accepted configuration is free. A pair whose boundaries are exactly farther
 // apart at the step's start than twice the step's travel bound (plus delta), and exactly apart at
 // its end, needs no chord (the far test: exact edge distances, a double travel bound).
+//
+// Sustained contact (session 58): a contact an impact leaves slower than the rest speed is held
+// — a bilateral row of its features' signed gap g(s, psi, phi) within a step (J, the driver's
+// share and the curvature term from a second-order forward-mode evaluation, Taylor2), the state
+// projected onto the hold gap 3/4 delta after each step, its force from the contact LCP (J M^-1
+// J^T over (s, psi)) at each step's start, lifting off where it would turn negative. The slot's
+// ends and angle limits are plastic stops held the same way.
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
+#include "simulation/lcp.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
 
+#include "kernels/contact_geometry.hpp"
 #include "kernels/distance.hpp"
+#include "kernels/model_features.hpp"
 #include "kernels/vector.hpp"
 
 #include <boost/numeric/odeint.hpp>
@@ -94,6 +104,9 @@ SlicedConfiguration chord_point(const SlicedConfiguration& from, const SlicedCon
 }
 
 using State4 = std::array<double, 4>;   // s, psi, s', psi'
+bool finite(const State4& s) {
+  return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); });
+}
 
 // An axis-aligned box holding an edge, exact.
 struct Box {
@@ -197,6 +210,97 @@ bool boxes_apart(const Box& a, const Box& b, const Rational& d) {
   return false;
 }
 
+// A function of one parameter tau to second order: value, first and second derivative at tau = 0
+// (forward mode), for a held contact's gap along a straight motion in (s, psi, phi).
+struct Taylor2 {
+  double v = 0, d = 0, dd = 0;
+};
+Taylor2 operator+(Taylor2 a, Taylor2 b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+Taylor2 operator-(Taylor2 a, Taylor2 b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+Taylor2 operator*(Taylor2 a, Taylor2 b) { return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2 * a.d * b.d + a.v * b.dd}; }
+Taylor2 operator*(double k, Taylor2 a) { return {k * a.v, k * a.d, k * a.dd}; }
+Taylor2 constant(double v) { return {v, 0, 0}; }
+Taylor2 sqrt_of(Taylor2 a) {
+  const double r = std::sqrt(a.v);
+  return {r, a.d / (2 * r), a.dd / (2 * r) - a.d * a.d / (4 * r * r * r)};
+}
+Taylor2 cos_of(Taylor2 a) {
+  const double c = std::cos(a.v), s = std::sin(a.v);
+  return {c, -s * a.d, -c * a.d * a.d - s * a.dd};
+}
+Taylor2 sin_of(Taylor2 a) {
+  const double c = std::cos(a.v), s = std::sin(a.v);
+  return {s, c * a.d, -s * a.d * a.d + c * a.dd};
+}
+struct TPoint {
+  Taylor2 x, y;
+};
+TPoint operator-(const TPoint& a, const TPoint& b) { return {a.x - b.x, a.y - b.y}; }
+Taylor2 cross(const TPoint& a, const TPoint& b) { return a.x * b.y - a.y * b.x; }
+Taylor2 norm_of(const TPoint& a) { return sqrt_of(a.x * a.x + a.y * a.y); }
+
+// A rigid placement in Taylor2: p -> origin + R(angle) (p - pivot) (+ shift along a body direction).
+struct TPose {
+  Taylor2 c, s;
+  double pivot[2] = {0, 0};
+  TPoint origin;   // where the pivot goes
+  TPoint place(const kernels::Vector<double>& p) const {
+    const double dx = p.x - pivot[0], dy = p.y - pivot[1];
+    return {origin.x + dx * c - dy * s, origin.y + dx * s + dy * c};
+  }
+  TPoint turn(double dx, double dy) const { return {dx * c - dy * s, dx * s + dy * c}; }
+};
+
+// The signed Euclidean gap of a feature pair (positive apart, mm) with the features placed by
+// their poses; nullopt for the feature kinds a held contact does not take (segment on a concave
+// arc, two concave arcs, vertex on vertex, segment on segment).
+std::optional<Taylor2> feature_gap(const TPose& pa, const kernels::FeatureGeometry<double>& fa, const TPose& pb,
+                                   const kernels::FeatureGeometry<double>& fb) {
+  using kernels::FeatureShape;
+  auto vertex_segment = [](const TPose& pv, const kernels::FeatureGeometry<double>& v, const TPose& ps,
+                           const kernels::FeatureGeometry<double>& seg) {
+    const TPoint q1 = ps.place(seg.point), q2 = ps.place(seg.target);
+    const double length = std::hypot(seg.target.x - seg.point.x, seg.target.y - seg.point.y);
+    return (1 / length) * cross(pv.place(v.point) - q1, q2 - q1);
+  };
+  auto vertex_arc = [](const TPose& pv, const kernels::FeatureGeometry<double>& v, const TPose& pk,
+                       const kernels::FeatureGeometry<double>& arc) {
+    const Taylor2 dist = norm_of(pv.place(v.point) - pk.place(arc.center));
+    const Taylor2 r = constant(std::sqrt(arc.radius_squared));
+    return arc.convex ? dist - r : r - dist;
+  };
+  auto segment_arc = [](const TPose& ps, const kernels::FeatureGeometry<double>& seg, const TPose& pk,
+                        const kernels::FeatureGeometry<double>& arc) -> std::optional<Taylor2> {
+    if (!arc.convex) return std::nullopt;
+    const TPoint q1 = ps.place(seg.point), q2 = ps.place(seg.target);
+    const double length = std::hypot(seg.target.x - seg.point.x, seg.target.y - seg.point.y);
+    return (1 / length) * cross(pk.place(arc.center) - q1, q2 - q1) - constant(std::sqrt(arc.radius_squared));
+  };
+  const FeatureShape a = fa.shape, b = fb.shape;
+  if (a == FeatureShape::vertex && b == FeatureShape::segment) return vertex_segment(pa, fa, pb, fb);
+  if (a == FeatureShape::segment && b == FeatureShape::vertex) return vertex_segment(pb, fb, pa, fa);
+  if (a == FeatureShape::vertex && b == FeatureShape::arc) return vertex_arc(pa, fa, pb, fb);
+  if (a == FeatureShape::arc && b == FeatureShape::vertex) return vertex_arc(pb, fb, pa, fa);
+  if (a == FeatureShape::segment && b == FeatureShape::arc) return segment_arc(pa, fa, pb, fb);
+  if (a == FeatureShape::arc && b == FeatureShape::segment) return segment_arc(pb, fb, pa, fa);
+  if (a == FeatureShape::arc && b == FeatureShape::arc) {
+    if (!fa.convex && !fb.convex) return std::nullopt;
+    const Taylor2 dist = norm_of(pa.place(fa.center) - pb.place(fb.center));
+    const double ra = std::sqrt(fa.radius_squared), rb = std::sqrt(fb.radius_squared);
+    if (fa.convex && fb.convex) return dist - constant(ra + rb);
+    return constant(fa.convex ? rb - ra : ra - rb) - dist;   // the convex one inside the concave one
+  }
+  return std::nullopt;
+}
+
+// Does the direction v (from an arc's centre, body or world alike) lie in the arc's sector?
+bool in_sector(double vx, double vy, const kernels::ArcSector<double>& sector) {
+  if (sector.full) return true;
+  auto cr = [](double ax, double ay, double bx, double by) { return ax * by - ay * bx; };
+  const double from = cr(sector.start.x, sector.start.y, vx, vy), to = cr(vx, vy, sector.end.x, sector.end.y);
+  return sector.large ? (from >= 0 || to >= 0) : (from >= 0 && to >= 0);
+}
+
 }  // namespace
 
 struct PinSlotSimulation::Impl {
@@ -228,7 +332,30 @@ struct PinSlotSimulation::Impl {
     std::vector<PlacedEdge> other_edges;   // and its edges
   };
   std::vector<Pair> pairs;
-  double delta = 0, accuracy = 1e-9, rest_speed = 0;
+  // A held (sustained) contact: a feature pair of a pair kept at the hold gap, its force the
+  // multiplier of its bilateral row within a step, decided by the contact LCP at each step's start.
+  struct Held {
+    std::size_t pair = 0;   // into pairs (no_index for a limit)
+    // 0: a contact; a limit of the part's own coordinates: 1 the slide's upper end, 2 its lower
+    // end, 3 the upper angle limit, 4 the lower (its gap hi - s, s - lo, or reach x the angle's)
+    int limit = 0;
+    SlicedFeaturePair features;   // (a limit: its label only)
+    kernels::FeatureGeometry<double> fixed_geometry, free_geometry;   // body coordinates
+    double force = 0;   // internal units (mN), the last multiplier
+  };
+  std::vector<Held> held;
+  // A held contact's gap and its derivatives at a state: g, J = dg/d(s, psi), g_phi = dg/dphi
+  // (the driver's angle), kappa = the gap's second derivative along the state's velocity with
+  // zero accelerations (the driver at its constant speed). Its normal speed is J q' + g_phi omega.
+  struct HeldRow {
+    double g = 0, J[2] = {0, 0}, g_phi = 0, kappa = 0, omega = 0;
+  };
+  double delta = 0, accuracy = 1e-9, rest_speed = 0, hold_gap = 0;
+  // the run's length scale: the part's reach at its initial slide (reach_at; the angle limits'
+  // rows are their angle gap times it)
+  double size = 0;
+  double forced_step = 0;   // a step length located by bisection (a held contact's force or edge ends there)
+  int pending_limit = 0;    // the limit the forced step ends at (struck when the step is accepted)
   // the part's reach from its pin at slide 0 (its points' and arcs' largest distance from P)
   double part_reach = 0;
   // the part's reach from the pin's line position at the states given: part_reach plus their
@@ -238,6 +365,11 @@ struct PinSlotSimulation::Impl {
   double reach_at(std::initializer_list<const State4*> states) const {
     double slide = 0;
     for (const State4* x : states) slide = std::max(slide, std::abs((*x)[0]));
+    return part_reach + slide;
+  }
+  double reach_at(std::initializer_list<std::pair<const State4*, double>> states) const {
+    double slide = 0;
+    for (const auto& x : states) slide = std::max(slide, std::abs((*x.first)[0]));
     return part_reach + slide;
   }
   double t = 0;
@@ -301,10 +433,143 @@ struct PinSlotSimulation::Impl {
     x[1] = (v[1] - e * v[0]) / D;
     x[0] = v[0] / mass - e * x[1];
   }
-  void rhs(const State4& s, State4& ds) const {
+  // M^-1 as a matrix, column by column through inverse_mass_times (its entries 1/m + e^2/D, -e/D
+  // and 1/D: never det M)
+  Eigen::Matrix2d inverse_mass(double s0) const {
+    Eigen::Matrix2d out;
+    for (int c = 0; c < 2; ++c) {
+      const double unit[2] = {c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0};
+      double x[2];
+      inverse_mass_times(s0, unit, x);
+      out(0, c) = x[0];
+      out(1, c) = x[1];
+    }
+    return out;
+  }
+  // The placements of a held contact's two parts along the straight motion (s, psi, phi) +
+  // tau (ds, dpsi, dphi) at `time`.
+  std::pair<TPose, TPose> held_poses(const Held& h, const State4& s, double time, const double dir[3]) const {
+    const Pair& p = pairs[h.pair];
+    const std::size_t dr = driver_of[p.other];
+    TPose other;
+    other.c = constant(1);
+    other.s = constant(0);
+    if (dr != no_index) {
+      const Point& C = model.parts[p.other].motion.pivot;
+      const Taylor2 phi{driver_angle(dr, time), dir[2], 0};
+      other.c = cos_of(phi);
+      other.s = sin_of(phi);
+      other.pivot[0] = C.x.get_d();
+      other.pivot[1] = C.y.get_d();
+      other.origin = {constant(other.pivot[0]), constant(other.pivot[1])};
+    }
+    TPose follower;
+    const Taylor2 psi{s[1], dir[1], 0}, slide{s[0], dir[0], 0};
+    follower.c = cos_of(psi);
+    follower.s = sin_of(psi);
+    follower.pivot[0] = P[0];
+    follower.pivot[1] = P[1];
+    const TPoint u = follower.turn(d[0], d[1]);
+    follower.origin = {constant(P[0]) + slide * u.x, constant(P[1]) + slide * u.y};
+    return {other, follower};
+  }
+  // The limit a state lies beyond (0: none; exact comparisons of the state's doubles).
+  int outside_limit(const State4& s) const {
+    if (slide_limits && Rational(s[0]) > slide_limits->hi) return 1;
+    if (slide_limits && Rational(s[0]) < slide_limits->lo) return 2;
+    if (angle_limits && Rational(s[1]) > angle_limits->hi) return 3;
+    if (angle_limits && Rational(s[1]) < angle_limits->lo) return 4;
+    return 0;
+  }
+  std::string limit_label(int limit) const {
+    const Part& pp = model.parts[part];
+    static const char* const names[] = {"", "slide limit (upper end)", "slide limit (lower end)", "angle limit (upper)",
+                                        "angle limit (lower)"};
+    return pp.name + " " + names[limit] + " " + pp.motion.pointer + (limit <= 2 ? "/limits" : "/angle_limits");
+  }
+  HeldRow limit_row(int limit, const State4& s) const {
+    HeldRow row;
+    switch (limit) {
+      case 1: row.g = slide_limits->hi.get_d() - s[0], row.J[0] = -1; break;
+      case 2: row.g = s[0] - slide_limits->lo.get_d(), row.J[0] = 1; break;
+      case 3: row.g = (angle_limits->hi.get_d() - s[1]) * size, row.J[1] = -size; break;
+      default: row.g = (s[1] - angle_limits->lo.get_d()) * size, row.J[1] = size; break;
+    }
+    return row;
+  }
+  HeldRow held_row(const Held& h, const State4& s, double time) const {
+    if (h.limit) return limit_row(h.limit, s);
+    const std::size_t dr = driver_of[pairs[h.pair].other];
+    HeldRow row;
+    row.omega = dr == no_index ? 0.0 : drivers[dr].omega;
+    auto along = [&](double ds, double dpsi, double dphi) {
+      const double dir[3] = {ds, dpsi, dphi};
+      const auto [a, b] = held_poses(h, s, time, dir);
+      return *feature_gap(a, h.fixed_geometry, b, h.free_geometry);
+    };
+    const Taylor2 v = along(s[2], s[3], row.omega);
+    row.g = v.v;
+    row.kappa = v.dd;
+    row.J[0] = along(1, 0, 0).d;
+    row.J[1] = along(0, 1, 0).d;
+    row.g_phi = along(0, 0, 1).d;
+    return row;
+  }
+  // The held contacts' bilateral multipliers at a state (the minimum-norm solution when their
+  // rows are dependent) and the accelerations they give.
+  Eigen::VectorXd held_multipliers(const State4& s, double time, const double Q[2],
+                                   std::vector<HeldRow>* rows_out = nullptr) const {
+    std::vector<HeldRow> rows;
+    for (const Held& h : held) rows.push_back(held_row(h, s, time));
+    const auto k = static_cast<Eigen::Index>(rows.size());
+    const Eigen::Matrix2d Mi = inverse_mass(s[0]);
+    Eigen::MatrixXd J(k, 2);
+    Eigen::VectorXd kappa(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      J(i, 0) = rows[static_cast<std::size_t>(i)].J[0];
+      J(i, 1) = rows[static_cast<std::size_t>(i)].J[1];
+      kappa(i) = rows[static_cast<std::size_t>(i)].kappa;
+    }
+    const Eigen::MatrixXd A = J * Mi * J.transpose();
+    const Eigen::VectorXd b = J * (Mi * Eigen::Vector2d(Q[0], Q[1])) + kappa;
+    if (rows_out) *rows_out = std::move(rows);
+    return A.completeOrthogonalDecomposition().solve(-b);
+  }
+  // The accelerations with the held contacts kept (J a = -kappa: the same as M^-1 (Q + J^T lambda)
+  // with held_multipliers' lambda), by the rows' null space: a = a_p + N z with a_p the rows'
+  // minimum-norm solution, N orthogonal to them and z from N^T (M a - Q) = 0. Not through
+  // Q + J^T lambda, whose terms cancel: a torque of 1e30 N mm held by an angle limit left round-off
+  // of 1e17 rad/s^2 along the held row, which the adaptive integration then followed in steps of
+  // 1e-13 s (a violent load held at a stop ran for hours).
+  void held_accelerations(const State4& s, double time, const double M[2][2], const double Q[2], double a[2]) const {
+    const auto k = static_cast<Eigen::Index>(held.size());
+    Eigen::MatrixXd J(k, 2);
+    Eigen::VectorXd kappa(k);
+    Eigen::Index widest = 0;
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const HeldRow row = held_row(held[static_cast<std::size_t>(i)], s, time);
+      J(i, 0) = row.J[0];
+      J(i, 1) = row.J[1];
+      kappa(i) = row.kappa;
+      if (J.row(i).cwiseAbs().maxCoeff() > J.row(widest).cwiseAbs().maxCoeff()) widest = i;
+    }
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+    const Eigen::Vector2d ap = cod.solve(-kappa);
+    a[0] = ap(0);
+    a[1] = ap(1);
+    if (cod.rank() >= 2) return;   // the held rows fix both accelerations
+    const double N[2] = {-J(widest, 1), J(widest, 0)};
+    const double Ma[2] = {M[0][0] * ap(0) + M[0][1] * ap(1), M[1][0] * ap(0) + M[1][1] * ap(1)};
+    const double num = N[0] * (Q[0] - Ma[0]) + N[1] * (Q[1] - Ma[1]);
+    const double den = N[0] * (M[0][0] * N[0] + M[0][1] * N[1]) + N[1] * (M[1][0] * N[0] + M[1][1] * N[1]);
+    a[0] += N[0] * (num / den);
+    a[1] += N[1] * (num / den);
+  }
+  void rhs(const State4& s, State4& ds, double time) const {
     double M[2][2], Q[2], a[2];
     dynamics(s, M, Q);
-    inverse_mass_times(s[0], Q, a);
+    if (held.empty()) inverse_mass_times(s[0], Q, a);
+    else held_accelerations(s, time, M, Q, a);
     ds[0] = s[2];
     ds[1] = s[3];
     ds[2] = a[0];
@@ -316,7 +581,7 @@ struct PinSlotSimulation::Impl {
   struct FlightTooLong {};
   static constexpr long flight_evaluations = 60000;
   static constexpr double short_flight = 0x1p-20;
-  State4 flight(const State4& from, double span, bool capped = false) const {
+  State4 flight(const State4& from, double span, double t0, bool capped = false) const {
     State4 s = from;
     if (span <= 0) return s;
     namespace ode = boost::numeric::odeint;
@@ -329,9 +594,9 @@ struct PinSlotSimulation::Impl {
     const double scale = span < short_flight ? span : 1.0;
     ode::integrate_adaptive(
         stepper,
-        [this, &evaluations, capped, scale](const State4& x, State4& dx, double) {
+        [this, &evaluations, capped, scale, t0](const State4& x, State4& dx, double u) {
           if (capped && ++evaluations > flight_evaluations) throw FlightTooLong{};
-          rhs(x, dx);
+          rhs(x, dx, t0 + u * scale);
           if (scale != 1.0)
             for (double& v : dx) v *= scale;
         },
@@ -398,17 +663,33 @@ struct PinSlotSimulation::Impl {
     for (std::size_t i = 0; i < drivers.size(); ++i) public_state.position[drivers[i].part] = driver_angle(i, t);
     public_state.pair_configurations.clear();
     for (const Pair& p : pairs) public_state.pair_configurations.push_back(p.q);
+    public_state.contacts.clear();
+    if (!held.empty()) {   // the forces at this state (the bilateral multipliers of the held set)
+      double M[2][2], Q[2];
+      dynamics(y, M, Q);
+      const Eigen::VectorXd lambda = held_multipliers(y, t, Q);
+      for (std::size_t i = 0; i < held.size(); ++i) held[i].force = lambda(static_cast<Eigen::Index>(i));
+    }
+    for (const Held& h : held)
+      public_state.contacts.push_back(
+          PinSlotContact{h.limit ? no_index : pairs[h.pair].index, h.features.label, h.force / force_scale});
   }
   // Are the parts of the pair certainly farther apart than d at configuration q (exact: every
   // edge box of the pin-slot part placed at q against every edge box of the other part)?
-  bool apart(const Pair& p, const SlicedConfiguration& q, const Rational& d) const {
+  // `skip`: edge pairs (the pin-slot part's edge, the other part's edge; flat indices in loop
+  // order) left out: the held contacts' own edges, whose gap is the hold gap.
+  bool apart(const Pair& p, const SlicedConfiguration& q, const Rational& d,
+             const std::vector<std::pair<std::size_t, std::size_t>>& skip = {}) const {
     auto [c, sn] = cos_sin(q.angle);
     const Part& f = model.parts[part];
+    std::size_t index = 0;
     for (const Loop& loop : f.loops)
       for (const Edge& e : loop.edges) {
+        const std::size_t own = index++;
         const Box fb = edge_box(e, f.motion.pivot, c, sn, q.x, q.y);
         std::optional<PlacedEdge> fe;
         for (std::size_t k = 0; k < p.other_boxes.size(); ++k) {
+          if (std::find(skip.begin(), skip.end(), std::pair{own, k}) != skip.end()) continue;
           if (boxes_apart(fb, p.other_boxes[k], d)) continue;
           if (!fe) fe = placed_edge(e, f.motion.pivot, c, sn, q.x, q.y);
           if (!edges_apart(*fe, p.other_edges[k], d)) return false;
@@ -416,9 +697,27 @@ struct PinSlotSimulation::Impl {
       }
     return true;
   }
+  // The edge pairs the far test of pair `pi` leaves out: those of its held contacts between an
+  // edge and an edge (segment or arc; not a vertex, which lies on two edges whose other
+  // contacts the test must see), as flat indices (the pin-slot part's, the other part's).
+  std::vector<std::pair<std::size_t, std::size_t>> held_edges(std::size_t pi) const {
+    auto flat = [&](const FeatureIdentity& id) {
+      const Part& owner = model.parts[id.part];
+      std::size_t n = 0;
+      for (std::size_t l = 0; l < id.loop; ++l) n += owner.loops[l].edges.size();
+      return n + id.edge;
+    };
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (const Held& h : held) {
+      if (h.pair != pi || h.features.fixed.kind == FeatureKind::vertex || h.features.free.kind == FeatureKind::vertex)
+        continue;
+      out.emplace_back(flat(h.features.free), flat(h.features.fixed));
+    }
+    return out;
+  }
   // A bound (double, from the speeds and accelerations at the states given) of how far any
   // point of the pin-slot part moves relative to the pair's other part over a step of length h.
-  double travel(const Pair& p, std::initializer_list<const State4*> states, double h) const {
+  double travel(const Pair& p, std::initializer_list<std::pair<const State4*, double>> states, double h) const {
     const std::size_t dr = driver_of[p.other];
     double omega = 0, arm = 0;
     if (dr != no_index) {
@@ -428,9 +727,9 @@ struct PinSlotSimulation::Impl {
     }
     double out = 0;
     const double reach = reach_at(states);
-    for (const State4* s : states) {
+    for (const auto& [s, time] : states) {
       State4 ds;
-      rhs(*s, ds);
+      rhs(*s, ds, time);
       const double speed = std::abs((*s)[2]) + std::abs((*s)[3]) * reach + omega * (reach + arm);
       const double gain = std::abs(ds[2]) + std::abs(ds[3]) * reach + (*s)[3] * (*s)[3] * reach;
       out = std::max(out, (speed + gain * h) * h);
@@ -442,12 +741,243 @@ struct PinSlotSimulation::Impl {
   struct Row {
     double J[2], v_other, point[2], normal[2];
     std::string label;
+    SlicedFeaturePair feature;
+    std::size_t pair = 0;   // into pairs
+    double restitution = 0;
+    bool held = false;   // a held contact's row (plastic, no event)
+    int limit = 0;       // a limit's row (Held::limit)
   };
   std::vector<Row> contact_rows(std::size_t pi, const std::vector<SlicedFeaturePair>& features) const;
-  // Newton impacts of the touching feature pairs at the current state (sequential impulses).
-  void impact(std::size_t pi, const std::vector<SlicedFeaturePair>& features);
+  // Newton impacts of the touching feature pairs at the current state (sequential impulses),
+  // the held contacts plastic rows among them; the pairs left slower than the rest speed are held.
+  using Touching = std::vector<std::pair<std::size_t, std::vector<SlicedFeaturePair>>>;   // (pair, feature pairs)
+  void impact(const Touching& touching, int limit = 0);
+  bool is_held(std::size_t pi, const SlicedFeaturePair& f) const {
+    for (const Held& h : held)
+      if (h.pair == pi && h.features.fixed == f.fixed && h.features.free == f.free) return true;
+    return false;
+  }
+  // A held contact's multiplier below -tolerance counts as negative (the bilateral solve's round-off).
+  double force_tolerance(const State4& s) const {
+    double M[2][2], Q[2];
+    dynamics(s, M, Q);
+    const double loads = std::abs(Q[0]) + std::abs(Q[1]) / reach_at({&s}) + mass * rest_speed * rest_speed / delta;
+    return 1e-9 * loads;
+  }
+  // Whether every held contact's point lies within both its features (the contact table's
+  // validity, in double: where it fails the contact has reached its edge's end).
+  bool held_valid(const Held& h, const State4& s, double time) const;
+  // Is every held contact's force non-negative and its point on its features at this state?
+  bool held_conditions(const State4& s, double time) const {
+    if (held.empty()) return true;
+    double M[2][2], Q[2];
+    dynamics(s, M, Q);
+    const Eigen::VectorXd lambda = held_multipliers(s, time, Q);
+    const double tol = force_tolerance(s);
+    for (Eigen::Index i = 0; i < lambda.size(); ++i)
+      if (!(lambda(i) >= -tol)) return false;
+    for (const Held& h : held)
+      if (!held_valid(h, s, time)) return false;
+    return true;
+  }
+  // The state projected onto the held contacts: their gaps to the hold gap (Gauss-Newton,
+  // mass-weighted) and their normal speeds to 0.
+  State4 project(const State4& s, double time) const;
+  // Moves the state to its projection onto the held contacts, every pair's exact configuration
+  // along a straight chord certified free by first_crossing.
+  void settle();
+  // At a step's start: held contacts past their edge's end leave (edge-end); when a held force
+  // is negative the contact LCP decides which contacts lift off.
+  void update_held();
+  SimulationEvent held_event(SimulationEvent::Kind kind, const Held& h, const State4& s, double time) const;
   bool advance(double span);
 };
+
+bool PinSlotSimulation::Impl::held_valid(const Held& h, const State4& s, double time) const {
+  if (h.limit) return true;
+  const double zero[3] = {0, 0, 0};
+  const auto [pa, pb] = held_poses(h, s, time, zero);
+  using kernels::FeatureShape;
+  const kernels::FeatureGeometry<double>& fa = h.fixed_geometry;
+  const kernels::FeatureGeometry<double>& fb = h.free_geometry;
+  auto at = [](const TPoint& p) { return std::array<double, 2>{p.x.v, p.y.v}; };
+  // the foot of point x on segment (pose ps) lies within it
+  auto on_segment = [&](const std::array<double, 2>& x, const TPose& ps, const kernels::FeatureGeometry<double>& seg) {
+    const auto q1 = at(ps.place(seg.point)), q2 = at(ps.place(seg.target));
+    const double dx = q2[0] - q1[0], dy = q2[1] - q1[1];
+    const double f = (x[0] - q1[0]) * dx + (x[1] - q1[1]) * dy;
+    return f >= 0 && f <= dx * dx + dy * dy;
+  };
+  // the world direction v from the arc's centre lies in its sector (turned back to its body)
+  auto in_arc = [&](double vx, double vy, const TPose& pk, const kernels::FeatureGeometry<double>& arc) {
+    const double c = pk.c.v, sn = pk.s.v;
+    return in_sector(c * vx + sn * vy, -sn * vx + c * vy, arc.sector);
+  };
+  auto vertex_on = [&](const TPose& pv, const kernels::FeatureGeometry<double>& v, const TPose& po,
+                       const kernels::FeatureGeometry<double>& other) {
+    const auto x = at(pv.place(v.point));
+    if (other.shape == FeatureShape::segment) return on_segment(x, po, other);
+    const auto k = at(po.place(other.center));
+    return in_arc(x[0] - k[0], x[1] - k[1], po, other);
+  };
+  auto segment_arc = [&](const TPose& ps, const kernels::FeatureGeometry<double>& seg, const TPose& pk,
+                         const kernels::FeatureGeometry<double>& arc) {
+    const auto k = at(pk.place(arc.center)), q1 = at(ps.place(seg.point)), q2 = at(ps.place(seg.target));
+    const double dx = q2[0] - q1[0], dy = q2[1] - q1[1], l2 = dx * dx + dy * dy;
+    const double f = ((k[0] - q1[0]) * dx + (k[1] - q1[1]) * dy) / l2;
+    const std::array<double, 2> foot{q1[0] + f * dx, q1[1] + f * dy};
+    return f >= 0 && f <= 1 && in_arc(foot[0] - k[0], foot[1] - k[1], pk, arc);
+  };
+  if (fa.shape == FeatureShape::vertex) return vertex_on(pa, fa, pb, fb);
+  if (fb.shape == FeatureShape::vertex) return vertex_on(pb, fb, pa, fa);
+  if (fa.shape == FeatureShape::segment) return segment_arc(pa, fa, pb, fb);
+  if (fb.shape == FeatureShape::segment) return segment_arc(pb, fb, pa, fa);
+  // two arcs: the line of centres, from the outer (or first) centre to the other
+  const auto ka = at(pa.place(fa.center)), kb = at(pb.place(fb.center));
+  const double vx = kb[0] - ka[0], vy = kb[1] - ka[1];
+  if (fa.convex && fb.convex) return in_arc(vx, vy, pa, fa) && in_arc(-vx, -vy, pb, fb);
+  const double sign = fa.convex ? -1.0 : 1.0;   // from the concave arc's centre towards the convex one's
+  return in_arc(sign * vx, sign * vy, pa, fa) && in_arc(sign * vx, sign * vy, pb, fb);
+}
+
+State4 PinSlotSimulation::Impl::project(const State4& from, double time) const {
+  State4 s = from;
+  if (held.empty()) return s;
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    for (int pass = 0; pass < 8; ++pass) {
+      double M[2][2], Q[2];
+      dynamics(s, M, Q);
+      std::vector<HeldRow> rows;
+      for (const Held& h : held) rows.push_back(held_row(h, s, time));
+      const auto k = static_cast<Eigen::Index>(rows.size());
+      const Eigen::Matrix2d Mi = inverse_mass(s[0]);
+      Eigen::MatrixXd J(k, 2);
+      Eigen::VectorXd r(k);
+      double worst = 0;
+      for (Eigen::Index i = 0; i < k; ++i) {
+        const HeldRow& row = rows[static_cast<std::size_t>(i)];
+        J(i, 0) = row.J[0];
+        J(i, 1) = row.J[1];
+        r(i) = row.g - hold_gap;
+        worst = std::max(worst, std::abs(r(i)));
+      }
+      if (worst <= 1e-3 * hold_gap) break;
+      const Eigen::Vector2d dq = -Mi * J.transpose() * (J * Mi * J.transpose()).completeOrthogonalDecomposition().solve(r);
+      s[0] += dq(0);
+      s[1] += dq(1);
+    }
+    // the normal speeds to 0
+    double M[2][2], Q[2];
+    dynamics(s, M, Q);
+    std::vector<HeldRow> rows;
+    for (const Held& h : held) rows.push_back(held_row(h, s, time));
+    const auto k = static_cast<Eigen::Index>(rows.size());
+    const Eigen::Matrix2d Mi = inverse_mass(s[0]);
+    Eigen::MatrixXd J(k, 2);
+    Eigen::VectorXd v(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const HeldRow& row = rows[static_cast<std::size_t>(i)];
+      J(i, 0) = row.J[0];
+      J(i, 1) = row.J[1];
+      v(i) = row.J[0] * s[2] + row.J[1] * s[3] + row.g_phi * row.omega;
+    }
+    const Eigen::Vector2d dv = -Mi * J.transpose() * (J * Mi * J.transpose()).completeOrthogonalDecomposition().solve(v);
+    s[2] += dv(0);
+    s[3] += dv(1);
+  }
+  return s;
+}
+
+void PinSlotSimulation::Impl::settle() {
+  const State4 to_state = project(y, t);
+  std::vector<SlicedConfiguration> to(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    to[i] = relative(pairs[i], to_state, t);
+    const bool flip = std::abs(relative_angle(pairs[i], to_state, t)) > std::numbers::pi / 2;
+    SlicedMotion motion{pairs[i].q, to[i], flip, {}};
+    ++chords;
+    const SlicedMotionCrossing c = pairs[i].space.first_crossing(motion, CrossingOptions{options.crossing_bits});
+    if (c.status != CrossingStatus::none) {
+      std::ostringstream out;
+      out << where(t) << ": holding the contacts of '" << model.parts[part].name << "' moves it into '"
+          << model.parts[pairs[i].other].name << "'"
+          << (c.features.empty() ? std::string() : " (" + c.features.front().label + ")")
+          << ": a held set the simulator cannot keep (docs/simulation.md)";
+      throw NumericError(out.str());
+    }
+  }
+  y = to_state;
+  for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i].q = to[i];
+}
+
+SimulationEvent PinSlotSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& h, const State4& s,
+                                                    double time) const {
+  SimulationEvent ev;
+  ev.kind = kind;
+  ev.time = time / time_scale;
+  ev.pair = h.limit ? no_index : pairs[h.pair].index;
+  ev.first_part = model.parts[h.limit ? part : pairs[h.pair].other].name;
+  ev.second_part = model.parts[part].name;
+  ev.features = {h.features.label};
+  ev.normal_force = h.force / force_scale;
+  const HeldRow row = held_row(h, s, time);
+  ev.normal_speed_after = (row.J[0] * s[2] + row.J[1] * s[3] + row.g_phi * row.omega) * time_scale;
+  return ev;
+}
+
+void PinSlotSimulation::Impl::update_held() {
+  if (held.empty()) return;
+  // contacts past their edge's end leave
+  for (std::size_t i = 0; i < held.size();) {
+    if (held_valid(held[i], y, t)) {
+      ++i;
+      continue;
+    }
+    events.push_back(held_event(SimulationEvent::Kind::edge_end, held[i], y, t));
+    held.erase(held.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+  if (held.empty()) return;
+  double M[2][2], Q[2];
+  dynamics(y, M, Q);
+  std::vector<HeldRow> rows;
+  const Eigen::VectorXd bilateral = held_multipliers(y, t, Q, &rows);
+  const double tol = force_tolerance(y);
+  bool negative = false;
+  for (Eigen::Index i = 0; i < bilateral.size(); ++i) negative = negative || bilateral(i) < -tol;
+  if (!negative) {
+    for (std::size_t i = 0; i < held.size(); ++i) held[i].force = bilateral(static_cast<Eigen::Index>(i));
+    return;
+  }
+  // the contact LCP: lambda >= 0, w = A lambda + b >= 0 (the gaps' accelerations), complementary
+  const auto k = static_cast<Eigen::Index>(rows.size());
+  const Eigen::Matrix2d Mi = inverse_mass(y[0]);
+  Eigen::MatrixXd J(k, 2);
+  Eigen::VectorXd kappa(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    J(i, 0) = rows[static_cast<std::size_t>(i)].J[0];
+    J(i, 1) = rows[static_cast<std::size_t>(i)].J[1];
+    kappa(i) = rows[static_cast<std::size_t>(i)].kappa;
+  }
+  const Eigen::MatrixXd A = J * Mi * J.transpose();
+  const Eigen::VectorXd b = J * (Mi * Eigen::Vector2d(Q[0], Q[1])) + kappa;
+  const simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+  std::vector<Held> kept;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    const bool lifts = lcp.solved ? (lcp.lambda(ii) <= 0 && lcp.w(ii) > 0) : bilateral(ii) < -tol;
+    held[i].force = lcp.solved ? lcp.lambda(ii) : 0.0;
+    if (lifts) events.push_back(held_event(SimulationEvent::Kind::lift_off, held[i], y, t));
+    else kept.push_back(held[i]);
+  }
+  if (kept.size() == held.size()) {   // no contact left: the one most negative lifts
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < held.size(); ++i)
+      if (bilateral(static_cast<Eigen::Index>(i)) < bilateral(static_cast<Eigen::Index>(worst))) worst = i;
+    events.push_back(held_event(SimulationEvent::Kind::lift_off, held[worst], y, t));
+    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(worst));
+  }
+  held = std::move(kept);
+}
 
 std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     std::size_t pi, const std::vector<SlicedFeaturePair>& features) const {
@@ -487,53 +1017,101 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     row.normal[0] = nx;
     row.normal[1] = ny;
     row.label = f.label;
+    row.feature = f;
+    row.pair = pi;
+    row.restitution = p.restitution;
     rows.push_back(row);
   }
   return rows;
 }
 
-void PinSlotSimulation::Impl::impact(std::size_t pi, const std::vector<SlicedFeaturePair>& features) {
-  const Pair& p = pairs[pi];
-  const std::vector<Row> rows = contact_rows(pi, features);
+void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
+  std::vector<Row> rows;
+  if (limit) {   // a slot end or angle limit struck: a plastic row of the part's own coordinate
+    const HeldRow lr = limit_row(limit, y);
+    Row row{};
+    row.J[0] = lr.J[0];
+    row.J[1] = lr.J[1];
+    row.v_other = 0;
+    row.label = limit_label(limit);
+    row.feature.label = row.label;
+    row.pair = no_index;
+    row.limit = limit;
+    rows.push_back(row);
+  }
+  for (const auto& [pi, features] : touching) {
+    std::vector<SlicedFeaturePair> fresh;
+    for (const SlicedFeaturePair& f : features)
+      if (!is_held(pi, f)) fresh.push_back(f);
+    for (Row& r : contact_rows(pi, fresh)) rows.push_back(std::move(r));
+  }
   if (rows.empty()) {
+    const Pair& p = pairs[touching.front().first];
     std::ostringstream out;
     out << where(t) << ": the contact of '" << model.parts[p.other].name << "' and '" << model.parts[part].name
-        << "' has no contact frame (a vertex meeting a vertex)";
+        << "' has no contact frame (a vertex meeting a vertex, or a held contact met again)";
     throw NumericError(out.str());
   }
+  const std::size_t fresh_rows = rows.size();
+  for (const Held& h : held) {   // the held contacts: plastic rows of the same impact
+    const HeldRow hr = held_row(h, y, t);
+    Row row{};
+    row.J[0] = hr.J[0];
+    row.J[1] = hr.J[1];
+    row.v_other = -hr.g_phi * hr.omega;
+    row.label = h.features.label;
+    row.feature = h.features;
+    row.pair = h.pair;
+    row.limit = h.limit;
+    row.held = true;
+    rows.push_back(row);
+  }
+  double M[2][2], Q[2];
+  dynamics(y, M, Q);
+  // (M^-1 by the Schur complement, inverse_mass_times: never det M)
+  const Eigen::Matrix2d Minv = inverse_mass(y[0]);
   auto speed = [&](const Row& r) { return r.J[0] * y[2] + r.J[1] * y[3] - r.v_other; };
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
-  // sequential impulses: each approaching row gets Newton's law, repeated until none approaches
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    bool any = false;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const Row& r = rows[i];
-      const double v = speed(r);
-      const double target = before[i] < 0 ? -p.restitution * before[i] : 0.0;
-      if (v >= target - 1e-12 * (std::abs(target) + std::abs(before[i]))) continue;
-      double mj[2];
-      inverse_mass_times(y[0], r.J, mj);
-      const double k = r.J[0] * mj[0] + r.J[1] * mj[1];
-      double lambda = (target - v) / k;
-      if (total[i] + lambda < 0) lambda = -total[i];
-      total[i] += lambda;
-      y[2] += mj[0] * lambda;
-      y[3] += mj[1] * lambda;
-      any = true;
+  // Newton's law over every row at once, the contact LCP: lambda >= 0, w = A lambda + b >= 0,
+  // lambda w = 0, with A = J M^-1 J^T and b = (1 + e) v for an approaching row (v otherwise):
+  // w is the row's speed after less e times its approach (src/simulation/lcp.hpp)
+  const auto k = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd A(k, k);
+  Eigen::VectorXd bv(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const Row& ri = rows[static_cast<std::size_t>(i)];
+    double mj[2];
+    inverse_mass_times(y[0], ri.J, mj);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const Row& rj = rows[static_cast<std::size_t>(j)];
+      A(i, j) = rj.J[0] * mj[0] + rj.J[1] * mj[1];
     }
-    if (!any) break;
+    const double v = before[static_cast<std::size_t>(i)];
+    bv(i) = v < 0 ? (1 + ri.restitution) * v : v;
   }
-  double approach = 0, leave = std::numeric_limits<double>::infinity();
+  const simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
+  if (!lcp.solved) {
+    std::ostringstream out;
+    out << where(t) << ": the impact of '" << model.parts[part].name << "' on " << rows.size()
+        << " contacts has no solution of its complementarity problem (" << rows.front().label << ")";
+    throw NumericError(out.str());
+  }
   for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double lambda = lcp.lambda(static_cast<Eigen::Index>(i));
+    if (!(lambda > 0)) continue;
+    const Row& r = rows[i];
+    total[i] = lambda;
+    y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
+    y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
+  }
+  for (std::size_t i = 0; i < fresh_rows; ++i) {
     if (total[i] <= 0) continue;
-    approach = std::max(approach, -before[i]);
-    leave = std::min(leave, speed(rows[i]));
     SimulationEvent ev;
     ev.kind = SimulationEvent::Kind::impact;
     ev.time = t / time_scale;
-    ev.pair = p.index;
-    ev.first_part = model.parts[p.other].name;
+    ev.pair = rows[i].limit ? no_index : pairs[rows[i].pair].index;
+    ev.first_part = model.parts[rows[i].limit ? part : pairs[rows[i].pair].other].name;
     ev.second_part = model.parts[part].name;
     ev.features = {rows[i].label};
     ev.impulse = total[i] / (force_scale * time_scale);
@@ -543,38 +1121,122 @@ void PinSlotSimulation::Impl::impact(std::size_t pi, const std::vector<SlicedFea
     ev.normal = {rows[i].normal[0], rows[i].normal[1]};
     events.push_back(std::move(ev));
   }
-  if (approach == 0 || leave <= rest_speed) {
-    std::ostringstream out;
-    out << where(t) << ": the contact of '" << model.parts[p.other].name << "' and '" << model.parts[part].name
-        << "' (" << rows.front().label << ") would have to be sustained (approach speed " << approach * time_scale
-        << " mm/" << time_unit << ", separating speed below the rest speed " << rest_speed * time_scale << " mm/"
-        << time_unit << "): a pin-slot part's sustained contacts are not simulated (docs/simulation.md)";
-    throw NumericError(out.str());
+  // a held contact the impact left separating faster than the rest speed is free again
+  for (std::size_t i = fresh_rows, k = 0; i < rows.size(); ++i) {
+    if (speed(rows[i]) <= rest_speed) {
+      ++k;
+      continue;
+    }
+    events.push_back(held_event(SimulationEvent::Kind::lift_off, held[k], y, t));
+    held.erase(held.begin() + static_cast<std::ptrdiff_t>(k));
   }
+  // the new contacts left slower than the rest speed are held (sustained contact)
+  bool added = false;
+  for (std::size_t i = 0; i < fresh_rows; ++i) {
+    if (speed(rows[i]) > rest_speed) continue;
+    if (rows[i].limit) {
+      Held h;
+      h.pair = no_index;
+      h.limit = rows[i].limit;
+      h.features.label = rows[i].label;
+      held.push_back(std::move(h));
+      added = true;
+      events.push_back(held_event(SimulationEvent::Kind::contact, held.back(), y, t));
+      continue;
+    }
+    const Pair& p = pairs[rows[i].pair];
+    Held h;
+    h.pair = rows[i].pair;
+    h.features = rows[i].feature;
+    const Model& frame = *p.frame_model;
+    auto geometry = [&](const FeatureIdentity& id) {
+      return kernels::feature_geometry<double>(frame, id, [](const Rational& r) { return r.get_d(); });
+    };
+    h.fixed_geometry = geometry(h.features.fixed);
+    h.free_geometry = geometry(h.features.free);
+    const double zero[3] = {0, 0, 0};
+    const auto [pa, pb] = held_poses(h, y, t, zero);
+    if (!feature_gap(pa, h.fixed_geometry, pb, h.free_geometry)) {
+      std::ostringstream out;
+      out << where(t) << ": the contact of '" << model.parts[p.other].name << "' and '" << model.parts[part].name
+          << "' (" << rows[i].label << ") would have to be sustained, and a pin-slot part holds no contact of "
+          << "these feature kinds (a segment on a concave arc, two concave arcs; docs/simulation.md)";
+      throw NumericError(out.str());
+    }
+    held.push_back(std::move(h));
+    added = true;
+    SimulationEvent ev = held_event(SimulationEvent::Kind::contact, held.back(), y, t);
+    ev.point = {rows[i].point[0], rows[i].point[1]};
+    ev.normal = {rows[i].normal[0], rows[i].normal[1]};
+    events.push_back(std::move(ev));
+  }
+  if (added || !held.empty()) settle();
 }
 
 bool PinSlotSimulation::Impl::advance(double span) {
   const double pi = std::numbers::pi;
+  update_held();
   double h = std::min(span, step_guess > 0 ? step_guess : span);
   if (options.max_step > 0) h = std::min(h, options.max_step * time_scale);
+  if (forced_step > 0) h = std::min(h, forced_step);
+  // The part reaches a slot end or angle limit within [0, reached] of the step from y: the last
+  // state inside by bisection (to 2^-30 of the span), where the limit is struck at the end of a
+  // forced step. Only for a step that fits its chords and whose end (or first contact) lies beyond
+  // the limit, so that limits beyond the motion change nothing (not a trial step's overshoot).
+  // False when a flight is too long or the state beyond is not finite (a load too violent for the
+  // span: a shorter step). Every flight of a step is capped (flight_evaluations).
+  auto locate_limit = [&](double reached) {
+    double lo = 0, hi = reached;
+    State4 beyond;
+    try {
+      while (hi - lo > 0x1p-30 * reached) {
+        const double m = (lo + hi) / 2;
+        const State4 x = flight(y, m, t, true);
+        (!finite(x) || outside_limit(x) ? hi : lo) = m;
+      }
+      beyond = flight(y, hi, t, true);
+    } catch (const FlightTooLong&) {
+      return false;
+    }
+    if (!finite(beyond)) return false;
+    pending_limit = outside_limit(beyond);
+    forced_step = lo;
+    return true;
+  };
   for (int attempt = 0;; ++attempt) {
     if (attempt > 2000 || !(h > 0))
       throw NumericError(where(t) + ": no chord within the chord deviation (the step size underflows)");
     // a step too long for a violent load (a torque of 10^100 N mm) overflows or turns the part many
-    // times: shorter steps reach the limits, which then stop the run naming them
-    State4 mid, end;
+    // times: shorter steps reach the limits, where the part stops
+    State4 mid, unprojected;
     try {
-      mid = flight(y, h / 2, true);
-      end = flight(mid, h / 2, true);
+      mid = flight(y, h / 2, t, true);
+      unprojected = flight(mid, h / 2, t + h / 2, true);
     } catch (const FlightTooLong&) {
       h /= 2;
       continue;
     }
-    auto finite = [](const State4& s) { return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); }); };
-    if (!finite(mid) || !finite(end)) {
+    if (!finite(mid) || !finite(unprojected)) {
       h /= 2;
       continue;
     }
+    if (!held.empty() && h != forced_step && !held_conditions(unprojected, t + h)) {
+      // a held contact's force turns negative or its point leaves its feature within the step:
+      // the first such time by bisection (to 2^-30 of the step); the next step's start decides
+      double lo = 0, hi = h;
+      try {
+        while (hi - lo > 0x1p-30 * h) {
+          const double m = (lo + hi) / 2;
+          (held_conditions(flight(y, m, t, true), t + m) ? lo : hi) = m;
+        }
+      } catch (const FlightTooLong&) {
+        h /= 2;
+        continue;
+      }
+      forced_step = h = hi;
+      continue;
+    }
+    const State4 end = project(unprojected, t + h);
     // the far test: a pair whose features are certainly farther apart than twice the step's
     // travel bound (plus delta) is free over the step without a chord
     std::vector<bool> far(pairs.size(), false), flips(pairs.size(), false);
@@ -582,10 +1244,12 @@ bool PinSlotSimulation::Impl::advance(double span) {
     for (std::size_t i = 0; i < pairs.size(); ++i) to[i] = relative(pairs[i], end, t + h);
     bool fits = true;
     for (std::size_t i = 0; i < pairs.size() && fits; ++i) {
-      const double reach_i = travel(pairs[i], {&y, &mid, &end}, h);
+      const double reach_i = travel(pairs[i], {{&y, t}, {&mid, t + h / 2}, {&end, t + h}}, h);
       if (reach_i < std::numeric_limits<double>::max() / 4) {
         // (and the end configuration's boundaries exactly apart: certified, whatever the bound)
-        far[i] = apart(pairs[i], pairs[i].q, Rational(2 * reach_i + delta)) &&
+        // (a held contact's own edges are kept at the hold gap: left out of the distance bound,
+        // and the end configuration's boundaries, theirs included, exactly apart)
+        far[i] = apart(pairs[i], pairs[i].q, Rational(2 * reach_i + delta), held_edges(i)) &&
                  apart(pairs[i], to[i], Rational(0));
       }
       if (far[i]) continue;
@@ -607,6 +1271,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     // the chords of this step, tested exactly
     std::size_t first = no_index;
     SlicedMotionCrossing earliest;
+    std::vector<std::optional<SlicedMotionCrossing>> crossings(pairs.size());
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       if (far[i]) continue;
       SlicedMotion motion{pairs[i].q, to[i], static_cast<bool>(flips[i]), {}};
@@ -620,27 +1285,59 @@ bool PinSlotSimulation::Impl::advance(double span) {
       }
       if (c.status == CrossingStatus::crossing && (first == no_index || c.u_lower < earliest.u_lower)) {
         first = i;
-        earliest = std::move(c);
+        earliest = c;
       }
+      if (c.status == CrossingStatus::crossing) crossings[i] = std::move(c);
     }
     if (first == no_index) {
+      if (!(h == forced_step && pending_limit) && outside_limit(unprojected)) {
+        h = locate_limit(h) ? forced_step : h / 2;
+        continue;
+      }
       check_limits(end, t + h);
       y = end;
       t += h;
       for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i].q = to[i];
       step_guess = 2 * h;
+      const int limit = h == forced_step ? pending_limit : 0;
+      forced_step = 0;
+      pending_limit = 0;
+      if (limit) {
+        impact({}, limit);
+        return true;
+      }
       return false;
     }
     // the first contact: every pair's state is its chord's point at the crossing's free side
     std::vector<SlicedConfiguration> kept;
     for (const Pair& p : pairs) kept.push_back(p.q);
-    const Rational& u = earliest.u_lower;
+    const Rational u = earliest.u_lower;
     const double hc = h * u.get_d();
-    const State4 at = flight(y, hc);
+    State4 at;
+    try {
+      at = flight(y, hc, t, true);
+    } catch (const FlightTooLong&) {
+      h /= 2;
+      continue;
+    }
+    if (!finite(at)) {
+      h /= 2;
+      continue;
+    }
+    if (outside_limit(at)) {   // the limit comes before the first contact
+      h = locate_limit(hc) ? forced_step : h / 2;
+      continue;
+    }
     check_limits(at, t + hc);
+    // the pairs touching together: their crossings within the first one's bounds (several
+    // contacts of one impact, e.g. a face landing on two supports at once)
+    Touching touching;
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if (crossings[i] && crossings[i]->u_lower <= earliest.u_upper) touching.emplace_back(i, crossings[i]->features);
     for (std::size_t i = 0; i < pairs.size(); ++i) {
-      if (i == first || !far[i]) {
-        pairs[i].q = i == first ? earliest.before : chord_point(pairs[i].q, to[i], flips[i], u);
+      if (!far[i]) {
+        pairs[i].q = crossings[i] && crossings[i]->u_lower == u ? crossings[i]->before
+                                                                 : chord_point(pairs[i].q, to[i], flips[i], u);
         continue;
       }
       pairs[i].q = relative(pairs[i], at, t + hc);
@@ -658,8 +1355,9 @@ bool PinSlotSimulation::Impl::advance(double span) {
     // a chord that cuts the corner of a path touching and departing meets a contact the path
     // leaves at once (no feature pair approaching): a shorter chord deviates less (delta ~ h^2)
     bool approaching = false;
-    for (const Row& r : contact_rows(first, earliest.features))
-      approaching = approaching || r.J[0] * y[2] + r.J[1] * y[3] - r.v_other < 0;
+    for (const auto& [pi, features] : touching)
+      for (const Row& r : contact_rows(pi, features))
+        approaching = approaching || r.J[0] * y[2] + r.J[1] * y[3] - r.v_other < 0;
     if (!approaching && h > 1e-9 * std::max(t, h) && attempt < 1900) {
       y = y_kept;
       t = t_kept;
@@ -668,7 +1366,9 @@ bool PinSlotSimulation::Impl::advance(double span) {
       continue;
     }
     step_guess = std::max(h, 1e-12);
-    impact(first, earliest.features);
+    forced_step = 0;
+    pending_limit = 0;
+    impact(touching);
     return true;
   }
 }
@@ -719,8 +1419,12 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   if (!spec.couplings.empty())
     throw ModelError(spec.couplings.front().pointer, "a pin-slot simulation takes no springs between parts "
                                                      "(the pin-slot part's own springs act on s and psi)");
-  if (!spec.velocities.empty())
-    throw ModelError(spec.velocities.front().pointer, "a pin-slot simulation starts at rest (the drivers move at their speed)");
+  std::vector<const SimulationSpec::Velocity*> own_velocity;
+  for (const SimulationSpec::Velocity& v : spec.velocities) {
+    if (v.part != found)
+      throw ModelError(v.pointer, "beside the pin-slot part only drivers move (at their speed): no initial velocity");
+    own_velocity.push_back(&v);
+  }
   // the pin-slot part's dynamics
   const Part& fp = model.parts[found];
   if (!fp.dynamics || !fp.dynamics->mass || !fp.dynamics->moment_of_inertia)
@@ -764,6 +1468,10 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   s.slide_limits = motion.translation_limits;
   s.angle_limits = motion.angle_limits;
   s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0};
+  if (own_velocity.size() == 2) {   // {"slide": v, "angle": omega}
+    s.y[2] = own_velocity[0]->value.get_d() / ts;
+    s.y[3] = own_velocity[1]->value.get_d() / ts;
+  }
   s.check_limits(s.y, 0);
   // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
   double reach = 0;
@@ -778,11 +1486,23 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   s.part_reach = std::max(reach, 1e-300);
   // the run's length scale: the part's reach at its initial slide (not its limits': see reach_at)
   const double size = s.reach_at({&s.y});
+  s.size = size;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * size;
   // the rest speed: the speed a load gains over the chord deviation
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
   load += (std::abs(s.torque) / s.inertia_c) * size;
+  // (the springs' force at the start's stretch, or the torsional one's at the angle limits if they
+  // are nearer than half a turn beyond the start: limits far beyond the motion change nothing)
+  load += s.k_lin * (std::abs(s.y[0]) + std::abs(s.rest_lin)) / s.mass;
+  if (s.k_tor > 0) {
+    double turn = std::abs(s.y[1] - s.rest_tor) + std::numbers::pi;
+    if (s.angle_limits)
+      turn = std::min(turn, std::max(std::abs(s.angle_limits->lo.get_d() - s.rest_tor),
+                                     std::abs(s.angle_limits->hi.get_d() - s.rest_tor)));
+    load += s.k_tor * turn / s.inertia_c * size;
+  }
   s.rest_speed = std::sqrt(2 * load * s.delta);
+  s.hold_gap = 0.75 * s.delta;
   // the pairs
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
     const PairSpec& spec_pair = model.pairs[i];
