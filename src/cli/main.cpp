@@ -7,6 +7,8 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 int main(int argc, char** argv) {
@@ -18,13 +20,28 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "hipair 0.1.0");
   app.require_subcommand(1);
   hipair::cli::Action action;
-  hipair::cli::register_validate(app, action);
-  hipair::cli::register_show(app, action);
-  hipair::cli::register_analyze(app, action);
-  hipair::cli::register_certify(app, action);
-  hipair::cli::register_cspace(app, action);
-  hipair::cli::register_tolerance(app, action);
-  hipair::cli::register_simulate(app, action);
+  // The subcommands in the order of the top level's help. When the first argument is exactly a
+  // subcommand's name, only that subcommand is registered: CLI11's registration of every
+  // subcommand's options was ≈ 1.4 M instructions per process (docs/performance.md, session 59),
+  // more than a small pair's whole C-space build, and a subcommand's parse, help and errors read
+  // nothing of its siblings (the top level takes one subcommand: a sibling's name after it is an
+  // argument of its own either way). Anything else first (an option, --help, --version, an unknown
+  // or misspelt name, nothing) registers every subcommand, so the top level's help and its errors
+  // list them all.
+  using Register = void (*)(CLI::App&, hipair::cli::Action&);
+  static constexpr std::pair<const char*, Register> subcommands[] = {
+      {"validate", hipair::cli::register_validate}, {"show", hipair::cli::register_show},
+      {"analyze", hipair::cli::register_analyze},   {"certify", hipair::cli::register_certify},
+      {"cspace", hipair::cli::register_cspace},     {"tolerance", hipair::cli::register_tolerance},
+      {"simulate", hipair::cli::register_simulate}};
+  Register named = nullptr;
+  if (argc > 1)
+    for (const auto& [name, add] : subcommands)
+      if (std::string_view(argv[1]) == name) named = add;
+  if (named)
+    named(app, action);
+  else
+    for (const auto& [name, add] : subcommands) add(app, action);
   // a usage error is one line, like every other error: "hipair: error: <CLI11's message> (see
   // 'hipair SUBCOMMAND --help')" (CLI11's default adds a second line, "Run with --help ...")
   // an argument before the subcommand that nothing takes (`hipair --bogus validate M`) is the
