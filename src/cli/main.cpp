@@ -25,8 +25,9 @@ int main(int argc, char** argv) {
   // subcommand's options was ≈ 1.4 M instructions per process (docs/performance.md, session 59),
   // more than a small pair's whole C-space build, and a subcommand's parse, help and errors read
   // nothing of its siblings (the top level takes one subcommand: a sibling's name after it is an
-  // argument of its own either way). Anything else first (an option, --help, --version, an unknown
-  // or misspelt name, nothing) registers every subcommand, so the top level's help and its errors
+  // argument of its own either way). `hipair --version` alone registers none (the flag answers
+  // before any subcommand is looked for). Anything else first (an option, --help, an unknown or
+  // misspelt name, nothing) registers every subcommand, so the top level's help and its errors
   // list them all.
   using Register = void (*)(CLI::App&, hipair::cli::Action&);
   static constexpr std::pair<const char*, Register> subcommands[] = {
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
       if (std::string_view(argv[1]) == name) named = add;
   if (named)
     named(app, action);
-  else
+  else if (!(argc == 2 && std::string_view(argv[1]) == "--version"))
     for (const auto& [name, add] : subcommands) add(app, action);
   // a usage error is one line, like every other error: "hipair: error: <CLI11's message> (see
   // 'hipair SUBCOMMAND --help')" (CLI11's default adds a second line, "Run with --help ...")

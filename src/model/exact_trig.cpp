@@ -93,19 +93,28 @@ Rational simplest_rational_between(const Rational& lo_in, const Rational& hi_in)
   if (hi < 0) return Rational(-simplest_rational_between(Rational(-hi), Rational(-lo)));
   // 0 < lo <= hi: continued-fraction descent (Stern-Brocot), iterative.
   // Invariant: result = (p0 * x + p1) / (q0 * x + q1) for the simplest x in [a, b].
-  Rational a = lo, b = hi;
+  // a = an / ad and b = bn / bd with positive denominators, not reduced: each step's new ends are
+  // 1 / (b - floor a) = bd / (bn - floor(a) bd) and 1 / (a - floor a) = ad / (an mod ad), the
+  // remainders of Euclid's algorithm on the ends, so no gcd is taken (as rationals, every step
+  // canonicalised two quotients of numbers of the input's size: ≈ 55 K instructions per call on
+  // the 256-bit half-angle tangent windows). The same steps and tests as on the rationals.
+  mpz_class an = lo.get_num(), ad = lo.get_den(), bn = hi.get_num(), bd = hi.get_den();
   mpz_class p0 = 1, p1 = 0, q0 = 0, q1 = 1;
+  mpz_class floor_a, rest, t;
   for (;;) {
-    mpz_class floor_a;
-    mpz_fdiv_q(floor_a.get_mpz_t(), a.get_num_mpz_t(), a.get_den_mpz_t());
+    mpz_fdiv_qr(floor_a.get_mpz_t(), rest.get_mpz_t(), an.get_mpz_t(), ad.get_mpz_t());
     mpz_class value;  // the simplest x is an integer when one lies in [a, b]
     bool integer_found = false;
-    if (Rational(floor_a) == a) {
+    if (sgn(rest) == 0) {  // a is the integer floor_a
       value = floor_a;
       integer_found = true;
-    } else if (Rational(floor_a + 1) <= b) {
-      value = floor_a + 1;
-      integer_found = true;
+    } else {
+      t = floor_a + 1;  // floor_a + 1 <= bn / bd iff (floor_a + 1) bd <= bn
+      t *= bd;
+      if (t <= bn) {
+        value = floor_a + 1;
+        integer_found = true;
+      }
     }
     if (integer_found) {
       Rational result(p0 * value + p1, q0 * value + q1);
@@ -118,9 +127,11 @@ Rational simplest_rational_between(const Rational& lo_in, const Rational& hi_in)
     q1 = q0;
     p0 = np0;
     q0 = nq0;
-    Rational new_a = 1 / (b - floor_a), new_b = 1 / (a - floor_a);
-    a = new_a;
-    b = new_b;
+    // new a = bd / (bn - floor_a bd), new b = ad / rest (rest = an - floor_a ad > 0)
+    mpz_submul(bn.get_mpz_t(), floor_a.get_mpz_t(), bd.get_mpz_t());
+    an.swap(bd);   // an = bd (old), bd = an (old, no longer needed)
+    ad.swap(bn);   // ad = bn - floor_a bd (old), bn = ad (old)
+    bd.swap(rest); // bd = rest
   }
 }
 

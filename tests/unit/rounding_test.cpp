@@ -98,6 +98,86 @@ TEST(SimplestRational, BruteForceOnSmallIntervals) {
   EXPECT_EQ(checked, 4000);
 }
 
+// The descent on rationals, step by step (each end a canonical quotient), as it was before
+// session 59 gave simplest_rational_between the ends as unreduced integer pairs: the reference
+// the integer descent must equal bit for bit (the model's roundings, hence every output, depend
+// on it).
+Rational simplest_by_rationals(const Rational& lo_in, const Rational& hi_in) {
+  Rational lo = lo_in, hi = hi_in;
+  lo.canonicalize();
+  hi.canonicalize();
+  if (lo <= 0 && hi >= 0) return Rational(0);
+  if (hi < 0) return Rational(-simplest_by_rationals(Rational(-hi), Rational(-lo)));
+  Rational a = lo, b = hi;
+  mpz_class p0 = 1, p1 = 0, q0 = 0, q1 = 1;
+  for (;;) {
+    mpz_class floor_a;
+    mpz_fdiv_q(floor_a.get_mpz_t(), a.get_num_mpz_t(), a.get_den_mpz_t());
+    std::optional<mpz_class> value;
+    if (Rational(floor_a) == a)
+      value = floor_a;
+    else if (Rational(floor_a + 1) <= b)
+      value = floor_a + 1;
+    if (value) {
+      Rational result(p0 * *value + p1, q0 * *value + q1);
+      result.canonicalize();
+      return result;
+    }
+    mpz_class np0 = p0 * floor_a + p1, nq0 = q0 * floor_a + q1;
+    p1 = p0;
+    q1 = q0;
+    p0 = np0;
+    q0 = nq0;
+    Rational new_a = 1 / (b - floor_a), new_b = 1 / (a - floor_a);
+    a = new_a;
+    b = new_b;
+  }
+}
+
+TEST(SimplestRational, IntegerDescentEqualsTheRationalDescent) {
+  // Random ends from 2^-300 to 2^300 in magnitude, with 1 to 300-bit numerators and
+  // denominators, not reduced (a common factor in half of them), both signs, windows from
+  // equal ends to wide ones, and the half-angle tangent windows the model reader forms (256-bit
+  // ends shrunk by 2^-240 around tan of a random angle's half, at bounds 1e-3 to 1e-30).
+  std::mt19937_64 random(20261205);
+  gmp_randclass bits(gmp_randinit_default);
+  bits.seed(20261205);
+  auto integer = [&](int max_bits) {
+    mpz_class z = bits.get_z_bits(1 + static_cast<int>(random() % static_cast<unsigned>(max_bits)));
+    return z == 0 ? mpz_class(1) : z;
+  };
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int size = trial % 3 == 0 ? 16 : trial % 3 == 1 ? 64 : 300;
+    mpz_class common = trial % 2 == 0 ? integer(40) : mpz_class(1);
+    Rational a(integer(size) * common, integer(size) * common), width(integer(size), integer(size) * common);
+    if (random() % 2) a = -a;
+    if (trial % 5 == 0) width = 0;
+    if (trial % 7 == 0) width = width * Rational(mpz_class(1), mpz_class(1) << 250);
+    Rational a_reduced = a;   // a itself stays unreduced (callers pass mpq_class(n, d))
+    a_reduced.canonicalize();
+    width.canonicalize();
+    Rational b = a_reduced + width;
+    if (trial % 11 == 0) {   // b the integer just above a (both descents' integer test at its end)
+      mpz_class floor_a;
+      mpz_fdiv_q(floor_a.get_mpz_t(), a.get_num_mpz_t(), a.get_den_mpz_t());
+      b = Rational(floor_a + 1);
+    }
+    ASSERT_EQ(simplest_rational_between(a, b), simplest_by_rationals(a, b)) << a << " " << b;
+    ++checked;
+  }
+  std::uniform_real_distribution<double> angle(-1.5, 1.5);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Rational t(std::tan(angle(random) / 2));
+    const Rational bound = power_of_ten(-3 - trial % 28);
+    const Rational shrink(mpz_class(1), mpz_class(1) << 240);
+    const Rational lo = t - bound / 3 + shrink, hi = t + bound / 3 - shrink;
+    ASSERT_EQ(simplest_rational_between(lo, hi), simplest_by_rationals(lo, hi)) << lo << " " << hi;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3200);
+}
+
 TEST(SimplestRational, ExtremeMagnitudes) {
   // Around 1e-300 and 1e400, given as text, with widths from 1e-320 to 1e390.
   for (const char* centre_text : {"1e-300", "3.25e-300", "1e400", "-7.123456789e400", "1e-12", "0.999999999999"}) {
