@@ -100,10 +100,14 @@ bool reference(const ContactCurve& curve, const raw::Box& box) {
   return false;
 }
 
-// valid_point_in_box (machine integers first) and its GMP path both give the reference's answer.
-void expect_both_paths_equal(const ContactCurve& curve, const raw::Box& box, bool expected, int instance) {
+// valid_point_in_box (machine integers first) and its GMP path both give the reference's answer,
+// counted in `found` or `not_found`; false once a test assertion has failed.
+bool expect_both_paths_equal(const ContactCurve& curve, const raw::Box& box, int instance, int& found, int& not_found) {
+  const bool expected = reference(curve, box);
   EXPECT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
   EXPECT_EQ(valid_point_in_box_gmp(curve, box), expected) << "instance " << instance;
+  (expected ? found : not_found) += 1;
+  return !::testing::Test::HasFailure();
 }
 
 TEST(CSpaceValidPoint, ShortcutEqualsTheRationalReferenceOnGeneratedLinesClausesAndBoxes) {
@@ -136,10 +140,7 @@ TEST(CSpaceValidPoint, ShortcutEqualsTheRationalReferenceOnGeneratedLinesClauses
     box.y_hi = box.y_lo + fraction(1 + static_cast<long>(random() % 12), 1 + static_cast<long>(random() % 3));
     // a third of the boxes get a side exactly through a meeting point (the closed box's ends)
     if (random() % 3 == 0 && box_through_meeting_point(curve, box, random, [] { return Rational(3); })) ++on_the_box;
-    const bool expected = reference(curve, box);
-    expect_both_paths_equal(curve, box, expected, instance);
-    if (HasFailure()) return;
-    (expected ? found : not_found) += 1;
+    if (!expect_both_paths_equal(curve, box, instance, found, not_found)) return;
   }
   EXPECT_GE(found, 2500);
   EXPECT_GE(not_found, 2000);
@@ -194,10 +195,7 @@ TEST(CSpaceValidPoint, MachineIntegersEqualTheReferenceAcrossTheirLimits) {
         ++large;
         break;
       }
-    const bool expected = reference(curve, box);
-    expect_both_paths_equal(curve, box, expected, instance);
-    if (HasFailure()) return;
-    (expected ? found : not_found) += 1;
+    if (!expect_both_paths_equal(curve, box, instance, found, not_found)) return;
   }
   EXPECT_GE(found, 1000);
   EXPECT_GE(not_found, 1000);
