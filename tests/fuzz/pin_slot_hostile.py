@@ -10,7 +10,8 @@ and --region values, and the model scaled exactly (lengths x 10^-150 and 10^150,
 Each case must end within 60 s, without a crash, abort or uncaught exception; a refused or failed
 run exits 2 (input) or 3 (the run) with one line on stderr naming the place (a JSON pointer, an
 option, or the part and its limits) and writes no output directory; a run that succeeds writes
-its files, and the scaled models give the unscaled run's three impacts at the same times. Found
+its files, and the scaled models give the unscaled run's three impacts at the same times; bad
+initial velocities are refused at their pointer (session 59). Found
 by this script and fixed in session 58: lengths x 10^-150 ran "successfully" with the follower
 never moving; lengths x 10^150, masses x 10^200 and loads of 10^100 stopped with "not finite"; a
 torque of 10^30 N mm left the follower standing while the time ran on; a driver of 10^300 rad/s
@@ -51,6 +52,9 @@ def main(argv):
 
     def slot(key, value):
         return lambda m: follower(m)['motion']['pin_slot'].__setitem__(key, value)
+
+    def velocity(value):
+        return lambda m: m['simulation'].__setitem__('velocities', value)
 
     # name: (model change, extra arguments, expected exit, text the message must contain)
     cases = {
@@ -98,6 +102,17 @@ def main(argv):
         'at-slide-limit': (lambda m: follower(m)['initial'].__setitem__('offset', 30), [], 0, ''),
         'limits-1e9': (slot('limits', [-1e9, 1e9]), [], 'same', ''),
         'limits-1e300': (slot('limits', [-1e300, 1e300]), [], 'same', ''),
+        # initial velocities of the pin-slot part (session 58's {"slide", "angle"}; session 59, hunt59)
+        'velocity-unknown-name': (velocity({'follower': {'slide': 'abc'}}), [], 2, '/simulation/velocities/follower/slide'),
+        'velocity-1e400': (velocity({'follower': {'slide': '1e400'}}), [], 2, '/simulation/velocities/follower/slide'),
+        'velocity-array': (velocity({'follower': {'angle': [1]}}), [], 2, '/simulation/velocities/follower/angle'),
+        'velocity-null': (velocity({'follower': None}), [], 2, '/simulation/velocities/follower'),
+        'velocity-extra-key': (velocity({'follower': {'slide': 1, 'angle': 2, 'spin': 3}}), [], 2,
+                               '/simulation/velocities/follower/spin'),
+        'velocity-of-a-driver': (velocity({'cam': {'slide': 1}}), [], 2, '/simulation/velocities/cam'),
+        'velocity-unknown-part': (velocity({'nobody': {'angle': 1}}), [], 2, '/simulation/velocities/nobody'),
+        # thrown up the slot at 1e300 mm/s: struck at the slot's upper end after 3.4e-299 s, held, let go
+        'velocity-slide-1e300': (velocity({'follower': {'slide': 1e300}}), [], 'stop', 'slide limit (upper end)'),
         'mass-1e200': (lambda m: (follower(m)['dynamics'].__setitem__('mass', 1e198),
                                   follower(m)['dynamics'].__setitem__('moment_of_inertia', 1e201),
                                   follower(m)['dynamics']['torsional_spring'].__setitem__('stiffness', 2e201)),

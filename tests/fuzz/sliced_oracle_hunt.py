@@ -28,7 +28,8 @@ Each generated model is written with literal rationals, its C-space built by `hi
       4 mm thick: p < w: 2 (the chambers connect, the peg turned upright), p >= w: 3;
   * the same count and the same critical angles (exact strings) whatever the free part's pivot
     (the pivot is a choice of coordinates: the slice at theta about P is the slice about P0
-    translated by (I - R)(P - P0)): the peg's centre, 10^6 mm, 10^30 mm and 10^400 mm away
+    translated by (I - R)(P - P0)): the peg's centre, 10^6 mm, 10^30 mm and 10^400 mm away, and
+    (session 59) at (-10^6, -7 10^5) and (1234567.89, -98765.4321)
     (session 57: 9 components for 5 from 10^6 mm, 2 320 critical angles for 12 at 10^12 mm, no
     answer within 2 minutes at 10^400 mm);
   * the same count and critical angles for the model scaled by 10^-300 and 10^400
@@ -250,6 +251,9 @@ def main():
     for label, plate, peg, comps in cases:
         # the pivot: the peg's centre, then far away (the same critical angles and components)
         pivots = [('centre', None)] + [(far, far) for far in ('1e6', '1e30', '1e400')]
+        # (session 59, hunt59: far pivots off the axis, in a negative direction and at odd decimals)
+        pivots += [('(-1e6, -7e5)', (F(-10**6), F(-7 * 10**5))), ('(1234567.89, -98765.4321)',
+                                                                   (F(123456789, 100), F(-987654321, 10**4)))]
         if quick:   # the ctest: the square family about its centre and 10^6 mm away, the slot 10^6 mm away
             pivots = {'peg-in-hole h=12': pivots[:2], 'peg-in-hole h=10': pivots[:1], 'peg-in-slot p=2': pivots[1:2],
                       'peg-in-hole h=10000000001/1000000000': pivots[:2]}[label]
@@ -257,7 +261,7 @@ def main():
             xs = [p[0] for l in peg for p in l]
             ys = [p[1] for l in peg for p in l]
             centre = ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2)
-            pivot = centre if far is None else (F(10) ** int(far[2:]), centre[1])
+            pivot = centre if far is None else far if isinstance(far, tuple) else (F(10) ** int(far[2:]), centre[1])
             tag = '%s pivot %s' % (label, name)
             path = os.path.join(work, 'm.json')
             with open(path, 'w') as f:

@@ -24,6 +24,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -1137,12 +1138,62 @@ TEST(CSpacePolygonFrontEnd, WideNearlyParallelDirectionsEqualTheGeneralPathAndTh
     std::optional<Model> built_model = sliders_or_none(a, b);
     if (!built_model) continue;
     expect_same_curves(*built_model);
-    Built built = build_both(*built_model, instance % 3 == 0);
-    expect_same_space(built.fast, built.general);
-    expect_minkowski(built.fast, a, b);
+    expect_front_end_as_general_and_minkowski(*built_model, a, b, instance % 3 == 0);
     ++compared;
   }
   EXPECT_GE(compared, 20);
+}
+
+
+// Session 59 (hunt59): the machine-integer paths of session 58 (algebra/small_integers.hpp:
+// front_contact, the contact lines' clip, valid_point_in_box and the labels' line signs read an
+// integer only below 2^62 and check every product for overflow) at their limits. Small lattice
+// stars placed far out: every vertex times a factor (2^e + odd) / odd' and moved by an offset
+// near 2^e' (e, e' from 50 to 66), so that the homogeneous integers the front end reads lie just
+// below and just above 2^62, the edge directions stay small (their products with the coordinates
+// near 2^127 fit or overflow by little) or are large too. Oracles: the general path (GMP rationals
+// throughout, field by field) and CGAL's minkowski_sum_2 of the parts (exact). The integers'
+// sizes are counted so that both sides of 2^62 are met.
+TEST(CSpacePolygonFrontEnd, CoordinatesAcrossTheMachineIntegerLimitsEqualTheGeneralPathAndTheMinkowskiSum) {
+  std::mt19937_64 random(5962);
+  auto near_power = [&](int e) {   // 2^e plus or minus a small odd number
+    const mpz_class odd = 2 * static_cast<long>(random() % 50) + 1;
+    return random() % 2 ? mpz_class((mpz_class(1) << e) + odd) : mpz_class((mpz_class(1) << e) - odd);
+  };
+  // the largest homogeneous integer (numerators over the point's common denominator) in bits
+  auto largest_bits = [](const Points& points) {
+    std::size_t bits = 0;
+    for (const auto& [x, y] : points) {
+      mpz_class w;
+      mpz_lcm(w.get_mpz_t(), x.get_den_mpz_t(), y.get_den_mpz_t());
+      for (const mpz_class& v : {mpz_class(w), mpz_class(x.get_num() * (w / x.get_den())), mpz_class(y.get_num() * (w / y.get_den()))})
+        bits = std::max(bits, mpz_sizeinbase(v.get_mpz_t(), 2));
+    }
+    return bits;
+  };
+  int compared = 0, below = 0, above = 0;
+  for (int instance = 0; instance < 18; ++instance) {
+    Points a = random_star(random, 3 + static_cast<int>(random() % 6), 0, 0, 3, instance % 3 == 0 ? 1 : 4, instance % 4 == 1);
+    Points b = random_star(random, 3 + static_cast<int>(random() % 6), static_cast<double>(random() % 5) - 2,
+                           static_cast<double>(random() % 5) - 2, 2, instance % 3 == 2 ? 3 : 1, false);
+    const int e = 50 + static_cast<int>(random() % 17);
+    Rational factor(instance % 2 == 0 ? near_power(e - 10) : mpz_class(1), mpz_class(2 * static_cast<long>(random() % 4) + 1));
+    factor.canonicalize();
+    const Rational offset_x(near_power(e)), offset_y(random() % 2 ? near_power(e - 1) : mpz_class(-near_power(e)));
+    a = test_loops::moved(scaled(a, factor), offset_x, offset_y);
+    b = test_loops::moved(scaled(b, factor), random() % 3 == 0 ? offset_x + 5 : offset_x, offset_y);
+    const std::size_t bits = std::max(largest_bits(a), largest_bits(b));
+    SCOPED_TRACE("instance " + std::to_string(instance) + ", integers of " + std::to_string(bits) + " bits");
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    expect_same_curves(*built_model);
+    expect_front_end_as_general_and_minkowski(*built_model, a, b, instance % 3 == 0);
+    (bits <= 62 ? below : above) += 1;
+    ++compared;
+  }
+  EXPECT_GE(compared, 16);
+  EXPECT_GE(below, 4);
+  EXPECT_GE(above, 4);
 }
 
 }  // namespace

@@ -11,21 +11,24 @@
 #include <initializer_list>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace hipair::cspace {
 namespace {
 
 // a x + b y + c, trimmed as the generator leaves its polynomials
-IntegerPolynomial2 line(long a, long b, long c) {
+IntegerPolynomial2 linear_of(const mpz_class& a, const mpz_class& b, const mpz_class& c) {
   IntegerPolynomial2 p;
   if (a == 0 && b == 0 && c == 0) return p;
   p.coefficients.resize(a != 0 ? 2 : 1);
-  if (a != 0) p.coefficients[1].push_back(mpz_class(a));
-  if (b != 0) p.coefficients[0] = {mpz_class(c), mpz_class(b)};
-  else p.coefficients[0] = {mpz_class(c)};
+  if (a != 0) p.coefficients[1].push_back(a);
+  if (b != 0) p.coefficients[0] = {c, b};
+  else p.coefficients[0] = {c};
   return p;
 }
+
+IntegerPolynomial2 line(long a, long b, long c) { return linear_of(mpz_class(a), mpz_class(b), mpz_class(c)); }
 
 // x^2 + y^2 - r (a non-linear atom: the shortcut evaluates it at the rational point)
 IntegerPolynomial2 circle(long r) {
@@ -44,18 +47,47 @@ bool linear(const IntegerPolynomial2& p) {
   return p.degree_x() <= 1 && p.degree_y() <= 1 && sgn(coefficient(p, 1, 1)) == 0;
 }
 
+// Where the lines f = 0 and atom = 0 meet (Cramer's rule in rationals); nullopt when parallel.
+std::optional<std::pair<Rational, Rational>> meeting_point(const IntegerPolynomial2& f, const IntegerPolynomial2& atom) {
+  const Rational a(coefficient(f, 1, 0)), b(coefficient(f, 0, 1)), c(coefficient(f, 0, 0));
+  const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
+  const Rational det = a * e - b * d;
+  if (det == 0) return std::nullopt;
+  return std::make_pair(Rational((b * g - c * e) / det), Rational((c * d - a * g) / det));
+}
+
+// One side of `box` moved onto the meeting point of the curve's line with the first atom of its
+// first clause (the right, left, top or bottom side, drawn by `random`; the box side() long that
+// way), when the curve and the atom are lines that meet: the closed box's ends. False when they
+// do not (nothing drawn).
+template <class Side>
+bool box_through_meeting_point(const ContactCurve& curve, raw::Box& box, std::mt19937_64& random, Side side) {
+  if (curve.validity.empty() || curve.validity[0].atoms.empty() || !linear(curve.validity[0].atoms[0]) ||
+      curve.polynomial.degree_x() > 1)
+    return false;
+  const std::optional<std::pair<Rational, Rational>> point = meeting_point(curve.polynomial, curve.validity[0].atoms[0]);
+  if (!point) return false;
+  const auto& [x, y] = *point;
+  const Rational length = side();
+  switch (random() % 4) {
+    case 0: box.x_hi = x; box.x_lo = x - length; break;
+    case 1: box.x_lo = x; box.x_hi = x + length; break;
+    case 2: box.y_hi = y; box.y_lo = y - length; break;
+    default: box.y_lo = y; box.y_hi = y + length; break;
+  }
+  return true;
+}
+
 // The reference, in rationals.
 bool reference(const ContactCurve& curve, const raw::Box& box) {
   const IntegerPolynomial2& f = curve.polynomial;
   if (f.degree_x() > 1 || f.degree_y() > 1 || sgn(coefficient(f, 1, 1)) != 0 || curve.validity.empty()) return false;
-  const Rational a(coefficient(f, 1, 0)), b(coefficient(f, 0, 1)), c(coefficient(f, 0, 0));
   for (const auto& clause : curve.validity)
     for (const auto& atom : clause.atoms) {
       if (!linear(atom)) continue;
-      const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
-      const Rational det = a * e - b * d;
-      if (det == 0) continue;
-      const Rational x = (b * g - c * e) / det, y = (c * d - a * g) / det;
+      const std::optional<std::pair<Rational, Rational>> point = meeting_point(f, atom);
+      if (!point) continue;
+      const auto& [x, y] = *point;
       if (x < box.x_lo || x > box.x_hi || y < box.y_lo || y > box.y_hi) continue;
       bool all = true;
       for (const auto& other : curve.validity) {
@@ -66,6 +98,16 @@ bool reference(const ContactCurve& curve, const raw::Box& box) {
       if (all) return true;
     }
   return false;
+}
+
+// valid_point_in_box (machine integers first) and its GMP path both give the reference's answer,
+// counted in `found` or `not_found`; false once a test assertion has failed.
+bool expect_both_paths_equal(const ContactCurve& curve, const raw::Box& box, int instance, int& found, int& not_found) {
+  const bool expected = reference(curve, box);
+  EXPECT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
+  EXPECT_EQ(valid_point_in_box_gmp(curve, box), expected) << "instance " << instance;
+  (expected ? found : not_found) += 1;
+  return !::testing::Test::HasFailure();
 }
 
 TEST(CSpaceValidPoint, ShortcutEqualsTheRationalReferenceOnGeneratedLinesClausesAndBoxes) {
@@ -97,28 +139,8 @@ TEST(CSpaceValidPoint, ShortcutEqualsTheRationalReferenceOnGeneratedLinesClauses
     box.x_hi = box.x_lo + fraction(1 + static_cast<long>(random() % 12), 1 + static_cast<long>(random() % 3));
     box.y_hi = box.y_lo + fraction(1 + static_cast<long>(random() % 12), 1 + static_cast<long>(random() % 3));
     // a third of the boxes get a side exactly through a meeting point (the closed box's ends)
-    if (random() % 3 == 0 && !curve.validity.empty() && !curve.validity[0].atoms.empty() &&
-        linear(curve.validity[0].atoms[0]) && curve.polynomial.degree_x() <= 1) {
-      const IntegerPolynomial2& atom = curve.validity[0].atoms[0];
-      const Rational fa(coefficient(curve.polynomial, 1, 0)), fb(coefficient(curve.polynomial, 0, 1)),
-          fc(coefficient(curve.polynomial, 0, 0));
-      const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
-      const Rational det = fa * e - fb * d;
-      if (det != 0) {
-        const Rational x = (fb * g - fc * e) / det, y = (fc * d - fa * g) / det;
-        switch (random() % 4) {
-          case 0: box.x_hi = x; box.x_lo = x - 3; break;
-          case 1: box.x_lo = x; box.x_hi = x + 3; break;
-          case 2: box.y_hi = y; box.y_lo = y - 3; break;
-          default: box.y_lo = y; box.y_hi = y + 3; break;
-        }
-        ++on_the_box;
-      }
-    }
-    const bool expected = reference(curve, box);
-    ASSERT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
-    ASSERT_EQ(valid_point_in_box_gmp(curve, box), expected) << "instance " << instance;
-    (expected ? found : not_found) += 1;
+    if (random() % 3 == 0 && box_through_meeting_point(curve, box, random, [] { return Rational(3); })) ++on_the_box;
+    if (!expect_both_paths_equal(curve, box, instance, found, not_found)) return;
   }
   EXPECT_GE(found, 2500);
   EXPECT_GE(not_found, 2000);
@@ -138,15 +160,6 @@ TEST(CSpaceValidPoint, MachineIntegersEqualTheReferenceAcrossTheirLimits) {
     for (int b = 0; b < bits; b += 32) v = (v << 32) + mpz_class(static_cast<unsigned long>(random() & 0xffffffffu));
     if (bits > 0) v = v >> (((bits + 31) / 32) * 32 - bits);
     return random() % 2 ? mpz_class(-v) : v;
-  };
-  auto linear_of = [](const mpz_class& a, const mpz_class& b, const mpz_class& c) {
-    IntegerPolynomial2 p;
-    if (a == 0 && b == 0 && c == 0) return p;
-    p.coefficients.resize(a != 0 ? 2 : 1);
-    if (a != 0) p.coefficients[1].push_back(a);
-    if (b != 0) p.coefficients[0] = {c, b};
-    else p.coefficients[0] = {c};
-    return p;
   };
   auto positive = [&]() {
     mpz_class d = abs(big());
@@ -176,32 +189,13 @@ TEST(CSpaceValidPoint, MachineIntegersEqualTheReferenceAcrossTheirLimits) {
     box.y_lo = fraction();
     box.x_hi = box.x_lo + abs(fraction()) + 1;
     box.y_hi = box.y_lo + abs(fraction()) + 1;
-    if (random() % 2 == 0 && linear(curve.validity[0].atoms[0]) && curve.polynomial.degree_x() <= 1) {
-      const IntegerPolynomial2& atom = curve.validity[0].atoms[0];
-      const Rational fa(coefficient(curve.polynomial, 1, 0)), fb(coefficient(curve.polynomial, 0, 1)),
-          fc(coefficient(curve.polynomial, 0, 0));
-      const Rational d(coefficient(atom, 1, 0)), e(coefficient(atom, 0, 1)), g(coefficient(atom, 0, 0));
-      const Rational det = fa * e - fb * d;
-      if (det != 0) {
-        const Rational x = (fb * g - fc * e) / det, y = (fc * d - fa * g) / det;
-        const Rational side = abs(fraction()) + 1;
-        switch (random() % 4) {
-          case 0: box.x_hi = x; box.x_lo = x - side; break;
-          case 1: box.x_lo = x; box.x_hi = x + side; break;
-          case 2: box.y_hi = y; box.y_lo = y - side; break;
-          default: box.y_lo = y; box.y_hi = y + side; break;
-        }
-      }
-    }
+    if (random() % 2 == 0) box_through_meeting_point(curve, box, random, [&] { return Rational(abs(fraction()) + 1); });
     for (const mpz_class* v : std::initializer_list<const mpz_class*>{&a, &b, &c, &box.x_lo.get_num(), &box.x_hi.get_den()})
       if (mpz_sizeinbase(v->get_mpz_t(), 2) > 62) {
         ++large;
         break;
       }
-    const bool expected = reference(curve, box);
-    ASSERT_EQ(valid_point_in_box(curve, box), expected) << "instance " << instance;
-    ASSERT_EQ(valid_point_in_box_gmp(curve, box), expected) << "instance " << instance;
-    (expected ? found : not_found) += 1;
+    if (!expect_both_paths_equal(curve, box, instance, found, not_found)) return;
   }
   EXPECT_GE(found, 1000);
   EXPECT_GE(not_found, 1000);

@@ -267,37 +267,38 @@ void expect_derivatives_are_finite_differences(const std::string& text, const Ra
   EXPECT_GT(checked, 0u);
 }
 
-TEST(ParametricTemplates, GenevaWheelAndDriverAgreeWithTheExactFormInAndBeyondTheBox) {
-  std::mt19937 rng(57);
+// expect_generic_form_holds on `rounds` generated models (generate(rng, round)), seeded by `seed`:
+// the inside / beyond counts (stops at the first failure).
+Counts generic_form_rounds(unsigned seed, int rounds, const std::function<std::string(std::mt19937&, int)>& generate) {
+  std::mt19937 rng(seed);
   Counts counts;
-  for (int round = 0; round < 6; ++round) {
-    expect_generic_form_holds(generated_geneva(rng, round), rng, counts);
-    if (HasFailure()) return;
+  for (int round = 0; round < rounds; ++round) {
+    expect_generic_form_holds(generate(rng, round), rng, counts);
+    if (::testing::Test::HasFailure()) break;
   }
+  return counts;
+}
+
+TEST(ParametricTemplates, GenevaWheelAndDriverAgreeWithTheExactFormInAndBeyondTheBox) {
+  const Counts counts = generic_form_rounds(57, 6, generated_geneva);
+  if (HasFailure()) return;
   EXPECT_EQ(counts.inside, 18u);
   EXPECT_GE(counts.beyond, 6u);
 }
 
 TEST(ParametricTemplates, EscapementTemplatesAgreeWithTheExactFormInAndBeyondTheBox) {
-  std::mt19937 rng(58);
-  Counts counts;
-  for (int round = 0; round < 8; ++round) {
-    expect_generic_form_holds(generated_escapement(rng, round), rng, counts);
-    if (HasFailure()) return;
-  }
+  const Counts counts = generic_form_rounds(58, 8, generated_escapement);
+  if (HasFailure()) return;
   EXPECT_EQ(counts.inside, 24u);
   EXPECT_GE(counts.beyond, 8u);
 }
 
 TEST(ParametricTemplates, InvoluteFitAgreesWithTheExactFormInAndBeyondTheBox) {
-  std::mt19937 rng(59);
-  Counts counts;
-  for (int round = 0; round < 8; ++round) {
-    // Every box accepted since session 58, the gears whose root circle lies outside the base
-    // circle included (the flank-sense check's involute function enclosed by monotonicity).
-    expect_generic_form_holds(generated_involute_gear(rng, round % 2 == 0), rng, counts);
-    if (HasFailure()) return;
-  }
+  // Every box accepted since session 58, the gears whose root circle lies outside the base
+  // circle included (the flank-sense check's involute function enclosed by monotonicity).
+  const Counts counts = generic_form_rounds(
+      59, 8, [](std::mt19937& rng, int round) { return generated_involute_gear(rng, round % 2 == 0); });
+  if (HasFailure()) return;
   EXPECT_EQ(counts.inside, 24u);
   EXPECT_GE(counts.beyond, 8u);
 }
@@ -342,15 +343,23 @@ bool exact_shape_kept(const ParametricModel& form, std::mt19937& rng, int random
   return true;
 }
 
-// check_choices on the box of `text`: accepted (true) or refused naming a shape change (false).
-bool box_accepted(const ParametricModel& form) {
+// The tolerance box of `form` as deviations from the nominal values (doubles, as the analysis
+// passes them to check_choices).
+void box_deviations(const ParametricModel& form, std::vector<double>& lo, std::vector<double>& hi) {
   std::size_t n = form.parameter_count();
-  std::vector<double> lo(n), hi(n);
+  lo.assign(n, 0);
+  hi.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Parameter& p = form.nominal().parameters[i];
     lo[i] = Rational(p.range.lo - p.nominal).get_d();
     hi[i] = Rational(p.range.hi - p.nominal).get_d();
   }
+}
+
+// check_choices on the box of `text`: accepted (true) or refused naming a shape change (false).
+bool box_accepted(const ParametricModel& form) {
+  std::vector<double> lo, hi;
+  box_deviations(form, lo, hi);
   try {
     form.check_choices(lo, hi);
     return true;
@@ -466,21 +475,36 @@ TEST(ParametricTemplates, GearPairJammingThresholdIsTheBacklashClosedForm) {
 }
 
 // The kernel slice the large pairs' jam confirmation reads (hipair::kernel_slice) against the
-// slices of the whole exact C-space: at rational driver values of the Geneva pair, in each chart,
-// every interval of the C-space slice is free exactly where the kernel slice is free at its
-// sample (exact comparisons).
-TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSlice) {
-  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json");
-  CSpace space = CSpace::build(model, "driver", "wheel");
+// slices of the whole exact C-space of the pair (x_name, y_name) at the driver chart values
+// `values` (the geneva.json test: the chart's tenths, and since session 59 through its vertices): in each chart, every interval of the C-space slice is free exactly where the kernel
+// slice is free at its sample, and the ends of the free set (the points where free meets not
+// free, along the follower's chart) are the same algebraic numbers in both (exact comparisons).
+// Returns the intervals compared.
+// With `vertex_values`, also at up to that many rational abscissae of the space's vertices
+// (slices through its vertices: contacts beginning, ending or meeting there).
+std::size_t expect_kernel_slices_agree(const Model& model, const std::string& x_name, const std::string& y_name,
+                                       std::vector<Rational> values, std::size_t vertex_values = 0) {
+  CSpace space = CSpace::build(model, x_name, y_name);
   std::size_t x = *model.find_part(space.x_part()), y = *model.find_part(space.y_part());
+  std::size_t added = 0;
+  for (std::size_t v = 0; v < space.vertices().size() && added < vertex_values; ++v)
+    if (space.vertices()[v].x.exact && std::find(values.begin(), values.end(), space.vertices()[v].x.lower) == values.end()) {
+      values.push_back(space.vertices()[v].x.lower);
+      ++added;
+    }
+  EXPECT_EQ(added, vertex_values) << "rational vertex abscissae";
   std::size_t compared = 0;
-  for (int k = -9; k <= 9; k += 2) {
-    Rational value(k, 10);
+  for (const Rational& value : values) {
     for (const Slice& s : space.slice(SliceAxis::x, value)) {
       const CSpaceChart& chart = space.charts()[s.chart];
+      SCOPED_TRACE("driver chart value " + to_exact_string(value) + ", chart " + std::to_string(s.chart));
       std::optional<KernelSlice> kernel =
           kernel_slice(model, x, y, value, chart.x_half_turn, s.intervals.front().sample, chart.y_half_turn);
-      ASSERT_TRUE(kernel);
+      if (!kernel) {
+        ADD_FAILURE() << "no kernel slice";
+        continue;
+      }
+      EXPECT_EQ(kernel->kinds.size(), kernel->points.size() + 1);
       for (const Slice::Interval& interval : s.intervals) {
         std::size_t below = 0;
         bool on_point = false;
@@ -491,13 +515,90 @@ TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSlice) {
         }
         if (on_point) continue;
         EXPECT_EQ(interval.kind == CellKind::free, kernel->kinds[below] == KernelSlice::Kind::free)
-            << "driver chart value " << to_exact_string(value) << ", chart " << s.chart << ", sample "
-            << to_exact_string(interval.sample);
+            << "sample " << to_exact_string(interval.sample);
         ++compared;
       }
+      // the free set's ends (a kernel interval outside the follower's chart is not free)
+      std::vector<const AlgebraicNumber*> space_ends, kernel_ends;
+      for (std::size_t i = 0; i < s.points.size(); ++i)
+        if ((s.intervals[i].kind == CellKind::free) != (s.intervals[i + 1].kind == CellKind::free))
+          space_ends.push_back(&s.points[i].at);
+      for (std::size_t i = 0; i < kernel->points.size(); ++i)
+        if ((kernel->kinds[i] == KernelSlice::Kind::free) != (kernel->kinds[i + 1] == KernelSlice::Kind::free))
+          kernel_ends.push_back(&kernel->points[i].at);
+      EXPECT_EQ(s.intervals.front().kind == CellKind::free, kernel->kinds.front() == KernelSlice::Kind::free);
+      EXPECT_EQ(s.intervals.back().kind == CellKind::free, kernel->kinds.back() == KernelSlice::Kind::free);
+      EXPECT_EQ(space_ends.size(), kernel_ends.size());
+      if (space_ends.size() != kernel_ends.size()) continue;
+      for (std::size_t i = 0; i < space_ends.size(); ++i)
+        EXPECT_EQ(tolerance_detail::compare(*space_ends[i], *kernel_ends[i]), 0) << "end " << i << " of the free set";
     }
   }
-  EXPECT_GT(compared, 20u);
+  return compared;
+}
+
+// Driver chart values -0.9, -0.7, ..., 0.9.
+std::vector<Rational> tenths_of_the_chart() {
+  std::vector<Rational> values;
+  for (int k = -9; k <= 9; k += 2) values.emplace_back(k, 10);
+  for (Rational& v : values) v.canonicalize();
+  return values;
+}
+
+TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSlice) {
+  Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json");
+  EXPECT_GT(expect_kernel_slices_agree(model, "driver", "wheel", tenths_of_the_chart(), 12), 20u);
+}
+
+// Session 59 (hunt59): the same on generated pairs small enough for a whole C-space: the
+// generated Geneva pairs and escape wheel / anchor pairs of the templates above (their nominal
+// models, the pair added) and external spur gear pairs of 5 to 7 teeth (two-arc involute fits),
+// at the chart's tenths and at random rational driver values.
+Model with_pair(std::string text, const std::string& a, const std::string& b) {
+  const std::string none = R"("pairs": [])";
+  text.replace(text.find(none), none.size(), R"("pairs": [{"parts": [")" + a + R"(", ")" + b + R"("]}])");
+  return ParametricModel::read(text).nominal();
+}
+
+std::vector<Rational> tenths_and_random_values(std::mt19937& rng, int random) {
+  std::vector<Rational> v = tenths_of_the_chart();
+  std::uniform_int_distribution<long> numerator(-997, 997);
+  for (int k = 0; k < random; ++k) {
+    Rational q(numerator(rng), 1000);
+    q.canonicalize();
+    v.push_back(q);
+  }
+  return v;
+}
+
+// expect_kernel_slices_agree on two generated models of a template pair (generate(rng, round), the
+// pair a:b added), at the chart's tenths and `random` random values: the intervals compared.
+std::size_t kernel_slices_of_generated_pairs(unsigned seed, const std::function<std::string(std::mt19937&, int)>& generate,
+                                            const std::string& a, const std::string& b, int random) {
+  std::mt19937 rng(seed);
+  std::size_t compared = 0;
+  for (int round = 0; round < 2 && !::testing::Test::HasFailure(); ++round) {
+    const Model model = with_pair(generate(rng, round), a, b);
+    compared += expect_kernel_slices_agree(model, a, b, tenths_and_random_values(rng, random), 4);
+  }
+  return compared;
+}
+
+TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSliceOnGeneratedGenevaPairs) {
+  EXPECT_GT(kernel_slices_of_generated_pairs(5959, generated_geneva, "driver", "wheel", 4), 40u);
+}
+
+TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSliceOnGeneratedEscapements) {
+  EXPECT_GT(kernel_slices_of_generated_pairs(5960, generated_escapement, "wheel", "anchor", 2), 40u);
+}
+
+TEST(ParametricTemplates, KernelSliceAgreesWithTheCSpaceSliceOnGeneratedGearPairs) {
+  std::mt19937 rng(5961);
+  std::uniform_int_distribution<int> teeth(5, 7), pressure(18, 24);
+  const int z1 = teeth(rng), z2 = teeth(rng), alpha = pressure(rng);
+  const Model model = ParametricModel::read(generated_gear_pair(2, z1, z2, alpha, 0.2, 0.01, 0.01)).nominal();
+  SCOPED_TRACE(std::to_string(z1) + " x " + std::to_string(z2) + " teeth, " + std::to_string(alpha) + " deg");
+  EXPECT_GT(expect_kernel_slices_agree(model, "pinion", "gear", tenths_and_random_values(rng, 2), 4), 40u);
 }
 
 TEST(ParametricTemplates, DerivativesEqualFiniteDifferencesOfExactExpansions) {
@@ -518,13 +619,8 @@ TEST(ParametricTemplates, ABoxThatChangesATemplatesShapeIsRefused) {
     SCOPED_TRACE(text);
     ParametricModel form = ParametricModel::read(text);
     ASSERT_TRUE(form.generic()) << form.exact_only_feature();
-    std::size_t n = form.parameter_count();
-    std::vector<double> lo(n), hi(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Parameter& p = form.nominal().parameters[i];
-      lo[i] = Rational(p.range.lo - p.nominal).get_d();
-      hi[i] = Rational(p.range.hi - p.nominal).get_d();
-    }
+    std::vector<double> lo, hi;
+    box_deviations(form, lo, hi);
     try {
       form.check_choices(lo, hi);
       ADD_FAILURE() << "not refused";
@@ -567,8 +663,9 @@ TEST(ParametricTemplates, ABoxThatChangesATemplatesShapeIsRefused) {
   ParametricModel kept = ParametricModel::read(model(parameter("face", 0.5, 0.4, true),
       R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"escape_wheel": {"center": [0, 0],
          "teeth": 15, "tip_radius": 20, "root_radius": 15, "face_angle": "face"}}]})"));
-  EXPECT_NO_THROW(kept.check_choices({Rational(kept.nominal().parameters[0].range.lo - kept.nominal().parameters[0].nominal).get_d()},
-                                     {Rational(kept.nominal().parameters[0].range.hi - kept.nominal().parameters[0].nominal).get_d()}));
+  std::vector<double> lo, hi;
+  box_deviations(kept, lo, hi);
+  EXPECT_NO_THROW(kept.check_choices(lo, hi));
 }
 
 // The three bundled examples refused until session 57: every Monte Carlo sample inside the

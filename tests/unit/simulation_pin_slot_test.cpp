@@ -15,7 +15,9 @@
 
 #include "simulation_planar_support.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -42,6 +44,15 @@ struct Follower {
            R"(] }, { "line_to": [)" + l + ", " + b + R"(] } ] } ] })";
   }
 };
+
+// A follower of random mass (5 to 50 g) and moment of inertia about its pin (mass times
+// lo .. hi mm^2), drawn in this order.
+Follower random_follower(Lcg& rng, double lo = 500, double hi = 2000) {
+  Follower f;
+  f.mass = rng.uniform(0.005, 0.05);
+  f.inertia = f.mass * rng.uniform(lo, hi);
+  return f;
+}
 
 std::string model_json(const std::string& parts, const std::string& pairs, const std::string& simulation) {
   return R"({ "hipair": 1, "name": "pin-slot test", "units": { "length": "mm", "angle": "rad" }, "parts": [ )" + parts +
@@ -125,32 +136,47 @@ TEST(SimulationPinSlot, FollowerDroppedOntoACamAtRestHitsAtTheClosedFormTimeAndB
   }
 }
 
+// The events of `model` run to t_end under each step limit (0: none); `delta`: the runs' chord
+// deviation (the last run's).
+std::vector<std::vector<SimulationEvent>> events_per_step_limit(const Model& model, std::initializer_list<double> max_steps,
+                                                                double t_end, double& delta) {
+  std::vector<std::vector<SimulationEvent>> runs;
+  for (double max_step : max_steps) {
+    SimulationOptions o;
+    o.max_step = max_step;
+    PinSlotSimulation sim = PinSlotSimulation::create(model, o);
+    delta = sim.chord_deviation();
+    sim.run_until(t_end);
+    runs.push_back(sim.events());
+  }
+  return runs;
+}
+
+// Every run's events as the first run's: the same kinds and features, times within 8 delta over
+// the approach speed (at least `least_speed`) plus `slack`.
+void expect_same_event_sequences(const std::vector<std::vector<SimulationEvent>>& runs, double delta, double least_speed,
+                                 double slack, const std::string& where) {
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    ASSERT_EQ(runs[r].size(), runs[0].size()) << where << " run " << r;
+    for (std::size_t i = 0; i < runs[0].size(); ++i) {
+      EXPECT_EQ(runs[r][i].kind, runs[0][i].kind) << where << " event " << i;
+      EXPECT_EQ(runs[r][i].features, runs[0][i].features);
+      const double v = std::max(runs[0][i].normal_speed_before, least_speed);
+      EXPECT_NEAR(runs[r][i].time, runs[0][i].time, 8 * delta / v + slack) << where << " event " << i;
+    }
+  }
+}
+
 TEST(SimulationPinSlot, EventSequenceDoesNotDependOnTheStepSize) {
   Lcg rng{11};
   for (int c = 0; c < 3; ++c) {
     const Drop d = generated_drop(rng);
     const Model model = read_model(d.json(), "<drop>");
     const double t1 = std::sqrt(2 * d.h / d.g), t_end = t1 * (1 + 2 * d.e + 2 * d.e * d.e) + t1 * d.e * d.e * d.e;
-    std::vector<std::vector<SimulationEvent>> runs;
     double delta = 0;
-    for (double max_step : {0.0, 2e-3, 3e-4}) {
-      SimulationOptions o;
-      o.max_step = max_step;
-      PinSlotSimulation sim = PinSlotSimulation::create(model, o);
-      delta = sim.chord_deviation();
-      sim.run_until(t_end);
-      runs.push_back(sim.events());
-    }
+    const std::vector<std::vector<SimulationEvent>> runs = events_per_step_limit(model, {0.0, 2e-3, 3e-4}, t_end, delta);
     ASSERT_EQ(runs[0].size(), 3u) << "case " << c;
-    for (std::size_t r = 1; r < runs.size(); ++r) {
-      ASSERT_EQ(runs[r].size(), runs[0].size()) << "case " << c << " run " << r;
-      for (std::size_t i = 0; i < runs[0].size(); ++i) {
-        EXPECT_EQ(runs[r][i].kind, runs[0][i].kind);
-        EXPECT_EQ(runs[r][i].features, runs[0][i].features);
-        const double v = runs[0][i].normal_speed_before;
-        EXPECT_NEAR(runs[r][i].time, runs[0][i].time, 8 * delta / v + 1e-8 * t_end) << "case " << c << " event " << i;
-      }
-    }
+    expect_same_event_sequences(runs, delta, 0.0, 1e-8 * t_end, "case " + std::to_string(c));
   }
 }
 
@@ -159,9 +185,7 @@ TEST(SimulationPinSlot, CamAtConstantSpeedStrikesTheFollowerWhereItsKinematicFun
   for (int c = 0; c < 6; ++c) {
     const double ecc = rng.uniform(2, 5), r = rng.uniform(8, 11), omega = rng.uniform(5, 20), e = rng.uniform(0.2, 0.9);
     const double phi0 = -std::numbers::pi / 2 + rng.uniform(0, 0.3);
-    Follower f;
-    f.mass = rng.uniform(0.005, 0.05);
-    f.inertia = f.mass * rng.uniform(500, 2000);
+    Follower f = random_follower(rng);
     f.yb = 18;
     const double H = r + rng.uniform(0.3, 0.9) * ecc;   // the face's height: the cam's top reaches it on its way up
     f.s0 = H - f.yb;
@@ -200,9 +224,7 @@ TEST(SimulationPinSlot, FreeFlightOnSpringsFollowsTheClosedFormAndKeepsEnergy) {
   Lcg rng{5};
   for (int c = 0; c < 4; ++c) {
     // a linear spring along a vertical slot, the centre of mass on the pin: s(t) = a cos(sqrt(k/m) t)
-    Follower f;
-    f.mass = rng.uniform(0.005, 0.05);
-    f.inertia = f.mass * rng.uniform(500, 2000);
+    Follower f = random_follower(rng);
     const double k = rng.uniform(0.5, 5), a = rng.uniform(1, 4);
     f.s0 = a;
     f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(k) + R"(, "rest": 0 })";
@@ -219,9 +241,7 @@ TEST(SimulationPinSlot, FreeFlightOnSpringsFollowsTheClosedFormAndKeepsEnergy) {
   }
   for (int c = 0; c < 4; ++c) {
     // a slanted slot, an offset centre of mass, gravity, a torsional spring, a force: energy kept
-    Follower f;
-    f.mass = rng.uniform(0.005, 0.05);
-    f.inertia = f.mass * rng.uniform(800, 2000);
+    Follower f = random_follower(rng, 800, 2000);
     f.dir = "[0.6, 0.8]";
     f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(rng.uniform(0.5, 2)) + R"(, "rest": 1 }, )" +
                        R"("torsional_spring": { "stiffness": )" + num(rng.uniform(50, 200)) + R"(, "rest": 0.1 }, )" +
@@ -279,9 +299,7 @@ TEST(SimulationPinSlot, ResolvesTwoContactsAtOnceWithTheLeverRuleForces) {
   Lcg rng{59};
   for (int c = 0; c < 3; ++c) {
     const double a = rng.uniform(3, 7), b = rng.uniform(3, 7), r = rng.uniform(4, 8), g = 9810;
-    Follower f;
-    f.mass = rng.uniform(0.005, 0.05);
-    f.inertia = f.mass * rng.uniform(500, 2000);
+    Follower f = random_follower(rng);
     f.yb = 14;
     f.s0 = r + rng.uniform(0.5, 2) - f.yb;
     auto disc = [](const std::string& name, double x, double radius) {
@@ -421,27 +439,12 @@ TEST(SimulationPinSlot, RidingAndLiftOffEventsDoNotDependOnTheStepSize) {
     const Riding d = generated_riding(rng, true);
     const Model model = read_model(d.json(), "<steps>");
     const double turn = 2 * std::numbers::pi / d.omega;
-    std::vector<std::vector<SimulationEvent>> runs;
     double delta = PinSlotSimulation::create(model).chord_deviation();
     const double t_end = 1.0001 * (lift_off_angle(d, 0.75 * delta) - d.phi0) / d.omega;   // just past the lift-off
-    for (double max_step : {4e-3, 2e-3, 8e-3}) {   // h, h/2, 2h
-      SimulationOptions o;
-      o.max_step = max_step;
-      PinSlotSimulation sim = PinSlotSimulation::create(model, o);
-      delta = sim.chord_deviation();
-      sim.run_until(t_end);
-      runs.push_back(sim.events());
-    }
+    // h, h/2, 2h
+    const std::vector<std::vector<SimulationEvent>> runs = events_per_step_limit(model, {4e-3, 2e-3, 8e-3}, t_end, delta);
     ASSERT_EQ(runs[0].size(), 3u) << "case " << c;   // impact, contact, lift-off
-    for (std::size_t r = 1; r < runs.size(); ++r) {
-      ASSERT_EQ(runs[r].size(), runs[0].size()) << "case " << c << " run " << r;
-      for (std::size_t i = 0; i < runs[0].size(); ++i) {
-        EXPECT_EQ(runs[r][i].kind, runs[0][i].kind) << "case " << c << " event " << i;
-        EXPECT_EQ(runs[r][i].features, runs[0][i].features);
-        const double v = std::max(runs[0][i].normal_speed_before, 1.0);
-        EXPECT_NEAR(runs[r][i].time, runs[0][i].time, 8 * delta / v + 1e-6 * turn) << "case " << c << " event " << i;
-      }
-    }
+    expect_same_event_sequences(runs, delta, 1.0, 1e-6 * turn, "case " + std::to_string(c));
   }
 }
 
@@ -502,6 +505,57 @@ TEST(SimulationPinSlot, ScaledByPowersOfTwoTheRunIsTheUnscaledRunScaled) {
     EXPECT_NEAR(sim.state().slide / scale.length, base.state().slide, 1e-9 * std::abs(base.state().slide));
     EXPECT_NEAR(sim.state().angle, base.state().angle, 1e-9);
     EXPECT_EQ(sim.steps(), base.steps());
+  }
+}
+
+// Session 59 (hunt59): sustained contact at any scale. The pin-slot cam run to 0.3 s: its bounces
+// decay at 0.119 s into a contact held while the cam lifts the follower and lets it down (the
+// held contact's force from the contact LCP); with lengths times 10^-150 (masses unchanged: the
+// moment of inertia 10^-299), and 10^150 with masses times 10^-100 (decimal factors: the doubles
+// of the run scale with a rounding, not exactly; the CLI gave the same at 3 10^-7 and 7 10^11). Against the
+// unscaled run: the same events (kinds, features; times within the step-size independence bound
+// 8 delta / v, the approach speed and the impulse scaled), the same contact held at the end with
+// its force scaled by masses x lengths, the slide scaled; every accepted state of every scaled run
+// exactly free by the overlap oracle.
+TEST(SimulationPinSlot, SustainedContactAtScales1eMinus150To1e150IsTheUnscaledRun) {
+  const double t_end = 0.3;
+  PinSlotSimulation base = PinSlotSimulation::create(read_model(scaled_cam("1", "1"), "<x1>"));
+  base.run_until(t_end);
+  ASSERT_GE(base.events().size(), 4u);
+  ASSERT_EQ(base.events().back().kind, SimulationEvent::Kind::contact);   // the bounces end held
+  ASSERT_EQ(base.state().contacts.size(), 1u);
+  const double delta = base.chord_deviation();
+  struct Scale {
+    const char *L, *M;
+    double length, mass;
+  };
+  for (const Scale& scale : {Scale{"1e-150", "1", 1e-150, 1}, Scale{"1e150", "1e-100", 1e150, 1e-100}}) {
+    SCOPED_TRACE(std::string("lengths x ") + scale.L + ", masses x " + scale.M);
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(scaled_cam(scale.L, scale.M), "<scaled>"));
+    EXPECT_NEAR(sim.chord_deviation() / scale.length, delta, 1e-9 * delta);
+    while (sim.state().time < t_end) {
+      sim.step(t_end);
+      expect_not_overlapping(sim, {0});
+      if (HasFailure()) return;
+    }
+    ASSERT_EQ(sim.events().size(), base.events().size());
+    for (std::size_t i = 0; i < base.events().size(); ++i) {
+      const SimulationEvent &a = base.events()[i], &b = sim.events()[i];
+      EXPECT_EQ(b.kind, a.kind) << "event " << i;
+      EXPECT_EQ(b.features, a.features) << "event " << i;
+      const double v = std::max(a.normal_speed_before, 1.0);
+      EXPECT_NEAR(b.time, a.time, 8 * delta / v + 1e-9 * t_end) << "event " << i;
+      if (a.kind != SimulationEvent::Kind::impact) continue;
+      EXPECT_NEAR(b.normal_speed_before / scale.length, a.normal_speed_before, 1e-6 * a.normal_speed_before) << "event " << i;
+      EXPECT_NEAR(b.impulse / (scale.length * scale.mass), a.impulse, 1e-6 * a.impulse) << "event " << i;
+    }
+    ASSERT_EQ(sim.state().contacts.size(), 1u);
+    EXPECT_EQ(sim.state().contacts[0].feature, base.state().contacts[0].feature);
+    const double force = base.state().contacts[0].normal_force;
+    EXPECT_GT(force, 0);
+    EXPECT_NEAR(sim.state().contacts[0].normal_force / (scale.length * scale.mass), force, 1e-6 * force);
+    EXPECT_NEAR(sim.state().slide / scale.length, base.state().slide, 1e-3 * delta);
+    EXPECT_NEAR(sim.state().angle, base.state().angle, 1e-6);
   }
 }
 
@@ -613,9 +667,7 @@ TEST(SimulationPinSlot, SlotEndsAndAngleLimitsAreStopsAndInitialVelocitiesStartT
   for (int c = 0; c < 3; ++c) {
     // thrown up its slot (rate v0) under a load g along it: the slot's upper end 30 is struck at
     // 30 - s0 = v0 t + g t^2 / 2, plastically, and the part rests there carrying m g
-    Follower f;
-    f.mass = rng.uniform(0.005, 0.05);
-    f.inertia = f.mass * rng.uniform(500, 2000);
+    Follower f = random_follower(rng);
     f.s0 = rng.uniform(10, 25);
     const double v0 = rng.uniform(-50, 200), g = rng.uniform(2000, 10000);
     const std::string json = model_json(fixed_cam(1) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",
@@ -643,9 +695,7 @@ TEST(SimulationPinSlot, SlotEndsAndAngleLimitsAreStopsAndInitialVelocitiesStartT
   for (int c = 0; c < 3; ++c) {
     // turned by a torque T from a rate w0 (no other load): I psi'' = T, the angle limit 1 struck
     // at 1 = w0 t + T t^2 / (2 I), held with T = the limit's force times the part's reach
-    Follower f;
-    f.mass = rng.uniform(0.005, 0.05);
-    f.inertia = f.mass * rng.uniform(500, 2000);
+    Follower f = random_follower(rng);
     const double T = rng.uniform(5, 50), w0 = rng.uniform(-5, 20);
     f.extra_dynamics = ", \"torque\": " + num(T);
     const std::string json = model_json(fixed_cam(1) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",

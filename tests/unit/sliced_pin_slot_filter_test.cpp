@@ -55,6 +55,17 @@ Found find(const Part& other, const Part& pin, bool translating, bool filters, c
   return out;
 }
 
+// The film advance example's film and follower parts (nullptr where a name is missing).
+std::pair<const Part*, const Part*> film_and_follower(const Model& model) {
+  const Part* film = nullptr;
+  const Part* follower = nullptr;
+  for (const auto& part : model.parts) {
+    if (part.name == "film") film = &part;
+    if (part.name == "follower") follower = &part;
+  }
+  return {film, follower};
+}
+
 // Both paths, compared: the same critical values, roots and irrelevant roots.
 std::pair<Found, Found> with_and_without_filters(const Part& other, const Part& pin, bool translating,
                                                  const Rational& tau_lo = Rational(-1, 4), const Rational& tau_hi = Rational(1, 4)) {
@@ -136,12 +147,7 @@ TEST(SlicedPinSlotFilter, IntervalVerdictsAndMasksGiveTheExactCriticalValues) {
   {
     SCOPED_TRACE("film advance, film:follower");
     const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
-    const Part* film = nullptr;
-    const Part* follower = nullptr;
-    for (const auto& part : model.parts) {
-      if (part.name == "film") film = &part;
-      if (part.name == "follower") follower = &part;
-    }
+    const auto [film, follower] = film_and_follower(model);
     ASSERT_TRUE(film && follower);
     // the tau range of the stack's slices (`hipair cspace ... --json`: tau_range)
     const auto [filtered, exact] = with_and_without_filters(*film, *follower, true, Rational(-67, 1024), Rational(67, 1024));
@@ -179,12 +185,7 @@ void expect_same_values(const std::vector<sliced::Critical>& narrowed, const std
 // formed. (Session 57: the pin at (10^6, 40) gave no answer within 200 s.)
 TEST(SlicedPinSlotFilter, APartFarFromItsPivotGivesTheExactCriticalValues) {
   const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
-  const Part* film = nullptr;
-  const Part* follower = nullptr;
-  for (const auto& part : model.parts) {
-    if (part.name == "film") film = &part;
-    if (part.name == "follower") follower = &part;
-  }
+  const auto [film, follower] = film_and_follower(model);
   ASSERT_TRUE(film && follower);
   std::size_t with_values = 0;
   for (const Rational& x : {Rational(10000), Rational(-20000)}) {
