@@ -17,6 +17,7 @@
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -49,14 +50,21 @@ inline kernels::Pose<kernels::Dual> dual_pose(const Part& part, double q, double
   }
 }
 
-/// The frame of feature pair `pair` of `model` with the pair's first part at (q1, v1) and its
-/// second at (q2, v2) (ignored for a fixed part) and its rate.
-inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, double q1, double v1, double q2, double v2) {
-  using kernels::Dual;
-  const auto d = [](const Rational& r) { return Dual(r.get_d()); };
-  const kernels::ContactFrame<Dual> frame = kernels::contact_frame(
-      dual_pose(model.parts.at(pair.first.part), q1, v1), kernels::feature_geometry<Dual>(model, pair.first, d),
-      dual_pose(model.parts.at(pair.second.part), q2, v2), kernels::feature_geometry<Dual>(model, pair.second, d));
+/// The body geometries of a feature pair's two features in dual numbers (constants).
+using DualFeatures = std::array<kernels::FeatureGeometry<kernels::Dual>, 2>;
+inline DualFeatures dual_features(const Model& model, const FeaturePair& pair) {
+  const auto d = [](const Rational& r) { return kernels::Dual(r.get_d()); };
+  return {kernels::feature_geometry<kernels::Dual>(model, pair.first, d),
+          kernels::feature_geometry<kernels::Dual>(model, pair.second, d)};
+}
+
+/// The frame of feature pair `pair` of `model` (its geometries `g`: dual_features) with the
+/// pair's first part at (q1, v1) and its second at (q2, v2) (ignored for a fixed part) and its rate.
+inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, const DualFeatures& g, double q1, double v1,
+                            double q2, double v2) {
+  const kernels::ContactFrame<kernels::Dual> frame =
+      kernels::contact_frame(dual_pose(model.parts.at(pair.first.part), q1, v1), g[0],
+                             dual_pose(model.parts.at(pair.second.part), q2, v2), g[1]);
   FrameRate out;
   if (!frame.defined) return out;
   out.defined = true;
@@ -78,6 +86,11 @@ inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, double 
   return out;
 }
 
+/// frame_rate with the pair's geometries made here.
+inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, double q1, double v1, double q2, double v2) {
+  return frame_rate(model, pair, dual_features(model, pair), q1, v1, q2, v2);
+}
+
 /// The drift T' v of a contact's tangent row T (the fixed-axis simulator's friction_of: T[d] =
 /// s_d t . J_d(c), c the mean of the feature pairs' contact points, n the unit normal of the
 /// first defined one, t = (-n_y, n_x), s_d = -1 for the first part's coordinate and +1 for the
@@ -85,16 +98,18 @@ inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, double 
 /// c_x - p_x) for a rotation about pivot p, the direction for a translation) along the velocities:
 ///   T' v = sum_d v_d s_d (t' . J_d + t . J_d'),  t' = (-n'_y, n'_x),  J_d' = (-c'_y, c'_x) or 0,
 /// exact (the chain rule through the kernels' frame). `coordinate(part)` gives a part's (q, v),
-/// nullopt for a part without a coordinate (fixed). 0 where no feature pair has a frame.
-template <class Coordinate>
-double tangent_drift(const Model& model, const std::vector<const FeaturePair*>& pairs, Coordinate&& coordinate) {
+/// nullopt for a part without a coordinate (fixed); `geometry(pair)` gives a feature pair's
+/// dual_features (e.g. remembered). 0 where no feature pair has a frame.
+template <class Coordinate, class Geometry>
+double tangent_drift(const Model& model, const std::vector<const FeaturePair*>& pairs, Coordinate&& coordinate,
+                     Geometry&& geometry) {
   double c[2] = {0, 0}, dc[2] = {0, 0}, n[2] = {0, 0}, dn[2] = {0, 0};
   std::size_t first = 0, second = 0;
   int count = 0;
   for (const FeaturePair* fp : pairs) {
     const std::optional<std::pair<double, double>> a = coordinate(fp->first.part), b = coordinate(fp->second.part);
-    const FrameRate r = frame_rate(model, *fp, a ? a->first : 0.0, a ? a->second : 0.0, b ? b->first : 0.0,
-                                   b ? b->second : 0.0);
+    const FrameRate r = frame_rate(model, *fp, geometry(*fp), a ? a->first : 0.0, a ? a->second : 0.0,
+                                   b ? b->first : 0.0, b ? b->second : 0.0);
     if (!r.defined) continue;
     if (count == 0) {
       n[0] = r.normal[0];
@@ -135,6 +150,13 @@ double tangent_drift(const Model& model, const std::vector<const FeaturePair*>& 
   add(first, -1);
   add(second, +1);
   return std::isfinite(drift) ? drift : 0.0;
+}
+
+
+/// tangent_drift with each feature pair's geometries made when needed.
+template <class Coordinate>
+double tangent_drift(const Model& model, const std::vector<const FeaturePair*>& pairs, Coordinate&& coordinate) {
+  return tangent_drift(model, pairs, coordinate, [&](const FeaturePair& pair) { return dual_features(model, pair); });
 }
 
 }  // namespace hipair::simulation

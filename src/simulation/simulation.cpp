@@ -47,6 +47,7 @@
 #include <numbers>
 #include <optional>
 #include <sstream>
+#include <unordered_map>
 
 namespace hipair {
 
@@ -1474,12 +1475,21 @@ struct Simulation::Impl {
     const CSpace& space = *spaces[a.pair];
     std::vector<const FeaturePair*> pairs;
     for (FeatureId f : features) pairs.push_back(&space.feature_pair(f));
-    return simulation::tangent_drift(model, pairs, [&](std::size_t part) -> std::optional<std::pair<double, double>> {
+    const auto coordinate = [&](std::size_t part) -> std::optional<std::pair<double, double>> {
       const int d = part_dof[part];
       if (d < 0) return std::nullopt;
       return std::make_pair(qs[static_cast<std::size_t>(d)], vs[static_cast<std::size_t>(d)]);
-    });
+    };
+    // the feature pairs' dual geometries, made once per pair (their arcs' sectors are exact)
+    const auto geometry = [&](const FeaturePair& pair) -> const simulation::DualFeatures& {
+      auto [it, made] = dual_features_.try_emplace(&pair);
+      if (made) it->second = simulation::dual_features(model, pair);
+      return it->second;
+    };
+    return simulation::tangent_drift(model, pairs, coordinate, geometry);
   }
+  // tangent_drift's remembered geometries, per feature pair of the spaces (which outlive them)
+  mutable std::unordered_map<const FeaturePair*, simulation::DualFeatures> dual_features_;
 
   // tolerance of "no relative tangential velocity" for tangent row T (mm per second)
   double tangential_tolerance(const Eigen::VectorXd& T) const { return velocity_tolerance() * (1 + T.cwiseAbs().sum()); }
