@@ -21,6 +21,22 @@ set -uo pipefail
 # shellcheck source=seeded_test.sh
 source "$(dirname "$0")/seeded_test.sh" "$@"
 
+# refused_simulate WHAT POINTER_TEXT REASON_REGEX [ARG...]: `simulate $model ARG...` into a kept --out
+# exits 2 with one line holding POINTER_TEXT (fixed) and REASON_REGEX (grep), --out left as it
+# was; returns 1 (after a failure) when the exit status was not 2
+refused_simulate() {
+  local what=$1 pointer_text=$2 reason=$3 status
+  shift 3
+  rm -rf "$work/out" && mkdir -p "$work/out" && echo keep >"$work/out/sentinel"
+  timeout 120 "$hipair" simulate "$model" --t-end 0.01 --no-pictures "$@" --out "$work/out" >"$work/bad.out" 2>"$work/bad.err"
+  status=$?
+  [ "$status" -eq 2 ] || { fail "$what: exit $status, not 2: $(head -c 300 "$work/bad.err")"; return 1; }
+  [ "$(wc -l <"$work/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/bad.err")"
+  grep -qF -- "$pointer_text" "$work/bad.err" || fail "$what: the message names no $pointer_text: $(head -c 300 "$work/bad.err")"
+  grep -q "$reason" "$work/bad.err" || fail "$what: no reason ($reason): $(head -c 300 "$work/bad.err")"
+  [ "$(ls "$work/out")" = sentinel ] && [ "$(cat "$work/out/sentinel")" = keep ] || fail "$what: --out changed: $(ls "$work/out")"
+}
+
 # MODEL POINTER (JSON pointer of the value to set; the key is created if absent)
 cases=(
   "cam-drive.json /pairs/0/friction"
@@ -64,15 +80,7 @@ if isinstance(o, list): o[int(last)] = marker
 else: o[last] = marker
 open(sys.argv[4], 'w').write(json.dumps(doc).replace('"' + marker + '"', sys.argv[3]))
 PY
-    rm -rf "$work/out" && mkdir -p "$work/out" && echo keep >"$work/out/sentinel"
-    timeout 120 "$hipair" simulate "$model" --t-end 0.01 --no-pictures --out "$work/out" >"$work/bad.out" 2>"$work/bad.err"
-    status=$?
-    what="simulate $file with $pointer = $literal"
-    [ "$status" -eq 2 ] || { fail "$what: exit $status, not 2: $(head -c 300 "$work/bad.err")"; continue; }
-    [ "$(wc -l <"$work/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/bad.err")"
-    grep -qF -- "$pointer: " "$work/bad.err" || fail "$what: the message names no $pointer: $(head -c 300 "$work/bad.err")"
-    grep -q "too \(large\|small\) for the simulator" "$work/bad.err" || fail "$what: no range reason: $(head -c 300 "$work/bad.err")"
-    [ "$(ls "$work/out")" = sentinel ] && [ "$(cat "$work/out/sentinel")" = keep ] || fail "$what: --out changed: $(ls "$work/out")"
+    refused_simulate "simulate $file with $pointer = $literal" "$pointer: " "too \(large\|small\) for the simulator"
   done
 done
 
@@ -108,15 +116,9 @@ json.dump(doc, open(sys.argv[5], 'w'))
 PY
     extra=()
     [ "$how" = set ] && extra=(--set "$parameter=${sign}1e$exponent")
-    rm -rf "$work/out" && mkdir -p "$work/out" && echo keep >"$work/out/sentinel"
-    timeout 120 "$hipair" simulate "$model" --t-end 0.01 --no-pictures "${extra[@]}" --out "$work/out" >"$work/bad.out" 2>"$work/bad.err"
-    status=$?
     what="simulate $file with the driver at ${sign}1e$exponent rad/s ($how)"
-    [ "$status" -eq 2 ] || { fail "$what: exit $status, not 2: $(head -c 300 "$work/bad.err")"; continue; }
-    [ "$(wc -l <"$work/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/bad.err")"
-    grep -qF -- "/simulation/drivers/0/speed: driver '$driver' turns at " "$work/bad.err" || fail "$what: no pointer or driver: $(head -c 300 "$work/bad.err")"
-    grep -qF "beyond the doubles' range" "$work/bad.err" || fail "$what: no reason: $(head -c 300 "$work/bad.err")"
-    [ "$(ls "$work/out")" = sentinel ] && [ "$(cat "$work/out/sentinel")" = keep ] || fail "$what: --out changed: $(ls "$work/out")"
+    refused_simulate "$what" "/simulation/drivers/0/speed: driver '$driver' turns at " "beyond the doubles' range" \
+      "${extra[@]}" || continue
     # half the largest speed the message gives: not refused, no non-finite state
     largest=$(sed -n "s/.*give a driver speed of at most \([0-9.e+]*\) rad.*/\1/p" "$work/bad.err")
     [ -n "$largest" ] || { fail "$what: no largest speed in the message"; continue; }
