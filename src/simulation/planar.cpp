@@ -41,6 +41,7 @@
 #include <hipair/simulation.hpp>
 
 #include "kernels/contact_geometry.hpp"
+#include "kernels/dual.hpp"
 #include "kernels/model_features.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/companion_watch.hpp"
@@ -102,19 +103,9 @@ Kinematic to_kinematic(const State6& y) { return {y[0], y[1], y[2], y[3], y[4], 
 // ---- held contacts: the contact function of a vertex–segment feature pair, from the kernels
 // (kernels::contact_frame), for double (integration) and Rational (the exact sign at a state).
 
-// A forward-mode dual number (value, derivative along the motion): the kernels' contact frame
-// evaluated with it gives the contact point's and normal's time derivatives (held arc contacts).
-struct Dual {
-  double v = 0, d = 0;
-  Dual() = default;
-  Dual(double value) : v(value) {}   // NOLINT: constants of the kernels' formulas
-  Dual(double value, double rate) : v(value), d(rate) {}
-};
-inline Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
-inline Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d - b.d}; }
-inline Dual operator-(Dual a) { return {-a.v, -a.d}; }
-inline Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
-inline Dual operator/(Dual a, Dual b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
+// The kernels' dual number (kernels/dual.hpp): the kernels' contact frame evaluated with it gives
+// the contact point's and normal's time derivatives (held arc contacts).
+using kernels::Dual;
 
 template <class T>
 T number(const Rational& r) {

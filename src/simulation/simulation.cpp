@@ -24,6 +24,7 @@
 #include "simulation/cut_search.hpp"
 #include "simulation/edge_watch.hpp"
 #include "simulation/frame_cache.hpp"
+#include "simulation/frame_rate.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
@@ -46,6 +47,7 @@
 #include <numbers>
 #include <optional>
 #include <sstream>
+#include <unordered_map>
 
 namespace hipair {
 
@@ -678,7 +680,7 @@ struct Simulation::Impl {
           // at a step's start: a sliding contact keeps its direction; one at rest is decided
           c.decided = sliding;
           c.state = sliding ? (vt > 0 ? simulation::slip_positive : simulation::slip_negative) : simulation::stick;
-          if (!sliding) c.bias = tangent_drift(active[k], qs, vs, c.T);
+          if (!sliding) c.bias = tangent_drift(active[k], qs, vs);
         } else {
           c.decided = true;
           c.state = active[k].coulomb_known ? active[k].coulomb
@@ -1458,44 +1460,38 @@ struct Simulation::Impl {
     c.mu_kinetic = mu_kinetic[pair];
   }
 
-  // tolerance of "no relative tangential velocity" for tangent row T (mm per second)
-  // The tangential curvature term T' qdot of held contact `a` at (qs, vs) (tangent row T there):
-  // the rate at which its relative sliding speed T v changes at constant velocities, a forward
-  // (or, past its edge's end, backward) difference of the tangent row along the velocities over
-  // a move of 1e-7: 1e-7 rad of the fastest rotating coordinate, or where none turns, 1e-7 of
-  // the chart box's extent of a translating abscissa (`unit`): the same motion at every length
-  // scale (a translation's speed scales with the model, a rotation's does not, so a translating
-  // coordinate's speed is not compared with a rotation's). Only a contact at rest at a step's start takes it
-  // (Friction::bias): there the direction it begins to slide in is decided by the sign of
-  // T a + T' v, and T' v is what turns the sliding speed of two gear flanks through the pitch
-  // point (about 1e3 mm/s^2 for the 7 x 9 example, where T a alone is of rounding size and
-  // picked either direction: docs/simulation.md, session 58, slip58). 0 where the velocities
-  // vanish or the shifted state has no row.
-  double tangent_drift(const Active& a, const Vec& qs, const Vec& vs, const Eigen::VectorXd& T) const {
-    double rate = 0;   // the fastest coordinate's speed in its own scale (per time unit)
-    for (std::size_t i = 0; i < vs.size(); ++i)
-      if (dofs[i].rotation) rate = std::max(rate, std::abs(vs[i]));
-    if (rate == 0 && a.xdof >= 0 && !dofs[static_cast<std::size_t>(a.xdof)].rotation)
-      for (std::size_t i = 0; i < vs.size(); ++i) rate = std::max(rate, std::abs(vs[i]) / a.unit);
-    if (rate == 0) return 0;
-    const double dt = 1e-7 / rate;
+  // The tangential curvature term T' qdot of held contact `a` at (qs, vs): the rate at which its
+  // relative sliding speed T v changes at constant velocities (T' v), exact, by the chain rule
+  // through the kernels' contact frame in dual numbers (simulation::tangent_drift,
+  // simulation/frame_rate.hpp; docs/simulation.md, "The tangent's drift, exact (session 59)").
+  // Only a contact at rest at a step's start takes it (Friction::bias): there the direction it
+  // begins to slide in is decided by the sign of T a + T' v, and T' v is what turns the sliding
+  // speed of two gear flanks through the pitch point (about 1e3 mm/s^2 for the 7 x 9 example,
+  // where T a alone is of rounding size and picked either direction: docs/simulation.md,
+  // session 58, slip58). 0 where no held feature pair has a frame.
+  double tangent_drift(const Active& a, const Vec& qs, const Vec& vs) const {
     std::vector<FeatureId> features;
     features_of(a, features);
-    for (const double sign : {1.0, -1.0}) {
-      Vec shifted = qs;
-      for (std::size_t i = 0; i < shifted.size(); ++i) shifted[i] += sign * dt * vs[i];
-      Vec G;
-      double h, gval;
-      if (!row(a, shifted, vs, G, h, gval)) continue;
-      simulation::Friction moved;
-      friction_of(a.pair, features, G, shifted, moved);
-      if (!moved.on || moved.T.size() != T.size()) continue;
-      const Eigen::VectorXd vel = Eigen::Map<const Eigen::VectorXd>(vs.data(), static_cast<Eigen::Index>(vs.size()));
-      return sign * (moved.T - T).dot(vel) / dt;
-    }
-    return 0;
+    const CSpace& space = *spaces[a.pair];
+    std::vector<const FeaturePair*> pairs;
+    for (FeatureId f : features) pairs.push_back(&space.feature_pair(f));
+    const auto coordinate = [&](std::size_t part) -> std::optional<std::pair<double, double>> {
+      const int d = part_dof[part];
+      if (d < 0) return std::nullopt;
+      return std::make_pair(qs[static_cast<std::size_t>(d)], vs[static_cast<std::size_t>(d)]);
+    };
+    // the feature pairs' dual geometries, made once per pair (their arcs' sectors are exact)
+    const auto geometry = [&](const FeaturePair& pair) -> const simulation::DualFeatures& {
+      auto [it, made] = dual_features_.try_emplace(&pair);
+      if (made) it->second = simulation::dual_features(model, pair);
+      return it->second;
+    };
+    return simulation::tangent_drift(model, pairs, coordinate, geometry);
   }
+  // tangent_drift's remembered geometries, per feature pair of the spaces (which outlive them)
+  mutable std::unordered_map<const FeaturePair*, simulation::DualFeatures> dual_features_;
 
+  // tolerance of "no relative tangential velocity" for tangent row T (mm per second)
   double tangential_tolerance(const Eigen::VectorXd& T) const { return velocity_tolerance() * (1 + T.cwiseAbs().sum()); }
 
   Eigen::VectorXd inverse_masses() const {
@@ -2198,6 +2194,71 @@ struct Simulation::Impl {
       }
   }
 
+  // The accelerations `a` at a step's start (q, v) must be finite: where they are not, no trial
+  // step of any length can be taken and the run ended with "the integrator's step size
+  // underflows" or, before session 59, "the integration produced a non-finite state (a singular
+  // contact constraint?)" (geneva-drive.json with its driver at 1e50 … 1e152 rad/s). Throws
+  // naming the parts whose acceleration is not finite, their speeds and the held contacts.
+  void not_finite_accelerations(const Vec& qs, const Vec& vs, const Vec& a) const {
+    if (std::all_of(a.begin(), a.end(), [](double value) { return std::isfinite(value); })) return;
+    std::ostringstream out;
+    out << "simulation: at t = " << t / time_scale << " " << time_unit << " the acceleration of";
+    const char* separator = " ";
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (std::isfinite(a[i])) continue;
+      out << separator << "part '" << model.parts[dofs[i].part].name << "' (moving at " << vs[i] * time_scale
+          << (dofs[i].rotation ? " rad/" : " mm/") << time_unit << ")";
+      separator = ", ";
+    }
+    out << " is not finite";
+    const auto finite = [](const Vec& x) { return std::all_of(x.begin(), x.end(), [](double e) { return std::isfinite(e); }); };
+    if (!finite(qs) || !finite(vs)) {
+      // the state itself: an event at this time (an impact's impulse, a projection) made it
+      out << ": the state itself is not finite (";
+      const char* comma = "";
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        if (!std::isfinite(qs[i]) || !std::isfinite(vs[i])) {
+          out << comma << "part '" << model.parts[dofs[i].part].name << "' at " << qs[i] << (dofs[i].rotation ? " rad" : " mm")
+              << " moving at " << vs[i] * time_scale << (dofs[i].rotation ? " rad/" : " mm/") << time_unit;
+          comma = ", ";
+        }
+      out << ")";
+      const auto at_time = std::find_if(events.rbegin(), events.rend(), [&](const SimulationEvent& e) {
+        return e.time != t / time_scale;
+      });
+      if (at_time != events.rbegin()) {
+        const SimulationEvent& e = *std::prev(at_time);
+        out << " after the " << to_string(e.kind) << " of pair (" << e.first_part << ", " << e.second_part << ")";
+        if (!e.features.empty()) out << " [" << e.features.front() << "]";
+        if (e.kind == SimulationEvent::Kind::impact)
+          out << " at normal speed " << e.normal_speed_before << " mm/" << time_unit << " (impulse " << e.impulse << ")";
+        out << " at this time";
+      }
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        if (dofs[i].driven)
+          out << "; driver '" << model.parts[dofs[i].part].name << "' turns at " << std::abs(vs[i]) * time_scale << " "
+              << (dofs[i].rotation ? "rad/" : "mm/") << time_unit;
+      throw NumericError(out.str());
+    }
+    Vec Q;
+    forces(t, qs, vs, Q);
+    const bool loads = std::any_of(Q.begin(), Q.end(), [](double value) { return !std::isfinite(value); });
+    std::vector<FeatureId> features;
+    std::string held;
+    for (const Active& k : active) {
+      features_of(k, features);
+      held += (held.empty() ? "" : "; ") + pair_name(k.pair);
+      if (!features.empty()) held += " [" + spaces[k.pair]->feature_pair(features.front()).label + "]";
+    }
+    if (loads) out << ": the loads on the parts (springs, dampers, torques, forces) are not finite";
+    else if (!held.empty()) out << ": the loads are finite; the forces of the held contacts (" << held << ") are not";
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (dofs[i].driven)
+        out << "; driver '" << model.parts[dofs[i].part].name << "' turns at " << std::abs(vs[i]) * time_scale << " "
+            << (dofs[i].rotation ? "rad/" : "mm/") << time_unit;
+    throw NumericError(out.str());
+  }
+
   void step(double t_limit) {
     if (++steps > options.max_steps) throw NumericError("simulation: more than max_steps steps");
     frames.clear();
@@ -2223,6 +2284,7 @@ struct Simulation::Impl {
       return;
     }
     accelerations(t, q0, v0, a0, l0);
+    not_finite_accelerations(q0, v0, a0);
     double max_step = options.max_step > 0 ? options.max_step * time_scale : std::numeric_limits<double>::infinity();
     // a speed profile's next point ends the step (its driver's motion is one quadratic per step)
     double breakpoint = next_breakpoint(t);
@@ -2235,16 +2297,33 @@ struct Simulation::Impl {
     auto sys = [this](const Vec& state, Vec& d, double time) { rhs(state, d, time); };
     double t1 = t;
     Vec x1 = x;
+    bool overflowed = false;   // the last trial rejected for a non-finite state
     for (int attempt = 0;; ++attempt) {
       x1 = x;
       t1 = t;
       double trial = dt;
+      overflowed = false;
       if (stepper.try_step(sys, x1, t1, trial) == success) {
-        dt = std::min(trial, max_step);
-        break;
+        // odeint accepts a trial whose error estimate is not a number (a comparison with NaN is
+        // false): a first step of 1e-3 s with a driver at 1e100 rad/s overflowed within its
+        // stages and was taken ("the integration produced a non-finite state", session 59). A
+        // non-finite result is a rejected trial, retried at a quarter of its length.
+        if (std::all_of(x1.begin(), x1.end(), [](double value) { return std::isfinite(value); })) {
+          dt = std::min(trial, max_step);
+          break;
+        }
+        trial = dt / 4;
+        overflowed = true;
       }
       dt = trial;
-      if (attempt > 200 || dt < 1e-300) throw NumericError("simulation: the integrator's step size underflows");
+      if (attempt > 200 || dt < 1e-300) {
+        std::ostringstream out;
+        out << "simulation: at t = " << t / time_scale << " " << time_unit << " the integrator's step size underflows";
+        if (overflowed)
+          out << ": every trial step down to " << dt * 4 / time_scale << " " << time_unit
+              << " gave a non-finite state (accelerations or velocities beyond the doubles' range)";
+        throw NumericError(out.str());
+      }
     }
     if (t1 > t_limit) t1 = t_limit;
     if (to_breakpoint && t_limit - t1 <= 4 * std::numeric_limits<double>::epsilon() * std::abs(t_limit)) t1 = t_limit;
@@ -2633,6 +2712,42 @@ void check_simulator_range(const Model& model) {
   }
 }
 
+// A rotating driver at speed w moves a point of its part at distance r from the pivot with the
+// centripetal acceleration w^2 r, and whatever it pushes takes an acceleration of that size:
+// beyond the doubles' range (1.8e308 mm/s^2) the first step's state was not finite and the run
+// ended with "the integration produced a non-finite state (a singular contact constraint?)" at
+// t = 0 (cam-drive.json at 1e300 rad/s), or a jammed contact change (geneva-drive.json at
+// 1e300 rad/s; session 58's note). Refused before anything is built, naming the driver, its
+// speed, the reach and the acceleration (docs/simulation.md, "A driver too fast for the doubles").
+// `ts`: seconds per time unit `time_unit`. The reach is the farthest vertex, or arc centre plus radius, of
+// the part's loops from its pivot.
+static void check_driver_reach(const Model& model, const SimulationSpec::Driver& driver, double ts,
+                               const std::string& time_unit) {
+  const Part& part = model.parts.at(driver.part);
+  if (part.motion.kind != Motion::Kind::rotation) return;
+  double speed = std::abs(driver.speed.get_d());   // rad per time unit
+  for (const auto& [time, value] : driver.profile) speed = std::max(speed, std::abs(value.get_d()));
+  double reach = 0;
+  const double px = part.motion.pivot.x.get_d(), py = part.motion.pivot.y.get_d();
+  for (const Loop& loop : part.loops)
+    for (const Edge& edge : loop.edges) {
+      reach = std::max(reach, std::hypot(edge.source.x.get_d() - px, edge.source.y.get_d() - py));
+      if (edge.is_arc())
+        reach = std::max(reach, std::hypot(edge.center.x.get_d() - px, edge.center.y.get_d() - py) +
+                                    std::sqrt(edge.radius_squared.get_d()));
+    }
+  const double rate = speed / ts, acceleration = rate * rate * reach;   // mm/s^2
+  if (std::isfinite(acceleration) || !(reach > 0)) return;
+  const long double wide = static_cast<long double>(rate) * rate * reach;   // (x86: range to 1e4932)
+  std::ostringstream text;
+  text << "driver '" << part.name << "' turns at " << speed << " rad/" << time_unit << ": its point " << reach
+       << " mm from the pivot accelerates at " << rate << "^2 rad^2/s^2 x " << reach << " mm = " << wide
+       << " mm/s^2, beyond the doubles' range (1.8e308), and so would a part it pushes; the simulator "
+          "integrates in doubles: give a driver speed of at most "
+       << std::sqrt(std::numeric_limits<double>::max() / reach) * ts << " rad/" << time_unit;
+  throw ModelError(driver.profile.empty() ? driver.pointer + "/speed" : driver.pointer + "/profile", text.str());
+}
+
 Simulation Simulation::create(const Model& model, const SimulationOptions& options) {
   check_simulator_range(model);
   auto impl = std::make_unique<Impl>();
@@ -2697,6 +2812,7 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
       d.profile_q.push_back(position);
     }
   }
+  for (const auto& driver : spec.drivers) check_driver_reach(model, driver, ts, s.time_unit);
   for (const auto& c : spec.centers_of_mass) {
     Dof& d = s.dofs[s.part_dof[c.part]];
     d.com[0] = to_d(c.at.x) - d.pivot[0];

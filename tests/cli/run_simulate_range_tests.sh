@@ -9,10 +9,33 @@
 #     1e400, and integrated a non-finite state on a mass or velocity of 1e400);
 #  2. `hipair --OPTION` and `hipair WORD` (no subcommand): exit 109 naming the argument (main said
 #     "A subcommand is required" and named neither).
+#  3. a rotating driver too fast for the doubles (session 59, escape59): cam-drive.json or
+#     geneva-drive.json with the driver at ±1e{154..307} rad/s (written into the model, or with
+#     --set on a widened tolerance): exit 2, one line naming /simulation/drivers/0/speed, the driver
+#     and the doubles' range, --out left as it was (base59 said "the integration produced a
+#     non-finite state (a singular contact constraint?)" or "a jammed contact change", exit 3);
+#     at half the largest speed the message gives, the run is not refused and does not end in a
+#     non-finite state.
 # usage: run_simulate_range_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
 # shellcheck source=seeded_test.sh
 source "$(dirname "$0")/seeded_test.sh" "$@"
+
+# refused_simulate WHAT POINTER_TEXT REASON_REGEX [ARG...]: `simulate $model ARG...` into a kept --out
+# exits 2 with one line holding POINTER_TEXT (fixed) and REASON_REGEX (grep), --out left as it
+# was; returns 1 (after a failure) when the exit status was not 2
+refused_simulate() {
+  local what=$1 pointer_text=$2 reason=$3 status
+  shift 3
+  rm -rf "$work/out" && mkdir -p "$work/out" && echo keep >"$work/out/sentinel"
+  timeout 120 "$hipair" simulate "$model" --t-end 0.01 --no-pictures "$@" --out "$work/out" >"$work/bad.out" 2>"$work/bad.err"
+  status=$?
+  [ "$status" -eq 2 ] || { fail "$what: exit $status, not 2: $(head -c 300 "$work/bad.err")"; return 1; }
+  [ "$(wc -l <"$work/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/bad.err")"
+  grep -qF -- "$pointer_text" "$work/bad.err" || fail "$what: the message names no $pointer_text: $(head -c 300 "$work/bad.err")"
+  grep -q "$reason" "$work/bad.err" || fail "$what: no reason ($reason): $(head -c 300 "$work/bad.err")"
+  [ "$(ls "$work/out")" = sentinel ] && [ "$(cat "$work/out/sentinel")" = keep ] || fail "$what: --out changed: $(ls "$work/out")"
+}
 
 # MODEL POINTER (JSON pointer of the value to set; the key is created if absent)
 cases=(
@@ -57,15 +80,7 @@ if isinstance(o, list): o[int(last)] = marker
 else: o[last] = marker
 open(sys.argv[4], 'w').write(json.dumps(doc).replace('"' + marker + '"', sys.argv[3]))
 PY
-    rm -rf "$work/out" && mkdir -p "$work/out" && echo keep >"$work/out/sentinel"
-    timeout 120 "$hipair" simulate "$model" --t-end 0.01 --no-pictures --out "$work/out" >"$work/bad.out" 2>"$work/bad.err"
-    status=$?
-    what="simulate $file with $pointer = $literal"
-    [ "$status" -eq 2 ] || { fail "$what: exit $status, not 2: $(head -c 300 "$work/bad.err")"; continue; }
-    [ "$(wc -l <"$work/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/bad.err")"
-    grep -qF -- "$pointer: " "$work/bad.err" || fail "$what: the message names no $pointer: $(head -c 300 "$work/bad.err")"
-    grep -q "too \(large\|small\) for the simulator" "$work/bad.err" || fail "$what: no range reason: $(head -c 300 "$work/bad.err")"
-    [ "$(ls "$work/out")" = sentinel ] && [ "$(cat "$work/out/sentinel")" = keep ] || fail "$what: --out changed: $(ls "$work/out")"
+    refused_simulate "simulate $file with $pointer = $literal" "$pointer: " "too \(large\|small\) for the simulator"
   done
 done
 
@@ -80,6 +95,47 @@ done
 "$hipair" >"$work/bad.out" 2>"$work/bad.err"
 status=$?
 [ "$status" -eq 106 ] && grep -q "A subcommand is required" "$work/bad.err" || fail "hipair alone: exit $status: $(cat "$work/bad.err")"
+
+# 3. a rotating driver too fast for the doubles
+for file in cam-drive.json geneva-drive.json; do
+  driver=$([ "$file" = cam-drive.json ] && echo cam || echo driver)
+  parameter=$([ "$file" = cam-drive.json ] && echo cam-speed || echo driver-speed)
+  exponent=$((154 + RANDOM % 154))
+  sign=$([ $((RANDOM % 2)) -eq 0 ] && echo "" || echo "-")
+  for how in literal set; do
+    model="$work/fast.json"
+    python3 - "$source/examples/models/$file" "$parameter" "$how" "${sign}1e$exponent" "$model" <<'PY'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+if sys.argv[3] == 'literal':
+    doc['simulation']['drivers'][0]['speed'] = float(sys.argv[4])
+else:   # a tolerance wide enough for --set
+    doc['parameters'][sys.argv[2]]['tolerance'] = [-1e308, 1e308]
+    doc['simulation']['drivers'][0]['speed'] = sys.argv[2] + ' rad'
+json.dump(doc, open(sys.argv[5], 'w'))
+PY
+    extra=()
+    [ "$how" = set ] && extra=(--set "$parameter=${sign}1e$exponent")
+    what="simulate $file with the driver at ${sign}1e$exponent rad/s ($how)"
+    refused_simulate "$what" "/simulation/drivers/0/speed: driver '$driver' turns at " "beyond the doubles' range" \
+      "${extra[@]}" || continue
+    # half the largest speed the message gives: not refused, no non-finite state
+    largest=$(sed -n "s/.*give a driver speed of at most \([0-9.e+]*\) rad.*/\1/p" "$work/bad.err")
+    [ -n "$largest" ] || { fail "$what: no largest speed in the message"; continue; }
+    [ "$how" = literal ] || continue
+    python3 - "$source/examples/models/$file" "$largest" "$model" <<'PY'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+doc['simulation']['drivers'][0]['speed'] = float(sys.argv[2]) / 2
+json.dump(doc, open(sys.argv[3], 'w'))
+PY
+    rm -rf "$work/out2"
+    timeout 120 "$hipair" simulate "$model" --t-end 1e-150 --no-pictures --quiet --out "$work/out2" >"$work/half.out" 2>"$work/half.err"
+    status=$?
+    [ "$status" -eq 0 ] || [ "$status" -eq 3 ] || fail "$file at half of $largest rad/s: exit $status: $(head -c 300 "$work/half.err")"
+    grep -q "non-finite state\|drivers/0" "$work/half.err" && fail "$file at half of $largest rad/s: $(head -c 300 "$work/half.err")"
+  done
+done
 
 echo "simulate range tests: $failures failure(s) (seed $seed)"
 [ "$failures" -eq 0 ]

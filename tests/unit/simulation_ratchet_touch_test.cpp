@@ -21,10 +21,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
+#include "simulation/frame_rate.hpp"
 #include "simulation/touch_guard.hpp"
 #include "test_paths.hpp"
 
@@ -192,6 +195,113 @@ TEST(SimulationRatchetTouch, ScotchYokeSlipReversesWhereThePinStopsSliding) {
 // Generated states of the ratchet (wheel over a turn, pawl within its limits, velocities up to
 // +-10 deg/s, torques +-5..50 N mm, accuracies 1e-3, 1e-6, 1e-9): every run ends within 3000
 // steps, at 0.5 s or with a reported error (a pair leaving its built space at the pawl's limit,
+
+// The tangent's drift T' v of a held contact (simulation::tangent_drift, the bias a contact at rest
+// at a step's start takes: session 59, exact by dual numbers through the kernels' frame) against
+// a central difference of the sliding speed S(q) = T(q) . v built from the adaptor's certified
+// contact frame (CSpace::contact_frame: point c and unit normal n, T[d] = s_d t . J_d(c) as
+// friction_of builds it), S moved along q(e) = q + e v: D(h) = (S(q + h v) - S(q - h v)) / 2h.
+// Generated states over every feature pair of the scotch yoke, the escapement, the Geneva drive,
+// the ratchet and the cam drive (rotations and translations, fixed parts): angles over a turn,
+// offsets within the slides' limits, speeds up to 20 rad/s and 200 mm/s. The tolerance comes from
+// the step: the truncation error of D(h) is about |D(2h) - D(h)| / 3 (allowed: |D(2h) - D(h)|),
+// plus the rounding of S at the two states (the certified frame's widths and 32 units in the last
+// place of each term) over 2h.
+TEST(SimulationRatchetTouch, TangentDriftIsTheDerivativeOfTheFramesTangentRow) {
+  std::mt19937_64 random(59011);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const double pi = std::acos(-1.0), eps = std::numeric_limits<double>::epsilon();
+  std::size_t checked = 0, curved = 0;
+  for (const char* name : {"scotch-yoke.json", "escapement.json", "geneva-drive.json", "ratchet.json", "cam-drive.json"}) {
+    const Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / name);
+    SimulationOptions options;
+    Simulation sim = Simulation::create(model, options);
+    for (const std::shared_ptr<const CSpace>& space : sim.spaces()) {
+      if (!space) continue;
+      const std::size_t x_part = *model.find_part(space->x_part());
+      const std::optional<std::size_t> y_part =
+          space->dimension() == 2 ? model.find_part(space->y_part()) : std::optional<std::size_t>{};
+      for (std::size_t f = 0; f < space->feature_pairs().size(); ++f) {
+        const FeaturePair& fp = space->feature_pair(FeatureId(f));
+        for (int trial = 0; trial < 6; ++trial) {
+          // a state: (q, v) per moving part of the pair
+          std::vector<std::optional<std::pair<double, double>>> state(model.parts.size());
+          for (std::optional<std::size_t> part : {std::optional<std::size_t>(x_part), y_part}) {
+            if (!part) continue;
+            const Motion& motion = model.parts[*part].motion;
+            const bool turns = motion.kind == Motion::Kind::rotation;
+            const std::optional<RationalInterval>& limits = turns ? motion.angle_limits : motion.translation_limits;
+            double lo = turns ? -pi : -20, hi = turns ? pi : 20;
+            if (limits) {
+              lo = limits->lo.get_d();
+              hi = limits->hi.get_d();
+            }
+            state[*part] = std::make_pair(0.5 * (lo + hi) + 0.45 * (hi - lo) * unit(random), (turns ? 20 : 200) * unit(random));
+          }
+          const auto coordinate = [&](std::size_t part) { return state.at(part); };
+          // S(q + e v) from the adaptor's frame; nullopt where it has none (or outside the charts)
+          double rounding = 0;
+          const auto sliding = [&](double e) -> std::optional<double> {
+            auto at = [&](std::size_t part) {
+              const double q = state[part]->first + e * state[part]->second;
+              if (model.parts[part].motion.kind != Motion::Kind::rotation) return PartCoordinate{PartCoordinate::Kind::offset, Rational(q)};
+              return PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(std::tan(q / 2))};
+            };
+            std::optional<Contact> c;
+            try {
+              c = space->contact_frame(FeatureId(f), at(x_part), y_part ? at(*y_part) : PartCoordinate{});
+            } catch (const GeometryError&) {
+              return std::nullopt;
+            }
+            if (!c) return std::nullopt;
+            const double p[2] = {0.5 * (c->point_range[0].lower + c->point_range[0].upper),
+                                 0.5 * (c->point_range[1].lower + c->point_range[1].upper)};
+            const double n[2] = {0.5 * (c->normal[0].lower + c->normal[0].upper), 0.5 * (c->normal[1].lower + c->normal[1].upper)};
+            const double wp = std::max(c->point_range[0].upper - c->point_range[0].lower, c->point_range[1].upper - c->point_range[1].lower);
+            const double wn = std::max(c->normal[0].upper - c->normal[0].lower, c->normal[1].upper - c->normal[1].lower);
+            double S = 0;
+            for (const auto& [part, sign] : {std::make_pair(fp.first.part, -1.0), std::make_pair(fp.second.part, 1.0)}) {
+              if (!state[part]) continue;
+              const Motion& motion = model.parts[part].motion;
+              double J[2];
+              if (motion.kind == Motion::Kind::rotation) {
+                J[0] = -(p[1] - motion.pivot.y.get_d());
+                J[1] = p[0] - motion.pivot.x.get_d();
+              } else {
+                J[0] = motion.direction.x.get_d();
+                J[1] = motion.direction.y.get_d();
+              }
+              const double v = state[part]->second, term = sign * v * (-n[1] * J[0] + n[0] * J[1]);
+              S += term;
+              const double size = std::abs(J[0]) + std::abs(J[1]);
+              rounding = std::max(rounding, std::abs(v) * (wn * size + (motion.kind == Motion::Kind::rotation ? 2 * wp : 0.0)) +
+                                                32 * eps * std::abs(v) * (size + std::abs(p[0]) + std::abs(p[1])));
+            }
+            return S;
+          };
+          double fastest = 0;
+          for (const auto& s : state)
+            if (s) fastest = std::max(fastest, std::abs(s->second));
+          if (fastest == 0) continue;
+          const double h = 1e-4 / fastest;
+          const std::optional<double> a1 = sliding(-h), b1 = sliding(h), a2 = sliding(-2 * h), b2 = sliding(2 * h);
+          if (!a1 || !b1 || !a2 || !b2) continue;
+          const double d1 = (*b1 - *a1) / (2 * h), d2 = (*b2 - *a2) / (4 * h);
+          std::vector<const FeaturePair*> pairs{&fp};
+          const double exact = simulation::tangent_drift(model, pairs, coordinate);
+          const double tolerance = std::abs(d2 - d1) + 4 * rounding / (2 * h);
+          ASSERT_LE(std::abs(exact - d1), tolerance)
+              << name << " " << fp.label << ": exact " << exact << ", central difference " << d1 << " (2h: " << d2 << ")";
+          ++checked;
+          curved += std::abs(exact) > 1e3 * tolerance;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 500u);
+  EXPECT_GT(curved, checked / 2);   // most states have a drift far above the tolerance
+}
+
 // a jam), and never stays at one time for more than a handful of steps.
 TEST(SimulationRatchetTouch, GeneratedRunsEndWithoutStepsInPlace) {
   const Model base = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json");
