@@ -138,7 +138,7 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces)
     options.relative_accuracy = 0.5;
     options.threshold = true;
     options.threshold_parameters = vary;
-    options.threshold_bracket = 1e-3;
+    options.threshold_bracket = 1e-2;
     ToleranceResult whole = analyze_tolerances(geneva(), options);
     tolerance_detail::whole_space_confirmations_switch() = false;
     ToleranceResult kernels = analyze_tolerances(geneva(), options);
