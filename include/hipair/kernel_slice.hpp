@@ -7,7 +7,9 @@
 #include <hipair/rational.hpp>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -22,6 +24,9 @@ struct KernelSlice {
     AlgebraicNumber at;
     /// Blocked on both sides and the parts may touch there (a zero-clearance fit, or not decided).
     bool may_touch = false;
+    /// The feature pairs whose contact curves pass there: (feature of the model pair's first
+    /// part, feature of its second part), as FeaturePair::first and ::second of the pair's C-space.
+    std::vector<std::pair<FeatureIdentity, FeatureIdentity>> features;
   };
   enum class Kind { free, blocked, touching, outside };
   std::vector<Point> points;
@@ -31,5 +36,23 @@ struct KernelSlice {
 /// nullopt when the model has no pair of the two parts or no chart holds the values.
 std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, std::size_t follower, const Rational& other_t,
                                         bool other_half, const Rational& follower_t, bool follower_half);
+
+/// Several slices of one pair on one slicer: the contact polynomials of the strips it forms for
+/// one slice serve the next (kernel_slice forms them anew on every call). Keeps its own copy of
+/// the model. slice(): as kernel_slice with the same model and parts.
+class KernelSlicer {
+ public:
+  /// \throws GeometryError when the model has no pair of the two parts, or it is no fixed-axis pair.
+  KernelSlicer(const Model& model, std::size_t other, std::size_t follower);
+  ~KernelSlicer();
+  KernelSlicer(KernelSlicer&&) noexcept;
+  KernelSlicer& operator=(KernelSlicer&&) noexcept;
+  std::optional<KernelSlice> slice(const Rational& other_t, bool other_half, const Rational& follower_t,
+                                   bool follower_half) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace hipair

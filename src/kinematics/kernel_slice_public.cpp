@@ -1,31 +1,49 @@
-// hipair::kernel_slice (include/hipair/kernel_slice.hpp): one slice of the kernel slicer.
+// hipair::kernel_slice and hipair::KernelSlicer (include/hipair/kernel_slice.hpp): slices of the
+// kernel slicer.
 #include <hipair/kernel_slice.hpp>
+
+#include <hipair/error.hpp>
 
 #include "kinematics/slice.hpp"
 
 namespace hipair {
 
-std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, std::size_t follower, const Rational& other_t,
-                                        bool other_half, const Rational& follower_t, bool follower_half) {
+struct KernelSlicer::Impl {
+  Model model;   // the slicer reads it
+  std::unique_ptr<kinematics_detail::PairSlicer> slicer;
+};
+
+KernelSlicer::KernelSlicer(const Model& model, std::size_t other, std::size_t follower) : impl_(std::make_unique<Impl>()) {
   using namespace kinematics_detail;
+  impl_->model = model;
   std::size_t pair = model.pairs.size();
   for (std::size_t p = 0; p < model.pairs.size(); ++p)
     if ((model.pairs[p].first == other && model.pairs[p].second == follower) ||
         (model.pairs[p].first == follower && model.pairs[p].second == other))
       pair = p;
-  if (pair == model.pairs.size()) return std::nullopt;
-  std::unique_ptr<PairSlicer> slicer = make_kernel_slicer(model, pair, follower);
+  if (pair == model.pairs.size()) throw GeometryError("kernel slice: the model has no pair of the two parts");
+  impl_->slicer = make_kernel_slicer(impl_->model, pair, follower);
+}
+
+KernelSlicer::~KernelSlicer() = default;
+KernelSlicer::KernelSlicer(KernelSlicer&&) noexcept = default;
+KernelSlicer& KernelSlicer::operator=(KernelSlicer&&) noexcept = default;
+
+std::optional<KernelSlice> KernelSlicer::slice(const Rational& other_t, bool other_half, const Rational& follower_t,
+                                               bool follower_half) const {
+  using namespace kinematics_detail;
+  const PairSlicer& slicer = *impl_->slicer;
   std::optional<std::size_t> other_chart, follower_chart;
-  for (std::size_t c = 0; c < slicer->other_charts().size() && !other_chart; ++c) {
-    const ChartAxis& axis = slicer->other_charts()[c];
+  for (std::size_t c = 0; c < slicer.other_charts().size() && !other_chart; ++c) {
+    const ChartAxis& axis = slicer.other_charts()[c];
     if (axis.half_turn == other_half && axis.lo <= other_t && other_t <= axis.hi) other_chart = c;
   }
-  for (std::size_t c = 0; c < slicer->follower_charts().size() && !follower_chart; ++c) {
-    const ChartAxis& axis = slicer->follower_charts()[c];
+  for (std::size_t c = 0; c < slicer.follower_charts().size() && !follower_chart; ++c) {
+    const ChartAxis& axis = slicer.follower_charts()[c];
     if (axis.half_turn == follower_half && axis.lo <= follower_t && follower_t <= axis.hi) follower_chart = c;
   }
   if (!other_chart || !follower_chart) return std::nullopt;
-  ChartSlice slice = slicer->slice(*other_chart, other_t, *follower_chart);
+  ChartSlice slice = slicer.slice(*other_chart, other_t, *follower_chart);
   KernelSlice result;
   for (const SlicePoint& point : slice.points) {
     KernelSlice::Point p;
@@ -34,6 +52,9 @@ std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, s
     p.at.upper = point.value.upper;
     p.at.exact = point.value.exact;
     p.may_touch = point.touching || point.undecided;
+    for (std::size_t feature : point.features)
+      if (feature < slicer.features().size())
+        p.features.emplace_back(slicer.features()[feature].first, slicer.features()[feature].second);
     result.points.push_back(std::move(p));
   }
   for (SliceKind kind : slice.kinds)
@@ -42,6 +63,15 @@ std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, s
                            : kind == SliceKind::touching ? KernelSlice::Kind::touching
                                                          : KernelSlice::Kind::outside);
   return result;
+}
+
+std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, std::size_t follower, const Rational& other_t,
+                                        bool other_half, const Rational& follower_t, bool follower_half) {
+  bool paired = false;
+  for (const auto& pair : model.pairs)
+    paired = paired || (pair.first == other && pair.second == follower) || (pair.first == follower && pair.second == other);
+  if (!paired) return std::nullopt;
+  return KernelSlicer(model, other, follower).slice(other_t, other_half, follower_t, follower_half);
 }
 
 }  // namespace hipair

@@ -376,6 +376,7 @@ class Analysis {
       space_ = std::make_unique<CSpace>(CSpace::build(m, pair_first_, pair_second_, reporting(bar_.within())));
     }
     driver_is_x_ = space_->x_part() == result_.driver;
+    kernel_confirmations_ = large_pair_ || !tolerance_detail::whole_space_confirmations_switch();
   }
 
   ToleranceResult run() {
@@ -531,8 +532,10 @@ class Analysis {
     s.follower_chart = ChartValue{driver_is_x_ ? point->y : point->x, follower_half};
     // The slice around the follower only: its channel's sides and the points next to them (two
     // cell boundaries each way: the point holding a contact and its neighbours beyond).
-    std::optional<Slice> near = slice_near(*space_, point->chart, driver_is_x_ ? SliceAxis::x : SliceAxis::y,
-                                                   s.driver_chart.t, s.follower_chart.t, 2);
+    std::optional<Slice> near = space_->complete()
+                                    ? slice_near(*space_, point->chart, driver_is_x_ ? SliceAxis::x : SliceAxis::y,
+                                                 s.driver_chart.t, s.follower_chart.t, 2)
+                                    : region_slice_near(point->chart, s.driver_chart.t, s.follower_chart.t, 2);
     if (!near) return s;
     const Slice* slice = &*near;
     s.valid = true;
@@ -584,6 +587,97 @@ class Analysis {
       if (!s.feature.valid()) s.contact = false;
     }
     return s;
+  }
+
+  // slice_near across the tiles of an operating region (a large pair's space, session 59): each
+  // tile is a chart of its own, and its slice ends at the tile's border, so a channel side lying
+  // in the next tile along the follower axis was missing ("no contact below it": the
+  // certificate and the bracket's corner search then refused the range). The slice is continued
+  // through the built tiles adjacent along the follower axis (same driver range and half turns,
+  // sharing the border exactly) until `boundaries` points lie on each side of `at` or no built
+  // tile follows (beyond it nothing is known: the slice ends there as at a chart's end). A
+  // tile's first interval continues its neighbour's last (one face of the space crossing the
+  // border) when both have the same kind and cell; otherwise the border itself, an exact
+  // rational, is a boundary point with no feature pair.
+  std::optional<Slice> region_slice_near(std::size_t chart, const Rational& value, const Rational& at,
+                                         std::size_t boundaries) const {
+    const SliceAxis axis = driver_is_x_ ? SliceAxis::x : SliceAxis::y;
+    std::optional<Slice> slice = slice_near(*space_, chart, axis, value, at, boundaries);
+    if (!slice) return slice;
+    const std::vector<CSpaceChart>& charts = space_->charts();
+    auto fixed_range = [&](const CSpaceChart& c) {
+      return driver_is_x_ ? std::make_pair(c.x_lo, c.x_hi) : std::make_pair(c.y_lo, c.y_hi);
+    };
+    auto free_range = [&](const CSpaceChart& c) {
+      return driver_is_x_ ? std::make_pair(c.y_lo, c.y_hi) : std::make_pair(c.x_lo, c.x_hi);
+    };
+    const CSpaceChart& home = charts[chart];
+    // the built tile whose follower range starts (up) or ends (down) at `border`, in the column
+    auto neighbour = [&](const Rational& border, bool up) -> std::optional<std::size_t> {
+      for (std::size_t c = 0; c < charts.size(); ++c) {
+        const CSpaceChart& other = charts[c];
+        if (c == chart || other.x_half_turn != home.x_half_turn || other.y_half_turn != home.y_half_turn) continue;
+        auto [lo, hi] = fixed_range(other);
+        if (value < lo || value > hi) continue;
+        auto [free_lo, free_hi] = free_range(other);
+        if ((up ? free_lo : free_hi) == border) return c;
+      }
+      return std::nullopt;
+    };
+    auto exact_point = [](const Rational& q) {
+      AlgebraicNumber a;
+      a.polynomial = {-q.get_num(), q.get_den()};
+      a.lower = a.upper = q;
+      a.exact = true;
+      return a;
+    };
+    auto same_face = [](const Slice::Interval& a, const Slice::Interval& b) { return a.kind == b.kind && a.cell == b.cell; };
+    // upwards
+    for (std::size_t guard = 0; guard < charts.size(); ++guard) {
+      std::size_t above = 0;
+      for (const Slice::Point& point : slice->points)
+        if (tolerance_detail::compare(point.at, at) > 0) ++above;
+      if (above >= boundaries) break;
+      std::optional<std::size_t> next = neighbour(slice->upper, true);
+      if (!next) break;
+      std::optional<Slice> more = slice_near(*space_, *next, axis, value, slice->upper, boundaries);
+      if (!more) break;
+      const Rational border = slice->upper;
+      if (!same_face(slice->intervals.back(), more->intervals.front())) {
+        slice->points.push_back(Slice::Point{exact_point(border), {}});
+        slice->intervals.push_back(more->intervals.front());
+      }
+      for (std::size_t i = 0; i < more->points.size(); ++i) {
+        slice->points.push_back(more->points[i]);
+        slice->intervals.push_back(more->intervals[i + 1]);
+      }
+      slice->upper = more->upper;
+    }
+    // downwards
+    for (std::size_t guard = 0; guard < charts.size(); ++guard) {
+      std::size_t below = 0;
+      for (const Slice::Point& point : slice->points)
+        if (tolerance_detail::compare(point.at, at) < 0) ++below;
+      if (below >= boundaries) break;
+      std::optional<std::size_t> next = neighbour(slice->lower, false);
+      if (!next) break;
+      std::optional<Slice> more = slice_near(*space_, *next, axis, value, slice->lower, boundaries);
+      if (!more) break;
+      const Rational border = slice->lower;
+      std::vector<Slice::Point> points = more->points;
+      std::vector<Slice::Interval> intervals = more->intervals;
+      if (same_face(intervals.back(), slice->intervals.front())) {
+        intervals.pop_back();
+      } else {
+        points.push_back(Slice::Point{exact_point(border), {}});
+      }
+      points.insert(points.end(), slice->points.begin(), slice->points.end());
+      intervals.insert(intervals.end(), slice->intervals.begin(), slice->intervals.end());
+      slice->points = std::move(points);
+      slice->intervals = std::move(intervals);
+      slice->lower = more->lower;
+    }
+    return slice;
   }
 
   CurveSlice curve_for(FeatureId id, const SampleState& s) const {
@@ -991,33 +1085,47 @@ class Analysis {
     return request;
   }
 
-  // A large pair's jam confirmation without a C-space (session 58): the exact slice of the pair
-  // of `other` (a worst-case model) at the sample's driver chart coordinate, from the contact
-  // polynomials and the exact overlap oracle (the kernel slicer `hipair analyze` runs on large
-  // pairs), in the follower chart with the nominal chart's half turn; the number of its free
-  // intervals meeting the nominal channel's open interval (exact comparisons, exact_order.hpp),
-  // and in `points` the slice's size. A point inside the channel that may be a zero-clearance fit
+  // The exact kernel slice of `slicer`'s pair (the nominal pair or one at other parameters) at
+  // the sample's driver chart coordinate, from the contact polynomials and the exact overlap
+  // oracle (the kernel slicer `hipair analyze` runs on large pairs), in the follower chart with
+  // the nominal chart's half turn. nullopt: no chart holds the position.
+  static std::optional<KernelSlice> kernel_slice_at(const KernelSlicer& slicer, const SampleState& state) {
+    return slicer.slice(state.driver_chart.t, state.driver_chart.half, state.follower_chart.t, state.follower_chart.half);
+  }
+
+  // The intervals (indices into kinds) of a kernel slice that are free (or outside the slicer's
+  // window) and meet the open channel (lower, upper), decided exactly (exact_order.hpp): an
+  // interval (a, b) meets it when b > lower and a < upper; a null side is unbounded.
+  static std::vector<std::size_t> kernel_free_meeting(const KernelSlice& slice, const AlgebraicNumber* lower,
+                                                      const AlgebraicNumber* upper) {
+    std::vector<std::size_t> meeting;
+    const std::vector<KernelSlice::Point>& at = slice.points;
+    for (std::size_t j = 0; j < slice.kinds.size(); ++j) {
+      if (slice.kinds[j] != KernelSlice::Kind::free && slice.kinds[j] != KernelSlice::Kind::outside) continue;
+      bool below_upper = j == 0 || !upper || tolerance_detail::compare(at[j - 1].at, *upper) < 0;        // a < upper
+      bool above_lower = j == at.size() || !lower || tolerance_detail::compare(at[j].at, *lower) > 0;   // b > lower
+      if (below_upper && above_lower) meeting.push_back(j);
+    }
+    return meeting;
+  }
+
+  // A jam confirmation without a C-space (session 58: large pairs; session 59: the bracket's and
+  // the contact changes' too): the number of free intervals of the kernel slice at the sample
+  // meeting the nominal channel's open interval (exact comparisons, exact_order.hpp), and in
+  // `points` the slice's size. A point inside the channel that may be a zero-clearance fit
   // (touching, or its touching undecided) counts as open. nullopt: no chart holds the position.
-  std::optional<std::size_t> kernel_free_intervals_in_channel(const Model& other, const SampleState& state,
+  std::optional<std::size_t> kernel_free_intervals_in_channel(const KernelSlicer& slicer, const SampleState& state,
                                                               std::size_t& points) const {
-    std::optional<KernelSlice> slice = kernel_slice(other, driver_, follower_, state.driver_chart.t, state.driver_chart.half,
-                                                    state.follower_chart.t, state.follower_chart.half);
+    std::optional<KernelSlice> slice = kernel_slice_at(slicer, state);
     if (!slice) return std::nullopt;
     points = slice->points.size();
     const AlgebraicNumber& lower = state.lower.exact;
     const AlgebraicNumber& upper = state.upper.exact;
-    const std::vector<KernelSlice::Point>& at = slice->points;
     std::size_t open = 0;
-    for (const KernelSlice::Point& point : at)
+    for (const KernelSlice::Point& point : slice->points)
       if (point.may_touch && tolerance_detail::compare(point.at, lower) > 0 && tolerance_detail::compare(point.at, upper) < 0)
         ++open;
-    for (std::size_t j = 0; j < slice->kinds.size(); ++j) {
-      if (slice->kinds[j] != KernelSlice::Kind::free && slice->kinds[j] != KernelSlice::Kind::outside) continue;
-      bool below_upper = j == 0 || tolerance_detail::compare(at[j - 1].at, upper) < 0;      // a < upper
-      bool above_lower = j == at.size() || tolerance_detail::compare(at[j].at, lower) > 0;  // b > lower
-      if (below_upper && above_lower) ++open;
-    }
-    return open;
+    return open + kernel_free_meeting(*slice, &lower, &upper).size();
   }
 
   // The slice of `space` (an exact C-space at other parameters) at the sample's driver chart
@@ -1045,6 +1153,8 @@ class Analysis {
     if (!b.found) {
       result.bracket_evidence = "no bracket: the corner search " + std::string(b.steps == 1 ? "jams at 0.9 x the linearised threshold"
                                                                                            : "found no jam up to 5 x it");
+      // (a search that could not start says why: a channel not bounded on both sides, ...)
+      if (b.steps > 1 && !b.witness.reason.empty()) result.bracket_evidence += " (" + b.witness.reason + ")";
       return;
     }
     result.bracketed = true;
@@ -1076,6 +1186,10 @@ class Analysis {
       worst = model_->exact_model(deviations);
     } catch (const ModelError& error) {
       result.bracket_evidence = std::string("not confirmed: the witness geometry is invalid: ") + error.what();
+      return;
+    }
+    if (kernel_confirmations_) {
+      confirm_bracket_on_kernels(result, worst, state, b.above);
       return;
     }
     // the witness' exact C-space
@@ -1111,6 +1225,39 @@ class Analysis {
                                               std::to_string(slice->intervals.size()) + " intervals)"
                                         : where + ": still " + std::to_string(open) + " free interval(s) in the channel";
     result.bracket_evidence += points.str() + " (chart coordinates)";
+  }
+
+  // The bracket's exact confirmation without a C-space (a large pair's: its whole witness space
+  // takes minutes; session 59): the exact kernel slices of the nominal pair and of the witness'
+  // at the nominal channel's driver chart coordinate, the same decisions as on the two C-spaces'
+  // slices (the follower between the witness' roots in one free interval of the nominal slice;
+  // no free interval of the witness' slice between the nominal channel's sides).
+  void confirm_bracket_on_kernels(JammingThreshold& result, const Model& worst, const SampleState& state,
+                                  const Rational& scale) {
+    std::size_t nominal_points = 0, points = 0;
+    std::optional<std::size_t> nominal_open =
+        kernel_free_intervals_in_channel(KernelSlicer(model_->nominal(), driver_, follower_), state, nominal_points);
+    if (!nominal_open || *nominal_open != 1) {
+      result.bracket_evidence = "not confirmed: the witness' follower position is not in a free channel of the nominal slice";
+      return;
+    }
+    bar_.fraction(0.9);
+    std::optional<std::size_t> open = kernel_free_intervals_in_channel(KernelSlicer(worst, driver_, follower_), state, points);
+    if (!open) {
+      result.bracket_evidence = "not confirmed: no slice of the witness' pair at that driver position";
+      return;
+    }
+    std::ostringstream channel;   // for the reader only (approximate)
+    channel.precision(9);
+    channel << "; nominal channel (" << state.lower.exact.approximate() << ", " << state.upper.exact.approximate()
+            << ") (chart coordinates)";
+    std::string where = "exact slice (contact kernels and the exact overlap oracle) of the pair at the witness (tolerances x " +
+                        to_exact_string(scale) + ") at driver chart coordinate " + to_exact_string(state.driver_chart.t);
+    result.bracket_confirmed = *open == 0;
+    result.bracket_evidence = *open == 0 ? where + ": no free interval between the two sides of the nominal channel (" +
+                                               std::to_string(points + 1) + " intervals)"
+                                         : where + ": still " + std::to_string(*open) + " free interval(s) in the channel";
+    result.bracket_evidence += channel.str();
   }
 
   void threshold() {
@@ -1208,11 +1355,11 @@ class Analysis {
         result.evidence = std::string("the worst-case geometry is invalid: ") + error.what();
         continue;
       }
-      if (large_pair_) {
+      if (kernel_confirmations_) {
         // A large pair: the exact slice at the critical position from the contact kernels (the
         // whole worst-case C-space took minutes per scale; session 58).
         std::size_t points = 0;
-        std::optional<std::size_t> open = kernel_free_intervals_in_channel(worst, state, points);
+        std::optional<std::size_t> open = kernel_free_intervals_in_channel(KernelSlicer(worst, driver_, follower_), state, points);
         if (!open) continue;
         result.confirmed_scale = factor.get_d();
         result.worst_values.clear();
@@ -1257,7 +1404,12 @@ class Analysis {
 
   // ------------------------------------------------------------ contacts appearing/disappearing
   using PairKey = std::pair<FeatureIdentity, FeatureIdentity>;
-  static PairKey key_of(const FeaturePair& pair) { return {pair.first, pair.second}; }
+  // (the feature of the part with the smaller model index first: a C-space's feature pairs and
+  // a kernel slicer's name the same pair alike)
+  static PairKey key_of(const FeatureIdentity& a, const FeatureIdentity& b) {
+    return a.part <= b.part ? PairKey{a, b} : PairKey{b, a};
+  }
+  static PairKey key_of(const FeaturePair& pair) { return key_of(pair.first, pair.second); }
 
   // The feature pairs of a C-space at the ends of the free intervals of its slice at the sample's
   // driver position that meet the sample's nominal channel (exact: exact_order.hpp).
@@ -1277,6 +1429,25 @@ class Analysis {
     };
     for (std::size_t j : tolerance_detail::free_intervals_meeting(*slice, state.lower.present ? &state.lower.exact : nullptr,
                                                                    state.upper.present ? &state.upper.exact : nullptr)) {
+      if (j > 0) add(j - 1);
+      if (j < slice->points.size()) add(j);
+    }
+    return keys;
+  }
+
+  // channel_bounds on the exact kernel slice of `slicer`'s pair at the sample's driver position
+  // instead of a C-space's slice (large pairs; session 59): the feature pairs at the ends of its
+  // free intervals meeting the sample's nominal channel (exact: exact_order.hpp).
+  std::optional<std::vector<PairKey>> kernel_channel_bounds(const KernelSlicer& slicer, std::size_t k) const {
+    const SampleState& state = states_[k];
+    std::optional<KernelSlice> slice = kernel_slice_at(slicer, state);
+    if (!slice) return std::nullopt;
+    std::vector<PairKey> keys;
+    auto add = [&](std::size_t point) {
+      for (const auto& [first, second] : slice->points[point].features) keys.push_back(key_of(first, second));
+    };
+    for (std::size_t j : kernel_free_meeting(*slice, state.lower.present ? &state.lower.exact : nullptr,
+                                             state.upper.present ? &state.upper.exact : nullptr)) {
       if (j > 0) add(j - 1);
       if (j < slice->points.size()) add(j);
     }
@@ -1355,10 +1526,20 @@ class Analysis {
         }
       }
       double x = state.driver_chart.t.get_d();
+      // the charts holding the slice: the sample's, and on an operating region the built tiles
+      // of its column (region_slice_near)
+      const CSpaceChart& home = space_->charts()[state.chart];
+      auto in_column = [&](std::size_t c) {
+        if (c == state.chart) return true;
+        if (space_->complete()) return false;
+        const CSpaceChart& other = space_->charts()[c];
+        return other.x_half_turn == home.x_half_turn && other.y_half_turn == home.y_half_turn &&
+               other.x_lo <= state.driver_chart.t && state.driver_chart.t <= other.x_hi;
+      };
       std::vector<std::pair<PairKey, double>> seen;
       for (std::size_t e = 0; e < space_->edges().size(); ++e) {
         const CSpaceEdge& edge = space_->edges()[e];
-        if (edge.chart != state.chart || edge.vertical || edge.curves.empty()) continue;
+        if (!in_column(edge.chart) || edge.vertical || edge.curves.empty()) continue;
         if (edge.role != EdgeRole::contact && edge.role != EdgeRole::spurious) continue;
         if (!(edge.x_chart.lower <= x && x <= edge.x_chart.upper)) continue;
         FeatureId id(edge.curves.front());
@@ -1487,20 +1668,27 @@ class Analysis {
       } else {
         try {
           Model witness = model_->exact_model(deviations);
-          CSpace space = CSpace::build(witness, pair_first_, pair_second_);
+          // the witness' exact C-space, or (a large pair) its pair's exact kernel slices
+          std::optional<CSpace> space;
+          std::optional<KernelSlicer> slicer;
+          if (kernel_confirmations_) slicer.emplace(witness, driver_, follower_);
+          else space.emplace(CSpace::build(witness, pair_first_, pair_second_));
+          auto bounds = [&](std::size_t k) { return space ? channel_bounds(*space, k) : kernel_channel_bounds(*slicer, k); };
+          const std::string exact = space ? "exact C-space at the witness: "
+                                          : "exact slices (contact kernels and the exact overlap oracle) at the witness: ";
           for (std::size_t k : g.samples) {
-            std::optional<std::vector<PairKey>> keys = channel_bounds(space, k);
+            std::optional<std::vector<PairKey>> keys = bounds(k);
             if (keys && std::find(keys->begin(), keys->end(), best.key) != keys->end()) ++change.confirmed_positions;
           }
           change.confirmed = change.confirmed_positions > 0;
-          change.evidence = "exact C-space at the witness: at " + std::to_string(change.confirmed_positions) + " of " +
+          change.evidence = exact + "at " + std::to_string(change.confirmed_positions) + " of " +
                             std::to_string(g.samples.size()) + " positions the contact bounds the channel";
           // The side it overtakes: does it still bound the channel anywhere along the path?
           std::size_t where = 0, bounded = 0;
           for (const auto& [key, at] : side_positions) {
             if (key != best.side_key) continue;
             ++where;
-            std::optional<std::vector<PairKey>> keys = channel_bounds(space, at.first);
+            std::optional<std::vector<PairKey>> keys = bounds(at.first);
             if (!keys || std::find(keys->begin(), keys->end(), key) != keys->end()) ++bounded;
           }
           if (where > 0 && bounded == 0) {
@@ -1511,7 +1699,7 @@ class Analysis {
             gone.positions = where;
             gone.confirmed = true;
             gone.confirmed_positions = where;
-            gone.evidence = "exact C-space at the witness: at none of the " + std::to_string(where) +
+            gone.evidence = exact + "at none of the " + std::to_string(where) +
                             " positions where it bounds the nominal channel does it bound the channel";
             disappears = gone;
           }
@@ -1546,6 +1734,8 @@ class Analysis {
   // a large pair's nominal kinematics on the contact kernels, computed before its space
   std::optional<KinematicsResult> kernel_path_;
   bool large_pair_ = false;   ///< > 120 boundary edges and no space given: analyze's kernel path (start())
+  /// the exact confirmations on kernel slices, no C-space (large pairs, or the test switch off)
+  bool kernel_confirmations_ = false;
   ToleranceResult result_;
   std::vector<Distribution> dist_;
   Box box_;

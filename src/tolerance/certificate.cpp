@@ -983,7 +983,10 @@ ThresholdBracket bracket_threshold(const CertifyRequest& base, const Rational& b
   Rational lo = below, hi = above;
   if (jams(lo, low)) return out;   // no bracket: a corner jams already below
   for (int grow = 0; !jams(hi, high); ++grow) {
-    if (grow >= 4) return out;
+    if (grow >= 4) {
+      out.witness = high.witness;   // (its reason when the search could not start)
+      return out;
+    }
     lo = hi;
     hi = hi * Rational(3, 2);
   }

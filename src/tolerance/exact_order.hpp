@@ -6,6 +6,8 @@
 // numbers is decided by the gcd of their polynomials.
 #pragma once
 
+#include "core/thread_switch.hpp"
+
 #include <hipair/cspace.hpp>
 #include <hipair/rational.hpp>
 
@@ -39,5 +41,13 @@ std::vector<std::size_t> free_intervals_meeting(const Slice& slice, const Algebr
                                                 const AlgebraicNumber* upper);
 /// The number of free intervals of `slice` that meet the open channel (lower, upper).
 std::size_t free_intervals_in_channel(const Slice& slice, const AlgebraicNumber& lower, const AlgebraicNumber& upper);
+
+/// Per-thread switch (core/thread_switch.hpp) of the exact confirmations of a pair of at most
+/// 120 boundary edges (the jamming threshold's, its bracket's, the contact changes'): on, an
+/// exact C-space built at the witness and sliced; off, the pair's exact kernel slices at the
+/// witness (hipair::KernelSlicer), as a large pair's always are. Tests turn it off to compare
+/// the two answers on pairs small enough to build whole.
+struct WholeSpaceConfirmationsTag;
+inline bool& whole_space_confirmations_switch() { return thread_switch<WholeSpaceConfirmationsTag>(); }
 
 }  // namespace hipair::tolerance_detail

@@ -356,7 +356,8 @@ void box_deviations(const ParametricModel& form, std::vector<double>& lo, std::v
   }
 }
 
-// check_choices on the box of `text`: accepted (true) or refused naming a shape change (false).
+// check_choices on the box of `text`: accepted (true) or refused naming a shape change, or (since
+// session 59) a value the template itself refuses, e.g. a dedendum reaching 0 (false).
 bool box_accepted(const ParametricModel& form) {
   std::vector<double> lo, hi;
   box_deviations(form, lo, hi);
@@ -364,7 +365,9 @@ bool box_accepted(const ParametricModel& form) {
     form.check_choices(lo, hi);
     return true;
   } catch (const ModelError& error) {
-    EXPECT_NE(std::string(error.what()).find("may change the shape"), std::string::npos) << error.what();
+    const std::string what = error.what();
+    EXPECT_TRUE(what.find("may change the shape") != std::string::npos || what.find("may make feature template") != std::string::npos)
+        << what;
     return false;
   }
 }
@@ -471,6 +474,136 @@ TEST(ParametricTemplates, GearPairJammingThresholdIsTheBacklashClosedForm) {
     EXPECT_NE(t.evidence.find("exact slice (contact kernels"), std::string::npos) << t.evidence;
     EXPECT_GT(t.certified_open_scale, 0);
     EXPECT_LT(t.certified_open_scale, t.confirmed_scale);
+  }
+}
+
+// Session 59: the gear threshold asserted with a derived tolerance. Only the driven gear's teeth
+// are toleranced (thickened or thinned by `thin` along the pitch circle, nominal 0 +- tb/2). The
+// generic form places every flank of a tooth at the polar angle +-beta, beta = thickness / (2 r2),
+// from the tooth's axis, the profile itself not depending on the thickness: a change of beta turns
+// each flank rigidly about the gear's centre, which moves that side of the follower's channel by
+// exactly the same angle, whatever the profile (the two-arc fit or the involute). Both sides of
+// the tooth move, so the play closes by exactly tb / (2 r2) rad per unit scale of the tolerance at
+// every driver position, and the channel closes at scale P(theta) 2 r2 / tb. Hence: (1) the
+// linearised threshold is min over the samples of play 2 r2 / tb, up to the chart's curvature (the
+// analysis linearises in half-angle tangents: bound below) and the rounding of the doubles (the
+// sensitivities' evaluation and the play's conversion: 1e-9 relative is 10^6 ulps);
+// (2) the exact threshold, min over the continuous driver range, is at most that and at least the
+// certified open scale, and the exact slice at the worst case confirms the jam at or above it.
+TEST(ParametricTemplates, GearThresholdOfTheDrivenGearsThicknessIsExactlyThePlayOverItsRate) {
+  std::mt19937 rng(5959);
+  std::uniform_int_distribution<int> teeth(12, 24), pressure(18, 24), tenths(1, 4);
+  for (int round = 0; round < 2; ++round) {
+    int m = 2, z1 = teeth(rng), z2 = teeth(rng), alpha = pressure(rng);
+    double b0 = 0.05 * tenths(rng), tb = 0.005 * tenths(rng);
+    std::string text = generated_gear_pair(m, z1, z2, alpha, b0, 0, 0);
+    // the gear's thickness alone toleranced: "thin" (mm) off its teeth, nominal 0 +- tb / 2
+    const std::string untoleranced = R"(, "tolerance": )" + fixed(0) + "}";
+    for (std::size_t at; (at = text.find(untoleranced)) != std::string::npos;) text.replace(at, untoleranced.size(), "}");
+    const std::string backlash = R"("backlash": {"nominal": )" + fixed(b0) + "}";
+    ASSERT_NE(text.find(backlash), std::string::npos);
+    text.replace(text.find(backlash), backlash.size(), backlash + R"(, "thin": {"nominal": 0, "tolerance": )" + fixed(tb / 2, 5) + "}");
+    const std::string gear_thickness = R"("teeth-2", "pitch_radius": "module * teeth-2 / 2", "addendum": "module", "dedendum": "1.25 * module", "tooth_thickness": "pi * module / 2 - backlash / 2)";
+    ASSERT_NE(text.find(gear_thickness), std::string::npos);
+    text.insert(text.find(gear_thickness) + gear_thickness.size(), " - thin");
+    SCOPED_TRACE(text);
+    ToleranceOptions options;
+    options.threshold = true;
+    options.threads = 1;
+    options.range = std::make_pair(Rational(0), Rational(2 * 314159, 100000 * z1));   // one tooth pitch
+    options.positions = 720;
+    ToleranceResult r = analyze_tolerances_text(text, options);
+    ASSERT_TRUE(r.threshold && r.threshold->found);
+    const JammingThreshold& t = *r.threshold;
+    const double r2 = m * z2 / 2.0, rate = tb / (2 * r2);   // rad of play closed per unit scale
+    double smallest = 1e300;
+    for (const VariationSample& sample : r.samples)
+      if (sample.play > 0) smallest = std::min(smallest, sample.play);
+    ASSERT_LT(smallest, 1e300);
+    std::printf("z %d x %d, %d deg, b0 %.3f tb %.3f: linearised %.12f, min play / rate %.12f, certified open %.6f, "
+                "confirmed %d at %.6f\n",
+                z1, z2, alpha, b0, tb, t.scale, smallest / rate, t.certified_open_scale, t.confirmed, t.confirmed_scale);
+    // The linearisation runs in chart coordinates t = tan(theta / 2) (about 0 or pi), where the
+    // sides' motion is not linear: with f = tan(theta / 2), the chart's play f(U) - f(L) is
+    // P f'(m) + P^3 f'''(xi) / 24 and its rate (f'(U) + f'(L)) / 2 per unit of P is
+    // f'(m) + P^2 f'''(eta) / 8 (midpoint and trapezoid remainders), so the ratio is off by
+    // P^2 (f'''(xi) / 24 - f'''(eta) / 8) / (f'(m) + P^2 f'''(eta) / 8): f''' > 0, so at most
+    // P^2 (M / 8) / f'(m), with f' = (1 + t^2) / 2 >= 1/2 and M >= f''' = (1 + 3 t^2)(1 + t^2) / 4
+    // over the critical channel (|t| <= T: the follower's chart value there plus the play).
+    const double P = t.nominal_play;
+    double T = 1;
+    for (const VariationSample& sample : r.samples)
+      if (sample.play == P) {
+        double tf = std::tan(std::remainder(sample.nominal, 2 * M_PI) / 2);
+        T = std::min(std::fabs(tf), std::fabs(1 / tf)) + P;
+      }
+    const double M = (1 + 3 * T * T) * (1 + T * T) / 4;
+    const double chart_bound = P * P * (M / 8) / 0.5;
+    EXPECT_NEAR(t.scale / (smallest / rate), 1, chart_bound + 1e-9) << "chart bound " << chart_bound;
+    EXPECT_NEAR(t.nominal_play, smallest, 1e-15);
+    EXPECT_TRUE(t.confirmed) << t.evidence;
+    EXPECT_GE(t.confirmed_scale, t.scale * (1 - 1e-9)) << t.evidence;
+    EXPECT_GT(t.certified_open_scale, 0);
+    EXPECT_LE(t.certified_open_scale, t.scale);
+  }
+}
+
+// Session 59: a large pair's nominal channel is read from its operating region, whose tiles are
+// charts of their own; a channel side lying in the next tile along the follower axis was lost
+// (base59: `tolerance spur-gears.json --certify --range 2.3:2.45` refused "no contact below it"
+// at 2.35 rad, and the bracket's corner search could not start). Now the slice continues through
+// the adjacent built tiles. Oracle: the exact kernel slice of the nominal pair (contact
+// polynomials and the exact overlap oracle) at each sample's driver position: the free interval
+// holding the follower, its width in rad; every sample of the engaged pair must be bounded on
+// both sides and its play must be that width (up to the doubles' rounding of both).
+TEST(ParametricTemplates, LargePairChannelsAreReadAcrossTheRegionsTiles) {
+  auto chart = [](double angle) {   // (tan of the half angle about 0 or pi, about pi)
+    double t = std::tan(std::remainder(angle, 2 * M_PI) / 2);
+    return std::fabs(t) <= 1 ? std::make_pair(Rational(t), false) : std::make_pair(Rational(-1 / t), true);
+  };
+  std::mt19937 rng(5903);
+  std::uniform_int_distribution<int> teeth(12, 24), pressure(18, 24);
+  for (int round = 0; round < 2; ++round) {
+    std::string text;
+    ToleranceOptions options;
+    options.threads = 1;
+    if (round == 0) {
+      std::ifstream file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json");
+      text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+      options.range = std::make_pair(Rational(23, 10), Rational(245, 100));
+      options.positions = 1440;
+    } else {
+      int z1 = teeth(rng), z2 = teeth(rng);
+      text = generated_gear_pair(2, z1, z2, pressure(rng), 0.1, 0.01, 0.01);
+      options.range = std::make_pair(Rational(0), Rational(2 * 314159, 100000 * z1));   // one tooth pitch
+      options.positions = 720;
+    }
+    SCOPED_TRACE(text.substr(0, 400));
+    const KernelSlicer slicer(read_model(text), 0, 1);
+    ToleranceResult r = analyze_tolerances_text(text, options);
+    ASSERT_GE(r.samples.size(), 20u);
+    std::size_t compared = 0;
+    for (const VariationSample& sample : r.samples) {
+      auto [driver_t, driver_half] = chart(sample.driver);
+      auto [follower_t, follower_half] = chart(sample.nominal);
+      std::optional<KernelSlice> slice = slicer.slice(driver_t, driver_half, follower_t, follower_half);
+      ASSERT_TRUE(slice);
+      const double t = follower_t.get_d();
+      std::optional<std::pair<double, double>> channel;
+      for (std::size_t j = 0; j < slice->kinds.size(); ++j) {
+        if (slice->kinds[j] != KernelSlice::Kind::free) continue;
+        double a = j == 0 ? -1e300 : slice->points[j - 1].at.approximate();
+        double b = j == slice->points.size() ? 1e300 : slice->points[j].at.approximate();
+        if (a <= t + 1e-9 && t - 1e-9 <= b) channel = std::make_pair(a, b);
+      }
+      ASSERT_TRUE(channel) << "driver " << sample.driver << ": the follower is in no free interval of the kernel slice";
+      if (channel->first < -1 || channel->second > 1) continue;   // beyond the chart's end (another half turn)
+      ASSERT_GT(sample.play, 0) << "driver " << sample.driver << ": channel not bounded on both sides";
+      EXPECT_NEAR(sample.play, 2 * (std::atan(channel->second) - std::atan(channel->first)), 1e-12)
+          << "driver " << sample.driver;
+      ++compared;
+    }
+    EXPECT_GE(compared, r.samples.size() * 9 / 10);
   }
 }
 
@@ -666,6 +799,89 @@ TEST(ParametricTemplates, ABoxThatChangesATemplatesShapeIsRefused) {
   std::vector<double> lo, hi;
   box_deviations(kept, lo, hi);
   EXPECT_NO_THROW(kept.check_choices(lo, hi));
+}
+
+// Session 59: the templates' own rules (templates*.cpp: "must be less than lock_outer_radius",
+// "must be less than tip_radius", the balance pin sticking out of its disc, the pressure angle's
+// range) are checked over the whole tolerance box, not only at nominal. Generated boxes of one
+// toleranced argument about each rule's edge; oracle: the exact template at the box's two ends
+// (the model read with the parameter there; each rule is monotone in it, so the ends decide the
+// box). A box with a refused end must be refused, naming the argument and the parameter; a box
+// whose two ends are accepted must be kept. Ends within 0.05 of the edge are not generated (the
+// rules keep the templates' 1e-9 margins, the box is rounded outwards).
+TEST(ParametricTemplates, TemplateRulesAreCheckedOverTheWholeBox) {
+  struct Case {
+    std::string argument, parameter;
+    double nominal, edge;   // the rule fails beyond `edge` (above it when edge > nominal)
+    bool angle;
+    std::string part;
+  };
+  const std::vector<Case> cases{
+      {"lock_inner_radius", "inner", 40, 46, false,
+       R"({"name": "d", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"geneva_driver": {"center": [0, 0],
+          "pin_radius": 4.5, "pin_center_radius": 56.5, "lock_outer_radius": 46, "lock_inner_radius": "inner",
+          "lock_span": 283}}]})"},
+      {"root_radius", "root", 17, 20, false,
+       R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"escape_wheel": {"center": [0, 0],
+          "teeth": 15, "tip_radius": 20, "root_radius": "root", "face_angle": 4, "tip_angle": 2}}]})"},
+      {"root_radius", "root", 16, 20, false,
+       R"({"name": "r", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"ratchet_wheel": {"center": [0, 0],
+          "teeth": 12, "tip_radius": 20, "root_radius": "root"}}]})"},
+      {"pin_center_radius", "pc", 10.5, 11, false,
+       R"({"name": "b", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"balance": {"center": [0, 0],
+          "radius": 10, "pin_radius": 1, "pin_center_radius": "pc"}}]})"},
+      {"pressure_angle", "alpha", 36, 0.7 * 180 / M_PI, true,
+       R"({"name": "g", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"spur_gear": {"center": [0, 0],
+          "teeth": 20, "pitch_radius": 20, "addendum": 1, "dedendum": 1, "tooth_thickness": "pi - 0.1",
+          "pressure_angle": "alpha"}}]})"},
+  };
+  std::mt19937 rng(5959);
+  int refused = 0, kept = 0;
+  for (const Case& c : cases)
+    for (int round = 0; round < 4; ++round) {
+      const double gap = std::fabs(c.edge - c.nominal);
+      double tolerance = 0;
+      do tolerance = std::uniform_real_distribution<double>(0.2, 2)(rng) * gap;
+      while (std::fabs(tolerance - gap) < 0.05);
+      tolerance = std::round(tolerance * 1000) / 1000;
+      const std::string text = model(parameter(c.parameter, c.nominal, tolerance, c.angle), c.part);
+      SCOPED_TRACE(text);
+      // the oracle: the exact template at both ends of the box
+      const Parameter range = read_model(text).parameters.at(0);
+      bool ends_valid = true;
+      for (const Rational& end : {range.range.lo, range.range.hi}) {
+        ReadOptions at;
+        at.allow_out_of_tolerance = true;
+        at.parameter_values[c.parameter] = end;
+        try {
+          read_model(text, "<generated>", at);
+        } catch (const ModelError&) {
+          ends_valid = false;
+        }
+      }
+      EXPECT_EQ(ends_valid, tolerance < gap) << "the generated edge is not the template's";
+      ParametricModel form = ParametricModel::read(text);
+      ASSERT_TRUE(form.generic()) << form.exact_only_feature();
+      const Parameter& p = form.nominal().parameters[0];
+      std::vector<double> lo{Rational(p.range.lo - p.nominal).get_d()}, hi{Rational(p.range.hi - p.nominal).get_d()};
+      if (ends_valid) {
+        EXPECT_NO_THROW(form.check_choices(lo, hi));
+        ++kept;
+        continue;
+      }
+      try {
+        form.check_choices(lo, hi);
+        ADD_FAILURE() << "not refused";
+      } catch (const ModelError& error) {
+        const std::string what = error.what();
+        EXPECT_NE(what.find("/" + c.argument), std::string::npos) << what;
+        EXPECT_NE(what.find("'" + c.parameter + "'"), std::string::npos) << what;
+        EXPECT_NE(what.find("invalid"), std::string::npos) << what;
+      }
+      ++refused;
+    }
+  EXPECT_GE(refused, 4);
+  EXPECT_GE(kept, 4);
 }
 
 // The three bundled examples refused until session 57: every Monte Carlo sample inside the

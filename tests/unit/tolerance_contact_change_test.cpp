@@ -17,6 +17,7 @@
 #include <string>
 
 #include "test_paths.hpp"
+#include "tolerance/exact_order.hpp"
 
 namespace hipair {
 namespace {
@@ -154,6 +155,46 @@ TEST(ToleranceContactChange, GeneratedGapsAndTolerancesAgreeWithTheClosedForm) {
     Rational excess = Rational(5, 4) * (value_of(appears, "rB") - value_of(appears, "rA")) - gap_value;
     EXPECT_GT(excess, 0);
     EXPECT_NEAR(appears.overshoot, 1.25 * (ta + tb) / 1000.0 - gap / 1000.0, 1e-12);
+  }
+}
+
+// The confirmations on exact kernel slices at the witness (a large pair's: no C-space; session
+// 59) against those on the witness' whole exact C-space, on generated gaps and tolerances of the
+// two-pin wedge (small enough to build whole): the same changes, confirmed at the same positions,
+// and the same disappearance of the overtaken side.
+TEST(ToleranceContactChange, KernelSliceConfirmationsAgreeWithTheWholeSpaces) {
+  std::mt19937 random(590);
+  std::uniform_int_distribution<int> thousandths(1, 30);
+  int compared = 0;
+  while (compared < 4) {
+    int ta = thousandths(random), tb = thousandths(random), gap = thousandths(random);
+    if (5 * (ta + tb) - 4 * gap < gap) continue;   // appears (closed form), clear of the edge
+    ++compared;
+    auto ratio = [](int k) { return std::to_string(k) + "/1000"; };
+    auto tol = [](int k) { return std::to_string(k / 1000.0); };
+    const std::string text = two_pin_wedge(tol(ta), tol(tb), ratio(gap));
+    SCOPED_TRACE("tol rA " + tol(ta) + " tol rB " + tol(tb) + " gap " + ratio(gap));
+    ToleranceResult whole = analyze_tolerances_text(text, options());
+    tolerance_detail::whole_space_confirmations_switch() = false;
+    ToleranceResult kernels = analyze_tolerances_text(text, options());
+    tolerance_detail::whole_space_confirmations_switch() = true;
+    ASSERT_TRUE(whole.contact_changes && kernels.contact_changes);
+    const std::vector<ContactChange>& a = whole.contact_changes->changes;
+    const std::vector<ContactChange>& b = kernels.contact_changes->changes;
+    ASSERT_EQ(a.size(), 2u) << tolerance_text_report(whole);
+    ASSERT_EQ(a.size(), b.size()) << tolerance_text_report(kernels);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].kind, b[i].kind);
+      EXPECT_EQ(a[i].contact, b[i].contact);
+      EXPECT_EQ(a[i].other, b[i].other);
+      EXPECT_EQ(a[i].witness, b[i].witness);
+      EXPECT_EQ(a[i].positions, b[i].positions);
+      EXPECT_TRUE(a[i].confirmed) << a[i].evidence;
+      EXPECT_EQ(a[i].confirmed, b[i].confirmed) << b[i].evidence;
+      EXPECT_EQ(a[i].confirmed_positions, b[i].confirmed_positions) << a[i].evidence << " / " << b[i].evidence;
+      EXPECT_NE(a[i].evidence.find("exact C-space at the witness"), std::string::npos) << a[i].evidence;
+      EXPECT_NE(b[i].evidence.find("contact kernels"), std::string::npos) << b[i].evidence;
+    }
   }
 }
 

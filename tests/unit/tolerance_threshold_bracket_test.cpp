@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "test_paths.hpp"
+#include "tolerance/exact_order.hpp"
 
 namespace hipair {
 namespace {
@@ -116,6 +117,46 @@ TEST(ToleranceThresholdBracket, GeneratedParameterSubsetsGiveConfirmedBrackets) 
   // roots cross where no channel is: docs/tolerance.md "The threshold, bracketed"), the
   // second is confirmed.
   EXPECT_GE(confirmed, 1);
+}
+
+// The threshold's and the bracket's exact confirmations on the kernel slices at the witness (a
+// large pair's: no C-space; session 59) against those on the witness' whole exact C-space, on
+// the Geneva pair (small enough to build whole): the whole box (confirmed) and seed 12's first
+// parameter subset, whose corner crossing the exact C-space refutes (see above): the kernel
+// slices must refute it too.
+TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces) {
+  Model nominal = read_model_file(geneva());
+  std::vector<std::string> subset{"pin-radius"};
+  std::mt19937 random(12);
+  for (const Parameter& p : nominal.parameters)
+    if (p.range.lo < p.range.hi && p.name != "pin-radius" && random() % 2 == 0) subset.push_back(p.name);
+  for (const std::vector<std::string>& vary : {std::vector<std::string>{}, subset}) {
+    SCOPED_TRACE(std::to_string(vary.size()) + " parameters varied (0: all)");
+    ToleranceOptions options;
+    options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
+    options.positions = 720;
+    options.relative_accuracy = 0.5;
+    options.threshold = true;
+    options.threshold_parameters = vary;
+    options.threshold_bracket = 1e-2;
+    ToleranceResult whole = analyze_tolerances(geneva(), options);
+    tolerance_detail::whole_space_confirmations_switch() = false;
+    ToleranceResult kernels = analyze_tolerances(geneva(), options);
+    tolerance_detail::whole_space_confirmations_switch() = true;
+    ASSERT_TRUE(whole.threshold && kernels.threshold);
+    const JammingThreshold &a = *whole.threshold, &b = *kernels.threshold;
+    ASSERT_TRUE(a.found && a.bracketed) << a.bracket_evidence;
+    EXPECT_EQ(a.confirmed, b.confirmed) << a.evidence << " / " << b.evidence;
+    EXPECT_EQ(a.confirmed_scale, b.confirmed_scale);
+    EXPECT_EQ(a.worst_values, b.worst_values);
+    EXPECT_NE(b.evidence.find("contact kernels"), std::string::npos) << b.evidence;
+    EXPECT_EQ(a.bracketed, b.bracketed);
+    EXPECT_TRUE(a.bracket_above == b.bracket_above);
+    EXPECT_EQ(a.bracket_values, b.bracket_values);
+    EXPECT_EQ(a.bracket_confirmed, b.bracket_confirmed) << a.bracket_evidence << " / " << b.bracket_evidence;
+    if (vary.empty()) EXPECT_TRUE(b.bracket_confirmed) << b.bracket_evidence;
+    if (b.bracket_confirmed) EXPECT_NE(b.bracket_evidence.find("contact kernels"), std::string::npos) << b.bracket_evidence;
+  }
 }
 
 // Session 11 produced a no-jam certificate at 4157/500 (0.98 x the linearised threshold) that
