@@ -44,6 +44,34 @@ bool fixed_axis(const Motion& motion) {
          motion.kind == Motion::Kind::translation;
 }
 
+// Why a pair of the model is not one the kinematic analysis takes (its parts both fixed-axis
+// and not both fixed), named with its JSON pointer, as `hipair cspace` names a pair it does
+// not build; empty for a pair it takes.
+std::string pair_refusal(const Model& model, const PairSpec& spec) {
+  const Part& a = model.parts[spec.first];
+  const Part& b = model.parts[spec.second];
+  auto word = [](Motion::Kind kind) {
+    switch (kind) {
+      case Motion::Kind::fixed: return "fixed";
+      case Motion::Kind::rotation: return "rotating";
+      case Motion::Kind::translation: return "translating";
+      case Motion::Kind::planar: return "planar";
+      case Motion::Kind::pin_slot: return "pin-slot";
+    }
+    return "?";
+  };
+  auto described = [&](const Part& part) { return std::string(word(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")"; };
+  const std::string pair = "pair '" + a.name + "':'" + b.name + "' (" + spec.pointer + ")";
+  if (motion_dof(a.motion) == 0 && motion_dof(b.motion) == 0) return pair + ": both parts are fixed";
+  if (fixed_axis(a.motion) && fixed_axis(b.motion)) return {};
+  const Part& odd = fixed_axis(a.motion) ? b : a;
+  const Part& other = &odd == &a ? b : a;
+  return pair + ": the " + described(odd) + " against the " + described(other) + " has a C-space of " +
+         std::to_string(a.motion.degrees_of_freedom() + b.motion.degrees_of_freedom()) +
+         " dimensions, which the kinematic analysis does not take (analyze takes pairs of fixed, rotating and translating "
+         "parts, and a pin-slot part's work cycle; `hipair cspace` builds a planar part's C-space against a fixed part)";
+}
+
 // Rounds a rational to the grid 2^-bits (nearest).
 Rational round_to_bits(const Rational& value, int bits) {
   mpz_class scale = mpz_class(1) << bits;
@@ -286,8 +314,15 @@ Chain build_chain(const Model& model, std::size_t driver, const std::vector<CSpa
       if (slicer->other_moves() && slicer->other() == chain.parts[k].part)
         charts.insert(charts.end(), slicer->other_charts().begin(), slicer->other_charts().end());
     }
-    if (charts.empty())
-      throw GeometryError("part '" + model.parts[chain.parts[k].part].name + "' is in no pair that can be analysed");
+    if (charts.empty()) {
+      // (the driver: any other chain part is reached through a pair the analysis takes)
+      std::string reasons;
+      for (const PairSpec& spec : model.pairs)
+        if (spec.first == chain.parts[k].part || spec.second == chain.parts[k].part)
+          if (std::string why = pair_refusal(model, spec); !why.empty()) reasons += "; " + why;
+      throw GeometryError("part '" + model.parts[chain.parts[k].part].name + "' is in no pair that can be analysed" +
+                          (reasons.empty() ? std::string() : ":" + reasons.substr(1)));
+    }
     chain.parts[k].line = make_axis(model, chain.parts[k].part, charts);
   }
   chain.other_chart_of_piece.resize(chain.slicers.size());

@@ -197,6 +197,11 @@ Vec<T> lift_point(const Point& p) {
 template <class T>
 struct Rotation {
   T c, s;
+  // 1 - c and s for a point's lever term (I - R) l (see Aff): formed without cancellation and
+  // rounded relatively (certified intervals by rotation_over, boxes by rotation_box; the exact
+  // types form a + l + R (b - l) instead)
+  T versine{}, sine{};
+  bool levered = false;   // versine and sine formed
   Vec<T> apply(const Vec<T>& v) const { return {c * v.x - s * v.y, s * v.x + c * v.y}; }
 };
 
@@ -213,8 +218,9 @@ TrigPoly poly_sin(bool flip) {
   return flip ? -s : s;
 }
 
-// cos, sin enclosures over u in [lo, hi] (any interval; flip: the half turn added).
-Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip) {
+// cos, sin enclosures over u in [lo, hi] (any interval; flip: the half turn added); with
+// `levered`, also the versine and sine for points with a lever term (see Aff).
+Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip, bool levered = false) {
   Box u{lo, hi};
   Box u2 = u * u;
   if (sgn(lo) <= 0 && sgn(hi) >= 0) u2.lo = 0;
@@ -241,10 +247,32 @@ Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip) {
     out.hi.canonicalize();
     return out;
   };
+  // 1 - c = 2 u^2 / (1 + u^2) and s for the lever term, rounded outwards to 64 significant bits
+  // (a lever of 10^30 mm turned by 10^-29: 2^-64 absolute would blur it by 10^11 mm)
+  auto relative = [](Box b) {
+    auto round = [](const Rational& x, bool up) {
+      if (sgn(x) == 0) return x;
+      const long bits = static_cast<long>(mpz_sizeinbase(x.get_num_mpz_t(), 2)) - static_cast<long>(mpz_sizeinbase(x.get_den_mpz_t(), 2));
+      const long k = std::max(64L, 66 - bits);
+      const mpz_class scale = mpz_class(1) << k;
+      mpz_class q, n = x.get_num() * scale;
+      if (up) mpz_cdiv_q(q.get_mpz_t(), n.get_mpz_t(), x.get_den_mpz_t());
+      else mpz_fdiv_q(q.get_mpz_t(), n.get_mpz_t(), x.get_den_mpz_t());
+      Rational out(q, scale);
+      out.canonicalize();
+      return out;
+    };
+    return Box{round(b.lo, false), round(b.hi, true)};
+  };
+  Box versine, sine;
+  if (levered) {
+    versine = relative(*divide(Box(Rational(2)) * u2, den));
+    sine = relative(s);
+  }
   c = clamp(outward(c));
   s = clamp(outward(s));
-  if (flip) return {-c, -s};
-  return {c, s};
+  if (flip) return {-c, -s, levered ? Box(Rational(2)) - versine : versine, -sine, levered};   // (1 - (-c) = 2 - (1 - c))
+  return {c, s, versine, sine, levered};
 }
 
 // ---------------------------------------------------------------- the pair's formulas
@@ -451,6 +479,15 @@ class Certifier {
   void remember(bool on) { remember_ = on; }
   // Where probes rejected by the interval filter are counted.
   void count_filtered_into(std::size_t* counter) { filtered_ = counter; }
+  // The event points carry a lever term (I - R) l with |l.x| + |l.y| up to `reach` (a pin-slot
+  // window about a centre far from the pivot, CurveFinder): roots are refined to 2^-bits over
+  // the least power of two at least `reach`, so that the points' boxes stay as narrow as
+  // without a lever (10^30 mm turned through 2^-52: 10^14 mm).
+  void lever_reach(const Rational& reach) {
+    levered_ = sgn(reach) != 0;
+    refine_scale_ = 1;
+    while (refine_scale_ < reach) refine_scale_ *= 2;
+  }
 
   // Is the configuration (point(c, s), theta) certainly overlapping (inside blocked space)?
   template <class PointOf>
@@ -474,9 +511,9 @@ class Certifier {
     }
     Real t = root;
     for (int bits : {20, 52}) {
-      algebra::refine_dyadically(t, Rational(1) / Rational(mpz_class(1) << bits));
+      algebra::refine_dyadically(t, Rational(1) / Rational(refine_scale_ * (mpz_class(1) << bits)));
       if (t.exact) return certainly_blocked(t, false, point_of);
-      Rotation<Box> rb = rotation_box(t.lower, t.upper, false);
+      Rotation<Box> rb = rotation_box(t.lower, t.upper, false, levered_);
       std::optional<Vec<Box>> pb = point_of(rb);
       if (!pb) continue;
       // a vertex or edge midpoint of one part certainly strictly inside the other; with the
@@ -581,6 +618,8 @@ class Certifier {
   std::vector<std::pair<kernels::Interval, kernels::Interval>> probes_free_iv_, probes_fixed_iv_;
   std::vector<IntervalEdge> edges_fixed_, edges_free_;
   std::size_t* filtered_ = nullptr;
+  mpz_class refine_scale_ = 1;   // see lever_reach
+  bool levered_ = false;
   // exact oracle answers at rational configurations: (half turn?, u, x, y)
   mutable std::map<std::array<Rational, 4>, bool> exact_answers_;
   // the oracle's answers at mid configurations: (u, x, y) (see overlap_at)
@@ -1089,19 +1128,27 @@ class Finder {
 // span) and the ends of the two spans of an arc–arc contact meeting. Each root is checked
 // exactly against the curves' extents (sign_at) and dropped only when certainly blocked.
 
-// A point a + R b.
+// A point a + R b + (I - R) l. The lever l (a pin-slot window seen about a centre other than
+// the part's pivot P: (I - R)(P - Q), see CurveFinder) is kept apart so that certified double
+// intervals form it from 1 - cos and sin, without the cancellation of a + R b at |l| = 10^30.
 struct Aff {
-  Vec<Rational> a{Rational(0), Rational(0)}, b{Rational(0), Rational(0)};
-  mutable std::optional<std::array<IV, 4>> enclosed;   // a.x, a.y, b.x, b.y (see at<IV>)
+  Vec<Rational> a{Rational(0), Rational(0)}, b{Rational(0), Rational(0)}, l{Rational(0), Rational(0)};
+  mutable std::optional<std::array<IV, 6>> enclosed;   // a.x, a.y, b.x, b.y, l.x, l.y (see at<IV>)
   mutable std::optional<Vec<TrigPoly>> polynomial;     // at the rotation (poly_cos, poly_sin) (see at<TrigPoly>)
+  bool levered() const { return sgn(l.x) != 0 || sgn(l.y) != 0; }
+  bool operator==(const Aff& o) const { return a.x == o.a.x && a.y == o.a.y && b.x == o.b.x && b.y == o.b.y && l.x == o.l.x && l.y == o.l.y; }
 };
-Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b, {}, {}}; }
-Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b, {}, {}}; }
-Aff fixed_point(const Vec<Rational>& v) { return {v, {Rational(0), Rational(0)}, {}, {}}; }
-Aff turning_point(const Vec<Rational>& v) { return {{Rational(0), Rational(0)}, v, {}, {}}; }
+Aff operator+(const Aff& x, const Aff& y) { return {x.a + y.a, x.b + y.b, x.l + y.l, {}, {}}; }
+Aff operator-(const Aff& x, const Aff& y) { return {x.a - y.a, x.b - y.b, x.l - y.l, {}, {}}; }
+const Vec<Rational> zero_vec{Rational(0), Rational(0)};
+Aff fixed_point(const Vec<Rational>& v) { return {v, zero_vec, zero_vec, {}, {}}; }
+Aff turning_point(const Vec<Rational>& v) { return {zero_vec, v, zero_vec, {}, {}}; }
+Aff lever_point(const Vec<Rational>& v) { return {zero_vec, zero_vec, v, {}, {}}; }
 
+// (exact number types: a + l + R (b - l); boxes and intervals below)
 template <class T>
 Vec<T> at(const Aff& p, const Rotation<T>& r) {
+  if (p.levered()) return Vec<T>{T(p.a.x + p.l.x), T(p.a.y + p.l.y)} + r.apply(Vec<T>{T(p.b.x - p.l.x), T(p.b.y - p.l.y)});
   return Vec<T>{T(p.a.x), T(p.a.y)} + r.apply(Vec<T>{T(p.b.x), T(p.b.y)});
 }
 // (the event polynomials are all formed at the rotation (poly_cos(false), poly_sin(false)): a
@@ -1112,17 +1159,36 @@ bool standard_rotation(const Rotation<TrigPoly>& r) {
 }
 template <>
 Vec<TrigPoly> at(const Aff& p, const Rotation<TrigPoly>& r) {
-  auto form = [&] { return Vec<TrigPoly>{TrigPoly(p.a.x), TrigPoly(p.a.y)} + r.apply(Vec<TrigPoly>{TrigPoly(p.b.x), TrigPoly(p.b.y)}); };
+  auto form = [&] {
+    const Vec<Rational> a = p.a + p.l, b = p.b - p.l;
+    return Vec<TrigPoly>{TrigPoly(a.x), TrigPoly(a.y)} + r.apply(Vec<TrigPoly>{TrigPoly(b.x), TrigPoly(b.y)});
+  };
   if (!standard_rotation(r)) return form();
   if (!p.polynomial) p.polynomial = form();
   return *p.polynomial;
 }
-// (the interval filter: the enclosures of a point's rationals, formed once per point)
+// (boxes: the lever term from the rotation's versine and sine)
+template <>
+Vec<Box> at(const Aff& p, const Rotation<Box>& r) {
+  if (p.levered() && !r.levered) {   // (no versine formed: the exact form, enclosed)
+    const Vec<Rational> a = p.a + p.l, b = p.b - p.l;
+    return Vec<Box>{Box(a.x), Box(a.y)} + r.apply(Vec<Box>{Box(b.x), Box(b.y)});
+  }
+  Vec<Box> out = Vec<Box>{Box(p.a.x), Box(p.a.y)} + r.apply(Vec<Box>{Box(p.b.x), Box(p.b.y)});
+  if (p.levered()) out = out + Vec<Box>{r.versine * Box(p.l.x) + r.sine * Box(p.l.y), r.versine * Box(p.l.y) - r.sine * Box(p.l.x)};
+  return out;
+}
+// (the interval filter: the enclosures of a point's rationals, formed once per point; the lever
+// term (I - R) l = ((1 - c) l.x + s l.y, (1 - c) l.y - s l.x) from the rotation's versine)
 template <>
 Vec<IV> at(const Aff& p, const Rotation<IV>& r) {
-  if (!p.enclosed) p.enclosed = std::array<IV, 4>{IV(p.a.x), IV(p.a.y), IV(p.b.x), IV(p.b.y)};
+  if (!p.enclosed) p.enclosed = std::array<IV, 6>{IV(p.a.x), IV(p.a.y), IV(p.b.x), IV(p.b.y), IV(p.l.x), IV(p.l.y)};
   const auto& e = *p.enclosed;
-  return Vec<IV>{e[0], e[1]} + r.apply(Vec<IV>{e[2], e[3]});
+  if (p.levered() && !r.levered)   // (no versine formed: the exact form, enclosed)
+    return Vec<IV>{e[0] + e[4], e[1] + e[5]} + r.apply(Vec<IV>{e[2] - e[4], e[3] - e[5]});
+  Vec<IV> out = Vec<IV>{e[0], e[1]} + r.apply(Vec<IV>{e[2], e[3]});
+  if (p.levered()) out = out + Vec<IV>{r.versine * e[4] + r.s * e[5], r.versine * e[5] - r.s * e[4]};
+  return out;
 }
 
 // Directions counter-clockwise from s to e of an arc of rational radius (|s| = |e| = radius).
@@ -1168,10 +1234,16 @@ using Condition = ConditionOf<TrigPoly>;
 
 class CurveFinder {
  public:
-  CurveFinder(const Part& fixed, const Part& free, CriticalStatistics& stats)
-      : stats_(stats), cert_(fixed, free, free.motion.pivot) {
+  // The curves are formed about `centre` (the free part turning about it; default its pivot).
+  // A pin-slot part turning about its pivot P is the part turning about Q = centre, translated
+  // by (I - R)(P - Q): the slices are the same, shifted by that lever term, which the pin-slot
+  // window takes (pin_slot_window). The critical angles are the same.
+  CurveFinder(const Part& fixed, const Part& free, CriticalStatistics& stats, const std::optional<Point>& centre = std::nullopt)
+      : stats_(stats), cert_(fixed, free, centre ? *centre : free.motion.pivot) {
     cert_.count_filtered_into(&stats.probes_filtered);
-    const Point& pivot = free.motion.pivot;
+    const Point& pivot = centre ? *centre : free.motion.pivot;
+    lever_ = Vec<Rational>{Rational(free.motion.pivot.x - pivot.x), Rational(free.motion.pivot.y - pivot.y)};
+    cert_.lever_reach(Rational(abs(lever_.x) + abs(lever_.y)));
     auto rel = [&](const Point& p) { return Vec<Rational>{Rational(p.x - pivot.x), Rational(p.y - pivot.y)}; };
     auto features = [&](const Part& part, Features& f) {
       for (const auto& loop : part.loops)
@@ -1212,8 +1284,9 @@ class CurveFinder {
   void pin_slot_window(const Vec<Rational>& d, const Rational& s_lo, const Rational& s_hi,
                        const std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>>& translating) {
     window_ = Window{d, s_lo, s_hi, translating};
+    // (about a centre Q other than the pivot P: every window point shifted by (I - R)(P - Q))
     auto extra = [&](const Aff& p0, const Aff& dd, int pins) {
-      add_line(p0, dd);
+      add_line(p0 + lever_point(lever_), dd);
       curves_.back().extra = true;
       curves_.back().pins = pins;
     };
@@ -1256,7 +1329,6 @@ class CurveFinder {
 
   std::vector<Critical> run() {
     compute_masks();
-    const std::size_t n = curves_.size();
     if (degenerate_) window_degenerate();
     auto skip = [&](std::initializer_list<std::size_t> ids) {
       if (!only_extra_) return false;
@@ -1265,23 +1337,7 @@ class CurveFinder {
       return true;
     };
     if (narrow_ && filters_ && range_ && window_) return run_narrowed(skip);   // (filters off: the plain path)
-    for (std::size_t i = 0; i < n; ++i)
-      if (!skip({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < n; ++j) {
-        if (i == j || mask(i, j) == 0 || skip({i, j})) continue;
-        for (std::size_t k = 0; k < curves_[i].ends.size(); ++k) end_on_curve(i, k, j);
-        if (i < j && (curves_[i].circle || curves_[j].circle)) tangent(i, j);
-      }
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        std::uint64_t mij = mask(i, j);
-        if (mij == 0) continue;
-        for (std::size_t k = j + 1; k < n; ++k) {
-          std::uint64_t m = mij & mask(i, k) & mask(j, k);
-          if (m != 0 && !skip({i, j, k})) concurrent(i, j, k, m);
-        }
-      }
+    candidates([&](std::initializer_list<std::size_t> ids) { return !skip(ids); });
     return merged(std::move(found_));
   }
 
@@ -1452,16 +1508,21 @@ class CurveFinder {
     auto at_point = [](double u) {
       const kernels::Interval x = kernels::Interval::point(u), one(1);
       const kernels::Interval d = one + x * x;
-      return std::make_pair((one - x * x) / d, kernels::Interval(2) * x / d);
+      return std::make_tuple((one - x * x) / d, kernels::Interval(2) * x / d, kernels::Interval(2) * x * x / d);
     };
-    auto [ca, sa] = at_point(a);
-    auto [cb, sb] = at_point(b);
+    auto [ca, sa, va] = at_point(a);
+    auto [cb, sb, vb] = at_point(b);
     kernels::Interval c = b <= 0.0   ? kernels::Interval(ca.lo, cb.hi)
                           : a >= 0.0 ? kernels::Interval(cb.lo, ca.hi)
                                      : kernels::Interval(std::min(ca.lo, cb.lo), 1.0);
     kernels::Interval sn(sa.lo, sb.hi);
     if (c.hi > 1.0) c.hi = 1.0;
-    return Rotation<IV>{IV(c), IV(sn)};
+    // 1 - c = 2 u^2 / (1 + u^2): decreasing up to 0, then increasing
+    kernels::Interval versine = b <= 0.0   ? kernels::Interval(vb.lo, va.hi)
+                                : a >= 0.0 ? kernels::Interval(va.lo, vb.hi)
+                                           : kernels::Interval(0.0, std::max(va.hi, vb.hi));
+    if (versine.lo < 0.0) versine.lo = 0.0;
+    return Rotation<IV>{IV(c), IV(sn), IV(versine), IV(sn), true};
   }
 
   // The verdict of an event's conditions at a root without forming them as polynomials:
@@ -1651,11 +1712,13 @@ class CurveFinder {
   // v = value m^2 den^2 (k != 0), one of the two polynomials below is 0 and the other is
   // (hi - lo) m^2 den^2 >= 0; with k = 0 or den = 0 both are 0: the condition holds.
   template <class T>
-  void in_window(const Vec<T>& num, const T& den, const Rotation<T>& r, std::vector<ConditionOf<T>>& out, int skip = 0) const {
+  void in_window(const Vec<T>& num_about_centre, const T& den, const Rotation<T>& r, std::vector<ConditionOf<T>>& out, int skip = 0) const {
     if (!window_ || skip_conditions_) return;
     const Window& w = *window_;
     Vec<T> rd = at(turning_point(w.d), r);
     const T dd = den * den;
+    // about a centre other than the pivot: the point less the window's shift (I - R)(P - Q)
+    const Vec<T> num = sgn(lever_.x) == 0 && sgn(lever_.y) == 0 ? num_about_centre : num_about_centre - scale(den, at(lever_point(lever_), r));
     // lo <= v / m <= hi for v = value * m * den^2 and m^2 den^2 > 0: signs of v - lo m^2 den^2, hi m^2 den^2 - v
     auto between = [&](const T& v, const T& m2, const Rational& lo, const Rational& hi) {
       out.push_back({{v - T(lo) * m2 * dd, T(hi) * m2 * dd - v}, false});
@@ -1864,12 +1927,11 @@ class CurveFinder {
     // of their directions != 0), which stays away from 0 where the originals vanish; and the
     // window conditions pinned by a window edge among the three are left out (see in_window).
     const int pinned = c[0]->pins | c[1]->pins | c[2]->pins;
-    auto same_point = [](const Aff& x, const Aff& y) { return x.a.x == y.a.x && x.a.y == y.a.y && x.b.x == y.b.x && x.b.y == y.b.y; };
     auto common_end = [&](const Curve* x, const Curve* y) {
       if (x->circle || y->circle || !x->spans.empty() || !y->spans.empty()) return false;
       for (const auto& ex : x->ends)
         for (const auto& ey : y->ends)
-          if (same_point(ex.point, ey.point)) return true;
+          if (ex.point == ey.point) return true;
       return false;
     };
     std::array<bool, 3> at_end{false, false, false};
@@ -1951,11 +2013,12 @@ class CurveFinder {
       }
       lo.canonicalize();
       hi.canonicalize();
-      Rotation<Box> rot = rotation_box(lo, hi, flip);
+      Rotation<Box> rot = rotation_box(lo, hi, flip, sgn(lever_.x) != 0 || sgn(lever_.y) != 0);
       // at(p, rot) with the turned part R b formed once per distinct b in this range (many
       // curves share the free part's vertex b): the same arithmetic, the same boxes
       std::map<std::pair<Rational, Rational>, Vec<Box>> turned;
       auto at_range = [&](const Aff& p) {
+        if (p.levered()) return at(p, rot);
         auto [it, fresh] = turned.try_emplace(std::make_pair(p.b.x, p.b.y));
         if (fresh) it->second = rot.apply(Vec<Box>{Box(p.b.x), Box(p.b.y)});
         return Vec<Box>{Box(p.a.x), Box(p.a.y)} + it->second;
@@ -2100,6 +2163,30 @@ class CurveFinder {
 
   std::uint64_t mask(std::size_t i, std::size_t j) const { return masks_[i * curves_.size() + j]; }
 
+  // Every candidate event of the curves whose ids (one, two or three) pass `wanted` and whose
+  // masks meet: curves appearing, an end on another curve, tangencies, three curves concurrent.
+  template <class Wanted>
+  void candidates(Wanted wanted) {
+    const std::size_t n = curves_.size();
+    for (std::size_t i = 0; i < n; ++i)
+      if (wanted({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        if (i == j || mask(i, j) == 0 || !wanted({i, j})) continue;
+        for (std::size_t k = 0; k < curves_[i].ends.size(); ++k) end_on_curve(i, k, j);
+        if (i < j && (curves_[i].circle || curves_[j].circle)) tangent(i, j);
+      }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        std::uint64_t mij = mask(i, j);
+        if (mij == 0) continue;
+        for (std::size_t k = j + 1; k < n; ++k) {
+          std::uint64_t m = mij & mask(i, k) & mask(j, k);
+          if (m != 0 && wanted({i, j, k})) concurrent(i, j, k, m);
+        }
+      }
+  }
+
   // run() for a pin-slot part far from its pivot (narrow_to_window). Its curves sweep
   // |b - pivot| dtheta within an angle range: 10^6 mm from the pivot, each of the 64 mask ranges
   // of +-8 degrees moves them 4 400 mm, so every curve's box meets every other's and the window's
@@ -2119,24 +2206,7 @@ class CurveFinder {
       return std::all_of(ids.begin(), ids.end(), [&](std::size_t id) { return curves_[id].extra; });
     };
     auto events = [&](bool window_edges_only) {
-      auto wanted = [&](std::initializer_list<std::size_t> ids) { return !skip(ids) && all_extra(ids) == window_edges_only; };
-      for (std::size_t i = 0; i < n; ++i)
-        if (wanted({i}) && std::find(outside_.begin(), outside_.end(), i) == outside_.end()) appearing(i);
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = 0; j < n; ++j) {
-          if (i == j || mask(i, j) == 0 || !wanted({i, j})) continue;
-          for (std::size_t k = 0; k < curves_[i].ends.size(); ++k) end_on_curve(i, k, j);
-          if (i < j && (curves_[i].circle || curves_[j].circle)) tangent(i, j);
-        }
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i + 1; j < n; ++j) {
-          std::uint64_t mij = mask(i, j);
-          if (mij == 0) continue;
-          for (std::size_t k = j + 1; k < n; ++k) {
-            std::uint64_t m = mij & mask(i, k) & mask(j, k);
-            if (m != 0 && wanted({i, j, k})) concurrent(i, j, k, m);
-          }
-        }
+      candidates([&](std::initializer_list<std::size_t> ids) { return !skip(ids) && all_extra(ids) == window_edges_only; });
     };
     events(true);
     for (int step = 0; step < 64; ++step) {
@@ -2168,6 +2238,7 @@ class CurveFinder {
   CriticalStatistics& stats_;
   Certifier cert_;
   std::optional<Window> window_;
+  Vec<Rational> lever_{Rational(0), Rational(0)};   // P - Q: the pivot less the curves' centre
   std::optional<std::pair<Rational, Rational>> range_;
   mutable std::vector<std::optional<Rotation<IV>>> pieces_;   // see certainly_no_root
   std::vector<std::size_t> outside_;   // curves never meeting the window's box
@@ -2222,13 +2293,16 @@ std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& f
 std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
                                                const std::optional<std::pair<Rational, Rational>>& tau_range,
-                                               CriticalStatistics& statistics, bool filters) {
-  CurveFinder finder(other, pin, statistics);
-  finder.use_filters(filters);
-  if (tau_range) finder.restrict_to(tau_range->first, tau_range->second);
+                                               CriticalStatistics& statistics, bool filters, const std::optional<Point>& centre) {
   // a pin-slot part whose reach about its pivot exceeds 16 times its reach about its own first
   // vertex (the pivot far from it; the film advance's follower: 0.7): the range narrowed to the
-  // window (run_narrowed). Ordinary parts keep the one pass over the whole range.
+  // window (run_narrowed); beyond 2^20 times, the curves formed about that vertex Q and the
+  // window shifted by (I - R)(P - Q) instead (CurveFinder): about the far pivot P the curves
+  // a - R u cancel 10^30 mm to a few mm, beyond the certified double intervals of the masks, the
+  // filter and the certificates (session 59: the pivot at 10^30 mm gave no answer in 250 s).
+  // Ordinary parts keep the one pass over the whole range, about the pivot.
+  bool far = false;
+  std::optional<Point> about = centre;
   if (!pin.loops.empty() && !pin.loops.front().edges.empty()) {
     const Point& first = pin.loops.front().edges.front().source;
     Rational about_pivot = 0, own = 0;
@@ -2238,8 +2312,13 @@ std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pi
           about_pivot = std::max(about_pivot, Rational(abs(p->x - pin.motion.pivot.x) + abs(p->y - pin.motion.pivot.y)));
           own = std::max(own, Rational(abs(p->x - first.x) + abs(p->y - first.y)));
         }
-    finder.narrow_to_window(about_pivot > 16 * own);
+    far = about_pivot > 16 * own;
+    if (!about && about_pivot > Rational(mpz_class(1) << 20) * own) about = first;
   }
+  CurveFinder finder(other, pin, statistics, about);
+  finder.use_filters(filters);
+  if (tau_range) finder.restrict_to(tau_range->first, tau_range->second);
+  finder.narrow_to_window(far);
   const Vec<Rational> d{pin.motion.direction.x, pin.motion.direction.y};
   std::optional<std::pair<Vec<Rational>, std::pair<Rational, Rational>>> translating;
   if (q_range) translating.emplace(Vec<Rational>{other.motion.direction.x, other.motion.direction.y}, *q_range);

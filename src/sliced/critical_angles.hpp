@@ -75,10 +75,15 @@ std::vector<Critical> critical_angles_with_arcs(const Part& fixed, const Part& f
 /// root there meeting its conditions, and the exact overlap oracle's answers at rational
 /// configurations are remembered; the result is the same as without (`filters` false: the
 /// plain exact path, for tests). `statistics.polynomials` counts the polynomials formed.
+/// `centre`: the point the part's curves turn about (the part about its pivot P is the part
+/// about Q translated by (I - R)(P - Q): the same critical values); by default its first vertex
+/// when its reach about P exceeds 2^20 times its reach about that vertex (a far pivot: about P
+/// the curves cancel beyond the certified doubles), else P.
 std::vector<Critical> pin_slot_critical_values(const Part& other, const Part& pin, const Rational& s_lo, const Rational& s_hi,
                                                const std::optional<std::pair<Rational, Rational>>& q_range,
                                                const std::optional<std::pair<Rational, Rational>>& tau_range,
-                                               CriticalStatistics& statistics, bool filters = true);
+                                               CriticalStatistics& statistics, bool filters = true,
+                                               const std::optional<Point>& centre = std::nullopt);
 
 /// An exact real (algebra) as the public AlgebraicNumber, and back.
 AlgebraicNumber algebraic_of(const cspace::algebra::Real& r);

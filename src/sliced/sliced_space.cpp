@@ -655,6 +655,18 @@ struct SlicedSpace::Impl {
       // short integers; the normalised copy's rationals carry the 5^400 of a decimal 10^400)
       const Part* a = &model.parts[fixed];
       const Part* b = &model.parts[free];
+      // A far pivot (`reference`): the critical angles and the crossings' frame are about Q, so
+      // the scale-free factor and the frame's size are measured with the pivot at Q. Measured
+      // with a pivot 10^400 mm away (the model normalised by 2^-1325) the factor was refused (no
+      // shorter integers) and every candidate and frame slice carried 1 300-bit rationals: the peg
+      // in the slot 10^400 mm from its pivot took 8 times the critical angles' time and 70 times
+      // the slices' of the peg about its centre (session 59).
+      std::optional<Part> about_reference;
+      if (reference) {
+        about_reference = *b;
+        about_reference->motion.pivot = *reference;
+        b = &*about_reference;
+      }
       std::optional<Part> scaled_a, scaled_b;
       if (auto k = sliced::scale_free_factor(*a, *b, length_unit_exponent != 0)) {
         scaled_a = sliced::scaled_part(*a, *k);
@@ -693,7 +705,7 @@ struct SlicedSpace::Impl {
       } else {
         pair = sliced::polygonal_pair(model.parts[fixed], model.parts[free]);   // model units (steady_along)
         if (options.progress) options.progress("critical angles");
-        if (scaled_a || near_pivot) {
+        if (scaled_a || near_pivot || about_reference) {
           sliced::PolygonalPair scaled = sliced::polygonal_pair(*a, *b);
           critical = sliced::critical_angles(scaled, cs);
         } else {

@@ -11,7 +11,8 @@
 #  3. `show --svg` under a regular file is refused before the model is read (a broken model
 #     file is not what the message names), nothing written;
 #  4. `simulate --t-end 1e300` with pictures: the too-many-frames message names --t-end.
-#  (2b, session 58: a planar part against a rotating or translating part: the refusal names the pair.)
+#  (2b, session 58: a planar part against a rotating or translating part: the refusal names the pair;
+#   session 59: `analyze` of such a model names the pair and the reason likewise.)
 # usage: run_sliced_zero_clearance_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
 # shellcheck source=seeded_test.sh
@@ -84,6 +85,16 @@ PY
       "$work/moving.out" || fail "planar against $motion ($args): $(head -c 400 "$work/moving.out")"
     [ -e "$work/moving.json" ] && fail "planar against $motion ($args): wrote the JSON"
   done
+  # `analyze` names the pair and why likewise (session 59; until then "part 'plate' is in no
+  # pair that can be analysed", naming neither the pair nor the reason)
+  rm -rf "$work/moving-analysis"
+  "$hipair" analyze "$work/moving-plate.json" --out "$work/moving-analysis" >"$work/moving.out" 2>&1
+  code=$?
+  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze, planar against $motion: exit $code"
+  [ "$(grep -c . "$work/moving.out")" = 1 ] || fail "analyze, planar against $motion: not one line: $(head -c 400 "$work/moving.out")"
+  grep -Eq "part 'plate' is in no pair that can be analysed: pair 'plate':'peg' \(/pairs/0\): the planar part 'peg' \(/parts/1/motion\) against the (rotating|translating) part 'plate' \(/parts/0/motion\) has a C-space of 4 dimensions, which the kinematic analysis does not take" \
+    "$work/moving.out" || fail "analyze, planar against $motion: $(head -c 400 "$work/moving.out")"
+  [ -e "$work/moving-analysis/report.json" ] && fail "analyze, planar against $motion: wrote report.json"
 done
 
 # 3. show --svg under a regular file, before reading the model

@@ -46,12 +46,12 @@ struct Found {
 };
 
 Found find(const Part& other, const Part& pin, bool translating, bool filters, const Rational& tau_lo = Rational(-1, 4),
-           const Rational& tau_hi = Rational(1, 4)) {
+           const Rational& tau_hi = Rational(1, 4), const std::optional<Point>& centre = std::nullopt) {
   std::optional<std::pair<Rational, Rational>> q_range;
   if (translating) q_range.emplace(other.motion.translation_limits->lo, other.motion.translation_limits->hi);
   Found out;
   out.critical = sliced::pin_slot_critical_values(other, pin, pin.motion.translation_limits->lo, pin.motion.translation_limits->hi,
-                                                  q_range, std::make_pair(tau_lo, tau_hi), out.statistics, filters);
+                                                  q_range, std::make_pair(tau_lo, tau_hi), out.statistics, filters, centre);
   return out;
 }
 
@@ -223,5 +223,50 @@ TEST(SlicedPinSlotFilter, APartFarFromItsPivotGivesTheExactCriticalValues) {
   EXPECT_GE(with_values, 3u);   // the cases are not vacuous
 }
 
+// Session 59: a pin-slot part 10^30 mm from its pivot (across the slide and along it). About
+// the pivot P its curves a - R u cancel 10^30 mm to a few: the certified double masks, filter
+// and certificates saw boxes of 10^14 mm, every pair and triple was solved and no root was
+// certified irrelevant (the film advance's follower with its pin at (10^30, 40): no answer in
+// 250 s). Beyond 2^20 times its own reach the curves are formed about the part's first vertex Q
+// and the window shifted by (I - R)(P - Q) (the lever term, formed from 1 - cos and sin).
+// (a) The lever term: generated bars 10^4 ... 10^5 mm from their pivots, the filtered search
+//     about Q against the plain exact path about P: the same critical values.
+// (b) At 10^30 mm: the filtered, narrowed search against the plain exact path (both about Q;
+//     about P the plain path certifies nothing irrelevant): the same critical values.
+TEST(SlicedPinSlotFilter, APartTenToTheThirtyFromItsPivotGivesTheExactCriticalValues) {
+  std::mt19937_64 random(5959);
+  std::size_t with_values = 0;
+  mpz_class far;
+  mpz_ui_pow_ui(far.get_mpz_t(), 10, 30);
+  for (int round = 0; round < 8; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    const bool huge = round >= 4;
+    const Rational x0(static_cast<long>(44 + random() % 12), 8);
+    const std::string strip = loop_json({{x0, Rational(-2)}, {Rational(x0 + 2), Rational(-2)}, {Rational(x0 + 2), Rational(0)}, {x0, Rational(0)}});
+    const std::string bar = loop_json(star(random, 3 + static_cast<int>(random() % 2), 4, 0, 1.5, false));
+    // the pivot above or below (the bar swings across the strip: rounds 0, 1, 4, 5), or to the
+    // right or left (it swings along the strip's motion)
+    const std::string sign = round % 2 ? "-" : "";
+    const std::string distance = huge ? far.get_str() : std::to_string(10000 + random() % 90000);
+    const std::string offset = std::to_string(static_cast<long>(random() % 5) - 2);
+    const std::string pivot = round % 4 < 2 ? "[" + offset + ", " + sign + distance + "]" : "[" + sign + distance + ", " + offset + "]";
+    Model generated = read_model(R"({ "hipair": 1, "name": "generated", "parts": [
+      { "name": "strip", "motion": { "translation": { "direction": [0, 1], "limits": [-3, 3] } }, "loops": [ )" + strip + R"( ] },
+      { "name": "bar", "motion": { "pin_slot": { "pivot": )" + pivot + R"(, "direction": [1, 0], "angle_limits": [-1, 1], "limits": [-1, 2] } },
+        "loops": [ )" + bar + R"( ] } ] })");
+    const Part& bar_part = generated.parts[1];
+    const Point first = bar_part.loops.front().edges.front().source;
+    const Rational tau(1, 8192);
+    Found filtered = find(generated.parts[0], bar_part, true, true, -tau, tau, first);
+    Found exact = find(generated.parts[0], bar_part, true, false, -tau, tau, huge ? first : bar_part.motion.pivot);
+    expect_same_values(filtered.critical, exact.critical);
+    if (huge) {   // (the default centre there is Q)
+      Found by_default = find(generated.parts[0], bar_part, true, true, -tau, tau);
+      expect_same(by_default.critical, filtered.critical);
+    }
+    with_values += filtered.critical.size() > 1 ? 1 : 0;
+  }
+  EXPECT_GE(with_values, 6u);   // the cases are not vacuous (more than the window's degeneracy)
+}
 }  // namespace
 }  // namespace hipair
