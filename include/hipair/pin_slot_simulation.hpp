@@ -49,7 +49,8 @@ struct PinSlotState {
 
 /// A simulation of one pin-in-slot part among fixed parts, parts rotating at a prescribed
 /// constant speed (drivers) and at most one rotating part turned by a constant torque with its
-/// own moment of inertia (its angle a third coordinate; session 59): free flight of (s, psi) under gravity, a constant force and
+/// own moment of inertia (its angle a third coordinate; session 59) and at most one translating
+/// part pushed by the pin-slot part (its offset a coordinate, its limits stops): free flight of (s, psi) under gravity, a constant force and
 /// torque, a linear spring on s and a torsional spring on psi (Lagrange's equations, integrated
 /// with error control); every pair's contacts by straight chords in its exact 3-DOF C-space
 /// (SlicedSpace::first_crossing) within the chord deviation of the path; Newton impacts in
@@ -59,8 +60,10 @@ struct PinSlotState {
 class PinSlotSimulation {
  public:
   struct Impl;
-  /// \throws ModelError when the model is not one pin-slot part among fixed parts and rotating
-  /// drivers at constant speed, or its dynamics data cannot be used (at the data's pointer);
+  /// \throws ModelError when the model is not one pin-slot part among fixed parts, rotating
+  /// drivers at constant speed, at most one torque-driven rotating part (moment of inertia and
+  /// torque only) and at most one translating part (mass, force, linear spring, damping), or its
+  /// dynamics data cannot be used (at the data's pointer);
   /// GeometryError when a pair's C-space cannot be built.
   static PinSlotSimulation create(const Model& model, const SimulationOptions& options = {});
   /// One step: free flight until `t_limit` (time unit) or the first contact.

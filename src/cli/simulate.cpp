@@ -1020,8 +1020,9 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 }
 
 // A model with a pin-in-slot part (docs/simulation.md, "Pin-in-slot parts"): PinSlotSimulation.
-// Outputs: trajectory.csv (s, psi and their rates, the drivers' angles), events.json/.txt,
-// positions.svg and velocities.svg.
+// Outputs: trajectory.csv (s, psi and their rates, the drivers' angles; a torque-driven part's
+// angle rate and a translating part's offset and its rate), events.json/.txt, positions.svg and
+// velocities.svg.
 int run_pin_slot(const Model& model, const SimulateOptions& options) {
   SimulationOptions sim_options = stepping_options(options);
   if (options.region == "operating") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
@@ -1069,7 +1070,11 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
-  std::vector<std::size_t> drivers, torque_driven;   // (a torque-driven part: its rate too, session 59)
+  // (a torque-driven or translating part moved by its dynamics: its rate too, session 59)
+  std::vector<std::size_t> drivers, torque_driven;
+  auto coordinate = [&](std::size_t p) {
+    return std::string(model.parts[p].motion.kind == Motion::Kind::translation ? "_offset" : "_angle");
+  };
   for (std::size_t p = 0; p < model.parts.size(); ++p)
     if (p != simulation.part() && model.parts[p].motion.kind != Motion::Kind::fixed) {
       drivers.push_back(p);
@@ -1087,8 +1092,8 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     std::ostringstream csv;
     csv << "time_" << tu;
     for (int i = 0; i < 4; ++i) csv << "," << name << "_" << names[i];
-    for (std::size_t p : drivers) csv << "," << model.parts[p].name << "_angle";
-    for (std::size_t p : torque_driven) csv << "," << model.parts[p].name << "_angle_rate";
+    for (std::size_t p : drivers) csv << "," << model.parts[p].name << coordinate(p);
+    for (std::size_t p : torque_driven) csv << "," << model.parts[p].name << coordinate(p) << "_rate";
     csv << "\n";
     for (const PinSlotState& s : samples) {
       csv << number(s.time);
@@ -1122,7 +1127,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
       }
       for (std::size_t p : torque_driven) {   // a torque-driven part's angle and rate (rad, rad per time unit)
         render::TimeSeries series;
-        series.label = model.parts[p].name + (which == 0 ? " angle" : " angle_rate");
+        series.label = model.parts[p].name + " " + coordinate(p).substr(1) + (which == 0 ? "" : "_rate");
         for (const PinSlotState& s : samples) series.values.push_back(which == 0 ? s.position[p] : s.rate[p]);
         plot.series.push_back(series);
       }

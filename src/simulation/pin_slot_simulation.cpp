@@ -30,6 +30,14 @@
 // projected onto the hold gap 3/4 delta after each step, its force from the contact LCP (J M^-1
 // J^T over (s, psi)) at each step's start, lifting off where it would turn negative. The slot's
 // ends and angle limits are plastic stops held the same way.
+//
+// Session 59: a rotating part turned by a constant torque with its own moment of inertia (its
+// angle phi, the state's [4] and [5]) and a translating part pushed by the pin-slot part (its
+// offset x along its unit direction, [6] and [7]; its damping's work [8]) join (s, psi) as
+// generalized coordinates, the mass matrix block-diagonal diag(M(s), I, m_x); contact rows gain
+// their columns (-n . (k x (p - C)) and -n . d at the kernels' contact point; a held gap's
+// forward-mode derivatives), the contact problems are built over all coordinates. Without them
+// every computation is the one before (the same outputs, byte for byte).
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
@@ -103,8 +111,9 @@ SlicedConfiguration chord_point(const SlicedConfiguration& from, const SlicedCon
   return c;
 }
 
-// s, psi, s', psi', and a torque-driven rotating part's (free driver's) phi, phi' (0 without one)
-using State = std::array<double, 6>;
+// s, psi, s', psi'; a torque-driven rotating part's (free driver's) phi, phi'; a translating
+// part's (the slider's) offset x, x' and the work its damping has done (0 without them)
+using State = std::array<double, 9>;
 bool finite(const State& s) {
   return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); });
 }
@@ -325,20 +334,35 @@ struct PinSlotSimulation::Impl {
     double inertia = 0, torque = 0;   // kg mm^2, mN mm
   };
   std::size_t free_driver = no_index;   // into drivers: the one torque-driven part, if any
-  // The generalized coordinates: (s, psi), and phi of the free driver when there is one.
-  Eigen::Index coordinates() const { return free_driver == no_index ? 2 : 3; }
+  // A translating part pushed by the pin-slot part (session 59: the film): its offset x along its
+  // unit direction is the state's [6], its rate [7]; m x'' = F . d - k (x - rest) - c x' + the
+  // contacts' share; its limits are plastic stops.
+  struct Slider {
+    std::size_t part = no_index;
+    double dir[2] = {0, 1};
+    double mass = 0, load = 0, k = 0, rest = 0, damping = 0;   // kg, mN (F . d), mN/mm, mm, mN s/mm
+    std::optional<RationalInterval> limits;
+  };
+  Slider slider;
+  bool has_slider() const { return slider.part != no_index; }
+  // The generalized coordinates: (s, psi), phi of the free driver and x of the slider when there
+  // are ones (in that order).
+  Eigen::Index coordinates() const { return 2 + (free_driver != no_index ? 1 : 0) + (has_slider() ? 1 : 0); }
+  Eigen::Index x_column() const { return free_driver != no_index ? 3 : 2; }
   // The generalized velocity of a state.
   Eigen::VectorXd rates(const State& x) const {
     Eigen::VectorXd v(coordinates());
     v(0) = x[2];
     v(1) = x[3];
     if (free_driver != no_index) v(2) = x[5];
+    if (has_slider()) v(x_column()) = x[7];
     return v;
   }
   void add_rates(State& x, const Eigen::VectorXd& dv) const {
     x[2] += dv(0);
     x[3] += dv(1);
     if (free_driver != no_index) x[5] += dv(2);
+    if (has_slider()) x[7] += dv(x_column());
   }
   std::vector<Driver> drivers;
   std::vector<std::size_t> driver_of;   // model part -> drivers index (no_index: fixed or the pin-slot part)
@@ -369,10 +393,14 @@ struct PinSlotSimulation::Impl {
   // (the driver's angle), kappa = the gap's second derivative along the state's velocity with
   // zero accelerations (the driver at its constant speed). Its normal speed is J q' + g_phi omega.
   // Against the free driver (`free`) g_phi is the row's third column, omega its rate phi'.
+  // Against the slider (`slider`) g_x is its column, x_rate its rate x'.
   struct HeldRow {
-    double g = 0, J[2] = {0, 0}, g_phi = 0, kappa = 0, omega = 0;
-    bool free = false;
-    double speed(const State& x) const { return J[0] * x[2] + J[1] * x[3] + g_phi * omega; }
+    double g = 0, J[2] = {0, 0}, g_phi = 0, kappa = 0, omega = 0, g_x = 0, x_rate = 0;
+    bool free = false, slider = false;
+    double speed(const State& x) const {
+      const double v = J[0] * x[2] + J[1] * x[3] + g_phi * omega;
+      return slider ? v + g_x * x_rate : v;
+    }
   };
   double delta = 0, accuracy = 1e-9, rest_speed = 0, hold_gap = 0;
   // the run's length scale: the part's reach at its initial slide (reach_at; the angle limits'
@@ -431,6 +459,16 @@ struct PinSlotSimulation::Impl {
   }
   SlicedConfiguration relative(const Pair& p, const State& s, double time) const {
     SlicedConfiguration f = follower_configuration(s);
+    if (p.other == slider.part) {   // in the slider's frame: the shift less x d, exactly
+      if (!std::isfinite(s[6])) throw NumericError("the simulated offset of a translating part is not finite");
+      const Rational x(s[6]);
+      const Point& dir = model.parts[p.other].motion.direction;
+      f.x -= x * dir.x;
+      f.y -= x * dir.y;
+      f.x.canonicalize();
+      f.y.canonicalize();
+      return f;
+    }
     const std::size_t dr = driver_of[p.other];
     if (dr == no_index) return f;
     SlicedConfiguration a;
@@ -487,12 +525,14 @@ struct PinSlotSimulation::Impl {
     out(0) = Q[0];
     out(1) = Q[1];
     if (free_driver != no_index) out(2) = drivers[free_driver].torque;
+    if (has_slider()) out(x_column()) = slider.load - slider.k * (x[6] - slider.rest) - slider.damping * x[7];
     return out;
   }
   Eigen::MatrixXd inverse_mass(const State& x) const {
     Eigen::MatrixXd out = Eigen::MatrixXd::Zero(coordinates(), coordinates());
     out.topLeftCorner(2, 2) = inverse_mass2(x[0]);
     if (free_driver != no_index) out(2, 2) = 1 / drivers[free_driver].inertia;
+    if (has_slider()) out(x_column(), x_column()) = 1 / slider.mass;
     return out;
   }
   Eigen::MatrixXd mass_matrix(const State& x) const {
@@ -504,11 +544,12 @@ struct PinSlotSimulation::Impl {
     out(1, 0) = M[1][0];
     out(1, 1) = M[1][1];
     if (free_driver != no_index) out(2, 2) = drivers[free_driver].inertia;
+    if (has_slider()) out(x_column(), x_column()) = slider.mass;
     return out;
   }
   // The placements of a held contact's two parts along the straight motion (s, psi, phi) +
   // tau (ds, dpsi, dphi) at `time`.
-  std::pair<TPose, TPose> held_poses(const Held& h, const State& s, double time, const double dir[3]) const {
+  std::pair<TPose, TPose> held_poses(const Held& h, const State& s, double time, const double dir[4]) const {
     const Pair& p = pairs[h.pair];
     const std::size_t dr = driver_of[p.other];
     TPose other;
@@ -522,6 +563,9 @@ struct PinSlotSimulation::Impl {
       other.pivot[0] = C.x.get_d();
       other.pivot[1] = C.y.get_d();
       other.origin = {constant(other.pivot[0]), constant(other.pivot[1])};
+    } else if (p.other == slider.part) {   // translated by x d
+      const Taylor2 x{s[6], dir[3], 0};
+      other.origin = {slider.dir[0] * x, slider.dir[1] * x};
     }
     TPose follower;
     const Taylor2 psi{s[1], dir[1], 0}, slide{s[0], dir[0], 0};
@@ -539,13 +583,17 @@ struct PinSlotSimulation::Impl {
     if (slide_limits && Rational(s[0]) < slide_limits->lo) return 2;
     if (angle_limits && Rational(s[1]) > angle_limits->hi) return 3;
     if (angle_limits && Rational(s[1]) < angle_limits->lo) return 4;
+    if (has_slider() && slider.limits && Rational(s[6]) > slider.limits->hi) return 5;
+    if (has_slider() && slider.limits && Rational(s[6]) < slider.limits->lo) return 6;
     return 0;
   }
+  // the part a limit belongs to (5, 6: the slider's offset limits)
+  std::size_t limit_part(int limit) const { return limit >= 5 ? slider.part : part; }
   std::string limit_label(int limit) const {
-    const Part& pp = model.parts[part];
+    const Part& pp = model.parts[limit_part(limit)];
     static const char* const names[] = {"", "slide limit (upper end)", "slide limit (lower end)", "angle limit (upper)",
-                                        "angle limit (lower)"};
-    return pp.name + " " + names[limit] + " " + pp.motion.pointer + (limit <= 2 ? "/limits" : "/angle_limits");
+                                        "angle limit (lower)", "offset limit (upper end)", "offset limit (lower end)"};
+    return pp.name + " " + names[limit] + " " + pp.motion.pointer + (limit <= 2 || limit >= 5 ? "/limits" : "/angle_limits");
   }
   HeldRow limit_row(int limit, const State& s) const {
     HeldRow row;
@@ -553,7 +601,9 @@ struct PinSlotSimulation::Impl {
       case 1: row.g = slide_limits->hi.get_d() - s[0], row.J[0] = -1; break;
       case 2: row.g = s[0] - slide_limits->lo.get_d(), row.J[0] = 1; break;
       case 3: row.g = (angle_limits->hi.get_d() - s[1]) * size, row.J[1] = -size; break;
-      default: row.g = (s[1] - angle_limits->lo.get_d()) * size, row.J[1] = size; break;
+      case 4: row.g = (s[1] - angle_limits->lo.get_d()) * size, row.J[1] = size; break;
+      case 5: row.g = slider.limits->hi.get_d() - s[6], row.slider = true, row.g_x = -1, row.x_rate = s[7]; break;
+      default: row.g = s[6] - slider.limits->lo.get_d(), row.slider = true, row.g_x = 1, row.x_rate = s[7]; break;
     }
     return row;
   }
@@ -563,17 +613,21 @@ struct PinSlotSimulation::Impl {
     HeldRow row;
     row.omega = dr == no_index ? 0.0 : driver_rate(dr, s);
     row.free = dr != no_index && drivers[dr].free;
-    auto along = [&](double ds, double dpsi, double dphi) {
-      const double dir[3] = {ds, dpsi, dphi};
+    const bool slid = pairs[h.pair].other == slider.part;
+    row.slider = slid;
+    row.x_rate = slid ? s[7] : 0.0;
+    auto along = [&](double ds, double dpsi, double dphi, double dx = 0) {
+      const double dir[4] = {ds, dpsi, dphi, dx};
       const auto [a, b] = held_poses(h, s, time, dir);
       return *feature_gap(a, h.fixed_geometry, b, h.free_geometry);
     };
-    const Taylor2 v = along(s[2], s[3], row.omega);
+    const Taylor2 v = along(s[2], s[3], row.omega, row.x_rate);
     row.g = v.v;
     row.kappa = v.dd;
     row.J[0] = along(1, 0, 0).d;
     row.J[1] = along(0, 1, 0).d;
     row.g_phi = along(0, 0, 1).d;
+    if (slid) row.g_x = along(0, 0, 0, 1).d;
     return row;
   }
   // The held contacts' problem at a state, built once for the bilateral multipliers and the
@@ -604,7 +658,8 @@ struct PinSlotSimulation::Impl {
       const HeldRow& row = rows[static_cast<std::size_t>(i)];
       J(i, 0) = row.J[0];
       J(i, 1) = row.J[1];
-      if (coordinates() == 3) J(i, 2) = row.free ? row.g_phi : 0.0;
+      if (free_driver != no_index) J(i, 2) = row.free ? row.g_phi : 0.0;
+      if (has_slider()) J(i, x_column()) = row.slider ? row.g_x : 0.0;
     }
     return J;
   }
@@ -666,13 +721,20 @@ struct PinSlotSimulation::Impl {
     ds[1] = s[3];
     ds[4] = s[5];
     ds[5] = 0;
-    if (free_driver != no_index) {   // (s, psi, phi): the free driver's inertia and torque
+    ds[6] = s[7];
+    ds[7] = 0;
+    ds[8] = 0;
+    if (free_driver != no_index || has_slider()) {   // the free driver's and the slider's coordinates too
       Eigen::VectorXd a;
       if (held.empty()) a = inverse_mass(s) * forces(s);
       else a = held_accelerations(s, time);
       ds[2] = a(0);
       ds[3] = a(1);
-      ds[5] = a(2);
+      if (free_driver != no_index) ds[5] = a(2);
+      if (has_slider()) {
+        ds[7] = a(x_column());
+        ds[8] = slider.damping * s[7] * s[7];   // the damping's work (dissipated)
+      }
       return;
     }
     double M[2][2], Q[2], a[2];
@@ -717,13 +779,16 @@ struct PinSlotSimulation::Impl {
     const double F[2] = {mass * g[0] + force[0], mass * g[1] + force[1]};
     const double own = -(F[0] * X[0] + F[1] * X[1]) - torque * s[1] +
                        0.5 * k_lin * (s[0] - rest_lin) * (s[0] - rest_lin) + 0.5 * k_tor * (s[1] - rest_tor) * (s[1] - rest_tor);
-    return free_driver == no_index ? own : own - drivers[free_driver].torque * s[4];
+    double extra = free_driver == no_index ? 0.0 : -drivers[free_driver].torque * s[4];
+    if (has_slider()) extra += -slider.load * s[6] + 0.5 * slider.k * (s[6] - slider.rest) * (s[6] - slider.rest);
+    return free_driver == no_index && !has_slider() ? own : own + extra;
   }
   double energy_of(const State& s) const {
     double M[2][2], Q[2];
     dynamics(s, M, Q);
     double kinetic = 0.5 * (M[0][0] * s[2] * s[2] + 2 * M[0][1] * s[2] * s[3] + M[1][1] * s[3] * s[3]);
     if (free_driver != no_index) kinetic += 0.5 * drivers[free_driver].inertia * s[5] * s[5];
+    if (has_slider()) kinetic += 0.5 * slider.mass * s[7] * s[7];
     return kinetic + potential(s);
   }
   std::string where(double time) const {
@@ -759,6 +824,13 @@ struct PinSlotSimulation::Impl {
           << " rad; " << pp.motion.pointer << "/angle_limits)";
       throw GeometryError(out.str());
     }
+    if (has_slider() && slider.limits && (Rational(s[6]) < slider.limits->lo || Rational(s[6]) > slider.limits->hi)) {
+      const Part& sp = model.parts[slider.part];
+      std::ostringstream out;
+      out << where(time) << ": translating part '" << sp.name << "' leaves its limits (x = " << s[6] << " mm; "
+          << sp.motion.pointer << "/limits)";
+      throw GeometryError(out.str());
+    }
   }
   void publish() {
     public_state.time = t / time_scale;
@@ -773,6 +845,10 @@ struct PinSlotSimulation::Impl {
     for (std::size_t i = 0; i < drivers.size(); ++i) {
       public_state.position[drivers[i].part] = driver_angle(i, y, t);
       public_state.rate[drivers[i].part] = driver_rate(i, y) * time_scale;
+    }
+    if (has_slider()) {
+      public_state.position[slider.part] = y[6];
+      public_state.rate[slider.part] = y[7] * time_scale;
     }
     public_state.pair_configurations.clear();
     for (const Pair& p : pairs) public_state.pair_configurations.push_back(p.q);
@@ -847,6 +923,10 @@ struct PinSlotSimulation::Impl {
         speed += std::abs((*s)[5]) * (reach + arm);
         gain += (std::abs(ds[5]) + (*s)[5] * (*s)[5]) * (reach + arm);
       }
+      if (p.other == slider.part) {   // the slider's
+        speed += std::abs((*s)[7]);
+        gain += std::abs(ds[7]);
+      }
       out = std::max(out, (speed + gain * h) * h);
     }
     return std::isfinite(out) ? out : std::numeric_limits<double>::max();
@@ -854,12 +934,14 @@ struct PinSlotSimulation::Impl {
   // A touching feature pair's impact row at the current state: J (its normal speed is
   // J q' - v_other), the driver's surface speed along the normal, the world point and normal.
   // Against the free driver (`free`) J[2] is the row's phi column and v_other is 0.
+  // Against the slider (`slider`) J[3] is the row's x column.
   struct Row {
-    double J[3] = {0, 0, 0}, v_other = 0, point[2] = {0, 0}, normal[2] = {0, 0};
-    bool free = false;
+    double J[4] = {0, 0, 0, 0}, v_other = 0, point[2] = {0, 0}, normal[2] = {0, 0};
+    bool free = false, slider = false;
     double speed(const State& x) const {
       double v = J[0] * x[2] + J[1] * x[3];
       if (free) v += J[2] * x[5];
+      if (slider) v += J[3] * x[7];
       return v - v_other;
     }
     std::string label;
@@ -969,7 +1051,7 @@ State PinSlotSimulation::Impl::project(const State& from, double time) const {
     auto solve = [&](const auto& Mi) -> Eigen::VectorXd {
       return -Mi * J.transpose() * (J * Mi * J.transpose()).completeOrthogonalDecomposition().solve(r);
     };
-    return free_driver == no_index ? solve(inverse_mass2(x[0])) : solve(inverse_mass(x));
+    return coordinates() == 2 ? solve(inverse_mass2(x[0])) : solve(inverse_mass(x));
   };
   for (int iteration = 0; iteration < 2; ++iteration) {
     for (int pass = 0; pass < 8; ++pass) {
@@ -988,6 +1070,7 @@ State PinSlotSimulation::Impl::project(const State& from, double time) const {
       s[0] += dq(0);
       s[1] += dq(1);
       if (free_driver != no_index) s[4] += dq(2);
+      if (has_slider()) s[6] += dq(x_column());
     }
     // the normal speeds to 0
     std::vector<HeldRow> rows;
@@ -1030,8 +1113,8 @@ SimulationEvent PinSlotSimulation::Impl::held_event(SimulationEvent::Kind kind, 
   ev.kind = kind;
   ev.time = time / time_scale;
   ev.pair = h.limit ? no_index : pairs[h.pair].index;
-  ev.first_part = model.parts[h.limit ? part : pairs[h.pair].other].name;
-  ev.second_part = model.parts[part].name;
+  ev.first_part = model.parts[h.limit ? limit_part(h.limit) : pairs[h.pair].other].name;
+  ev.second_part = model.parts[h.limit ? limit_part(h.limit) : part].name;
   ev.features = {h.features.label};
   ev.normal_force = h.force / force_scale;
   const HeldRow row = held_row(h, s, time);
@@ -1099,6 +1182,10 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     if (!(nn > 0)) continue;
     nx /= nn;
     ny /= nn;
+    if (p.other == slider.part) {   // the slider's frame to the world: translated by x d; its column -n . d
+      px += y[6] * slider.dir[0];
+      py += y[6] * slider.dir[1];
+    }
     if (dr != no_index) {   // the driver's frame to the world
       const double rx = px - Cx, ry = py - Cy;
       px = Cx + ca * rx - sa * ry;
@@ -1123,6 +1210,11 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     } else {
       row.v_other = omega * lever;
     }
+    if (p.other == slider.part) {
+      row.slider = true;
+      row.J[3] = -(nx * slider.dir[0] + ny * slider.dir[1]);
+      row.v_other = 0;
+    }
     row.point[0] = px;
     row.point[1] = py;
     row.normal[0] = nx;
@@ -1143,6 +1235,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     Row row{};
     row.J[0] = lr.J[0];
     row.J[1] = lr.J[1];
+    row.slider = lr.slider;
+    row.J[3] = lr.g_x;
     row.v_other = 0;
     row.label = limit_label(limit);
     row.feature.label = row.label;
@@ -1175,6 +1269,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     } else {
       row.v_other = -hr.g_phi * hr.omega;
     }
+    row.slider = hr.slider;
+    row.J[3] = hr.g_x;
     row.label = h.features.label;
     row.feature = h.features;
     row.pair = h.pair;
@@ -1186,6 +1282,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   const Eigen::Matrix2d Minv = inverse_mass2(y[0]);
   const bool free = free_driver != no_index;
   const double inverse_inertia = free ? 1 / drivers[free_driver].inertia : 0.0;
+  const double inverse_slider_mass = has_slider() ? 1 / slider.mass : 0.0;
   auto speed = [&](const Row& r) { return r.speed(y); };
   const double energy_before = energy_of(y);
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
@@ -1204,6 +1301,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
       const Row& rj = rows[static_cast<std::size_t>(j)];
       A(i, j) = rj.J[0] * mj[0] + rj.J[1] * mj[1];
       if (free) A(i, j) += rj.J[2] * ri.J[2] * inverse_inertia;
+      if (has_slider()) A(i, j) += rj.J[3] * ri.J[3] * inverse_slider_mass;
     }
     const double v = before[static_cast<std::size_t>(i)];
     bv(i) = v < 0 ? (1 + ri.restitution) * v : v;
@@ -1223,6 +1321,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
     y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
     if (free) y[5] += r.J[2] * inverse_inertia * lambda;
+    if (has_slider()) y[7] += r.J[3] * inverse_slider_mass * lambda;
   }
   impact_loss += energy_before - energy_of(y);
   for (std::size_t i = 0; i < fresh_rows; ++i) {
@@ -1231,8 +1330,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     ev.kind = SimulationEvent::Kind::impact;
     ev.time = t / time_scale;
     ev.pair = rows[i].limit ? no_index : pairs[rows[i].pair].index;
-    ev.first_part = model.parts[rows[i].limit ? part : pairs[rows[i].pair].other].name;
-    ev.second_part = model.parts[part].name;
+    ev.first_part = model.parts[rows[i].limit ? limit_part(rows[i].limit) : pairs[rows[i].pair].other].name;
+    ev.second_part = model.parts[rows[i].limit ? limit_part(rows[i].limit) : part].name;
     ev.features = {rows[i].label};
     ev.impulse = total[i] / (force_scale * time_scale);
     ev.normal_speed_before = -before[i] * time_scale;
@@ -1522,6 +1621,40 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const Part& p = model.parts[i];
     if (i == found || p.motion.kind == Motion::Kind::fixed) continue;
+    if (p.motion.kind == Motion::Kind::translation) {
+      // a translating part pushed by the pin-slot part (session 59: the film): its offset joins
+      // (s, psi); mass, a constant force, gravity, a spring and viscous damping to the frame
+      for (const SimulationSpec::Driver& d : spec.drivers)
+        if (d.part == i)
+          throw ModelError(d.pointer, "part '" + p.name + "': beside a pin-slot part a translating part moves by its "
+                                                          "own dynamics (no driver)");
+      if (s.has_slider())
+        throw ModelError(p.pointer + "/motion", "part '" + p.name + "': the pin-slot simulator moves one translating "
+                                                    "part ('" + model.parts[s.slider.part].name + "' is one)");
+      if (!p.dynamics || !p.dynamics->mass || !(sgn(*p.dynamics->mass) > 0))
+        throw ModelError(p.pointer + "/dynamics", "translating part '" + p.name + "' beside a pin-slot part needs a "
+                                                      "positive \"mass\"");
+      const Dynamics& dd = *p.dynamics;
+      for (const auto& [present, what] : {std::pair{dd.torque.has_value(), "torque"},
+                                          std::pair{dd.torsional_spring.has_value(), "torsional_spring"}})
+        if (present)
+          throw ModelError(p.pointer + "/dynamics/" + what, "translating part '" + p.name + "' takes no " + what);
+      Impl::Slider& sl = s.slider;
+      sl.part = i;
+      sl.dir[0] = p.motion.direction.x.get_d();
+      sl.dir[1] = p.motion.direction.y.get_d();
+      sl.mass = dd.mass->get_d();
+      const double F[2] = {sl.mass * s.g[0] + (dd.force ? dd.force->x.get_d() * fs : 0.0),
+                           sl.mass * s.g[1] + (dd.force ? dd.force->y.get_d() * fs : 0.0)};
+      sl.load = F[0] * sl.dir[0] + F[1] * sl.dir[1];
+      if (dd.linear_spring) {
+        sl.k = dd.linear_spring->stiffness.get_d() * fs;
+        sl.rest = dd.linear_spring->rest.get_d();
+      }
+      if (dd.damping) sl.damping = dd.damping->get_d() * fs * ts;   // force unit x time unit / mm
+      sl.limits = p.motion.translation_limits;
+      continue;
+    }
     const SimulationSpec::Driver* driver = nullptr;
     for (const SimulationSpec::Driver& d : spec.drivers)
       if (d.part == i) driver = &d;
@@ -1580,9 +1713,14 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
                                                      "(the pin-slot part's own springs act on s and psi)");
   std::vector<const SimulationSpec::Velocity*> own_velocity;
   std::optional<double> free_rate;   // the torque-driven part's initial rate (rad per time unit)
+  std::optional<double> slider_rate;   // the translating part's (mm per time unit)
   for (const SimulationSpec::Velocity& v : spec.velocities) {
     if (s.free_driver != no_index && v.part == s.drivers[s.free_driver].part) {
       free_rate = v.value.get_d();
+      continue;
+    }
+    if (s.has_slider() && v.part == s.slider.part) {
+      slider_rate = v.value.get_d();
       continue;
     }
     if (v.part != found)
@@ -1641,6 +1779,10 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     s.y[4] = s.drivers[s.free_driver].angle0;
     s.y[5] = free_rate ? *free_rate / ts : 0.0;
   }
+  if (s.has_slider()) {
+    s.y[6] = model.parts[s.slider.part].initial.offset.get_d();
+    s.y[7] = slider_rate ? *slider_rate / ts : 0.0;
+  }
   s.check_limits(s.y, 0);
   // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
   double reach = 0;
@@ -1662,6 +1804,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   load += (std::abs(s.torque) / s.inertia_c) * size;
   if (s.free_driver != no_index)   // a torque-driven part's surface accelerates the contacts too
     load += std::abs(s.drivers[s.free_driver].torque) / s.drivers[s.free_driver].inertia * size;
+  if (s.has_slider()) load += std::abs(s.slider.load) / s.slider.mass;   // and a translating part's load
   // (the springs' force at the start's stretch, or the torsional one's at the angle limits if they
   // are nearer than half a turn beyond the start: limits far beyond the motion change nothing)
   load += s.k_lin * (std::abs(s.y[0]) + std::abs(s.rest_lin)) / s.mass;
@@ -1736,7 +1879,7 @@ std::size_t PinSlotSimulation::steps() const { return impl_->steps; }
 std::size_t PinSlotSimulation::chord_tests() const { return impl_->chords; }
 double PinSlotSimulation::energy() const { return impl_->energy_of(impl_->y) / impl_->force_scale; }
 double PinSlotSimulation::dissipated() const {
-  return (impl_->impact_loss + impl_->settle_loss) / impl_->force_scale;
+  return (impl_->impact_loss + impl_->settle_loss + impl_->y[8]) / impl_->force_scale;
 }
 double PinSlotSimulation::chord_deviation() const { return impl_->delta; }
 std::size_t PinSlotSimulation::part() const { return impl_->part; }

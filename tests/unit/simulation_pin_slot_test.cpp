@@ -731,6 +731,78 @@ TEST(SimulationPinSlot, TorqueDrivenEventsDoNotDependOnTheStepSize) {
   }
 }
 
+// A translating part (the film of the film advance, session 59) struck by the pin-slot part: a
+// block on a vertical rail carrying a disc of radius rb at (cx, yc), viscous damping c to the
+// frame, its lower limit a stop; the follower thrown down its slot at v0 (no gravity). Newton's
+// law over (s, psi, x) with J = [1, cx, -1] (normal +y: the follower's face, the lever cx about
+// the pin, the block's surface moving with x), M = diag(m, I_P + m s^2, m_b); then the block's free
+// flight x' = x0' exp(-c tau / m_b) to its limit, struck (plastic) and held there.
+TEST(SimulationPinSlot, TranslatingPartIsStruckByTheFollowerAndStopsAtItsLimit) {
+  Lcg rng{593};
+  for (int c = 0; c < 4; ++c) {
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.02);
+    f.inertia = f.mass * rng.uniform(2000, 5000);   // (it turns little while it bounces away)
+    f.yb = 12;
+    f.s0 = 0;
+    const double v0 = rng.uniform(50, 200), h = rng.uniform(0.5, 2), e = rng.uniform(0.6, 0.9);
+    const double mb = f.mass * rng.uniform(5, 20), rb = 3, cx = rng.uniform(-5, 5), yc = f.yb - h - rb;
+    const double rate = rng.uniform(10, 50), damping = rate * mb / 1000;   // c / m_b in 1/s; c in N s / mm
+    // Newton's law at the impact (t* = h / v0, the follower at s = -h: M22 = I_P + m h^2)
+    const double A = 1 / f.mass + cx * cx / (f.inertia + f.mass * h * h) + 1 / mb, lambda = (1 + e) * v0 / A;
+    const double xdot0 = -lambda / mb;
+    const double lo = 0.5 * xdot0 / rate;   // reached: the block's free path is xdot0 / rate
+    const std::string block = R"({ "name": "film", "motion": { "translation": { "direction": [0, 1], "limits": [)" +
+                              num(lo) + R"(, 5] } }, "initial": { "offset": 0 }, "features": [ { "circle": { "center": [)" +
+                              num(cx) + ", " + num(yc) + R"(], "radius": )" + num(rb) + R"( } } ], "dynamics": { "mass": )" +
+                              num(mb) + R"(, "damping": )" + num(damping) + " } }";
+    const std::string json = model_json(
+        block + ", " + f.json(), R"({ "parts": ["film", "follower"], "restitution": )" + num(e) + " }",
+        R"("velocities": { "follower": { "slide": )" + num(-v0) + R"(, "angle": 0 } }, "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<film block>"));
+    const double e0 = sim.energy(), t_star = h / v0;
+    const double tau_limit = -std::log(1 - lo * rate / xdot0) / rate;
+    const double t_end = t_star + 1.5 * tau_limit;
+    while (sim.state().time < t_end) {
+      sim.step(t_end);
+      expect_not_overlapping(sim, {0});
+      EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-8 * e0) << "case " << c << " t " << sim.state().time;
+      if (sim.events().size() == 1) {   // the block's damped flight after the impact
+        const double tau = sim.state().time - sim.events()[0].time;
+        EXPECT_NEAR(sim.state().rate[0], xdot0 * std::exp(-rate * tau), 1e-6 * std::abs(xdot0)) << "case " << c;
+        EXPECT_NEAR(sim.state().position[0], xdot0 / rate * (1 - std::exp(-rate * tau)), 1e-6 * std::abs(lo))
+            << "case " << c;
+      }
+    }
+    const auto& ev = sim.events();
+    ASSERT_GE(ev.size(), 2u) << "case " << c;   // the strike, the limit struck
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_EQ(ev[0].first_part, "film");
+    EXPECT_NEAR(ev[0].time, t_star, 4 * sim.chord_deviation() / v0 + 1e-8 * t_star) << "case " << c;
+    EXPECT_NEAR(ev[0].normal_speed_before, v0, 1e-6 * v0);
+    EXPECT_NEAR(ev[0].normal_speed_after, e * v0, 1e-6 * v0);
+    EXPECT_NEAR(ev[0].impulse, lambda / 1000, 1e-6 * lambda / 1000);
+    EXPECT_EQ(ev[1].kind, SimulationEvent::Kind::impact);
+    EXPECT_EQ(ev[1].first_part, "film");
+    EXPECT_NE(ev[1].features[0].find("film offset limit (lower end)"), std::string::npos) << ev[1].features[0];
+    const double tau = ev[1].time - ev[0].time;
+    EXPECT_NEAR(tau, tau_limit, 1e-6 * tau_limit) << "case " << c;
+    // a plastic stop: the impulse takes the block's momentum m_b |x'| there
+    const double at_limit = std::abs(xdot0) * std::exp(-rate * tau_limit);
+    EXPECT_NEAR(ev[1].impulse, mb * at_limit / 1000, 1e-5 * mb * at_limit / 1000) << "case " << c;
+    // with no load on it the block rests at its stop with a zero contact force: held or free by
+    // round-off, so any later event is at the stop, of round-off's size
+    for (std::size_t i = 2; i < ev.size(); ++i) {
+      EXPECT_NE(ev[i].features[0].find("film offset limit (lower end)"), std::string::npos) << "case " << c;
+      EXPECT_LT(ev[i].impulse, 1e-9 * mb * at_limit / 1000) << "case " << c;
+    }
+    EXPECT_NEAR(sim.state().rate[0], 0.0, 1e-9 * std::abs(xdot0));
+    EXPECT_GE(sim.state().position[0], lo);
+    EXPECT_LE(sim.state().position[0], lo + sim.chord_deviation());
+    EXPECT_GT(sim.state().slide_rate, 0);   // the follower bounced back up (e > m A - 1)
+  }
+}
+
 TEST(SimulationPinSlot, OutsideTheClassItRefusesWithClearMessages) {
   Drop d;
   // a moving part that is neither a driver nor torque-driven with its inertia (session 59: a
