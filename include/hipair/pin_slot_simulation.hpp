@@ -33,9 +33,11 @@ struct PinSlotState {
   double time = 0;
   double slide = 0, angle = 0;             ///< the pin-slot part's s (mm) and psi (rad)
   double slide_rate = 0, angle_rate = 0;   ///< their rates
-  /// Every part's coordinate (model order): psi for the pin-slot part, the drivers' angles,
-  /// 0 for fixed parts.
+  /// Every part's coordinate (model order): psi for the pin-slot part, the drivers' angles (a
+  /// torque-driven part's too), 0 for fixed parts.
   std::vector<double> position;
+  /// Their rates (rad per time unit; 0 for fixed parts).
+  std::vector<double> rate;
   /// The exact configuration of this state in every pair's 3-DOF C-space (the pin-slot part
   /// relative to the other part; index = the pair's index among the simulated pairs, in model
   /// order): certified free (a contact is met on its chord's free side, 2^-crossing_bits before).
@@ -45,8 +47,10 @@ struct PinSlotState {
   std::vector<PinSlotContact> contacts;
 };
 
-/// A simulation of one pin-in-slot part among fixed parts and parts rotating at a prescribed
-/// constant speed (drivers): free flight of (s, psi) under gravity, a constant force and
+/// A simulation of one pin-in-slot part among fixed parts, parts rotating at a prescribed
+/// constant speed (drivers) and at most one rotating part turned by a constant torque with its
+/// own moment of inertia (its angle a third coordinate; session 59) and at most one translating
+/// part pushed by the pin-slot part (its offset a coordinate, its limits stops): free flight of (s, psi) under gravity, a constant force and
 /// torque, a linear spring on s and a torsional spring on psi (Lagrange's equations, integrated
 /// with error control); every pair's contacts by straight chords in its exact 3-DOF C-space
 /// (SlicedSpace::first_crossing) within the chord deviation of the path; Newton impacts in
@@ -56,8 +60,10 @@ struct PinSlotState {
 class PinSlotSimulation {
  public:
   struct Impl;
-  /// \throws ModelError when the model is not one pin-slot part among fixed parts and rotating
-  /// drivers at constant speed, or its dynamics data cannot be used (at the data's pointer);
+  /// \throws ModelError when the model is not one pin-slot part among fixed parts, rotating
+  /// drivers at constant speed, at most one torque-driven rotating part (moment of inertia and
+  /// torque only) and at most one translating part (mass, force, linear spring, damping), or its
+  /// dynamics data cannot be used (at the data's pointer);
   /// GeometryError when a pair's C-space cannot be built.
   static PinSlotSimulation create(const Model& model, const SimulationOptions& options = {});
   /// One step: free flight until `t_limit` (time unit) or the first contact.
@@ -71,8 +77,13 @@ class PinSlotSimulation {
   /// Chords tested exactly (SlicedSpace::first_crossing calls).
   std::size_t chord_tests() const;
   /// Kinetic energy plus the potential of gravity, the constant loads and the springs
-  /// (force unit x mm).
+  /// (force unit x mm); a torque-driven part's kinetic energy and its torque's potential -T phi
+  /// included.
   double energy() const;
+  /// The energy the run has removed (force unit x mm): the impacts' losses (Newton restitution)
+  /// and the projections of held contacts onto their hold gap and zero normal speed. Between
+  /// these jumps energy() is kept by the integration: energy() + dissipated() stays at its start.
+  double dissipated() const;
   /// The chord deviation in use (mm) and the pin-slot part's index in the model.
   double chord_deviation() const;
   std::size_t part() const;

@@ -1020,8 +1020,9 @@ int run_planar(const Model& model, const SimulateOptions& options) {
 }
 
 // A model with a pin-in-slot part (docs/simulation.md, "Pin-in-slot parts"): PinSlotSimulation.
-// Outputs: trajectory.csv (s, psi and their rates, the drivers' angles), events.json/.txt,
-// positions.svg and velocities.svg.
+// Outputs: trajectory.csv (s, psi and their rates, the drivers' angles; a torque-driven part's
+// angle rate and a translating part's offset and its rate), events.json/.txt, positions.svg and
+// velocities.svg.
 int run_pin_slot(const Model& model, const SimulateOptions& options) {
   SimulationOptions sim_options = stepping_options(options);
   if (options.region == "operating") throw ModelError("", "--region: a pin-slot part's C-space has no operating region");
@@ -1069,9 +1070,18 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
-  std::vector<std::size_t> drivers;
+  // (a torque-driven or translating part moved by its dynamics: its rate too, session 59)
+  std::vector<std::size_t> drivers, torque_driven;
+  auto coordinate = [&](std::size_t p) {
+    return std::string(model.parts[p].motion.kind == Motion::Kind::translation ? "_offset" : "_angle");
+  };
   for (std::size_t p = 0; p < model.parts.size(); ++p)
-    if (p != simulation.part() && model.parts[p].motion.kind != Motion::Kind::fixed) drivers.push_back(p);
+    if (p != simulation.part() && model.parts[p].motion.kind != Motion::Kind::fixed) {
+      drivers.push_back(p);
+      const bool prescribed = model.simulation && std::any_of(model.simulation->drivers.begin(), model.simulation->drivers.end(),
+                                                              [&](const SimulationSpec::Driver& d) { return d.part == p; });
+      if (!prescribed) torque_driven.push_back(p);
+    }
   std::vector<io::RunFile> files;
   const char* names[4] = {"slide", "angle", "slide_rate", "angle_rate"};
   auto column = [](const PinSlotState& s, int i) {
@@ -1082,12 +1092,14 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     std::ostringstream csv;
     csv << "time_" << tu;
     for (int i = 0; i < 4; ++i) csv << "," << name << "_" << names[i];
-    for (std::size_t p : drivers) csv << "," << model.parts[p].name << "_angle";
+    for (std::size_t p : drivers) csv << "," << model.parts[p].name << coordinate(p);
+    for (std::size_t p : torque_driven) csv << "," << model.parts[p].name << coordinate(p) << "_rate";
     csv << "\n";
     for (const PinSlotState& s : samples) {
       csv << number(s.time);
       for (int i = 0; i < 4; ++i) csv << "," << number(column(s, i));
       for (std::size_t p : drivers) csv << "," << number(s.position[p]);
+      for (std::size_t p : torque_driven) csv << "," << number(s.rate[p]);
       csv << "\n";
     }
     files.push_back({"trajectory.csv", csv.str()});
@@ -1111,6 +1123,12 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
         render::TimeSeries series;
         series.label = name + " " + names[i];
         for (const PinSlotState& s : samples) series.values.push_back(column(s, i));
+        plot.series.push_back(series);
+      }
+      for (std::size_t p : torque_driven) {   // a torque-driven part's angle and rate (rad, rad per time unit)
+        render::TimeSeries series;
+        series.label = model.parts[p].name + " " + coordinate(p).substr(1) + (which == 0 ? "" : "_rate");
+        for (const PinSlotState& s : samples) series.values.push_back(which == 0 ? s.position[p] : s.rate[p]);
         plot.series.push_back(series);
       }
       files.push_back({which == 0 ? "positions.svg" : "velocities.svg", render::time_plot_svg(plot)});

@@ -30,6 +30,14 @@
 // projected onto the hold gap 3/4 delta after each step, its force from the contact LCP (J M^-1
 // J^T over (s, psi)) at each step's start, lifting off where it would turn negative. The slot's
 // ends and angle limits are plastic stops held the same way.
+//
+// Session 59: a rotating part turned by a constant torque with its own moment of inertia (its
+// angle phi, the state's [4] and [5]) and a translating part pushed by the pin-slot part (its
+// offset x along its unit direction, [6] and [7]; its damping's work [8]) join (s, psi) as
+// generalized coordinates, the mass matrix block-diagonal diag(M(s), I, m_x); contact rows gain
+// their columns (-n . (k x (p - C)) and -n . d at the kernels' contact point; a held gap's
+// forward-mode derivatives), the contact problems are built over all coordinates. Without them
+// every computation is the one before (the same outputs, byte for byte).
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
@@ -103,8 +111,10 @@ SlicedConfiguration chord_point(const SlicedConfiguration& from, const SlicedCon
   return c;
 }
 
-using State4 = std::array<double, 4>;   // s, psi, s', psi'
-bool finite(const State4& s) {
+// s, psi, s', psi'; a torque-driven rotating part's (free driver's) phi, phi'; a translating
+// part's (the slider's) offset x, x' and the work its damping has done (0 without them)
+using State = std::array<double, 9>;
+bool finite(const State& s) {
   return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); });
 }
 
@@ -318,7 +328,42 @@ struct PinSlotSimulation::Impl {
   struct Driver {
     std::size_t part = 0;
     double angle0 = 0, omega = 0;   // rad, rad/s
+    // a torque-driven part with its own inertia (session 59): its angle and rate are the state's
+    // [4] and [5], its equation I phi'' = torque + the contacts' share (no prescribed speed)
+    bool free = false;
+    double inertia = 0, torque = 0;   // kg mm^2, mN mm
   };
+  std::size_t free_driver = no_index;   // into drivers: the one torque-driven part, if any
+  // A translating part pushed by the pin-slot part (session 59: the film): its offset x along its
+  // unit direction is the state's [6], its rate [7]; m x'' = F . d - k (x - rest) - c x' + the
+  // contacts' share; its limits are plastic stops.
+  struct Slider {
+    std::size_t part = no_index;
+    double dir[2] = {0, 1};
+    double mass = 0, load = 0, k = 0, rest = 0, damping = 0;   // kg, mN (F . d), mN/mm, mm, mN s/mm
+    std::optional<RationalInterval> limits;
+  };
+  Slider slider;
+  bool has_slider() const { return slider.part != no_index; }
+  // The generalized coordinates: (s, psi), phi of the free driver and x of the slider when there
+  // are ones (in that order).
+  Eigen::Index coordinates() const { return 2 + (free_driver != no_index ? 1 : 0) + (has_slider() ? 1 : 0); }
+  Eigen::Index x_column() const { return free_driver != no_index ? 3 : 2; }
+  // The generalized velocity of a state.
+  Eigen::VectorXd rates(const State& x) const {
+    Eigen::VectorXd v(coordinates());
+    v(0) = x[2];
+    v(1) = x[3];
+    if (free_driver != no_index) v(2) = x[5];
+    if (has_slider()) v(x_column()) = x[7];
+    return v;
+  }
+  void add_rates(State& x, const Eigen::VectorXd& dv) const {
+    x[2] += dv(0);
+    x[3] += dv(1);
+    if (free_driver != no_index) x[5] += dv(2);
+    if (has_slider()) x[7] += dv(x_column());
+  }
   std::vector<Driver> drivers;
   std::vector<std::size_t> driver_of;   // model part -> drivers index (no_index: fixed or the pin-slot part)
   struct Pair {
@@ -347,8 +392,15 @@ struct PinSlotSimulation::Impl {
   // A held contact's gap and its derivatives at a state: g, J = dg/d(s, psi), g_phi = dg/dphi
   // (the driver's angle), kappa = the gap's second derivative along the state's velocity with
   // zero accelerations (the driver at its constant speed). Its normal speed is J q' + g_phi omega.
+  // Against the free driver (`free`) g_phi is the row's third column, omega its rate phi'.
+  // Against the slider (`slider`) g_x is its column, x_rate its rate x'.
   struct HeldRow {
-    double g = 0, J[2] = {0, 0}, g_phi = 0, kappa = 0, omega = 0;
+    double g = 0, J[2] = {0, 0}, g_phi = 0, kappa = 0, omega = 0, g_x = 0, x_rate = 0;
+    bool free = false, slider = false;
+    double speed(const State& x) const {
+      const double v = J[0] * x[2] + J[1] * x[3] + g_phi * omega;
+      return slider ? v + g_x * x_rate : v;
+    }
   };
   double delta = 0, accuracy = 1e-9, rest_speed = 0, hold_gap = 0;
   // the run's length scale: the part's reach at its initial slide (reach_at; the angle limits'
@@ -362,28 +414,36 @@ struct PinSlotSimulation::Impl {
   // largest |slide| (until session 58 the largest |slide limit|: a slot with limits of 1e9 mm made
   // the chord deviation 1 mm and the rest speed 140 mm/s, and the run stopped at the pin-slot
   // cam's second impact as a contact that would have to be sustained)
-  double reach_at(std::initializer_list<const State4*> states) const {
+  double reach_at(std::initializer_list<const State*> states) const {
     double slide = 0;
-    for (const State4* x : states) slide = std::max(slide, std::abs((*x)[0]));
+    for (const State* x : states) slide = std::max(slide, std::abs((*x)[0]));
     return part_reach + slide;
   }
-  double reach_at(std::initializer_list<std::pair<const State4*, double>> states) const {
+  double reach_at(std::initializer_list<std::pair<const State*, double>> states) const {
     double slide = 0;
     for (const auto& x : states) slide = std::max(slide, std::abs((*x.first)[0]));
     return part_reach + slide;
   }
   double t = 0;
-  State4 y{};
+  State y{};
   std::vector<SimulationEvent> events;
   std::size_t steps = 0, chords = 0;
+  // energy removed by impacts and by the projections onto held contacts (internal units)
+  double impact_loss = 0, settle_loss = 0;
   double step_guess = 0;
   PinSlotState public_state;
 
-  double driver_angle(std::size_t driver, double time) const {
+  // A driver's angle and rate at a state: the state's for the free driver, the prescribed law's
+  // (exact linear in time) for a driver at constant speed.
+  double driver_angle(std::size_t driver, const State& x, double time) const {
+    if (drivers[driver].free) return x[4];
     return drivers[driver].angle0 + drivers[driver].omega * time;
   }
+  double driver_rate(std::size_t driver, const State& x) const {
+    return drivers[driver].free ? x[5] : drivers[driver].omega;
+  }
   // the world configuration of the pin-slot part as a planar part about P, exact
-  SlicedConfiguration follower_configuration(const State4& s) const {
+  SlicedConfiguration follower_configuration(const State& s) const {
     // (before any double becomes a Rational: GMP's mpq_set_d(inf) raises SIGFPE)
     if (!std::isfinite(s[0])) throw NumericError("the simulated slide of a pin-slot part is not finite");
     SlicedConfiguration c;
@@ -397,20 +457,30 @@ struct PinSlotSimulation::Impl {
     c.y.canonicalize();
     return c;
   }
-  SlicedConfiguration relative(const Pair& p, const State4& s, double time) const {
+  SlicedConfiguration relative(const Pair& p, const State& s, double time) const {
     SlicedConfiguration f = follower_configuration(s);
+    if (p.other == slider.part) {   // in the slider's frame: the shift less x d, exactly
+      if (!std::isfinite(s[6])) throw NumericError("the simulated offset of a translating part is not finite");
+      const Rational x(s[6]);
+      const Point& dir = model.parts[p.other].motion.direction;
+      f.x -= x * dir.x;
+      f.y -= x * dir.y;
+      f.x.canonicalize();
+      f.y.canonicalize();
+      return f;
+    }
     const std::size_t dr = driver_of[p.other];
     if (dr == no_index) return f;
     SlicedConfiguration a;
-    a.angle = exact_angle(driver_angle(dr, time));
+    a.angle = exact_angle(driver_angle(dr, s, time));
     return relative_configuration(model.parts[p.other].motion.pivot, a, model.parts[part].motion.pivot, f);
   }
-  double relative_angle(const Pair& p, const State4& s, double time) const {
+  double relative_angle(const Pair& p, const State& s, double time) const {
     const std::size_t dr = driver_of[p.other];
-    return wrap(s[1] - (dr == no_index ? 0.0 : driver_angle(dr, time)));
+    return wrap(s[1] - (dr == no_index ? 0.0 : driver_angle(dr, s, time)));
   }
   // mass matrix and the right-hand side of Lagrange's equations
-  void dynamics(const State4& s, double M[2][2], double Q[2]) const {
+  void dynamics(const State& s, double M[2][2], double Q[2]) const {
     const double c = std::cos(s[1]), sn = std::sin(s[1]);
     const double u[2] = {c * d[0] - sn * d[1], sn * d[0] + c * d[1]};
     const double rc[2] = {c * cp[0] - sn * cp[1], sn * cp[0] + c * cp[1]};
@@ -435,7 +505,7 @@ struct PinSlotSimulation::Impl {
   }
   // M^-1 as a matrix, column by column through inverse_mass_times (its entries 1/m + e^2/D, -e/D
   // and 1/D: never det M)
-  Eigen::Matrix2d inverse_mass(double s0) const {
+  Eigen::Matrix2d inverse_mass2(double s0) const {
     Eigen::Matrix2d out;
     for (int c = 0; c < 2; ++c) {
       const double unit[2] = {c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0};
@@ -446,9 +516,40 @@ struct PinSlotSimulation::Impl {
     }
     return out;
   }
+  // The generalized forces (coordinates(): Q_s, Q_psi, and the free driver's torque) and the
+  // inverse of the block-diagonal mass matrix diag(M(s), I) at a state.
+  Eigen::VectorXd forces(const State& x) const {
+    double M[2][2], Q[2];
+    dynamics(x, M, Q);
+    Eigen::VectorXd out(coordinates());
+    out(0) = Q[0];
+    out(1) = Q[1];
+    if (free_driver != no_index) out(2) = drivers[free_driver].torque;
+    if (has_slider()) out(x_column()) = slider.load - slider.k * (x[6] - slider.rest) - slider.damping * x[7];
+    return out;
+  }
+  Eigen::MatrixXd inverse_mass(const State& x) const {
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(coordinates(), coordinates());
+    out.topLeftCorner(2, 2) = inverse_mass2(x[0]);
+    if (free_driver != no_index) out(2, 2) = 1 / drivers[free_driver].inertia;
+    if (has_slider()) out(x_column(), x_column()) = 1 / slider.mass;
+    return out;
+  }
+  Eigen::MatrixXd mass_matrix(const State& x) const {
+    double M[2][2], Q[2];
+    dynamics(x, M, Q);
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(coordinates(), coordinates());
+    out(0, 0) = M[0][0];
+    out(0, 1) = M[0][1];
+    out(1, 0) = M[1][0];
+    out(1, 1) = M[1][1];
+    if (free_driver != no_index) out(2, 2) = drivers[free_driver].inertia;
+    if (has_slider()) out(x_column(), x_column()) = slider.mass;
+    return out;
+  }
   // The placements of a held contact's two parts along the straight motion (s, psi, phi) +
   // tau (ds, dpsi, dphi) at `time`.
-  std::pair<TPose, TPose> held_poses(const Held& h, const State4& s, double time, const double dir[3]) const {
+  std::pair<TPose, TPose> held_poses(const Held& h, const State& s, double time, const double dir[4]) const {
     const Pair& p = pairs[h.pair];
     const std::size_t dr = driver_of[p.other];
     TPose other;
@@ -456,12 +557,15 @@ struct PinSlotSimulation::Impl {
     other.s = constant(0);
     if (dr != no_index) {
       const Point& C = model.parts[p.other].motion.pivot;
-      const Taylor2 phi{driver_angle(dr, time), dir[2], 0};
+      const Taylor2 phi{driver_angle(dr, s, time), dir[2], 0};
       other.c = cos_of(phi);
       other.s = sin_of(phi);
       other.pivot[0] = C.x.get_d();
       other.pivot[1] = C.y.get_d();
       other.origin = {constant(other.pivot[0]), constant(other.pivot[1])};
+    } else if (p.other == slider.part) {   // translated by x d
+      const Taylor2 x{s[6], dir[3], 0};
+      other.origin = {slider.dir[0] * x, slider.dir[1] * x};
     }
     TPose follower;
     const Taylor2 psi{s[1], dir[1], 0}, slide{s[0], dir[0], 0};
@@ -474,66 +578,96 @@ struct PinSlotSimulation::Impl {
     return {other, follower};
   }
   // The limit a state lies beyond (0: none; exact comparisons of the state's doubles).
-  int outside_limit(const State4& s) const {
+  int outside_limit(const State& s) const {
     if (slide_limits && Rational(s[0]) > slide_limits->hi) return 1;
     if (slide_limits && Rational(s[0]) < slide_limits->lo) return 2;
     if (angle_limits && Rational(s[1]) > angle_limits->hi) return 3;
     if (angle_limits && Rational(s[1]) < angle_limits->lo) return 4;
+    if (has_slider() && slider.limits && Rational(s[6]) > slider.limits->hi) return 5;
+    if (has_slider() && slider.limits && Rational(s[6]) < slider.limits->lo) return 6;
     return 0;
   }
+  // the part a limit belongs to (5, 6: the slider's offset limits)
+  std::size_t limit_part(int limit) const { return limit >= 5 ? slider.part : part; }
   std::string limit_label(int limit) const {
-    const Part& pp = model.parts[part];
+    const Part& pp = model.parts[limit_part(limit)];
     static const char* const names[] = {"", "slide limit (upper end)", "slide limit (lower end)", "angle limit (upper)",
-                                        "angle limit (lower)"};
-    return pp.name + " " + names[limit] + " " + pp.motion.pointer + (limit <= 2 ? "/limits" : "/angle_limits");
+                                        "angle limit (lower)", "offset limit (upper end)", "offset limit (lower end)"};
+    return pp.name + " " + names[limit] + " " + pp.motion.pointer + (limit <= 2 || limit >= 5 ? "/limits" : "/angle_limits");
   }
-  HeldRow limit_row(int limit, const State4& s) const {
+  HeldRow limit_row(int limit, const State& s) const {
     HeldRow row;
     switch (limit) {
       case 1: row.g = slide_limits->hi.get_d() - s[0], row.J[0] = -1; break;
       case 2: row.g = s[0] - slide_limits->lo.get_d(), row.J[0] = 1; break;
       case 3: row.g = (angle_limits->hi.get_d() - s[1]) * size, row.J[1] = -size; break;
-      default: row.g = (s[1] - angle_limits->lo.get_d()) * size, row.J[1] = size; break;
+      case 4: row.g = (s[1] - angle_limits->lo.get_d()) * size, row.J[1] = size; break;
+      case 5: row.g = slider.limits->hi.get_d() - s[6], row.slider = true, row.g_x = -1, row.x_rate = s[7]; break;
+      default: row.g = s[6] - slider.limits->lo.get_d(), row.slider = true, row.g_x = 1, row.x_rate = s[7]; break;
     }
     return row;
   }
-  HeldRow held_row(const Held& h, const State4& s, double time) const {
+  HeldRow held_row(const Held& h, const State& s, double time) const {
     if (h.limit) return limit_row(h.limit, s);
     const std::size_t dr = driver_of[pairs[h.pair].other];
     HeldRow row;
-    row.omega = dr == no_index ? 0.0 : drivers[dr].omega;
-    auto along = [&](double ds, double dpsi, double dphi) {
-      const double dir[3] = {ds, dpsi, dphi};
+    row.omega = dr == no_index ? 0.0 : driver_rate(dr, s);
+    row.free = dr != no_index && drivers[dr].free;
+    const bool slid = pairs[h.pair].other == slider.part;
+    row.slider = slid;
+    row.x_rate = slid ? s[7] : 0.0;
+    auto along = [&](double ds, double dpsi, double dphi, double dx = 0) {
+      const double dir[4] = {ds, dpsi, dphi, dx};
       const auto [a, b] = held_poses(h, s, time, dir);
       return *feature_gap(a, h.fixed_geometry, b, h.free_geometry);
     };
-    const Taylor2 v = along(s[2], s[3], row.omega);
+    const Taylor2 v = along(s[2], s[3], row.omega, row.x_rate);
     row.g = v.v;
     row.kappa = v.dd;
     row.J[0] = along(1, 0, 0).d;
     row.J[1] = along(0, 1, 0).d;
     row.g_phi = along(0, 0, 1).d;
+    if (slid) row.g_x = along(0, 0, 0, 1).d;
     return row;
   }
-  // The held contacts' bilateral multipliers at a state (the minimum-norm solution when their
-  // rows are dependent) and the accelerations they give.
-  Eigen::VectorXd held_multipliers(const State4& s, double time, const double Q[2],
-                                   std::vector<HeldRow>* rows_out = nullptr) const {
+  // The held contacts' problem at a state, built once for the bilateral multipliers and the
+  // contact LCP: their rows J (over the generalized coordinates), A = J M^-1 J^T and b = J M^-1 Q +
+  // kappa (the gaps' accelerations are A lambda + b). Q: the generalized forces (coordinates()).
+  struct HeldProblem {
     std::vector<HeldRow> rows;
-    for (const Held& h : held) rows.push_back(held_row(h, s, time));
+    Eigen::MatrixXd J, A;
+    Eigen::VectorXd kappa, b;
+  };
+  HeldProblem held_problem(const State& s, double time, const Eigen::VectorXd& Q) const {
+    HeldProblem out;
+    for (const Held& h : held) out.rows.push_back(held_row(h, s, time));
+    const auto k = static_cast<Eigen::Index>(out.rows.size());
+    const Eigen::MatrixXd Mi = inverse_mass(s);
+    out.J = jacobian(out.rows);
+    out.kappa.resize(k);
+    for (Eigen::Index i = 0; i < k; ++i) out.kappa(i) = out.rows[static_cast<std::size_t>(i)].kappa;
+    out.A = out.J * Mi * out.J.transpose();
+    out.b = out.J * (Mi * Q) + out.kappa;
+    return out;
+  }
+  // The rows' Jacobian over the generalized coordinates (the free driver's column g_phi).
+  Eigen::MatrixXd jacobian(const std::vector<HeldRow>& rows) const {
     const auto k = static_cast<Eigen::Index>(rows.size());
-    const Eigen::Matrix2d Mi = inverse_mass(s[0]);
-    Eigen::MatrixXd J(k, 2);
-    Eigen::VectorXd kappa(k);
+    Eigen::MatrixXd J(k, coordinates());
     for (Eigen::Index i = 0; i < k; ++i) {
-      J(i, 0) = rows[static_cast<std::size_t>(i)].J[0];
-      J(i, 1) = rows[static_cast<std::size_t>(i)].J[1];
-      kappa(i) = rows[static_cast<std::size_t>(i)].kappa;
+      const HeldRow& row = rows[static_cast<std::size_t>(i)];
+      J(i, 0) = row.J[0];
+      J(i, 1) = row.J[1];
+      if (free_driver != no_index) J(i, 2) = row.free ? row.g_phi : 0.0;
+      if (has_slider()) J(i, x_column()) = row.slider ? row.g_x : 0.0;
     }
-    const Eigen::MatrixXd A = J * Mi * J.transpose();
-    const Eigen::VectorXd b = J * (Mi * Eigen::Vector2d(Q[0], Q[1])) + kappa;
-    if (rows_out) *rows_out = std::move(rows);
-    return A.completeOrthogonalDecomposition().solve(-b);
+    return J;
+  }
+  // The held contacts' bilateral multipliers at a state (the minimum-norm solution when their
+  // rows are dependent).
+  Eigen::VectorXd held_multipliers(const State& s, double time, const Eigen::VectorXd& Q) const {
+    const HeldProblem problem = held_problem(s, time, Q);
+    return problem.A.completeOrthogonalDecomposition().solve(-problem.b);
   }
   // The accelerations with the held contacts kept (J a = -kappa: the same as M^-1 (Q + J^T lambda)
   // with held_multipliers' lambda), by the rows' null space: a = a_p + N z with a_p the rows'
@@ -541,7 +675,7 @@ struct PinSlotSimulation::Impl {
   // Q + J^T lambda, whose terms cancel: a torque of 1e30 N mm held by an angle limit left round-off
   // of 1e17 rad/s^2 along the held row, which the adaptive integration then followed in steps of
   // 1e-13 s (a violent load held at a stop ran for hours).
-  void held_accelerations(const State4& s, double time, const double M[2][2], const double Q[2], double a[2]) const {
+  void held_accelerations(const State& s, double time, const double M[2][2], const double Q[2], double a[2]) const {
     const auto k = static_cast<Eigen::Index>(held.size());
     Eigen::MatrixXd J(k, 2);
     Eigen::VectorXd kappa(k);
@@ -565,13 +699,48 @@ struct PinSlotSimulation::Impl {
     a[0] += N[0] * (num / den);
     a[1] += N[1] * (num / den);
   }
-  void rhs(const State4& s, State4& ds, double time) const {
+  // The same over (s, psi, phi) with the free driver: a = a_p + N z, N the held rows' null space
+  // (their SVD), z from N^T (M a - Q) = 0 (N^T M N is positive definite).
+  Eigen::VectorXd held_accelerations(const State& s, double time) const {
+    std::vector<HeldRow> rows;
+    for (const Held& h : held) rows.push_back(held_row(h, s, time));
+    const Eigen::MatrixXd J = jacobian(rows);
+    Eigen::VectorXd kappa(J.rows());
+    for (Eigen::Index i = 0; i < J.rows(); ++i) kappa(i) = rows[static_cast<std::size_t>(i)].kappa;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::VectorXd a = svd.solve(-kappa);
+    const Eigen::Index rank = svd.rank(), n = coordinates();
+    if (rank >= n) return a;
+    const Eigen::MatrixXd N = svd.matrixV().rightCols(n - rank);
+    const Eigen::MatrixXd M = mass_matrix(s);
+    const Eigen::VectorXd z = (N.transpose() * M * N).ldlt().solve(N.transpose() * (forces(s) - M * a));
+    return a + N * z;
+  }
+  void rhs(const State& s, State& ds, double time) const {
+    ds[0] = s[2];
+    ds[1] = s[3];
+    ds[4] = s[5];
+    ds[5] = 0;
+    ds[6] = s[7];
+    ds[7] = 0;
+    ds[8] = 0;
+    if (free_driver != no_index || has_slider()) {   // the free driver's and the slider's coordinates too
+      Eigen::VectorXd a;
+      if (held.empty()) a = inverse_mass(s) * forces(s);
+      else a = held_accelerations(s, time);
+      ds[2] = a(0);
+      ds[3] = a(1);
+      if (free_driver != no_index) ds[5] = a(2);
+      if (has_slider()) {
+        ds[7] = a(x_column());
+        ds[8] = slider.damping * s[7] * s[7];   // the damping's work (dissipated)
+      }
+      return;
+    }
     double M[2][2], Q[2], a[2];
     dynamics(s, M, Q);
     if (held.empty()) inverse_mass_times(s[0], Q, a);
     else held_accelerations(s, time, M, Q, a);
-    ds[0] = s[2];
-    ds[1] = s[3];
     ds[2] = a[0];
     ds[3] = a[1];
   }
@@ -581,11 +750,11 @@ struct PinSlotSimulation::Impl {
   struct FlightTooLong {};
   static constexpr long flight_evaluations = 60000;
   static constexpr double short_flight = 0x1p-20;
-  State4 flight(const State4& from, double span, double t0, bool capped = false) const {
-    State4 s = from;
+  State flight(const State& from, double span, double t0, bool capped = false) const {
+    State s = from;
     if (span <= 0) return s;
     namespace ode = boost::numeric::odeint;
-    auto stepper = ode::make_controlled(accuracy, accuracy, ode::runge_kutta_dopri5<State4>());
+    auto stepper = ode::make_controlled(accuracy, accuracy, ode::runge_kutta_dopri5<State>());
     long evaluations = 0;
     // odeint's integrate_adaptive compares times absolutely (t1 - t0 > machine epsilon): a span
     // below 2.2e-16 s was not integrated at all (a follower that a torque of 10^30 N mm turns
@@ -594,7 +763,7 @@ struct PinSlotSimulation::Impl {
     const double scale = span < short_flight ? span : 1.0;
     ode::integrate_adaptive(
         stepper,
-        [this, &evaluations, capped, scale, t0](const State4& x, State4& dx, double u) {
+        [this, &evaluations, capped, scale, t0](const State& x, State& dx, double u) {
           if (capped && ++evaluations > flight_evaluations) throw FlightTooLong{};
           rhs(x, dx, t0 + u * scale);
           if (scale != 1.0)
@@ -603,19 +772,23 @@ struct PinSlotSimulation::Impl {
         s, 0.0, span / scale, span / scale / 8);
     return s;
   }
-  double potential(const State4& s) const {
+  double potential(const State& s) const {
     const double c = std::cos(s[1]), sn = std::sin(s[1]);
     const double u[2] = {c * d[0] - sn * d[1], sn * d[0] + c * d[1]};
     const double X[2] = {c * cp[0] - sn * cp[1] + s[0] * u[0], sn * cp[0] + c * cp[1] + s[0] * u[1]};
     const double F[2] = {mass * g[0] + force[0], mass * g[1] + force[1]};
-    return -(F[0] * X[0] + F[1] * X[1]) - torque * s[1] + 0.5 * k_lin * (s[0] - rest_lin) * (s[0] - rest_lin) +
-           0.5 * k_tor * (s[1] - rest_tor) * (s[1] - rest_tor);
+    const double own = -(F[0] * X[0] + F[1] * X[1]) - torque * s[1] +
+                       0.5 * k_lin * (s[0] - rest_lin) * (s[0] - rest_lin) + 0.5 * k_tor * (s[1] - rest_tor) * (s[1] - rest_tor);
+    double extra = free_driver == no_index ? 0.0 : -drivers[free_driver].torque * s[4];
+    if (has_slider()) extra += -slider.load * s[6] + 0.5 * slider.k * (s[6] - slider.rest) * (s[6] - slider.rest);
+    return free_driver == no_index && !has_slider() ? own : own + extra;
   }
-  double energy_of(const State4& s) const {
+  double energy_of(const State& s) const {
     double M[2][2], Q[2];
     dynamics(s, M, Q);
-    const double kinetic =
-        0.5 * (M[0][0] * s[2] * s[2] + 2 * M[0][1] * s[2] * s[3] + M[1][1] * s[3] * s[3]);
+    double kinetic = 0.5 * (M[0][0] * s[2] * s[2] + 2 * M[0][1] * s[2] * s[3] + M[1][1] * s[3] * s[3]);
+    if (free_driver != no_index) kinetic += 0.5 * drivers[free_driver].inertia * s[5] * s[5];
+    if (has_slider()) kinetic += 0.5 * slider.mass * s[7] * s[7];
     return kinetic + potential(s);
   }
   std::string where(double time) const {
@@ -626,8 +799,8 @@ struct PinSlotSimulation::Impl {
   // The largest deviation (mm) of the pair's relative path from its straight chord over
   // [t0, t0 + h]: twice the midpoint's deviation (exact for a quadratic path) in the shift plus
   // the part's reach times the angle deviation (2 |dw| bounds the angle error).
-  double chord_error(const Pair& p, const State4& s0, const State4& sm, const State4& s1, double h, bool flip) const {
-    auto rel = [&](const State4& s, double time) {
+  double chord_error(const Pair& p, const State& s0, const State& sm, const State& s1, double h, bool flip) const {
+    auto rel = [&](const State& s, double time) {
       const SlicedConfiguration c = relative(p, s, time);
       const double x = c.x.get_d(), yy = c.y.get_d();
       const double w = chart_w(c.angle, flip).get_d();
@@ -637,7 +810,7 @@ struct PinSlotSimulation::Impl {
     const double dx = m[0] - (a[0] + z[0]) / 2, dy = m[1] - (a[1] + z[1]) / 2, dw = m[2] - (a[2] + z[2]) / 2;
     return 2 * (std::hypot(dx, dy) + 2 * reach_at({&s0, &sm, &s1}) * std::abs(dw));
   }
-  void check_limits(const State4& s, double time) const {
+  void check_limits(const State& s, double time) const {
     const Part& pp = model.parts[part];
     if (slide_limits && (Rational(s[0]) < slide_limits->lo || Rational(s[0]) > slide_limits->hi)) {
       std::ostringstream out;
@@ -651,6 +824,13 @@ struct PinSlotSimulation::Impl {
           << " rad; " << pp.motion.pointer << "/angle_limits)";
       throw GeometryError(out.str());
     }
+    if (has_slider() && slider.limits && (Rational(s[6]) < slider.limits->lo || Rational(s[6]) > slider.limits->hi)) {
+      const Part& sp = model.parts[slider.part];
+      std::ostringstream out;
+      out << where(time) << ": translating part '" << sp.name << "' leaves its limits (x = " << s[6] << " mm; "
+          << sp.motion.pointer << "/limits)";
+      throw GeometryError(out.str());
+    }
   }
   void publish() {
     public_state.time = t / time_scale;
@@ -660,14 +840,21 @@ struct PinSlotSimulation::Impl {
     public_state.angle_rate = y[3] * time_scale;
     public_state.position.assign(model.parts.size(), 0.0);
     public_state.position[part] = y[1];
-    for (std::size_t i = 0; i < drivers.size(); ++i) public_state.position[drivers[i].part] = driver_angle(i, t);
+    public_state.rate.assign(model.parts.size(), 0.0);
+    public_state.rate[part] = y[3] * time_scale;
+    for (std::size_t i = 0; i < drivers.size(); ++i) {
+      public_state.position[drivers[i].part] = driver_angle(i, y, t);
+      public_state.rate[drivers[i].part] = driver_rate(i, y) * time_scale;
+    }
+    if (has_slider()) {
+      public_state.position[slider.part] = y[6];
+      public_state.rate[slider.part] = y[7] * time_scale;
+    }
     public_state.pair_configurations.clear();
     for (const Pair& p : pairs) public_state.pair_configurations.push_back(p.q);
     public_state.contacts.clear();
     if (!held.empty()) {   // the forces at this state (the bilateral multipliers of the held set)
-      double M[2][2], Q[2];
-      dynamics(y, M, Q);
-      const Eigen::VectorXd lambda = held_multipliers(y, t, Q);
+      const Eigen::VectorXd lambda = held_multipliers(y, t, forces(y));
       for (std::size_t i = 0; i < held.size(); ++i) held[i].force = lambda(static_cast<Eigen::Index>(i));
     }
     for (const Held& h : held)
@@ -717,29 +904,46 @@ struct PinSlotSimulation::Impl {
   }
   // A bound (double, from the speeds and accelerations at the states given) of how far any
   // point of the pin-slot part moves relative to the pair's other part over a step of length h.
-  double travel(const Pair& p, std::initializer_list<std::pair<const State4*, double>> states, double h) const {
+  double travel(const Pair& p, std::initializer_list<std::pair<const State*, double>> states, double h) const {
     const std::size_t dr = driver_of[p.other];
     double omega = 0, arm = 0;
     if (dr != no_index) {
-      omega = std::abs(drivers[dr].omega);
+      omega = drivers[dr].free ? 0.0 : std::abs(drivers[dr].omega);
       const Point& C = model.parts[p.other].motion.pivot;
       arm = std::hypot(P[0] - C.x.get_d(), P[1] - C.y.get_d());
     }
     double out = 0;
     const double reach = reach_at(states);
     for (const auto& [s, time] : states) {
-      State4 ds;
+      State ds;
       rhs(*s, ds, time);
-      const double speed = std::abs((*s)[2]) + std::abs((*s)[3]) * reach + omega * (reach + arm);
-      const double gain = std::abs(ds[2]) + std::abs(ds[3]) * reach + (*s)[3] * (*s)[3] * reach;
+      double speed = std::abs((*s)[2]) + std::abs((*s)[3]) * reach + omega * (reach + arm);
+      double gain = std::abs(ds[2]) + std::abs(ds[3]) * reach + (*s)[3] * (*s)[3] * reach;
+      if (dr != no_index && drivers[dr].free) {   // the free driver's rate and acceleration at the state
+        speed += std::abs((*s)[5]) * (reach + arm);
+        gain += (std::abs(ds[5]) + (*s)[5] * (*s)[5]) * (reach + arm);
+      }
+      if (p.other == slider.part) {   // the slider's
+        speed += std::abs((*s)[7]);
+        gain += std::abs(ds[7]);
+      }
       out = std::max(out, (speed + gain * h) * h);
     }
     return std::isfinite(out) ? out : std::numeric_limits<double>::max();
   }
   // A touching feature pair's impact row at the current state: J (its normal speed is
   // J q' - v_other), the driver's surface speed along the normal, the world point and normal.
+  // Against the free driver (`free`) J[2] is the row's phi column and v_other is 0.
+  // Against the slider (`slider`) J[3] is the row's x column.
   struct Row {
-    double J[2], v_other, point[2], normal[2];
+    double J[4] = {0, 0, 0, 0}, v_other = 0, point[2] = {0, 0}, normal[2] = {0, 0};
+    bool free = false, slider = false;
+    double speed(const State& x) const {
+      double v = J[0] * x[2] + J[1] * x[3];
+      if (free) v += J[2] * x[5];
+      if (slider) v += J[3] * x[7];
+      return v - v_other;
+    }
     std::string label;
     SlicedFeaturePair feature;
     std::size_t pair = 0;   // into pairs
@@ -758,7 +962,7 @@ struct PinSlotSimulation::Impl {
     return false;
   }
   // A held contact's multiplier below -tolerance counts as negative (the bilateral solve's round-off).
-  double force_tolerance(const State4& s) const {
+  double force_tolerance(const State& s) const {
     double M[2][2], Q[2];
     dynamics(s, M, Q);
     const double loads = std::abs(Q[0]) + std::abs(Q[1]) / reach_at({&s}) + mass * rest_speed * rest_speed / delta;
@@ -766,13 +970,11 @@ struct PinSlotSimulation::Impl {
   }
   // Whether every held contact's point lies within both its features (the contact table's
   // validity, in double: where it fails the contact has reached its edge's end).
-  bool held_valid(const Held& h, const State4& s, double time) const;
+  bool held_valid(const Held& h, const State& s, double time) const;
   // Is every held contact's force non-negative and its point on its features at this state?
-  bool held_conditions(const State4& s, double time) const {
+  bool held_conditions(const State& s, double time) const {
     if (held.empty()) return true;
-    double M[2][2], Q[2];
-    dynamics(s, M, Q);
-    const Eigen::VectorXd lambda = held_multipliers(s, time, Q);
+    const Eigen::VectorXd lambda = held_multipliers(s, time, forces(s));
     const double tol = force_tolerance(s);
     for (Eigen::Index i = 0; i < lambda.size(); ++i)
       if (!(lambda(i) >= -tol)) return false;
@@ -782,18 +984,18 @@ struct PinSlotSimulation::Impl {
   }
   // The state projected onto the held contacts: their gaps to the hold gap (Gauss-Newton,
   // mass-weighted) and their normal speeds to 0.
-  State4 project(const State4& s, double time) const;
+  State project(const State& s, double time) const;
   // Moves the state to its projection onto the held contacts, every pair's exact configuration
   // along a straight chord certified free by first_crossing.
   void settle();
   // At a step's start: held contacts past their edge's end leave (edge-end); when a held force
   // is negative the contact LCP decides which contacts lift off.
   void update_held();
-  SimulationEvent held_event(SimulationEvent::Kind kind, const Held& h, const State4& s, double time) const;
+  SimulationEvent held_event(SimulationEvent::Kind kind, const Held& h, const State& s, double time) const;
   bool advance(double span);
 };
 
-bool PinSlotSimulation::Impl::held_valid(const Held& h, const State4& s, double time) const {
+bool PinSlotSimulation::Impl::held_valid(const Held& h, const State& s, double time) const {
   if (h.limit) return true;
   const double zero[3] = {0, 0, 0};
   const auto [pa, pb] = held_poses(h, s, time, zero);
@@ -840,56 +1042,50 @@ bool PinSlotSimulation::Impl::held_valid(const Held& h, const State4& s, double 
   return in_arc(sign * vx, sign * vy, pa, fa) && in_arc(sign * vx, sign * vy, pb, fb);
 }
 
-State4 PinSlotSimulation::Impl::project(const State4& from, double time) const {
-  State4 s = from;
+State PinSlotSimulation::Impl::project(const State& from, double time) const {
+  State s = from;
   if (held.empty()) return s;
+  // the mass-weighted least correction dq with J dq = -r: -M^-1 J^T (J M^-1 J^T)^+ r (M^-1 of
+  // (s, psi) as the 2 x 2 matrix without a free driver, as before session 59)
+  auto correction = [&](const State& x, const Eigen::MatrixXd& J, const Eigen::VectorXd& r) -> Eigen::VectorXd {
+    auto solve = [&](const auto& Mi) -> Eigen::VectorXd {
+      return -Mi * J.transpose() * (J * Mi * J.transpose()).completeOrthogonalDecomposition().solve(r);
+    };
+    return coordinates() == 2 ? solve(inverse_mass2(x[0])) : solve(inverse_mass(x));
+  };
   for (int iteration = 0; iteration < 2; ++iteration) {
     for (int pass = 0; pass < 8; ++pass) {
-      double M[2][2], Q[2];
-      dynamics(s, M, Q);
       std::vector<HeldRow> rows;
       for (const Held& h : held) rows.push_back(held_row(h, s, time));
       const auto k = static_cast<Eigen::Index>(rows.size());
-      const Eigen::Matrix2d Mi = inverse_mass(s[0]);
-      Eigen::MatrixXd J(k, 2);
+      const Eigen::MatrixXd J = jacobian(rows);
       Eigen::VectorXd r(k);
       double worst = 0;
       for (Eigen::Index i = 0; i < k; ++i) {
-        const HeldRow& row = rows[static_cast<std::size_t>(i)];
-        J(i, 0) = row.J[0];
-        J(i, 1) = row.J[1];
-        r(i) = row.g - hold_gap;
+        r(i) = rows[static_cast<std::size_t>(i)].g - hold_gap;
         worst = std::max(worst, std::abs(r(i)));
       }
       if (worst <= 1e-3 * hold_gap) break;
-      const Eigen::Vector2d dq = -Mi * J.transpose() * (J * Mi * J.transpose()).completeOrthogonalDecomposition().solve(r);
+      const Eigen::VectorXd dq = correction(s, J, r);
       s[0] += dq(0);
       s[1] += dq(1);
+      if (free_driver != no_index) s[4] += dq(2);
+      if (has_slider()) s[6] += dq(x_column());
     }
     // the normal speeds to 0
-    double M[2][2], Q[2];
-    dynamics(s, M, Q);
     std::vector<HeldRow> rows;
     for (const Held& h : held) rows.push_back(held_row(h, s, time));
     const auto k = static_cast<Eigen::Index>(rows.size());
-    const Eigen::Matrix2d Mi = inverse_mass(s[0]);
-    Eigen::MatrixXd J(k, 2);
+    const Eigen::MatrixXd J = jacobian(rows);
     Eigen::VectorXd v(k);
-    for (Eigen::Index i = 0; i < k; ++i) {
-      const HeldRow& row = rows[static_cast<std::size_t>(i)];
-      J(i, 0) = row.J[0];
-      J(i, 1) = row.J[1];
-      v(i) = row.J[0] * s[2] + row.J[1] * s[3] + row.g_phi * row.omega;
-    }
-    const Eigen::Vector2d dv = -Mi * J.transpose() * (J * Mi * J.transpose()).completeOrthogonalDecomposition().solve(v);
-    s[2] += dv(0);
-    s[3] += dv(1);
+    for (Eigen::Index i = 0; i < k; ++i) v(i) = rows[static_cast<std::size_t>(i)].speed(s);
+    add_rates(s, correction(s, J, v));
   }
   return s;
 }
 
 void PinSlotSimulation::Impl::settle() {
-  const State4 to_state = project(y, t);
+  const State to_state = project(y, t);
   std::vector<SlicedConfiguration> to(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     to[i] = relative(pairs[i], to_state, t);
@@ -906,22 +1102,23 @@ void PinSlotSimulation::Impl::settle() {
       throw NumericError(out.str());
     }
   }
+  settle_loss += energy_of(y) - energy_of(to_state);
   y = to_state;
   for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i].q = to[i];
 }
 
-SimulationEvent PinSlotSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& h, const State4& s,
+SimulationEvent PinSlotSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& h, const State& s,
                                                     double time) const {
   SimulationEvent ev;
   ev.kind = kind;
   ev.time = time / time_scale;
   ev.pair = h.limit ? no_index : pairs[h.pair].index;
-  ev.first_part = model.parts[h.limit ? part : pairs[h.pair].other].name;
-  ev.second_part = model.parts[part].name;
+  ev.first_part = model.parts[h.limit ? limit_part(h.limit) : pairs[h.pair].other].name;
+  ev.second_part = model.parts[h.limit ? limit_part(h.limit) : part].name;
   ev.features = {h.features.label};
   ev.normal_force = h.force / force_scale;
   const HeldRow row = held_row(h, s, time);
-  ev.normal_speed_after = (row.J[0] * s[2] + row.J[1] * s[3] + row.g_phi * row.omega) * time_scale;
+  ev.normal_speed_after = row.speed(s) * time_scale;
   return ev;
 }
 
@@ -937,10 +1134,8 @@ void PinSlotSimulation::Impl::update_held() {
     held.erase(held.begin() + static_cast<std::ptrdiff_t>(i));
   }
   if (held.empty()) return;
-  double M[2][2], Q[2];
-  dynamics(y, M, Q);
-  std::vector<HeldRow> rows;
-  const Eigen::VectorXd bilateral = held_multipliers(y, t, Q, &rows);
+  const HeldProblem problem = held_problem(y, t, forces(y));
+  const Eigen::VectorXd bilateral = problem.A.completeOrthogonalDecomposition().solve(-problem.b);
   const double tol = force_tolerance(y);
   bool negative = false;
   for (Eigen::Index i = 0; i < bilateral.size(); ++i) negative = negative || bilateral(i) < -tol;
@@ -949,18 +1144,7 @@ void PinSlotSimulation::Impl::update_held() {
     return;
   }
   // the contact LCP: lambda >= 0, w = A lambda + b >= 0 (the gaps' accelerations), complementary
-  const auto k = static_cast<Eigen::Index>(rows.size());
-  const Eigen::Matrix2d Mi = inverse_mass(y[0]);
-  Eigen::MatrixXd J(k, 2);
-  Eigen::VectorXd kappa(k);
-  for (Eigen::Index i = 0; i < k; ++i) {
-    J(i, 0) = rows[static_cast<std::size_t>(i)].J[0];
-    J(i, 1) = rows[static_cast<std::size_t>(i)].J[1];
-    kappa(i) = rows[static_cast<std::size_t>(i)].kappa;
-  }
-  const Eigen::MatrixXd A = J * Mi * J.transpose();
-  const Eigen::VectorXd b = J * (Mi * Eigen::Vector2d(Q[0], Q[1])) + kappa;
-  const simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+  const simulation::LcpSolution lcp = simulation::solve_lcp(problem.A, problem.b);
   std::vector<Held> kept;
   for (std::size_t i = 0; i < held.size(); ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
@@ -984,7 +1168,8 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
   const Pair& p = pairs[pi];
   const Model& frame = *p.frame_model;
   const std::size_t dr = driver_of[p.other];
-  const double phi = dr == no_index ? 0.0 : driver_angle(dr, t), omega = dr == no_index ? 0.0 : drivers[dr].omega;
+  const double phi = dr == no_index ? 0.0 : driver_angle(dr, y, t), omega = dr == no_index ? 0.0 : driver_rate(dr, y);
+  const bool free = dr != no_index && drivers[dr].free;
   const double ca = std::cos(phi), sa = std::sin(phi);
   const Point& C = model.parts[p.other].motion.pivot;
   const double Cx = C.x.get_d(), Cy = C.y.get_d();
@@ -997,6 +1182,10 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     if (!(nn > 0)) continue;
     nx /= nn;
     ny /= nn;
+    if (p.other == slider.part) {   // the slider's frame to the world: translated by x d; its column -n . d
+      px += y[6] * slider.dir[0];
+      py += y[6] * slider.dir[1];
+    }
     if (dr != no_index) {   // the driver's frame to the world
       const double rx = px - Cx, ry = py - Cy;
       px = Cx + ca * rx - sa * ry;
@@ -1011,7 +1200,21 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     Row row;
     row.J[0] = nx * u[0] + ny * u[1];
     row.J[1] = nx * -r[1] + ny * r[0];
-    row.v_other = omega * (nx * -(py - Cy) + ny * (px - Cx));
+    // the driver's surface speed along n: omega n . (k x (p - C)); the free driver's column is
+    // its negative per unit rate
+    const double lever = nx * -(py - Cy) + ny * (px - Cx);
+    if (free) {
+      row.free = true;
+      row.J[2] = -lever;
+      row.v_other = 0;
+    } else {
+      row.v_other = omega * lever;
+    }
+    if (p.other == slider.part) {
+      row.slider = true;
+      row.J[3] = -(nx * slider.dir[0] + ny * slider.dir[1]);
+      row.v_other = 0;
+    }
     row.point[0] = px;
     row.point[1] = py;
     row.normal[0] = nx;
@@ -1032,6 +1235,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     Row row{};
     row.J[0] = lr.J[0];
     row.J[1] = lr.J[1];
+    row.slider = lr.slider;
+    row.J[3] = lr.g_x;
     row.v_other = 0;
     row.label = limit_label(limit);
     row.feature.label = row.label;
@@ -1058,7 +1263,14 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     Row row{};
     row.J[0] = hr.J[0];
     row.J[1] = hr.J[1];
-    row.v_other = -hr.g_phi * hr.omega;
+    if (hr.free) {
+      row.free = true;
+      row.J[2] = hr.g_phi;
+    } else {
+      row.v_other = -hr.g_phi * hr.omega;
+    }
+    row.slider = hr.slider;
+    row.J[3] = hr.g_x;
     row.label = h.features.label;
     row.feature = h.features;
     row.pair = h.pair;
@@ -1066,11 +1278,13 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     row.held = true;
     rows.push_back(row);
   }
-  double M[2][2], Q[2];
-  dynamics(y, M, Q);
-  // (M^-1 by the Schur complement, inverse_mass_times: never det M)
-  const Eigen::Matrix2d Minv = inverse_mass(y[0]);
-  auto speed = [&](const Row& r) { return r.J[0] * y[2] + r.J[1] * y[3] - r.v_other; };
+  // (M^-1 by the Schur complement, inverse_mass_times: never det M; the free driver's 1/I)
+  const Eigen::Matrix2d Minv = inverse_mass2(y[0]);
+  const bool free = free_driver != no_index;
+  const double inverse_inertia = free ? 1 / drivers[free_driver].inertia : 0.0;
+  const double inverse_slider_mass = has_slider() ? 1 / slider.mass : 0.0;
+  auto speed = [&](const Row& r) { return r.speed(y); };
+  const double energy_before = energy_of(y);
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
   // Newton's law over every row at once, the contact LCP: lambda >= 0, w = A lambda + b >= 0,
@@ -1086,6 +1300,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     for (Eigen::Index j = 0; j < k; ++j) {
       const Row& rj = rows[static_cast<std::size_t>(j)];
       A(i, j) = rj.J[0] * mj[0] + rj.J[1] * mj[1];
+      if (free) A(i, j) += rj.J[2] * ri.J[2] * inverse_inertia;
+      if (has_slider()) A(i, j) += rj.J[3] * ri.J[3] * inverse_slider_mass;
     }
     const double v = before[static_cast<std::size_t>(i)];
     bv(i) = v < 0 ? (1 + ri.restitution) * v : v;
@@ -1104,15 +1320,18 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     total[i] = lambda;
     y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
     y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
+    if (free) y[5] += r.J[2] * inverse_inertia * lambda;
+    if (has_slider()) y[7] += r.J[3] * inverse_slider_mass * lambda;
   }
+  impact_loss += energy_before - energy_of(y);
   for (std::size_t i = 0; i < fresh_rows; ++i) {
     if (total[i] <= 0) continue;
     SimulationEvent ev;
     ev.kind = SimulationEvent::Kind::impact;
     ev.time = t / time_scale;
     ev.pair = rows[i].limit ? no_index : pairs[rows[i].pair].index;
-    ev.first_part = model.parts[rows[i].limit ? part : pairs[rows[i].pair].other].name;
-    ev.second_part = model.parts[part].name;
+    ev.first_part = model.parts[rows[i].limit ? limit_part(rows[i].limit) : pairs[rows[i].pair].other].name;
+    ev.second_part = model.parts[rows[i].limit ? limit_part(rows[i].limit) : part].name;
     ev.features = {rows[i].label};
     ev.impulse = total[i] / (force_scale * time_scale);
     ev.normal_speed_before = -before[i] * time_scale;
@@ -1187,11 +1406,11 @@ bool PinSlotSimulation::Impl::advance(double span) {
   // span: a shorter step). Every flight of a step is capped (flight_evaluations).
   auto locate_limit = [&](double reached) {
     double lo = 0, hi = reached;
-    State4 beyond;
+    State beyond;
     try {
       while (hi - lo > 0x1p-30 * reached) {
         const double m = (lo + hi) / 2;
-        const State4 x = flight(y, m, t, true);
+        const State x = flight(y, m, t, true);
         (!finite(x) || outside_limit(x) ? hi : lo) = m;
       }
       beyond = flight(y, hi, t, true);
@@ -1208,7 +1427,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
       throw NumericError(where(t) + ": no chord within the chord deviation (the step size underflows)");
     // a step too long for a violent load (a torque of 10^100 N mm) overflows or turns the part many
     // times: shorter steps reach the limits, where the part stops
-    State4 mid, unprojected;
+    State mid, unprojected;
     try {
       mid = flight(y, h / 2, t, true);
       unprojected = flight(mid, h / 2, t + h / 2, true);
@@ -1236,7 +1455,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
       forced_step = h = hi;
       continue;
     }
-    const State4 end = project(unprojected, t + h);
+    const State end = project(unprojected, t + h);
     // the far test: a pair whose features are certainly farther apart than twice the step's
     // travel bound (plus delta) is free over the step without a chord
     std::vector<bool> far(pairs.size(), false), flips(pairs.size(), false);
@@ -1313,7 +1532,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     for (const Pair& p : pairs) kept.push_back(p.q);
     const Rational u = earliest.u_lower;
     const double hc = h * u.get_d();
-    State4 at;
+    State at;
     try {
       at = flight(y, hc, t, true);
     } catch (const FlightTooLong&) {
@@ -1348,7 +1567,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
         throw NumericError(out.str());
       }
     }
-    const State4 y_kept = y;
+    const State y_kept = y;
     const double t_kept = t;
     y = at;
     t += hc;
@@ -1357,7 +1576,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     bool approaching = false;
     for (const auto& [pi, features] : touching)
       for (const Row& r : contact_rows(pi, features))
-        approaching = approaching || r.J[0] * y[2] + r.J[1] * y[3] - r.v_other < 0;
+        approaching = approaching || r.speed(y) < 0;
     if (!approaching && h > 1e-9 * std::max(t, h) && attempt < 1900) {
       y = y_kept;
       t = t_kept;
@@ -1402,13 +1621,86 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   for (std::size_t i = 0; i < model.parts.size(); ++i) {
     const Part& p = model.parts[i];
     if (i == found || p.motion.kind == Motion::Kind::fixed) continue;
+    if (p.motion.kind == Motion::Kind::translation) {
+      // a translating part pushed by the pin-slot part (session 59: the film): its offset joins
+      // (s, psi); mass, a constant force, gravity, a spring and viscous damping to the frame
+      for (const SimulationSpec::Driver& d : spec.drivers)
+        if (d.part == i)
+          throw ModelError(d.pointer, "part '" + p.name + "': beside a pin-slot part a translating part moves by its "
+                                                          "own dynamics (no driver)");
+      if (s.has_slider())
+        throw ModelError(p.pointer + "/motion", "part '" + p.name + "': the pin-slot simulator moves one translating "
+                                                    "part ('" + model.parts[s.slider.part].name + "' is one)");
+      if (!p.dynamics || !p.dynamics->mass || !(sgn(*p.dynamics->mass) > 0))
+        throw ModelError(p.pointer + "/dynamics", "translating part '" + p.name + "' beside a pin-slot part needs a "
+                                                      "positive \"mass\"");
+      const Dynamics& dd = *p.dynamics;
+      for (const auto& [present, what] : {std::pair{dd.torque.has_value(), "torque"},
+                                          std::pair{dd.torsional_spring.has_value(), "torsional_spring"}})
+        if (present)
+          throw ModelError(p.pointer + "/dynamics/" + what, "translating part '" + p.name + "' takes no " + what);
+      Impl::Slider& sl = s.slider;
+      sl.part = i;
+      sl.dir[0] = p.motion.direction.x.get_d();
+      sl.dir[1] = p.motion.direction.y.get_d();
+      sl.mass = dd.mass->get_d();
+      const double F[2] = {sl.mass * s.g[0] + (dd.force ? dd.force->x.get_d() * fs : 0.0),
+                           sl.mass * s.g[1] + (dd.force ? dd.force->y.get_d() * fs : 0.0)};
+      sl.load = F[0] * sl.dir[0] + F[1] * sl.dir[1];
+      if (dd.linear_spring) {
+        sl.k = dd.linear_spring->stiffness.get_d() * fs;
+        sl.rest = dd.linear_spring->rest.get_d();
+      }
+      if (dd.damping) sl.damping = dd.damping->get_d() * fs * ts;   // force unit x time unit / mm
+      sl.limits = p.motion.translation_limits;
+      continue;
+    }
     const SimulationSpec::Driver* driver = nullptr;
     for (const SimulationSpec::Driver& d : spec.drivers)
       if (d.part == i) driver = &d;
+    if (p.motion.kind == Motion::Kind::rotation && !driver) {
+      // a torque-driven rotating part with its own inertia (session 59): its angle joins (s, psi)
+      if (!p.dynamics || !p.dynamics->moment_of_inertia)
+        throw ModelError(p.pointer + "/motion", "part '" + p.name +
+                                                    "': beside a pin-slot part a rotating part is a driver "
+                                                    "(simulation.drivers) or turns by its own dynamics, which need "
+                                                    "\"moment_of_inertia\" (and a \"torque\")");
+      const Dynamics& dd = *p.dynamics;
+      if (!(sgn(*dd.moment_of_inertia) > 0))
+        throw ModelError(p.pointer + "/dynamics/moment_of_inertia",
+                         "part '" + p.name + "': a torque-driven part needs a positive moment of inertia");
+      if (s.free_driver != no_index)
+        throw ModelError(p.pointer + "/motion", "part '" + p.name + "': the pin-slot simulator turns one "
+                                                    "torque-driven part ('" + model.parts[s.drivers[s.free_driver].part].name +
+                                                    "' is one); give the others a driver");
+      for (const auto& [present, what] :
+           {std::pair{dd.mass.has_value(), "mass"}, std::pair{dd.force.has_value(), "force"},
+            std::pair{dd.linear_spring.has_value(), "linear_spring"},
+            std::pair{dd.torsional_spring.has_value(), "torsional_spring"}, std::pair{dd.damping.has_value(), "damping"}})
+        if (present)
+          throw ModelError(p.pointer + "/dynamics/" + what,
+                           "part '" + p.name + "': a torque-driven part beside a pin-slot part takes a moment of "
+                           "inertia and a constant torque only (its centre of mass on its pivot)");
+      for (const SimulationSpec::CenterOfMass& c : spec.centers_of_mass)
+        if (c.part == i && c.at != p.motion.pivot)
+          throw ModelError(c.pointer, "part '" + p.name + "': a torque-driven part beside a pin-slot part has its "
+                                                          "centre of mass on its pivot");
+      Impl::Driver free;
+      free.part = i;
+      free.angle0 = p.initial.angle.get_d();
+      free.free = true;
+      free.inertia = dd.moment_of_inertia->get_d();
+      free.torque = dd.torque ? dd.torque->get_d() * fs : 0.0;
+      s.driver_of[i] = s.drivers.size();
+      s.free_driver = s.drivers.size();
+      s.drivers.push_back(free);
+      continue;
+    }
     if (p.motion.kind != Motion::Kind::rotation || !driver)
       throw ModelError(p.pointer + "/motion", "part '" + p.name +
                                                   "': beside a pin-slot part the simulator moves only rotating "
-                                                  "drivers (simulation.drivers, constant speed); other parts are fixed");
+                                                  "parts (drivers at constant speed, or torque-driven with their "
+                                                  "inertia); other parts are fixed");
     if (!driver->profile.empty())
       throw ModelError(driver->pointer, "part '" + p.name + "': a pin-slot simulation takes constant-speed drivers only");
     s.driver_of[i] = s.drivers.size();
@@ -1420,9 +1712,20 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     throw ModelError(spec.couplings.front().pointer, "a pin-slot simulation takes no springs between parts "
                                                      "(the pin-slot part's own springs act on s and psi)");
   std::vector<const SimulationSpec::Velocity*> own_velocity;
+  std::optional<double> free_rate;   // the torque-driven part's initial rate (rad per time unit)
+  std::optional<double> slider_rate;   // the translating part's (mm per time unit)
   for (const SimulationSpec::Velocity& v : spec.velocities) {
+    if (s.free_driver != no_index && v.part == s.drivers[s.free_driver].part) {
+      free_rate = v.value.get_d();
+      continue;
+    }
+    if (s.has_slider() && v.part == s.slider.part) {
+      slider_rate = v.value.get_d();
+      continue;
+    }
     if (v.part != found)
-      throw ModelError(v.pointer, "beside the pin-slot part only drivers move (at their speed): no initial velocity");
+      throw ModelError(v.pointer, "beside the pin-slot part only drivers move (at their speed) and a torque-driven "
+                                  "part: no initial velocity");
     own_velocity.push_back(&v);
   }
   // the pin-slot part's dynamics
@@ -1467,10 +1770,18 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   }
   s.slide_limits = motion.translation_limits;
   s.angle_limits = motion.angle_limits;
-  s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0};
+  s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0, 0, 0};
   if (own_velocity.size() == 2) {   // {"slide": v, "angle": omega}
     s.y[2] = own_velocity[0]->value.get_d() / ts;
     s.y[3] = own_velocity[1]->value.get_d() / ts;
+  }
+  if (s.free_driver != no_index) {
+    s.y[4] = s.drivers[s.free_driver].angle0;
+    s.y[5] = free_rate ? *free_rate / ts : 0.0;
+  }
+  if (s.has_slider()) {
+    s.y[6] = model.parts[s.slider.part].initial.offset.get_d();
+    s.y[7] = slider_rate ? *slider_rate / ts : 0.0;
   }
   s.check_limits(s.y, 0);
   // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
@@ -1491,6 +1802,9 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   // the rest speed: the speed a load gains over the chord deviation
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
   load += (std::abs(s.torque) / s.inertia_c) * size;
+  if (s.free_driver != no_index)   // a torque-driven part's surface accelerates the contacts too
+    load += std::abs(s.drivers[s.free_driver].torque) / s.drivers[s.free_driver].inertia * size;
+  if (s.has_slider()) load += std::abs(s.slider.load) / s.slider.mass;   // and a translating part's load
   // (the springs' force at the start's stretch, or the torsional one's at the angle limits if they
   // are nearer than half a turn beyond the start: limits far beyond the motion change nothing)
   load += s.k_lin * (std::abs(s.y[0]) + std::abs(s.rest_lin)) / s.mass;
@@ -1564,6 +1878,9 @@ const std::vector<SimulationEvent>& PinSlotSimulation::events() const { return i
 std::size_t PinSlotSimulation::steps() const { return impl_->steps; }
 std::size_t PinSlotSimulation::chord_tests() const { return impl_->chords; }
 double PinSlotSimulation::energy() const { return impl_->energy_of(impl_->y) / impl_->force_scale; }
+double PinSlotSimulation::dissipated() const {
+  return (impl_->impact_loss + impl_->settle_loss + impl_->y[8]) / impl_->force_scale;
+}
 double PinSlotSimulation::chord_deviation() const { return impl_->delta; }
 std::size_t PinSlotSimulation::part() const { return impl_->part; }
 const Model& PinSlotSimulation::model() const { return impl_->model; }

@@ -621,16 +621,263 @@ TEST(SimulationPinSlot, AViolentLoadLeavesTheLimitsAtTheClosedFormTime) {
   }
 }
 
+// A cam turned by a constant torque T with its own moment of inertia I (session 59): its angle
+// is a third coordinate of the state. The eccentric disc of the cam tests above, the follower's
+// face horizontal at height H.
+std::string torque_cam(double ecc, double r, double phi0, double inertia, double torque, const std::string& extra = "") {
+  return R"({ "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } }, "initial": { "angle": )" + num(phi0) +
+         R"( }, "features": [ { "circle": { "center": [)" + num(ecc) + R"(, 0], "radius": )" + num(r) +
+         R"( } } ], "dynamics": { "moment_of_inertia": )" + num(inertia) + R"(, "torque": )" + num(torque) + extra + " } }";
+}
+
+TEST(SimulationPinSlot, TorqueDrivenCamStrikesTheFollowerAtTheClosedFormTimeAndBothObeyNewtonsLaw) {
+  Lcg rng{590};
+  for (int c = 0; c < 6; ++c) {
+    const double ecc = rng.uniform(2, 5), r = rng.uniform(8, 11), e = rng.uniform(0.2, 1.0);
+    const double inertia = rng.uniform(0.5, 20), torque = rng.uniform(0.5, 5);   // kg mm^2, N mm
+    const double phi0 = -std::numbers::pi / 2 + rng.uniform(0, 0.3);
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.05);
+    f.inertia = f.mass * rng.uniform(500, 2000);
+    f.yb = 18;
+    const double H = r + rng.uniform(0.3, 0.9) * ecc;
+    f.s0 = H - f.yb;
+    const std::string json = model_json(torque_cam(ecc, r, phi0, inertia, torque) + ", " + f.json(),
+                                        R"({ "parts": ["cam", "follower"], "restitution": )" + num(e) + " }",
+                                        R"("accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<torque cam>"));
+    const double e0 = sim.energy();
+    // phi = phi0 + (T / I) t^2 / 2 (T in mN mm: kg mm^2 / s^2) until the top ecc sin(phi) + r reaches H
+    const double alpha = 1000 * torque / inertia;
+    const double phi_star = std::asin((H - r) / ecc), t_star = std::sqrt(2 * (phi_star - phi0) / alpha);
+    const double omega = alpha * t_star, px = ecc * std::cos(phi_star), v = omega * px;
+    while (sim.events().empty() && sim.state().time < 2 * t_star) {
+      sim.step(2 * t_star);
+      expect_not_overlapping(sim, {0});
+      if (sim.events().empty()) {   // free flight of the cam alone: the closed form
+        const double t = sim.state().time;
+        EXPECT_NEAR(sim.state().position[0], phi0 + alpha * t * t / 2, 1e-8) << "case " << c;
+        EXPECT_NEAR(sim.state().rate[0], alpha * t, 1e-8 * omega) << "case " << c;
+      }
+    }
+    ASSERT_EQ(sim.events().size(), 1u) << "case " << c;
+    const SimulationEvent& ev = sim.events()[0];
+    EXPECT_NEAR(ev.time, t_star, 4 * sim.chord_deviation() / v + 1e-8 * t_star) << "case " << c;
+    EXPECT_NEAR(ev.normal_speed_before, v, 1e-6 * v) << "case " << c;
+    EXPECT_NEAR(ev.normal_speed_after, e * v, 1e-6 * v) << "case " << c;
+    // Newton's law in (s, psi, phi): J = [1, px, -px] (normal +y; the cam's surface moves up at
+    // omega px), M = diag(m, I_P + m s^2, I)
+    const double M22 = f.inertia + f.mass * f.s0 * f.s0;
+    const double A = 1 / f.mass + px * px / M22 + px * px / inertia;
+    const double lambda = (1 + e) * v / A;
+    EXPECT_NEAR(sim.state().slide_rate, lambda / f.mass, 1e-6 * v) << "case " << c;
+    EXPECT_NEAR(sim.state().angle_rate, lambda * px / M22, 1e-6 * v / std::abs(px));
+    EXPECT_NEAR(sim.state().rate[0], omega - lambda * px / inertia, 1e-6 * omega);
+    EXPECT_NEAR(ev.impulse, lambda / 1000, 1e-6 * lambda / 1000);
+    // the energy balance: the torque's work went into the cam's kinetic energy, the impact took
+    // (1 - e^2) v^2 / (2 A) of it (N mm = 1000 kg mm^2 / s^2)
+    EXPECT_NEAR(sim.dissipated(), (1 - e * e) * v * v / (2 * A) / 1000, 1e-6 * v * v / A / 1000) << "case " << c;
+    EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-8 * torque * (phi_star - phi0)) << "case " << c;
+  }
+}
+
+// The torque-driven cam lifts a follower held on it by gravity and a spring: while they ride,
+// the slide is the circle's kinematic function of the cam's own angle, and the contact force
+// solves the two equations m s'' = N - m g - k (s - rest), I phi'' = T - N ecc cos(phi) with
+// s'' = ecc cos(phi) phi'' - ecc sin(phi) phi'^2:
+//   N (1 + m px^2 / I) = m g + k (s - rest) + m px T / I - m ecc sin(phi) phi'^2,  px = ecc cos(phi).
+struct TorqueRiding {
+  Riding base;
+  double inertia = 30, torque = 2;   // kg mm^2, N mm
+  std::string json() const {
+    const Riding& d = base;
+    return model_json(torque_cam(d.ecc, d.r, d.phi0, inertia, torque) + ", " + d.f.json(),
+                      R"({ "parts": ["cam", "follower"], "restitution": 0 })",
+                      R"("gravity": [0, -)" + num(d.g) + R"(], "accuracy": 1e-10)");
+  }
+  double force(double phi, double rate, double slide) const {   // N
+    const Riding& d = base;
+    const double m = d.f.mass, k = 1000 * d.k, T = 1000 * torque, px = d.ecc * std::cos(phi);
+    return (m * d.g + k * (slide - d.rest) + m * px * T / inertia - m * d.ecc * std::sin(phi) * rate * rate) /
+           (1 + m * px * px / inertia) / 1000;
+  }
+};
+
+TorqueRiding generated_torque_riding(Lcg& rng) {
+  TorqueRiding d;
+  Riding& b = d.base;
+  b.ecc = rng.uniform(2, 5);
+  b.r = rng.uniform(8, 11);
+  b.f.mass = rng.uniform(0.005, 0.02);
+  b.f.inertia = 1e9;
+  b.f.yb = 18;
+  b.k = rng.uniform(0, 0.002);   // N/mm
+  b.rest = rng.uniform(-20, -10);
+  b.f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(b.k) + R"(, "rest": )" + num(b.rest) + " }";
+  b.f.s0 = b.slide(b.phi0, 0, 0.01);   // 0.01 mm above the cam's lowest point
+  d.inertia = rng.uniform(20, 50);
+  // the load the cam lifts (N mm at the lever ecc): the torque is 2 to 4 times it, and small
+  // enough that the follower stays on over the rising half turn: ecc phi'^2 <= 2 pi T / I ecc
+  // stays below g / 2
+  const double press = (b.f.mass * b.g + 1000 * b.k * (b.ecc + b.r - b.f.yb - b.rest)) / 1000;   // N
+  d.torque = press * b.ecc * rng.uniform(2, 4);
+  EXPECT_LT(2 * std::numbers::pi * 1000 * d.torque / d.inertia * b.ecc, b.g / 2);
+  return d;
+}
+
+TEST(SimulationPinSlot, TorqueDrivenCamLiftsItsFollowerAndTheEnergyBalanceHolds) {
+  Lcg rng{591};
+  for (int c = 0; c < 3; ++c) {
+    const TorqueRiding d = generated_torque_riding(rng);
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(d.json(), "<torque riding>"));
+    const double e0 = sim.energy();
+    const double work = 1000 * d.torque * std::numbers::pi / 1000;   // the torque's work over the half turn, N mm
+    int checked = 0;
+    while (sim.state().position[0] < d.base.phi0 + std::numbers::pi * 0.95) {
+      sim.step(sim.state().time + 0.01);
+      expect_not_overlapping(sim, {0});
+      EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-7 * work) << "case " << c << " t " << sim.state().time;
+      if (sim.state().contacts.empty()) continue;
+      const double phi = sim.state().position[0], rate = sim.state().rate[0];
+      EXPECT_NEAR(sim.state().slide, d.base.slide(phi, sim.state().angle, hold_gap(sim)), 1e-3 * hold_gap(sim))
+          << "case " << c << " t " << sim.state().time;
+      const double N = d.force(phi, rate, sim.state().slide);
+      EXPECT_NEAR(sim.state().contacts[0].normal_force, N, 1e-4 * N) << "case " << c << " t " << sim.state().time;
+      ++checked;
+    }
+    EXPECT_GT(checked, 20) << "case " << c;
+    ASSERT_EQ(sim.state().contacts.size(), 1u) << "case " << c;
+    for (const SimulationEvent& ev : sim.events()) EXPECT_NE(ev.kind, SimulationEvent::Kind::lift_off) << "case " << c;
+    EXPECT_GT(sim.state().rate[0], 0);
+    EXPECT_GE(sim.dissipated(), 0);
+    EXPECT_LT(sim.dissipated(), 1e-3 * work);   // only the slow first touch (plastic) and the projections
+  }
+}
+
+TEST(SimulationPinSlot, TorqueDrivenEventsDoNotDependOnTheStepSize) {
+  Lcg rng{592};
+  const TorqueRiding d = generated_torque_riding(rng);
+  const Model model = read_model(d.json(), "<torque steps>");
+  // the half turn's time, from the torque alone (an upper bound of the cam's speed)
+  const double t_end = std::sqrt(2 * std::numbers::pi / (1000 * d.torque / d.inertia)) * 1.2;
+  std::vector<std::vector<SimulationEvent>> runs;
+  std::vector<double> angles;
+  double delta = 0;
+  for (double max_step : {4e-3, 2e-3, 8e-3}) {   // h, h/2, 2h
+    SimulationOptions o;
+    o.max_step = max_step;
+    PinSlotSimulation sim = PinSlotSimulation::create(model, o);
+    delta = sim.chord_deviation();
+    sim.run_until(t_end);
+    runs.push_back(sim.events());
+    angles.push_back(sim.state().position[0]);
+  }
+  ASSERT_GE(runs[0].size(), 2u);   // the first touch and the held contact
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    ASSERT_EQ(runs[r].size(), runs[0].size()) << "run " << r;
+    for (std::size_t i = 0; i < runs[0].size(); ++i) {
+      EXPECT_EQ(runs[r][i].kind, runs[0][i].kind) << "event " << i;
+      EXPECT_EQ(runs[r][i].features, runs[0][i].features);
+      const double v = std::max(runs[0][i].normal_speed_before, 1.0);
+      EXPECT_NEAR(runs[r][i].time, runs[0][i].time, 8 * delta / v + 1e-6 * t_end) << "event " << i;
+    }
+    EXPECT_NEAR(angles[r], angles[0], 1e-6) << "run " << r;
+  }
+}
+
+// A translating part (the film of the film advance, session 59) struck by the pin-slot part: a
+// block on a vertical rail carrying a disc of radius rb at (cx, yc), viscous damping c to the
+// frame, its lower limit a stop; the follower thrown down its slot at v0 (no gravity). Newton's
+// law over (s, psi, x) with J = [1, cx, -1] (normal +y: the follower's face, the lever cx about
+// the pin, the block's surface moving with x), M = diag(m, I_P + m s^2, m_b); then the block's free
+// flight x' = x0' exp(-c tau / m_b) to its limit, struck (plastic) and held there.
+TEST(SimulationPinSlot, TranslatingPartIsStruckByTheFollowerAndStopsAtItsLimit) {
+  Lcg rng{593};
+  for (int c = 0; c < 4; ++c) {
+    Follower f;
+    f.mass = rng.uniform(0.005, 0.02);
+    f.inertia = f.mass * rng.uniform(2000, 5000);   // (it turns little while it bounces away)
+    f.yb = 12;
+    f.s0 = 0;
+    const double v0 = rng.uniform(50, 200), h = rng.uniform(0.5, 2), e = rng.uniform(0.6, 0.9);
+    const double mb = f.mass * rng.uniform(5, 20), rb = 3, cx = rng.uniform(-5, 5), yc = f.yb - h - rb;
+    const double rate = rng.uniform(10, 50), damping = rate * mb / 1000;   // c / m_b in 1/s; c in N s / mm
+    // Newton's law at the impact (t* = h / v0, the follower at s = -h: M22 = I_P + m h^2)
+    const double A = 1 / f.mass + cx * cx / (f.inertia + f.mass * h * h) + 1 / mb, lambda = (1 + e) * v0 / A;
+    const double xdot0 = -lambda / mb;
+    const double lo = 0.5 * xdot0 / rate;   // reached: the block's free path is xdot0 / rate
+    const std::string block = R"({ "name": "film", "motion": { "translation": { "direction": [0, 1], "limits": [)" +
+                              num(lo) + R"(, 5] } }, "initial": { "offset": 0 }, "features": [ { "circle": { "center": [)" +
+                              num(cx) + ", " + num(yc) + R"(], "radius": )" + num(rb) + R"( } } ], "dynamics": { "mass": )" +
+                              num(mb) + R"(, "damping": )" + num(damping) + " } }";
+    const std::string json = model_json(
+        block + ", " + f.json(), R"({ "parts": ["film", "follower"], "restitution": )" + num(e) + " }",
+        R"("velocities": { "follower": { "slide": )" + num(-v0) + R"(, "angle": 0 } }, "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<film block>"));
+    const double e0 = sim.energy(), t_star = h / v0;
+    const double tau_limit = -std::log(1 - lo * rate / xdot0) / rate;
+    const double t_end = t_star + 1.5 * tau_limit;
+    while (sim.state().time < t_end) {
+      sim.step(t_end);
+      expect_not_overlapping(sim, {0});
+      EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-8 * e0) << "case " << c << " t " << sim.state().time;
+      if (sim.events().size() == 1) {   // the block's damped flight after the impact
+        const double tau = sim.state().time - sim.events()[0].time;
+        EXPECT_NEAR(sim.state().rate[0], xdot0 * std::exp(-rate * tau), 1e-6 * std::abs(xdot0)) << "case " << c;
+        EXPECT_NEAR(sim.state().position[0], xdot0 / rate * (1 - std::exp(-rate * tau)), 1e-6 * std::abs(lo))
+            << "case " << c;
+      }
+    }
+    const auto& ev = sim.events();
+    ASSERT_GE(ev.size(), 2u) << "case " << c;   // the strike, the limit struck
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_EQ(ev[0].first_part, "film");
+    EXPECT_NEAR(ev[0].time, t_star, 4 * sim.chord_deviation() / v0 + 1e-8 * t_star) << "case " << c;
+    EXPECT_NEAR(ev[0].normal_speed_before, v0, 1e-6 * v0);
+    EXPECT_NEAR(ev[0].normal_speed_after, e * v0, 1e-6 * v0);
+    EXPECT_NEAR(ev[0].impulse, lambda / 1000, 1e-6 * lambda / 1000);
+    EXPECT_EQ(ev[1].kind, SimulationEvent::Kind::impact);
+    EXPECT_EQ(ev[1].first_part, "film");
+    EXPECT_NE(ev[1].features[0].find("film offset limit (lower end)"), std::string::npos) << ev[1].features[0];
+    const double tau = ev[1].time - ev[0].time;
+    EXPECT_NEAR(tau, tau_limit, 1e-6 * tau_limit) << "case " << c;
+    // a plastic stop: the impulse takes the block's momentum m_b |x'| there
+    const double at_limit = std::abs(xdot0) * std::exp(-rate * tau_limit);
+    EXPECT_NEAR(ev[1].impulse, mb * at_limit / 1000, 1e-5 * mb * at_limit / 1000) << "case " << c;
+    // with no load on it the block rests at its stop with a zero contact force: held or free by
+    // round-off, so any later event is at the stop, of round-off's size
+    for (std::size_t i = 2; i < ev.size(); ++i) {
+      EXPECT_NE(ev[i].features[0].find("film offset limit (lower end)"), std::string::npos) << "case " << c;
+      EXPECT_LT(ev[i].impulse, 1e-9 * mb * at_limit / 1000) << "case " << c;
+    }
+    EXPECT_NEAR(sim.state().rate[0], 0.0, 1e-9 * std::abs(xdot0));
+    EXPECT_GE(sim.state().position[0], lo);
+    EXPECT_LE(sim.state().position[0], lo + sim.chord_deviation());
+    EXPECT_GT(sim.state().slide_rate, 0);   // the follower bounced back up (e > m A - 1)
+  }
+}
+
 TEST(SimulationPinSlot, OutsideTheClassItRefusesWithClearMessages) {
   Drop d;
-  // a moving part that is not a driver
+  // a moving part that is neither a driver nor torque-driven with its inertia (session 59: a
+  // rotating part with a moment of inertia turns by its own dynamics)
   const std::string cam = R"({ "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } }, "features": [
-      { "circle": { "center": [3, 0], "radius": 10 } } ], "dynamics": { "moment_of_inertia": 1 } })";
+      { "circle": { "center": [3, 0], "radius": 10 } } ], "dynamics": { "torque": 1 } })";
   try {
     PinSlotSimulation::create(read_model(model_json(cam + ", " + d.f.json(), R"({ "parts": ["cam", "follower"] })", ""), "<x>"));
     FAIL() << "an undriven cam was taken";
   } catch (const ModelError& e) {
     EXPECT_NE(std::string(e.what()).find("/parts/0/motion"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("moment_of_inertia"), std::string::npos) << e.what();
+  }
+  // a torque-driven cam takes its inertia and torque only
+  try {
+    PinSlotSimulation::create(read_model(
+        model_json(torque_cam(3, 10, 0, 1, 1, R"(, "damping": 0.1)") + ", " + d.f.json(), R"({ "parts": ["cam", "follower"] })", ""),
+        "<x2>"));
+    FAIL() << "a damped torque-driven cam was taken";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("/parts/0/dynamics/damping"), std::string::npos) << e.what();
   }
   // no mass
   Follower light = d.f;
