@@ -18,6 +18,7 @@
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
+#include <hipair/motion_words.hpp>
 #include <hipair/shared_curves.hpp>
 
 #include <unistd.h>
@@ -123,17 +124,6 @@ bool can_drive(const Part& part) {
   return part.motion.kind == Motion::Kind::rotation || part.motion.kind == Motion::Kind::translation;
 }
 
-std::string motion_word(Motion::Kind kind) {
-  switch (kind) {
-    case Motion::Kind::fixed: return "fixed";
-    case Motion::Kind::rotation: return "rotating";
-    case Motion::Kind::translation: return "translating";
-    case Motion::Kind::planar: return "planar";
-    case Motion::Kind::pin_slot: return "pin-slot";
-  }
-  return "?";
-}
-
 // The part to drive: `--driver` checked, or the first rotating or translating part of the first
 // pair that has one; the messages say which parts could drive, or why none can.
 std::size_t choose_driver(const Model& model, const std::string& requested) {
@@ -155,7 +145,7 @@ std::size_t choose_driver(const Model& model, const std::string& requested) {
                                           : "parts that can drive: " + list(candidates);
     if (!index) throw ModelError("", "--driver: no part named '" + requested + "' (" + hint + ")");
     if (!can_drive(model.parts[*index]))
-      throw ModelError("", "--driver: part '" + requested + "' is " + motion_word(model.parts[*index].motion.kind) +
+      throw ModelError("", "--driver: part '" + requested + "' is " + motion_adjective(model.parts[*index].motion.kind) +
                                "; analyze drives a rotating or translating part (" + hint + ")");
     return *index;
   }
@@ -163,7 +153,7 @@ std::size_t choose_driver(const Model& model, const std::string& requested) {
   std::string parts;
   for (const PairSpec& pair : model.pairs)
     for (std::size_t k : {pair.first, pair.second}) {
-      std::string item = "'" + model.parts[k].name + "' " + motion_word(model.parts[k].motion.kind);
+      std::string item = "'" + model.parts[k].name + "' " + motion_adjective(model.parts[k].motion.kind);
       if (parts.find(item) == std::string::npos) parts += (parts.empty() ? "" : ", ") + item;
     }
   if (model.pairs.empty())
@@ -319,7 +309,7 @@ int run_analyze(const AnalyzeOptions& options) {
       throw ModelError("", load.source + ": '" + part + "' is the driver; a load acts on a driven part (the driver moves "
                                          "as --range / --direction say)");
     if (!can_drive(loaded))
-      throw ModelError("", load.source + ": '" + part + "' is " + motion_word(loaded.motion.kind) +
+      throw ModelError("", load.source + ": '" + part + "' is " + motion_adjective(loaded.motion.kind) +
                                "; a load acts on a rotating or translating part the driver pushes");
     // a part no pair of the driver's chain moves is not analysed: its load was taken and
     // ignored until session 46 (a second mechanism's part, an unconnected one)

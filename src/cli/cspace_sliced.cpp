@@ -3,6 +3,8 @@
 #include "core/model_scale.hpp"
 #include "render/sliced_svg.hpp"
 
+#include <hipair/motion_words.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -59,16 +61,6 @@ std::optional<std::pair<std::string, std::string>> sliced_pair(const Model& mode
 std::optional<std::string> planar_pair_not_built(const Model& model, std::size_t first, std::size_t second) {
   const Part& p = model.parts[first];
   const Part& q = model.parts[second];
-  auto kind = [](Motion::Kind k) {
-    switch (k) {
-      case Motion::Kind::fixed: return "fixed";
-      case Motion::Kind::rotation: return "rotating";
-      case Motion::Kind::translation: return "translating";
-      case Motion::Kind::planar: return "planar";
-      case Motion::Kind::pin_slot: return "pin_slot";
-    }
-    return "?";
-  };
   if (p.motion.kind != Motion::Kind::planar && q.motion.kind != Motion::Kind::planar) return std::nullopt;
   for (const Part* part : {&p, &q})
     if (part->motion.kind == Motion::Kind::fixed || part->motion.kind == Motion::Kind::pin_slot) return std::nullopt;
@@ -80,7 +72,7 @@ std::optional<std::string> planar_pair_not_built(const Model& model, std::size_t
     }
   const int dimensions = p.motion.degrees_of_freedom() + q.motion.degrees_of_freedom();
   auto described = [&](const Part& part) {
-    return std::string(kind(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")";
+    return std::string(motion_adjective(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")";
   };
   const Part& planar = p.motion.kind == Motion::Kind::planar ? p : q;
   const Part& other = &planar == &p ? q : p;

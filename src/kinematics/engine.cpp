@@ -14,6 +14,7 @@
 #include "kernels/implicit_curve.hpp"
 
 #include <hipair/error.hpp>
+#include <hipair/motion_words.hpp>
 
 #include <mpfr.h>
 
@@ -50,17 +51,7 @@ bool fixed_axis(const Motion& motion) {
 std::string pair_refusal(const Model& model, const PairSpec& spec) {
   const Part& a = model.parts[spec.first];
   const Part& b = model.parts[spec.second];
-  auto word = [](Motion::Kind kind) {
-    switch (kind) {
-      case Motion::Kind::fixed: return "fixed";
-      case Motion::Kind::rotation: return "rotating";
-      case Motion::Kind::translation: return "translating";
-      case Motion::Kind::planar: return "planar";
-      case Motion::Kind::pin_slot: return "pin-slot";
-    }
-    return "?";
-  };
-  auto described = [&](const Part& part) { return std::string(word(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")"; };
+  auto described = [&](const Part& part) { return std::string(motion_adjective(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")"; };
   const std::string pair = "pair '" + a.name + "':'" + b.name + "' (" + spec.pointer + ")";
   if (motion_dof(a.motion) == 0 && motion_dof(b.motion) == 0) return pair + ": both parts are fixed";
   if (fixed_axis(a.motion) && fixed_axis(b.motion)) return {};
