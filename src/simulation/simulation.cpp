@@ -194,6 +194,10 @@ struct Simulation::Impl {
   double last_touch_end = std::numeric_limits<double>::quiet_NaN();
   // steps in a row that left the time where it was (step_and_free)
   std::size_t steps_in_place = 0;
+  // the last step's accepted trial length where it was too short to move the time (t + trial
+  // rounds to t: the error control asks for steps below the time's resolution there); 0 else.
+  // Only the message of the steps-in-place guard reads it (step_and_free).
+  double unresolved_trial = 0;
   // friction_of's contact frames at the configurations of this step (frame_cache.hpp)
   mutable simulation::FrameCache frames;
 
@@ -2302,6 +2306,7 @@ struct Simulation::Impl {
       x1 = x;
       t1 = t;
       double trial = dt;
+      const double tried = dt;
       overflowed = false;
       if (stepper.try_step(sys, x1, t1, trial) == success) {
         // odeint accepts a trial whose error estimate is not a number (a comparison with NaN is
@@ -2310,6 +2315,7 @@ struct Simulation::Impl {
         // non-finite result is a rejected trial, retried at a quarter of its length.
         if (std::all_of(x1.begin(), x1.end(), [](double value) { return std::isfinite(value); })) {
           dt = std::min(trial, max_step);
+          unresolved_trial = t1 == t ? tried : 0;
           break;
         }
         trial = dt / 4;
@@ -2645,7 +2651,18 @@ struct Simulation::Impl {
     if (steps_in_place >= max_steps_in_place) {
       std::ostringstream out;
       out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << steps_in_place
-          << " steps in a row did not move the time on (a contact change that repeats without progress)";
+          << " steps in a row did not move the time on";
+      if (unresolved_trial > 0) {
+        // the integrator's error control, not a contact change: its accepted step is shorter
+        // than half a unit in the last place of t, and a longer one fails the accuracy
+        const double ulp = std::nextafter(t, std::numeric_limits<double>::infinity()) - t;
+        out << ": the integrator accepts only steps of about " << unresolved_trial / time_scale << " " << time_unit
+            << " here at accuracy " << accuracy << ", shorter than half the resolution of the time ("
+            << ulp / time_scale << " " << time_unit
+            << ", one unit in the last place of t), so no step moves the time; another --accuracy may pass";
+      } else {
+        out << " (a contact change that repeats without progress)";
+      }
       throw NumericError(out.str());
     }
   }

@@ -16,6 +16,11 @@
 #     non-finite state (a singular contact constraint?)" or "a jammed contact change", exit 3);
 #     at half the largest speed the message gives, the run is not refused and does not end in a
 #     non-finite state.
+#  4. a driver fast enough that the time cannot resolve the steps the accuracy asks for (session
+#     59, speed59): geneva-drive.json at 1e{10..20} rad/s (--set, --allow-out-of-tolerance) over
+#     100 rad of the driver: exit 3, one line saying that the integrator's accepted step is
+#     shorter than half the resolution of the time (base59 said "a contact change that repeats
+#     without progress"), --out left as it was.
 # usage: run_simulate_range_tests.sh HIPAIR_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
 # shellcheck source=seeded_test.sh
@@ -136,6 +141,19 @@ PY
     grep -q "non-finite state\|drivers/0" "$work/half.err" && fail "$file at half of $largest rad/s: $(head -c 300 "$work/half.err")"
   done
 done
+
+exponent=$((10 + RANDOM % 11))
+t_end=$(python3 -c "print(100 / 1e$exponent)")
+what="simulate geneva-drive.json with the driver at 1e$exponent rad/s"
+rm -rf "$work/out" && mkdir -p "$work/out" && echo keep >"$work/out/sentinel"
+timeout 120 "$hipair" simulate "$source/examples/models/geneva-drive.json" --t-end "$t_end" --set "driver-speed=1e$exponent" \
+  --allow-out-of-tolerance --no-pictures --quiet --out "$work/out" >"$work/res.out" 2>"$work/res.err"
+status=$?
+[ "$status" -eq 3 ] || fail "$what: exit $status, not 3: $(head -c 300 "$work/res.err")"
+[ "$(wc -l <"$work/res.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/res.err")"
+grep -q "did not move the time on: the integrator accepts only steps of about .* shorter than half the resolution of the time" \
+  "$work/res.err" || fail "$what: the message does not name the time's resolution: $(head -c 300 "$work/res.err")"
+[ "$(ls "$work/out")" = sentinel ] && [ "$(cat "$work/out/sentinel")" = keep ] || fail "$what: --out changed: $(ls "$work/out")"
 
 echo "simulate range tests: $failures failure(s) (seed $seed)"
 [ "$failures" -eq 0 ]
