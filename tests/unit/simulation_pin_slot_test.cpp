@@ -1002,7 +1002,7 @@ TEST(SimulationPinSlot, SpunFollowerStrikesItsAngleStopAndWedgesAgainstTheCamAtA
   for (int c = 0; c < 2; ++c) rates.push_back(500 * std::pow(2e5, rng.uniform(0, 1)));
   for (std::size_t c = 0; c < rates.size(); ++c) {
     const double w = rates[c];
-    const bool offset = c % 2 == 1;
+    const bool offset = c == 3;   // (700 and 3000: the reported model)
     SCOPED_TRACE("initial angle rate " + num(w) + " rad/s" + (offset ? ", offset centre of mass" : ""));
     PinSlotSimulation sim = PinSlotSimulation::create(read_model(spun_pin_slot_cam(w, offset), "<spun>"));
     const double t_end = 0.008, reach = sim.chord_deviation() / 1e-9;   // delta = accuracy x reach
