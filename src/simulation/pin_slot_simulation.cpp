@@ -578,6 +578,9 @@ struct PinSlotSimulation::Impl {
     return {other, follower};
   }
   // The limit a state lies beyond (0: none; exact comparisons of the state's doubles).
+  // A feature pair of pair `pi` as a row the projection can raise (its body geometry; none for
+  // kinds the held gap does not cover: a segment on a concave arc, two concave arcs).
+  std::optional<Held> clearance(std::size_t pi, const SlicedFeaturePair& f) const;
   int outside_limit(const State& s) const {
     if (slide_limits && Rational(s[0]) > slide_limits->hi) return 1;
     if (slide_limits && Rational(s[0]) < slide_limits->lo) return 2;
@@ -984,7 +987,8 @@ struct PinSlotSimulation::Impl {
   }
   // The state projected onto the held contacts: their gaps to the hold gap (Gauss-Newton,
   // mass-weighted) and their normal speeds to 0.
-  State project(const State& s, double time) const;
+  // `clear`: contacts (not held) whose gaps the projection raises to the hold gap too (settle)
+  State project(const State& s, double time, const std::vector<Held>& clear = {}) const;
   // Moves the state to its projection onto the held contacts, every pair's exact configuration
   // along a straight chord certified free by first_crossing.
   void settle();
@@ -1042,7 +1046,7 @@ bool PinSlotSimulation::Impl::held_valid(const Held& h, const State& s, double t
   return in_arc(sign * vx, sign * vy, pa, fa) && in_arc(sign * vx, sign * vy, pb, fb);
 }
 
-State PinSlotSimulation::Impl::project(const State& from, double time) const {
+State PinSlotSimulation::Impl::project(const State& from, double time, const std::vector<Held>& clear) const {
   State s = from;
   if (held.empty()) return s;
   // the mass-weighted least correction dq with J dq = -r: -M^-1 J^T (J M^-1 J^T)^+ r (M^-1 of
@@ -1057,12 +1061,14 @@ State PinSlotSimulation::Impl::project(const State& from, double time) const {
     for (int pass = 0; pass < 8; ++pass) {
       std::vector<HeldRow> rows;
       for (const Held& h : held) rows.push_back(held_row(h, s, time));
+      for (const Held& h : clear) rows.push_back(held_row(h, s, time));
       const auto k = static_cast<Eigen::Index>(rows.size());
       const Eigen::MatrixXd J = jacobian(rows);
       Eigen::VectorXd r(k);
       double worst = 0;
       for (Eigen::Index i = 0; i < k; ++i) {
         r(i) = rows[static_cast<std::size_t>(i)].g - hold_gap;
+        if (static_cast<std::size_t>(i) >= held.size()) r(i) = std::min(r(i), 0.0);   // a clearance: at least the gap
         worst = std::max(worst, std::abs(r(i)));
       }
       if (worst <= 1e-3 * hold_gap) break;
@@ -1084,22 +1090,63 @@ State PinSlotSimulation::Impl::project(const State& from, double time) const {
   return s;
 }
 
+std::optional<PinSlotSimulation::Impl::Held> PinSlotSimulation::Impl::clearance(std::size_t pi,
+                                                                                  const SlicedFeaturePair& f) const {
+  const Model& frame = *pairs[pi].frame_model;
+  auto geometry = [&](const FeatureIdentity& id) {
+    return kernels::feature_geometry<double>(frame, id, [](const Rational& r) { return r.get_d(); });
+  };
+  Held h;
+  h.pair = pi;
+  h.features = f;
+  h.fixed_geometry = geometry(f.fixed);
+  h.free_geometry = geometry(f.free);
+  const double zero[3] = {0, 0, 0};
+  const auto [pa, pb] = held_poses(h, y, t, zero);
+  if (!feature_gap(pa, h.fixed_geometry, pb, h.free_geometry)) return std::nullopt;
+  return h;
+}
+
 void PinSlotSimulation::Impl::settle() {
-  const State to_state = project(y, t);
+  // A contact within the hold gap that the projection moves the part into (session 59: the
+  // follower's corner, touching the cam, struck its angle stop; the stop's projection onto its hold
+  // gap turned the corner into the cam, a wedge) is projected out to the hold gap too (a clearance:
+  // free, not held; the next step's chord meets it if it approaches), and the chords tested again.
+  std::vector<Held> clear;
+  State to_state;
   std::vector<SlicedConfiguration> to(pairs.size());
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    to[i] = relative(pairs[i], to_state, t);
-    const bool flip = std::abs(relative_angle(pairs[i], to_state, t)) > std::numbers::pi / 2;
-    SlicedMotion motion{pairs[i].q, to[i], flip, {}};
-    ++chords;
-    const SlicedMotionCrossing c = pairs[i].space.first_crossing(motion, CrossingOptions{options.crossing_bits});
-    if (c.status != CrossingStatus::none) {
-      std::ostringstream out;
-      out << where(t) << ": holding the contacts of '" << model.parts[part].name << "' moves it into '"
-          << model.parts[pairs[i].other].name << "'"
-          << (c.features.empty() ? std::string() : " (" + c.features.front().label + ")")
-          << ": a held set the simulator cannot keep (docs/simulation.md)";
-      throw NumericError(out.str());
+  for (bool kept = false; !kept;) {
+    kept = true;
+    to_state = project(y, t, clear);
+    for (std::size_t i = 0; i < pairs.size() && kept; ++i) {
+      to[i] = relative(pairs[i], to_state, t);
+      const bool flip = std::abs(relative_angle(pairs[i], to_state, t)) > std::numbers::pi / 2;
+      SlicedMotion motion{pairs[i].q, to[i], flip, {}};
+      ++chords;
+      const SlicedMotionCrossing c = pairs[i].space.first_crossing(motion, CrossingOptions{options.crossing_bits});
+      bool fresh = false;
+      for (const SlicedFeaturePair& f : c.features) {
+        bool known = is_held(i, f);
+        for (const Held& h : clear)
+          known = known || (h.pair == i && h.features.fixed == f.fixed && h.features.free == f.free);
+        if (known) continue;
+        std::optional<Held> h = clearance(i, f);
+        if (!h) continue;
+        clear.push_back(std::move(*h));
+        fresh = true;
+      }
+      if (c.status == CrossingStatus::crossing && fresh && clear.size() <= 4) {
+        kept = false;
+        continue;
+      }
+      if (c.status != CrossingStatus::none) {
+        std::ostringstream out;
+        out << where(t) << ": holding the contacts of '" << model.parts[part].name << "' moves it into '"
+            << model.parts[pairs[i].other].name << "'"
+            << (c.features.empty() ? std::string() : " (" + c.features.front().label + ")")
+            << ": a held set the simulator cannot keep (docs/simulation.md)";
+        throw NumericError(out.str());
+      }
     }
   }
   settle_loss += energy_of(y) - energy_of(to_state);
@@ -1404,21 +1451,30 @@ bool PinSlotSimulation::Impl::advance(double span) {
   // the limit, so that limits beyond the motion change nothing (not a trial step's overshoot).
   // False when a flight is too long or the state beyond is not finite (a load too violent for the
   // span: a shorter step). Every flight of a step is capped (flight_evaluations).
+  // The bisection tests the very states a step of that length computes (two half flights, then
+  // the projection onto the held contacts): a single flight differs from them by the integration's
+  // error, which at a high rate carried the forced step's end past the stop it was cut at.
+  auto beyond_limit = [&](double span) {
+    const State half = flight(y, span / 2, t, true);
+    const State whole = flight(half, span / 2, t + span / 2, true);
+    if (!finite(half) || !finite(whole)) return -1;
+    const int beyond = outside_limit(whole);
+    return beyond ? beyond : outside_limit(project(whole, t + span));
+  };
   auto locate_limit = [&](double reached) {
     double lo = 0, hi = reached;
-    State beyond;
+    int beyond = 0;
     try {
       while (hi - lo > 0x1p-30 * reached) {
         const double m = (lo + hi) / 2;
-        const State x = flight(y, m, t, true);
-        (!finite(x) || outside_limit(x) ? hi : lo) = m;
+        (beyond_limit(m) != 0 ? hi : lo) = m;
       }
-      beyond = flight(y, hi, t, true);
+      beyond = beyond_limit(hi);
     } catch (const FlightTooLong&) {
       return false;
     }
-    if (!finite(beyond)) return false;
-    pending_limit = outside_limit(beyond);
+    if (beyond <= 0) return false;
+    pending_limit = beyond;
     forced_step = lo;
     return true;
   };
@@ -1509,7 +1565,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
       if (c.status == CrossingStatus::crossing) crossings[i] = std::move(c);
     }
     if (first == no_index) {
-      if (!(h == forced_step && pending_limit) && outside_limit(unprojected)) {
+      if (!(h == forced_step && pending_limit) && (outside_limit(unprojected) || outside_limit(end))) {
         h = locate_limit(h) ? forced_step : h / 2;
         continue;
       }
@@ -1799,6 +1855,39 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   const double size = s.reach_at({&s.y});
   s.size = size;
   s.delta = options.chord_deviation > 0 ? options.chord_deviation : s.accuracy * size;
+  // An initial angle rate the doubles cannot carry (session 59): a rate w turns a point at the
+  // part's reach r with the acceleration w^2 r; beyond the doubles' range (1.8e308) the run crawled
+  // towards its step budget at t = 1e-317 s (the pin-slot cam spun at 1e200 rad/s: 84 s, 646 MB).
+  // Refused at once, at its pointer, with the largest rate the reach allows (a slide rate of
+  // 1e300 mm/s runs: the part strikes its slot's end; constant-speed drivers: hipair simulate).
+  auto refuse_rate = [&](const SimulationSpec::Velocity& v, const std::string& pointer, double r,
+                         const std::string& whose) {
+    const double rate = std::abs(v.value.get_d()) / ts;
+    if (std::isfinite(rate * rate * r)) return;
+    std::ostringstream out;
+    out << "the initial angle rate " << v.value.get_d() << " rad/" << s.time_unit << " of " << whose << " '"
+        << model.parts[v.part].name << "' is beyond what the simulator's doubles carry: its point " << r
+        << " mm from the pivot would accelerate beyond their range (1.8e308); give at most "
+        << std::sqrt(std::numeric_limits<double>::max() / r) * ts << " rad/" << s.time_unit;
+    throw ModelError(pointer, out.str());
+  };
+  if (own_velocity.size() == 2) refuse_rate(*own_velocity[1], own_velocity[1]->pointer + "/angle", size, "pin-slot part");
+  for (const SimulationSpec::Velocity& v : spec.velocities)
+    if (s.free_driver != no_index && v.part == s.drivers[s.free_driver].part) {
+      const Part& cam = model.parts[v.part];
+      double r = 0;
+      for (const Loop& loop : cam.loops)
+        for (const Edge& edge : loop.edges) {
+          for (const Point* q : {&edge.source, &edge.target})
+            r = std::max(r, std::hypot(Rational(q->x - cam.motion.pivot.x).get_d(),
+                                       Rational(q->y - cam.motion.pivot.y).get_d()));
+          if (edge.is_arc())
+            r = std::max(r, std::hypot(Rational(edge.center.x - cam.motion.pivot.x).get_d(),
+                                       Rational(edge.center.y - cam.motion.pivot.y).get_d()) +
+                                std::sqrt(edge.radius_squared.get_d()));
+        }
+      refuse_rate(v, v.pointer, std::max(r, 1e-300), "torque-driven part");
+    }
   // the rest speed: the speed a load gains over the chord deviation
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
   load += (std::abs(s.torque) / s.inertia_c) * size;

@@ -113,6 +113,16 @@ def main(argv):
         'velocity-unknown-part': (velocity({'nobody': {'angle': 1}}), [], 2, '/simulation/velocities/nobody'),
         # thrown up the slot at 1e300 mm/s: struck at the slot's upper end after 3.4e-299 s, held, let go
         'velocity-slide-1e300': (velocity({'follower': {'slide': 1e300}}), [], 'stop', 'slide limit (upper end)'),
+        # spun at 1e200 rad/s: w^2 x reach is beyond the doubles (the run crawled 84 s to its step
+        # budget at t = 1e-317 s); refused at once with the bound (session 59, pinfix59). Spun at
+        # 700 and 3000 rad/s: the corner wedged between the angle stop and the cam, the stop missed
+        # by the forced step's two half flights (exit 3 before); now the upper stop is struck first
+        'velocity-angle-1e200': (velocity({'follower': {'angle': 1e200}}), [], 2,
+                                 '/simulation/velocities/follower/angle'),
+        # (to 0.01 s: the faults were at 0.0064 and 0.0014 s)
+        'velocity-angle-700': (velocity({'follower': {'angle': 700}}), ['--t-end=0.01'], 'stop', 'angle limit (upper)'),
+        'velocity-angle-3000': (velocity({'follower': {'angle': 3000}}), ['--t-end=0.01'], 'stop',
+                                'angle limit (upper)'),
         'mass-1e200': (lambda m: (follower(m)['dynamics'].__setitem__('mass', 1e198),
                                   follower(m)['dynamics'].__setitem__('moment_of_inertia', 1e201),
                                   follower(m)['dynamics']['torsional_spring'].__setitem__('stiffness', 2e201)),

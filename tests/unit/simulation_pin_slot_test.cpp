@@ -967,5 +967,69 @@ TEST(SimulationPinSlot, SlotEndsAndAngleLimitsAreStopsAndInitialVelocitiesStartT
   }
 }
 
+// tests/data/simulation/pin-slot-cam.json with the follower spun at `w` rad/s (its initial angle
+// rate; its centre of mass on the pin, or offset to (1, 38) with a larger inertia).
+std::string spun_pin_slot_cam(double w, bool offset_centre) {
+  const std::string cam = R"({ "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } }, "initial": { "angle": -1.5 },
+      "features": [ { "circle": { "center": [4, 0], "radius": 10 } } ] })";
+  const std::string follower = R"({ "name": "follower", "motion": { "pin_slot": { "pivot": [0, 40], "direction": [0, 1],
+        "angle_limits": [-0.5, 0.5], "limits": [-30, 30] } }, "initial": { "angle": 0, "offset": -4 },
+      "dynamics": { "mass": 0.01, "moment_of_inertia": )" + std::string(offset_centre ? "12" : "10") +
+                               R"(, "torsional_spring": { "stiffness": 20, "rest": 0 } },
+      "loops": [ { "start": [-12, 18], "edges": [ { "line_to": [12, 18], "label": "face" }, { "line_to": [12, 26] },
+        { "line_to": [-12, 26] }, { "line_to": [-12, 18] } ] } ] })";
+  return model_json(cam + ", " + follower, R"({ "parts": ["cam", "follower"], "restitution": 0.5 })",
+                    R"("gravity": [0, -9810], )" +
+                        std::string(offset_centre ? R"("centers_of_mass": { "follower": [1, 38] }, )" : "") +
+                        R"("velocities": { "follower": { "angle": )" + num(w) +
+                        R"( } }, "drivers": [ { "part": "cam", "speed": 10 } ])");
+}
+
+// Session 59 (pinfix59; hunt59 found both): the pin-slot cam with its follower spun at 700 rad/s
+// and 1e3...1e8 stopped with "holding the contacts moves it into 'cam'": the follower's corner,
+// touching the cam, struck its angle stop, and the stop's projection onto its hold gap turned the
+// corner into the cam (a wedge); at 3000 rad/s it stopped with "leaves its angle limits": the stop
+// was located by single flights, the step to it made of two half flights ended past it by the
+// integration's error. Spun at rates from 500 to 1e8 rad/s (generated, log-uniform, and the two
+// reported) to 0.008 s (the faults were at 0.0064 and 0.0014 s): every accepted state exactly free
+// by the overlap oracle and exactly within the angle limits; the first event the upper stop
+// struck, no earlier than 0.5 / w (the spring and the slide's growing inertia only slow the turn),
+// at the speed reach x w at most; and every step that ends at the stop (within twice the hold gap)
+// turned back from it has an event (the stop struck).
+TEST(SimulationPinSlot, SpunFollowerStrikesItsAngleStopAndWedgesAgainstTheCamAtAnyRate) {
+  Lcg rng{59};
+  std::vector<double> rates{700, 3000};
+  for (int c = 0; c < 2; ++c) rates.push_back(500 * std::pow(2e5, rng.uniform(0, 1)));
+  for (std::size_t c = 0; c < rates.size(); ++c) {
+    const double w = rates[c];
+    const bool offset = c == 3;   // (700 and 3000: the reported model)
+    SCOPED_TRACE("initial angle rate " + num(w) + " rad/s" + (offset ? ", offset centre of mass" : ""));
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(spun_pin_slot_cam(w, offset), "<spun>"));
+    const double t_end = 0.008, reach = sim.chord_deviation() / 1e-9;   // delta = accuracy x reach
+    try {
+      while (sim.state().time < t_end) {
+        const double rate_before = sim.state().angle_rate;
+        const std::size_t events_before = sim.events().size();
+        sim.step(t_end);
+        expect_not_overlapping(sim, {0});
+        const PinSlotState& s = sim.state();
+        ASSERT_TRUE(Rational(s.angle) <= Rational(1, 2) && Rational(s.angle) >= Rational(-1, 2)) << s.angle;
+        // turned back at the stop (within twice the hold gap): the stop was struck within the step
+        if (s.angle < 0.5 - 2 * hold_gap(sim) / reach || !(rate_before > 0 && s.angle_rate <= 0)) continue;
+        EXPECT_GT(sim.events().size(), events_before) << "turned back at the stop without an event, t = " << s.time;
+      }
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "the run failed: " << e.what();
+      continue;
+    }
+    const auto& ev = sim.events();
+    ASSERT_FALSE(ev.empty());
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_NE(ev[0].features[0].find("angle limit (upper)"), std::string::npos) << ev[0].features[0];
+    EXPECT_GE(ev[0].time, 0.5 / w * (1 - 1e-9));
+    EXPECT_LE(ev[0].normal_speed_before, reach * w * (1 + 1e-9));
+  }
+}
+
 }  // namespace
 }  // namespace hipair
