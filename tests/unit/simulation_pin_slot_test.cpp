@@ -354,17 +354,25 @@ struct Riding {
   }
 };
 
-Riding generated_riding(Lcg& rng, bool lifts) {
+// A riding cam and follower drawn from `rng`: the cam's eccentricity and radius, the follower's
+// mass (kg, up to `mass_hi`) and its spring along the slot (N/mm, up to `k_hi`), the follower
+// starting 0.01 mm above the cam's lowest point.
+Riding generated_riding_geometry(Lcg& rng, double mass_hi, double k_hi) {
   Riding d;
   d.ecc = rng.uniform(2, 5);
   d.r = rng.uniform(8, 11);
-  d.f.mass = rng.uniform(0.005, 0.05);
+  d.f.mass = rng.uniform(0.005, mass_hi);
   d.f.inertia = 1e9;
   d.f.yb = 18;
-  d.k = rng.uniform(0, 0.05);   // N/mm
+  d.k = rng.uniform(0, k_hi);   // N/mm
   d.rest = rng.uniform(-20, -10);
   d.f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(d.k) + R"(, "rest": )" + num(d.rest) + " }";
-  d.f.s0 = d.slide(d.phi0, 0, 0.01);   // 0.01 mm above the cam's lowest point
+  d.f.s0 = d.slide(d.phi0, 0, 0.01);
+  return d;
+}
+
+Riding generated_riding(Lcg& rng, bool lifts) {
+  Riding d = generated_riding_geometry(rng, 0.05, 0.05);
   // the spring and the weight press with m g + k (s - rest) and the cam's top accelerates at
   // -ecc omega^2 sin(phi): the follower stays on it while m ecc omega^2 sin(phi) < that
   const double press = d.f.mass * d.g + 1000 * d.k * (d.ecc * 1.0 + d.r - d.f.yb - d.rest);
@@ -705,16 +713,8 @@ struct TorqueRiding {
 
 TorqueRiding generated_torque_riding(Lcg& rng) {
   TorqueRiding d;
+  d.base = generated_riding_geometry(rng, 0.02, 0.002);
   Riding& b = d.base;
-  b.ecc = rng.uniform(2, 5);
-  b.r = rng.uniform(8, 11);
-  b.f.mass = rng.uniform(0.005, 0.02);
-  b.f.inertia = 1e9;
-  b.f.yb = 18;
-  b.k = rng.uniform(0, 0.002);   // N/mm
-  b.rest = rng.uniform(-20, -10);
-  b.f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(b.k) + R"(, "rest": )" + num(b.rest) + " }";
-  b.f.s0 = b.slide(b.phi0, 0, 0.01);   // 0.01 mm above the cam's lowest point
   d.inertia = rng.uniform(20, 50);
   // the load the cam lifts (N mm at the lever ecc): the torque is 2 to 4 times it, and small
   // enough that the follower stays on over the rising half turn: ecc phi'^2 <= 2 pi T / I ecc
