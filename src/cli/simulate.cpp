@@ -1000,6 +1000,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
         for (int i = 3 * which; i < 3 * which + 3; ++i) {
           render::TimeSeries series;
           series.label = model.parts[parts[k]].name + " " + names[i];
+          series.unit = (i % 3 == 2 ? std::string("rad") : length_unit_name()) + (which == 0 ? "" : " per " + tu);
           for (const Sample& s : samples) series.values.push_back(column(s.states[k], i));
           plot.series.push_back(series);
         }
@@ -1122,12 +1123,14 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
       for (int i = 2 * which; i < 2 * which + 2; ++i) {
         render::TimeSeries series;
         series.label = name + " " + names[i];
+        series.unit = std::string(i % 2 == 0 ? "mm" : "rad") + (which == 0 ? "" : " per " + tu);
         for (const PinSlotState& s : samples) series.values.push_back(column(s, i));
         plot.series.push_back(series);
       }
       for (std::size_t p : torque_driven) {   // a torque-driven part's angle and rate (rad, rad per time unit)
         render::TimeSeries series;
         series.label = model.parts[p].name + " " + coordinate(p).substr(1) + (which == 0 ? "" : "_rate");
+        series.unit = std::string(coordinate(p) == "_offset" ? "mm" : "rad") + (which == 0 ? "" : " per " + tu);
         for (const PinSlotState& s : samples) series.values.push_back(which == 0 ? s.position[p] : s.rate[p]);
         plot.series.push_back(series);
       }
@@ -1327,6 +1330,8 @@ int run(const SimulateOptions& options) {
       for (std::size_t p : moving) {
         render::TimeSeries series;
         series.label = model.parts[p].name;
+        series.unit = (model.parts[p].motion.kind == Motion::Kind::translation ? length_unit_name() : std::string("rad")) +
+                      (which == 0 ? "" : " per " + tu);
         for (const SimulationState& s : samples) series.values.push_back(which == 0 ? s.position[p] : s.velocity[p]);
         plot.series.push_back(series);
       }

@@ -68,7 +68,7 @@ std::string time_plot_svg(const TimePlot& plot) {
     line.stroke = colours[k % 6];
     line.stroke_width = 1.2;
     if (!curve.empty()) svg.path(curve, line);
-    svg.text(left + 6, base + panel - 14, s.label + " — " + plot.y_label, 11, "start", colours[k % 6], "bold");
+    svg.text(left + 6, base + panel - 14, s.label + " — " + (s.unit.empty() ? plot.y_label : s.unit), 11, "start", colours[k % 6], "bold");
     svg.text(left + width, base - 24, plot.x_label, 10, "end");
   }
   return svg.str();

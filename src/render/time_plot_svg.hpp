@@ -9,6 +9,7 @@ namespace hipair::render {
 struct TimeSeries {
   std::string label;
   std::vector<double> values;   ///< one per time sample
+  std::string unit;             ///< the series' unit ("rad", "mm per s"); empty: the plot's y_label
 };
 
 struct TimePlot {
