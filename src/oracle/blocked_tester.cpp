@@ -713,8 +713,9 @@ bool BlockedTester::pose_part(int k, const ChartAxis& axis, const algebra::Inter
 }
 
 // Part k's pose over its axis interval `range` (see PoseBound); not usable when the interval
-// admits no claim.
-BlockedTester::PoseBound BlockedTester::pose_bound(int k, const ChartAxis& axis, const algebra::Interval& range) const {
+// admits no claim. (Flattened: the interval operations of the angle bound inlined, the same
+// operations in the same order.)
+[[gnu::flatten]] BlockedTester::PoseBound BlockedTester::pose_bound(int k, const ChartAxis& axis, const algebra::Interval& range) const {
   using kernels::Interval;
   // The moving part's pose over its chart interval: the pose at a middle chart value m
   // (certified cos/sin of its angle, or its offset) and a bound on how far a point at
