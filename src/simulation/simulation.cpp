@@ -610,6 +610,8 @@ struct Simulation::Impl {
     simulation::FrictionalSolution solution;
     simulation::BilateralWork work;
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solve;
+    simulation::LcpWork lcp;             // the step start's contact LCP (lcp.hpp's work form)
+    simulation::LcpSolution lcp_solution;
   };
   mutable Scratch scratch_;
 
@@ -738,7 +740,8 @@ struct Simulation::Impl {
     if (lifting) {
       Eigen::VectorXd& b = w.b;
       b = G * a0 + h;
-      simulation::LcpSolution s = simulation::solve_lcp(A, b);
+      simulation::LcpSolution& s = w.lcp_solution;
+      simulation::solve_lcp(A, b, w.lcp, s);
       if (!s.solved) {
         std::ostringstream out;
         out << "simulation: at t = " << time / time_scale << " " << time_unit
