@@ -1831,6 +1831,7 @@ class MotionScanner {
     std::vector<Possible> hull_possible;
     ChartPoint located;                  // locate_inside's point (the box's midpoint)
     Rational bound_lo, bound_hi;         // and the box's double bounds as rationals
+    std::vector<std::size_t> charts;     // evaluate's charts of one pair of pieces (cleared per pair)
   };
 
   MotionScanner(const CSpace::Impl& impl, const MotionPath& path, std::shared_ptr<ScanMemo> memo, Storage& storage)
@@ -1845,7 +1846,8 @@ class MotionScanner {
         hull_possible_(storage.hull_possible),
         located_(storage.located),
         bound_lo_(storage.bound_lo),
-        bound_hi_(storage.bound_hi) {
+        bound_hi_(storage.bound_hi),
+        charts_(storage.charts) {
     auto check = [&](const AxisPath& axis, AxisKind kind, const char* which) {
       bool rotation = axis.kind != AxisPath::Kind::offset;
       if (rotation != (kind == AxisKind::rotation))
@@ -1911,7 +1913,8 @@ class MotionScanner {
     }
     for (const AxisPiece& px : xs)
       for (const AxisPiece& py : ys) {
-        std::vector<std::size_t> charts;
+        std::vector<std::size_t>& charts = charts_;
+        charts.clear();
         for (std::size_t c = 0; c < impl_.public_charts.size(); ++c) {
           const CSpaceChart& chart = impl_.public_charts[c];
           if (!same_system(chart.x_kind, chart.x_half_turn, px)) continue;
@@ -2651,6 +2654,7 @@ class MotionScanner {
   std::vector<Possible>& hull_possible_;   // locate_inside's
   ChartPoint& located_;                     // locate_inside's
   Rational &bound_lo_, &bound_hi_;          // locate_inside's
+  std::vector<std::size_t>& charts_;        // evaluate's (kept: Storage::charts)
 };
 
 }  // namespace
@@ -2737,10 +2741,18 @@ class CrossingRun {
   // `input` canonical in `path` (a kept path: copied into its rationals, their limbs reused)
   static MotionPath& canonical(MotionPath& path, const MotionPath& input) {
     path = input;
+    // (a value already canonical is left as mpq_canonicalize leaves it, without its gcd: the
+    // simulator's coefficients are doubles, an odd numerator over a power of two or over 1)
+    auto canonicalize = [](Rational& r) {
+      mpz_srcptr den = mpq_denref(r.get_mpq_t());
+      if (mpz_cmp_ui(den, 1) == 0) return;
+      if (mpz_sgn(den) > 0 && mpz_popcount(den) == 1 && mpz_odd_p(mpq_numref(r.get_mpq_t()))) return;
+      r.canonicalize();
+    };
     for (auto* axis : {&path.x, &path.y})
-      for (auto& c : axis->coefficients) c.canonicalize();
-    path.u_begin.canonicalize();
-    path.u_end.canonicalize();
+      for (auto& c : axis->coefficients) canonicalize(c);
+    canonicalize(path.u_begin);
+    canonicalize(path.u_end);
     if (path.u_end < path.u_begin) throw GeometryError("first_crossing: u_end < u_begin");
     return path;
   }

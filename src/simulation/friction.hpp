@@ -261,17 +261,29 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
   };
   for (std::size_t c = 0; c < combinations; ++c) order[c] = c;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slips(a) < slips(b); });
+  // Every assignment's matrices, LCP and candidate solution in storage kept across the
+  // enumeration (BilateralWork, LcpWork): each is resized and written before it is read, by the
+  // same Eigen operations as the fresh ones per assignment before — the same doubles (session
+  // 60: the impacts' enumeration allocated some 200 blocks per call).
+  BilateralWork work;
+  const Reduced& r = work.r;
+  Eigen::MatrixXd& A = work.A;
+  Eigen::VectorXd& b = work.b;
+  LcpWork lcp_work;
+  LcpSolution lcp;
+  FrictionalSolution s;
   for (std::size_t code : order) {
     std::size_t rest = code;
     for (std::size_t i = 0; i < open.size(); ++i, rest /= 3) {
       static constexpr int digit_state[3] = {stick, slip_positive, slip_negative};
       state[open[i]] = digit_state[rest % 3];
     }
-    Reduced r = reduce(G, minv, a0, friction, state);
-    Eigen::MatrixXd A = G * r.B;
-    Eigen::VectorXd b = G * r.x0 + h;
-    LcpSolution lcp = solve_lcp(A, b);
-    FrictionalSolution s;
+    reduce(G, minv, a0, friction, state, work.r, work);
+    A.noalias() = G * r.B;
+    b = G * r.x0 + h;
+    solve_lcp(A, b, lcp_work, lcp);
+    // (every field coulomb_satisfied and adjust read is written below before it is read)
+    s.solved = false;
     s.state = state;
     if (lcp.solved) {
       s.lambda = lcp.lambda;
@@ -293,7 +305,7 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     }
     if (!plain->solved || !undetermined(A, Af)) continue;
     const double tolerance = 10 * std::max(plain->tolerance, lcp_tolerance(A, b));
-    if (!lcp_satisfied(A, b, plain->lambda, tolerance)) continue;
+    if (!lcp_satisfied(A, b, plain->lambda, tolerance, lcp_work.w)) continue;
     s.lambda = plain->lambda;
     s.tolerance = tolerance;
     complete(s, r, G, h, friction);

@@ -38,8 +38,10 @@ inline double lcp_tolerance(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) 
 }
 
 /// True when (lambda, w = A lambda + b) satisfies the LCP to `tol`.
-inline bool lcp_satisfied(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& lambda, double tol) {
-  Eigen::VectorXd w = A * lambda + b;
+/// `w`: storage for A lambda + b (overwritten).
+inline bool lcp_satisfied(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& lambda, double tol,
+                          Eigen::VectorXd& w) {
+  w = A * lambda + b;
   double lmax = std::max(1.0, lambda.size() ? lambda.cwiseAbs().maxCoeff() : 0.0);
   for (Eigen::Index k = 0; k < b.size(); ++k) {
     if (lambda(k) < -tol * lmax || w(k) < -tol) return false;
@@ -49,46 +51,77 @@ inline bool lcp_satisfied(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, co
   return true;
 }
 
+inline bool lcp_satisfied(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& lambda, double tol) {
+  Eigen::VectorXd w;
+  return lcp_satisfied(A, b, lambda, tol, w);
+}
+
+/// Storage kept between calls of the enumeration (its `work` form; the simulator's Coulomb
+/// enumeration solves one LCP per stick/slip assignment): every member is resized and written
+/// on each use before it is read, by the same Eigen operations as the fresh objects of the value
+/// form — the same doubles, without the allocations (docs/performance.md, "Session 60
+/// (escape60)").
+struct LcpWork {
+  std::vector<bool> pick;
+  std::vector<Eigen::Index> set;
+  Eigen::VectorXd l, bs, ls, w;
+  Eigen::MatrixXd As;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solve;
+};
+
 /// Active-set enumeration: every subset S (by decreasing size) with w_S = 0 solved for
 /// lambda_S (complete orthogonal decomposition: minimum norm when A_SS is singular), accepted
 /// when lambda >= 0, w >= 0 and the solve is consistent (w_S = 0). Exact for a P-matrix or a
 /// positive semidefinite A with a solution. The largest consistent set first: where the
 /// solution is not unique (redundant contacts, A singular), the minimum-norm multipliers over
 /// the most contacts (a load shared symmetrically). 2^m subsets: for m <= 12.
-inline LcpSolution solve_lcp_enumeration(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+inline void solve_lcp_enumeration(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, LcpWork& work, LcpSolution& s) {
   const Eigen::Index m = b.size();
-  LcpSolution s;
+  s.solved = false;
   s.tolerance = lcp_tolerance(A, b);
   s.lambda = Eigen::VectorXd::Zero(m);
   s.w = b;
+  std::vector<bool>& pick = work.pick;
+  std::vector<Eigen::Index>& set = work.set;
+  Eigen::VectorXd& l = work.l;
   for (Eigen::Index size = m; size >= 0; --size) {
     // subsets of `size` elements in lexicographic order
-    std::vector<bool> pick(static_cast<std::size_t>(m), false);
+    pick.assign(static_cast<std::size_t>(m), false);
     std::fill(pick.begin(), pick.begin() + size, true);
     do {
-      std::vector<Eigen::Index> set;
+      set.clear();
       for (Eigen::Index k = 0; k < m; ++k)
         if (pick[static_cast<std::size_t>(k)]) set.push_back(k);
-      Eigen::VectorXd l = Eigen::VectorXd::Zero(m);
+      l = Eigen::VectorXd::Zero(m);
       if (!set.empty()) {
         const auto n = static_cast<Eigen::Index>(set.size());
-        Eigen::MatrixXd As(n, n);
-        Eigen::VectorXd bs(n);
+        Eigen::MatrixXd& As = work.As;
+        Eigen::VectorXd& bs = work.bs;
+        As.resize(n, n);
+        bs.resize(n);
         for (Eigen::Index i = 0; i < n; ++i) {
           bs(i) = -b(set[i]);
           for (Eigen::Index j = 0; j < n; ++j) As(i, j) = A(set[i], set[j]);
         }
-        Eigen::VectorXd ls = As.completeOrthogonalDecomposition().solve(bs);
-        for (Eigen::Index i = 0; i < n; ++i) l(set[i]) = ls(i);
+        // (As.completeOrthogonalDecomposition().solve(bs): the same decomposition, kept)
+        work.solve.compute(As);
+        work.ls = work.solve.solve(bs);
+        for (Eigen::Index i = 0; i < n; ++i) l(set[i]) = work.ls(i);
       }
-      if (lcp_satisfied(A, b, l, s.tolerance)) {
+      if (lcp_satisfied(A, b, l, s.tolerance, work.w)) {
         s.lambda = l.cwiseMax(0.0);
         s.w = A * s.lambda + b;
         s.solved = true;
-        return s;
+        return;
       }
     } while (std::prev_permutation(pick.begin(), pick.end()));
   }
+}
+
+inline LcpSolution solve_lcp_enumeration(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+  LcpWork work;
+  LcpSolution s;
+  solve_lcp_enumeration(A, b, work, s);
   return s;
 }
 
@@ -161,12 +194,20 @@ inline LcpSolution solve_lcp_lemke(const Eigen::MatrixXd& A, const Eigen::Vector
 
 /// The contact LCP: enumeration up to 10 contacts, Lemke beyond (or when enumeration finds no
 /// consistent set, e.g. a singular A whose minimum-norm solves all miss the cone).
-inline LcpSolution solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+/// solve_lcp() written into s, with `work` as the enumeration's storage.
+inline void solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, LcpWork& work, LcpSolution& s) {
   if (b.size() <= 10) {
-    LcpSolution s = solve_lcp_enumeration(A, b);
-    if (s.solved) return s;
+    solve_lcp_enumeration(A, b, work, s);
+    if (s.solved) return;
   }
-  return solve_lcp_lemke(A, b);
+  s = solve_lcp_lemke(A, b);
+}
+
+inline LcpSolution solve_lcp(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+  LcpWork work;
+  LcpSolution s;
+  solve_lcp(A, b, work, s);
+  return s;
 }
 
 }  // namespace hipair::simulation

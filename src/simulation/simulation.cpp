@@ -610,6 +610,8 @@ struct Simulation::Impl {
     simulation::FrictionalSolution solution;
     simulation::BilateralWork work;
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solve;
+    simulation::LcpWork lcp;             // the step start's contact LCP (lcp.hpp's work form)
+    simulation::LcpSolution lcp_solution;
   };
   mutable Scratch scratch_;
 
@@ -738,7 +740,8 @@ struct Simulation::Impl {
     if (lifting) {
       Eigen::VectorXd& b = w.b;
       b = G * a0 + h;
-      simulation::LcpSolution s = simulation::solve_lcp(A, b);
+      simulation::LcpSolution& s = w.lcp_solution;
+      simulation::solve_lcp(A, b, w.lcp, s);
       if (!s.solved) {
         std::ostringstream out;
         out << "simulation: at t = " << time / time_scale << " " << time_unit
@@ -929,6 +932,25 @@ struct Simulation::Impl {
     for (std::size_t i = 0; i < dofs.size(); ++i) p.c[i] = {qs[i], 0, 0, 0, 0, 0};
     return pair_path(pair, p, 0, 1);
   }
+  // point_path(pair, qs) written into a path kept between calls (its coefficients' limbs
+  // reused, no step path made): the same path — each axis the constant of its part's coordinate
+  // (assign_axis_path of {qs[d], 0, ...}), u over [0, 1]. Valid until the next call (the
+  // nudges' trials, each asked at once; session 60).
+  mutable MotionPath kept_point_path_;
+  const MotionPath& point_path_kept(std::size_t pair, const Vec& qs) const {
+    const CSpace& space = *spaces[pair];
+    auto axis = [&](AxisPath& out, const std::string& part) {
+      if (part.empty()) return simulation::clear_axis_path(out);
+      int d = part_dof[*model.find_part(part)];
+      simulation::assign_axis_path(out, {qs[d], 0, 0, 0, 0, 0}, dofs[d].rotation);
+    };
+    axis(kept_point_path_.x, space.x_part());
+    if (space.dimension() == 2) axis(kept_point_path_.y, space.y_part());
+    else simulation::clear_axis_path(kept_point_path_.y);
+    kept_point_path_.u_begin = 0;
+    kept_point_path_.u_end = 1;
+    return kept_point_path_;
+  }
 
   bool in_active(std::size_t pair) const {
     return std::any_of(active.begin(), active.end(), [&](const Active& a) { return a.pair == pair; });
@@ -1102,7 +1124,8 @@ struct Simulation::Impl {
       // the configuration alone (u_end = u_begin): the start's exact location is the answer; a
       // constant path over [0, 1] made the query also evaluate (and exclude) the stretch [0, 1]
       // of a motion that does not move
-      MotionPath at = point_path(pair, q);
+      MotionPath& at = kept_point_path_;
+      point_path_kept(pair, q);
       at.u_end = at.u_begin;
       // (status and grazing are all it reads: no description made, simulation/nudge_check.hpp)
       std::optional<StatusOnlyCrossings> status_only;
@@ -1124,7 +1147,7 @@ struct Simulation::Impl {
     std::vector<bool> try_walk;
     auto trial_free = [&](std::size_t k) {
       std::size_t pair = set[k].first;
-      if (try_walk[k] && certainly_blocked(*spaces[pair], point_path(pair, q), walks[k])) return false;
+      if (try_walk[k] && certainly_blocked(*spaces[pair], point_path_kept(pair, q), walks[k])) return false;
       bool blocked = false;
       bool free = free_at(pair, &blocked);
       try_walk[k] = blocked && spaces[pair]->dimension() == 2;

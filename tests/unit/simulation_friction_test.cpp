@@ -19,7 +19,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -420,6 +423,144 @@ TEST(SimulationFriction, FrictionalLcpSatisfiesTheCoulombConditionsOnGeneratedPr
   }
   // with friction coefficients below 0.6 and well-conditioned rows nearly all are consistent
   EXPECT_GE(solved, total * 9 / 10);
+}
+
+
+// The enumeration's kept storage (session 60: BilateralWork, LcpWork and the candidate solution
+// reused across the stick/slip assignments, LcpWork across LCPs) gives the doubles of fresh
+// objects: solve_frictional against the per-assignment fresh form it replaced (below, as it was),
+// and solve_lcp's work form, reused over a run of problems of changing sizes, against its value
+// form — bit for bit, on generated problems (1..4 contacts, with and without the frictionless
+// fallback of undetermined multipliers, sticking pairs of equal rows among them).
+simulation::FrictionalSolution fresh_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                                const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
+                                                const std::vector<simulation::Friction>& friction,
+                                                bool undetermined_plain) {
+  using namespace simulation;
+  const std::size_t m = friction.size();
+  std::vector<std::size_t> open;
+  std::vector<int> state(m, frictionless);
+  for (std::size_t k = 0; k < m; ++k) {
+    if (!friction[k].on) continue;
+    if (friction[k].decided) state[k] = friction[k].state;
+    else open.push_back(k);
+  }
+  FrictionalSolution best;
+  std::optional<LcpSolution> plain;
+  Eigen::MatrixXd Af;
+  Eigen::VectorXd bf;
+  std::size_t combinations = 1;
+  for (std::size_t i = 0; i < open.size(); ++i) combinations *= 3;
+  std::vector<std::size_t> order(combinations);
+  auto slips = [&](std::size_t code) {
+    int count = 0;
+    for (std::size_t i = 0; i < open.size(); ++i, code /= 3) count += code % 3 != 0;
+    return count;
+  };
+  for (std::size_t c = 0; c < combinations; ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slips(a) < slips(b); });
+  for (std::size_t code : order) {
+    std::size_t rest = code;
+    for (std::size_t i = 0; i < open.size(); ++i, rest /= 3) {
+      static constexpr int digit_state[3] = {stick, slip_positive, slip_negative};
+      state[open[i]] = digit_state[rest % 3];
+    }
+    Reduced r = reduce(G, minv, a0, friction, state);
+    Eigen::MatrixXd A = G * r.B;
+    Eigen::VectorXd b = G * r.x0 + h;
+    LcpSolution lcp = solve_lcp(A, b);
+    FrictionalSolution s;
+    s.state = state;
+    if (lcp.solved) {
+      s.lambda = lcp.lambda;
+      s.tolerance = lcp.tolerance;
+      complete(s, r, G, h, friction);
+      if (coulomb_satisfied(s, friction)) {
+        s.solved = true;
+        return s;
+      }
+    }
+    if (!undetermined_plain || r.sticking.empty()) continue;
+    if (!plain) {
+      Af = G * minv.asDiagonal() * G.transpose();
+      bf = G * a0 + h;
+      plain = solve_lcp(Af, bf);
+    }
+    if (!plain->solved || !undetermined(A, Af)) continue;
+    const double tolerance = 10 * std::max(plain->tolerance, lcp_tolerance(A, b));
+    if (!lcp_satisfied(A, b, plain->lambda, tolerance)) continue;
+    s.lambda = plain->lambda;
+    s.tolerance = tolerance;
+    complete(s, r, G, h, friction);
+    if (!coulomb_satisfied(s, friction)) continue;
+    s.solved = true;
+    return s;
+  }
+  return best;
+}
+
+bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  if (a.size() != b.size()) return false;
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    if (std::bit_cast<std::uint64_t>(a(i)) != std::bit_cast<std::uint64_t>(b(i))) return false;
+  return true;
+}
+
+TEST(SimulationFriction, KeptStorageGivesTheFreshObjectsDoubles) {
+  std::mt19937 random(6060);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  int solved = 0, undetermined_taken = 0;
+  simulation::LcpWork work;   // one work form reused over every LCP below
+  simulation::LcpSolution kept;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Index n = 2 + trial % 3, m = 1 + (trial / 3) % 4;
+    Eigen::MatrixXd G(m, n);
+    std::vector<simulation::Friction> friction(static_cast<std::size_t>(m));
+    for (Eigen::Index k = 0; k < m; ++k) {
+      for (Eigen::Index i = 0; i < n; ++i) G(k, i) = uniform(random);
+      // a wedge now and then: a row repeated (its multipliers left open by the sticking rows)
+      if (k > 0 && trial % 5 == 0) G.row(k) = G.row(k - 1);
+      auto& c = friction[static_cast<std::size_t>(k)];
+      c.on = trial % 7 != 0 || k % 2 == 0;
+      c.T = Eigen::VectorXd(n);
+      for (Eigen::Index i = 0; i < n; ++i) c.T(i) = uniform(random);
+      c.s = 0.5 + std::abs(uniform(random));
+      c.mu_static = 0.1 + 0.8 * std::abs(uniform(random));
+      c.mu_kinetic = c.mu_static * (0.5 + 0.5 * std::abs(uniform(random)));
+      c.decided = trial % 4 == 1 && k == 0;
+      c.state = c.decided ? (uniform(random) > 0 ? simulation::slip_positive : simulation::slip_negative) : 0;
+    }
+    Eigen::VectorXd minv(n), a0(n), h(m);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      minv(i) = 0.5 + std::abs(uniform(random));
+      a0(i) = uniform(random);
+    }
+    for (Eigen::Index k = 0; k < m; ++k) h(k) = 0.3 * uniform(random);
+    const bool plain = trial % 2 == 0;
+    const simulation::FrictionalSolution a = simulation::solve_frictional(G, minv, a0, h, friction, {}, plain);
+    const simulation::FrictionalSolution b = fresh_frictional(G, minv, a0, h, friction, plain);
+    ASSERT_EQ(a.solved, b.solved) << "trial " << trial;
+    EXPECT_EQ(a.state, b.state) << "trial " << trial;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(a.tolerance), std::bit_cast<std::uint64_t>(b.tolerance)) << "trial " << trial;
+    EXPECT_TRUE(same_bits(a.lambda, b.lambda)) << "trial " << trial;
+    EXPECT_TRUE(same_bits(a.w, b.w)) << "trial " << trial;
+    EXPECT_TRUE(same_bits(a.x, b.x)) << "trial " << trial;
+    EXPECT_TRUE(same_bits(a.f, b.f)) << "trial " << trial;
+    solved += a.solved;
+    if (a.solved && plain && trial % 5 == 0) ++undetermined_taken;
+    // the LCP of the frictionless rows through the reused work form and the value form
+    const Eigen::MatrixXd A = G * minv.asDiagonal() * G.transpose();
+    const Eigen::VectorXd bl = G * a0 + h;
+    simulation::solve_lcp(A, bl, work, kept);
+    const simulation::LcpSolution fresh = simulation::solve_lcp(A, bl);
+    ASSERT_EQ(kept.solved, fresh.solved) << "trial " << trial;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(kept.tolerance), std::bit_cast<std::uint64_t>(fresh.tolerance));
+    EXPECT_TRUE(same_bits(kept.lambda, fresh.lambda)) << "trial " << trial;
+    EXPECT_TRUE(same_bits(kept.w, fresh.w)) << "trial " << trial;
+  }
+  // the comparison is not vacuous: most problems are solved, wedges among them
+  EXPECT_GE(solved, 300);
+  EXPECT_GE(undetermined_taken, 10);
 }
 
 }  // namespace
