@@ -890,6 +890,47 @@ TEST(SimulationPinSlot, DampedSlideOscillationDecaysAsTheClosedForm) {
   }
 }
 
+// Session 60: a pin starting exactly at its slot's end (the threshold of the exact limit test).
+// Pushed into the end by a load along the slot it is held there (an impact at the rest speed's
+// scale, then a contact whose force is the load), never beyond the end (exact comparison at every
+// step); pulled away it leaves the end on the closed form s = end - g t^2 / 2 with no event.
+TEST(SimulationPinSlot, PinStartingExactlyAtItsSlotEndIsHeldOrLeavesByItsLoad) {
+  Lcg rng{61};
+  for (int c = 0; c < 6; ++c) {
+    Follower f = random_follower(rng);
+    const bool upper = c % 2 == 0, into = c < 4;
+    const double end = upper ? 30 : -30, g = rng.uniform(1000, 20000);
+    f.s0 = end;
+    const double gy = (upper == into ? 1 : -1) * g;   // +y pushes the slide up
+    const std::string json = model_json(fixed_cam(1) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",
+                                        R"("gravity": [0, )" + num(gy) + R"(], "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<slot end>"));
+    const double t_end = 0.02;
+    step_checked(sim, t_end, {0}, {}, [&] {
+      const Rational s(sim.state().slide);
+      EXPECT_TRUE(upper ? s <= Rational(30) : s >= Rational(-30)) << "case " << c << " beyond the end: " << sim.state().slide;
+      if (!into) {
+        EXPECT_NEAR(sim.state().slide, end - (upper ? 1 : -1) * g * sim.state().time * sim.state().time / 2, 1e-6)
+            << "case " << c;
+      }
+    });
+    const auto& ev = sim.events();
+    if (!into) {
+      EXPECT_TRUE(ev.empty()) << "case " << c;
+      continue;
+    }
+    ASSERT_EQ(ev.size(), 2u) << "case " << c;
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_NE(ev[0].features[0].find(upper ? "slide limit (upper end)" : "slide limit (lower end)"), std::string::npos)
+        << ev[0].features[0];
+    EXPECT_EQ(ev[1].kind, SimulationEvent::Kind::contact);
+    ASSERT_EQ(sim.state().contacts.size(), 1u) << "case " << c;
+    EXPECT_NEAR(sim.state().contacts[0].normal_force, f.mass * g / 1000, 1e-9 * f.mass * g / 1000) << "case " << c;
+    EXPECT_NEAR(sim.state().slide, end - (upper ? 1 : -1) * hold_gap(sim), 1e-3 * hold_gap(sim)) << "case " << c;
+    EXPECT_EQ(sim.state().slide_rate, 0.0);
+  }
+}
+
 // A random rational in [lo, hi] with a 2^20 denominator.
 Rational random_rational(Lcg& rng, double lo, double hi) { return Rational(std::ldexp(std::round(std::ldexp(rng.uniform(lo, hi), 20)), -20)); }
 
