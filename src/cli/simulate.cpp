@@ -1113,9 +1113,11 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    std::string plotted = name;   // the pin-slot part and the parts plotted beside it (session 60)
+    for (std::size_t p : torque_driven) plotted += ", " + model.parts[p].name;
     for (int which = 0; which < 2; ++which) {
       render::TimePlot plot;
-      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + name;
+      plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + plotted;
       plot.x_label = "t (" + tu + ")";
       plot.y_label = which == 0 ? "mm or rad" : "mm or rad per " + tu;
       plot.event_times = event_times;

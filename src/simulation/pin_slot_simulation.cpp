@@ -41,6 +41,7 @@
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
+#include "simulation/held_extent.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
@@ -112,7 +113,8 @@ SlicedConfiguration chord_point(const SlicedConfiguration& from, const SlicedCon
 }
 
 // s, psi, s', psi'; a torque-driven rotating part's (free driver's) phi, phi'; a translating
-// part's (the slider's) offset x, x' and the work its damping has done (0 without them)
+// part's (the slider's) offset x, x' and the work its damping and the pin-slot part's slide damping
+// have done (0 without them)
 using State = std::array<double, 9>;
 bool finite(const State& s) {
   return std::all_of(s.begin(), s.end(), [](double v) { return std::isfinite(v); });
@@ -303,14 +305,6 @@ std::optional<Taylor2> feature_gap(const TPose& pa, const kernels::FeatureGeomet
   return std::nullopt;
 }
 
-// Does the direction v (from an arc's centre, body or world alike) lie in the arc's sector?
-bool in_sector(double vx, double vy, const kernels::ArcSector<double>& sector) {
-  if (sector.full) return true;
-  auto cr = [](double ax, double ay, double bx, double by) { return ax * by - ay * bx; };
-  const double from = cr(sector.start.x, sector.start.y, vx, vy), to = cr(vx, vy, sector.end.x, sector.end.y);
-  return sector.large ? (from >= 0 || to >= 0) : (from >= 0 && to >= 0);
-}
-
 }  // namespace
 
 struct PinSlotSimulation::Impl {
@@ -324,6 +318,8 @@ struct PinSlotSimulation::Impl {
   double P[2] = {0, 0}, d[2] = {0, 1}, cp[2] = {0, 0};   // pivot, slot direction, c - P (body)
   double mass = 0, inertia_c = 0, e = 0, b = 0, cp2 = 0;
   double force[2] = {0, 0}, torque = 0, k_lin = 0, rest_lin = 0, k_tor = 0, rest_tor = 0;
+  // viscous damping of the slide (session 60): Q_s gains -c s' (mN s/mm); its work is the state's [8]
+  double damping = 0;
   std::optional<RationalInterval> slide_limits, angle_limits;
   struct Driver {
     std::size_t part = 0;
@@ -386,6 +382,9 @@ struct PinSlotSimulation::Impl {
     int limit = 0;
     SlicedFeaturePair features;   // (a limit: its label only)
     kernels::FeatureGeometry<double> fixed_geometry, free_geometry;   // body coordinates
+    // the same exactly and as certified intervals (the edge-end decision, held_extent.hpp)
+    kernels::FeatureGeometry<Rational> fixed_exact, free_exact;
+    kernels::FeatureGeometry<kernels::Interval> fixed_box, free_box;
     double force = 0;   // internal units (mN), the last multiplier
   };
   std::vector<Held> held;
@@ -491,6 +490,7 @@ struct PinSlotSimulation::Impl {
     M[0][1] = M[1][0] = mass * e;
     M[1][1] = inertia_c + mass * (cp2 + 2 * s[0] * b + s[0] * s[0]);
     Q[0] = F[0] * u[0] + F[1] * u[1] - k_lin * (s[0] - rest_lin) + mass * s[3] * s[3] * (b + s[0]);
+    if (damping > 0) Q[0] -= damping * s[2];
     Q[1] = F[0] * kw[0] + F[1] * kw[1] + torque - k_tor * (s[1] - rest_tor) - 2 * mass * (b + s[0]) * s[2] * s[3];
   }
   // M^-1 v for the mass matrix M = [[m, m e], [m e, M22]] at slide s0, by the Schur complement
@@ -581,6 +581,20 @@ struct PinSlotSimulation::Impl {
   // A feature pair of pair `pi` as a row the projection can raise (its body geometry; none for
   // kinds the held gap does not cover: a segment on a concave arc, two concave arcs).
   std::optional<Held> clearance(std::size_t pi, const SlicedFeaturePair& f) const;
+  // A held contact of pair `pi` on feature pair `f` with its body geometries (double, exact, interval).
+  Held held_contact(std::size_t pi, const SlicedFeaturePair& f) const {
+    const Model& frame = *pairs[pi].frame_model;
+    Held h;
+    h.pair = pi;
+    h.features = f;
+    h.fixed_geometry = kernels::feature_geometry<double>(frame, f.fixed, [](const Rational& r) { return r.get_d(); });
+    h.free_geometry = kernels::feature_geometry<double>(frame, f.free, [](const Rational& r) { return r.get_d(); });
+    h.fixed_exact = kernels::feature_geometry<Rational>(frame, f.fixed, [](const Rational& r) { return r; });
+    h.free_exact = kernels::feature_geometry<Rational>(frame, f.free, [](const Rational& r) { return r; });
+    h.fixed_box = simulation::enclose(h.fixed_exact);
+    h.free_box = simulation::enclose(h.free_exact);
+    return h;
+  }
   int outside_limit(const State& s) const {
     if (slide_limits && Rational(s[0]) > slide_limits->hi) return 1;
     if (slide_limits && Rational(s[0]) < slide_limits->lo) return 2;
@@ -738,6 +752,7 @@ struct PinSlotSimulation::Impl {
         ds[7] = a(x_column());
         ds[8] = slider.damping * s[7] * s[7];   // the damping's work (dissipated)
       }
+      if (damping > 0) ds[8] += damping * s[2] * s[2];   // the slide's damping's work
       return;
     }
     double M[2][2], Q[2], a[2];
@@ -746,6 +761,7 @@ struct PinSlotSimulation::Impl {
     else held_accelerations(s, time, M, Q, a);
     ds[2] = a[0];
     ds[3] = a[1];
+    if (damping > 0) ds[8] = damping * s[2] * s[2];   // the slide's damping's work (dissipated)
   }
   // Thrown by flight(.., capped) when the integration over its span needs more than flight_evaluations
   // right-hand sides: a load so violent (a torque of 10^100 N mm) that the part turns many times
@@ -934,6 +950,85 @@ struct PinSlotSimulation::Impl {
     }
     return std::isfinite(out) ? out : std::numeric_limits<double>::max();
   }
+  // A contact row's normal speed, exactly (session 60; docs/simulation.md, "The pin-slot
+  // simulator's decisions, exact"): the coefficients a of the state's rates (s', psi', the free
+  // driver's phi', the slider's x') and a constant-speed driver's surface speed v_other, exact
+  // rationals from the kernels' exact contact frame at the pair's exact configuration carried into
+  // the world by the driver's and the part's exact rotations (their half-angle tangents), the
+  // normal not normalised (norm2 = |n|^2); the rates are the exact values of their doubles. The
+  // normal speed is (a . rates - v_other) / |n|.
+  struct ExactNormal {
+    std::array<Rational, 4> a{Rational(0), Rational(0), Rational(0), Rational(0)};
+    Rational v_other{0}, norm2{1};
+    bool defined = false;
+    Rational speed(const State& x) const {
+      static constexpr int rate_of[4] = {2, 3, 5, 7};
+      Rational out = -v_other;
+      for (int k = 0; k < 4; ++k) {
+        if (sgn(a[static_cast<std::size_t>(k)]) == 0) continue;
+        const double v = x[static_cast<std::size_t>(rate_of[k])];
+        if (!std::isfinite(v)) throw NumericError("a simulated rate of a pin-slot simulation is not finite");
+        out += a[static_cast<std::size_t>(k)] * Rational(v);
+      }
+      return out;
+    }
+  };
+  ExactNormal exact_normal(std::size_t pi, const SlicedContactFrame& cf) const {
+    ExactNormal out;
+    if (!cf.defined || (sgn(cf.normal.x) == 0 && sgn(cf.normal.y) == 0)) return out;
+    const Pair& p = pairs[pi];
+    Rational px = cf.point.x, py = cf.point.y, nx = cf.normal.x, ny = cf.normal.y;
+    const Point& sd = model.parts[p.other].motion.direction;
+    if (p.other == slider.part) {   // the slider's frame to the world: translated by x d
+      if (!std::isfinite(y[6])) throw NumericError("the simulated offset of a translating part is not finite");
+      const Rational x(y[6]);
+      px += x * sd.x;
+      py += x * sd.y;
+    }
+    const std::size_t dr = driver_of[p.other];
+    const Point& C = model.parts[p.other].motion.pivot;
+    if (dr != no_index) {   // the driver's frame to the world, by its exact rotation
+      const auto [ca, sa] = cos_sin(exact_angle(driver_angle(dr, y, t)));
+      const Rational rx = px - C.x, ry = py - C.y;
+      px = C.x + ca * rx - sa * ry;
+      py = C.y + sa * rx + ca * ry;
+      const Rational mx = ca * nx - sa * ny, my = sa * nx + ca * ny;
+      nx = mx;
+      ny = my;
+    }
+    const auto [c, sn] = cos_sin(exact_angle(y[1]));
+    const Point& dir = model.parts[part].motion.direction;
+    const Point& pin = model.parts[part].motion.pivot;
+    out.a[0] = nx * (c * dir.x - sn * dir.y) + ny * (sn * dir.x + c * dir.y);   // n . u
+    out.a[1] = ny * (px - pin.x) - nx * (py - pin.y);                           // n . (k x (p - P))
+    if (dr != no_index) {
+      const Rational lever = ny * (px - C.x) - nx * (py - C.y);
+      if (drivers[dr].free) out.a[2] = -lever;
+      else out.v_other = lever * Rational(drivers[dr].omega);
+    }
+    if (p.other == slider.part) {
+      out.a[3] = -(nx * sd.x + ny * sd.y);
+      out.v_other = 0;
+    }
+    out.norm2 = nx * nx + ny * ny;
+    out.defined = true;
+    return out;
+  }
+  // A limit's row (unit normal: J = +-1, or +-size for the angle's), exactly from its doubles.
+  static ExactNormal exact_limit(const HeldRow& row) {
+    ExactNormal out;
+    out.a[0] = Rational(row.J[0]);
+    out.a[1] = Rational(row.J[1]);
+    out.a[3] = Rational(row.g_x);
+    out.defined = true;
+    return out;
+  }
+  // A held contact's exact row at the current state (its contact frame at the pair's exact
+  // configuration, which the kernels' formulas give away from touching too).
+  ExactNormal exact_held(const Held& h) const {
+    if (h.limit) return exact_limit(limit_row(h.limit, y));
+    return exact_normal(h.pair, sliced_contact_frame(*pairs[h.pair].frame_model, h.features, pairs[h.pair].q));
+  }
   // A touching feature pair's impact row at the current state: J (its normal speed is
   // J q' - v_other), the driver's surface speed along the normal, the world point and normal.
   // Against the free driver (`free`) J[2] is the row's phi column and v_other is 0.
@@ -953,7 +1048,19 @@ struct PinSlotSimulation::Impl {
     double restitution = 0;
     bool held = false;   // a held contact's row (plastic, no event)
     int limit = 0;       // a limit's row (Held::limit)
+    ExactNormal exact;   // its normal speed, exactly (the hold and approach decisions)
   };
+  // Does the row's contact separate faster than the rest speed at the current state (not held)?
+  // Exact: a . v - v_other > rest |n| (squares and signs).
+  bool separating(const Row& r) const {
+    if (!r.exact.defined) return r.speed(y) > rest_speed;
+    const Rational v = r.exact.speed(y);
+    if (sgn(v) <= 0) return false;
+    const Rational rest(rest_speed);
+    return cmp(v * v, rest * rest * r.exact.norm2) > 0;
+  }
+  // Does it approach (a negative normal speed), exactly?
+  bool approaching(const Row& r) const { return r.exact.defined ? sgn(r.exact.speed(y)) < 0 : r.speed(y) < 0; }
   std::vector<Row> contact_rows(std::size_t pi, const std::vector<SlicedFeaturePair>& features) const;
   // Newton impacts of the touching feature pairs at the current state (sequential impulses),
   // the held contacts plastic rows among them; the pairs left slower than the rest speed are held.
@@ -972,8 +1079,11 @@ struct PinSlotSimulation::Impl {
     return 1e-9 * loads;
   }
   // Whether every held contact's point lies within both its features (the contact table's
-  // validity, in double: where it fails the contact has reached its edge's end).
+  // validity: where it fails the contact has reached its edge's end), decided at the pair's exact
+  // relative configuration of the state (held_extent.hpp: a certified interval filter, exact
+  // rationals where it cannot decide). extent_exact counts those fallbacks.
   bool held_valid(const Held& h, const State& s, double time) const;
+  mutable std::size_t extent_exact = 0;
   // Is every held contact's force non-negative and its point on its features at this state?
   bool held_conditions(const State& s, double time) const {
     if (held.empty()) return true;
@@ -1001,49 +1111,17 @@ struct PinSlotSimulation::Impl {
 
 bool PinSlotSimulation::Impl::held_valid(const Held& h, const State& s, double time) const {
   if (h.limit) return true;
-  const double zero[3] = {0, 0, 0};
-  const auto [pa, pb] = held_poses(h, s, time, zero);
-  using kernels::FeatureShape;
-  const kernels::FeatureGeometry<double>& fa = h.fixed_geometry;
-  const kernels::FeatureGeometry<double>& fb = h.free_geometry;
-  auto at = [](const TPoint& p) { return std::array<double, 2>{p.x.v, p.y.v}; };
-  // the foot of point x on segment (pose ps) lies within it
-  auto on_segment = [&](const std::array<double, 2>& x, const TPose& ps, const kernels::FeatureGeometry<double>& seg) {
-    const auto q1 = at(ps.place(seg.point)), q2 = at(ps.place(seg.target));
-    const double dx = q2[0] - q1[0], dy = q2[1] - q1[1];
-    const double f = (x[0] - q1[0]) * dx + (x[1] - q1[1]) * dy;
-    return f >= 0 && f <= dx * dx + dy * dy;
-  };
-  // the world direction v from the arc's centre lies in its sector (turned back to its body)
-  auto in_arc = [&](double vx, double vy, const TPose& pk, const kernels::FeatureGeometry<double>& arc) {
-    const double c = pk.c.v, sn = pk.s.v;
-    return in_sector(c * vx + sn * vy, -sn * vx + c * vy, arc.sector);
-  };
-  auto vertex_on = [&](const TPose& pv, const kernels::FeatureGeometry<double>& v, const TPose& po,
-                       const kernels::FeatureGeometry<double>& other) {
-    const auto x = at(pv.place(v.point));
-    if (other.shape == FeatureShape::segment) return on_segment(x, po, other);
-    const auto k = at(po.place(other.center));
-    return in_arc(x[0] - k[0], x[1] - k[1], po, other);
-  };
-  auto segment_arc = [&](const TPose& ps, const kernels::FeatureGeometry<double>& seg, const TPose& pk,
-                         const kernels::FeatureGeometry<double>& arc) {
-    const auto k = at(pk.place(arc.center)), q1 = at(ps.place(seg.point)), q2 = at(ps.place(seg.target));
-    const double dx = q2[0] - q1[0], dy = q2[1] - q1[1], l2 = dx * dx + dy * dy;
-    const double f = ((k[0] - q1[0]) * dx + (k[1] - q1[1]) * dy) / l2;
-    const std::array<double, 2> foot{q1[0] + f * dx, q1[1] + f * dy};
-    return f >= 0 && f <= 1 && in_arc(foot[0] - k[0], foot[1] - k[1], pk, arc);
-  };
-  if (fa.shape == FeatureShape::vertex) return vertex_on(pa, fa, pb, fb);
-  if (fb.shape == FeatureShape::vertex) return vertex_on(pb, fb, pa, fa);
-  if (fa.shape == FeatureShape::segment) return segment_arc(pa, fa, pb, fb);
-  if (fb.shape == FeatureShape::segment) return segment_arc(pb, fb, pa, fa);
-  // two arcs: the line of centres, from the outer (or first) centre to the other
-  const auto ka = at(pa.place(fa.center)), kb = at(pb.place(fb.center));
-  const double vx = kb[0] - ka[0], vy = kb[1] - ka[1];
-  if (fa.convex && fb.convex) return in_arc(vx, vy, pa, fa) && in_arc(-vx, -vy, pb, fb);
-  const double sign = fa.convex ? -1.0 : 1.0;   // from the concave arc's centre towards the convex one's
-  return in_arc(sign * vx, sign * vy, pa, fa) && in_arc(sign * vx, sign * vy, pb, fb);
+  if (!finite(s)) return false;
+  const SlicedConfiguration q = relative(pairs[h.pair], s, time);
+  simulation::ExtentPose<Rational> other, follower;   // the other part at its zero configuration
+  auto [c, sn] = cos_sin(q.angle);
+  follower.c = c;
+  follower.s = sn;
+  const Point& pivot = model.parts[part].motion.pivot;
+  follower.pivot = {pivot.x, pivot.y};
+  follower.shift = {q.x, q.y};
+  return simulation::contact_within_certified(other, h.fixed_exact, h.fixed_box, follower, h.free_exact, h.free_box,
+                                              &extent_exact);
 }
 
 State PinSlotSimulation::Impl::project(const State& from, double time, const std::vector<Held>& clear) const {
@@ -1092,16 +1170,8 @@ State PinSlotSimulation::Impl::project(const State& from, double time, const std
 
 std::optional<PinSlotSimulation::Impl::Held> PinSlotSimulation::Impl::clearance(std::size_t pi,
                                                                                   const SlicedFeaturePair& f) const {
-  const Model& frame = *pairs[pi].frame_model;
-  auto geometry = [&](const FeatureIdentity& id) {
-    return kernels::feature_geometry<double>(frame, id, [](const Rational& r) { return r.get_d(); });
-  };
-  Held h;
-  h.pair = pi;
-  h.features = f;
-  h.fixed_geometry = geometry(f.fixed);
-  h.free_geometry = geometry(f.free);
-  const double zero[3] = {0, 0, 0};
+  Held h = held_contact(pi, f);
+  const double zero[4] = {0, 0, 0, 0};   // (held_poses reads a slider's rate too)
   const auto [pa, pb] = held_poses(h, y, t, zero);
   if (!feature_gap(pa, h.fixed_geometry, pb, h.free_geometry)) return std::nullopt;
   return h;
@@ -1270,6 +1340,7 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
     row.feature = f;
     row.pair = pi;
     row.restitution = p.restitution;
+    row.exact = exact_normal(pi, cf);
     rows.push_back(row);
   }
   return rows;
@@ -1289,6 +1360,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     row.feature.label = row.label;
     row.pair = no_index;
     row.limit = limit;
+    row.exact = exact_limit(lr);
     rows.push_back(row);
   }
   for (const auto& [pi, features] : touching) {
@@ -1323,6 +1395,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     row.pair = h.pair;
     row.limit = h.limit;
     row.held = true;
+    row.exact = exact_held(h);
     rows.push_back(row);
   }
   // (M^-1 by the Schur complement, inverse_mass_times: never det M; the free driver's 1/I)
@@ -1389,7 +1462,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   }
   // a held contact the impact left separating faster than the rest speed is free again
   for (std::size_t i = fresh_rows, k = 0; i < rows.size(); ++i) {
-    if (speed(rows[i]) <= rest_speed) {
+    if (!separating(rows[i])) {
       ++k;
       continue;
     }
@@ -1399,7 +1472,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   // the new contacts left slower than the rest speed are held (sustained contact)
   bool added = false;
   for (std::size_t i = 0; i < fresh_rows; ++i) {
-    if (speed(rows[i]) > rest_speed) continue;
+    if (separating(rows[i])) continue;
     if (rows[i].limit) {
       Held h;
       h.pair = no_index;
@@ -1411,16 +1484,8 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
       continue;
     }
     const Pair& p = pairs[rows[i].pair];
-    Held h;
-    h.pair = rows[i].pair;
-    h.features = rows[i].feature;
-    const Model& frame = *p.frame_model;
-    auto geometry = [&](const FeatureIdentity& id) {
-      return kernels::feature_geometry<double>(frame, id, [](const Rational& r) { return r.get_d(); });
-    };
-    h.fixed_geometry = geometry(h.features.fixed);
-    h.free_geometry = geometry(h.features.free);
-    const double zero[3] = {0, 0, 0};
+    Held h = held_contact(rows[i].pair, rows[i].feature);
+    const double zero[4] = {0, 0, 0, 0};   // (held_poses reads a slider's rate too)
     const auto [pa, pb] = held_poses(h, y, t, zero);
     if (!feature_gap(pa, h.fixed_geometry, pb, h.free_geometry)) {
       std::ostringstream out;
@@ -1629,11 +1694,11 @@ bool PinSlotSimulation::Impl::advance(double span) {
     t += hc;
     // a chord that cuts the corner of a path touching and departing meets a contact the path
     // leaves at once (no feature pair approaching): a shorter chord deviates less (delta ~ h^2)
-    bool approaching = false;
+    bool closing = false;
     for (const auto& [pi, features] : touching)
       for (const Row& r : contact_rows(pi, features))
-        approaching = approaching || r.speed(y) < 0;
-    if (!approaching && h > 1e-9 * std::max(t, h) && attempt < 1900) {
+        closing = closing || approaching(r);
+    if (!closing && h > 1e-9 * std::max(t, h) && attempt < 1900) {
       y = y_kept;
       t = t_kept;
       for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i].q = kept[i];
@@ -1790,7 +1855,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     throw ModelError(fp.pointer + "/dynamics", "pin-slot part '" + fp.name +
                                                    "' needs \"mass\" and \"moment_of_inertia\" (about its pivot)");
   const Dynamics& dyn = *fp.dynamics;
-  if (dyn.damping) throw ModelError(fp.pointer + "/dynamics/damping", "a pin-slot part takes no damping");
+  if (dyn.damping) s.damping = dyn.damping->get_d() * fs * ts;   // viscous on the slide: force unit x time unit / mm
   s.mass = dyn.mass->get_d();
   if (!(s.mass > 0)) throw ModelError(fp.pointer + "/dynamics/mass", "a pin-slot part needs a positive mass");
   const Motion& motion = fp.motion;

@@ -13,10 +13,12 @@
 
 #include <gtest/gtest.h>
 
+#include "simulation/held_extent.hpp"
 #include "simulation_planar_support.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <initializer_list>
 #include <numbers>
 #include <string>
@@ -87,6 +89,18 @@ void expect_not_overlapping(const PinSlotSimulation& sim, const std::vector<std:
   }
 }
 
+// Steps `sim` towards t_limit, each step's configurations checked exactly free
+// (expect_not_overlapping against `others`) and then `each` run (a test's own checks), until the
+// time reaches t_limit or `done` holds (session 60: the loop each test repeated).
+void step_checked(PinSlotSimulation& sim, double t_limit, const std::vector<std::size_t>& others,
+                  const std::function<bool()>& done = {}, const std::function<void()>& each = {}) {
+  while (sim.state().time < t_limit && !(done && done())) {
+    sim.step(t_limit);
+    expect_not_overlapping(sim, others);
+    if (each) each();
+  }
+}
+
 struct Drop {
   double r = 10, h = 3, e = 0.6, g = 9810;
   Follower f;
@@ -116,11 +130,9 @@ TEST(SimulationPinSlot, FollowerDroppedOntoACamAtRestHitsAtTheClosedFormTimeAndB
     PinSlotSimulation sim = PinSlotSimulation::create(read_model(d.json(), "<drop>"));
     const double t1 = std::sqrt(2 * d.h / d.g), v1 = d.g * t1, t2 = t1 + 2 * d.e * v1 / d.g;
     const double tol = 4 * sim.chord_deviation() / (d.e * v1) + 1e-8 * t2;
-    while (sim.events().size() < 2 && sim.state().time < 2 * t2) {
-      sim.step(2 * t2);
-      expect_not_overlapping(sim, {0});
-      EXPECT_EQ(sim.state().angle, 0.0);   // the load acts along the slot: no turn
-    }
+    step_checked(
+        sim, 2 * t2, {0}, [&] { return sim.events().size() >= 2; },
+        [&] { EXPECT_EQ(sim.state().angle, 0.0); });   // the load acts along the slot: no turn
     const auto& ev = sim.events();
     ASSERT_EQ(ev.size(), 2u) << "case " << c;
     EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
@@ -200,10 +212,7 @@ TEST(SimulationPinSlot, CamAtConstantSpeedStrikesTheFollowerWhereItsKinematicFun
     const double phi_star = std::asin((H - r) / ecc), t_star = (phi_star - phi0) / omega;
     const double px = ecc * std::cos(phi_star);       // the contact point's abscissa (the circle's top)
     const double v_cam = omega * px;                  // the cam surface's normal speed there
-    while (sim.events().empty() && sim.state().time < 2 * t_star) {
-      sim.step(2 * t_star);
-      expect_not_overlapping(sim, {0});
-    }
+    step_checked(sim, 2 * t_star, {0}, [&] { return !sim.events().empty(); });
     ASSERT_EQ(sim.events().size(), 1u) << "case " << c;
     const SimulationEvent& ev = sim.events()[0];
     EXPECT_NEAR(ev.time, t_star, 4 * sim.chord_deviation() / v_cam + 1e-8 * t_star) << "case " << c;
@@ -273,11 +282,9 @@ TEST(SimulationPinSlot, BouncesComeToRestOnAFixedCamWithTheWeightAsContactForce)
     d.e = c == 0 ? 0.0 : rng.uniform(0.2, 0.6);   // plastic, and bounces that decay to a contact
     PinSlotSimulation sim = PinSlotSimulation::create(read_model(d.json(), "<rest>"));
     const double t1 = std::sqrt(2 * d.h / d.g), t_rest = t1 * (1 + 2 * d.e / (1 - d.e)) * 1.5 + 0.01;
-    while (sim.state().time < t_rest) {
-      sim.step(t_rest);
-      expect_not_overlapping(sim, {0});
+    step_checked(sim, t_rest, {0}, {}, [&] {
       EXPECT_LE(std::abs(sim.state().angle), 1e-12);   // the contact lies under the pin: no turn
-    }
+    });
     ASSERT_FALSE(sim.events().empty());
     EXPECT_EQ(sim.events().back().kind, SimulationEvent::Kind::contact) << "case " << c;
     ASSERT_EQ(sim.state().contacts.size(), 1u) << "case " << c;
@@ -311,10 +318,7 @@ TEST(SimulationPinSlot, ResolvesTwoContactsAtOnceWithTheLeverRuleForces) {
         R"({ "parts": ["left", "follower"], "restitution": 0 }, { "parts": ["right", "follower"], "restitution": 0 })",
         R"("gravity": [0, -)" + num(g) + R"(], "accuracy": 1e-10)");
     PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<two>"));
-    while (sim.state().time < 0.15) {
-      sim.step(0.15);
-      expect_not_overlapping(sim, {0, 1});
-    }
+    step_checked(sim, 0.15, {0, 1});
     const auto& contacts = sim.state().contacts;
     ASSERT_EQ(contacts.size(), 2u) << "case " << c;
     double left = 0, right = 0;
@@ -388,17 +392,15 @@ TEST(SimulationPinSlot, FollowerRidesItsCamOnTheKinematicFunctionBelowTheCritica
     PinSlotSimulation sim = PinSlotSimulation::create(read_model(d.json(), "<riding>"));
     const double turn = 2 * std::numbers::pi / d.omega;
     int checked = 0;
-    while (sim.state().time < turn) {
-      sim.step(turn);
-      expect_not_overlapping(sim, {0});
-      if (sim.state().contacts.empty()) continue;
+    step_checked(sim, turn, {0}, {}, [&] {
+      if (sim.state().contacts.empty()) return;
       const double t = sim.state().time, phi = d.phi0 + d.omega * t;
       EXPECT_NEAR(sim.state().slide, d.slide(phi, sim.state().angle, hold_gap(sim)), 1e-3 * hold_gap(sim))
           << "case " << c << " t " << t;
       EXPECT_NEAR(sim.state().contacts[0].normal_force, d.force(phi, hold_gap(sim)), 1e-4 * d.force(phi, 0))
           << "case " << c << " t " << t;
       ++checked;
-    }
+    });
     EXPECT_GT(checked, 20) << "case " << c;
     ASSERT_EQ(sim.state().contacts.size(), 1u) << "case " << c;
     for (const SimulationEvent& ev : sim.events()) EXPECT_NE(ev.kind, SimulationEvent::Kind::lift_off) << "case " << c;
@@ -424,10 +426,7 @@ TEST(SimulationPinSlot, FollowerLiftsOffItsCamWhereTheLoadsCannotFollowTheCamsAc
         if (ev.kind == SimulationEvent::Kind::lift_off) return true;
       return false;
     };
-    while (!lifted() && sim.state().time < 2 * t_star) {
-      sim.step(2 * t_star);
-      expect_not_overlapping(sim, {0});
-    }
+    step_checked(sim, 2 * t_star, {0}, lifted);
     ASSERT_TRUE(lifted()) << "case " << c;
     const auto& ev = sim.events();
     ASSERT_GE(ev.size(), 2u);
@@ -541,11 +540,8 @@ TEST(SimulationPinSlot, SustainedContactAtScales1eMinus150To1e150IsTheUnscaledRu
     SCOPED_TRACE(std::string("lengths x ") + scale.L + ", masses x " + scale.M);
     PinSlotSimulation sim = PinSlotSimulation::create(read_model(scaled_cam(scale.L, scale.M), "<scaled>"));
     EXPECT_NEAR(sim.chord_deviation() / scale.length, delta, 1e-9 * delta);
-    while (sim.state().time < t_end) {
-      sim.step(t_end);
-      expect_not_overlapping(sim, {0});
-      if (HasFailure()) return;
-    }
+    step_checked(sim, t_end, {0}, [&] { return HasFailure(); });
+    if (HasFailure()) return;
     ASSERT_EQ(sim.events().size(), base.events().size());
     for (std::size_t i = 0; i < base.events().size(); ++i) {
       const SimulationEvent &a = base.events()[i], &b = sim.events()[i];
@@ -659,15 +655,12 @@ TEST(SimulationPinSlot, TorqueDrivenCamStrikesTheFollowerAtTheClosedFormTimeAndB
     const double alpha = 1000 * torque / inertia;
     const double phi_star = std::asin((H - r) / ecc), t_star = std::sqrt(2 * (phi_star - phi0) / alpha);
     const double omega = alpha * t_star, px = ecc * std::cos(phi_star), v = omega * px;
-    while (sim.events().empty() && sim.state().time < 2 * t_star) {
-      sim.step(2 * t_star);
-      expect_not_overlapping(sim, {0});
-      if (sim.events().empty()) {   // free flight of the cam alone: the closed form
-        const double t = sim.state().time;
-        EXPECT_NEAR(sim.state().position[0], phi0 + alpha * t * t / 2, 1e-8) << "case " << c;
-        EXPECT_NEAR(sim.state().rate[0], alpha * t, 1e-8 * omega) << "case " << c;
-      }
-    }
+    step_checked(sim, 2 * t_star, {0}, [&] { return !sim.events().empty(); }, [&] {
+      if (!sim.events().empty()) return;
+      const double t = sim.state().time;   // free flight of the cam alone: the closed form
+      EXPECT_NEAR(sim.state().position[0], phi0 + alpha * t * t / 2, 1e-8) << "case " << c;
+      EXPECT_NEAR(sim.state().rate[0], alpha * t, 1e-8 * omega) << "case " << c;
+    });
     ASSERT_EQ(sim.events().size(), 1u) << "case " << c;
     const SimulationEvent& ev = sim.events()[0];
     EXPECT_NEAR(ev.time, t_star, 4 * sim.chord_deviation() / v + 1e-8 * t_star) << "case " << c;
@@ -817,17 +810,14 @@ TEST(SimulationPinSlot, TranslatingPartIsStruckByTheFollowerAndStopsAtItsLimit) 
     const double e0 = sim.energy(), t_star = h / v0;
     const double tau_limit = -std::log(1 - lo * rate / xdot0) / rate;
     const double t_end = t_star + 1.5 * tau_limit;
-    while (sim.state().time < t_end) {
-      sim.step(t_end);
-      expect_not_overlapping(sim, {0});
+    step_checked(sim, t_end, {0}, {}, [&] {
       EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-8 * e0) << "case " << c << " t " << sim.state().time;
-      if (sim.events().size() == 1) {   // the block's damped flight after the impact
-        const double tau = sim.state().time - sim.events()[0].time;
-        EXPECT_NEAR(sim.state().rate[0], xdot0 * std::exp(-rate * tau), 1e-6 * std::abs(xdot0)) << "case " << c;
-        EXPECT_NEAR(sim.state().position[0], xdot0 / rate * (1 - std::exp(-rate * tau)), 1e-6 * std::abs(lo))
-            << "case " << c;
-      }
-    }
+      if (sim.events().size() != 1) return;   // the block's damped flight after the impact
+      const double tau = sim.state().time - sim.events()[0].time;
+      EXPECT_NEAR(sim.state().rate[0], xdot0 * std::exp(-rate * tau), 1e-6 * std::abs(xdot0)) << "case " << c;
+      EXPECT_NEAR(sim.state().position[0], xdot0 / rate * (1 - std::exp(-rate * tau)), 1e-6 * std::abs(lo))
+          << "case " << c;
+    });
     const auto& ev = sim.events();
     ASSERT_GE(ev.size(), 2u) << "case " << c;   // the strike, the limit struck
     EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
@@ -855,6 +845,165 @@ TEST(SimulationPinSlot, TranslatingPartIsStruckByTheFollowerAndStopsAtItsLimit) 
     EXPECT_LE(sim.state().position[0], lo + sim.chord_deviation());
     EXPECT_GT(sim.state().slide_rate, 0);   // the follower bounced back up (e > m A - 1)
   }
+}
+
+// Session 60: viscous damping of the slide. A linear spring along a vertical slot, the centre
+// of mass on the pin (no coupling to the angle): m s'' + c s' + k s = 0 from s(0) = a at rest,
+// under-, critically near and over-damped, against the closed form of the damped free
+// oscillation; the angle stays 0 and the energy plus the damping's work is the initial energy.
+TEST(SimulationPinSlot, DampedSlideOscillationDecaysAsTheClosedForm) {
+  Lcg rng{60};
+  for (int c = 0; c < 6; ++c) {
+    Follower f = random_follower(rng);
+    const double k = rng.uniform(0.5, 5), a = rng.uniform(1, 4);
+    const double w0 = std::sqrt(k * 1000 / f.mass);   // 1/s (k: N/mm = 1000 kg/s^2)
+    const double zeta = c < 4 ? rng.uniform(0.05, 0.9) : rng.uniform(1.2, 3);   // damping ratio
+    const double damping = zeta * 2 * std::sqrt(k * 1000 * f.mass) / 1000;       // N s/mm
+    f.s0 = a;
+    f.extra_dynamics = R"(, "linear_spring": { "stiffness": )" + num(k) + R"(, "rest": 0 }, "damping": )" + num(damping);
+    const std::string json = model_json(fixed_cam(2) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })", "");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<damped>"));
+    const double gamma = zeta * w0, e0 = sim.energy();
+    auto closed = [&](double t, double& s, double& v) {
+      if (zeta < 1) {
+        const double wd = w0 * std::sqrt(1 - zeta * zeta), decay = std::exp(-gamma * t);
+        s = a * decay * (std::cos(wd * t) + gamma / wd * std::sin(wd * t));
+        v = -a * decay * w0 * w0 / wd * std::sin(wd * t);
+        return;
+      }
+      const double root = w0 * std::sqrt(zeta * zeta - 1), r1 = -gamma + root, r2 = -gamma - root;
+      const double A = -a * r2 / (r1 - r2), B = a * r1 / (r1 - r2);
+      s = A * std::exp(r1 * t) + B * std::exp(r2 * t);
+      v = A * r1 * std::exp(r1 * t) + B * r2 * std::exp(r2 * t);
+    };
+    for (int i = 1; i <= 10; ++i) {
+      sim.run_until(i * 0.61 / w0);
+      double s = 0, v = 0;
+      closed(sim.state().time, s, v);
+      EXPECT_NEAR(sim.state().slide, s, 1e-6 * a) << "case " << c << " zeta " << zeta;
+      EXPECT_NEAR(sim.state().slide_rate, v, 1e-6 * a * w0) << "case " << c;
+      EXPECT_EQ(sim.state().angle, 0.0);
+      EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-7 * e0) << "case " << c;
+    }
+    EXPECT_GT(sim.dissipated(), 0.05 * e0);   // the damping did act
+    EXPECT_TRUE(sim.events().empty());
+  }
+}
+
+// Session 60: a pin starting exactly at its slot's end (the threshold of the exact limit test).
+// Pushed into the end by a load along the slot it is held there (an impact at the rest speed's
+// scale, then a contact whose force is the load), never beyond the end (exact comparison at every
+// step); pulled away it leaves the end on the closed form s = end - g t^2 / 2 with no event.
+TEST(SimulationPinSlot, PinStartingExactlyAtItsSlotEndIsHeldOrLeavesByItsLoad) {
+  Lcg rng{61};
+  for (int c = 0; c < 6; ++c) {
+    Follower f = random_follower(rng);
+    const bool upper = c % 2 == 0, into = c < 4;
+    const double end = upper ? 30 : -30, g = rng.uniform(1000, 20000);
+    f.s0 = end;
+    const double gy = (upper == into ? 1 : -1) * g;   // +y pushes the slide up
+    const std::string json = model_json(fixed_cam(1) + ", " + f.json(), R"({ "parts": ["cam", "follower"] })",
+                                        R"("gravity": [0, )" + num(gy) + R"(], "accuracy": 1e-10)");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(json, "<slot end>"));
+    const double t_end = 0.02;
+    step_checked(sim, t_end, {0}, {}, [&] {
+      const Rational s(sim.state().slide);
+      EXPECT_TRUE(upper ? s <= Rational(30) : s >= Rational(-30)) << "case " << c << " beyond the end: " << sim.state().slide;
+      if (!into) {
+        EXPECT_NEAR(sim.state().slide, end - (upper ? 1 : -1) * g * sim.state().time * sim.state().time / 2, 1e-6)
+            << "case " << c;
+      }
+    });
+    const auto& ev = sim.events();
+    if (!into) {
+      EXPECT_TRUE(ev.empty()) << "case " << c;
+      continue;
+    }
+    ASSERT_EQ(ev.size(), 2u) << "case " << c;
+    EXPECT_EQ(ev[0].kind, SimulationEvent::Kind::impact);
+    EXPECT_NE(ev[0].features[0].find(upper ? "slide limit (upper end)" : "slide limit (lower end)"), std::string::npos)
+        << ev[0].features[0];
+    EXPECT_EQ(ev[1].kind, SimulationEvent::Kind::contact);
+    ASSERT_EQ(sim.state().contacts.size(), 1u) << "case " << c;
+    EXPECT_NEAR(sim.state().contacts[0].normal_force, f.mass * g / 1000, 1e-9 * f.mass * g / 1000) << "case " << c;
+    EXPECT_NEAR(sim.state().slide, end - (upper ? 1 : -1) * hold_gap(sim), 1e-3 * hold_gap(sim)) << "case " << c;
+    EXPECT_EQ(sim.state().slide_rate, 0.0);
+  }
+}
+
+// A random rational in [lo, hi] with a 2^20 denominator.
+Rational random_rational(Lcg& rng, double lo, double hi) { return Rational(std::ldexp(std::round(std::ldexp(rng.uniform(lo, hi), 20)), -20)); }
+
+// Session 60: a held contact's edge-end decision (simulation/held_extent.hpp) at its threshold.
+// Generated vertex–segment and vertex–arc contacts whose point lies exactly at the segment's end
+// or on the arc sector's boundary ray (on: the closed feature), then moved by +-eps along the
+// feature (eps = 10^-30 of its size: off beyond the end, on before it), at the scales 1, 10^-300
+// and 10^400; the oracle is the construction. The interval filter decides the far cases alone
+// and hands the threshold cases to the exact rationals.
+TEST(SimulationPinSlot, HeldContactEdgeEndIsDecidedExactlyAtItsThreshold) {
+  using kernels::FeatureGeometry;
+  using kernels::FeatureShape;
+  using V = kernels::Vector<Rational>;
+  Lcg rng{600};
+  std::size_t decided = 0;
+  for (int c = 0; c < 60; ++c) {
+    const bool arc = c % 2 == 1;
+    for (const Rational scale : {Rational(1), Rational(mpz_class(1), mpz_class("1" + std::string(300, '0'))),
+                                 Rational(mpz_class("1" + std::string(400, '0')))}) {
+      // the other part's feature at its zero configuration (identity pose)
+      FeatureGeometry<Rational> other;
+      V toward;   // the threshold point's direction along which "beyond" lies, and the point
+      V at;
+      if (!arc) {
+        other.shape = FeatureShape::segment;
+        other.point = {random_rational(rng, -20, 20) * scale, random_rational(rng, -20, 20) * scale};
+        other.target = {random_rational(rng, -20, 20) * scale, random_rational(rng, -20, 20) * scale};
+        const V d{other.target.x - other.point.x, other.target.y - other.point.y};
+        const Rational lift = random_rational(rng, 0.001, 0.01) * scale;   // off the line (a hold gap)
+        at = {other.target.x - d.y * lift, other.target.y + d.x * lift};  // above the segment's end
+        toward = d;
+      } else {
+        other.shape = FeatureShape::arc;
+        other.center = {random_rational(rng, -20, 20) * scale, random_rational(rng, -20, 20) * scale};
+        other.radius_squared = 100 * scale * scale;
+        other.convex = true;
+        other.sector.start = {random_rational(rng, 1, 2), random_rational(rng, -1, 0)};
+        other.sector.end = {random_rational(rng, -1, 1), random_rational(rng, 1, 2)};   // less than a half turn
+        const Rational mu = random_rational(rng, 5, 10) * scale;   // on the end's ray
+        at = {other.center.x + mu * other.sector.end.x, other.center.y + mu * other.sector.end.y};
+        toward = {-other.sector.end.y * scale, other.sector.end.x * scale};   // counter-clockwise: out of it
+      }
+      const Rational eps = Rational(mpz_class(1), mpz_class("1" + std::string(30, '0')));
+      for (int side : {0, 1, -1, 1000}) {   // 1000: far beyond (the filter's case)
+        const Rational move = side == 1000 ? Rational(1, 10) : side * eps;
+        const V target{at.x + move * toward.x, at.y + move * toward.y};
+        // the pin-slot part's vertex v placed about its pivot P by an exact rotation onto target
+        simulation::ExtentPose<Rational> pose, identity;
+        const Rational tan_half = random_rational(rng, -2, 2);
+        pose.c = (1 - tan_half * tan_half) / (1 + tan_half * tan_half);
+        pose.s = 2 * tan_half / (1 + tan_half * tan_half);
+        pose.pivot = {random_rational(rng, -40, 40) * scale, random_rational(rng, -40, 40) * scale};
+        FeatureGeometry<Rational> vertex;
+        vertex.shape = FeatureShape::vertex;
+        vertex.point = {random_rational(rng, -30, 30) * scale, random_rational(rng, -30, 30) * scale};
+        const V placed = pose.place(vertex.point);
+        pose.shift = {target.x - placed.x, target.y - placed.y};
+        const bool within = side <= 0;   // on the threshold (closed) or before it
+        std::size_t exact = 0;
+        const bool got = simulation::contact_within_certified(identity, other, simulation::enclose(other), pose, vertex,
+                                                              simulation::enclose(vertex), &exact);
+        EXPECT_EQ(got, within) << "case " << c << (arc ? " (arc)" : " (segment)") << " side " << side;
+        // the same with the features swapped (the segment or arc on the moving part)
+        EXPECT_EQ(*simulation::contact_within(pose, vertex, identity, other), within);
+        if (side == 0) EXPECT_EQ(exact, 1u) << "the threshold is the exact rationals' to decide";
+        if (side == 1000 && scale == 1) {
+          EXPECT_EQ(exact, 0u) << "far from the threshold the interval filter decides";
+          ++decided;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(decided, 60u);
 }
 
 TEST(SimulationPinSlot, OutsideTheClassItRefusesWithClearMessages) {
