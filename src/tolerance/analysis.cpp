@@ -30,6 +30,7 @@
 #include <functional>
 #include <future>
 #include <limits>
+#include <map>
 #include <iomanip>
 #include <sstream>
 #include <numbers>
@@ -599,6 +600,12 @@ class Analysis {
   // tile's first interval continues its neighbour's last (one face of the space crossing the
   // border) when both have the same kind and cell; otherwise the border itself, an exact
   // rational, is a boundary point with no feature pair.
+  // Session 60: also across the follower's half-turn seam (its chart's end, t = +-1, glued to
+  // the other half-turn chart's -+1: the same angle is t' = -1 / t there; base60 refused the
+  // spur gears' whole turn at 135 deg). The tiles beyond the seam are walked in their own
+  // coordinates and their points and intervals brought into the home chart's exactly
+  // (exact_order.hpp other_half_turn); the home chart's coordinate runs to infinity at the
+  // other chart's 0 (half a turn from the home chart's centre), where the walk stops.
   std::optional<Slice> region_slice_near(std::size_t chart, const Rational& value, const Rational& at,
                                          std::size_t boundaries) const {
     const SliceAxis axis = driver_is_x_ ? SliceAxis::x : SliceAxis::y;
@@ -611,72 +618,113 @@ class Analysis {
     auto free_range = [&](const CSpaceChart& c) {
       return driver_is_x_ ? std::make_pair(c.y_lo, c.y_hi) : std::make_pair(c.x_lo, c.x_hi);
     };
+    auto driver_half = [&](const CSpaceChart& c) { return driver_is_x_ ? c.x_half_turn : c.y_half_turn; };
+    auto follower_half = [&](const CSpaceChart& c) { return driver_is_x_ ? c.y_half_turn : c.x_half_turn; };
     const CSpaceChart& home = charts[chart];
-    // the built tile whose follower range starts (up) or ends (down) at `border`, in the column
-    auto neighbour = [&](const Rational& border, bool up) -> std::optional<std::size_t> {
+    const bool rotates = (driver_is_x_ ? home.y_kind : home.x_kind) == AxisKind::rotation;
+    // The built tile whose follower range starts (up) or ends (down) at `border` of a chart of
+    // follower half turn `half`: in its own half turn, or across the seam (border +-1 there is
+    // -+1 in the other half turn's chart) when `seam`.
+    auto neighbour = [&](const Rational& border, bool half, bool up, bool seam) -> std::optional<std::size_t> {
+      if (seam && (!rotates || border * border != 1)) return std::nullopt;
+      const Rational start = seam ? Rational(-border) : border;
       for (std::size_t c = 0; c < charts.size(); ++c) {
         const CSpaceChart& other = charts[c];
-        if (c == chart || other.x_half_turn != home.x_half_turn || other.y_half_turn != home.y_half_turn) continue;
+        if (c == chart || driver_half(other) != driver_half(home) || follower_half(other) != (seam ? !half : half)) continue;
         auto [lo, hi] = fixed_range(other);
         if (value < lo || value > hi) continue;
         auto [free_lo, free_hi] = free_range(other);
-        if ((up ? free_lo : free_hi) == border) return c;
+        if ((up ? free_lo : free_hi) == start) return c;
       }
       return std::nullopt;
     };
-    auto exact_point = [](const Rational& q) {
-      AlgebraicNumber a;
-      a.polynomial = {-q.get_num(), q.get_den()};
-      a.lower = a.upper = q;
-      a.exact = true;
-      return a;
-    };
     auto same_face = [](const Slice::Interval& a, const Slice::Interval& b) { return a.kind == b.kind && a.cell == b.cell; };
-    // upwards
-    for (std::size_t guard = 0; guard < charts.size(); ++guard) {
-      std::size_t above = 0;
-      for (const Slice::Point& point : slice->points)
-        if (tolerance_detail::compare(point.at, at) > 0) ++above;
-      if (above >= boundaries) break;
-      std::optional<std::size_t> next = neighbour(slice->upper, true);
-      if (!next) break;
-      std::optional<Slice> more = slice_near(*space_, *next, axis, value, slice->upper, boundaries);
-      if (!more) break;
-      const Rational border = slice->upper;
-      if (!same_face(slice->intervals.back(), more->intervals.front())) {
-        slice->points.push_back(Slice::Point{exact_point(border), {}});
-        slice->intervals.push_back(more->intervals.front());
+    // `more` (a slice in the other half turn's chart, continuing `slice` away from `at`) in the
+    // home chart's coordinates; false when it reaches the other chart's 0 (the home chart's
+    // infinity): it is then cut there, its last interval ending a unit beyond its last point.
+    auto to_home = [&](Slice& more, bool up) {
+      const int side = up ? -1 : 1;   // the sign of the other chart's coordinates on the home side
+      auto on_home_side = [&](const Rational& q) { return sgn(q) == side; };
+      auto home_of = [](const Rational& q) { return Rational(Rational(-1) / q); };
+      // the points in walking order (away from `at`)
+      std::vector<std::size_t> order(more.points.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = up ? i : order.size() - 1 - i;
+      std::vector<Slice::Point> points;
+      for (std::size_t i : order) {
+        if (tolerance_detail::compare(more.points[i].at, Rational(0)) * side <= 0) break;
+        std::optional<AlgebraicNumber> a = tolerance_detail::other_half_turn(more.points[i].at);
+        points.push_back(Slice::Point{std::move(*a), more.points[i].features});
       }
-      for (std::size_t i = 0; i < more->points.size(); ++i) {
-        slice->points.push_back(more->points[i]);
-        slice->intervals.push_back(more->intervals[i + 1]);
+      const std::size_t kept = points.size();
+      const Rational far = up ? more.upper : more.lower;
+      const bool whole = kept == order.size() && on_home_side(far);
+      // the cut's window: from the last kept point (or the border) to a unit beyond it
+      const Rational last = kept == 0 ? Rational(up ? slice->upper : slice->lower)
+                                      : Rational(up ? points.back().at.upper : points.back().at.lower);
+      const Rational end = whole ? home_of(far) : up ? Rational(last + 1) : Rational(last - 1);
+      // intervals in walking order: the first kept + 1 (those before the cut lie between points
+      // on the home side, so do their samples)
+      std::vector<Slice::Interval> intervals;
+      for (std::size_t k = 0; k <= kept; ++k) {
+        Slice::Interval interval = more.intervals[up ? k : more.intervals.size() - 1 - k];
+        bool cut = k == kept && !whole;
+        interval.sample = !cut ? home_of(interval.sample) : up ? Rational(last + Rational(1, 2)) : Rational(last - Rational(1, 2));
+        intervals.push_back(std::move(interval));
       }
-      slice->upper = more->upper;
-    }
-    // downwards
-    for (std::size_t guard = 0; guard < charts.size(); ++guard) {
-      std::size_t below = 0;
-      for (const Slice::Point& point : slice->points)
-        if (tolerance_detail::compare(point.at, at) < 0) ++below;
-      if (below >= boundaries) break;
-      std::optional<std::size_t> next = neighbour(slice->lower, false);
-      if (!next) break;
-      std::optional<Slice> more = slice_near(*space_, *next, axis, value, slice->lower, boundaries);
-      if (!more) break;
-      const Rational border = slice->lower;
-      std::vector<Slice::Point> points = more->points;
-      std::vector<Slice::Interval> intervals = more->intervals;
-      if (same_face(intervals.back(), slice->intervals.front())) {
-        intervals.pop_back();
-      } else {
-        points.push_back(Slice::Point{exact_point(border), {}});
+      if (!up) {
+        std::reverse(points.begin(), points.end());
+        std::reverse(intervals.begin(), intervals.end());
       }
-      points.insert(points.end(), slice->points.begin(), slice->points.end());
-      intervals.insert(intervals.end(), slice->intervals.begin(), slice->intervals.end());
-      slice->points = std::move(points);
-      slice->intervals = std::move(intervals);
-      slice->lower = more->lower;
-    }
+      more.points = std::move(points);
+      more.intervals = std::move(intervals);
+      (up ? more.upper : more.lower) = end;
+      return whole;
+    };
+    // One walk away from `at`, upwards or downwards.
+    auto walk = [&](bool up) {
+      bool flipped = false;   // the last tile walked is in the other half turn's chart
+      const bool half = follower_half(home);
+      for (std::size_t guard = 0; guard < charts.size(); ++guard) {
+        std::size_t beyond = 0;
+        for (const Slice::Point& point : slice->points)
+          if (tolerance_detail::compare(point.at, at) * (up ? 1 : -1) > 0) ++beyond;
+        if (beyond >= boundaries) return;
+        const Rational border = up ? slice->upper : slice->lower;
+        // the border in the last tile's own coordinates
+        const Rational own = flipped ? Rational(Rational(-1) / border) : border;
+        bool seam = false;
+        std::optional<std::size_t> next = neighbour(own, flipped ? !half : half, up, false);
+        if (!next && !flipped) next = neighbour(own, half, up, seam = true);
+        if (!next) return;
+        const bool across = flipped || seam;
+        const Rational start = seam ? Rational(-own) : own;
+        std::optional<Slice> more = slice_near(*space_, *next, axis, value, start, boundaries);
+        if (!more) return;
+        const bool open = across ? to_home(*more, up) : true;
+        Slice& low = up ? *slice : *more;
+        Slice& high = up ? *more : *slice;
+        std::vector<Slice::Point> points = std::move(low.points);
+        std::vector<Slice::Interval> intervals = std::move(low.intervals);
+        if (same_face(intervals.back(), high.intervals.front())) {
+          // one face across the border: the home side's interval stays
+          if (up) high.intervals.erase(high.intervals.begin());
+          else intervals.pop_back();
+        } else {
+          points.push_back(Slice::Point{tolerance_detail::exact_algebraic(border), {}});
+        }
+        points.insert(points.end(), high.points.begin(), high.points.end());
+        intervals.insert(intervals.end(), high.intervals.begin(), high.intervals.end());
+        const Rational lower = low.lower, upper = high.upper;
+        slice->points = std::move(points);
+        slice->intervals = std::move(intervals);
+        slice->lower = lower;
+        slice->upper = upper;
+        flipped = across;
+        if (!open) return;
+      }
+    };
+    walk(true);
+    walk(false);
     return slice;
   }
 
@@ -1085,14 +1133,6 @@ class Analysis {
     return request;
   }
 
-  // The exact kernel slice of `slicer`'s pair (the nominal pair or one at other parameters) at
-  // the sample's driver chart coordinate, from the contact polynomials and the exact overlap
-  // oracle (the kernel slicer `hipair analyze` runs on large pairs), in the follower chart with
-  // the nominal chart's half turn. nullopt: no chart holds the position.
-  static std::optional<KernelSlice> kernel_slice_at(const KernelSlicer& slicer, const SampleState& state) {
-    return slicer.slice(state.driver_chart.t, state.driver_chart.half, state.follower_chart.t, state.follower_chart.half);
-  }
-
   // The intervals (indices into kinds) of a kernel slice that are free (or outside the slicer's
   // window) and meet the open channel (lower, upper), decided exactly (exact_order.hpp): an
   // interval (a, b) meets it when b > lower and a < upper; a null side is unbounded.
@@ -1107,6 +1147,73 @@ class Analysis {
       if (below_upper && above_lower) meeting.push_back(j);
     }
     return meeting;
+  }
+
+  // The exact kernel slice of `slicer`'s pair (the nominal pair or one at other parameters) at
+  // the sample's driver chart coordinate, from the contact polynomials and the exact overlap
+  // oracle (the kernel slicer `hipair analyze` runs on large pairs), in the follower chart with
+  // the nominal chart's half turn. nullopt: no chart holds the position.
+  // The kernel slice ends at the follower chart's ends (t = +-1, the half-turn seam); since
+  // session 60 it is continued across the seam into the other half turn's chart (t' = -1 / t,
+  // exact_order.hpp other_half_turn) at an end where the nominal channel crosses it or a free
+  // interval meeting the channel reaches it, so that no part of the channel beyond the seam goes
+  // unexamined (a free interval there would otherwise be missed, and a closed channel claimed).
+  static std::optional<KernelSlice> kernel_slice_at(const KernelSlicer& slicer, const SampleState& state) {
+    std::optional<KernelSlice> slice =
+        slicer.slice(state.driver_chart.t, state.driver_chart.half, state.follower_chart.t, state.follower_chart.half);
+    if (!slice || !state.lower.present || !state.upper.present) return slice;
+    std::vector<std::size_t> meeting = kernel_free_meeting(*slice, &state.lower.exact, &state.upper.exact);
+    auto meets = [&](std::size_t j) { return std::find(meeting.begin(), meeting.end(), j) != meeting.end(); };
+    const bool below = meets(0) || tolerance_detail::compare(state.lower.exact, Rational(-1)) < 0;
+    const bool above = meets(slice->points.size()) || tolerance_detail::compare(state.upper.exact, Rational(1)) > 0;
+    for (bool up : {false, true}) {
+      if (!(up ? above : below)) continue;
+      const Rational seam(up ? 1 : -1);
+      std::optional<KernelSlice> other =
+          slicer.slice(state.driver_chart.t, state.driver_chart.half, Rational(-seam), !state.follower_chart.half);
+      if (!other) return std::nullopt;   // nothing known beyond the seam: no decision on this slice
+      // the other chart's points on the home side of its 0 (t' > 0 below the seam, < 0 above),
+      // in the home chart's coordinates; kinds[i] before points[i] as in KernelSlice
+      KernelSlice part;
+      std::size_t first = 0, last = other->points.size();   // [first, last) kept
+      if (up) {
+        while (first < last && tolerance_detail::compare(other->points[last - 1].at, Rational(0)) >= 0) --last;
+      } else {
+        while (first < last && tolerance_detail::compare(other->points[first].at, Rational(0)) <= 0) ++first;
+      }
+      for (std::size_t i = first; i < last; ++i) {
+        KernelSlice::Point point = other->points[i];
+        point.at = *tolerance_detail::other_half_turn(point.at);
+        part.points.push_back(std::move(point));
+        part.kinds.push_back(other->kinds[i]);
+      }
+      part.kinds.push_back(other->kinds[last]);
+      // the seam: a point of both slices there is one point; one interval on both sides is one
+      KernelSlice& low = up ? *slice : part;
+      KernelSlice& high = up ? part : *slice;
+      KernelSlice joined;
+      joined.points = low.points;
+      joined.kinds = low.kinds;
+      const bool low_ends_on_seam = !low.points.empty() && tolerance_detail::compare(low.points.back().at, seam) == 0;
+      const bool high_starts_on_seam = !high.points.empty() && tolerance_detail::compare(high.points.front().at, seam) == 0;
+      // high's points from `points_from` and kinds from `kinds_from` follow; an empty (seam, seam)
+      // interval of either side goes, a point of both is kept once
+      std::size_t points_from = 0, kinds_from = 0;
+      if (low_ends_on_seam) {
+        joined.kinds.pop_back();
+        if (high_starts_on_seam) points_from = kinds_from = 1;
+      } else if (high_starts_on_seam) {
+        kinds_from = 1;
+      } else if (low.kinds.back() == high.kinds.front()) {
+        joined.kinds.pop_back();   // one interval across the seam
+      } else {
+        joined.points.push_back(KernelSlice::Point{tolerance_detail::exact_algebraic(seam), false, {}});
+      }
+      joined.points.insert(joined.points.end(), high.points.begin() + static_cast<std::ptrdiff_t>(points_from), high.points.end());
+      joined.kinds.insert(joined.kinds.end(), high.kinds.begin() + static_cast<std::ptrdiff_t>(kinds_from), high.kinds.end());
+      *slice = std::move(joined);
+    }
+    return slice;
   }
 
   // A jam confirmation without a C-space (session 58: large pairs; session 59: the bracket's and
@@ -1642,6 +1749,21 @@ class Analysis {
     }
     std::stable_sort(groups.begin(), groups.end(),
                      [&](const Group& a, const Group& b) { return found[a.best].overshoot > found[b.best].overshoot; });
+    // A large pair's witnesses are sliced on one kernel slicer per distinct witness vector (its
+    // strips serve every slice), and the limit counts those slicers: the changes sharing a
+    // witness (spur-gears.json: every one at the same box corner) are all examined.
+    // Each witness' slices are kept by position: the changes sharing it ask for the same ones.
+    struct WitnessSlices {
+      std::shared_ptr<KernelSlicer> slicer;
+      std::map<std::size_t, std::optional<std::vector<PairKey>>> bounds;
+    };
+    std::vector<std::pair<std::vector<Rational>, WitnessSlices>> slicers;
+    // the label of a feature pair (the nominal space's), for the evidence
+    auto label_of = [&](const PairKey& key) {
+      for (const FeaturePair& pair : space_->feature_pairs())
+        if (key_of(pair) == key) return "'" + pair.label + "'";
+      return std::string("an unlabelled feature pair");
+    };
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
       const Group& g = groups[gi];
       const Candidate& best = found[g.best];
@@ -1662,27 +1784,57 @@ class Analysis {
           change.witness.emplace_back(m.parameters[i].name, m.parameters[i].nominal + deviations[i]);
       }
       std::optional<ContactChange> disappears;
-      if (gi >= options_.contact_change_confirmations) {
+      auto cached = std::find_if(slicers.begin(), slicers.end(), [&](const auto& s) { return s.first == deviations; });
+      const std::size_t builds = kernel_confirmations_ ? slicers.size() : gi;
+      if ((!kernel_confirmations_ || cached == slicers.end()) && builds >= options_.contact_change_confirmations) {
         change.evidence = "not confirmed: only the " + std::to_string(options_.contact_change_confirmations) +
-                          " largest changes are confirmed by an exact C-space";
+                          (kernel_confirmations_ ? " largest changes' witnesses are sliced exactly"
+                                                 : " largest changes are confirmed by an exact C-space");
       } else {
         try {
-          Model witness = model_->exact_model(deviations);
           // the witness' exact C-space, or (a large pair) its pair's exact kernel slices
           std::optional<CSpace> space;
-          std::optional<KernelSlicer> slicer;
-          if (kernel_confirmations_) slicer.emplace(witness, driver_, follower_);
-          else space.emplace(CSpace::build(witness, pair_first_, pair_second_));
-          auto bounds = [&](std::size_t k) { return space ? channel_bounds(*space, k) : kernel_channel_bounds(*slicer, k); };
+          std::shared_ptr<KernelSlicer> slicer;
+          if (kernel_confirmations_) {
+            if (cached == slicers.end()) {
+              slicers.emplace_back(deviations, WitnessSlices{std::make_shared<KernelSlicer>(model_->exact_model(deviations), driver_, follower_), {}});
+              cached = slicers.end() - 1;
+            }
+            slicer = cached->second.slicer;
+          } else {
+            space.emplace(CSpace::build(model_->exact_model(deviations), pair_first_, pair_second_));
+          }
+          auto bounds = [&](std::size_t k) {
+            if (space) return channel_bounds(*space, k);
+            auto [at, added] = cached->second.bounds.try_emplace(k);
+            if (added) at->second = kernel_channel_bounds(*slicer, k);
+            return at->second;
+          };
           const std::string exact = space ? "exact C-space at the witness: "
                                           : "exact slices (contact kernels and the exact overlap oracle) at the witness: ";
+          // Refuted (session 60): at every position the exact slice holds a channel meeting the
+          // nominal one and the contact bounds none of it (e.g. a vertex of a tangent-continuous
+          // joint, whose curve overtakes the side only inside blocked space).
+          std::size_t sliced = 0;
+          std::vector<PairKey> others;   // what bounds it instead, at the first such position
           for (std::size_t k : g.samples) {
             std::optional<std::vector<PairKey>> keys = bounds(k);
-            if (keys && std::find(keys->begin(), keys->end(), best.key) != keys->end()) ++change.confirmed_positions;
+            if (!keys || keys->empty()) continue;
+            ++sliced;
+            if (std::find(keys->begin(), keys->end(), best.key) != keys->end()) ++change.confirmed_positions;
+            else if (others.empty()) others = *keys;
           }
           change.confirmed = change.confirmed_positions > 0;
-          change.evidence = exact + "at " + std::to_string(change.confirmed_positions) + " of " +
-                            std::to_string(g.samples.size()) + " positions the contact bounds the channel";
+          if (!change.confirmed && sliced == g.samples.size()) {
+            std::string instead;
+            for (auto key = others.begin(); key != others.end(); ++key)
+              if (std::find(others.begin(), key, *key) == key) instead += (instead.empty() ? "" : ", ") + label_of(*key);
+            change.evidence = "refuted: " + exact + "at none of the " + std::to_string(g.samples.size()) +
+                              " positions does the contact bound the channel (bounded there by " + instead + ")";
+          } else {
+            change.evidence = exact + "at " + std::to_string(change.confirmed_positions) + " of " +
+                              std::to_string(g.samples.size()) + " positions the contact bounds the channel";
+          }
           // The side it overtakes: does it still bound the channel anywhere along the path?
           std::size_t where = 0, bounded = 0;
           for (const auto& [key, at] : side_positions) {

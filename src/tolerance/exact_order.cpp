@@ -134,6 +134,34 @@ int compare(const AlgebraicNumber& a, const AlgebraicNumber& b) {
   throw GeometryError("exact order: two algebraic numbers could not be separated");
 }
 
+AlgebraicNumber exact_algebraic(const Rational& x) {
+  Rational q = x;
+  q.canonicalize();
+  AlgebraicNumber a;
+  a.polynomial = {-q.get_num(), q.get_den()};
+  a.lower = a.upper = q;
+  a.exact = true;
+  return a;
+}
+
+std::optional<AlgebraicNumber> other_half_turn(const AlgebraicNumber& a) {
+  if (compare(a, Rational(0)) == 0) return std::nullopt;
+  Enclosure e(a);
+  for (int step = 0; step < 100000 && !e.exact && !(e.hi < 0 || e.lo > 0); ++step) e.bisect();
+  if (e.exact) return exact_algebraic(Rational(-1) / e.lo);
+  if (!(e.hi < 0 || e.lo > 0)) throw GeometryError("exact order: " + a.to_string() + " could not be separated from 0");
+  AlgebraicNumber r;
+  const std::size_t d = a.polynomial.size() - 1;
+  r.polynomial.resize(d + 1);
+  // p(-1/t) t^d = sum_i a_i (-1)^i t^(d - i)
+  for (std::size_t j = 0; j <= d; ++j) r.polynomial[j] = (d - j) % 2 == 0 ? a.polynomial[d - j] : mpz_class(-a.polynomial[d - j]);
+  r.lower = Rational(-1) / e.lo;
+  r.upper = Rational(-1) / e.hi;
+  r.lower.canonicalize();
+  r.upper.canonicalize();
+  return r;
+}
+
 PointMatch match_point(const std::vector<Slice::Point>& points, const Rational& t, bool in_contact) {
   PointMatch match;
   for (std::size_t k = 0; k < points.size(); ++k) {

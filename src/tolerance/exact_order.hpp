@@ -23,6 +23,14 @@ int compare(const AlgebraicNumber& a, const Rational& x);
 /// Sign of a - b, exact.
 int compare(const AlgebraicNumber& a, const AlgebraicNumber& b);
 
+/// The same angle in the other half-turn chart: -1 / a (tan((theta - pi) / 2) = -1 / tan(theta / 2)),
+/// exact: the polynomial's coefficients reversed with alternating signs and the isolating
+/// interval refined by exact bisection until it excludes 0, then mapped by -1 / x (increasing on
+/// either side of 0). nullopt when a = 0 (the angle is the other chart's infinity).
+std::optional<AlgebraicNumber> other_half_turn(const AlgebraicNumber& a);
+/// -1 / x for a rational x != 0, as an exact AlgebraicNumber (degree-1 polynomial).
+AlgebraicNumber exact_algebraic(const Rational& x);
+
 /// Where a follower coordinate t lies among the ordered points of a slice (exact):
 /// `below` points are < t; `at` is the point equal to t or, when `in_contact`, the neighbour
 /// of t nearest to it (decided by exact rational enclosures of the two distances; a tie, which

@@ -296,7 +296,10 @@ std::string tolerance_text_report(const ToleranceResult& r) {
           << " (linearised" << (change.certified_at_witness ? "; reversed order certified at the witness" : "") << ")\n";
       out << "    witness:";
       for (const auto& [name, value] : change.witness) out << " " << name << "=" << to_exact_string(value);
-      out << "\n    exact check: " << (change.confirmed ? "CONFIRMED — " : "not confirmed — ") << change.evidence << "\n";
+      // (an exact slice at every position showing the channel bounded by other contacts: refuted)
+      const bool refuted = change.evidence.rfind("refuted: ", 0) == 0;
+      out << "\n    exact check: " << (change.confirmed ? "CONFIRMED — " : refuted ? "REFUTED — " : "not confirmed — ")
+          << (refuted ? change.evidence.substr(9) : change.evidence) << "\n";
     }
   }
   if (r.certification) {

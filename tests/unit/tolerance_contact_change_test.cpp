@@ -6,12 +6,16 @@
 // for every wedge offset x. B appears (and A disappears) for some allowable vector exactly when
 // 5 (tol_rB + tol_rA)/4 > gap; the analysis must find it, say where, give the closed-form
 // overshoot, and an exact C-space at its witness must show B bounding the channel.
+#include <hipair/kernel_slice.hpp>
+#include <hipair/model.hpp>
 #include <hipair/tolerance.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <iostream>
 #include <random>
 #include <string>
@@ -302,6 +306,77 @@ TEST(TolerancePerformancePaths, FastPathsAgreeWithTheFormerOnes) {
   EXPECT_EQ(former.monte_carlo->outside_certified, 0u);
   EXPECT_EQ(former.monte_carlo->not_certified, 0u);
   EXPECT_EQ(fast.monte_carlo->evaluations, former.monte_carlo->evaluations);
+}
+
+// Session 60: the "appears" candidates of the 18 x 27 spur gears (base60: the four largest "not
+// confirmed" by the exact slices, the rest not examined) are a vertex of a tangent-continuous
+// joint of a flank's two arcs (a "corner") against the other gear's arc: the linearised model
+// moves the vertex's curve past the channel's side, but that curve bounds free space only where
+// it touches the arcs' curves, so the side passes from one arc to the next instead. Each is now
+// refuted by the exact kernel slices at its witness. Independent oracle (the public kernel slice
+// of the model read at the witness values): at the change's driver position the free interval
+// meeting the nominal channel is bounded on both sides by edge against edge contacts, no vertex.
+TEST(ToleranceContactChange, SpurGearJointCornersAreRefutedByExactSlices) {
+  const std::filesystem::path path = std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json";
+  ToleranceOptions options;
+  options.contact_changes = true;
+  options.threads = 1;
+  options.range = std::make_pair(Rational(2 * 314159, 300000), Rational(13 * 314159, 1800000));   // about 120 .. 130 deg
+  ToleranceResult r = analyze_tolerances(path, options);
+  ASSERT_TRUE(r.contact_changes);
+  const Model nominal = read_model_file(path);
+  auto chart = [](double angle) {   // (tan of the half angle about 0 or pi, about pi)
+    double t = std::tan(std::remainder(angle, 2 * M_PI) / 2);
+    return std::fabs(t) <= 1 ? std::make_pair(Rational(t), false) : std::make_pair(Rational(-1 / t), true);
+  };
+  std::size_t refuted = 0;
+  for (const ContactChange& change : r.contact_changes->changes) {
+    SCOPED_TRACE(change.contact + " / " + change.evidence);
+    ASSERT_EQ(change.kind, ContactChange::Kind::appears);
+    EXPECT_NE(change.contact.find("corner of"), std::string::npos);   // a vertex of a joint
+    EXPECT_FALSE(change.confirmed);
+    EXPECT_EQ(change.confirmed_positions, 0u);
+    ASSERT_EQ(change.evidence.rfind("refuted: ", 0), 0u);
+    EXPECT_EQ(change.evidence.find(change.contact), std::string::npos);   // not among what bounds it
+    ReadOptions witness;
+    for (const auto& [name, value] : change.witness) witness.parameter_values[name] = value;
+    const Model model = read_model_file(path, witness);
+    const VariationSample* sample = nullptr;
+    for (const VariationSample& s : r.samples)
+      if (s.driver == change.driver) sample = &s;
+    ASSERT_NE(sample, nullptr);
+    auto [driver_t, driver_half] = chart(sample->driver);
+    auto [follower_t, follower_half] = chart(sample->nominal);
+    // the nominal channel: the free interval of the nominal slice holding the follower
+    std::optional<KernelSlice> at_nominal = kernel_slice(nominal, 0, 1, driver_t, driver_half, follower_t, follower_half);
+    ASSERT_TRUE(at_nominal);
+    std::optional<std::size_t> channel;
+    for (std::size_t j = 1; j < at_nominal->points.size(); ++j)
+      if (tolerance_detail::compare(at_nominal->points[j - 1].at, follower_t) < 0 &&
+          tolerance_detail::compare(at_nominal->points[j].at, follower_t) > 0)
+        channel = j;
+    ASSERT_TRUE(channel);
+    ASSERT_EQ(at_nominal->kinds[*channel], KernelSlice::Kind::free);
+    const AlgebraicNumber &lower = at_nominal->points[*channel - 1].at, &upper = at_nominal->points[*channel].at;
+    // the witness' free intervals meeting it, and the contacts at their ends
+    std::optional<KernelSlice> slice = kernel_slice(model, 0, 1, driver_t, driver_half, follower_t, follower_half);
+    ASSERT_TRUE(slice);
+    std::size_t meeting = 0;
+    for (std::size_t j = 1; j < slice->points.size(); ++j) {
+      if (slice->kinds[j] != KernelSlice::Kind::free || tolerance_detail::compare(slice->points[j - 1].at, upper) >= 0 ||
+          tolerance_detail::compare(slice->points[j].at, lower) <= 0)
+        continue;
+      ++meeting;
+      for (std::size_t end : {j - 1, j}) {
+        ASSERT_FALSE(slice->points[end].features.empty());
+        for (const auto& [first, second] : slice->points[end].features)
+          EXPECT_TRUE(first.kind != FeatureKind::vertex && second.kind != FeatureKind::vertex);
+      }
+    }
+    EXPECT_GE(meeting, 1u);
+    ++refuted;
+  }
+  EXPECT_GE(refuted, 2u);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 namespace hipair {
@@ -189,6 +190,61 @@ TEST(ToleranceExactOrder, FreeIntervalsInChannel) {
   AlgebraicNumber just_below = root(2 * big - 1, big, 1, 2);
   Slice t = slice_of({just_below, sqrt_of(5)}, {CellKind::free, CellKind::blocked, CellKind::free});
   EXPECT_EQ(tolerance_detail::free_intervals_in_channel(t, sqrt_of(2), sqrt_of(3)), 0u);
+}
+
+// The other root of an even polynomial: -a.
+AlgebraicNumber negated(AlgebraicNumber a) {
+  Rational lower = -a.upper;
+  a.upper = -a.lower;
+  a.lower = lower;
+  return a;
+}
+
+// Session 60: the same angle in the other half-turn chart, -1 / a (the operating region's slice
+// continued across the follower's seam). Oracle: the closed form -1 / (+-sqrt(n)) = -+sqrt(1 / n):
+// against rationals q on its side of 0, sign(b - q) = sign(a - (-1 / q)) (-1 / x increases on
+// either side of 0), and against the square root of 1 / n isolated directly; isolating intervals
+// with an end at 0, or straddling it, are refined first; 0 itself has no image.
+TEST(ToleranceExactOrder, OtherHalfTurnIsMinusTheReciprocal) {
+  std::mt19937_64 rng(60);
+  int cases = 0;
+  for (long n = 2; n < 200; ++n) {
+    if (square(n)) continue;
+    for (int sign : {1, -1}) {
+      AlgebraicNumber a = sqrt_of(n);   // sign sqrt(n), a root of x^2 - n
+      if (sign < 0) a = negated(a);
+      std::optional<AlgebraicNumber> b = tolerance_detail::other_half_turn(a);
+      ASSERT_TRUE(b) << n;
+      EXPECT_TRUE(b->lower < b->upper && (b->upper < 0 || b->lower > 0)) << n;
+      // -sign / sqrt(n), isolated directly: a root of n x^2 - 1 in (1 / (f + 1), 1 / f), negated
+      long f = static_cast<long>(std::floor(std::sqrt(static_cast<double>(n))));
+      AlgebraicNumber direct = root(1, n, Rational(1, f + 1), Rational(1, f));
+      if (sign > 0) direct = negated(direct);
+      EXPECT_EQ(compare(*b, direct), 0) << n;
+      for (int k = 0; k < 4; ++k) {
+        Rational q(static_cast<long>(rng() % 100000) + 1, static_cast<long>(rng() % 1000) + 1);
+        q *= -sign;
+        q.canonicalize();
+        EXPECT_EQ(compare(*b, q), compare(a, Rational(-1 / q))) << n << " " << q;
+        ++cases;
+      }
+    }
+  }
+  EXPECT_GT(cases, 1000);
+  // an isolating interval ending at 0, and one straddling it: refined to exclude 0 first
+  AlgebraicNumber minus_half = root(1, 4, Rational(-1), Rational(0));   // 4 x^2 - 1 in (-1, 0)
+  std::optional<AlgebraicNumber> two = tolerance_detail::other_half_turn(minus_half);
+  ASSERT_TRUE(two);
+  EXPECT_EQ(compare(*two, Rational(2)), 0);
+  AlgebraicNumber third;   // 3 x - 1 in (-1, 1)
+  third.polynomial = {-1, 3};
+  third.lower = -1;
+  third.upper = 1;
+  std::optional<AlgebraicNumber> minus_three = tolerance_detail::other_half_turn(third);
+  ASSERT_TRUE(minus_three);
+  EXPECT_EQ(compare(*minus_three, Rational(-3)), 0);
+  EXPECT_FALSE(tolerance_detail::other_half_turn(tolerance_detail::exact_algebraic(Rational(0))));
+  EXPECT_EQ(compare(*tolerance_detail::other_half_turn(tolerance_detail::exact_algebraic(Rational(-2, 7))), Rational(7, 2)), 0);
 }
 
 }  // namespace

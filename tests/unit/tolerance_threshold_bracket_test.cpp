@@ -39,18 +39,31 @@ PartCoordinate rotation(const Rational& angle) {
   return p;
 }
 
+// The Geneva pair over the pin's entry (2.2 to 2.3 rad, 720 positions, certified bands within 0.5):
+// every case below starts from these.
+ToleranceOptions pin_entry_options() {
+  ToleranceOptions options;
+  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
+  options.positions = 720;
+  options.relative_accuracy = 0.5;
+  return options;
+}
+
+// The threshold bracketed to `width` over the pin's entry, scaling the parameters `vary` (none:
+// every toleranced one).
+ToleranceOptions bracket_options(const std::vector<std::string>& vary, double width) {
+  ToleranceOptions options = pin_entry_options();
+  options.threshold = true;
+  options.threshold_parameters = vary;
+  options.threshold_bracket = width;
+  return options;
+}
+
 // Runs the bracket; returns whether the exact C-space confirmed its witness. With
 // `must_confirm` an unconfirmed witness fails; otherwise an unconfirmed one must say why and
 // the independent check is skipped (the corner search's crossing was not a closed channel).
 bool check_bracket(const std::vector<std::string>& vary, bool must_confirm) {
-  ToleranceOptions options;
-  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));   // the pin's entry
-  options.positions = 720;
-  options.relative_accuracy = 0.5;
-  options.threshold = true;
-  options.threshold_parameters = vary;
-  options.threshold_bracket = 1e-6;
-  ToleranceResult result = analyze_tolerances(geneva(), options);
+  ToleranceResult result = analyze_tolerances(geneva(), bracket_options(vary, 1e-6));
   EXPECT_TRUE(result.threshold);
   if (!result.threshold) return false;
   const JammingThreshold& t = *result.threshold;
@@ -132,13 +145,7 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces)
     if (p.range.lo < p.range.hi && p.name != "pin-radius" && random() % 2 == 0) subset.push_back(p.name);
   for (const std::vector<std::string>& vary : {std::vector<std::string>{}, subset}) {
     SCOPED_TRACE(std::to_string(vary.size()) + " parameters varied (0: all)");
-    ToleranceOptions options;
-    options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
-    options.positions = 720;
-    options.relative_accuracy = 0.5;
-    options.threshold = true;
-    options.threshold_parameters = vary;
-    options.threshold_bracket = 1e-2;
+    const ToleranceOptions options = bracket_options(vary, 1e-2);
     ToleranceResult whole = analyze_tolerances(geneva(), options);
     tolerance_detail::whole_space_confirmations_switch() = false;
     ToleranceResult kernels = analyze_tolerances(geneva(), options);
@@ -165,10 +172,7 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces)
 // reports the jam with its exact witness; independently, the model read at the witness is
 // blocked between the crossed roots and free there nominally.
 TEST(ToleranceThresholdBracket, AtNinetyEightHundredthsTheProducerReportsTheJamInsteadOfACertificate) {
-  ToleranceOptions options;
-  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
-  options.positions = 720;
-  options.relative_accuracy = 0.5;
+  ToleranceOptions options = pin_entry_options();
   options.certify = true;
   options.certify_scale = Rational(4157, 500);
   options.certify_max_leaves = 200;
@@ -204,12 +208,7 @@ TEST(ToleranceThresholdBracket, AtNinetyEightHundredthsTheProducerReportsTheJamI
 // result with the certificate's verdict "unproven" states that only the upper end is proved,
 // and a valid certificate above the witness (two proofs that contradict each other) is an error.
 TEST(ToleranceThresholdBracket, AValidNoJamCertificateBelowTheWitnessIsTheBracketsCertifiedLowerEnd) {
-  ToleranceOptions options;
-  options.range = std::make_pair(Rational(11, 5), Rational(23, 10));
-  options.positions = 720;
-  options.relative_accuracy = 0.5;
-  options.threshold = true;
-  options.threshold_bracket = 1e-6;
+  ToleranceOptions options = bracket_options({}, 1e-6);
   options.certify = true;
   options.certify_relative_to_threshold = true;
   options.certify_scale = Rational(2, 5);
