@@ -219,8 +219,9 @@ TrigPoly poly_sin(bool flip) {
 }
 
 // cos, sin enclosures over u in [lo, hi] (any interval; flip: the half turn added); with
-// `levered`, also the versine and sine for points with a lever term (see Aff).
-Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip, bool levered = false) {
+// `levered`, also the versine and sine for points with a lever term (see Aff). `extra`: bits of
+// rounding beyond 64 (a lever of 2^e mm needs e more to keep its term as sharp).
+Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip, bool levered = false, long extra = 0) {
   Box u{lo, hi};
   Box u2 = u * u;
   if (sgn(lo) <= 0 && sgn(hi) >= 0) u2.lo = 0;
@@ -235,8 +236,8 @@ Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip, bo
     return b;
   };
   // rounded outwards to dyadics of 64 bits (keeps the enclosures' numbers small)
-  auto outward = [](Box b) {
-    const mpz_class scale = mpz_class(1) << 64;
+  auto outward = [extra](Box b) {
+    const mpz_class scale = mpz_class(1) << (64 + extra);
     mpz_class lo, hi;
     mpz_class n = b.lo.get_num() * scale;
     mpz_fdiv_q(lo.get_mpz_t(), n.get_mpz_t(), b.lo.get_den_mpz_t());
@@ -249,11 +250,11 @@ Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip, bo
   };
   // 1 - c = 2 u^2 / (1 + u^2) and s for the lever term, rounded outwards to 64 significant bits
   // (a lever of 10^30 mm turned by 10^-29: 2^-64 absolute would blur it by 10^11 mm)
-  auto relative = [](Box b) {
-    auto round = [](const Rational& x, bool up) {
+  auto relative = [extra](Box b) {
+    auto round = [extra](const Rational& x, bool up) {
       if (sgn(x) == 0) return x;
       const long bits = static_cast<long>(mpz_sizeinbase(x.get_num_mpz_t(), 2)) - static_cast<long>(mpz_sizeinbase(x.get_den_mpz_t(), 2));
-      const long k = std::max(64L, 66 - bits);
+      const long k = std::max(64L, 66 - bits) + extra;
       const mpz_class scale = mpz_class(1) << k;
       mpz_class q, n = x.get_num() * scale;
       if (up) mpz_cdiv_q(q.get_mpz_t(), n.get_mpz_t(), x.get_den_mpz_t());
@@ -264,13 +265,26 @@ Rotation<Box> rotation_box(const Rational& lo, const Rational& hi, bool flip, bo
     };
     return Box{round(b.lo, false), round(b.hi, true)};
   };
+  // A tiny angle (|u| <= 2^-20 over the box): cos and sin rounded relatively too, cos as 1 less
+  // the versine. Rounded to 2^-64 absolutely, a sine of 10^-13 kept 7 digits and cos had a
+  // width of 2^-64 that no cancellation removes (c a - c b with a = b is 2^-64 |a| wide): the
+  // crossing of two nearly parallel contact lines, divided by such a sine, had a box 10^4 mm
+  // wide, and an event in blocked space was not certified (the pin 10^12 mm along its slot:
+  // 153 critical values where 10^9 gave 29).
+  const Rational tiny(1, mpz_class(1) << 20);
+  const bool small = abs(lo) <= tiny && abs(hi) <= tiny;
   Box versine, sine;
-  if (levered) {
+  if (levered || small) {
     versine = relative(*divide(Box(Rational(2)) * u2, den));
     sine = relative(s);
   }
-  c = clamp(outward(c));
-  s = clamp(outward(s));
+  if (small) {
+    c = clamp(Box(Rational(1)) - versine);
+    s = clamp(sine);
+  } else {
+    c = clamp(outward(c));
+    s = clamp(outward(s));
+  }
   if (flip) return {-c, -s, levered ? Box(Rational(2)) - versine : versine, -sine, levered};   // (1 - (-c) = 2 - (1 - c))
   return {c, s, versine, sine, levered};
 }
@@ -510,10 +524,20 @@ class Certifier {
       return blocked;
     }
     Real t = root;
-    for (int bits : {20, 52}) {
-      algebra::refine_dyadically(t, Rational(1) / Rational(refine_scale_ * (mpz_class(1) << bits)));
+    // stages: 2^-20 and 2^-52 over refine_scale_; with a lever, also 2^-52 over its square (an
+    // event blocked by a sliver as thick as the lever's tilt times a depth, both about 1 / |l|:
+    // the pin 10^15 mm from its slot's end, the claw's corner 10^-15 mm deep in the film and the
+    // sliver 10^-29 mm thick, where the second stage's boxes are 10^-29 mm wide)
+    const int stages = levered_ ? 3 : 2;
+    for (int stage = 0; stage < stages; ++stage) {
+      const int bits = stage == 0 ? 20 : 52;
+      const mpz_class scale = stage == 2 ? mpz_class(refine_scale_ * refine_scale_) : refine_scale_;
+      algebra::refine_dyadically(t, Rational(1) / Rational(scale * (mpz_class(1) << bits)));
       if (t.exact) return certainly_blocked(t, false, point_of);
-      Rotation<Box> rb = rotation_box(t.lower, t.upper, false, levered_);
+      // (the boxes' rounding as fine as the stage's refinement: 2^-64 relative of a sine turning
+      // a lever of 10^30 mm is 10^-20 mm)
+      const long extra = static_cast<long>(mpz_sizeinbase(scale.get_mpz_t(), 2)) - 1;
+      Rotation<Box> rb = rotation_box(t.lower, t.upper, false, levered_, extra);
       std::optional<Vec<Box>> pb = point_of(rb);
       if (!pb) continue;
       // a vertex or edge midpoint of one part certainly strictly inside the other; with the
@@ -556,8 +580,13 @@ class Certifier {
       d.x.canonicalize();
       d.y.canonicalize();
       const PartOverlap relation = overlap_at(um, rm, d);
-      // a configuration of the enclosure that is not overlapping: no certificate (kept)
-      if (relation.relation != PartRelation::overlapping) return false;
+      // a configuration of the enclosure that is not overlapping: no certificate (kept) — after
+      // the finer stage: the mid of a coarse box may lie far from the event (the crossing of two
+      // nearly parallel contact lines, 10^12 mm from the pivot: 10^4 mm wide at 2^-20)
+      if (relation.relation != PartRelation::overlapping) {
+        if (stage + 1 == stages) return false;
+        continue;
+      }
       if (!relation.witness) continue;
       // the witness w (world) is inside the fixed part; in the free part's body it is
       // p + R^T (w - p - d) over every (c, s, d) of the enclosure

@@ -19,6 +19,20 @@ set -uo pipefail
 source "$(dirname "$0")/seeded_test.sh" "$@"
 peg="$source/examples/models/peg-in-hole.json"
 
+# A refusal: exit EXPECTED (or any error code below 128: "error"), one line matching PATTERN
+# (extended regex), and WRITTEN not created.
+refused() { # LABEL EXPECTED CODE OUT PATTERN WRITTEN
+  local label=$1 expected=$2 code=$3 out=$4 pattern=$5 written=$6
+  if [ "$expected" = error ]; then
+    { [ "$code" -ne 0 ] && [ "$code" -lt 128 ]; } || fail "$label: exit $code"
+  else
+    [ "$code" -eq "$expected" ] || fail "$label: exit $code"
+  fi
+  [ "$(grep -c . "$out")" = 1 ] || fail "$label: not one line: $(head -c 400 "$out")"
+  grep -Eq "$pattern" "$out" || fail "$label: $(head -c 400 "$out")"
+  [ -e "$written" ] && fail "$label: wrote $written"
+}
+
 # 1. zero and tiny clearance
 sed 's/"hole-side": { "nominal": 12 }/"hole-side": { "nominal": 10 }/' "$peg" >"$work/peg10.json"
 "$hipair" cspace "$work/peg10.json" --stats --json "$work/peg10.cspace.json" --svg "$work/peg10.svg" >"$work/peg10.out" 2>&1 ||
@@ -53,11 +67,7 @@ model bowtie "$plate" '{ "start": [-5, -5], "edges": [ {"line_to": [5, 5]}, {"li
 model no-loops "$plate" ''
 for name in zero-length spike bowtie no-loops; do
   "$hipair" cspace "$work/$name.json" --json "$work/$name.out.json" >"$work/$name.out" 2>&1
-  code=$?
-  [ $code -eq 2 ] || fail "$name: exit $code"
-  [ "$(wc -l <"$work/$name.out")" -eq 1 ] && grep -q "^hipair: error: /parts/1" "$work/$name.out" ||
-    fail "$name: message: $(head -c 300 "$work/$name.out")"
-  [ ! -e "$work/$name.out.json" ] || fail "$name: wrote its --json"
+  refused "$name" 2 $? "$work/$name.out" "^hipair: error: /parts/1" "$work/$name.out.json"
 done
 model coincident "$(square 5)" "$(square 5)"
 "$hipair" cspace "$work/coincident.json" --stats >"$work/coincident.out" 2>&1 || fail "coincident: exit $?"
@@ -67,6 +77,7 @@ grep -q "components 1;" "$work/coincident.out" || fail "coincident: $(grep compo
 #     naming the pair and its JSON pointer, with --pair (either order) and without, exit
 #     non-zero, nothing written (session 58; until then "part 'peg' moves with more than one
 #     degree of freedom; its pair is not a fixed-axis pair", naming neither)
+planar_reason="\(/pairs/0\): the planar part 'peg' \(/parts/1/motion\) against the (rotating|translating) part 'plate' \(/parts/0/motion\) has a C-space of 4 dimensions"
 for motion in '{"rotation": {"pivot": [0, 0]}}' '{"translation": {"direction": [1, 0]}}'; do
   python3 - "$peg" "$work/moving-plate.json" "$motion" <<'PY'
 import json, sys
@@ -78,23 +89,16 @@ PY
     rm -f "$work/moving.json"
     # shellcheck disable=SC2086
     "$hipair" cspace "$work/moving-plate.json" $args --json "$work/moving.json" >"$work/moving.out" 2>&1
-    code=$?
-    { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "planar against $motion ($args): exit $code"
-    [ "$(grep -c . "$work/moving.out")" = 1 ] || fail "planar against $motion ($args): not one line: $(head -c 400 "$work/moving.out")"
-    grep -Eq "pair '(plate':'peg|peg':'plate)' \(/pairs/0\): the planar part 'peg' \(/parts/1/motion\) against the (rotating|translating) part 'plate' \(/parts/0/motion\) has a C-space of 4 dimensions" \
-      "$work/moving.out" || fail "planar against $motion ($args): $(head -c 400 "$work/moving.out")"
-    [ -e "$work/moving.json" ] && fail "planar against $motion ($args): wrote the JSON"
+    refused "planar against $motion ($args)" error $? "$work/moving.out" "pair '(plate':'peg|peg':'plate)' $planar_reason" \
+      "$work/moving.json"
   done
   # `analyze` names the pair and why likewise (session 59; until then "part 'plate' is in no
   # pair that can be analysed", naming neither the pair nor the reason)
   rm -rf "$work/moving-analysis"
   "$hipair" analyze "$work/moving-plate.json" --out "$work/moving-analysis" >"$work/moving.out" 2>&1
-  code=$?
-  { [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze, planar against $motion: exit $code"
-  [ "$(grep -c . "$work/moving.out")" = 1 ] || fail "analyze, planar against $motion: not one line: $(head -c 400 "$work/moving.out")"
-  grep -Eq "part 'plate' is in no pair that can be analysed: pair 'plate':'peg' \(/pairs/0\): the planar part 'peg' \(/parts/1/motion\) against the (rotating|translating) part 'plate' \(/parts/0/motion\) has a C-space of 4 dimensions, which the kinematic analysis does not take" \
-    "$work/moving.out" || fail "analyze, planar against $motion: $(head -c 400 "$work/moving.out")"
-  [ -e "$work/moving-analysis/report.json" ] && fail "analyze, planar against $motion: wrote report.json"
+  refused "analyze, planar against $motion" error $? "$work/moving.out" \
+    "part 'plate' is in no pair that can be analysed: pair 'plate':'peg' $planar_reason, which the kinematic analysis does not take" \
+    "$work/moving-analysis/report.json"
 done
 
 # 3. show --svg under a regular file, before reading the model

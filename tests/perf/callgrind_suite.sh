@@ -8,6 +8,10 @@
 #   cspace escapement / geneva (whole process), analyze ratchet / geneva --out (whole process),
 #   the gear-train tolerance row (whole process), the escapement and Geneva simulation loops
 #   (--toggle-collect on Simulation::run_until, one benchmark each).
+# Valgrind rounds to nearest whatever rounding mode a program sets, and CGAL's interval filters
+# need the upward mode: a work that decides CGAL predicates at degenerate configurations can stop
+# under valgrind only (the film advance's film:follower pair at tau = 1/60). Measure such a work
+# on a build configured with -DHIPAIR_CGAL_ROUND_TO_NEAREST=ON (CMakeLists.txt), both sides.
 set -uo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=$(readlink -f "$1"); result=${2:-/dev/stdout}

@@ -268,5 +268,34 @@ TEST(SlicedPinSlotFilter, APartTenToTheThirtyFromItsPivotGivesTheExactCriticalVa
   }
   EXPECT_GE(with_values, 6u);   // the cases are not vacuous (more than the window's degeneracy)
 }
+
+// Session 60: the film advance's follower with its pin far along its slot (pivot (0, Y)) swings
+// its claw across the film; for |tau| above a few 1/Y it is clear of the film, and below, as Y
+// grows, the pair tends to a follower translating across the film by h = 2 tau Y: the critical
+// values are the same events at 2 tau Y -> h, as many at every Y. Before, events in blocked
+// space were not certified beyond 10^6 mm (cos and sin boxes rounded to 2^-64 absolutely, a
+// coarse box's middle taken for the event, slivers of overlap 1/Y^2 thick): 29 values at 10^9,
+// 160 at 10^15 for 25. (Scaled pairs: PinSlotScale's tests.)
+TEST(SlicedPinSlotFilter, TheFollowerFarAlongItsSlotHasAsManyCriticalValuesAtEveryDistance) {
+  const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  const auto [film, follower] = film_and_follower(model);
+  ASSERT_TRUE(film && follower);
+  const Rational tau(67, 1024);
+  std::vector<std::vector<double>> h;   // 2 tau Y of each value, per distance
+  for (int exponent : {9, 15}) {
+    SCOPED_TRACE("the follower's pivot at (0, 10^" + std::to_string(exponent) + ")");
+    mpz_class y;
+    mpz_ui_pow_ui(y.get_mpz_t(), 10, static_cast<unsigned long>(exponent));
+    Part far = *follower;
+    far.motion.pivot = Point{Rational(0), Rational(y)};
+    const Found found = find(*film, far, true, true, -tau, tau);
+    EXPECT_GE(found.critical.size(), 20u);   // (25: the claw at the perforations' edges, the film's sides)
+    h.emplace_back();
+    for (const auto& c : found.critical) h.back().push_back(2 * c.t.lower.get_d() * y.get_d());
+  }
+  // as many values, at the same h (its terms in 1/Y are about 70 mm / Y of it)
+  ASSERT_EQ(h[0].size(), h[1].size());
+  for (std::size_t k = 0; k < h[0].size(); ++k) EXPECT_NEAR(h[0][k], h[1][k], 1e-4 * (1 + std::abs(h[1][k]))) << k;
+}
 }  // namespace
 }  // namespace hipair
