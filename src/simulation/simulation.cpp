@@ -32,6 +32,7 @@
 #include "simulation/nudge_check.hpp"
 #include "simulation/ordinate_filter.hpp"
 #include "simulation/step_paths.hpp"
+#include "simulation/time_rescale.hpp"
 #include "simulation/touch_guard.hpp"
 #include "simulation/units.hpp"
 #include "simulation/vertex_graze.hpp"
@@ -2794,6 +2795,14 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
   Impl& s = *impl;
   SimulationSpec spec = simulation::start_simulation(s, model, options);
   s.accuracy = simulation::simulation_accuracy(options, spec);
+  const double seconds_per = s.time_scale;
+  // a fast mechanism integrates in a time unit of 2^-e s (time_rescale.hpp): the time, speed,
+  // force and gravity conversions at the boundary scaled by powers of two
+  const int e = simulation::time_exponent(simulation::fastest_speed(spec, seconds_per));
+  s.time_scale = std::ldexp(s.time_scale, e);
+  s.force_scale = std::ldexp(s.force_scale, -2 * e);
+  s.g[0] = std::ldexp(s.g[0], -2 * e);
+  s.g[1] = std::ldexp(s.g[1], -2 * e);
   const double fs = s.force_scale, ts = s.time_scale;
 
   s.part_dof.assign(model.parts.size(), -1);
@@ -2852,7 +2861,7 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
       d.profile_q.push_back(position);
     }
   }
-  for (const auto& driver : spec.drivers) check_driver_reach(model, driver, ts, s.time_unit);
+  for (const auto& driver : spec.drivers) check_driver_reach(model, driver, seconds_per, s.time_unit);
   for (const auto& c : spec.centers_of_mass) {
     Dof& d = s.dofs[s.part_dof[c.part]];
     d.com[0] = to_d(c.at.x) - d.pivot[0];
