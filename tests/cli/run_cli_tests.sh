@@ -466,6 +466,11 @@ grep -q "cannot certify" "$work/tol-int-bad.err" || fail "interfering range: $(c
 for file in trajectory.csv events.json events.txt positions.svg velocities.svg animation.svg; do
   [ -s "$work/sim-bar/$file" ] || fail "simulate bouncing-bar: no $file"
 done
+# each panel of the time plots labelled with its series' own unit (session 59; until then the
+# plot's "rad or mm" on every panel)
+panel_units() { grep -o 'font-weight="bold"[^>]*>[^<]*' "$1" | sed -n 's/.*> *\(.* — .*\)$/\1/p' | paste -sd '|'; }
+[ "$(panel_units "$work/sim-bar/positions.svg")" = "bar — rad" ] || fail "bouncing-bar positions.svg panels: $(panel_units "$work/sim-bar/positions.svg")"
+[ "$(panel_units "$work/sim-bar/velocities.svg")" = "bar — rad per s" ] || fail "bouncing-bar velocities.svg panels: $(panel_units "$work/sim-bar/velocities.svg")"
 # animation.svg: well-formed, one animateTransform for the one moving part, frames at 25 per
 # second of playback over at least 1 s (26 values)
 if command -v xmllint >/dev/null; then
@@ -509,6 +514,10 @@ grep -q '"kind": "stick"' "$work/sim-stick/events.json" || fail "simulate press:
 for file in trajectory.csv events.json events.txt positions.svg velocities.svg animation.svg; do
   [ -s "$work/sim-peg/$file" ] || fail "simulate peg-drop: no $file"
 done
+[ "$(panel_units "$work/sim-peg/positions.svg")" = "peg x — mm|peg y — mm|peg angle — rad" ] \
+  || fail "peg-drop positions.svg panels: $(panel_units "$work/sim-peg/positions.svg")"
+[ "$(panel_units "$work/sim-peg/velocities.svg")" = "peg vx — mm per s|peg vy — mm per s|peg omega — rad per s" ] \
+  || fail "peg-drop velocities.svg panels: $(panel_units "$work/sim-peg/velocities.svg")"
 grep -q "impact  cup / peg" "$work/sim-peg/events.txt" || fail "simulate peg-drop: no impact: $(cat "$work/sim-peg/events.txt")"
 grep -q "contact  cup / peg" "$work/sim-peg/events.txt" || fail "simulate peg-drop: never rests"
 grep -q "(at rest)" "$work/sim-peg.out" || fail "simulate peg-drop: not at rest at the end"
