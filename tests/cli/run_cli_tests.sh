@@ -780,6 +780,23 @@ for s in d['samples']:   # the cam on the window's top (sliding down) and bottom
     assert s['follower_slide_bounded_by'] == ['cam circle / follower window top (arc tangent to segment)',
                                               'cam circle / follower window bottom (arc tangent to segment)'], s
 " "$work/fa-cycle/cycle.json" 2>"$work/fa-cycle.check" || fail "analyze film advance: phases or advance wrong: $(cat "$work/fa-cycle.check")"
+# a follower paired with two rotating parts: the cycle cannot choose its driver, one message
+# naming the kind of part (hipair/motion_words.hpp), nothing written
+python3 -c "
+import copy, json, sys
+m = json.load(open(sys.argv[1]))
+second = copy.deepcopy(m['parts'][0])
+second['name'] = 'cam2'
+m['parts'].append(second)
+m['pairs'].append({'parts': ['cam2', 'follower']})
+json.dump(m, open(sys.argv[2], 'w'))
+" "$fa" "$work/fa-two-cams.json"
+"$hipair" analyze "$work/fa-two-cams.json" --quiet --out "$work/fa-two-cams" >/dev/null 2>"$work/fa-two-cams.err"
+code=$?
+{ [ $code -ne 0 ] && [ $code -lt 128 ]; } || fail "analyze film advance with two cams: exit code $code"
+grep -qx "hipair: error: pin-slot cycle: part 'follower' is paired with several rotating parts: name the driver and the target" \
+  "$work/fa-two-cams.err" || fail "analyze film advance with two cams: $(cat "$work/fa-two-cams.err")"
+[ -e "$work/fa-two-cams" ] && fail "analyze film advance with two cams wrote output"
 cat >"$work/pin-planar.json" <<'MODEL'
 { "hipair": 1, "name": "pin-planar", "parts": [
   { "name": "free", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ { "start": [30, 0], "edges": [
