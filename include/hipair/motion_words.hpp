@@ -3,6 +3,8 @@
 
 #include <hipair/model.hpp>
 
+#include <string>
+
 namespace hipair {
 
 /// The adjective a message uses for a part moving as `kind`: "fixed", "rotating", "translating",
@@ -16,6 +18,11 @@ inline const char* motion_adjective(Motion::Kind kind) noexcept {
     case Motion::Kind::pin_slot: return "pin-slot";
   }
   return "?";
+}
+
+/// A part as a message names it with its motion: "rotating part 'cam' (/parts/0/motion)".
+inline std::string described_part(const Part& part) {
+  return std::string(motion_adjective(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")";
 }
 
 }  // namespace hipair

@@ -71,13 +71,10 @@ std::optional<std::string> planar_pair_not_built(const Model& model, std::size_t
       break;
     }
   const int dimensions = p.motion.degrees_of_freedom() + q.motion.degrees_of_freedom();
-  auto described = [&](const Part& part) {
-    return std::string(motion_adjective(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")";
-  };
   const Part& planar = p.motion.kind == Motion::Kind::planar ? p : q;
   const Part& other = &planar == &p ? q : p;
-  return "pair '" + p.name + "':'" + q.name + "'" + where + ": the " + described(planar) + " against the " +
-         described(other) + " has a C-space of " + std::to_string(dimensions) +
+  return "pair '" + p.name + "':'" + q.name + "'" + where + ": the " + described_part(planar) + " against the " +
+         described_part(other) + " has a C-space of " + std::to_string(dimensions) +
          " dimensions, which hipair does not build (a planar part's pair is built against a fixed part)";
 }
 

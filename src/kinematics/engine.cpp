@@ -51,13 +51,12 @@ bool fixed_axis(const Motion& motion) {
 std::string pair_refusal(const Model& model, const PairSpec& spec) {
   const Part& a = model.parts[spec.first];
   const Part& b = model.parts[spec.second];
-  auto described = [&](const Part& part) { return std::string(motion_adjective(part.motion.kind)) + " part '" + part.name + "' (" + part.motion.pointer + ")"; };
   const std::string pair = "pair '" + a.name + "':'" + b.name + "' (" + spec.pointer + ")";
   if (motion_dof(a.motion) == 0 && motion_dof(b.motion) == 0) return pair + ": both parts are fixed";
   if (fixed_axis(a.motion) && fixed_axis(b.motion)) return {};
   const Part& odd = fixed_axis(a.motion) ? b : a;
   const Part& other = &odd == &a ? b : a;
-  return pair + ": the " + described(odd) + " against the " + described(other) + " has a C-space of " +
+  return pair + ": the " + described_part(odd) + " against the " + described_part(other) + " has a C-space of " +
          std::to_string(a.motion.degrees_of_freedom() + b.motion.degrees_of_freedom()) +
          " dimensions, which the kinematic analysis does not take (analyze takes pairs of fixed, rotating and translating "
          "parts, and a pin-slot part's work cycle; `hipair cspace` builds a planar part's C-space against a fixed part)";

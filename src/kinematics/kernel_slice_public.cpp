@@ -8,31 +8,22 @@
 
 namespace hipair {
 
-struct KernelSlicer::Impl {
-  Model model;   // the slicer reads it
-  std::unique_ptr<kinematics_detail::PairSlicer> slicer;
-};
+namespace {
 
-KernelSlicer::KernelSlicer(const Model& model, std::size_t other, std::size_t follower) : impl_(std::make_unique<Impl>()) {
-  using namespace kinematics_detail;
-  impl_->model = model;
-  std::size_t pair = model.pairs.size();
+// The index of the model's pair of the two parts (either order); none when it has no such pair.
+std::optional<std::size_t> pair_of(const Model& model, std::size_t other, std::size_t follower) {
+  std::optional<std::size_t> pair;
   for (std::size_t p = 0; p < model.pairs.size(); ++p)
     if ((model.pairs[p].first == other && model.pairs[p].second == follower) ||
         (model.pairs[p].first == follower && model.pairs[p].second == other))
       pair = p;
-  if (pair == model.pairs.size()) throw GeometryError("kernel slice: the model has no pair of the two parts");
-  impl_->slicer = make_kernel_slicer(impl_->model, pair, follower);
+  return pair;
 }
 
-KernelSlicer::~KernelSlicer() = default;
-KernelSlicer::KernelSlicer(KernelSlicer&&) noexcept = default;
-KernelSlicer& KernelSlicer::operator=(KernelSlicer&&) noexcept = default;
-
-std::optional<KernelSlice> KernelSlicer::slice(const Rational& other_t, bool other_half, const Rational& follower_t,
-                                               bool follower_half) const {
+// One slice of `slicer` in the public form (none when a coordinate lies in none of its charts).
+std::optional<KernelSlice> slice_of(const kinematics_detail::PairSlicer& slicer, const Rational& other_t, bool other_half,
+                                    const Rational& follower_t, bool follower_half) {
   using namespace kinematics_detail;
-  const PairSlicer& slicer = *impl_->slicer;
   std::optional<std::size_t> other_chart, follower_chart;
   for (std::size_t c = 0; c < slicer.other_charts().size() && !other_chart; ++c) {
     const ChartAxis& axis = slicer.other_charts()[c];
@@ -65,13 +56,36 @@ std::optional<KernelSlice> KernelSlicer::slice(const Rational& other_t, bool oth
   return result;
 }
 
+}  // namespace
+
+struct KernelSlicer::Impl {
+  Model model;   // the slicer reads it
+  std::unique_ptr<kinematics_detail::PairSlicer> slicer;
+};
+
+KernelSlicer::KernelSlicer(const Model& model, std::size_t other, std::size_t follower) : impl_(std::make_unique<Impl>()) {
+  std::optional<std::size_t> pair = pair_of(model, other, follower);
+  if (!pair) throw GeometryError("kernel slice: the model has no pair of the two parts");
+  impl_->model = model;
+  impl_->slicer = kinematics_detail::make_kernel_slicer(impl_->model, *pair, follower);
+}
+
+KernelSlicer::~KernelSlicer() = default;
+KernelSlicer::KernelSlicer(KernelSlicer&&) noexcept = default;
+KernelSlicer& KernelSlicer::operator=(KernelSlicer&&) noexcept = default;
+
+std::optional<KernelSlice> KernelSlicer::slice(const Rational& other_t, bool other_half, const Rational& follower_t,
+                                               bool follower_half) const {
+  return slice_of(*impl_->slicer, other_t, other_half, follower_t, follower_half);
+}
+
+// (one slice: the slicer reads the caller's model, no copy of it as KernelSlicer keeps)
 std::optional<KernelSlice> kernel_slice(const Model& model, std::size_t other, std::size_t follower, const Rational& other_t,
                                         bool other_half, const Rational& follower_t, bool follower_half) {
-  bool paired = false;
-  for (const auto& pair : model.pairs)
-    paired = paired || (pair.first == other && pair.second == follower) || (pair.first == follower && pair.second == other);
-  if (!paired) return std::nullopt;
-  return KernelSlicer(model, other, follower).slice(other_t, other_half, follower_t, follower_half);
+  std::optional<std::size_t> pair = pair_of(model, other, follower);
+  if (!pair) return std::nullopt;
+  return slice_of(*kinematics_detail::make_kernel_slicer(model, *pair, follower), other_t, other_half, follower_t,
+                  follower_half);
 }
 
 }  // namespace hipair

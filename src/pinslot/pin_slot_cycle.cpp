@@ -8,6 +8,7 @@
 #include <hipair/pin_slot.hpp>
 
 #include <hipair/error.hpp>
+#include <hipair/motion_words.hpp>
 
 #include "core/angle_limits.hpp"
 
@@ -139,8 +140,7 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
       if (other == no_index || model.parts[other].motion.kind != kind) continue;
       if (found && *found != other)
         throw GeometryError("pin-slot cycle: part '" + model.parts[follower].name + "' is paired with several " +
-                            (kind == Motion::Kind::rotation ? "rotating" : "translating") +
-                            " parts: name the driver and the target");
+                            motion_adjective(kind) + " parts: name the driver and the target");
       found = other;
     }
     return found;
