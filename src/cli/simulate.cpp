@@ -1071,17 +1071,17 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
-  // (a torque-driven or translating part moved by its dynamics: its rate too, session 59)
-  std::vector<std::size_t> drivers, torque_driven;
-  auto coordinate = [&](std::size_t p) {
-    return std::string(model.parts[p].motion.kind == Motion::Kind::translation ? "_offset" : "_angle");
-  };
+  // moving: every moving part beside the pin-slot part (its coordinate); dynamic: those moved by
+  // their dynamics, not prescribed (a torque-driven cam, a pushed translating part: their rates too)
+  std::vector<std::size_t> moving, dynamic;
+  auto translates = [&](std::size_t p) { return model.parts[p].motion.kind == Motion::Kind::translation; };
+  auto coordinate = [&](std::size_t p) { return std::string(translates(p) ? "_offset" : "_angle"); };
   for (std::size_t p = 0; p < model.parts.size(); ++p)
     if (p != simulation.part() && model.parts[p].motion.kind != Motion::Kind::fixed) {
-      drivers.push_back(p);
+      moving.push_back(p);
       const bool prescribed = model.simulation && std::any_of(model.simulation->drivers.begin(), model.simulation->drivers.end(),
                                                               [&](const SimulationSpec::Driver& d) { return d.part == p; });
-      if (!prescribed) torque_driven.push_back(p);
+      if (!prescribed) dynamic.push_back(p);
     }
   std::vector<io::RunFile> files;
   const char* names[4] = {"slide", "angle", "slide_rate", "angle_rate"};
@@ -1093,14 +1093,14 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     std::ostringstream csv;
     csv << "time_" << tu;
     for (int i = 0; i < 4; ++i) csv << "," << name << "_" << names[i];
-    for (std::size_t p : drivers) csv << "," << model.parts[p].name << coordinate(p);
-    for (std::size_t p : torque_driven) csv << "," << model.parts[p].name << coordinate(p) << "_rate";
+    for (std::size_t p : moving) csv << "," << model.parts[p].name << coordinate(p);
+    for (std::size_t p : dynamic) csv << "," << model.parts[p].name << coordinate(p) << "_rate";
     csv << "\n";
     for (const PinSlotState& s : samples) {
       csv << number(s.time);
       for (int i = 0; i < 4; ++i) csv << "," << number(column(s, i));
-      for (std::size_t p : drivers) csv << "," << number(s.position[p]);
-      for (std::size_t p : torque_driven) csv << "," << number(s.rate[p]);
+      for (std::size_t p : moving) csv << "," << number(s.position[p]);
+      for (std::size_t p : dynamic) csv << "," << number(s.rate[p]);
       csv << "\n";
     }
     files.push_back({"trajectory.csv", csv.str()});
@@ -1114,7 +1114,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
     std::string plotted = name;   // the pin-slot part and the parts plotted beside it (session 60)
-    for (std::size_t p : torque_driven) plotted += ", " + model.parts[p].name;
+    for (std::size_t p : dynamic) plotted += ", " + model.parts[p].name;
     for (int which = 0; which < 2; ++which) {
       render::TimePlot plot;
       plot.title = model.name + (which == 0 ? ": position of " : ": velocity of ") + plotted;
@@ -1129,10 +1129,10 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
         for (const PinSlotState& s : samples) series.values.push_back(column(s, i));
         plot.series.push_back(series);
       }
-      for (std::size_t p : torque_driven) {   // a torque-driven part's angle and rate (rad, rad per time unit)
+      for (std::size_t p : dynamic) {   // its angle or offset and rate
         render::TimeSeries series;
         series.label = model.parts[p].name + " " + coordinate(p).substr(1) + (which == 0 ? "" : "_rate");
-        series.unit = std::string(coordinate(p) == "_offset" ? "mm" : "rad") + (which == 0 ? "" : " per " + tu);
+        series.unit = std::string(translates(p) ? "mm" : "rad") + (which == 0 ? "" : " per " + tu);
         for (const PinSlotState& s : samples) series.values.push_back(which == 0 ? s.position[p] : s.rate[p]);
         plot.series.push_back(series);
       }
