@@ -59,7 +59,9 @@ cases=(
 for c in "${cases[@]}"; do
   read -r file pointer <<<"$c"
   for round in 1 2; do
-    exponent=$((309 + RANDOM % 692))
+    # (from 311: cam-drive.json is in degrees, and 1e309 or 1e310 deg is 1.7e307 or 1.7e308 rad,
+    # inside the doubles: not refused, a failure of 2 seeds in 692 per angle case; hunt60, seed 21)
+    exponent=$((311 + RANDOM % 690))
     sign=$([ $((RANDOM % 2)) -eq 0 ] && echo "" || echo "-")
     # huge in round 1; tiny (nonzero) in round 2 only where the value is dynamics data (an
     # initial coordinate below the range is harmless: it is 0 in doubles)
