@@ -534,7 +534,8 @@ int run_sweep(const SimulateOptions& options) {
   } catch (const ModelError&) {
     throw;
   } catch (const std::exception&) {
-    throw ModelError("", "--sweep " + options.sweep + ": N must be a whole number");
+    // (1e9 and 99999999999999999999 are whole numbers too: the message says what is taken)
+    throw ModelError("", "--sweep " + options.sweep + ": N must be a whole number written in digits, from 1 to 10000");
   }
   if (n < 1 || n > 10000) throw ModelError("", "--sweep " + options.sweep + ": N must lie in [1, 10000]");
   if (n == 1 && a != b) throw ModelError("", "--sweep " + options.sweep + ": N = 1 needs A = B");
@@ -1194,6 +1195,7 @@ Model simulated_model(const SimulateOptions& options, const ReadOptions& overrid
     require_feature_spread(exact);   // before work (session 53)
     Model scaled = decimal_scaled_dynamics_model(exact, e);
     require_dynamics_in_double_range(scaled, "1e" + std::to_string(e) + " mm");
+    require_internal_units_in_double_range(scaled);
     exponent = e;
     return scaled;
   }
@@ -1202,6 +1204,7 @@ Model simulated_model(const SimulateOptions& options, const ReadOptions& overrid
   if (e == 0) return std::move(*read);
   Model scaled = decimal_scaled_dynamics_model(*read, e);
   require_dynamics_in_double_range(scaled, "1e" + std::to_string(e) + " mm");
+  require_internal_units_in_double_range(scaled);
   exponent = e;
   return scaled;
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -261,12 +262,76 @@ bool reading_for_simulation() { return simulation_reading; }
 
 Model read_model_for_simulation(std::string_view json_text, std::string_view source_name, const ReadOptions& options) {
   model_detail::SimulationReading scope;
-  return read_model(json_text, source_name, options);
+  Model model = read_model(json_text, source_name, options);
+  require_internal_units_in_double_range(model);
+  return model;
 }
 
 Model read_model_file_for_simulation(const std::filesystem::path& path, const ReadOptions& options) {
   model_detail::SimulationReading scope;
-  return read_model_file(path, options);
+  Model model = read_model_file(path, options);
+  require_internal_units_in_double_range(model);
+  return model;
+}
+
+// Each datum times the factor that takes it to the simulator's internal units (s, mN): a rate
+// of 1e306 rad/ms is 1e309 rad/s, a torque of 1e306 N mm 1e309 mN mm, beyond the doubles'
+// range. Until session 60 (hunt60) such values passed the reader's range check (made in the
+// file's units) and the run ended at t = 0 with "moving at inf rad/ms ... not finite" or "the
+// loads on the parts ... are not finite" (exit 3, no pointer).
+void require_internal_units_in_double_range(const Model& model) {
+  if (!model.simulation) return;
+  const SimulationSpec& spec = *model.simulation;
+  const bool ms = spec.time_unit == "ms", newtons = spec.force_unit != "mN";
+  if (!ms && !newtons) return;   // every factor is 1
+  static const Rational largest(std::numeric_limits<double>::max());
+  const Rational per_time = ms ? Rational(1000) : Rational(1);             // 1 / (s per time unit)
+  const Rational force = newtons ? Rational(1000) : Rational(1);           // mN per force unit
+  const Rational force_time = ms ? force / Rational(1000) : force;         // force unit x time unit
+  auto check = [&](const Rational& value, const Rational& factor, const std::string& pointer, const std::string& unit,
+                   const char* internal) {
+    if (factor <= 1 || abs(value) * factor <= largest) return;
+    std::ostringstream text;
+    text << "'" << model_detail::decimal(value) << "' " << unit << " is " << model_detail::decimal(value * factor) << " " << internal
+         << " in the simulator's internal units (s, mN), beyond the doubles' range (magnitude at most "
+            "1.7976931348623157e+308): give at most "
+         << model_detail::decimal(largest / factor) << " " << unit;
+    throw ModelError(pointer, text.str());
+  };
+  const std::string t = spec.time_unit, f = spec.force_unit;
+  for (const Part& part : model.parts) {
+    if (!part.dynamics) continue;
+    const Dynamics& d = *part.dynamics;
+    const std::string at = part.pointer + "/dynamics/";
+    if (d.torsional_spring) check(d.torsional_spring->stiffness, force, at + "torsional_spring/stiffness", f + " mm/rad", "mN mm/rad");
+    if (d.linear_spring) check(d.linear_spring->stiffness, force, at + "linear_spring/stiffness", f + "/mm", "mN/mm");
+    if (d.torque) check(*d.torque, force, at + "torque", f + " mm", "mN mm");
+    if (d.force) {
+      check(d.force->x, force, at + "force/0", f, "mN");
+      check(d.force->y, force, at + "force/1", f, "mN");
+    }
+    if (d.damping) check(*d.damping, force_time, at + "damping", f + " " + t + " per mm or rad", "mN s");
+  }
+  check(spec.gravity.x, per_time * per_time, spec.pointer + "/gravity/0", "mm/" + t + "^2", "mm/s^2");
+  check(spec.gravity.y, per_time * per_time, spec.pointer + "/gravity/1", "mm/" + t + "^2", "mm/s^2");
+  // a rate's length or angle: of a rotating part rad, of a translating part mm, else either
+  auto rate = [&](std::size_t part) -> std::string {
+    const Motion::Kind kind = model.parts.at(part).motion.kind;
+    return kind == Motion::Kind::rotation ? "rad" : kind == Motion::Kind::translation ? "mm" : "mm or rad";
+  };
+  for (const auto& v : spec.velocities)
+    check(v.value, per_time, v.pointer, rate(v.part) + "/" + t, (rate(v.part) + "/s").c_str());
+  for (const auto& driver : spec.drivers) {
+    const std::string unit = rate(driver.part), internal = unit + "/s";
+    // (a profile's driver holds its first speed here too: named at the profile)
+    check(driver.speed, per_time, driver.pointer + (driver.profile.empty() ? "/speed" : "/profile"), unit + "/" + t,
+          internal.c_str());
+    for (const auto& point : driver.profile) check(point.second, per_time, driver.pointer + "/profile", unit + "/" + t, internal.c_str());
+  }
+  for (const auto& coupling : spec.couplings) {
+    check(coupling.stiffness, force, coupling.pointer + "/stiffness", f + "/mm", "mN/mm");
+    check(coupling.damping, force_time, coupling.pointer + "/damping", f + " " + t + "/mm", "mN s/mm");
+  }
 }
 
 Model read_model(std::string_view json_text, std::string_view source_name, const ReadOptions& options) {

@@ -17,4 +17,10 @@ Model read_model_for_simulation(std::string_view json_text, std::string_view sou
                                 const ReadOptions& options = {});
 Model read_model_file_for_simulation(const std::filesystem::path& path, const ReadOptions& options = {});
 
+/// The same check on the data converted to the simulator's internal units (s, mN): in a file in
+/// ms or N, a rate, gravity, force, torque, stiffness or damping within the doubles' range in the
+/// file's units may not be in the simulator's (1e306 rad/ms is 1e309 rad/s); refused at its
+/// pointer (ModelError) with the largest value allowed. Called by the two readers above.
+void require_internal_units_in_double_range(const Model& model);
+
 }  // namespace hipair

@@ -41,6 +41,7 @@
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 
+#include "core/angle_limits.hpp"
 #include "simulation/held_extent.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/relative_configuration.hpp"
@@ -1891,7 +1892,27 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
   }
   s.slide_limits = motion.translation_limits;
   s.angle_limits = motion.angle_limits;
-  s.y = {fp.initial.offset.get_d(), fp.initial.angle.get_d(), 0, 0, 0, 0};
+  // A pin-slot part's initial angle is an angle modulo whole turns against its angle limits, as
+  // the reader decides it exactly (docs/model-format.md, "Motion"): outside the limits, it starts
+  // at the whole turns nearest the limits' middle, kept inside them exactly. Until session 60
+  // (hunt60) 2 pi + 0.1 rad against [-0.5, 0.5] (accepted by the reader) stopped the run at t = 0:
+  // "leaves its angle limits (psi = 6.38319 rad)". An angle inside them is taken as it is.
+  double psi0 = fp.initial.angle.get_d();
+  if (const auto& limits = motion.angle_limits;
+      limits && (fp.initial.angle < limits->lo || fp.initial.angle > limits->hi)) {
+    const Rational middle = (limits->lo + limits->hi) / 2;
+    psi0 = reduced_angle(fp.initial.angle, nearest_whole_turns(fp.initial.angle - middle));
+    constexpr double up = std::numeric_limits<double>::infinity();
+    if (Rational(psi0) < limits->lo) {
+      psi0 = limits->lo.get_d();
+      if (Rational(psi0) < limits->lo) psi0 = std::nextafter(psi0, up);
+    }
+    if (Rational(psi0) > limits->hi) {
+      psi0 = limits->hi.get_d();
+      if (Rational(psi0) > limits->hi) psi0 = std::nextafter(psi0, -up);
+    }
+  }
+  s.y = {fp.initial.offset.get_d(), psi0, 0, 0, 0, 0};
   if (own_velocity.size() == 2) {   // {"slide": v, "angle": omega}
     s.y[2] = own_velocity[0]->value.get_d() / ts;
     s.y[3] = own_velocity[1]->value.get_d() / ts;

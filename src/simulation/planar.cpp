@@ -73,6 +73,18 @@ double wrap(double theta) {
   return w <= -std::numbers::pi ? w + 2 * std::numbers::pi : w;
 }
 
+// A double on its way to an exact decision (a query radius, a velocity or a rest speed): a
+// non-finite one (velocities or loads beyond the doubles' range: an initial speed or gravity of
+// 1e308) stops the run. Until session 60 (hunt60) GMP's mpq_set_d(inf) killed the process with
+// SIGFPE (friction-slide.json with the block thrown at 1.7976931348623157e308 mm/s or gravity
+// [0, 1.54e308]).
+Rational finite_exact(double value, const std::string& where, const char* what) {
+  if (!std::isfinite(value))
+    throw NumericError(where + ": " + what + " is not finite: the velocities or loads are beyond the range of "
+                       "doubles (an initial velocity, gravity or force too large for the simulator)");
+  return Rational(value);
+}
+
 SlicedConfiguration configuration_of(double x, double y, double theta) {
   // a state that overflowed (extreme scales, a diverging integration) has no exact configuration
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta))
@@ -908,7 +920,7 @@ bool PlanarSimulation::Impl::advance(double span) {
     double nearest = std::numeric_limits<double>::infinity();
     for (const Pair& p : pairs) {
       ++stats.distance_queries;
-      auto near = p.space.features_near(node_q, Rational(reach_distance));
+      auto near = p.space.features_near(node_q, finite_exact(reach_distance, where(t), "the distance a step covers"));
       for (const auto& f : near) nearest = std::min(nearest, to_d(f.distance_lower));
     }
     if (nearest > reach_distance + slack) {   // no feature within reach: free over the horizon
@@ -1286,10 +1298,12 @@ void PlanarSimulation::Impl::hold(double time, const Rows& rows) {
   held.clear();
   // exact decisions (held_resolution.hpp): the rows at the exact configuration, the velocities,
   // masses and speeds as the exact values of their doubles
-  const std::vector<Rational> v{Rational(k.vx), Rational(k.vy), Rational(k.omega)};
+  const char* const speed = "the part's velocity";
+  const std::vector<Rational> v{finite_exact(k.vx, where(time), speed), finite_exact(k.vy, where(time), speed),
+                                finite_exact(k.omega, where(time), speed)};
   const Eigen::Vector3d minv_d = inverse_mass();
   const std::vector<Rational> minv{Rational(minv_d(0)), Rational(minv_d(1)), Rational(minv_d(2))};
-  const Rational rest(rest_speed), reach_exact(reach);
+  const Rational rest = finite_exact(rest_speed, where(time), "the rest speed"), reach_exact(reach);
   std::vector<bool> candidate(rows.pair.size());
   for (std::size_t r = 0; r < rows.pair.size(); ++r)
     candidate[r] = !simulation::separating_faster_than(rows.exact[r], v, rest) &&   // not separating
@@ -2610,11 +2624,11 @@ void PlanarSystemSimulation::Impl::impact(double time,
   // masses and speeds as the exact values of their doubles)
   std::vector<Rational> v_exact, minv_exact, reach_exact;
   for (Eigen::Index c = 0; c < n; ++c) {
-    v_exact.emplace_back(after_v(c));
+    v_exact.push_back(finite_exact(after_v(c), where(time), "the velocity after the impact"));
     minv_exact.emplace_back(minv(c));
   }
   for (const Body& b : bodies) reach_exact.emplace_back(b.reach);
-  const Rational rest(rest_speed);
+  const Rational rest = finite_exact(rest_speed, where(time), "the rest speed");
   std::vector<bool> candidate(row_pair.size(), false);
   for (std::size_t r = 0; r < row_pair.size(); ++r) {
     const auto row = static_cast<Eigen::Index>(r);
@@ -2730,7 +2744,7 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       rel1.push_back(relative(p, q1));
       std::optional<Rational> sweep = simulation::motion_sweep_bound(rel0[i], rel1[i], flip[i], bodies[p.body_b].reach_bound);
       double move = travel(p, k0, k1, end);
-      Rational radius(2 * move + delta);
+      Rational radius = finite_exact(2 * move + delta, where(t), "the distance a step covers");
       if (sweep && *sweep > radius) radius = *sweep;
       ++stats.distance_queries;
       double nearest = std::numeric_limits<double>::infinity();
@@ -2822,7 +2836,8 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       if (c.u_lower <= crossings[best].second.u_upper)
         for (const SlicedFeaturePair& fp : c.features) touching.emplace_back(i, fp);
     for (std::size_t i = 0; i < pairs.size(); ++i)
-      for (const SlicedNearFeature& nf : pairs[i].space.features_near(relative(pairs[i], q_at), Rational(2 * delta + backed))) {
+      for (const SlicedNearFeature& nf : pairs[i].space.features_near(
+               relative(pairs[i], q_at), finite_exact(2 * delta + backed, where(t), "the distance a step covers"))) {
         if (behind_segment(pairs[i].frame_model ? *pairs[i].frame_model : model, nf.pair, pivot_of(pairs[i].second),
                            relative(pairs[i], q_at)))
           continue;

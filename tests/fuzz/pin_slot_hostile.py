@@ -11,7 +11,8 @@ Each case must end within 60 s, without a crash, abort or uncaught exception; a 
 run exits 2 (input) or 3 (the run) with one line on stderr naming the place (a JSON pointer, an
 option, or the part and its limits) and writes no output directory; a run that succeeds writes
 its files, and the scaled models give the unscaled run's three impacts at the same times; bad
-initial velocities are refused at their pointer (session 59). Found
+initial velocities are refused at their pointer (session 59); an initial angle given with whole
+turns starts as the angle within the limits (session 60). Found
 by this script and fixed in session 58: lengths x 10^-150 ran "successfully" with the follower
 never moving; lengths x 10^150, masses x 10^200 and loads of 10^100 stopped with "not finite"; a
 torque of 10^30 N mm left the follower standing while the time ran on; a driver of 10^300 rad/s
@@ -198,7 +199,28 @@ def main(argv):
             if any(abs(a - b) > 1e-9 for a, b in zip(impacts(out), reference_impacts)):
                 print('  %s: impacts at %s, unscaled at %s' % (name, impacts(out), reference_impacts))
                 failures += 1
-    print('%d of %d cases failed' % (failures, len(cases) + len(scaled) + 1))
+    # an initial angle given with whole turns (session 60, hunt60): the reader takes it modulo whole
+    # turns against the angle limits [-0.5, 0.5]; the run is the one started at 0.1 rad (base60
+    # stopped at t = 0: "leaves its angle limits (psi = 6.38319 rad)"), and one turn past the
+    # upper limit starts there
+    turned = 0
+
+    def started_at(name, angle):
+        m = variant(lambda m: follower(m)['initial'].__setitem__('angle', angle))
+        path = os.path.join(work, name + '.json')
+        json.dump(m, open(path, 'w'), indent=1)
+        return one(name, path, [], 0, '')
+    plain = started_at('angle-0.1', 0.1)
+    for name, angle in (('angle-0.1-plus-a-turn', '2*pi + 0.1'), ('angle-0.1-less-two-turns', '0.1 - 4*pi'),
+                        ('angle-at-the-limit-plus-a-turn', '0.5 + 2*pi')):
+        out = started_at(name, angle)
+        turned += 1
+        if name.startswith('angle-0.1') and os.path.exists(os.path.join(out, 'events.json')):
+            if len(impacts(out)) != len(impacts(plain)) or \
+                    any(abs(a - b) > 1e-9 for a, b in zip(impacts(out), impacts(plain))):
+                print('  %s: impacts at %s, started at 0.1 rad at %s' % (name, impacts(out), impacts(plain)))
+                failures += 1
+    print('%d of %d cases failed' % (failures, len(cases) + len(scaled) + 2 + turned))
     return 1 if failures else 0
 
 

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -237,6 +238,76 @@ TEST(ModelSimulatorRange, TheModelsAccuracyTakesTheRangeOfTheOption) {
   }
   for (const std::string& literal : {"1e-15", "0.1", "1e-9"})
     EXPECT_NO_THROW(hipair::read_model_for_simulation(with(doc, "/simulation/accuracy", literal), "bouncing-bar.json")) << literal;
+}
+
+// Session 60 (hunt60): the range holds for the values the simulator holds, in its internal units
+// (s, mN). Every bundled model rewritten in ms and N: a value within the doubles in the file's
+// units whose conversion leaves them (a rate x 1000, gravity x 10^6, a force, torque or stiffness
+// x 1000) is refused at its pointer (or the velocity object holding it); the same datum at half
+// the largest value the message gives, and every datum whose factor is 1 (masses, inertias,
+// dampings in N ms, rests, points, times, friction), is not refused for it. base60 accepted them
+// all, and `simulate` ran to "moving at inf rad/ms ... not finite" at t = 0 without a pointer.
+TEST(ModelSimulatorRange, ValuesBeyondTheDoublesInTheSimulatorsUnitsAreRefusedAtTheirPointer) {
+  const std::string internal_reason = "in the simulator's internal units (s, mN), beyond the doubles' range";
+  // the factor from (ms, N) to (s, mN) of the datum at `pointer`
+  auto factor = [](const std::string& pointer) -> double {
+    auto has = [&](const char* part) { return pointer.find(part) != std::string::npos; };
+    if (pointer.rfind("/simulation/gravity", 0) == 0) return 1e6;
+    if (pointer.rfind("/simulation/velocities", 0) == 0) return 1e3;
+    if (pointer.rfind("/simulation/drivers", 0) == 0) {   // a speed, or a profile point's [time, speed]
+      const std::size_t at = pointer.find("/profile/");
+      const std::size_t point_end = at == std::string::npos ? at : pointer.find('/', at + 9);
+      return has("/speed") || (point_end != std::string::npos && pointer.compare(point_end, 2, "/1") == 0) ? 1e3 : 1;
+    }
+    if (has("/stiffness") || has("/torque") || has("/dynamics/force/")) return 1e3;
+    return 1;
+  };
+  std::size_t refused = 0, kept = 0;
+  for (const Source& s : sources()) {
+    json document = s.document;
+    if (!document.contains("simulation")) continue;
+    document["simulation"]["units"] = {{"time", "ms"}, {"force", "N"}};
+    for (const std::string& pointer : s.pointers) {
+      if (pointer.rfind("/simulation/units", 0) == 0) continue;
+      const double f = factor(pointer);
+      // (an angle rate of a file in degrees is held in rad: 1e306 deg/ms fits once converted)
+      const bool angle_rate = pointer.rfind("/simulation/velocities", 0) == 0 || pointer.rfind("/simulation/drivers", 0) == 0;
+      if (s.degrees() && angle_rate) continue;
+      const std::string text = with(document, pointer, f > 1 ? "5e307" : "1e306");
+      try {
+        hipair::read_model_for_simulation(text, s.name);
+        if (f > 1) ADD_FAILURE() << s.name << " " << pointer << " = 5e307 (x " << f << ") was accepted";
+        ++kept;
+      } catch (const hipair::ModelError& e) {
+        const std::string message = e.what();
+        if (f == 1) {
+          EXPECT_EQ(message.find(internal_reason), std::string::npos) << s.name << " " << pointer << ": " << message;
+          ++kept;
+          continue;
+        }
+        ++refused;
+        EXPECT_EQ(pointer.rfind(e.pointer(), 0), 0u) << s.name << " " << pointer << ": named " << e.pointer();
+        ASSERT_NE(message.find(internal_reason), std::string::npos) << s.name << " " << pointer << ": " << message;
+        // the largest value the message allows, halved: not refused for the range
+        const std::size_t at = message.find("give at most ");
+        ASSERT_NE(at, std::string::npos) << message;
+        const double largest = std::strtod(message.c_str() + at + 13, nullptr);
+        EXPECT_GT(largest, 1.7e308 / f) << message;
+        EXPECT_LE(largest, 1.8e308 / f) << message;
+        std::ostringstream half;
+        half.precision(17);
+        half << largest / 2;
+        try {
+          hipair::read_model_for_simulation(with(document, pointer, half.str()), s.name);
+        } catch (const hipair::ModelError& again) {
+          EXPECT_EQ(std::string(again.what()).find(internal_reason), std::string::npos)
+              << s.name << " " << pointer << " = " << half.str() << ": " << again.what();
+        }
+      }
+    }
+  }
+  EXPECT_GT(refused, 30u);
+  EXPECT_GT(kept, 30u);
 }
 
 }  // namespace
