@@ -428,6 +428,7 @@ struct PinSlotSimulation::Impl {
   State y{};
   std::vector<SimulationEvent> events;
   std::size_t steps = 0, chords = 0;
+  std::size_t steps_in_place = 0;   // consecutive steps that did not move the time on
   // energy removed by impacts and by the projections onto held contacts (internal units)
   double impact_loss = 0, settle_loss = 0;
   double step_guess = 0;
@@ -1544,6 +1545,18 @@ bool PinSlotSimulation::Impl::advance(double span) {
     forced_step = lo;
     return true;
   };
+  // The limit located at the step's start (lo = 0: the state is within the bisection's resolution,
+  // 2^-30 of the step, of the limit it approaches) is struck there, without a step. Until session
+  // 60 the zero forced step read as "the step size underflows": a follower spun at 1e15 rad/s and
+  // more bouncing between its angle stop and the cam came within one unit in the last place of
+  // the stop (the rate times 2^-30 of the step exceeds it) and stopped the run.
+  auto strike_at_start = [&]() {
+    if (forced_step > 0 || !pending_limit) return false;
+    const int limit = pending_limit;
+    pending_limit = 0;
+    impact({}, limit);
+    return true;
+  };
   for (int attempt = 0;; ++attempt) {
     if (attempt > 2000 || !(h > 0))
       throw NumericError(where(t) + ": no chord within the chord deviation (the step size underflows)");
@@ -1633,6 +1646,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     if (first == no_index) {
       if (!(h == forced_step && pending_limit) && (outside_limit(unprojected) || outside_limit(end))) {
         h = locate_limit(h) ? forced_step : h / 2;
+        if (strike_at_start()) return true;
         continue;
       }
       check_limits(end, t + h);
@@ -1667,6 +1681,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     }
     if (outside_limit(at)) {   // the limit comes before the first contact
       h = locate_limit(hc) ? forced_step : h / 2;
+      if (strike_at_start()) return true;
       continue;
     }
     check_limits(at, t + hc);
@@ -2036,8 +2051,25 @@ void PinSlotSimulation::step(double t_limit) {
   if (++s.steps > s.options.max_steps)
     throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) +
                        " steps (a runaway or Zeno run)");
+  const double before = s.t;
   s.advance(end - s.t);
-  if (end - s.t < 1e-15 * std::max(1.0, std::abs(end))) s.t = end;
+  // The step's end is taken as `end` only when the two differ by the time's own resolution (a few
+  // units in the last place of end: the sum of the steps' rounding). Until session 60 the snap
+  // was an absolute 1e-15 time units: a follower spun at 1e20 rad/s runs to 8e-20 s, and its
+  // first step's flight of 0.0625 rad jumped to t_end (the rest of the run skipped, exit 0).
+  const double resolution = std::nextafter(std::abs(end), std::numeric_limits<double>::infinity()) - std::abs(end);
+  if (end - s.t <= 4 * resolution) s.t = end;
+  // steps that do not move the time on (a strike at a stop, or a step below the time's resolution):
+  // after 10000 in a row the run stops, naming that, rather than spin through its step budget
+  s.steps_in_place = s.t > before ? 0 : s.steps_in_place + 1;
+  if (s.steps_in_place >= 10000) {
+    std::ostringstream out;
+    out << s.where(s.t) << ": 10000 steps in a row did not move the time on (a contact change that repeats "
+        << "without progress, or steps shorter than the resolution of the time, "
+        << (std::nextafter(s.t, std::numeric_limits<double>::infinity()) - s.t) / s.time_scale << " " << s.time_unit
+        << ")";
+    throw NumericError(out.str());
+  }
   s.publish();
 }
 

@@ -71,10 +71,12 @@ def main(argv):
                          '/parts/1/dynamics/torsional_spring'),
         # (the slot's ends and angle limits are plastic stops since session 58, pinslot58: the run
         # strikes them, 'stop', where it stopped with "leaves its angle/slide limits" before; under
-        # 1e100 and 1e300 the part then meets the cam at ~1e50 mm/s and the step underflows)
+        # 1e100 and 1e300 the part then meets the cam at ~1e50 mm/s; until session 60 (jam60) the
+        # step then "underflowed": the stop it pressed on was located at the step's start, a zero
+        # forced step; it is struck there now, and the part rests at its angle stop and slide end)
         'torque-1e30': (dyn('torque', 1e30), [], 'stop', 'angle limit (upper)'),
-        'torque-1e100': (dyn('torque', 1e100), [], 3, 'the step size underflows'),
-        'torque-1e300': (dyn('torque', 1e300), [], 3, 'the step size underflows'),
+        'torque-1e100': (dyn('torque', 1e100), [], 'stop', 'angle limit (upper)'),
+        'torque-1e300': (dyn('torque', 1e300), [], 'stop', 'angle limit (upper)'),
         'force-1e300': (dyn('force', [0, 1e300]), [], 'stop', 'slide limit (upper end)'),
         # (pressed on the cam by 1e300 and held there: steps of 1e-151 s, a run of the step budget)
         'gravity-1e300': (lambda m: m['simulation'].__setitem__('gravity', [0, -1e300]), ['--max-steps', '2000'], 3,
