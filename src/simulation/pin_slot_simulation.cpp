@@ -1349,6 +1349,9 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
 }
 
 void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
+  // (an impact's rows and exact speeds turn the state's doubles into rationals: a state made
+  // infinite by a violent load stops here, with one message, not in GMP's mpq_set_d(inf))
+  if (!finite(y)) throw NumericError(where(t) + ": the simulated state is not finite at an impact (a load too violent for the doubles)");
   std::vector<Row> rows;
   if (limit) {   // a slot end or angle limit struck: a plastic row of the part's own coordinate
     const HeldRow lr = limit_row(limit, y);
@@ -2006,6 +2009,11 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     load += s.k_tor * turn / s.inertia_c * size;
   }
   s.rest_speed = std::sqrt(2 * load * s.delta);
+  // (the rest speed decides hold or rebound exactly, as a rational: loads beyond the doubles —
+  // gravity, forces, torques or springs near 1e308 — stop here, not in GMP's mpq_set_d(inf))
+  if (!std::isfinite(s.rest_speed))
+    throw NumericError("simulation: the loads on pin-slot part '" + fp.name +
+                       "' (gravity, forces, torques, springs) accelerate it beyond the doubles' range");
   s.hold_gap = 0.75 * s.delta;
   // the pairs
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
