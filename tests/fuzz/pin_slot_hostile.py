@@ -81,6 +81,11 @@ def main(argv):
         # (pressed on the cam by 1e300 and held there: steps of 1e-151 s, a run of the step budget)
         'gravity-1e300': (lambda m: m['simulation'].__setitem__('gravity', [0, -1e300]), ['--max-steps', '2000'], 3,
                           '--max-steps'),
+        # (gravity near the doubles' end: the rest speed the hold/rebound decision takes as a
+        # rational was inf, GMP's mpq_set_d(inf) raised SIGFPE at the first impact; session 60,
+        # found by simulate_mutations: refused at the start with one line)
+        'gravity-x-minus-1e308': (lambda m: m['simulation'].__setitem__('gravity', [-1e308, -9810]), [], 3,
+                                  "beyond the doubles' range"),
         'driver-1e300': (lambda m: m['simulation']['drivers'][0].__setitem__('speed', 1e300), [], 2,
                          '/simulation/drivers/0'),
         'restitution-2': (lambda m: m['pairs'][0].__setitem__('restitution', 2), [], 2, '/pairs/0/restitution'),
