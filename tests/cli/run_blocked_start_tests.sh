@@ -16,7 +16,7 @@ hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "
 hipair=$1 verify=$2 source=$3 work=$4
 rm -rf "$work" && mkdir -p "$work"
 failures=0
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
+seed=${HIPAIR_TEST_SEED:-61}; [ "$seed" = random ] && seed=$RANDOM
 RANDOM=$seed
 fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
 # the model with its stop-gap's nominal value G (no tolerance): a certificate holds for the file

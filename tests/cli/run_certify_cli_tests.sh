@@ -433,7 +433,7 @@ done
 # the moves that weaken the claim (a distance lowered, a free range or a jam's trap shortened at
 # its near end): implied by the true original claim, so with the statement of their own data
 # they must verify.
-seed=${HIPAIR_TEST_SEED:-$RANDOM}
+seed=${HIPAIR_TEST_SEED:-61}; [ "$seed" = random ] && seed=$RANDOM
 python3 - "$source/tests/data/certificates" "$work/rounded" "$seed" <<'PY' || fail "the rounded-statement mutants were not generated"
 import json, os, random, sys
 from fractions import Fraction

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 
 namespace hipair {
 namespace {
@@ -109,7 +110,7 @@ TEST(SimulationExtremeSpeed, GenevaAtAnyDriverSpeedFollowsTheClosedFormWithTheEv
   ASSERT_GE(reference.events.size(), 8u);
   ASSERT_GE(reference.drive_states, 10u);
   EXPECT_LE(reference.excess, accuracy);
-  const unsigned seed = std::random_device{}();
+  const unsigned seed = static_cast<unsigned>(hipair::test::test_seed(61));
   RecordProperty("seed", static_cast<int>(seed % 1000000));
   // the refusal bound: sqrt(1.8e308 / reach), reach 61 mm (the pin's rim) -> 1.7e153 rad/s
   const std::vector<double> speeds =
@@ -163,7 +164,7 @@ TEST(SimulationExtremeSpeed, GenevaAtAnyDriverSpeedFollowsTheClosedFormWithTheEv
 // pair. Every state up to there finite.
 TEST(SimulationExtremeSpeed, CamFollowerLiftsOffAtTheClosedFormAtAnySpeed) {
   const double k = 500, m = 0.05, e = 8, rest = 20;   // internal units kg, mm, s
-  const unsigned seed = std::random_device{}();
+  const unsigned seed = static_cast<unsigned>(hipair::test::test_seed(61));
   RecordProperty("seed", static_cast<int>(seed % 1000000));
   const std::vector<double> speeds = generated_speeds(seed, 3, 153, 15, {191.0, 220.0, 5000.0, 1e8, 1e20, 2e153});
   for (double speed : speeds) {
