@@ -44,11 +44,22 @@ class KernelSlicer {
  public:
   /// \throws GeometryError when the model has no pair of the two parts, or it is no fixed-axis pair.
   KernelSlicer(const Model& model, std::size_t other, std::size_t follower);
+  /// As above, taking the model instead of copying it.
+  KernelSlicer(Model&& model, std::size_t other, std::size_t follower);
   ~KernelSlicer();
   KernelSlicer(KernelSlicer&&) noexcept;
   KernelSlicer& operator=(KernelSlicer&&) noexcept;
   std::optional<KernelSlice> slice(const Rational& other_t, bool other_half, const Rational& follower_t,
                                    bool follower_half) const;
+  /// The part [window_lo, window_hi] of that slice (chart coordinates of the follower chart,
+  /// clipped to it): its points in the window (a point at a window end included) and the
+  /// classes of the intervals between them, kinds.front() from the window's start (clipped) to
+  /// the first point, kinds.back() from the last point to its end; `outside` for an empty one (a
+  /// point at the window's end). The same points, features and classes as slice() there: only
+  /// the contact curves and the strips' cull over the follower cells meeting the window are
+  /// formed, which costs a fraction of the whole chart's slice.
+  std::optional<KernelSlice> slice(const Rational& other_t, bool other_half, const Rational& follower_t, bool follower_half,
+                                   const Rational& window_lo, const Rational& window_hi) const;
 
  private:
   struct Impl;

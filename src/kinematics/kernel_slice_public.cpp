@@ -21,8 +21,10 @@ std::optional<std::size_t> pair_of(const Model& model, std::size_t other, std::s
 }
 
 // One slice of `slicer` in the public form (none when a coordinate lies in none of its charts).
+// `window`: the part of the follower chart to slice (kinematics_detail::ChartWindow), else the whole.
 std::optional<KernelSlice> slice_of(const kinematics_detail::PairSlicer& slicer, const Rational& other_t, bool other_half,
-                                    const Rational& follower_t, bool follower_half) {
+                                    const Rational& follower_t, bool follower_half,
+                                    const kinematics_detail::ChartWindow* window = nullptr) {
   using namespace kinematics_detail;
   std::optional<std::size_t> other_chart, follower_chart;
   for (std::size_t c = 0; c < slicer.other_charts().size() && !other_chart; ++c) {
@@ -34,7 +36,7 @@ std::optional<KernelSlice> slice_of(const kinematics_detail::PairSlicer& slicer,
     if (axis.half_turn == follower_half && axis.lo <= follower_t && follower_t <= axis.hi) follower_chart = c;
   }
   if (!other_chart || !follower_chart) return std::nullopt;
-  ChartSlice slice = slicer.slice(*other_chart, other_t, *follower_chart);
+  ChartSlice slice = slicer.slice(*other_chart, other_t, *follower_chart, window);
   KernelSlice result;
   for (const SlicePoint& point : slice.points) {
     KernelSlice::Point p;
@@ -70,6 +72,13 @@ KernelSlicer::KernelSlicer(const Model& model, std::size_t other, std::size_t fo
   impl_->slicer = kinematics_detail::make_kernel_slicer(impl_->model, *pair, follower);
 }
 
+KernelSlicer::KernelSlicer(Model&& model, std::size_t other, std::size_t follower) : impl_(std::make_unique<Impl>()) {
+  std::optional<std::size_t> pair = pair_of(model, other, follower);
+  if (!pair) throw GeometryError("kernel slice: the model has no pair of the two parts");
+  impl_->model = std::move(model);
+  impl_->slicer = kinematics_detail::make_kernel_slicer(impl_->model, *pair, follower);
+}
+
 KernelSlicer::~KernelSlicer() = default;
 KernelSlicer::KernelSlicer(KernelSlicer&&) noexcept = default;
 KernelSlicer& KernelSlicer::operator=(KernelSlicer&&) noexcept = default;
@@ -77,6 +86,13 @@ KernelSlicer& KernelSlicer::operator=(KernelSlicer&&) noexcept = default;
 std::optional<KernelSlice> KernelSlicer::slice(const Rational& other_t, bool other_half, const Rational& follower_t,
                                                bool follower_half) const {
   return slice_of(*impl_->slicer, other_t, other_half, follower_t, follower_half);
+}
+
+std::optional<KernelSlice> KernelSlicer::slice(const Rational& other_t, bool other_half, const Rational& follower_t,
+                                               bool follower_half, const Rational& window_lo, const Rational& window_hi) const {
+  if (!(window_lo < window_hi)) throw GeometryError("kernel slice: the window's ends are not ascending");
+  const kinematics_detail::ChartWindow window{window_lo, window_hi};
+  return slice_of(*impl_->slicer, other_t, other_half, follower_t, follower_half, &window);
 }
 
 // (one slice: the slicer reads the caller's model, no copy of it as KernelSlicer keeps)

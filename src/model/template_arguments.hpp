@@ -82,6 +82,12 @@ class Arguments {
 Point direction(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
                 const std::string& what, std::vector<Rounding>& roundings);
 
+/// Template `name`'s rules (model/template_rules.hpp) at its exact argument values, lengths and
+/// points in the template's unit of length (template_geometry.hpp LengthScaleScope); `count` its
+/// tooth or slot count. \throws ModelError at the argument a failing rule names, with the
+/// template's message.
+void check_rules(const std::string& name, const Arguments& arguments, long count);
+
 std::vector<Loop> expand_circle(const Arguments& arguments, const std::string& label);
 std::vector<Loop> expand_geneva_wheel(const Arguments& arguments, std::vector<Rounding>& roundings);
 std::vector<Loop> expand_geneva_driver(const Arguments& arguments,

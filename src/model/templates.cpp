@@ -3,6 +3,7 @@
 #include "model/exact_trig.hpp"
 #include "model/template_arguments.hpp"
 #include "model/template_geometry.hpp"
+#include "model/template_rules.hpp"
 
 #include <hipair/error.hpp>
 
@@ -184,6 +185,34 @@ std::optional<Rational> wall_length_with_rational_mouth(const Rational& inner, c
 
 }  // namespace
 
+void check_rules(const std::string& name, const Arguments& arguments, long count) {
+  const TemplateSpec* spec = nullptr;
+  for (const TemplateSpec& candidate : template_specs())
+    if (candidate.name == name) spec = &candidate;
+  auto is_length = [&](const char* key) {
+    if (spec)
+      for (const ArgumentSpec& argument : spec->arguments)
+        if (argument.key == key) return argument.kind == ArgumentKind::length;
+    return false;
+  };
+  const Rational& unit = tg::length_unit();
+  auto in_unit = [&](const Rational& length) {
+    return kernels::Interval::enclose(unit == 1 ? length : Rational(length / unit));
+  };
+  TemplateRuleValues values;
+  values.has = [&](const char* key) { return arguments.has(key); };
+  values.value = [&](const char* key) {
+    Rational number = arguments.number(key);
+    return is_length(key) ? in_unit(number) : kernels::Interval::enclose(number);
+  };
+  values.point = [&](const char* key) {
+    Point p = arguments.point(key);
+    return kernels::Vector<kernels::Interval>{in_unit(p.x), in_unit(p.y)};
+  };
+  values.count = count;
+  check_template_rules_exactly(name, values, arguments.pointer());
+}
+
 std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
                                       std::vector<Rounding>& roundings) {
   const std::string& pointer = arguments.pointer();
@@ -197,22 +226,9 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
   Rational span = arguments.angle("lock_span");
   Rational phase = arguments.angle("phase");
   Rational half = width / 2;
-
-  if (inner <= half)
-    throw ModelError(arguments.at("slot_inner_radius"),
-                     "the slot bottom (a half circle of radius slot_width/2 centred at "
-                     "slot_inner_radius) would reach the wheel centre");
+  // the template's rules (template_rules.cpp, shared with the tolerance box's check)
+  check_rules("geneva_wheel", arguments, slots);
   Rational wall_end_squared = outer * outer - half * half;
-  if (wall_end_squared <= inner * inner)
-    throw ModelError(arguments.at("slot_outer_radius"),
-                     "the slot walls must reach beyond the slot bottom: slot_outer_radius^2 must "
-                     "exceed slot_inner_radius^2 + (slot_width/2)^2");
-  if (span <= 0 || tg::approximate(span) >= M_PI - 1e-9)
-    throw ModelError(arguments.at("lock_span"), "must lie strictly between 0 and 180 degrees");
-  if (lock_radius >= lock_distance)
-    throw ModelError(arguments.at("lock_radius"),
-                     "must be less than lock_center_radius (the locking arc would enclose the "
-                     "wheel centre)");
 
   // Slot frame: slot axis along +x. Walls at y = +-w/2 from the bottom towards radius r_out, of
   // rational lengths within b r_out of sqrt(r_out^2 - (w/2)^2) - r_in (a relative rounding, like
@@ -238,32 +254,8 @@ std::vector<Loop> expand_geneva_wheel(const Arguments& arguments,
   Point lock_start{lock_distance - lock_radius * half_span.x, -lock_radius * half_span.y};
   Point lock_end{lock_distance - lock_radius * half_span.x, lock_radius * half_span.y};
 
-  // Coarse fit checks for clear messages; the reader's exact loop checks back them up.
-  double sector = M_PI / static_cast<double>(slots);
-  double wall_angle = std::asin(tg::approximate(Rational(half / outer)));
-  double lock_end_angle =
-      std::atan2(tg::approximate_length(lock_end.y), tg::approximate_length(lock_end.x));
-  if (lock_start.x <= 0)
-    throw ModelError(arguments.at("lock_span"),
-                     "the locking arc ends behind the wheel centre: lock_span is too large");
-  if (wall_angle >= sector - 1e-9)
-    throw ModelError(arguments.at("slot_width"), "the slots are too wide for " +
-                                                     std::to_string(slots) +
-                                                     " slots at slot_outer_radius");
-  if (lock_end_angle >= sector - wall_angle - 1e-9)
-    throw ModelError(arguments.at("lock_span"),
-                     "the locking arcs run into the slots: reduce lock_span or slot_width");
-  {
-    // The next slot's right wall end, seen in the lock frame, must lie outside the lock circle.
-    double wx = tg::approximate_length(wall_end_right.x), wy = tg::approximate_length(wall_end_right.y);
-    double x = wx * std::cos(sector) - wy * std::sin(sector);
-    double y = wx * std::sin(sector) + wy * std::cos(sector);
-    double distance = std::hypot(x - tg::approximate_length(lock_distance), y);
-    if (distance <= tg::approximate_length(lock_radius) + 1e-9)
-      throw ModelError(arguments.at("lock_radius"),
-                       "the locking arcs cut into the slot walls: reduce lock_radius or "
-                       "slot_outer_radius");
-  }
+  // (the fit of the slots and locking arcs: check_rules above; the reader's exact loop checks
+  // back them up)
 
   std::vector<Point> lock_turn(slots), slot_turn(slots);
   for (long k = 0; k < slots; ++k) {
@@ -328,10 +320,7 @@ std::vector<Loop> expand_geneva_driver(const Arguments& arguments,
   Rational offset = arguments.angle("lock_offset", default_offset);
   Rational phase = arguments.angle("phase");
   if (inner < 0) throw ModelError(arguments.at("lock_inner_radius"), "must not be negative");
-  if (inner >= outer)
-    throw ModelError(arguments.at("lock_inner_radius"), "must be less than lock_outer_radius");
-  if (span <= 0 || tg::approximate(span) >= 2 * M_PI - 1e-9)
-    throw ModelError(arguments.at("lock_span"), "must lie strictly between 0 and 360 degrees");
+  check_rules("geneva_driver", arguments, 0);   // template_rules.cpp
 
   Point pin_direction = exact_unit_vector(phase, arguments.at("phase"), "phase", roundings);
   Point pin_center = tg::add(center, tg::scale(pin_distance, pin_direction));

@@ -51,28 +51,15 @@ std::vector<Loop> expand_escape_wheel(const Arguments& arguments,
   bool driven_ccw = arguments.counter_clockwise("dir", false);
   Rational tip_angle = arguments.angle("tip_angle");
   Rational face_angle = arguments.angle("face_angle");
-  if (root_radius >= tip_radius)
-    throw ModelError(arguments.at("root_radius"), "must be less than tip_radius");
   if (tip_angle < 0) throw ModelError(arguments.at("tip_angle"), "must not be negative");
   if (face_angle < 0) throw ModelError(arguments.at("face_angle"), "must not be negative");
+  // root below tip, the tooth's angles within the pitch (template_rules.cpp, shared with the
+  // tolerance box's check)
+  check_rules("escape_wheel", arguments, teeth);
   Rational pitch_turns(2, teeth);  // the pitch as a multiple of pi
   pitch_turns.canonicalize();      // 2/teeth is not in lowest terms for an even tooth count
-  double pitch = 2 * M_PI / static_cast<double>(teeth);
   bool has_root_arc = arguments.has("back_angle");
   Rational back_angle = has_root_arc ? arguments.angle("back_angle") : Rational(0);
-  double back = has_root_arc ? tg::approximate(back_angle) : pitch + tg::approximate(face_angle);
-  if (tg::approximate(tip_angle) + tg::approximate(face_angle) >= pitch * 0.75)
-    throw ModelError(arguments.at("face_angle"),
-                     "tip_angle + face_angle must stay below 3/4 of the tooth pitch");
-  if (has_root_arc) {
-    if (back <= tg::approximate(face_angle) + 1e-9 || back <= tg::approximate(tip_angle) + 1e-9)
-      throw ModelError(arguments.at("back_angle"),
-                       "must exceed face_angle and tip_angle (the tooth needs a base)");
-    if (back >= pitch + tg::approximate(face_angle) - 1e-9)
-      throw ModelError(arguments.at("back_angle"),
-                       "must be less than the tooth pitch + face_angle (omit it for ratchet "
-                       "teeth without a root arc)");
-  }
 
   Point trailing = tip_angle == 0
                        ? Point{Rational(1), Rational(0)}
@@ -142,13 +129,12 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
   if (lift <= 0) throw ModelError(arguments.at("lift"), "must be positive");
   if (lock < 0) throw ModelError(arguments.at("lock"), "must not be negative");
   if (extent <= 0) throw ModelError(arguments.at("pallet_extent"), "must be positive");
-  if (tg::approximate(lift + lock + extent) >= 1.2)
-    throw ModelError(arguments.at("lift"), "lift + lock + pallet_extent must stay below 1.2 rad");
+  // the angles' sum, the pivot outside the wheel, the pallet circle and the fork
+  // (template_rules.cpp, shared with the tolerance box's check)
+  check_rules("anchor", arguments, 0);
 
   Point axis = tg::subtract(pivot, wheel);  // from the wheel centre to the pivot
   Rational distance_squared = tg::squared_norm(axis);
-  if (distance_squared <= wheel_radius * wheel_radius)
-    throw ModelError(arguments.at("center"), "the anchor pivot must lie outside the escape wheel");
   double D = std::sqrt(tg::approximate_squared_length(distance_squared));
   double R = tg::approximate_length(wheel_radius);
   Rational tangent = tg::round_length(tg::approximate_sqrt(distance_squared - wheel_radius * wheel_radius));
@@ -157,20 +143,8 @@ std::vector<Loop> expand_anchor(const Arguments& arguments, std::vector<Rounding
                                tangent, tg::length_rounding_bound()});
   Rational inner = tangent - width / 2;
   Rational outer = tangent + width / 2;
-  if (inner <= 0)
-    throw ModelError(arguments.at("pallet_width"),
-                     "is wider than twice the pallet radius (the tangent length from the pivot "
-                     "to the wheel)");
   Rational half_fork = fork_width / 2;
   Rational half_slot = slot_width / 2;
-  if (half_fork >= outer)
-    throw ModelError(arguments.at("fork_width"), "is wider than the anchor's pallet circle");
-  if (slot_width >= fork_width)
-    throw ModelError(arguments.at("fork_slot_width"), "must be less than fork_width");
-  if (slot_depth >= fork_length || fork_length - slot_depth <= outer)
-    throw ModelError(arguments.at("fork_slot_depth"),
-                     "the fork slot must end outside the pallet circle (fork_length - "
-                     "fork_slot_depth > tangent length + pallet_width/2)");
 
   auto path_angle = [&](double rho) {
     // Angle at A between A->W and A->P for P on the wheel's tip circle at distance rho from A.
@@ -255,16 +229,7 @@ std::vector<Loop> expand_balance(const Arguments& arguments, std::vector<Roundin
   Rational pin_radius = arguments.positive_length("pin_radius");
   Rational pin_distance = arguments.positive_length("pin_center_radius");
   Rational phase = arguments.angle("phase");
-  if (pin_distance + pin_radius <= radius)
-    throw ModelError(arguments.at("pin_center_radius"),
-                     "the pin lies inside the disc: it must stick out (pin_center_radius + "
-                     "pin_radius > radius)");
-  if (pin_distance - pin_radius >= radius)
-    throw ModelError(arguments.at("pin_center_radius"),
-                     "the pin is detached from the disc (pin_center_radius - pin_radius must be "
-                     "less than radius)");
-  if (pin_radius >= radius + pin_distance)
-    throw ModelError(arguments.at("pin_radius"), "the pin would swallow the disc");
+  check_rules("balance", arguments, 0);   // the pin and the disc (template_rules.cpp)
   Rational along =
       (pin_distance * pin_distance + radius * radius - pin_radius * pin_radius) / (2 * pin_distance);
   Rational across = tg::approximate_sqrt(Rational(radius * radius - along * along));

@@ -111,17 +111,13 @@ std::vector<Loop> expand_spur_gear(const Arguments& arguments, std::vector<Round
   Rational phase = arguments.angle("phase");
   Rational tip_radius = pitch + addendum;
   Rational root_radius = pitch - dedendum;
-  if (root_radius <= 0)
-    throw ModelError(arguments.at("dedendum"), "must be less than pitch_radius");
+  check_rules("spur_gear", arguments, teeth);   // dedendum and pressure angle (template_rules.cpp)
 
   Point pressure;  // u(alpha)
   double alpha;
   if (arguments.has("pressure_angle")) {
     Rational value = arguments.angle("pressure_angle");
     alpha = tg::approximate(value);
-    if (alpha <= 0.01 || alpha >= 0.7)
-      throw ModelError(arguments.at("pressure_angle"),
-                       "must lie between 0.01 and 0.7 rad (about 0.6 to 40 degrees)");
     pressure = exact_unit_vector(value, arguments.at("pressure_angle"), "pressure_angle",
                                  roundings);
   } else {
@@ -282,8 +278,7 @@ std::vector<Loop> expand_ratchet_wheel(const Arguments& arguments,
   Rational root_radius = arguments.positive_length("root_radius");
   Rational phase = arguments.angle("phase");
   bool free_ccw = arguments.counter_clockwise("dir", true);
-  if (root_radius >= tip_radius)
-    throw ModelError(arguments.at("root_radius"), "must be less than tip_radius");
+  check_rules("ratchet_wheel", arguments, teeth);   // root below tip (template_rules.cpp)
   std::vector<Point> turn(teeth);
   for (long k = 0; k < teeth; ++k)
     turn[k] = direction(phase, Rational(2 * k, teeth), pointer, tooth(k) + " tip direction",

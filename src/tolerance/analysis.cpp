@@ -1296,7 +1296,7 @@ class Analysis {
       return;
     }
     if (kernel_confirmations_) {
-      confirm_bracket_on_kernels(result, worst, state, b.above);
+      confirm_bracket_on_kernels(result, std::move(worst), state, b.above);
       return;
     }
     // the witness' exact C-space
@@ -1339,7 +1339,7 @@ class Analysis {
   // at the nominal channel's driver chart coordinate, the same decisions as on the two C-spaces'
   // slices (the follower between the witness' roots in one free interval of the nominal slice;
   // no free interval of the witness' slice between the nominal channel's sides).
-  void confirm_bracket_on_kernels(JammingThreshold& result, const Model& worst, const SampleState& state,
+  void confirm_bracket_on_kernels(JammingThreshold& result, Model&& worst, const SampleState& state,
                                   const Rational& scale) {
     std::size_t nominal_points = 0, points = 0;
     std::optional<std::size_t> nominal_open =
@@ -1349,7 +1349,7 @@ class Analysis {
       return;
     }
     bar_.fraction(0.9);
-    std::optional<std::size_t> open = kernel_free_intervals_in_channel(KernelSlicer(worst, driver_, follower_), state, points);
+    std::optional<std::size_t> open = kernel_free_intervals_in_channel(KernelSlicer(std::move(worst), driver_, follower_), state, points);
     if (!open) {
       result.bracket_evidence = "not confirmed: no slice of the witness' pair at that driver position";
       return;
@@ -1466,7 +1466,7 @@ class Analysis {
         // A large pair: the exact slice at the critical position from the contact kernels (the
         // whole worst-case C-space took minutes per scale; session 58).
         std::size_t points = 0;
-        std::optional<std::size_t> open = kernel_free_intervals_in_channel(KernelSlicer(worst, driver_, follower_), state, points);
+        std::optional<std::size_t> open = kernel_free_intervals_in_channel(KernelSlicer(std::move(worst), driver_, follower_), state, points);
         if (!open) continue;
         result.confirmed_scale = factor.get_d();
         result.worst_values.clear();
@@ -1545,8 +1545,44 @@ class Analysis {
   // channel_bounds on the exact kernel slice of `slicer`'s pair at the sample's driver position
   // instead of a C-space's slice (large pairs; session 59): the feature pairs at the ends of its
   // free intervals meeting the sample's nominal channel (exact: exact_order.hpp).
+  // Read off a windowed slice about the nominal channel first (session 61: the witness slicer
+  // then forms and culls the contact curves of the window's follower cells only; the whole
+  // turn's 72 spur-gear changes took 42 s CPU on whole-chart slices), when the window holds
+  // every free interval meeting the channel whole, with a contact point at each end strictly
+  // inside it; otherwise a window 8 and 64 times as wide, then the whole chart's slice. The
+  // result is the whole slice's: the windowed slice has its points, features and classes
+  // inside the window (KernelSlicer::slice), and an accepted window leaves the whole slice
+  // nothing to continue across the half-turn seam (its channel within the chart, no free
+  // interval meeting it reaching the chart's end).
   std::optional<std::vector<PairKey>> kernel_channel_bounds(const KernelSlicer& slicer, std::size_t k) const {
     const SampleState& state = states_[k];
+    if (state.lower.present && state.upper.present && tolerance_detail::compare(state.lower.exact, Rational(-1)) >= 0 &&
+        tolerance_detail::compare(state.upper.exact, Rational(1)) <= 0) {
+      const Rational width = state.upper.exact.upper - state.lower.exact.lower;
+      for (int widening : {1, 8, 64}) {
+        const Rational margin = width * widening;
+        const Rational window_lo = state.lower.exact.lower - margin, window_hi = state.upper.exact.upper + margin;
+        if (!(window_lo < window_hi)) break;
+        std::optional<KernelSlice> slice = slicer.slice(state.driver_chart.t, state.driver_chart.half, state.follower_chart.t,
+                                                        state.follower_chart.half, window_lo, window_hi);
+        if (!slice) return std::nullopt;   // as the whole slice: no chart holds the position
+        std::vector<std::size_t> meeting = kernel_free_meeting(*slice, &state.lower.exact, &state.upper.exact);
+        const bool inside = std::all_of(meeting.begin(), meeting.end(), [&](std::size_t j) {
+          return j > 0 && j < slice->points.size() && tolerance_detail::compare(slice->points[j - 1].at, window_lo) > 0 &&
+                 tolerance_detail::compare(slice->points[j].at, window_hi) < 0;
+        });
+        if (!inside) continue;
+        std::vector<PairKey> keys;
+        auto add = [&](std::size_t point) {
+          for (const auto& [first, second] : slice->points[point].features) keys.push_back(key_of(first, second));
+        };
+        for (std::size_t j : meeting) {
+          add(j - 1);
+          add(j);
+        }
+        return keys;
+      }
+    }
     std::optional<KernelSlice> slice = kernel_slice_at(slicer, state);
     if (!slice) return std::nullopt;
     std::vector<PairKey> keys;
@@ -1797,7 +1833,9 @@ class Analysis {
           std::shared_ptr<KernelSlicer> slicer;
           if (kernel_confirmations_) {
             if (cached == slicers.end()) {
-              slicers.emplace_back(deviations, WitnessSlices{std::make_shared<KernelSlicer>(model_->exact_model(deviations), driver_, follower_), {}});
+              slicers.emplace_back(deviations, WitnessSlices{std::make_shared<KernelSlicer>(model_->exact_model(deviations),
+                                                                                            driver_, follower_),
+                                                             {}});
               cached = slicers.end() - 1;
             }
             slicer = cached->second.slicer;
@@ -1829,21 +1867,29 @@ class Analysis {
             std::string instead;
             for (auto key = others.begin(); key != others.end(); ++key)
               if (std::find(others.begin(), key, *key) == key) instead += (instead.empty() ? "" : ", ") + label_of(*key);
+            // (the scope stated: this vector and these positions, not the whole box; session 61)
             change.evidence = "refuted: " + exact + "at none of the " + std::to_string(g.samples.size()) +
-                              " positions does the contact bound the channel (bounded there by " + instead + ")";
+                              " positions does the contact bound the channel (bounded there by " + instead +
+                              "); refuted at this witness vector and these positions only, not over the whole box";
           } else {
             change.evidence = exact + "at " + std::to_string(change.confirmed_positions) + " of " +
                               std::to_string(g.samples.size()) + " positions the contact bounds the channel";
           }
           // The side it overtakes: does it still bound the channel anywhere along the path?
-          std::size_t where = 0, bounded = 0;
-          for (const auto& [key, at] : side_positions) {
-            if (key != best.side_key) continue;
-            ++where;
-            std::optional<std::vector<PairKey>> keys = bounds(at.first);
-            if (!keys || std::find(keys->begin(), keys->end(), key) != keys->end()) ++bounded;
-          }
-          if (where > 0 && bounded == 0) {
+          // (one position where it does settles it: the positions already sliced are asked
+          // first, and the search stops there; session 61)
+          std::vector<std::size_t> side_at;
+          for (const auto& [key, at] : side_positions)
+            if (key == best.side_key) side_at.push_back(at.first);
+          const std::size_t where = side_at.size();
+          if (!space)
+            std::stable_partition(side_at.begin(), side_at.end(),
+                                  [&](std::size_t k) { return cached->second.bounds.count(k) > 0; });
+          const bool bounded = std::any_of(side_at.begin(), side_at.end(), [&](std::size_t k) {
+            std::optional<std::vector<PairKey>> keys = bounds(k);
+            return !keys || std::find(keys->begin(), keys->end(), best.side_key) != keys->end();
+          });
+          if (where > 0 && !bounded) {
             ContactChange gone = change;
             gone.kind = ContactChange::Kind::disappears;
             gone.contact = best.side_label;

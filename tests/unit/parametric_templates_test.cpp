@@ -13,6 +13,8 @@
 // sample in its certified band and its nominal motion is the kinematic analysis's.
 #include "generic_form_check.hpp"
 #include "tolerance_band_check.hpp"
+#include "test_seed.hpp"
+#include "model/template_rules.hpp"
 #include "tolerance/exact_order.hpp"
 #include "tolerance/jet.hpp"
 #include "test_paths.hpp"
@@ -1015,6 +1017,150 @@ TEST(ParametricTemplates, TemplateRulesAreCheckedOverTheWholeBox) {
     }
   EXPECT_GE(refused, 4);
   EXPECT_GE(kept, 4);
+}
+
+// Session 61: the templates' rules live once (src/model/template_rules.cpp) and serve the exact
+// expansion and the tolerance box. Generated: seven templates with every rule's arguments
+// toleranced, random rational vectors spread far beyond the box (half of them break a rule);
+// at each, the exact expansion (ParametricModel::exact_model) and check_choices on a box of
+// half-width 1e-9 about the vector must agree: both accept, or both refuse at the same
+// argument (the exact one with the template's own message, the box naming the rule). Vectors
+// refused by a constructive check of the expansion outside the rules (a pin in its crescent,
+// the pallets meeting, an involute flank) are set aside; each template must be compared on
+// accepted and refused vectors.
+TEST(ParametricTemplates, ExactAndBoxChecksOfTheTemplateRulesAgree) {
+  struct Argument {
+    std::string parameter;
+    double nominal, spread;   // drawn in nominal * (1 +- spread)
+  };
+  struct Family {
+    std::string name, part;
+    long count;
+    std::vector<Argument> arguments;
+  };
+  const std::vector<Family> families{
+      {"geneva_wheel",
+       R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"geneva_wheel": {"center": [0, 0],
+          "slots": 4, "slot_width": "w", "slot_inner_radius": "ri", "slot_outer_radius": "ro",
+          "lock_center_radius": "lc", "lock_radius": "lr", "lock_span": "ls"}}]})",
+       4,
+       {{"w", 10, 0.8}, {"ri", 20, 0.8}, {"ro", 60, 0.3}, {"lc", 80, 0.2}, {"lr", 46.683, 0.3}, {"ls", 1.5708, 0.8}}},
+      {"geneva_driver",
+       R"({"name": "d", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"geneva_driver": {"center": [0, 0],
+          "pin_radius": "pr", "pin_center_radius": 56.5, "lock_outer_radius": "lo", "lock_inner_radius": "li",
+          "lock_span": "ls"}}]})",
+       0,
+       {{"pr", 4.5, 1.5}, {"lo", 46, 0.3}, {"li", 36, 0.3}, {"ls", 4.9416, 0.4}}},
+      {"escape_wheel",
+       R"({"name": "e", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"escape_wheel": {"center": [0, 0],
+          "teeth": 15, "tip_radius": "tr", "root_radius": "rr", "tip_angle": "ta", "face_angle": "fa",
+          "back_angle": "ba"}}]})",
+       15,
+       {{"tr", 20, 0.2}, {"rr", 15, 0.3}, {"ta", 0.05, 0.6}, {"fa", 0.2, 0.6}, {"ba", 0.4, 0.8}}},
+      {"anchor",
+       R"({"name": "a", "motion": {"rotation": {"pivot": [0, "ad"]}}, "features": [{"anchor": {"center": [0, "ad"],
+          "wheel_center": [0, 0], "wheel_radius": "wr", "pallet_width": "pw", "lift": "lift", "lock": "lock",
+          "pallet_extent": "pe", "fork_length": "fl", "fork_width": "fw", "fork_slot_width": "fs",
+          "fork_slot_depth": "fd"}}]})",
+       0,
+       {{"ad", 23.094, 0.2}, {"wr", 20, 0.2}, {"pw", 3.6, 0.8}, {"lift", 0.1047, 0.5}, {"lock", 0.0349, 0.5},
+        {"pe", 0.9, 0.4}, {"fl", 21.7, 0.3}, {"fw", 5, 0.6}, {"fs", 2.7, 0.6}, {"fd", 2.4, 0.6}}},
+      {"balance",
+       R"({"name": "b", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"balance": {"center": [0, 0],
+          "radius": "r", "pin_radius": "pr", "pin_center_radius": "pc"}}]})",
+       0,
+       {{"r", 3, 0.6}, {"pr", 1.2, 0.9}, {"pc", 4, 0.6}}},
+      {"spur_gear",
+       R"({"name": "g", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"spur_gear": {"center": [0, 0],
+          "teeth": 20, "pitch_radius": "pr", "addendum": 1, "dedendum": "dd", "tooth_thickness": "pi - 0.1",
+          "pressure_angle": "pa"}}]})",
+       20,
+       {{"pr", 20, 0.1}, {"dd", 12, 0.8}, {"pa", 0.35, 1.1}}},
+      {"ratchet_wheel",
+       R"({"name": "r", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"ratchet_wheel": {"center": [0, 0],
+          "teeth": 12, "tip_radius": "tr", "root_radius": "rr"}}]})",
+       12,
+       {{"tr", 20, 0.2}, {"rr", 16, 0.4}}},
+  };
+  const std::uint64_t seed = test::test_seed(61);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (const Family& family : families) {
+    SCOPED_TRACE(family.name);
+    // the rules' refusals, from the shared table (no margin evaluated)
+    model_detail::TemplateRuleValues names;
+    names.has = [](const char*) { return true; };
+    names.count = family.count;
+    std::vector<std::string> refusals;
+    model_detail::template_rules(family.name, names, [&](const model_detail::TemplateRule& rule) {
+      refusals.push_back(rule.refusal);
+    });
+    ASSERT_FALSE(refusals.empty());
+    std::string parameters;
+    for (const Argument& a : family.arguments)
+      parameters += (parameters.empty() ? "\"" : ", \"") + a.parameter + "\": {\"nominal\": " + fixed(a.nominal) +
+                    ", \"tolerance\": 0.001}";
+    const std::string text = R"({"hipair": 1, "name": "generated", "units": {"length": "mm", "angle": "rad"}, "parameters": {)" +
+                             parameters + R"(}, "parts": [)" + family.part + R"(], "pairs": []})";
+    ParametricModel form = ParametricModel::read(text);
+    const Model& nominal = form.nominal();
+    const std::size_t n = nominal.parameters.size();
+    int accepted = 0, refused = 0, aside = 0;
+    for (int round = 0; round < 60; ++round) {
+      // a rational vector: each parameter at nominal * (1 + u), u a multiple of 1e-4 in [-spread, spread]
+      std::vector<Rational> deviations(n, Rational(0));
+      std::string where;
+      for (const Argument& a : family.arguments) {
+        const Parameter* p = nominal.find_parameter(a.parameter);
+        ASSERT_NE(p, nullptr);
+        const long steps = std::lround(a.spread * 10000);
+        const long u = std::uniform_int_distribution<long>(-steps, steps)(rng);
+        Rational deviation = p->nominal * Rational(u, 10000);
+        deviation.canonicalize();
+        deviations[static_cast<std::size_t>(p - nominal.parameters.data())] = deviation;
+        where += " " + a.parameter + "=" + to_exact_string(Rational(p->nominal + deviation));
+      }
+      SCOPED_TRACE("vector" + where);
+      // the exact expansion: accepted, refused by a rule (at its argument), or set aside
+      std::optional<std::string> exact_refusal;
+      bool exact_aside = false;
+      try {
+        form.exact_model(deviations);
+      } catch (const ModelError& error) {
+        const std::string& pointer = error.pointer();
+        const bool rule = std::find(refusals.begin(), refusals.end(), error.reason()) != refusals.end();
+        if (rule) exact_refusal = pointer.substr(pointer.rfind('/') + 1);
+        else exact_aside = true;
+      }
+      if (exact_aside) {
+        ++aside;
+        continue;
+      }
+      // the box check about the vector
+      std::vector<double> lo(n), hi(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double d = deviations[i].get_d(), w = 1e-9 * std::max(1.0, std::fabs(nominal.parameters[i].nominal.get_d()));
+        lo[i] = d - w;
+        hi[i] = d + w;
+      }
+      std::optional<std::string> box_refusal;
+      try {
+        form.check_choices(lo, hi);
+      } catch (const ModelError& error) {
+        const std::string what = error.what();
+        // a refused shape change: the rules held
+        if (what.find("invalid: ") != std::string::npos) box_refusal = error.pointer().substr(error.pointer().rfind('/') + 1);
+      }
+      EXPECT_EQ(exact_refusal.has_value(), box_refusal.has_value())
+          << "exact: " << exact_refusal.value_or("accepted") << ", box: " << box_refusal.value_or("accepted");
+      if (exact_refusal && box_refusal) EXPECT_EQ(*exact_refusal, *box_refusal);
+      (exact_refusal ? refused : accepted)++;
+    }
+    std::printf("[ rules    ] %s: %d accepted, %d refused by a rule, %d set aside\n", family.name.c_str(), accepted, refused,
+                aside);
+    EXPECT_GE(accepted, 5);
+    EXPECT_GE(refused, 5);
+  }
 }
 
 // The three bundled examples refused until session 57: every Monte Carlo sample inside the

@@ -9,6 +9,7 @@
 #include "model/expression.hpp"
 #include "model/json_document.hpp"
 #include "model/profile_tolerance.hpp"
+#include "model/template_rules.hpp"
 #include "model/reader.hpp"
 #include "model/validate_geometry.hpp"
 
@@ -538,26 +539,24 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
 
 namespace {
 
-// ParametricModel::check_choices' rules of the feature templates over the box (session 59): the
-// refusals of templates*.cpp (expand_geneva_wheel, expand_geneva_driver, expand_escape_wheel,
-// expand_anchor, expand_balance, expand_spur_gear, expand_ratchet_wheel) as interval enclosures
-// of their margins over the box, with the templates' own tolerances (their coarse double checks'
-// 1e-9). \throws ModelError naming the argument and the toleranced parameters the rule reads
-// when a margin is not certainly positive over the box.
+// ParametricModel::check_choices' rules of the feature templates over the box (session 59; since
+// session 61 the templates' own rules, template_rules.hpp, enclosed over the box): \throws
+// ModelError naming the argument and the toleranced parameters the rule reads when a margin is
+// not certainly positive over the box. A rule reading no parameter that varies in the box is
+// held at nominal, where the template was expanded.
 void check_template_rules(
     const FeatureRecipe& feature, const std::vector<kernels::Interval>& p, const std::vector<double>& lo,
     const std::vector<double>& hi, const std::function<void(const Formula&, std::vector<char>&)>& mark_read,
     const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point, const Model& nominal) {
-  using I = kernels::Interval;
-  using A = Arithmetic<I>;
   using namespace parametric_detail;
   const std::size_t n = p.size();
-  auto has = [&](const char* key) { return feature.arguments.count(key) > 0; };
-  auto value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
-  auto point = [&](const char* key) { return point_value(feature.arguments.at(key).point, p); };
-  auto c = [](double v) { return I(v, v); };
-  // the varying parameters read by the rule's arguments
-  auto varying = [&](std::initializer_list<const char*> keys) {
+  TemplateRuleValues values;
+  values.has = [&](const char* key) { return feature.arguments.count(key) > 0; };
+  values.value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
+  values.point = [&](const char* key) { return point_value(feature.arguments.at(key).point, p); };
+  values.count = feature.teeth;
+  // the varying parameters read by the rule's (present) arguments
+  auto varying = [&](const std::vector<const char*>& keys) {
     std::vector<char> read(n, 0);
     for (const char* key : keys) {
       auto a = feature.arguments.find(key);
@@ -570,156 +569,19 @@ void check_template_rules(
       if (read[i] && lo[i] != hi[i]) names.push_back(nominal.parameters[i].name);
     return names;
   };
-  // `margin` (a function: evaluated only when a parameter it reads varies) must be > 0 over the box
-  auto require = [&](const char* key, std::initializer_list<const char*> keys, const std::function<I()>& margin,
-                     const std::string& rule) {
-    for (const char* k : keys)
-      if (!has(k)) return;
-    std::vector<std::string> names = varying(keys);
+  template_rules(feature.name, values, [&](const TemplateRule& rule) {
+    std::vector<std::string> names = varying(rule.reads);
     if (names.empty()) return;   // held at nominal, where the template was expanded
-    if (margin().lo > 0) return;
+    if (rule.margin().lo > 0) return;
     std::string list;
     for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
-    throw ModelError(feature.pointer + "/" + key,
-                     "the tolerance box may make feature template " + feature.name + " invalid: " + rule +
+    throw ModelError(feature.pointer + "/" + rule.key,
+                     "the tolerance box may make feature template " + feature.name + " invalid: " + rule.rule +
                          " may fail for some parameter values within the box (toleranced parameter" +
                          (names.size() == 1 ? " " : "s ") + list +
                          "), where the template refuses the geometry; narrow " + (names.size() == 1 ? "its" : "their") +
                          " tolerance" + (names.size() == 1 ? "" : "s"));
-  };
-  auto positive = [&](std::initializer_list<const char*> keys) {
-    for (const char* key : keys)
-      require(key, {key}, [&] { return value(key); }, std::string(key) + " > 0");
-  };
-  const I pi = A::pi();
-  const I tiny = c(1e-9);
-  if (feature.name == "geneva_wheel") {
-    positive({"slot_width", "slot_inner_radius", "slot_outer_radius", "lock_center_radius", "lock_radius"});
-    require("slot_inner_radius", {"slot_inner_radius", "slot_width"},
-            [&] { return I(value("slot_inner_radius") - value("slot_width") / c(2)); },
-            "slot_inner_radius > slot_width / 2 (the slot bottom clear of the wheel centre)");
-    require("slot_outer_radius", {"slot_outer_radius", "slot_inner_radius", "slot_width"}, [&] {
-      I half = value("slot_width") / c(2), outer = value("slot_outer_radius"), inner = value("slot_inner_radius");
-      return I(outer * outer - half * half - inner * inner);
-    }, "slot_outer_radius^2 > slot_inner_radius^2 + (slot_width/2)^2 (the slot walls reach beyond the slot bottom)");
-    require("lock_span", {"lock_span"}, [&] { return value("lock_span"); }, "lock_span > 0");
-    require("lock_span", {"lock_span"}, [&] { return I(pi - tiny - value("lock_span")); }, "lock_span < 180 degrees");
-    require("lock_radius", {"lock_radius", "lock_center_radius"},
-            [&] { return I(value("lock_center_radius") - value("lock_radius")); },
-            "lock_radius < lock_center_radius (the locking arc clear of the wheel centre)");
-    const std::initializer_list<const char*> lock_keys{"lock_center_radius", "lock_radius", "lock_span"};
-    auto lock_end = [&] {   // the locking arc's end (x, y) in the lock frame's wheel coordinates
-      I d = value("lock_center_radius"), r = value("lock_radius"), half = value("lock_span") / c(2);
-      return kernels::Vector<I>{I(d - r * A::cos(half)), I(r * A::sin(half))};
-    };
-    require("lock_span", lock_keys, [&] { return lock_end().x; },
-            "the locking arc ends in front of the wheel centre (lock_center_radius > lock_radius cos(lock_span/2))");
-    if (feature.teeth > 0) {
-      const I sector = pi / c(static_cast<double>(feature.teeth));
-      auto wall_angle = [&] {
-        I half = value("slot_width") / c(2), outer = value("slot_outer_radius");
-        return A::atan2(half, A::sqrt(I(outer * outer - half * half)));
-      };
-      require("slot_width", {"slot_width", "slot_outer_radius"}, [&] { return I(sector - tiny - wall_angle()); },
-              "the slots fit the wheel (asin(slot_width / 2 / slot_outer_radius) < 180 degrees / slots)");
-      require("lock_span", {"lock_center_radius", "lock_radius", "lock_span", "slot_width", "slot_outer_radius"}, [&] {
-        kernels::Vector<I> end = lock_end();
-        return I(sector - wall_angle() - tiny - A::atan2(end.y, end.x));
-      }, "the locking arcs end before the slots (lock_span and slot_width)");
-      require("lock_radius", {"lock_center_radius", "lock_radius", "slot_width", "slot_outer_radius", "slot_inner_radius"},
-              [&] {
-                // the next slot's right wall end, in the lock frame, outside the lock circle
-                I half = value("slot_width") / c(2), outer = value("slot_outer_radius");
-                I wx = A::sqrt(I(outer * outer - half * half)), wy = -half;
-                I x = wx * A::cos(sector) - wy * A::sin(sector), y = wx * A::sin(sector) + wy * A::cos(sector);
-                I dx = x - value("lock_center_radius");
-                return I(A::sqrt(I(dx * dx + y * y)) - value("lock_radius") - tiny);
-              },
-              "the locking arcs clear of the slot walls (lock_radius and slot_outer_radius)");
-    }
-  } else if (feature.name == "geneva_driver") {
-    positive({"pin_radius", "pin_center_radius", "lock_outer_radius"});
-    require("lock_inner_radius", {"lock_inner_radius", "lock_outer_radius"},
-            [&] { return I(value("lock_outer_radius") - value("lock_inner_radius")); },
-            "lock_inner_radius < lock_outer_radius");
-    require("lock_span", {"lock_span"}, [&] { return value("lock_span"); }, "lock_span > 0");
-    require("lock_span", {"lock_span"}, [&] { return I(c(2) * pi - tiny - value("lock_span")); },
-            "lock_span < 360 degrees");
-  } else if (feature.name == "escape_wheel") {
-    positive({"tip_radius", "root_radius"});
-    require("root_radius", {"root_radius", "tip_radius"}, [&] { return I(value("tip_radius") - value("root_radius")); },
-            "root_radius < tip_radius");
-    if (feature.teeth > 0) {
-      const I pitch = c(2) * pi / c(static_cast<double>(feature.teeth));
-      auto tip = [&] { return has("tip_angle") ? value("tip_angle") : c(0); };
-      require("face_angle", {"face_angle"}, [&] { return I(c(0.75) * pitch - tip() - value("face_angle")); },
-              "tip_angle + face_angle < 3/4 of the tooth pitch");
-      require("tip_angle", {"tip_angle", "face_angle"},
-              [&] { return I(c(0.75) * pitch - value("tip_angle") - value("face_angle")); },
-              "tip_angle + face_angle < 3/4 of the tooth pitch");
-      require("back_angle", {"back_angle", "face_angle"},
-              [&] { return I(value("back_angle") - value("face_angle") - tiny); }, "back_angle > face_angle");
-      require("back_angle", {"back_angle", "tip_angle"}, [&] { return I(value("back_angle") - value("tip_angle") - tiny); },
-              "back_angle > tip_angle");
-      require("back_angle", {"back_angle", "face_angle"},
-              [&] { return I(pitch + value("face_angle") - tiny - value("back_angle")); },
-              "back_angle < the tooth pitch + face_angle");
-    }
-  } else if (feature.name == "anchor") {
-    positive({"wheel_radius", "pallet_width", "fork_length", "fork_width", "fork_slot_width", "fork_slot_depth"});
-    auto extent = [&] { return has("pallet_extent") ? value("pallet_extent") : c(174533.0 / 500000.0); };
-    require("lift", {"lift", "lock"}, [&] { return I(c(1.2) - value("lift") - value("lock") - extent()); },
-            "lift + lock + pallet_extent < 1.2 rad");
-    require("pallet_extent", {"pallet_extent", "lift", "lock"},
-            [&] { return I(c(1.2) - value("lift") - value("lock") - extent()); }, "lift + lock + pallet_extent < 1.2 rad");
-    auto distance_squared = [&] {
-      kernels::Vector<I> d = point("center") - point("wheel_center");
-      return I(kernels::dot(d, d));
-    };
-    auto tangent = [&] {
-      I R = value("wheel_radius");
-      return A::sqrt(I(distance_squared() - R * R));
-    };
-    require("center", {"center", "wheel_center", "wheel_radius"}, [&] {
-      I R = value("wheel_radius");
-      return I(distance_squared() - R * R);
-    }, "the anchor pivot outside the escape wheel (|center - wheel_center| > wheel_radius)");
-    const std::initializer_list<const char*> pallet{"center", "wheel_center", "wheel_radius", "pallet_width"};
-    require("pallet_width", pallet, [&] { return I(tangent() - value("pallet_width") / c(2)); },
-            "pallet_width < twice the pallet radius (the tangent length from the pivot to the wheel)");
-    require("fork_width", {"center", "wheel_center", "wheel_radius", "pallet_width", "fork_width"},
-            [&] { return I(tangent() + value("pallet_width") / c(2) - value("fork_width") / c(2)); },
-            "fork_width / 2 < the pallet circle's outer radius");
-    require("fork_slot_width", {"fork_slot_width", "fork_width"},
-            [&] { return I(value("fork_width") - value("fork_slot_width")); }, "fork_slot_width < fork_width");
-    require("fork_slot_depth", {"center", "wheel_center", "wheel_radius", "pallet_width", "fork_length", "fork_slot_depth"},
-            [&] { return I(value("fork_length") - value("fork_slot_depth") - tangent() - value("pallet_width") / c(2)); },
-            "the fork slot ends outside the pallet circle (fork_length - fork_slot_depth > tangent length + "
-            "pallet_width/2)");
-  } else if (feature.name == "balance") {
-    positive({"radius", "pin_radius", "pin_center_radius"});
-    const std::initializer_list<const char*> keys{"radius", "pin_radius", "pin_center_radius"};
-    require("pin_center_radius", keys,
-            [&] { return I(value("pin_center_radius") + value("pin_radius") - value("radius")); },
-            "the pin sticks out of the disc (pin_center_radius + pin_radius > radius)");
-    require("pin_center_radius", keys,
-            [&] { return I(value("radius") - value("pin_center_radius") + value("pin_radius")); },
-            "the pin is attached to the disc (pin_center_radius - pin_radius < radius)");
-    require("pin_radius", keys, [&] { return I(value("radius") + value("pin_center_radius") - value("pin_radius")); },
-            "the pin does not swallow the disc (pin_radius < radius + pin_center_radius)");
-  } else if (feature.name == "spur_gear") {
-    positive({"pitch_radius", "addendum", "dedendum", "tooth_thickness"});
-    require("dedendum", {"dedendum", "pitch_radius"}, [&] { return I(value("pitch_radius") - value("dedendum")); },
-            "dedendum < pitch_radius");
-    require("pressure_angle", {"pressure_angle"}, [&] { return I(value("pressure_angle") - c(0.01)); },
-            "pressure_angle > 0.01 rad");
-    require("pressure_angle", {"pressure_angle"}, [&] { return I(c(0.7) - value("pressure_angle")); },
-            "pressure_angle < 0.7 rad");
-  } else if (feature.name == "ratchet_wheel") {
-    positive({"tip_radius", "root_radius"});
-    require("root_radius", {"root_radius", "tip_radius"}, [&] { return I(value("tip_radius") - value("root_radius")); },
-            "root_radius < tip_radius");
-  }
+  });
 }
 
 }  // namespace
