@@ -340,10 +340,15 @@ struct Simulation::Impl {
 
   // the time a state at internal time `time` is published at (the model's time unit)
   double published_time(double time) const {
-    return rebased ? Rational(t_offset + Rational(time)).get_d() / time_scale : time / time_scale;
+    // (a rational of a non-finite double would abort in GMP)
+    if (!rebased || !std::isfinite(time)) return time / time_scale;
+    return Rational(t_offset + Rational(time)).get_d() / time_scale;
   }
   // an internal time limit for the published internal-unit time `limit` (at or before it)
-  double internal_time(double limit) const { return rebased ? Rational(Rational(limit) - t_offset).get_d() : limit; }
+  double internal_time(double limit) const {
+    if (!rebased || !std::isfinite(limit)) return limit;
+    return Rational(Rational(limit) - t_offset).get_d();
+  }
   // a coordinate's physical value (whole turns put back)
   double absolute(std::size_t i) const { return sgn(turns[i]) == 0 ? q[i] : simulation::add_turns(q[i], turns[i]); }
 
@@ -353,7 +358,19 @@ struct Simulation::Impl {
     bool due = false;
     for (std::size_t i = 0; i < dofs.size(); ++i)
       if (wraps[i] && std::abs(q[i]) > wrap_bound) due = true;
-    if (!due) return;
+    // (a non-finite state is reported by the step; its rational would abort in GMP)
+    if (!due || !std::isfinite(t) || !std::all_of(q.begin(), q.end(), [](double x) { return std::isfinite(x); })) return;
+    // a point contact's abscissa is the coordinate's value where it was taken up: moved by the
+    // same whole turns
+    auto shift_points = [&](std::size_t i, const Rational& removed) {
+      auto shift = [&](Active& a) {
+        if (a.point && a.xdof == static_cast<int>(i) && std::isfinite(a.c))
+          a.c = simulation::minus_turns(Rational(a.c), removed);
+      };
+      for (Active& a : active) shift(a);
+      for (std::optional<Active>& a : last_contact)
+        if (a) shift(*a);
+    };
     if (time_rebase) {
       t_offset += Rational(t);
       rebased = true;
@@ -366,6 +383,7 @@ struct Simulation::Impl {
         if (wraps[i]) {
           simulation::ReducedAngle r = simulation::reduce_turns(at);
           dofs[i].q0 = r.angle;
+          if (r.turns != turns[i]) shift_points(i, Rational(r.turns - turns[i]));
           turns[i] = r.turns;
         } else {
           dofs[i].q0 = simulation::minus_turns(at, Rational(0));
@@ -377,13 +395,7 @@ struct Simulation::Impl {
       if (!wraps[i] || dofs[i].driven) continue;
       simulation::ReducedAngle r = simulation::reduce_turns(Rational(q[i]));
       if (sgn(r.turns) == 0) continue;
-      // a point contact's abscissa is the coordinate's value where it was taken up
-      auto shift = [&](Active& a) {
-        if (a.point && a.xdof == static_cast<int>(i)) a.c = simulation::minus_turns(Rational(a.c), r.turns);
-      };
-      for (Active& a : active) shift(a);
-      for (std::optional<Active>& a : last_contact)
-        if (a) shift(*a);
+      shift_points(i, r.turns);
       q[i] = r.angle;
       turns[i] += r.turns;
     }
