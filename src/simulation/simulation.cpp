@@ -3069,9 +3069,12 @@ void Simulation::run_until(double t_end, const std::function<void(double)>& prog
     impl_->step_and_free(internal);
     impl_->publish();
     // (after whole turns were taken out, the internal limit is t_end - t_offset rounded down:
-    // a run that reached it is at t_end)
-    if (impl_->rebased && impl_->t >= internal) impl_->public_state.time = t_end;
+    // a run that reached it is at t_end, and stops there — a wrap after it would leave the
+    // rounding's remainder as a limit past t = 0)
+    const bool reached = impl_->t >= internal;
+    if (impl_->rebased && reached) impl_->public_state.time = t_end;
     if (progress) progress(impl_->public_state.time);
+    if (reached) break;
   }
 }
 
