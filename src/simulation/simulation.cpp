@@ -36,6 +36,7 @@
 #include "simulation/touch_guard.hpp"
 #include "simulation/units.hpp"
 #include "simulation/vertex_graze.hpp"
+#include "simulation/whole_turns.hpp"
 
 #include <Eigen/Dense>
 #include <boost/numeric/odeint.hpp>
@@ -184,6 +185,22 @@ struct Simulation::Impl {
 
   std::vector<double> mu_static, mu_kinetic;   // per pair (0: frictionless)
   double t = 0;                       // seconds
+  // Whole turns taken out of the unlimited rotating coordinates (session 61, issue 11;
+  // simulation/whole_turns.hpp): a coordinate that may wrap (a rotation without angle limits and
+  // without a spring to the frame; a driver only when every driver has constant speed) is brought
+  // back to [-pi, pi] at a step boundary once some such coordinate passes wrap_bound, and its
+  // physical value is q + 2 pi turns (exact integer turns). The drivers' laws are then restarted
+  // there: the time elapsed is moved from t into the exact t_offset (t = 0) and each driver's q0
+  // becomes its law's exact position at that time, reduced by whole turns. So t and every angle
+  // stay as small as in the run's first turns, whatever its length. Published times are
+  // t_offset + t, published angles q + 2 pi turns, each rounded once.
+  static constexpr double wrap_bound = 16 * std::numbers::pi;
+  std::vector<char> wraps;            // per dof
+  std::vector<Rational> turns;        // per dof
+  std::vector<double> q0_law;         // per driver dof: its law's q0 at t_offset = 0
+  bool time_rebase = false;           // every driver has constant speed
+  Rational t_offset;                  // time units
+  bool rebased = false;
   Vec q, v;                           // per dof
   std::vector<Active> active;
   std::vector<std::optional<Active>> last_contact;   // per pair: the contact of its last impact
@@ -300,7 +317,7 @@ struct Simulation::Impl {
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       const Dof& d = dofs[i];
       if (!d.driven) E += 0.5 * d.inertia * v[i] * v[i];
-      E += 0.5 * d.stiffness * (q[i] - d.rest) * (q[i] - d.rest) - d.load * q[i];
+      E += 0.5 * d.stiffness * (q[i] - d.rest) * (q[i] - d.rest) - d.load * absolute(i);
       double F[2] = {d.force[0] + d.mass * g[0], d.force[1] + d.mass * g[1]};
       if (d.rotation) {
         double c = std::cos(q[i]), s = std::sin(q[i]);
@@ -319,6 +336,69 @@ struct Simulation::Impl {
       E += 0.5 * k.k * (L - k.rest) * (L - k.rest);
     }
     return E / force_scale;
+  }
+
+  // the time a state at internal time `time` is published at (the model's time unit)
+  double published_time(double time) const {
+    // (a rational of a non-finite double would abort in GMP)
+    if (!rebased || !std::isfinite(time)) return time / time_scale;
+    return Rational(t_offset + Rational(time)).get_d() / time_scale;
+  }
+  // an internal time limit for the published internal-unit time `limit` (at or before it)
+  double internal_time(double limit) const {
+    if (!rebased || !std::isfinite(limit)) return limit;
+    return Rational(Rational(limit) - t_offset).get_d();
+  }
+  // a coordinate's physical value (whole turns put back)
+  double absolute(std::size_t i) const { return sgn(turns[i]) == 0 ? q[i] : simulation::add_turns(q[i], turns[i]); }
+
+  // Between steps: once some wrapping coordinate passes wrap_bound, every wrapping coordinate is
+  // reduced by its whole turns and (if any driver wraps) the drivers' laws restart at t = 0.
+  void wrap_turns() {
+    bool due = false;
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (wraps[i] && std::abs(q[i]) > wrap_bound) due = true;
+    // (a non-finite state is reported by the step; its rational would abort in GMP)
+    if (!due || !std::isfinite(t) || !std::all_of(q.begin(), q.end(), [](double x) { return std::isfinite(x); })) return;
+    // a point contact's abscissa is the coordinate's value where it was taken up: moved by the
+    // same whole turns
+    auto shift_points = [&](std::size_t i, const Rational& removed) {
+      auto shift = [&](Active& a) {
+        if (a.point && a.xdof == static_cast<int>(i) && std::isfinite(a.c))
+          a.c = simulation::minus_turns(Rational(a.c), removed);
+      };
+      for (Active& a : active) shift(a);
+      for (std::optional<Active>& a : last_contact)
+        if (a) shift(*a);
+    };
+    if (time_rebase) {
+      t_offset += Rational(t);
+      rebased = true;
+      if (!std::isnan(last_touch_end)) last_touch_end -= t;
+      t = 0;
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        if (!dofs[i].driven) continue;
+        // the law's exact position at t_offset: q0 + speed t_offset
+        Rational at = Rational(q0_law[i]) + Rational(dofs[i].speed) * t_offset;
+        if (wraps[i]) {
+          simulation::ReducedAngle r = simulation::reduce_turns(at);
+          dofs[i].q0 = r.angle;
+          if (r.turns != turns[i]) shift_points(i, Rational(r.turns - turns[i]));
+          turns[i] = r.turns;
+        } else {
+          dofs[i].q0 = simulation::minus_turns(at, Rational(0));
+        }
+        q[i] = dofs[i].q0;
+      }
+    }
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      if (!wraps[i] || dofs[i].driven) continue;
+      simulation::ReducedAngle r = simulation::reduce_turns(Rational(q[i]));
+      if (sgn(r.turns) == 0) continue;
+      shift_points(i, r.turns);
+      q[i] = r.angle;
+      turns[i] += r.turns;
+    }
   }
 
   // ---------------------------------------------------------------- contact geometry
@@ -701,7 +781,7 @@ struct Simulation::Impl {
         s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged());
         if (!s.solved) {
           std::ostringstream text;
-          text << "simulation: at t = " << time / time_scale << " " << time_unit << " the contact-force problem of "
+          text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
                << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
           throw NumericError(text.str());
         }
@@ -745,7 +825,7 @@ struct Simulation::Impl {
       simulation::solve_lcp(A, b, w.lcp, s);
       if (!s.solved) {
         std::ostringstream out;
-        out << "simulation: at t = " << time / time_scale << " " << time_unit
+        out << "simulation: at t = " << published_time(time) << " " << time_unit
             << " the contact-force complementarity problem of " << m << " contacts has no solution (a jam)";
         throw NumericError(out.str());
       }
@@ -963,7 +1043,7 @@ struct Simulation::Impl {
 
   [[noreturn]] void outside(std::size_t pair, double time) const {
     std::ostringstream out;
-    out << "simulation: at t = " << time / time_scale << " " << time_unit << " the motion of " << pair_name(pair)
+    out << "simulation: at t = " << published_time(time) << " " << time_unit << " the motion of " << pair_name(pair)
         << " leaves its built C-space (a motion limit, or the border of its operating region)";
     throw GeometryError(out.str());
   }
@@ -1230,7 +1310,7 @@ struct Simulation::Impl {
   // `crossed`: the only free configurations found are beyond blocked space the move would cross
   [[noreturn]] void jammed(std::size_t pair, bool crossed = false) const {
     std::ostringstream out;
-    out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << pair_name(pair)
+    out << "simulation: at t = " << published_time(t) << " " << time_unit << " " << pair_name(pair)
         << " cannot be moved off its contact (a jammed contact change)";
     if (crossed) out << ": the nearest free configuration found lies beyond blocked space of this pair";
     throw NumericError(out.str());
@@ -1561,7 +1641,7 @@ struct Simulation::Impl {
       simulation::FrictionalSolution solution = simulation::solve_frictional(G, inverse_masses(), vm, h, friction);
       if (!solution.solved) {
         std::ostringstream out;
-        out << "simulation: at t = " << t / time_scale << " " << time_unit << " the impact problem of " << m
+        out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
             << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
         throw NumericError(out.str());
       }
@@ -1584,7 +1664,7 @@ struct Simulation::Impl {
     simulation::LcpSolution solution = simulation::solve_lcp(A, b);
     if (!solution.solved) {
       std::ostringstream out;
-      out << "simulation: at t = " << t / time_scale << " " << time_unit << " the impact problem of " << m
+      out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
           << " simultaneous contacts has no solution";
       throw NumericError(out.str());
     }
@@ -1697,7 +1777,7 @@ struct Simulation::Impl {
       double after = 0;
       for (std::size_t i = 0; i < dofs.size(); ++i) after += r.g[i] * v[i];
       SimulationEvent e;
-      e.time = t / time_scale;
+      e.time = published_time(t);
       e.pair = r.pair;
       e.first_part = model.parts[model.pairs[r.pair].first].name;
       e.second_part = model.parts[model.pairs[r.pair].second].name;
@@ -1857,7 +1937,7 @@ struct Simulation::Impl {
   void edge_event(const Active& a, SimulationEvent::Kind kind, double impulse = 0, double before = 0, double after = 0) {
     SimulationEvent e;
     e.kind = kind;
-    e.time = t / time_scale;
+    e.time = published_time(t);
     e.pair = a.pair;
     e.first_part = model.parts[model.pairs[a.pair].first].name;
     e.second_part = model.parts[model.pairs[a.pair].second].name;
@@ -2230,7 +2310,7 @@ struct Simulation::Impl {
   void not_finite_accelerations(const Vec& qs, const Vec& vs, const Vec& a) const {
     if (std::all_of(a.begin(), a.end(), [](double value) { return std::isfinite(value); })) return;
     std::ostringstream out;
-    out << "simulation: at t = " << t / time_scale << " " << time_unit << " the acceleration of";
+    out << "simulation: at t = " << published_time(t) << " " << time_unit << " the acceleration of";
     const char* separator = " ";
     for (std::size_t i = 0; i < a.size(); ++i) {
       if (std::isfinite(a[i])) continue;
@@ -2252,7 +2332,7 @@ struct Simulation::Impl {
         }
       out << ")";
       const auto at_time = std::find_if(events.rbegin(), events.rend(), [&](const SimulationEvent& e) {
-        return e.time != t / time_scale;
+        return e.time != published_time(t);
       });
       if (at_time != events.rbegin()) {
         const SimulationEvent& e = *std::prev(at_time);
@@ -2348,7 +2428,7 @@ struct Simulation::Impl {
       dt = trial;
       if (attempt > 200 || dt < 1e-300) {
         std::ostringstream out;
-        out << "simulation: at t = " << t / time_scale << " " << time_unit << " the integrator's step size underflows";
+        out << "simulation: at t = " << published_time(t) << " " << time_unit << " the integrator's step size underflows";
         if (overflowed)
           out << ": every trial step down to " << dt * 4 / time_scale << " " << time_unit
               << " gave a non-finite state (accelerations or velocities beyond the doubles' range)";
@@ -2360,7 +2440,7 @@ struct Simulation::Impl {
     for (double value : x1)
       if (!std::isfinite(value)) {
         std::ostringstream out;
-        out << "simulation: at t = " << t / time_scale << " " << time_unit
+        out << "simulation: at t = " << published_time(t) << " " << time_unit
             << " the integration produced a non-finite state (a singular contact constraint?)";
         throw NumericError(out.str());
       }
@@ -2594,7 +2674,7 @@ struct Simulation::Impl {
       t = path.t0 + u_hit_upper * path.h;
       if (!(t > path.t0)) {
         std::ostringstream out;
-        out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << pair_name(rows.front().pair)
+        out << "simulation: at t = " << published_time(t) << " " << time_unit << " " << pair_name(rows.front().pair)
             << " touches again and again without an impulse, and its crossing bracket does not move the time on";
         throw NumericError(out.str());
       }
@@ -2674,7 +2754,7 @@ struct Simulation::Impl {
     steps_in_place = t > before ? 0 : steps_in_place + 1;
     if (steps_in_place >= max_steps_in_place) {
       std::ostringstream out;
-      out << "simulation: at t = " << t / time_scale << " " << time_unit << " " << steps_in_place
+      out << "simulation: at t = " << published_time(t) << " " << time_unit << " " << steps_in_place
           << " steps in a row did not move the time on";
       if (unresolved_trial > 0) {
         // the integrator's error control, not a contact change: its accepted step is shorter
@@ -2717,11 +2797,11 @@ struct Simulation::Impl {
   }
 
   void publish() {
-    public_state.time = t / time_scale;
+    public_state.time = published_time(t);
     public_state.position.assign(model.parts.size(), 0.0);
     public_state.velocity.assign(model.parts.size(), 0.0);
     for (std::size_t i = 0; i < dofs.size(); ++i) {
-      public_state.position[dofs[i].part] = q[i];
+      public_state.position[dofs[i].part] = absolute(i);
       public_state.velocity[dofs[i].part] = v[i] * time_scale;
     }
   }
@@ -2895,6 +2975,18 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
     else s.free_dofs.push_back(i);
   }
   for (const auto& velocity : spec.velocities) s.v[s.part_dof[velocity.part]] = to_d(velocity.value) / ts;
+  // the coordinates whose whole turns may be taken out (Impl::wrap_turns)
+  s.time_rebase = std::all_of(s.dofs.begin(), s.dofs.end(), [](const Dof& d) { return !d.driven || d.profile_t.empty(); });
+  s.wraps.assign(s.dofs.size(), 0);
+  s.turns.assign(s.dofs.size(), Rational(0));
+  s.q0_law.assign(s.dofs.size(), 0.0);
+  for (std::size_t i = 0; i < s.dofs.size(); ++i) {
+    const Dof& d = s.dofs[i];
+    s.q0_law[i] = d.q0;
+    const Motion& motion = model.parts[d.part].motion;
+    s.wraps[i] = d.rotation && motion.kind == Motion::Kind::rotation && !motion.angle_limits && d.stiffness == 0 &&
+                 (!d.driven || s.time_rebase);
+  }
 
   // Coulomb coefficients per pair (static; kinetic defaults to static)
   for (const PairSpec& pair : model.pairs) {
@@ -2963,16 +3055,26 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
 }
 
 void Simulation::step() {
+  impl_->wrap_turns();
   impl_->step_and_free(std::numeric_limits<double>::infinity());
   impl_->publish();
 }
 
 void Simulation::run_until(double t_end, const std::function<void(double)>& progress) {
   double limit = t_end * impl_->time_scale;
-  while (impl_->t < limit) {
-    impl_->step_and_free(limit);
+  for (;;) {
+    impl_->wrap_turns();
+    const double internal = impl_->internal_time(limit);
+    if (!(impl_->t < internal)) break;
+    impl_->step_and_free(internal);
     impl_->publish();
+    // (after whole turns were taken out, the internal limit is t_end - t_offset rounded down:
+    // a run that reached it is at t_end, and stops there — a wrap after it would leave the
+    // rounding's remainder as a limit past t = 0)
+    const bool reached = impl_->t >= internal;
+    if (impl_->rebased && reached) impl_->public_state.time = t_end;
     if (progress) progress(impl_->public_state.time);
+    if (reached) break;
   }
 }
 

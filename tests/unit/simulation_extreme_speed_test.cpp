@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -197,6 +198,284 @@ TEST(SimulationExtremeSpeed, CamFollowerLiftsOffAtTheClosedFormAtAnySpeed) {
     EXPECT_NEAR(std::remainder(lift_angle, 2 * std::numbers::pi), expected, 1e-5)
         << "closed form " << closed << ", contact from " << contact_angle;
     if (speed > 1000) EXPECT_TRUE(ended_at_border);
+  }
+}
+
+// ------------------------------------------------------------------ long runs (session 61)
+// A run of any length behaves as its first turns (session 61, geneva61; docs/simulation.md,
+// "Session 61 (geneva61)"). geneva-drive.json at 10^6 rad/s jammed after 3012 driver turns
+// ("a jammed contact change", t = 0.0189289 s): the driver's and the wheel's angles grew without
+// bound and lost their bits within the turn. The simulator now takes whole turns out of them
+// exactly (simulation/whole_turns.hpp). Two ways to reach many turns: start the mechanism at
+// K whole turns (driver at 2 pi K, wheel at -pi K / 2: the state after K turns of the dwell; cheap),
+// and run many turns from the start (every turn's events those of the first full turn, the
+// closed form in every drive).
+
+// pi to 40 digits, exact: 2 pi K within 10^-34 K (the simulator rounds it once to a double)
+Rational pi_40() { return Rational("31415926535897932384626433832795028841971/10000000000000000000000000000000000000000"); }
+
+Model geneva_after(double speed, long turns) {
+  Model model = example_at("geneva-drive.json", "driver-speed", speed);
+  for (Part& part : model.parts) {
+    if (part.name == "driver") part.initial.angle = 2 * pi_40() * turns;
+    if (part.name == "wheel") part.initial.angle = -pi_40() * turns / 2;
+  }
+  return model;
+}
+
+struct GenevaRun {
+  std::vector<SimulationEvent> events;
+  double excess = 0, dwell_speed = 0, law_error = 0;
+  // the closed form's check reads the published angles (each rounded once, near 2 pi K and
+  // -pi K / 2) and reduces them with the double 2 pi: an error of a few units in their last
+  // place, times 1 + the closed form's largest slope lambda / (1 - lambda) for the driver's
+  double reading = 0;
+  std::size_t drive_states = 0, steps = 0;
+};
+
+// `count` driver turns of geneva-drive.json at `speed` rad/s from K = `turns` whole turns: the
+// closed form's excess over the slot's play in every drive, the wheel's speed in every dwell, the
+// driver's law (phi = phi0 + w t, in units of phi's own rounding)
+GenevaRun geneva_run(double speed, long turns, double count) {
+  Simulation s = Simulation::create(geneva_after(speed, turns));
+  const double centre = 80, crank = 56.5, half_clearance = 0.5, lambda = crank / centre;
+  const double end = count * 2 * std::numbers::pi / speed;
+  const double phi0 = s.state().position[0];
+  GenevaRun out;
+  out.reading = 4 * (1 + lambda / (1 - lambda)) * std::numeric_limits<double>::epsilon() *
+                (std::abs(phi0) + std::abs(s.state().position[1]));
+  while (s.state().time < end) {
+    s.step();
+    EXPECT_TRUE(finite_state(s.state()));
+    const double phi = s.state().position[0], theta = s.state().position[1];
+    // (the published angles are rounded once: half a unit in the last place of each)
+    out.law_error = std::max(out.law_error, std::abs(phi - (phi0 + speed * s.state().time)) /
+                                                (std::numeric_limits<double>::epsilon() * (1 + std::abs(phi))));
+    const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
+    if (std::abs(psi) < std::numbers::pi / 4 - 0.02) {
+      const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
+      const double rho = std::hypot(centre - crank * std::cos(psi), crank * std::sin(psi));
+      const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
+      out.excess = std::max(out.excess, std::abs(rel) - std::asin(half_clearance / rho));
+      ++out.drive_states;
+    }
+    // the dwell, away from the lock's ends (psi within 0.13 turn of the drive's centre's opposite)
+    if (std::abs(std::remainder(phi, 2 * std::numbers::pi)) < 0.8)
+      out.dwell_speed = std::max(out.dwell_speed, std::abs(s.state().velocity[1]) / speed);
+  }
+  // (the last step goes past `end` by its own length: the events up to `end`)
+  for (const SimulationEvent& e : s.events())
+    if (e.time < end) out.events.push_back(e);
+  out.steps = s.steps();
+  return out;
+}
+
+// the events as lines "kind features driver-angle" (a failure's listing)
+std::string listing(const std::vector<SimulationEvent>& events, double speed) {
+  std::ostringstream out;
+  out.precision(10);
+  for (const SimulationEvent& e : events) {
+    out << "\n  " << static_cast<int>(e.kind);
+    for (const std::string& f : e.features) out << " [" << f << "]";
+    out << " at " << e.time * speed;
+  }
+  return out.str();
+}
+
+// The events of driver turn j (driver angle w t - 2 pi j in [0, 2 pi)), with that angle in `angles`
+std::vector<const SimulationEvent*> turn_events(const GenevaRun& run, double speed, long j, std::vector<double>& angles) {
+  std::vector<const SimulationEvent*> out;
+  angles.clear();
+  for (const SimulationEvent& e : run.events) {
+    const double a = e.time * speed - 2 * std::numbers::pi * static_cast<double>(j);
+    if (a >= 0 && a < 2 * std::numbers::pi) {
+      out.push_back(&e);
+      angles.push_back(a);
+    }
+  }
+  return out;
+}
+
+// The wheel's features of a label, renumbered by `shift` slots: the wheel turns a quarter per
+// driver turn, so the driver meets slot n + 1 one turn after slot n
+std::string wheel_shifted(const std::string& label, long shift) {
+  std::string out = label;
+  const std::size_t at = out.find("/ wheel");
+  if (at == std::string::npos) return out;
+  for (std::size_t i = at; i < out.size(); ++i)
+    if (out[i] >= '1' && out[i] <= '4') out[i] = static_cast<char>('1' + (((out[i] - '1' + shift) % 4) + 4) % 4);
+  return out;
+}
+
+// every full turn's events (kinds, feature pairs with the wheel's slots renumbered, driver angles
+// within the turn) those of turn 1, the first full one (turn 0 starts with the wheel at rest in
+// the middle of the lock's play, turn 1 where the lock left it)
+void expect_turns_repeat(const GenevaRun& run, double speed, long full_turns, double angle_tolerance) {
+  std::vector<double> first_angles, angles;
+  const std::vector<const SimulationEvent*> first = turn_events(run, speed, 1, first_angles);
+  ASSERT_GE(first.size(), 8u);
+  for (long j = 2; j < full_turns; ++j) {
+    SCOPED_TRACE("driver turn " + std::to_string(j));
+    const std::vector<const SimulationEvent*> events = turn_events(run, speed, j, angles);
+    ASSERT_EQ(events.size(), first.size());
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      EXPECT_EQ(events[i]->kind, first[i]->kind) << i;
+      ASSERT_EQ(events[i]->features.size(), first[i]->features.size()) << i;
+      for (std::size_t f = 0; f < first[i]->features.size(); ++f)
+        EXPECT_EQ(wheel_shifted(events[i]->features[f], 1 - j), first[i]->features[f]) << i;
+      EXPECT_NEAR(angles[i], first_angles[i], angle_tolerance) << i;
+    }
+  }
+}
+
+// From K whole turns the Geneva makes the events of the run from K = 0 over 4.5 turns and follows
+// the closed form, at 2 pi rad/s and 10^6 rad/s (the time unit 2^-19 s): K = 3 10^5 and 10^6, and
+// at 10^6 rad/s a seeded K up to 10^6; HIPAIR_LONG_RUNS=1 adds 10^3, 3 10^4 and 10^5 over 8.5 turns.
+// Before session 61 (base61, 10^6 rad/s) the start at K = 3 10^5 added an impact at slot 2's corner
+// in turn 1, K = 10^6 one at slot 4's in turn 3, K = 10^5 one in turn 7.
+TEST(SimulationLongRun, GenevaFromManyWholeTurnsMakesTheEventsOfTheFirstTurns) {
+  const double accuracy = 1e-9;
+  const unsigned seed = static_cast<unsigned>(hipair::test::test_seed(61));
+  RecordProperty("seed", static_cast<int>(seed % 1000000));
+  std::mt19937 random(seed);
+  const long drawn = 1 + static_cast<long>(random() % 1000000);
+  const char* long_runs = std::getenv("HIPAIR_LONG_RUNS");
+  const bool long_run = long_runs && *long_runs && *long_runs != '0';
+  const double count = long_run ? 8.5 : 4.5;
+  for (double speed : {2 * std::numbers::pi, 1e6}) {
+    const GenevaRun reference = geneva_run(speed, 0, count);
+    std::vector<long> starts = {300000, 1000000};
+    if (speed > 1e3) starts.push_back(drawn);
+    if (long_run) starts.insert(starts.end(), {1000, 30000, 100000});
+    for (long turns : starts) {
+      SCOPED_TRACE("driver speed " + text(speed) + " rad/s from " + std::to_string(turns) + " whole turns (seed " +
+                   std::to_string(seed) + ")");
+      const GenevaRun run = geneva_run(speed, turns, count);
+      EXPECT_GE(run.drive_states, 10u);
+      EXPECT_LE(run.excess, accuracy + run.reading);
+      EXPECT_LE(run.dwell_speed, accuracy);
+      EXPECT_LE(run.law_error, 2.0);
+      const double angle_tolerance = accuracy * static_cast<double>(std::max(run.steps, reference.steps));
+      ASSERT_EQ(run.events.size(), reference.events.size())
+          << "run:" << listing(run.events, speed) << "\nreference:" << listing(reference.events, speed);
+      for (std::size_t i = 0; i < run.events.size(); ++i) {
+        EXPECT_EQ(run.events[i].kind, reference.events[i].kind) << i;
+        EXPECT_EQ(run.events[i].features, reference.events[i].features) << i;
+        EXPECT_NEAR(run.events[i].time * speed, reference.events[i].time * speed, angle_tolerance) << i;
+      }
+    }
+  }
+}
+
+// Many turns from the start: every full turn repeats the first one's events, the closed form holds
+// in every drive and the wheel rests in every dwell. CI runs 40 turns at 10^6 rad/s (five times
+// past the bound at which whole turns are taken out, and the time restarted); HIPAIR_LONG_RUNS=1
+// adds 3500 turns at 10^6 rad/s (past the 3012 turns at which the run jammed before session 61) and
+// 10^3 turns at a seeded speed in 10^4 ... 10^12 rad/s (minutes each).
+TEST(SimulationLongRun, GenevaRunForManyTurnsRepeatsItsFirstTurn) {
+  const double accuracy = 1e-9;
+  const unsigned seed = static_cast<unsigned>(hipair::test::test_seed(61));
+  RecordProperty("seed", static_cast<int>(seed % 1000000));
+  std::vector<std::pair<double, long>> cases = {{1e6, 40}};
+  if (const char* long_runs = std::getenv("HIPAIR_LONG_RUNS"); long_runs && *long_runs && *long_runs != '0') {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> exponent(4, 12);
+    cases.push_back({1e6, 3500});
+    cases.push_back({std::pow(10.0, exponent(random)), 1000});
+  }
+  for (const auto& [speed, turns] : cases) {
+    SCOPED_TRACE("driver speed " + text(speed) + " rad/s over " + std::to_string(turns) + " turns (seed " +
+                 std::to_string(seed) + ")");
+    const GenevaRun run = geneva_run(speed, 0, static_cast<double>(turns) + 0.5);
+    EXPECT_GE(run.drive_states, 10u * static_cast<std::size_t>(turns));
+    EXPECT_LE(run.excess, accuracy);
+    EXPECT_LE(run.dwell_speed, accuracy);
+    EXPECT_LE(run.law_error, 2.0);
+    expect_turns_repeat(run, speed, turns, accuracy * static_cast<double>(run.steps));
+  }
+}
+
+// cam-drive.json (a rotating cam and a translating follower): from K whole turns of the cam the
+// follower makes the events of the run from K = 0 over two turns, at 150 rad/s (riding) and
+// 220 rad/s (thrown off and struck again).
+TEST(SimulationLongRun, CamFollowerFromManyWholeTurnsMakesTheEventsOfTheFirstTurns) {
+  const double accuracy = 1e-9;
+  for (double speed : {150.0, 220.0}) {
+    auto run = [&](long turns) {
+      Model model = example_at("cam-drive.json", "cam-speed", speed);
+      for (Part& part : model.parts)
+        if (part.name == "cam") part.initial.angle = 2 * pi_40() * turns;
+      Simulation s = Simulation::create(model);
+      s.run_until(2 * 2 * std::numbers::pi / speed);
+      EXPECT_TRUE(finite_state(s.state()));
+      return std::pair{s.events(), s.steps()};
+    };
+    const auto [reference, reference_steps] = run(0);
+    for (long turns : {1000L, 100000L}) {
+      SCOPED_TRACE("cam speed " + text(speed) + " rad/s from " + std::to_string(turns) + " whole turns");
+      const auto [events, steps] = run(turns);
+      const double angle_tolerance = accuracy * static_cast<double>(std::max(steps, reference_steps));
+      ASSERT_EQ(events.size(), reference.size());
+      for (std::size_t i = 0; i < events.size(); ++i) {
+        EXPECT_EQ(events[i].kind, reference[i].kind) << i;
+        EXPECT_EQ(events[i].features, reference[i].features) << i;
+        EXPECT_NEAR(events[i].time * speed, reference[i].time * speed, angle_tolerance) << i;
+      }
+    }
+  }
+}
+
+// A gear pair (spur-gears.json with 6 and 8 teeth, backlash 0.1 mm; the pinion driven by its
+// torque from rest, the gear damped): from K1 whole turns of the pinion and K2 of the gear (the
+// same point of the pair's torus) the run makes the events of the run from (0, 0), and its
+// published angles are those of that run plus the whole turns. The two runs' configurations
+// differ only by the rounding of the start (2 pi K to a double: up to 6e-11 rad at K = 10^5), so
+// the tolerance is that of the Geneva runs (accuracy per step). The C-space build makes this a few
+// seconds per run (40 s for the test): it runs with HIPAIR_LONG_RUNS=1 only, at K = 10^3, 10^4, 10^5.
+TEST(SimulationLongRun, GearPairFromManyWholeTurnsMakesTheEventsOfTheFirstTurns) {
+  const char* long_runs = std::getenv("HIPAIR_LONG_RUNS");
+  if (!long_runs || !*long_runs || *long_runs == '0') GTEST_SKIP() << "HIPAIR_LONG_RUNS=1 runs it (about a minute)";
+  const double accuracy = 1e-9;
+  auto run = [&](long pinion_turns, long gear_turns) {
+    ReadOptions read;
+    read.parameter_values["teeth-1"] = Rational(6);
+    read.parameter_values["teeth-2"] = Rational(8);
+    read.parameter_values["backlash"] = Rational(1, 10);
+    read.parameter_values["center-distance"] = Rational(14);
+    read.allow_out_of_tolerance = true;
+    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json", read);
+    model.parts[0].initial.angle = 2 * pi_40() * pinion_turns;
+    model.parts[1].initial.angle = 2 * pi_40() * gear_turns;
+    SimulationOptions options;
+    options.accuracy = accuracy;
+    Simulation s = Simulation::create(model, options);
+    s.run_until(0.1);
+    EXPECT_TRUE(finite_state(s.state()));
+    return s;
+  };
+  const Simulation reference = run(0, 0);
+  ASSERT_GE(reference.events().size(), 3u);
+  const std::vector<std::pair<long, long>> starts = {{10000, -7500}, {1000, 1000}, {100000, -75000}};
+  for (const auto& [k1, k2] : starts) {
+    SCOPED_TRACE("gear pair from " + std::to_string(k1) + " and " + std::to_string(k2) + " whole turns");
+    const Simulation s = run(k1, k2);
+    const double tolerance = accuracy * static_cast<double>(std::max(s.steps(), reference.steps()));
+    ASSERT_EQ(s.events().size(), reference.events().size())
+        << "run:" << listing(s.events(), 1) << "\nreference:" << listing(reference.events(), 1);
+    for (std::size_t i = 0; i < s.events().size(); ++i) {
+      EXPECT_EQ(s.events()[i].kind, reference.events()[i].kind) << i;
+      EXPECT_EQ(s.events()[i].features, reference.events()[i].features) << i;
+      EXPECT_NEAR(s.events()[i].time, reference.events()[i].time, tolerance) << i;
+    }
+    const double turns[2] = {static_cast<double>(k1), static_cast<double>(k2)};
+    for (int p = 0; p < 2; ++p) {
+      const double whole = 2 * std::numbers::pi * turns[p];
+      EXPECT_NEAR(s.state().position[p] - whole, reference.state().position[p],
+                  tolerance + 4 * std::numeric_limits<double>::epsilon() * std::abs(whole))
+          << p;
+      EXPECT_NEAR(s.state().velocity[p], reference.state().velocity[p], tolerance * (1 + std::abs(reference.state().velocity[p])))
+          << p;
+    }
   }
 }
 
