@@ -103,6 +103,8 @@ std::optional<Rational> scale_free_factor(const Part& fixed, const Part& free, b
 /// (the largest coordinate in [2^-20, 2^40] mm), otherwise the power of two 2^(e - 4) with 2^e
 /// within a factor 2 of the largest coordinate (exact).
 Rational length_unit(const Part& fixed, const Part& free);
+/// length_unit's rule for a given largest coordinate (1 in [2^-20, 2^40] mm, else 2^(e - 4)).
+Rational length_unit_of_largest(const Rational& largest);
 
 /// The power of two 2^(e - 4) with 2^e within a factor 2 of the largest coordinate, at any
 /// scale (length_unit without the ordinary range; 1 for a pair with no coordinate but 0).

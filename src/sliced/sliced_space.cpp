@@ -265,10 +265,11 @@ bool ordinary_scale(const Rational& largest) {
   return largest >= low && largest <= high;
 }
 
-Rational length_unit(const Part& fixed, const Part& free) {
-  const CoordinateMeasure m = pair_measure(fixed, free);
-  if (sgn(m.largest) == 0 || ordinary_scale(m.largest)) return 1;
-  return unit_of_size(m.largest);
+Rational length_unit(const Part& fixed, const Part& free) { return length_unit_of_largest(pair_measure(fixed, free).largest); }
+
+Rational length_unit_of_largest(const Rational& largest) {
+  if (sgn(largest) == 0 || ordinary_scale(largest)) return 1;
+  return unit_of_size(largest);
 }
 
 Rational size_unit(const Part& fixed, const Part& free) {

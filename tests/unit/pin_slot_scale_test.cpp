@@ -318,5 +318,66 @@ TEST(PinSlotScale, FarAndHugePairsLocateMillimetreConfigurationsAsAtOneMillimetr
   EXPECT_GT(located[static_cast<int>(PinSlotLocation::Kind::blocked)], 20u);
 }
 
+
+// A claw far along its slot (issue 13, session 61): a 6 x 2 mm claw on a pin-slot part whose
+// pivot is at (0, Y), swinging its tip (x = 20) across a translating block's side (x = 20.5).
+// As Y grows the pair tends to the claw translating across the block by h = 2 tau Y, so the
+// stack is the same at every Y: the same free cells per slice, changes, cell pairs joined and
+// groups at Y = 10^18 and 10^30, and with the pair at Y = 10^18 times 3/4 10^-300 and times
+// 5/8 10^400 (in units of 2^L mm), as at Y = 10^6 (Y = 10^300, 19 s: the same by `hipair cspace`). The critical values cluster within
+// O(1/Y) of h = 0.5 (the tip reaching the side at each slide), so a slice lies about 1/Y^2 in
+// tau from one while the witness segment from the slice before is 1/Y long: first_crossing's
+// resolution of 2^-44 of the segment left a contact 10^-36 beyond its end undecided (grazing),
+// and segment_free refused it; the 1-D C-space's intervals decide it now. base61: 2 groups for
+// 1 at 10^18 and 10^30 (36 connections for 37), 3 at 10^100, 5 at 10^300. The copy at 10^-300
+// had 25 critical values for 15 (the certificate's lever stage measured the lever in mm, not in
+// the parts' unit). Every witness is free by the exact overlap oracle at 17 angles along its
+// segment (pin_slot_scale_check_witnesses).
+TEST(PinSlotScale, AClawFarAlongItsSlotJoinsTheSameCellsAtEveryDistance) {
+  auto claw_pair = [](int exponent) {
+    const std::string y = "1" + std::string(static_cast<std::size_t>(exponent), '0');
+    return read_model(R"({"hipair": 1, "name": "claw", "units": {"length": "mm", "angle": "deg"},
+      "parts": [
+        {"name": "block", "motion": {"translation": {"direction": [0, 1], "limits": [-5, 5]}},
+         "loops": [{"label": "block", "start": [20.5, -14], "edges": [{"line_to": [21.5, -14]},
+           {"line_to": [21.5, -9.2]}, {"line_to": [20.5, -9.2]}, {"line_to": [20.5, -14]}]}]},
+        {"name": "claw", "motion": {"pin_slot": {"pivot": [0, )" + y + R"(], "direction": [0, 1],
+           "angle_limits": [-1, 1], "limits": [-6, 6]}},
+         "loops": [{"label": "claw", "start": [14, -13], "edges": [{"line_to": [20, -13]},
+           {"line_to": [20, -11]}, {"line_to": [14, -11]}, {"line_to": [14, -13]}]}]}],
+      "pairs": [{"parts": ["block", "claw"]}]})");
+  };
+  PinSlotBuildOptions options;
+  options.normalise_lengths = true;   // as `hipair cspace`
+  const Model near = claw_pair(6);
+  const PinSlotSpace reference = PinSlotSpace::build(near, "block", "claw", options);
+  const PinSlotScaleSummary expected = pin_slot_scale_summary(reference);
+  const auto joined = pin_slot_scale_joined(reference);
+  ASSERT_EQ(expected.groups, 1u);
+  ASSERT_GT(expected.connections, 30u);
+  pin_slot_scale_check_witnesses(near, reference, "Y = 10^6");
+  auto expect_as_near = [&](const Model& model, const std::string& what, bool check_witnesses) {
+    const PinSlotSpace space = PinSlotSpace::build(model, "block", "claw", options);
+    const PinSlotScaleSummary got = pin_slot_scale_summary(space);
+    EXPECT_EQ(got.free_cells, expected.free_cells) << what;
+    EXPECT_EQ(got.changes, expected.changes) << what;
+    EXPECT_EQ(space.critical_values().size(), reference.critical_values().size()) << what;
+    EXPECT_EQ(pin_slot_scale_joined(space), joined) << what;
+    EXPECT_EQ(got.groups, expected.groups) << what;
+    if (check_witnesses) pin_slot_scale_check_witnesses(model, space, what);
+  };
+  for (int exponent : {18, 30}) expect_as_near(claw_pair(exponent), "Y = 10^" + std::to_string(exponent), true);
+  const Model far = claw_pair(18);
+  for (const auto& [factor, what] : {std::pair<Rational, std::string>{Rational(3, 4) * pin_slot_test::exact_power10(-300), "Y = 10^18 x 3/4 10^-300"},
+                                     std::pair<Rational, std::string>{Rational(5, 8) * pin_slot_test::exact_power10(400), "Y = 10^18 x 5/8 10^400"}}) {
+    Model model = far;
+    Rational f = factor;
+    f.canonicalize();
+    for (Part& part : model.parts) part = sliced::scaled_part(part, f);
+    // (the copy at 10^400 is stacked in units of 2^L mm: its witnesses are not in mm)
+    expect_as_near(model, what, f < 1);
+  }
+}
+
 }  // namespace
 }  // namespace hipair
