@@ -47,6 +47,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -391,7 +392,9 @@ TEST(SimulationGearMesh, PairsListedInTheEnvironment) {
     Rational backlash(std::stol(m[3]), 1000), offset(std::stol(m[4]), 1000);
     backlash.canonicalize();
     offset.canonicalize();
-    expect_meshing(std::stol(m[1]), std::stol(m[2]), backlash, offset);
+    const MeshSummary summary = expect_meshing(std::stol(m[1]), std::stol(m[2]), backlash, offset);
+    std::cout << m[0] << ": " << (summary.locked ? "locked" : "meshed") << ", " << summary.ratio_checks
+              << " ratio checks\n";
   }
   EXPECT_GT(pairs, 0u) << "HIPAIR_GEAR_PAIRS names no pair z1xz2:backlash:offset: " << list;
 }
