@@ -411,9 +411,15 @@ TEST(SimulationGearMesh, PairsListedInTheEnvironment) {
 // - 6 x 10 without backlash, offset 0.1 mm: the impact into the cusp "has no consistent stick/slip
 //   solution" at t = 0.0620619 s (both contacts sticking stop the pair and leave the impulses
 //   open; the frictionless impulses are the consistent solution).
-TEST(SimulationGearMesh, PairsThatFailedAtDrawnParametersLockAtTheirCusp) {
+// And one that meshes: 7 x 8, backlash 0.105 mm, offset -0.016 mm (seed 61's first pair):
+// "a jammed contact change ... beyond blocked space" at t = 0.267906 s, the same stale vertex end
+// at a tooth change.
+TEST(SimulationGearMesh, PairsThatFailedAtDrawnParametersLockAtTheirCuspOrMesh) {
   EXPECT_TRUE(expect_meshing(6, 11, Rational(2, 25), Rational(-1, 50)).locked);
   EXPECT_TRUE(expect_meshing(6, 10, Rational(0), Rational(1, 10)).locked);
+  const MeshSummary meshed = expect_meshing(7, 8, Rational(21, 200), Rational(-2, 125));
+  EXPECT_FALSE(meshed.locked);
+  EXPECT_GE(meshed.ratio_checks, 1u);
 }
 
 // The 6 x 8 pair of backlash 0.087 mm and centre offset -0.013 mm (seed 3 before session 58):
