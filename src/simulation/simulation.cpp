@@ -1639,6 +1639,17 @@ struct Simulation::Impl {
       for (std::size_t k = 0; k < m; ++k) h(k) = rows[k].restitution * std::min(gv(k), 0.0);
       // velocity level: v+ = v- + M^-1 (W^T Lambda + T_S^T F_S), w = G v+ + e G v- (Newton)
       simulation::FrictionalSolution solution = simulation::solve_frictional(G, inverse_masses(), vm, h, friction);
+      // No assignment consistent: a plastic impact into a cusp of the free space (a gear pair
+      // whose channel closes, the held contact of the gear's tip on the pinion's radial flank
+      // meeting the back flanks' contact, rows nearly opposite: 6 x 10 teeth without backlash at
+      // centre offset 0.1 mm, t = 0.0620619 s, session 61). Both contacts sticking stop the pair
+      // (v+ = 0) and leave the normal impulses open (the reduced matrix vanishes), so the
+      // minimum-norm impulses (0) cannot stick and each slip is inconsistent; the frictionless
+      // impulses that stop both rows are a consistent solution there, with no tangential
+      // impulse (inside every friction cone). The same rule as the held wedge's forces (session
+      // 36, `undetermined_plain`), tried only where the enumeration without it finds nothing,
+      // so every impact it solved is solved as before.
+      if (!solution.solved) solution = simulation::solve_frictional(G, inverse_masses(), vm, h, friction, {}, true);
       if (!solution.solved) {
         std::ostringstream out;
         out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
@@ -1838,6 +1849,15 @@ struct Simulation::Impl {
       b.x_lo = edge.x_chart.lower;
       b.x_hi = edge.x_chart.upper;
       b.unit = unit_of(b);
+      // a contact taken up at a vertex keeps its slack about the end it enters the new edge by
+      // (the seam or vertex it is at now), the fixed edge slack past the other (end_slacks). The
+      // old edge's vertex_end names the old edge's end the step's cut reached: copied, it named
+      // the new edge's far end wherever the motion runs towards the upper end, and the cut there
+      // came three edge slacks past it (session 61: 6 x 11 teeth, backlash 0.08 mm, offset -0.02 mm, the gear's tip on
+      // the pinion's radial flank continued across the chart seam at 1/16 and ran 3e-9 past the
+      // cusp where the back flanks' contact begins, beyond that contact's reach: released into
+      // blocked space, "a jammed contact change")
+      if (b.at_vertex) mark_vertex_end(b);
       Vec G;
       double h, gval;
       b.sigma = 1;
