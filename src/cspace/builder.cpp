@@ -104,6 +104,7 @@ class CurveCuller {
     sides_to(deepest);
     ++curve_;   // every entry of an earlier curve is stale
     row_cache_ = culling_row_cache().load(std::memory_order_relaxed);
+    known_blocked_ = culling_known_blocked().load(std::memory_order_relaxed);
     visit(f, clauses, 0, 0, 0, boxes, f.evaluate(cell_x(0, 0), cell_y(0, 0)), 0);
     std::sort(boxes.begin(), boxes.end());
     cells.clear();
@@ -170,6 +171,15 @@ class CurveCuller {
              int depth, long i, long j, std::vector<std::array<double, 4>>& found, algebra::Interval value,
              std::uint64_t settled) {
     if (!value.contains_zero()) return;
+    // A cell the grid has answered blocked already (the curve generator's walk, which tests
+    // every depth from 2 and ran before this one, or an earlier curve's walk) is left at once:
+    // every finest cell below it would be answered blocked — a cell with an untested entry
+    // inside a blocked cell is blocked (BlockedCells::blocked), and none below it has a tested
+    // entry: both walks test a cell only after every tested ancestor answered free (the
+    // generator from depth 2, this walk at the odd depths and the finest) and descend no
+    // further from a blocked one, and the generator's walk was over before this one began. So
+    // no window or cell changes; the cell's clauses and children are not evaluated.
+    if (known_blocked_ && depth >= 2 && depth <= grid_.depth() && grid_.known_blocked(depth, i, j)) return;
     algebra::Interval x = cell_x(depth, i), y = cell_y(depth, j);
     bool strict = !entry_->empty();   // every clause holds strictly over the cell (so far)
     for (std::size_t k = 0; k < clauses.size(); ++k) {
@@ -257,6 +267,7 @@ class CurveCuller {
   std::size_t f_slot_ = 0;                // slot of f (after the atoms)
   std::uint64_t curve_ = 0;               // the current curve's number (from 1)
   bool row_cache_ = true;                 // culling_row_cache() when the curve's walk began
+  bool known_blocked_ = true;             // culling_known_blocked() when the curve's walk began
   std::vector<algebra::Interval> rows_;   // f's rows without the cache (scratch)
   std::vector<std::vector<RowEntry>> row_caches_;   // per depth: slot * row_ways + j % row_ways
 };
@@ -264,6 +275,11 @@ class CurveCuller {
 }  // namespace
 
 std::atomic<bool>& culling_row_cache() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+std::atomic<bool>& culling_known_blocked() {
   static std::atomic<bool> on{true};
   return on;
 }

@@ -277,6 +277,15 @@ std::optional<algebra::Interval> quadratic_root_enclosure(const mpz_class& a, co
 /// evaluating each cell alone: the same windows and cells). On by default; tests turn it off
 /// to compare with the plain evaluation per cell.
 std::atomic<bool>& culling_row_cache();
+/// The culling quadtree leaves a cell the chart's grid has already answered blocked (the curve
+/// generator's walk tests the even depths the quadtree does not) without evaluating its clauses
+/// or children: every cell below it would be answered blocked (see CurveCuller::visit). The
+/// same windows and cells. On by default; tests turn it off to compare.
+std::atomic<bool>& culling_known_blocked();
+/// The grids of a pair's boxes share their parts' poses where a part's axis and box side are
+/// the same (SharedPoses; the operating-region flood's charts likewise). The same answers. On
+/// by default; tests turn it off to compare.
+std::atomic<bool>& shared_chart_poses();
 /// The operating region's flood gathers each tile's disk pairs before its blocks' and gives a
 /// kept tile's grid the list of the tile (or of the block holding it): the grid's cells without
 /// a tested ancestor test those pairs instead of sweeping every disk (BlockedCells::enclose;

@@ -139,6 +139,15 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
   std::vector<std::vector<char>> seen(nx * ny, std::vector<char>(grid * grid, 0));
   std::vector<std::array<std::size_t, 3>> queue;
   std::vector<cspace::BlockedTester::Cache> caches(nx * ny);   // per chart: its axes are fixed
+  // a part's poses depend only on its own axis (BlockedTester::axis_of) and interval: the charts
+  // with the same axis for a part share that part's poses (the cells' intervals are the same
+  // doubles there), as the same computation gives the same poses
+  for (std::size_t c = 0; c < nx * ny && cspace::shared_chart_poses().load(std::memory_order_relaxed); ++c)
+    for (int k = 0; k < 2; ++k) {
+      const int use = tester.axis_of(k);
+      const std::size_t first = use == 0 ? (c / ny) * ny : use == 1 ? c % ny : 0;   // the first chart with that axis
+      if (first != c) caches[c].share(k, caches[first].part(k));
+    }
   // The disk pairs that can certify a cell, gathered once per block of block_side x block_side
   // cells (BlockedTester::blocked's `narrowed` list of the block's box, which contains each of
   // its cells' boxes: the cells' ends are monotone in the index). A cell is then tested on its
@@ -299,6 +308,11 @@ RegionTiles flood_region(const Model& model, const cspace::PairAxes& axes, const
 }  // namespace
 
 std::atomic<bool>& cspace::region_tile_lists() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+std::atomic<bool>& cspace::shared_chart_poses() {
   static std::atomic<bool> on{true};
   return on;
 }
@@ -466,6 +480,10 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   // each box's curves are generated when the builder reaches it (PairInput::make_chart):
   // the boxes are built one at a time, with one box's curves alive
   input.chart_count = boxes.size();
+  // the parts' poses shared between boxes with an axis in common (the charts made one at a
+  // time on this thread; the answers are those of a cache per grid)
+  cspace::SharedPoses shared_poses;
+  const bool share_poses = cspace::shared_chart_poses().load(std::memory_order_relaxed);
   input.make_chart = [&](std::size_t c, PairInput& building) {
     const BoxToBuild& box = boxes[c];
     ChartInput chart;
@@ -477,7 +495,8 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     auto start = Clock::now();
     std::shared_ptr<BlockedCells> cells;
     if (curve_options.blocked_grid)
-      cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth);
+      cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth,
+                                             share_poses ? &shared_poses : nullptr);
     // (a tile: its cells test the flood's list of a box holding it, when the box holds the grid's)
     if (cells && box.list.pairs) cells->enclose(box.list.x, box.list.y, box.list.pairs);
     std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get());

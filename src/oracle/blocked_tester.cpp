@@ -498,7 +498,7 @@ std::size_t BlockedTester::Cache::KeyHash::operator()(const std::pair<double, do
 bool BlockedTester::posed_parts(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
                                 const algebra::Interval& y, Cache& cache, const Posed* out[2]) const {
   return each_part(x_axis, y_axis, x, y, [&](int k, const ChartAxis& axis, const algebra::Interval& range, const auto& key) {
-    auto [it, inserted] = cache.posed_[k].try_emplace(key);
+    auto [it, inserted] = cache.parts_[k]->posed.try_emplace(key);
     if (inserted) it->second.usable = pose_part(k, axis, range, it->second);
     out[k] = &it->second;
     return it->second.usable;
@@ -516,7 +516,7 @@ bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis
     for (int k = 0; k < 2; ++k) {
       const int depth = moves_[k] ? cell->depth : 0;
       const long index = !moves_[k] ? 0 : (k == 0 || !moves_[0]) ? cell->i : cell->j;
-      const std::vector<Cache::Pose*>& table = cache.by_cell_[k][depth];
+      const std::vector<Cache::Pose*>& table = cache.parts_[k]->by_cell[depth];
       if (index >= 0 && static_cast<std::size_t>(index) < table.size()) found[k] = table[static_cast<std::size_t>(index)];
     }
     if (found[0] && found[1]) {
@@ -531,7 +531,7 @@ bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis
     if (cell && cell->depth >= 0 && cell->depth < Cache::cell_index_depths) {
       const int depth = moves_[k] ? cell->depth : 0;
       const long index = moves_[k] ? (&range == &x ? cell->i : cell->j) : 0;
-      std::vector<Cache::Pose*>& table = cache.by_cell_[k][depth];
+      std::vector<Cache::Pose*>& table = cache.parts_[k]->by_cell[depth];
       if (table.empty()) table.assign(std::size_t{1} << depth, nullptr);
       if (index >= 0 && static_cast<std::size_t>(index) < table.size()) {
         indexed = &table[static_cast<std::size_t>(index)];
@@ -541,7 +541,7 @@ bool BlockedTester::pose_bounds(const ChartAxis& x_axis, const ChartAxis& y_axis
         }
       }
     }
-    auto [it, inserted] = cache.bounds_[k].try_emplace(key);
+    auto [it, inserted] = cache.parts_[k]->bounds.try_emplace(key);
     if (inserted) it->second.bound = pose_bound(k, axis, range);
     out[k] = &it->second;
     if (indexed) *indexed = &it->second;
@@ -933,13 +933,55 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
 // ---------------------------------------------------------------- the grid of one chart box
 
 BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y,
-                           int dimension, int depth)
+                           int dimension, int depth, SharedPoses* shared)
     : tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
       dimension_(dimension), depth_(depth),
       x_{algebra::lower_double(x.lo), algebra::upper_double(x.hi)},
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
                         : algebra::Interval{0, 0}} {
   if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
+  // (a pose is found by the cell's column or row index, a pure function of the box side the
+  // axis's cells cut: the side is part of the pool's key with the axis)
+  if (shared && tester_ && dimension_ == 2)
+    for (int k = 0; k < 2; ++k) {
+      const int use = tester_->axis_of(k);
+      const algebra::Interval& side = use == 1 ? y_ : x_;
+      cache_.share(k, shared->part(tester_, k, use, use == 1 ? y_axis_ : x_axis_, side.lo, side.hi));
+    }
+}
+
+std::shared_ptr<BlockedTester::Cache::Part> SharedPoses::part(const std::shared_ptr<const BlockedTester>& tester, int k,
+                                                              int use, const ChartAxis& axis, double lo, double hi) {
+  // a fixed part's pose depends on no axis: one entry per part
+  const bool fixed = use < 0;
+  auto same = [&](const Entry& e) {
+    return e.tester == tester && e.k == k && e.use == use &&
+           (fixed || (e.kind == axis.kind && e.half_turn == axis.half_turn &&
+                      std::bit_cast<std::uint64_t>(e.lo) == std::bit_cast<std::uint64_t>(lo) &&
+                      std::bit_cast<std::uint64_t>(e.hi) == std::bit_cast<std::uint64_t>(hi)));
+  };
+  for (std::size_t m = 0; m < entries_.size(); ++m)
+    if (same(entries_[m])) {
+      // the most recently used last
+      Entry found = std::move(entries_[m]);
+      entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(m));
+      entries_.push_back(std::move(found));
+      ++reused_;
+      return entries_.back().part;
+    }
+  // at most kept_ entries of part k: the least recently used goes
+  std::size_t of_k = 0;
+  for (const Entry& e : entries_) of_k += e.k == k;
+  if (of_k >= kept_)
+    for (std::size_t m = 0; m < entries_.size(); ++m)
+      if (entries_[m].k == k) {
+        entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(m));
+        break;
+      }
+  if (kept_ == 0) return std::make_shared<BlockedTester::Cache::Part>();
+  entries_.push_back(Entry{tester, k, use, axis.kind, axis.half_turn, lo, hi,
+                           std::make_shared<BlockedTester::Cache::Part>()});
+  return entries_.back().part;
 }
 
 namespace {

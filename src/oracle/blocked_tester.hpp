@@ -91,14 +91,32 @@ class BlockedTester {
     struct KeyHash {
       std::size_t operator()(const std::pair<double, double>& key) const noexcept;
     };
-    std::unordered_map<std::pair<double, double>, Posed, KeyHash> posed_[2];
-    std::unordered_map<std::pair<double, double>, Pose, KeyHash> bounds_[2];
-    // The entries of bounds_ found for the cells of one grid (BlockedCells), per part, depth and
-    // column or row index (a cell's sides are pure functions of its depth and index, so an index
-    // names one key): a grid's look-up of a pose it has seen is an array read, not a hash.
-    // Depths to cell_index_depths - 1 only; null: not yet found.
     static constexpr int cell_index_depths = 13;
-    std::vector<Pose*> by_cell_[2][cell_index_depths];
+
+   public:
+    /// One part's poses: they depend only on the part, its chart axis (kind and chart centre)
+    /// and the axis interval, so the grids of several boxes with the same axis and the same
+    /// box side (a pair's charts with one axis in common, the operating-region tiles of one
+    /// column) can share one (SharedPoses). Made by the cache; opaque outside the tester.
+    class Part {
+      friend class BlockedTester;
+      std::unordered_map<std::pair<double, double>, Posed, KeyHash> posed;
+      std::unordered_map<std::pair<double, double>, Pose, KeyHash> bounds;
+      // The entries of `bounds` found for the cells of a grid (BlockedCells), per depth and
+      // column or row index (a cell's sides are pure functions of the grid box's side, its
+      // depth and index, so an index names one key): a grid's look-up of a pose it has seen is
+      // an array read, not a hash. Depths to cell_index_depths - 1 only; null: not yet found.
+      std::vector<Pose*> by_cell[cell_index_depths];
+    };
+    Cache() : parts_{std::make_shared<Part>(), std::make_shared<Part>()} {}
+    /// Part k's poses: this cache's own, or ones shared with other caches (share()).
+    const std::shared_ptr<Part>& part(int k) const { return parts_[k]; }
+    /// Takes `part` as part k's poses (shared with the caches that hold it). Sound only between
+    /// grids whose part k has the same chart axis and the same box side (SharedPoses checks).
+    void share(int k, std::shared_ptr<Part> part) { parts_[k] = std::move(part); }
+
+   private:
+    std::shared_ptr<Part> parts_[2];
   };
 
   /// A cell of a BlockedCells grid (its depth and indices), given with the cell's box so that
@@ -116,6 +134,9 @@ class BlockedTester {
   BlockedTester(const Model& model, const PairAxes& axes);
   /// False when either part got no certified disk (then nothing is ever blocked).
   bool usable() const { return interior_disks_[0] > 0 && interior_disks_[1] > 0; }
+  /// The chart axis part k's pose depends on: 0 the chart's x axis, 1 its y axis, -1 none (a
+  /// fixed part). The first moving part carries x, the second y.
+  int axis_of(int k) const { return !moves_[k] ? -1 : (k == 0 || !moves_[0]) ? 0 : 1; }
   /// True only if the parts' interiors overlap at every configuration of the box [x] x [y]
   /// (chart x carries the first moving part, chart y the second, if any). Certified.
   bool blocked(const ChartAxis& x_axis, const ChartAxis& y_axis, const algebra::Interval& x,
@@ -201,11 +222,50 @@ class BlockedTester {
 /// (memoised, with the posed disks of the tester's cache), and a cell inside a blocked cell
 /// is blocked without a test. Certified as BlockedTester::blocked. One instance per box and
 /// thread.
+class BlockedCells;
+
+/// The parts' poses shared between the grids (BlockedCells) of one tester's boxes, built one
+/// after the other: a part's poses depend only on its chart axis and the axis interval (not on
+/// the other part's), so two boxes with the same axis for that part and the same box side on
+/// it — a pair's charts with one axis in common (Geneva: each of the four charts shares its x
+/// axis with one chart and its y axis with another), the operating-region tiles of one column —
+/// pose each cell's column or row once for both instead of once per box. The answers are the
+/// same as with a cache per grid (a pose is the same computation whichever grid made it).
+/// Keeps the poses of the `kept` most recently used axes per part (the rest are freed when no
+/// grid holds them). One pool per tester and thread.
+class SharedPoses {
+ public:
+  explicit SharedPoses(std::size_t kept = 2) : kept_(kept) {}
+  /// Poses found in another grid's part (tests, statistics).
+  std::size_t reused() const { return reused_; }
+
+ private:
+  friend class BlockedCells;
+  // part k's poses for a grid of `tester` whose part k has axis `use` (BlockedTester::axis_of)
+  // of the given kind and centre and box side [lo, hi]
+  std::shared_ptr<BlockedTester::Cache::Part> part(const std::shared_ptr<const BlockedTester>& tester, int k, int use,
+                                                   const ChartAxis& axis, double lo, double hi);
+  struct Entry {
+    std::shared_ptr<const BlockedTester> tester;   // (held: an entry never outlives its tester)
+    int k, use;
+    ChartAxis::Kind kind;
+    bool half_turn;
+    double lo, hi;
+    std::shared_ptr<BlockedTester::Cache::Part> part;
+  };
+  std::size_t kept_;
+  std::vector<Entry> entries_;   // least recently used first
+  std::size_t reused_ = 0;
+};
+
 class BlockedCells {
  public:
   /// `tester` may be null or unusable: then no cell is blocked. `depth`: the finest depth.
+  /// `shared`: the parts' poses are taken from (and left in) the pool, shared with the other
+  /// grids of the same tester that have the same axis and box side for a part (2-D grids; a
+  /// 1-D grid keeps its own). The answers are the same either way.
   BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y, int dimension,
-               int depth);
+               int depth, SharedPoses* shared = nullptr);
   int depth() const { return depth_; }
   int dimension() const { return dimension_; }
   /// False: nothing is ever blocked (no usable tester).
@@ -214,6 +274,8 @@ class BlockedCells {
   algebra::Interval cell_y(int depth, long j) const;   ///< a point (0) for a 1-D space
   /// Every configuration of cell (depth, i, j) is certainly blocked.
   bool blocked(int depth, long i, long j);
+  /// The cell was answered blocked already (no test, no look-up of its ancestors).
+  bool known_blocked(int depth, long i, long j) const { return tester_ && known(depth, i, j) == is_blocked; }
   /// Tester calls made (each cell at most once).
   std::size_t tests() const { return tests_; }
   /// Candidate pairs tested over all calls (the work of the tests).

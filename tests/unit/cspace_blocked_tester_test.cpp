@@ -16,6 +16,7 @@
 #include "kernels/interval.hpp"
 #include "test_paths.hpp"
 #include "chart_sub_axis.hpp"
+#include "test_seed.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -935,6 +936,86 @@ TEST(BlockedTester, TileGridsOnAnEnclosingBoxsListAreTheSweeps) {
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(blocked, 500);
   EXPECT_GT(tiles, 40);
+}
+
+// Grids that share their parts' poses (SharedPoses: the builder's charts with one axis in common,
+// the operating-region tiles of one column) answer as grids with their own caches: for every
+// pair of on_examples_and_bar_walls, the charts' grids made one after the other with one pool (two
+// passes over the charts, then tiles 1/4 of a chart per axis, some in one column or row, as the
+// builder's boxes come), each asked the same cells in the same order as a grid over the same box
+// with a cache of its own — runs of neighbours, children and random cells of depths 2 to 14: the
+// same answer at every cell; a cell called free is free to a plain sweep of the cell alone; and at
+// a random rational configuration of every 16th blocked cell the parts overlap (the exact
+// oracle). Pools keeping one and two axes per part (the first evicts and makes poses again).
+// Seeded (HIPAIR_TEST_SEED).
+TEST(BlockedTester, GridsSharingPosesAnswerAsGridsWithTheirOwnCaches) {
+  const std::uint64_t seed = test::test_seed(20261205);
+  Random random(seed);
+  int cells = 0, blocked = 0, differ = 0, unsound = 0;
+  std::size_t reused = 0;
+  Counts counts;
+  on_examples_and_bar_walls(random, 160, 80, [&](const std::string& what, const Model& model, const cspace::PairAxes& axes,
+                                                  const cspace::ChartLayout& layout, int count) {
+    auto tester = std::make_shared<cspace::BlockedTester>(model, axes);
+    if (!tester->usable()) return;
+    for (std::size_t kept : {std::size_t{1}, std::size_t{2}}) {
+      cspace::SharedPoses pool(kept);
+      // the boxes in the builder's order: every chart twice, then tiles of each chart
+      std::vector<std::pair<cspace::ChartAxis, cspace::ChartAxis>> boxes;
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& x : layout.x_charts)
+          for (const auto& y : layout.y_charts) boxes.emplace_back(x, y);
+      for (const auto& x : layout.x_charts)
+        for (const auto& y : layout.y_charts)
+          for (long tx = 0; tx < 2; ++tx)
+            for (long ty = 0; ty < 2; ++ty)
+              boxes.emplace_back(test_charts::sub_axis(x, tx, 1, 4), test_charts::sub_axis(y, 1 + ty, 1, 4));
+      for (const auto& [x, y] : boxes) {
+        cspace::BlockedCells shared(tester, x, y, 2, 9, &pool), own(tester, x, y, 2, 9);
+        int depth = 2;
+        long i = 0, j = 0;
+        for (int n = 0; n < count; ++n) {
+          const long side = 1L << depth;
+          if (n % 5 == 0) {   // a new place
+            depth = 2 + static_cast<int>(random() % 13);
+            i = static_cast<long>(random() % (1UL << depth));
+            j = static_cast<long>(random() % (1UL << depth));
+          } else if (random() % 3 == 0) {
+            i = std::min(side - 1, i + 1);   // the next column
+          } else if (random() % 2 == 0) {
+            j = std::min(side - 1, j + 1);   // the next row
+          } else if (depth < 14) {           // a child
+            ++depth;
+            i = 2 * i + static_cast<long>(random() % 2);
+            j = 2 * j + static_cast<long>(random() % 2);
+          }
+          const std::string where = what + " (seed " + std::to_string(seed) + ", " + std::to_string(kept) +
+                                    " kept) cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
+                                    std::to_string(j);
+          const bool answer = shared.blocked(depth, i, j), expected = own.blocked(depth, i, j);
+          ++cells;
+          EXPECT_EQ(answer, expected) << where << ": a grid sharing poses answers otherwise";
+          differ += answer != expected;
+          const Interval bx = shared.cell_x(depth, i), by = shared.cell_y(depth, j);
+          if (!answer) {
+            const bool plain = tester->blocked(x, y, bx, by);
+            EXPECT_FALSE(plain) << where << ": the grid calls free a blocked cell";
+            unsound += plain;
+            continue;
+          }
+          if (++blocked % 16 == 0) check_blocked_box(model, axes, x, y, bx, by, true, 1, random, counts, where);
+        }
+      }
+      reused += pool.reused();
+    }
+  });
+  std::cout << cells << " cells, " << blocked << " blocked, " << differ << " answered otherwise, " << unsound
+            << " free cells blocked to the sweep, " << reused << " parts' poses taken from another grid, "
+            << counts.points << " configurations of blocked cells checked with the oracle\n";
+  EXPECT_EQ(differ, 0);
+  EXPECT_EQ(unsound, 0);
+  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(reused, 20u);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "oracle/blocked_tester.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -496,6 +497,98 @@ TEST(CSpaceCull, RowCacheBuildsThePlainEvaluationsSpaceOnGeneratedPairs) {
   EXPECT_GT(windows, 100u);   // the windows compared are not all empty
 }
 
+
+// Session 61 (perf61): the culling quadtree's early leave at cells the grid has answered blocked
+// already (culling_known_blocked) and the grids' poses shared between the boxes of a pair
+// (shared_chart_poses), both off for one scope.
+struct UnsharedCulling {
+  UnsharedCulling() {
+    cspace::culling_known_blocked().store(false);
+    cspace::shared_chart_poses().store(false);
+  }
+  ~UnsharedCulling() {
+    cspace::culling_known_blocked().store(true);
+    cspace::shared_chart_poses().store(true);
+  }
+  UnsharedCulling(const UnsharedCulling&) = delete;
+  UnsharedCulling& operator=(const UnsharedCulling&) = delete;
+};
+
+// The build with both against the build without: every chart's kept curves, windows and cells
+// equal (doubles compared exactly), the JSON text byte for byte, the statistics' blocked tests no
+// more; then the exact overlap oracle at `points` random rational configurations of the build
+// with both (a free location is apart, a blocked one overlapping).
+void expect_shortcuts_build_the_plain_space(const Model& model, const std::string& first, const std::string& second,
+                                            std::uint64_t seed, const CSpaceBuildOptions& options, int points,
+                                            std::size_t* windows) {
+  std::optional<CSpace> plain;
+  {
+    UnsharedCulling off;
+    plain.emplace(CSpace::build(model, first, second, options));
+  }
+  ASSERT_TRUE(cspace::culling_known_blocked().load());
+  ASSERT_TRUE(cspace::shared_chart_poses().load());
+  CSpace fast = CSpace::build(model, first, second, options);
+  const auto& a = cspace::impl_of(fast);
+  const auto& b = cspace::impl_of(*plain);
+  ASSERT_EQ(a.charts.size(), b.charts.size());
+  for (std::size_t c = 0; c < a.charts.size(); ++c) {
+    EXPECT_EQ(a.charts[c].curve_global, b.charts[c].curve_global) << "chart " << c;
+    EXPECT_EQ(a.charts[c].windows, b.charts[c].windows) << "chart " << c;
+    EXPECT_EQ(a.charts[c].cells, b.charts[c].cells) << "chart " << c;
+    for (const auto& w : a.charts[c].windows) *windows += w.size();
+  }
+  EXPECT_EQ(json_of(fast), json_of(*plain));
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  std::mt19937_64 random(seed);
+  for (int i = 0; i < points; ++i) {
+    const ChartPoint q = test::random_tile_point(fast, random);
+    const CSpaceChart& chart = fast.charts()[q.chart];
+    const Location location = fast.locate(q);
+    if (location.kind != Location::Kind::free && location.kind != Location::Kind::blocked) continue;
+    const cspace::Overlap overlap = cspace::classify_overlap(
+        model, axes, test::axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+        test::axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+    EXPECT_EQ(overlap, location.kind == Location::Kind::free ? cspace::Overlap::apart : cspace::Overlap::overlapping)
+        << "chart " << q.chart << " at " << q.x << ", " << q.y;
+  }
+}
+
+// Whole charts (generated star polygons and levers with a notch of exactly the tip's width,
+// wider and narrower — zero clearance, tangencies — at scale 1, the first also at 10^-30 and
+// 10^40; Geneva, whose
+// four charts share each axis with another chart) and operating-region tiles (a 6 x 9 gear pair:
+// the tiles of one column share the first part's poses; the flood's charts theirs).
+TEST(CSpaceCull, KnownBlockedLeaveAndSharedPosesBuildThePlainSpace) {
+  std::mt19937_64 random(test::test_seed(6101));
+  std::size_t windows = 0;
+  int spaces = 0;
+  for (int scale : {0, -30, 40}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(scale));
+    expect_shortcuts_build_the_plain_space(star_pair(random, power_of_ten(scale)), "a", "b", 61, {}, 30, &windows);
+    ++spaces;
+    for (int n = 0; n < (scale == 0 ? 3 : 1); ++n) {
+      Rational w = random_rational(random, 0.6, 1.0, 16);
+      Rational a = random_rational(random, 2.0, 4.0, 16);
+      Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
+      Rational c = random_rational(random, 0.5, 1.5, 8);
+      expect_shortcuts_build_the_plain_space(lever_pair(w, Rational(10), a, Rational(a + width), c, power_of_ten(scale)),
+                                             "crank", "rocker", 62 + static_cast<std::uint64_t>(n), {}, 30, &windows);
+      ++spaces;
+    }
+  }
+  std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
+  if (std::filesystem::exists(geneva)) {
+    expect_shortcuts_build_the_plain_space(read_model_file(geneva), "driver", "wheel", 65, {}, 60, &windows);
+    ++spaces;
+  }
+  CSpaceBuildOptions region;
+  region.operating_region = true;
+  expect_shortcuts_build_the_plain_space(gear_pair(6, 9), "pinion", "gear", 66, region, 40, &windows);
+  ++spaces;
+  EXPECT_GE(spaces, 10);
+  EXPECT_GT(windows, 100u);   // the windows compared are not all empty
+}
 
 // ---------------------------------------------------------------- the grid's memo and the culler's cells
 // (session 43, fast43)
