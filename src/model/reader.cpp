@@ -346,6 +346,12 @@ const char* const beyond_loads =
 void require_start_loads_in_double_range(const Model& model, const Rational& force, const Rational& per_time) {
   const SimulationSpec& spec = *model.simulation;
   static const Rational largest(std::numeric_limits<double>::max());
+  // an initial coordinate beyond the doubles is every simulator's own refusal, at its pointer
+  // (check_simulator_range: "too large for the simulator, which holds coordinates in doubles")
+  for (const Part& part : model.parts)
+    if (part.motion.kind != Motion::Kind::fixed)
+      for (const Rational* value : {&part.initial.angle, &part.initial.offset, &part.initial.x, &part.initial.y})
+        if (abs(*value) > largest) return;
   for (const auto& c : spec.couplings) {
     const Part& a = model.parts.at(c.first);
     const Part& b = model.parts.at(c.second);
