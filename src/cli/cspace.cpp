@@ -315,7 +315,9 @@ int run(const CSpaceCommandOptions& options) {
           unbuilt = "; " + *refusal;
           break;
         }
-      throw GeometryError("the model has no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
+      // (where: the pairs, /pairs; an empty list said nothing of where, session 61)
+      throw GeometryError("the model's pairs (/pairs" + std::string(model.pairs.empty() ? ", empty" : "") +
+                          ") hold no fixed-axis pair with a moving part, no 3-DOF pair (a planar part "
                           "against a fixed part) and no pin-in-slot pair" + unbuilt);
     }
   }

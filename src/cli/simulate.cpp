@@ -495,14 +495,22 @@ std::string judge(const Verdict& verdict, const SweepRow& row, double t_end, con
 void check_own_frequency(const Model& model, const SimulateOptions& options) {
   OwnFrequency f = own_frequency(model);
   if (!(f.omega > 0)) return;
-  const double period = 2 * std::numbers::pi / f.omega, steps = options.t_end / period;
+  // ω beyond the doubles' range (a spring attached 1e308 mm from a pivot): the period is below
+  // 2π/DBL_MAX; until session 61 (hunt61) such a period, and one whose ω² overflowed (a
+  // stiffness of 1 on an inertia of 3e-308), was shown as "2π/ω = 0 s", with "a --t-end of at most 0 s"
+  const bool beyond = !std::isfinite(f.omega);
+  const double period = 2 * std::numbers::pi / (beyond ? std::numeric_limits<double>::max() : f.omega);
+  const double steps = options.t_end / period;
   if (!(steps > static_cast<double>(options.max_steps))) return;
   const std::string tu = model.simulation ? model.simulation->time_unit : SimulationSpec{}.time_unit;
-  throw ModelError(f.pointer, f.what + " sets the model's own period 2π/ω = " + number(period) + " " + tu +
-                                  ": --t-end " + number(options.t_end) + " " + tu + " needs at least about " +
-                                  (std::isfinite(steps) ? number(steps) : std::string("1e308")) +
+  const bool many = beyond || !std::isfinite(steps);
+  throw ModelError(f.pointer, f.what + " sets the model's own period 2π/ω " + (beyond ? "below " : "= ") + number(period) +
+                                  " " + tu + ": --t-end " + number(options.t_end) + " " + tu + " needs " +
+                                  (many ? "more than " + number(std::isfinite(steps) ? steps : std::numeric_limits<double>::max())
+                                        : "at least about " + number(steps)) +
                                   " integration steps (one per period), beyond the step budget (--max-steps " +
-                                  std::to_string(options.max_steps) + "); nothing was run: give a --t-end of at most " +
+                                  std::to_string(options.max_steps) + "); nothing was run: give a --t-end of " +
+                                  (beyond ? "below " : "at most ") +
                                   number(period * static_cast<double>(options.max_steps)) + " " + tu +
                                   ", a larger --max-steps, or a softer spring (a lighter load)");
 }

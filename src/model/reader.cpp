@@ -204,7 +204,7 @@ void Reader::read_pairs(const JsonValue* pairs) {
         pair.kinetic_friction = non_negative(k, "kinetic friction");
         if (*pair.kinetic_friction > *pair.friction)
           throw ModelError(k.pointer, "kinetic friction must not exceed static friction (" +
-                                          decimal(*pair.friction) + ")");
+                                          decimal(*pair.friction) + " at " + s.pointer + ")");
       } else {
         pair.friction = non_negative(*f, "friction");
       }
@@ -274,22 +274,201 @@ Model read_model_file_for_simulation(const std::filesystem::path& path, const Re
   return model;
 }
 
+namespace model_detail {
+namespace {
+
+Rational l1(const Rational& x, const Rational& y) { return abs(x) + abs(y); }
+
+using Terms = std::vector<std::pair<Rational, std::string>>;
+
+// A bound (the 1-norm, mm) on the world coordinates of point p (world coordinates at the part's
+// zero configuration, given at `point_at`) of `part` at its start, in any turn of the part (the
+// 1-norm of a vector turned grows by at most a factor sqrt(2) < 2): the sum of `terms`, each with
+// the pointer of its datum.
+Rational start_reach(const Part& part, const Point& p, const std::string& point_at, Terms& terms) {
+  const Motion& m = part.motion;
+  const Rational arm = l1(p.x - m.pivot.x, p.y - m.pivot.y);
+  const std::string initial = part.pointer + "/initial/";
+  Terms own;
+  switch (m.kind) {
+    case Motion::Kind::fixed: own = {{l1(p.x, p.y), point_at}}; break;
+    case Motion::Kind::rotation: own = {{l1(m.pivot.x, m.pivot.y), m.pointer}, {2 * arm, point_at}}; break;
+    case Motion::Kind::translation: own = {{l1(p.x, p.y), point_at}, {2 * abs(part.initial.offset), initial + "offset"}}; break;
+    case Motion::Kind::planar:
+      own = {{l1(m.pivot.x, m.pivot.y), m.pointer}, {2 * arm, point_at}, {abs(part.initial.x), initial + "x"},
+             {abs(part.initial.y), initial + "y"}};
+      break;
+    case Motion::Kind::pin_slot:
+      own = {{l1(m.pivot.x, m.pivot.y), m.pointer}, {2 * arm, point_at}, {2 * abs(part.initial.offset), initial + "offset"}};
+      break;
+  }
+  Rational total(0);
+  for (auto& term : own) {
+    total += term.first;
+    terms.push_back(std::move(term));
+  }
+  return total;
+}
+
+// the lever (mm) of a force at p about the part's pivot, bounded by the 1-norm (a turn keeps the
+// arm's length): 0 for a fixed or translating part
+Rational lever(const Part& part, const Point& p) {
+  const Motion& m = part.motion;
+  if (m.kind == Motion::Kind::fixed || m.kind == Motion::Kind::translation) return Rational(0);
+  Rational arm = l1(p.x - m.pivot.x, p.y - m.pivot.y);
+  if (m.kind == Motion::Kind::pin_slot) arm += abs(part.initial.offset);
+  return arm;
+}
+
+// the pointer of the largest of `terms` (value, pointer): the datum that takes a product beyond
+// the doubles' range
+std::string largest_term(const Terms& terms) {
+  const std::pair<Rational, std::string>* best = nullptr;
+  for (const auto& term : terms)
+    if (!best || abs(term.first) > abs(best->first)) best = &term;
+  return best->second;
+}
+
+const char* const beyond_loads =
+    ", beyond the range of doubles the simulator computes its loads in (magnitude at most 1.7976931348623157e+308)";
+
+// The loads the data makes at the start, in the simulator's internal units (s, mN): each datum
+// lies within the doubles' range, but the simulator forms products of them in doubles. Until
+// session 61 (hunt61) a spring's attachment point or rest length near 1.8e308 mm, a part's spring
+// rest of 1.8e308, or a mass of 1.8e308 kg under gravity ran to "the loads on the parts ... are
+// not finite" or "the simulated configuration of a planar part is not finite" at t = 0 (exit 3,
+// without a pointer). Bounds (exact, from the data, in 1-norms): a spring's stretch
+// |L - rest| <= L + rest with L at most the sum of its two points' reaches; its force k (L +
+// rest) and the moment of that force about a pivot; a part's own spring k (|q| + |rest|) at its
+// initial coordinate or the farthest motion limit; a part's weight and constant force m |g| + |F|
+// and their moment about its pivot. A product beyond DBL_MAX is refused at the pointer of its
+// largest factor.
+void require_start_loads_in_double_range(const Model& model, const Rational& force, const Rational& per_time) {
+  const SimulationSpec& spec = *model.simulation;
+  static const Rational largest(std::numeric_limits<double>::max());
+  // an initial coordinate beyond the doubles is every simulator's own refusal, at its pointer
+  // (check_simulator_range: "too large for the simulator, which holds coordinates in doubles")
+  for (const Part& part : model.parts)
+    if (part.motion.kind != Motion::Kind::fixed)
+      for (const Rational* value : {&part.initial.angle, &part.initial.offset, &part.initial.x, &part.initial.y})
+        if (abs(*value) > largest) return;
+  for (const auto& c : spec.couplings) {
+    const Part& a = model.parts.at(c.first);
+    const Part& b = model.parts.at(c.second);
+    Terms terms;
+    const Rational reach_a = start_reach(a, c.first_point, c.pointer + "/points/0", terms);
+    const Rational reach_b = start_reach(b, c.second_point, c.pointer + "/points/1", terms);
+    const Rational stretch = reach_a + reach_b + c.rest_length;
+    const Rational k = c.stiffness * force;
+    const Rational arm = std::max({Rational(1), lever(a, c.first_point), lever(b, c.second_point)});
+    const Rational moment = k * stretch * arm;
+    if (stretch <= largest && moment <= largest) continue;
+    terms.emplace_back(k, c.pointer + "/stiffness");
+    terms.emplace_back(lever(a, c.first_point), c.pointer + "/points/0");
+    terms.emplace_back(lever(b, c.second_point), c.pointer + "/points/1");
+    terms.emplace_back(c.rest_length, c.pointer + "/rest_length");
+    const std::string at = largest_term(terms);
+    std::ostringstream text;
+    text << "the spring between parts '" << a.name << "' and '" << b.name << "': ";
+    if (stretch > largest)
+      text << "its attachment points up to " << decimal(reach_a + reach_b) << " mm apart at the start and its rest length "
+           << decimal(c.rest_length) << " mm make a stretch of up to " << decimal(stretch) << " mm";
+    else
+      text << "its stiffness " << decimal(k) << " mN/mm times its stretch (attachment points up to "
+           << decimal(reach_a + reach_b) << " mm apart at the start, rest length " << decimal(c.rest_length)
+           << " mm) and a lever of up to " << decimal(arm) << " mm make a force or moment of up to " << decimal(moment)
+           << " mN or mN mm";
+    text << beyond_loads;
+    throw ModelError(at, text.str());
+  }
+  const Rational g = l1(spec.gravity.x, spec.gravity.y) * per_time * per_time;   // mm/s^2
+  for (const Part& part : model.parts) {
+    if (!part.dynamics || part.motion.kind == Motion::Kind::fixed) continue;
+    const Dynamics& d = *part.dynamics;
+    const std::string at = part.pointer + "/dynamics/";
+    // a part's own spring: k (q - rest) at the initial coordinate or a motion limit
+    auto own = [&](const std::optional<Spring>& spring, const char* key, const char* words, const Rational& start,
+                   const char* coordinate, const std::optional<RationalInterval>& limits, const char* unit,
+                   const char* load_unit) {
+      if (!spring) return;
+      Rational q = abs(start);
+      std::string q_at = part.pointer + "/initial/" + coordinate;
+      if (limits && std::max<Rational>(abs(limits->lo), abs(limits->hi)) > q) {
+        q = std::max<Rational>(abs(limits->lo), abs(limits->hi));
+        q_at = part.motion.pointer;
+      }
+      const Rational k = spring->stiffness * force, stretch = q + abs(spring->rest), load = k * stretch;
+      if (stretch <= largest && load <= largest) return;
+      std::ostringstream text;
+      text << "the " << words << " of part '" << part.name << "': its stiffness " << decimal(k) << " " << load_unit
+           << " per " << unit << " times its stretch |" << coordinate << " - rest| (rest " << decimal(spring->rest) << " "
+           << unit << ", " << coordinate << " up to " << decimal(q) << " " << unit << ") makes a load of up to "
+           << decimal(load) << " " << load_unit << beyond_loads;
+      throw ModelError(largest_term(Terms{{k, at + key + "/stiffness"}, {spring->rest, at + key + "/rest"}, {q, q_at}}),
+                       text.str());
+    };
+    own(d.torsional_spring, "torsional_spring", "torsional spring", part.initial.angle, "angle", part.motion.angle_limits,
+        "rad", "mN mm");
+    own(d.linear_spring, "linear_spring", "linear spring", part.initial.offset, "offset", part.motion.translation_limits,
+        "mm", "mN");
+    // weight and constant force, and their moment about the pivot at the centre of mass
+    if (!d.mass) continue;
+    const Rational m = abs(*d.mass), f = d.force ? l1(d.force->x, d.force->y) * force : Rational(0);
+    const Rational load = m * g + f;
+    Rational arm(1);
+    for (const auto& c : spec.centers_of_mass)
+      if (&model.parts.at(c.part) == &part) arm = std::max<Rational>(arm, l1(c.at.x - part.motion.pivot.x, c.at.y - part.motion.pivot.y));
+    if (load * arm <= largest) continue;
+    std::ostringstream text;
+    text << "the weight and force on part '" << part.name << "': mass " << decimal(m) << " kg times gravity up to "
+         << decimal(g) << " mm/s^2 plus a force up to " << decimal(f) << " mN, on a lever of up to " << decimal(arm)
+         << " mm, make a load of up to " << decimal(load * arm) << " mN or mN mm" << beyond_loads;
+    throw ModelError(largest_term(Terms{{m, at + "mass"}, {g, spec.pointer + "/gravity"}, {f, at + "force"}}), text.str());
+  }
+}
+
+}  // namespace
+}  // namespace model_detail
+
 // Each datum times the factor that takes it to the simulator's internal units (s, mN): a rate
 // of 1e306 rad/ms is 1e309 rad/s, a torque of 1e306 N mm 1e309 mN mm, beyond the doubles'
 // range. Until session 60 (hunt60) such values passed the reader's range check (made in the
 // file's units) and the run ended at t = 0 with "moving at inf rad/ms ... not finite" or "the
 // loads on the parts ... are not finite" (exit 3, no pointer).
+static void require_factors_in_double_range(const Model& model, const Rational& force, const Rational& per_time);
+
 void require_internal_units_in_double_range(const Model& model) {
   if (!model.simulation) return;
   const SimulationSpec& spec = *model.simulation;
   const bool ms = spec.time_unit == "ms", newtons = spec.force_unit != "mN";
-  if (!ms && !newtons) return;   // every factor is 1
-  static const Rational largest(std::numeric_limits<double>::max());
   const Rational per_time = ms ? Rational(1000) : Rational(1);             // 1 / (s per time unit)
   const Rational force = newtons ? Rational(1000) : Rational(1);           // mN per force unit
+  if (ms || newtons) require_factors_in_double_range(model, force, per_time);   // else every factor is 1
+  // the loads the data makes at the start, whatever the units (session 61), once each datum is
+  // known to lie in the doubles' range in the simulator's units
+  model_detail::require_start_loads_in_double_range(model, force, per_time);
+}
+
+// (each datum times its factor, require_internal_units_in_double_range)
+static void require_factors_in_double_range(const Model& model, const Rational& force, const Rational& per_time) {
+  const SimulationSpec& spec = *model.simulation;
+  const bool ms = spec.time_unit == "ms";
+  static const Rational largest(std::numeric_limits<double>::max());
+  static const Rational smallest(std::numeric_limits<double>::min());
   const Rational force_time = ms ? force / Rational(1000) : force;         // force unit x time unit
   auto check = [&](const Rational& value, const Rational& factor, const std::string& pointer, const std::string& unit,
                    const char* internal) {
+    // A factor below 1 (a damping in mN ms: x 1/1000) takes a value of the doubles' normal range
+    // below it: 3e-308 mN ms per mm was 3e-311 mN s, subnormal, unchecked until session 61
+    if (factor < 1 && sgn(value) != 0 && abs(value) * factor < smallest) {
+      std::ostringstream text;
+      text << "'" << model_detail::decimal(value) << "' " << unit << " is " << model_detail::decimal(value * factor) << " "
+           << internal
+           << " in the simulator's internal units (s, mN), below the doubles' normal range (a nonzero magnitude at "
+              "least 2.2250738585072014e-308): give 0 or at least "
+           << model_detail::decimal(smallest / factor) << " " << unit;
+      throw ModelError(pointer, text.str());
+    }
     if (factor <= 1 || abs(value) * factor <= largest) return;
     std::ostringstream text;
     text << "'" << model_detail::decimal(value) << "' " << unit << " is " << model_detail::decimal(value * factor) << " " << internal

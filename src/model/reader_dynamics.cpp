@@ -71,7 +71,7 @@ void Reader::read_simulation(const JsonValue* value) {
                          "unsupported motion law '" + law_name + "' (\"constant_speed\" or \"speed_profile\")");
     }
     if (const JsonValue* profile = d.find("profile"); profile && law_name == "constant_speed")
-      throw ModelError(profile->pointer, "a profile needs \"law\": \"speed_profile\"");
+      throw ModelError(profile->pointer, "a profile needs \"law\": \"speed_profile\" (at " + d.pointer + "/law)");
     return law_name;
   };
   // a speed profile [[t, v], ...]: times strictly increasing from 0, no "speed"; `point` reads
@@ -83,6 +83,7 @@ void Reader::read_simulation(const JsonValue* value) {
     const JsonValue& profile = expect_array(require(d, "profile"), "an array of [time, speed] points");
     if (profile.items.empty()) throw ModelError(profile.pointer, "a speed profile needs at least one point");
     std::optional<Rational> last;
+    std::string last_at;
     for (const JsonValue& point : profile.items) {
       expect_array(point, "a point [time, speed]");
       if (point.items.size() != 2)
@@ -90,9 +91,12 @@ void Reader::read_simulation(const JsonValue* value) {
                                             std::to_string(point.items.size()));
       Rational time = number(point.items[0]);
       if (!last && time != 0) throw ModelError(point.items[0].pointer, "a speed profile starts at time 0");
-      if (last && time <= *last) throw ModelError(point.items[0].pointer, "profile times must increase strictly");
+      if (last && time <= *last)
+        throw ModelError(point.items[0].pointer, "profile times must increase strictly: " + decimal(time) + " after " +
+                                                     decimal(*last) + " (" + last_at + ")");
       point_speed(time, point.items[1]);
       last = time;
+      last_at = point.items[0].pointer;
     }
   };
   if (const JsonValue* drivers = value->find("drivers")) {

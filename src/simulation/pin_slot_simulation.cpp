@@ -1992,28 +1992,48 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
         }
       refuse_rate(v, v.pointer, std::max(r, 1e-300), "torque-driven part");
     }
-  // the rest speed: the speed a load gains over the chord deviation
+  // the rest speed: the speed a load gains over the chord deviation; each share with the pointer
+  // of its data (a refusal names the largest)
+  std::vector<std::pair<double, std::string>> shares;
+  const std::string own_at = fp.pointer + "/dynamics/";
+  shares.emplace_back(std::hypot(s.g[0], s.g[1]), spec.pointer + "/gravity");
+  shares.emplace_back(std::hypot(s.force[0], s.force[1]) / s.mass, own_at + "force");
+  shares.emplace_back((std::abs(s.torque) / s.inertia_c) * size, own_at + "torque");
+  if (s.free_driver != no_index)   // a torque-driven part's surface accelerates the contacts too
+    shares.emplace_back(std::abs(s.drivers[s.free_driver].torque) / s.drivers[s.free_driver].inertia * size,
+                        model.parts[s.drivers[s.free_driver].part].pointer + "/dynamics/torque");
+  if (s.has_slider())   // and a translating part's load
+    shares.emplace_back(std::abs(s.slider.load) / s.slider.mass, model.parts[s.slider.part].pointer + "/dynamics");
   double load = std::hypot(s.mass * s.g[0] + s.force[0], s.mass * s.g[1] + s.force[1]) / s.mass;
   load += (std::abs(s.torque) / s.inertia_c) * size;
-  if (s.free_driver != no_index)   // a torque-driven part's surface accelerates the contacts too
-    load += std::abs(s.drivers[s.free_driver].torque) / s.drivers[s.free_driver].inertia * size;
-  if (s.has_slider()) load += std::abs(s.slider.load) / s.slider.mass;   // and a translating part's load
+  if (s.free_driver != no_index) load += shares[3].first;
+  if (s.has_slider()) load += shares.back().first;
   // (the springs' force at the start's stretch, or the torsional one's at the angle limits if they
   // are nearer than half a turn beyond the start: limits far beyond the motion change nothing)
-  load += s.k_lin * (std::abs(s.y[0]) + std::abs(s.rest_lin)) / s.mass;
+  shares.emplace_back(s.k_lin * (std::abs(s.y[0]) + std::abs(s.rest_lin)) / s.mass, own_at + "linear_spring");
+  load += shares.back().first;
   if (s.k_tor > 0) {
     double turn = std::abs(s.y[1] - s.rest_tor) + std::numbers::pi;
     if (s.angle_limits)
       turn = std::min(turn, std::max(std::abs(s.angle_limits->lo.get_d() - s.rest_tor),
                                      std::abs(s.angle_limits->hi.get_d() - s.rest_tor)));
-    load += s.k_tor * turn / s.inertia_c * size;
+    shares.emplace_back(s.k_tor * turn / s.inertia_c * size, own_at + "torsional_spring");
+    load += shares.back().first;
   }
   s.rest_speed = std::sqrt(2 * load * s.delta);
   // (the rest speed decides hold or rebound exactly, as a rational: loads beyond the doubles —
-  // gravity, forces, torques or springs near 1e308 — stop here, not in GMP's mpq_set_d(inf))
-  if (!std::isfinite(s.rest_speed))
-    throw NumericError("simulation: the loads on pin-slot part '" + fp.name +
-                       "' (gravity, forces, torques, springs) accelerate it beyond the doubles' range");
+  // gravity, forces, torques or springs near 1e308 — stop here, not in GMP's mpq_set_d(inf);
+  // since session 61 refused as data, at the pointer of the largest share: gravity of 1.8e308
+  // mm/s^2 stopped with exit 3 and no pointer)
+  if (!std::isfinite(s.rest_speed)) {
+    const auto key = [](double x) { return std::isnan(x) ? std::numeric_limits<double>::infinity() : x; };
+    const auto largest = std::max_element(shares.begin(), shares.end(),
+                                          [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
+    throw ModelError(largest->second, "the loads on pin-slot part '" + fp.name +
+                                          "' (gravity, forces, torques, springs) accelerate it beyond the doubles' "
+                                          "range (1.8e308) the simulator integrates in; the largest share is this "
+                                          "datum's");
+  }
   s.hold_gap = 0.75 * s.delta;
   // the pairs
   for (std::size_t i = 0; i < model.pairs.size(); ++i) {
@@ -2045,7 +2065,11 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
       throw ModelError(fp.pointer + "/initial", "pin-slot part '" + fp.name + "' starts " +
                                                     (where.kind == SlicedLocation::Kind::blocked ? "overlapping"
                                                                                                  : "touching") +
-                                                    " '" + model.parts[p.other].name + "'");
+                                                    " '" + model.parts[p.other].name + "'" +
+                                                    (model.parts[p.other].motion.kind == Motion::Kind::fixed
+                                                         ? std::string()
+                                                         : " (its initial configuration: " +
+                                                               model.parts[p.other].pointer + "/initial)"));
     s.pairs.push_back(std::move(p));
   }
   s.publish();

@@ -85,6 +85,52 @@ Rational finite_exact(double value, const std::string& where, const char* what) 
   return Rational(value);
 }
 
+// The velocity or load given whose magnitude is the largest (velocities, drivers' speeds, gravity,
+// forces, torques, as the file gives them), named at its pointer: what a "not finite" stop of a
+// planar run adds to its message (session 61, hunt61: a block thrown at 1.8e308 mm/s, gravity
+// or a pusher's speed near the doubles' end stopped with exit 3 and no pointer).
+std::string largest_motion_datum(const Model& model) {
+  if (!model.simulation) return "";
+  const SimulationSpec& spec = *model.simulation;
+  double largest = -1;
+  std::string at;
+  auto consider = [&](const Rational& value, const std::string& pointer) {
+    const double v = std::abs(to_d(value));
+    if (v > largest) largest = v, at = pointer;
+  };
+  for (const auto& v : spec.velocities) consider(v.value, v.pointer);
+  for (const auto& d : spec.drivers) {
+    consider(d.speed, d.pointer);
+    for (const auto& point : d.profile) consider(point.second, d.pointer + "/profile");
+  }
+  consider(spec.gravity.x, spec.pointer + "/gravity/0");
+  consider(spec.gravity.y, spec.pointer + "/gravity/1");
+  for (const Part& part : model.parts) {
+    if (!part.dynamics) continue;
+    if (part.dynamics->force) {
+      consider(part.dynamics->force->x, part.pointer + "/dynamics/force/0");
+      consider(part.dynamics->force->y, part.pointer + "/dynamics/force/1");
+    }
+    if (part.dynamics->torque) consider(*part.dynamics->torque, part.pointer + "/dynamics/torque");
+  }
+  if (at.empty()) return "";
+  std::ostringstream out;
+  out << "; the largest velocity or load given is " << at << " (" << largest << ")";
+  return out.str();
+}
+
+// A "not finite" stop of a step, with the largest velocity or load named
+template <class Step>
+void naming_the_data(const Model& model, Step&& step) {
+  try {
+    step();
+  } catch (const NumericError& e) {
+    const std::string what = e.what();
+    if (what.find("not finite") == std::string::npos) throw;
+    throw NumericError(what + largest_motion_datum(model));
+  }
+}
+
 SlicedConfiguration configuration_of(double x, double y, double theta) {
   // a state that overflowed (extreme scales, a diverging integration) has no exact configuration
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(theta))
@@ -1853,7 +1899,10 @@ void PlanarSimulation::step(double t_limit) {
   const double span = next_span(s, t_limit, limit);
   if (!(span > 0)) return;
   // forces balanced and constant: a resting part stays
-  bool event = !s.resting && (s.held.empty() && !s.integrated ? s.advance(span) : s.held_advance(span));
+  bool event = false;
+  naming_the_data(s.model, [&] {
+    event = !s.resting && (s.held.empty() && !s.integrated ? s.advance(span) : s.held_advance(span));
+  });
   if (!event) s.t = span == limit - s.t ? limit : s.t + span;
   s.publish();
 }
@@ -2987,7 +3036,12 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
       throw ModelError(part.pointer + "/initial", "planar part '" + part.name + "' starts " +
                                                       (where.kind == SlicedLocation::Kind::blocked ? "overlapping"
                                                                                                    : "touching") +
-                                                      " part '" + model.parts[p.first].name + "': it must start apart");
+                                                      " part '" + model.parts[p.first].name + "'" +
+                                                      (model.parts[p.first].motion.kind == Motion::Kind::fixed
+                                                           ? std::string()
+                                                           : " (its initial configuration: " +
+                                                                 model.parts[p.first].pointer + "/initial)") +
+                                                      ": it must start apart");
     }
     s.pairs.push_back(std::move(p));
   }
@@ -3003,7 +3057,8 @@ void PlanarSystemSimulation::step(double t_limit) {
   const double span = next_span(s, t_limit, limit);
   if (!(span > 0)) return;
   double before = s.t;
-  bool event = s.advance(span);
+  bool event = false;
+  naming_the_data(s.model, [&] { event = s.advance(span); });
   // the last step of a run ends at its limit exactly (the integrator's sum may differ by an ulp)
   if (!event && std::abs(s.t - limit) <= 1e-12 * std::max(std::abs(limit), 1e-300) && before + span >= limit) s.t = limit;
   s.publish();

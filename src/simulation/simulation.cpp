@@ -18,6 +18,7 @@
 #include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
+#include <hipair/motion_words.hpp>
 
 #include "simulation/crossing_limit.hpp"
 #include "simulation/crossing_sweep.hpp"
@@ -1045,6 +1046,22 @@ struct Simulation::Impl {
     std::ostringstream out;
     out << "simulation: at t = " << published_time(time) << " " << time_unit << " the motion of " << pair_name(pair)
         << " leaves its built C-space (a motion limit, or the border of its operating region)";
+    // which part is at a motion limit, named with its pointer (session 61: cam-drive.json with the
+    // follower thrown up at 1e5 mm/s named the pair only)
+    const char* separator = ": ";
+    for (const std::size_t index : {model.pairs[pair].first, model.pairs[pair].second}) {
+      const int d = part_dof[index];
+      if (d < 0) continue;
+      const Part& part = model.parts[index];
+      const auto& limits = dofs[d].rotation ? part.motion.angle_limits : part.motion.translation_limits;
+      if (!limits) continue;
+      const double lo = to_d(limits->lo), hi = to_d(limits->hi), at = q[d];
+      const double margin = 1e-6 * std::max({1.0, std::abs(lo), std::abs(hi)});
+      if (at > lo + margin && at < hi - margin) continue;
+      out << separator << described_part(part) << " is at " << at << (dofs[d].rotation ? " rad" : " mm")
+          << ", its limits [" << lo << ", " << hi << "]";
+      separator = "; ";
+    }
     throw GeometryError(out.str());
   }
 
@@ -2334,7 +2351,8 @@ struct Simulation::Impl {
     const char* separator = " ";
     for (std::size_t i = 0; i < a.size(); ++i) {
       if (std::isfinite(a[i])) continue;
-      out << separator << "part '" << model.parts[dofs[i].part].name << "' (moving at " << vs[i] * time_scale
+      out << separator << "part '" << model.parts[dofs[i].part].name << "' (" << model.parts[dofs[i].part].pointer
+          << ", moving at " << vs[i] * time_scale
           << (dofs[i].rotation ? " rad/" : " mm/") << time_unit << ")";
       separator = ", ";
     }
@@ -2346,7 +2364,8 @@ struct Simulation::Impl {
       const char* comma = "";
       for (std::size_t i = 0; i < dofs.size(); ++i)
         if (!std::isfinite(qs[i]) || !std::isfinite(vs[i])) {
-          out << comma << "part '" << model.parts[dofs[i].part].name << "' at " << qs[i] << (dofs[i].rotation ? " rad" : " mm")
+          out << comma << "part '" << model.parts[dofs[i].part].name << "' (" << model.parts[dofs[i].part].pointer
+              << "/dynamics) at " << qs[i] << (dofs[i].rotation ? " rad" : " mm")
               << " moving at " << vs[i] * time_scale << (dofs[i].rotation ? " rad/" : " mm/") << time_unit;
           comma = ", ";
         }
@@ -2862,12 +2881,7 @@ void check_simulator_range(const Model& model) {
 // speed, the reach and the acceleration (docs/simulation.md, "A driver too fast for the doubles").
 // `ts`: seconds per time unit `time_unit`. The reach is the farthest vertex, or arc centre plus radius, of
 // the part's loops from its pivot.
-static void check_driver_reach(const Model& model, const SimulationSpec::Driver& driver, double ts,
-                               const std::string& time_unit) {
-  const Part& part = model.parts.at(driver.part);
-  if (part.motion.kind != Motion::Kind::rotation) return;
-  double speed = std::abs(driver.speed.get_d());   // rad per time unit
-  for (const auto& [time, value] : driver.profile) speed = std::max(speed, std::abs(value.get_d()));
+static double rotation_reach(const Part& part) {
   double reach = 0;
   const double px = part.motion.pivot.x.get_d(), py = part.motion.pivot.y.get_d();
   for (const Loop& loop : part.loops)
@@ -2877,6 +2891,36 @@ static void check_driver_reach(const Model& model, const SimulationSpec::Driver&
         reach = std::max(reach, std::hypot(edge.center.x.get_d() - px, edge.center.y.get_d() - py) +
                                     std::sqrt(edge.radius_squared.get_d()));
     }
+  return reach;
+}
+
+// The same bound on a freely rotating part's initial angle rate (session 61, hunt61): the
+// bouncing bar started at 1e300 or 1.8e308 rad/s struck its stop at a normal speed of 2e302 mm/s
+// or infinity, and the run ended with "the state itself is not finite (... -nan rad/s)" at
+// t = 0 (exit 3, no pointer). Refused at the velocity's pointer with the largest rate allowed.
+static void check_rate_reach(const Model& model, const SimulationSpec::Velocity& velocity, double ts,
+                             const std::string& time_unit) {
+  const Part& part = model.parts.at(velocity.part);
+  if (part.motion.kind != Motion::Kind::rotation) return;
+  const double speed = std::abs(velocity.value.get_d()), reach = rotation_reach(part);
+  const double rate = speed / ts;
+  if (std::isfinite(rate * rate * reach) || !(reach > 0)) return;
+  const long double wide = static_cast<long double>(rate) * rate * reach;   // (x86: range to 1e4932)
+  std::ostringstream text;
+  text << "the initial angle rate " << speed << " rad/" << time_unit << " of rotating part '" << part.name
+       << "': its point " << reach << " mm from the pivot accelerates at " << rate << "^2 rad^2/s^2 x " << reach
+       << " mm = " << wide << " mm/s^2, beyond the doubles' range (1.8e308) the simulator integrates in: give at most "
+       << std::sqrt(std::numeric_limits<double>::max() / reach) * ts << " rad/" << time_unit;
+  throw ModelError(velocity.pointer, text.str());
+}
+
+static void check_driver_reach(const Model& model, const SimulationSpec::Driver& driver, double ts,
+                               const std::string& time_unit) {
+  const Part& part = model.parts.at(driver.part);
+  if (part.motion.kind != Motion::Kind::rotation) return;
+  double speed = std::abs(driver.speed.get_d());   // rad per time unit
+  for (const auto& [time, value] : driver.profile) speed = std::max(speed, std::abs(value.get_d()));
+  const double reach = rotation_reach(part);
   const double rate = speed / ts, acceleration = rate * rate * reach;   // mm/s^2
   if (std::isfinite(acceleration) || !(reach > 0)) return;
   const long double wide = static_cast<long double>(rate) * rate * reach;   // (x86: range to 1e4932)
@@ -2962,6 +3006,7 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
     }
   }
   for (const auto& driver : spec.drivers) check_driver_reach(model, driver, seconds_per, s.time_unit);
+  for (const auto& velocity : spec.velocities) check_rate_reach(model, velocity, seconds_per, s.time_unit);
   for (const auto& c : spec.centers_of_mass) {
     Dof& d = s.dofs[s.part_dof[c.part]];
     d.com[0] = to_d(c.at.x) - d.pivot[0];
@@ -3067,6 +3112,14 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
           << " is not free (the parts touch or overlap"
           << (c.features.empty() ? std::string() : ": " + s.spaces[pair]->feature_pair(c.features.front()).label)
           << "); start the simulation in free space";
+      // (where the start is given: a hostile initial angle was named only as the pair, session 61)
+      const char* separator = " (the initial configuration: ";
+      for (const std::size_t index : {model.pairs[pair].first, model.pairs[pair].second})
+        if (model.parts[index].motion.kind != Motion::Kind::fixed) {
+          out << separator << model.parts[index].pointer << "/initial";
+          separator = ", ";
+        }
+      if (std::string(separator) == ", ") out << ")";
       throw ModelError(model.pairs[pair].pointer, out.str());
     }
   }

@@ -853,7 +853,7 @@ refused max-steps-planar "the run used up its step budget (--max-steps 5)" \
 # a planar part to --t-end 1e150 (session 34: the first integration step was the whole span,
 # "the simulated configuration of a planar part is not finite"; pusher-blocks died of SIGFPE)
 # (session 38: the block's spring now refuses it before any step, its own period against the budget)
-refused t-end-1e150-planar "/simulation/springs/0: the spring between parts 'block' and 'frame' on part 'block' sets the model's own period" \
+refused t-end-1e150-planar "/simulation/springs/0: the spring between parts 'block' and 'frame' on part 'block' (its moment of inertia /parts/1/dynamics/moment_of_inertia) sets the model's own period" \
   simulate "$source/examples/models/spring-block.json" --t-end 1e150 --max-steps 30 --no-pictures
 # stiff inputs (session 38): a stiffness of 1e300, or gravity of 1e300 on a part hung from a spring,
 # made steps of 1e-152 s and ran for hours towards the budget; refused before anything is built,
@@ -864,7 +864,7 @@ sed 's/"stiffness": 1, "rest": 0/"stiffness": 1e300, "rest": 0/' "$bar" >"$stiff
 sed 's/"stiffness": 0.5, "rest": -20/"stiffness": 1e300, "rest": -20/' "$source/examples/models/cam-follower.json" >"$stiff/follower.json"
 sed 's/"stiffness": 0.05,/"stiffness": 1e300,/' "$source/examples/models/spring-block.json" >"$stiff/block.json"
 sed 's/"gravity": \[0, -9810\]/"gravity": [0, -1e300]/' "$source/examples/models/spring-block.json" >"$stiff/heavy.json"
-refused stiff-torsional "/parts/0/dynamics/torsional_spring: the torsional spring of part 'bar' sets the model's own period 2π/ω = 1.98691765316e-150 s: --t-end 0.3 s needs at least about 1.50987636313e+149 integration steps" \
+refused stiff-torsional "/parts/0/dynamics/torsional_spring: the torsional spring of part 'bar' on its moment of inertia (/parts/0/dynamics/moment_of_inertia) sets the model's own period 2π/ω = 1.98691765316e-150 s: --t-end 0.3 s needs at least about 1.50987636313e+149 integration steps" \
   simulate "$stiff/bar.json" --t-end 0.3
 refused stiff-linear "/parts/1/dynamics/linear_spring: the linear spring of part 'follower'" simulate "$stiff/follower.json" --t-end 0.3
 refused stiff-coupling "/simulation/springs/0: the spring between parts 'block' and 'frame'" simulate "$stiff/block.json" --t-end 0.2

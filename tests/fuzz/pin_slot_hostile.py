@@ -83,9 +83,15 @@ def main(argv):
                           '--max-steps'),
         # (gravity near the doubles' end: the rest speed the hold/rebound decision takes as a
         # rational was inf, GMP's mpq_set_d(inf) raised SIGFPE at the first impact; session 60,
-        # found by simulate_mutations: refused at the start with one line)
-        'gravity-x-minus-1e308': (lambda m: m['simulation'].__setitem__('gravity', [-1e308, -9810]), [], 3,
-                                  "beyond the doubles' range"),
+        # found by simulate_mutations: refused at the start with one line; since session 61 as
+        # data, exit 2, at the pointer of the largest load)
+        'gravity-x-minus-1e308': (lambda m: m['simulation'].__setitem__('gravity', [-1e308, -9810]), [], 2,
+                                  "/simulation/gravity: the loads on pin-slot part 'follower'"),
+        # (session 61: a mass of 1e306 kg under gravity, 9.8e309 mN; exit 3, no pointer, on base61)
+        'mass-1e306': (dyn('mass', 1e306), [], 2, '/parts/1/dynamics/mass: the weight and force'),
+        # (session 61: the torsional spring's rest near the doubles' end; exit 3, no pointer, on base61)
+        'spring-rest-1e308': (lambda m: follower(m)['dynamics']['torsional_spring'].__setitem__('rest', -1e308), [], 2,
+                              '/parts/1/dynamics/torsional_spring/rest'),
         'driver-1e300': (lambda m: m['simulation']['drivers'][0].__setitem__('speed', 1e300), [], 2,
                          '/simulation/drivers/0'),
         'restitution-2': (lambda m: m['pairs'][0].__setitem__('restitution', 2), [], 2, '/pairs/0/restitution'),

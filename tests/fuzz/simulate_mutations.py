@@ -18,6 +18,14 @@ of 1e-154 s) must:
     where a number is wanted, null, a boolean) with exit 2 at a pointer that is the mutated
     place or lies on its path (a missing required key is named at its parent);
   - exit 0 with the model unchanged in meaning when the mutation was a no-op.
+  - (session 61) on failure name WHERE: a JSON pointer in the message that is the mutated
+    place or lies on its path, or, for a run that used up its step budget, --max-steps.
+Besides the sample, FIXED cases (every run) hold the faults found in session 61, each with the
+pointer its message must name: values near the doubles' end that stopped with exit 3 and no
+pointer (spring points and rest lengths, a part's spring rest, a rotating part thrown at 1e300
+and 1.8e308 rad/s, a mass under gravity), a damping subnormal once in mN s, the figures of the
+own-period refusal (stiffness 1 N mm/rad on 3e-308 kg mm^2 said "period 0 s"), and a motion
+limit message that named the pair, not the part.
 Without --all a seeded sample of the mutations runs (the ctest); --all runs every one.
 Found by it (session 60): several planar parts (friction-slide.json, pushed-block.json) with an
 initial velocity or gravity of 1e308 died of SIGFPE (GMP's mpq_set_d(inf) on a step's query
@@ -26,8 +34,10 @@ units but not in the simulator's (1e306 rad/ms) ran to "not finite" at t = 0 wit
 """
 import copy
 import json
+import math
 import os
 import random
+import re
 import shutil
 import sys
 import time
@@ -41,6 +51,9 @@ NOT_A_NUMBER = [('string-abc', 'abc'), ('string-nan', 'nan'), ('string-inf', 'in
 # numbers that may be legal or not; whatever happens, no crash, one line, nothing written
 HOSTILE_NUMBERS = [('negative', -1), ('zero', 0), ('huge-1e400', '1e400'), ('tiny-1e-400', '1e-400'),
                    ('max-double', 1.7976931348623157e308), ('subnormal', '5e-324'), ('minus-huge', '-1e308')]
+
+
+extra_bases = {}
 
 
 def bases(source):
@@ -58,6 +71,14 @@ def bases(source):
     cam['pairs'] = [{'parts': ['cam', 'follower'], 'friction': {'static': 0.3, 'kinetic': 0.2},
                      'restitution': 0.4}]
     film = load(os.path.join(data, 'film-advance-dynamics.json'))
+    # the spring block in ms and mN (a damping in mN ms is 1/1000 of it in mN s), and the plain cam
+    # drive (its follower thrown up against its motion limit); for the fixed cases only
+    block_ms = load(os.path.join(ex, 'spring-block.json'))
+    block_ms['simulation']['units'] = {'time': 'ms', 'force': 'mN'}
+    block_ms['simulation']['gravity'] = [0, -0.00981]
+    extra_bases.clear()
+    extra_bases['spring-block-ms-mN'] = (block_ms, '0.05', [])
+    extra_bases['cam-drive-thrown'] = (load(os.path.join(ex, 'cam-drive.json')), '0.05', [])
     return [
         ('bouncing-bar', load(os.path.join(ex, 'bouncing-bar.json')), '0.05', []),
         ('cam-drive-spring', cam, '0.05', []),
@@ -121,6 +142,52 @@ def snapshot(directory):
     return {name: open(os.path.join(directory, name), 'rb').read() for name in sorted(os.listdir(directory))}
 
 
+# "/parts/1/dynamics/mass" ... in a message: the JSON pointers it names
+POINTER_TOKEN = re.compile(r"(?<![\w/])(/(?:parts|simulation|pairs|units|parameters)(?:/[A-Za-z0-9_.~-]+)*)")
+
+
+def names_location(message, mutated):
+    """whether the message names the mutated pointer or one on its path (its parent, the spring
+    holding a point...), or the step budget's option for a run that used it up"""
+    for token in POINTER_TOKEN.findall(message):
+        if mutated == token or mutated.startswith(token + '/'):
+            return True
+    return '--max-steps' in message
+
+
+def fixed_cases(source):
+    """(base name, key path, value, expected exit, text the message must contain, extra check)"""
+    def period_figure(message):
+        # stiffness 1 N mm/rad = 1000 mN mm/rad on 3e-308 kg mm^2: 2 pi sqrt(3e-308 / 1000) s
+        want = 2 * math.pi * math.sqrt(3e-308 / 1000)
+        found = re.search(r"2\u03c0/\u03c9 = ([0-9.e+-]+) s", message)
+        if not found:
+            return 'no period figure'
+        return None if abs(float(found.group(1)) - want) <= 1e-9 * want else 'period %s, not %.12g' % (found.group(1), want)
+    return [
+        ('spring-block', ['simulation', 'springs', 0, 'points', 1, 1], -1.7e308, 2, '/simulation/springs/0/points/1', None),
+        ('spring-block', ['simulation', 'springs', 0, 'points', 0, 0], 1.7976931348623157e308, 2,
+         '/simulation/springs/0/points/0', None),
+        ('spring-block', ['simulation', 'springs', 0, 'rest_length'], 1.7e308, 2, '/simulation/springs/0/rest_length', None),
+        ('cam-drive-spring', ['simulation', 'springs', 0, 'rest_length'], 1.7976931348623157e308, 2,
+         '/simulation/springs/0/rest_length', None),
+        ('cam-drive-spring', ['simulation', 'springs', 0, 'points', 0, 1], -1e308, 2, '/simulation/springs/0/points/0', None),
+        ('spring-block', ['parts', 1, 'dynamics', 'mass'], 1.7e308, 2, '/parts/1/dynamics/mass', None),
+        ('friction-slide', ['parts', 1, 'dynamics', 'mass'], 1e305, 2, '/parts/1/dynamics/mass', None),
+        ('bouncing-bar', ['parts', 0, 'dynamics', 'torsional_spring', 'rest'], 1.7976931348623157e308, 2,
+         '/parts/0/dynamics/torsional_spring/rest', None),
+        ('cam-drive-spring', ['parts', 1, 'dynamics', 'linear_spring', 'rest'], -1e308, 2,
+         '/parts/1/dynamics/linear_spring/rest', None),
+        ('bouncing-bar', ['simulation', 'velocities', 'bar'], 1.7976931348623157e308, 2, '/simulation/velocities/bar', None),
+        ('bouncing-bar', ['simulation', 'velocities', 'bar'], -1e300, 2, '/simulation/velocities/bar', None),
+        ('bouncing-bar', ['parts', 0, 'dynamics', 'moment_of_inertia'], 3e-308, 2, '/parts/0/dynamics/moment_of_inertia',
+         period_figure),
+        ('spring-block-ms-mN', ['simulation', 'springs', 0, 'damping'], 3e-308, 2, '/simulation/springs/0/damping', None),
+        ('cam-drive-thrown', ['simulation', 'velocities', 'follower'], 100000, 3, "translating part 'follower' (/parts/1/motion)",
+         None),
+    ]
+
+
 def main(argv):
     args = [a for a in argv[1:]]
     everything = '--all' in args
@@ -150,10 +217,15 @@ def main(argv):
             if not everything:
                 mutations = rng.sample(mutations, 3)
             for label, value, remove in mutations:
-                cases.append((name, model, t_end, extra, path, label, value, remove))
+                cases.append((name, model, t_end, extra, path, label, value, remove, None))
+    every_base = {name: (model, t_end, extra) for name, model, t_end, extra in bases(source)}
+    every_base.update(extra_bases)
+    for name, path, value, code, text, check in fixed_cases(source):
+        model, t_end, extra = every_base[name]
+        cases.append((name, model, t_end, extra, path, 'fixed-%r' % value, value, False, (code, text, check)))
     print('seed %d, %d cases' % (seed, len(cases)))
     failures = 0
-    for name, model, t_end, extra, path, label, value, remove in cases:
+    for name, model, t_end, extra, path, label, value, remove, expected in cases:
         m = copy.deepcopy(model)
         try:
             set_at(m, path, value, remove)
@@ -196,6 +268,16 @@ def main(argv):
                 named = lines[0][len('hipair: error: '):].split(':')[0]
                 if not named.startswith('/') and not named.startswith('-'):
                     problems.append('no pointer or option named')
+            if rc != 0 and lines and not names_location(lines[0], pointer(path)):
+                problems.append('the message names no place on %s' % pointer(path))
+            if expected:
+                code, text, check = expected
+                if rc != code:
+                    problems.append('exit %s, expected %s' % (rc, code))
+                if text not in se:
+                    problems.append('the message does not name %s' % text)
+                if check and check(se):
+                    problems.append(check(se))
         status = 'ok' if not problems else 'PROBLEM ' + '; '.join(problems)
         if problems or everything:
             print('%-60s exit %-7s %5.1f s  %s | %s' % (tag, rc, seconds, status, (lines[-1] if lines else '')[:200]))

@@ -22,12 +22,15 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "model/simulation_reading.hpp"
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 
 namespace {
 
@@ -308,6 +311,74 @@ TEST(ModelSimulatorRange, ValuesBeyondTheDoublesInTheSimulatorsUnitsAreRefusedAt
   }
   EXPECT_GT(refused, 30u);
   EXPECT_GT(kept, 30u);
+}
+
+// Session 61 (hunt61): the loads the data makes at the start, in the simulator's units (s, mN),
+// each datum within the doubles' range but their product not: a mass under gravity, a part's own
+// spring far from its rest, a spring with a rest length near the doubles' end; and a damping in
+// mN ms that is subnormal in mN s. On base61 each of these ran to "not finite" at t = 0 (exit 3,
+// no pointer) or, for the damping, was taken. Oracle: the load itself in closed form (the weight
+// m g, the spring's k |rest - q0| with q0 = 0, the rest length's force k (rest - L0) with L0 <
+// 200 mm), refused at the datum's pointer when it is beyond DBL_MAX, and accepted when the
+// reader's bound is within (the spring's moment: its force times the lever's 1-norm, 15 mm;
+// between the two either, at the pointer); values clear of each boundary by 1 %; seeded
+// (HIPAIR_TEST_SEED).
+TEST(ModelSimulatorRange, StartLoadsBeyondTheDoublesAreRefusedAtTheirLargestFactor) {
+  const std::uint64_t seed = hipair::test::test_seed(61);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> mantissa(1.0, 9.99);
+  const double largest = std::numeric_limits<double>::max();
+  auto load = [](const char* name) {
+    std::ifstream in(fs::path(HIPAIR_EXAMPLES) / name);
+    return json::parse(in);
+  };
+  const json block = load("spring-block.json"), bar = load("bouncing-bar.json");
+  json block_ms = block;
+  block_ms["simulation"]["units"] = {{"time", "ms"}, {"force", "mN"}};
+  struct Case {
+    const json* document;
+    const char* name;
+    std::string pointer;
+    int lowest, highest;        // decimal exponents drawn
+    double factor;              // the load (or the internal value) per unit of the datum
+    double bound;               // the reader's bound on it per unit of the datum
+    bool below;                 // refused below DBL_MIN (a damping), else above DBL_MAX
+  };
+  const std::vector<Case> cases = {
+      {&block, "spring-block.json", "/parts/1/dynamics/mass", 300, 308, 9810.0, 9810.0, false},           // m g, mN
+      {&bar, "bouncing-bar.json", "/parts/0/dynamics/torsional_spring/rest", 300, 308, 1000.0, 1000.0, false},
+      {&block, "spring-block.json", "/simulation/springs/0/rest_length", 300, 308, 50.0, 750.0, false},    // k rest
+      {&block_ms, "spring-block.json", "/simulation/springs/0/damping", -308, -305, 1e-3, 1e-3, true},     // mN s
+  };
+  std::size_t refused = 0, kept = 0;
+  for (int round = 0; round < 12; ++round)
+    for (const Case& c : cases) {
+      std::uniform_int_distribution<int> exponent(c.lowest, c.highest);
+      std::ostringstream literal;
+      literal.precision(6);
+      literal << mantissa(rng) << "e" << exponent(rng);
+      const double value = std::strtod(literal.str().c_str(), nullptr);
+      if (!(value >= std::numeric_limits<double>::min()) || !(value <= largest)) continue;   // the datum's own range
+      const long double internal = static_cast<long double>(value) * c.factor;
+      const long double bounded = static_cast<long double>(value) * c.bound;
+      const long double end = c.below ? std::numeric_limits<double>::min() : largest;
+      if (std::abs(internal / end - 1) < 0.01L || std::abs(bounded / end - 1) < 0.01L) continue;   // clear of the ends
+      const bool beyond = c.below ? internal < end : internal > end;
+      const bool within = c.below ? bounded > end : bounded < end;
+      const std::string what = std::string(c.name) + " " + c.pointer + " = " + literal.str() + " (seed " +
+                               std::to_string(seed) + ")";
+      try {
+        hipair::read_model_for_simulation(with(*c.document, c.pointer, literal.str()), c.name);
+        EXPECT_FALSE(beyond) << what << " was accepted";
+        ++kept;
+      } catch (const hipair::ModelError& e) {
+        EXPECT_FALSE(within) << what << ": " << e.what();
+        EXPECT_EQ(e.pointer(), c.pointer) << what << ": " << e.what();
+        ++refused;
+      }
+    }
+  EXPECT_GT(refused, 5u) << "seed " << seed;
+  EXPECT_GT(kept, 5u) << "seed " << seed;
 }
 
 }  // namespace
