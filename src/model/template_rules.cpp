@@ -7,26 +7,254 @@
 
 #include <hipair/error.hpp>
 
+#include <gmp.h>
+#include <mpfi.h>
+
+#include <memory>
+#include <optional>
+
 namespace hipair::model_detail {
 
-void template_rules(const std::string& name, const TemplateRuleValues& v,
-                    const std::function<void(const TemplateRule&)>& check) {
+namespace {
+
+// An exact real for the exact expansion's margins (session 61, tol61b): an expression DAG over
+// the template's exact rational arguments, knowing its value exactly as a + b sqrt(s) (a, b, s
+// rational, s not a rational square when b != 0) whenever the operations keep that form, and
+// otherwise enclosed by MPFI at a precision raised until the sign is decided.
+struct Quadratic {
+  Rational a, b, s;   // a + b sqrt(s)
+  bool rational() const { return sgn(b) == 0; }
+};
+
+struct Node;
+using NodePtr = std::shared_ptr<const Node>;
+
+enum class Op { known, pi, add, sub, mul, div, sqrt, sin, cos, atan2 };
+
+struct Node {
+  Op op;
+  NodePtr x, y;
+  std::optional<Quadratic> form;   // the exact value, when of that form (always for Op::known)
+};
+
+constexpr mpfr_prec_t first_precision = 64;
+constexpr mpfr_prec_t last_precision = 65536;
+
+bool is_square(const Rational& q) {
+  return sgn(q) >= 0 && mpz_perfect_square_p(q.get_num_mpz_t()) != 0 && mpz_perfect_square_p(q.get_den_mpz_t()) != 0;
+}
+
+Rational square_root(const Rational& q) {   // q a rational square
+  mpz_class n, d;
+  mpz_sqrt(n.get_mpz_t(), q.get_num_mpz_t());
+  mpz_sqrt(d.get_mpz_t(), q.get_den_mpz_t());
+  Rational r(n, d);
+  r.canonicalize();
+  return r;
+}
+
+// The exact sign of a + b sqrt(s).
+int sign_of(const Quadratic& f) {
+  const int sa = sgn(f.a), sb = f.rational() ? 0 : sgn(f.b);
+  if (sb == 0) return sa;
+  if (sa == 0 || sa == sb) return sb;
+  const int c = cmp(Rational(f.a * f.a), Rational(f.b * f.b * f.s));   // |a| against |b| sqrt(s)
+  return c > 0 ? sa : c < 0 ? sb : 0;
+}
+
+void enclose(const Node& n, mpfi_t out, mpfr_prec_t precision);
+
+class Real {
+ public:
+  Real() : Real(Rational(0)) {}
+  Real(const Rational& q) : node_(known(Quadratic{q, Rational(0), Rational(0)})) {}   // NOLINT(google-explicit-constructor)
+  explicit Real(NodePtr node) : node_(std::move(node)) {}
+  const Node& node() const { return *node_; }
+  const NodePtr& pointer() const { return node_; }
+  const std::optional<Quadratic>& form() const { return node_->form; }
+  bool is_zero() const { return form() && sign_of(*form()) == 0; }
+
+  static NodePtr known(Quadratic f) {
+    if (sgn(f.b) == 0) f.s = 0;
+    return std::make_shared<const Node>(Node{Op::known, nullptr, nullptr, std::move(f)});
+  }
+  static Real make(Op op, const Real& x, const Real& y = Real()) {
+    return Real(std::make_shared<const Node>(Node{op, x.node_, y.node_, std::nullopt}));
+  }
+
+  friend Real operator+(const Real& x, const Real& y) {
+    if (x.form() && y.form()) {
+      const Quadratic &p = *x.form(), &q = *y.form();
+      if (p.rational()) return Real(known({p.a + q.a, q.b, q.s}));
+      if (q.rational()) return Real(known({p.a + q.a, p.b, p.s}));
+      if (p.s == q.s) return Real(known({p.a + q.a, p.b + q.b, p.s}));
+    }
+    return make(Op::add, x, y);
+  }
+  friend Real operator-(const Real& x) { return Real(Rational(0)) - x; }
+  friend Real operator-(const Real& x, const Real& y) {
+    if (y.form()) return x + Real(known({-y.form()->a, -y.form()->b, y.form()->s}));
+    return make(Op::sub, x, y);
+  }
+  friend Real operator*(const Real& x, const Real& y) {
+    if (x.is_zero() || y.is_zero()) return Real(Rational(0));
+    if (x.form() && y.form()) {
+      const Quadratic &p = *x.form(), &q = *y.form();
+      if (p.rational()) return Real(known({p.a * q.a, p.a * q.b, q.s}));
+      if (q.rational()) return Real(known({q.a * p.a, q.a * p.b, p.s}));
+      if (p.s == q.s) return Real(known({p.a * q.a + p.b * q.b * p.s, p.a * q.b + p.b * q.a, p.s}));
+    }
+    return make(Op::mul, x, y);
+  }
+  friend Real operator/(const Real& x, const Real& y) {
+    if (y.is_zero()) throw NumericError("a template rule divides by zero");
+    if (x.form() && y.form()) {
+      const Quadratic &p = *x.form(), &q = *y.form();
+      // (a + b r)(c - d r) / (c^2 - d^2 s), r = sqrt(s): c^2 != d^2 s as s is not a square
+      if (q.rational()) return Real(known({p.a / q.a, p.b / q.a, p.s}));
+      if (p.rational() || p.s == q.s) {
+        const Rational d = q.a * q.a - q.b * q.b * q.s;
+        const Rational b = p.rational() ? Rational(0) : p.b;
+        return Real(known({(p.a * q.a - b * q.b * q.s) / d, (b * q.a - p.a * q.b) / d, q.s}));
+      }
+    }
+    return make(Op::div, x, y);
+  }
+
+ private:
+  NodePtr node_;
+};
+
+// The exact sign of x: from its exact form, else from MPFI enclosures of rising precision.
+// \throws NumericError when 65536 bits do not decide it.
+int sign(const Real& x) {
+  if (x.form()) return sign_of(*x.form());
+  mpfi_t v;
+  mpfi_init2(v, first_precision);
+  for (mpfr_prec_t precision = first_precision; precision <= last_precision; precision *= 2) {
+    mpfi_set_prec(v, precision);
+    enclose(x.node(), v, precision);
+    if (mpfi_is_strictly_pos(v) > 0) {
+      mpfi_clear(v);
+      return 1;
+    }
+    if (mpfi_is_strictly_neg(v) > 0) {
+      mpfi_clear(v);
+      return -1;
+    }
+  }
+  mpfi_clear(v);
+  throw NumericError("a template rule's margin is not decided at 65536 bits");
+}
+
+void enclose(const Node& n, mpfi_t out, mpfr_prec_t precision) {
+  if (n.form) {
+    const Quadratic& f = *n.form;
+    mpfi_set_q(out, f.a.get_mpq_t());
+    if (f.rational()) return;
+    mpfi_t r;
+    mpfi_init2(r, precision);
+    mpfi_set_q(r, f.s.get_mpq_t());
+    mpfi_sqrt(r, r);
+    mpfi_mul_q(r, r, f.b.get_mpq_t());
+    mpfi_add(out, out, r);
+    mpfi_clear(r);
+    return;
+  }
+  if (n.op == Op::pi) {
+    mpfi_const_pi(out);
+    return;
+  }
+  mpfi_t a, b;
+  mpfi_init2(a, precision);
+  mpfi_init2(b, precision);
+  enclose(*n.x, a, precision);
+  if (n.y) enclose(*n.y, b, precision);
+  switch (n.op) {
+    case Op::add: mpfi_add(out, a, b); break;
+    case Op::sub: mpfi_sub(out, a, b); break;
+    case Op::mul: mpfi_mul(out, a, b); break;
+    case Op::div: mpfi_div(out, a, b); break;
+    case Op::sqrt:
+      // the argument is positive (checked exactly when the node was made)
+      if (mpfr_sgn(&a->left) < 0) mpfr_set_zero(&a->left, 1);
+      mpfi_sqrt(out, a);
+      break;
+    case Op::sin: mpfi_sin(out, a); break;
+    case Op::cos: mpfi_cos(out, a); break;
+    case Op::atan2: mpfi_atan2(out, a, b); break;
+    case Op::known:
+    case Op::pi: break;
+  }
+  mpfi_clear(a);
+  mpfi_clear(b);
+}
+
+// The arithmetic of the rules in number type T.
+template <class T>
+struct RuleArithmetic;
+
+template <>
+struct RuleArithmetic<kernels::Interval> {
   using I = kernels::Interval;
   using A = Arithmetic<I>;
+  static I exactly(double x) { return I(x, x); }
+  static I constant(const Rational& q) { return A::constant(q); }
+  static I pi() { return A::pi(); }
+  static I sqrt(const I& x) { return A::sqrt(x); }
+  static I sin(const I& x) { return A::sin(x); }
+  static I cos(const I& x) { return A::cos(x); }
+  static I atan2(const I& y, const I& x) { return A::atan2(y, x); }
+};
+
+template <>
+struct RuleArithmetic<Real> {
+  static Real exactly(double x) { return Real(Rational(x)); }
+  static Real constant(const Rational& q) { return Real(q); }
+  static Real pi() { return Real(std::make_shared<const Node>(Node{Op::pi, nullptr, nullptr, std::nullopt})); }
+  static Real sqrt(const Real& x) {
+    const int s = sign(x);
+    if (s < 0) throw NumericError("a template rule takes the square root of a negative value");
+    if (s == 0) return Real(Rational(0));
+    if (x.form() && x.form()->rational()) {
+      const Rational& q = x.form()->a;
+      if (is_square(q)) return Real(square_root(q));
+      return Real(Real::known({Rational(0), Rational(1), q}));
+    }
+    return Real::make(Op::sqrt, x);
+  }
+  static Real sin(const Real& x) { return x.is_zero() ? Real(Rational(0)) : Real::make(Op::sin, x); }
+  static Real cos(const Real& x) { return x.is_zero() ? Real(Rational(1)) : Real::make(Op::cos, x); }
+  static Real atan2(const Real& y, const Real& x) {
+    if (sign(y) == 0) {
+      const int sx = sign(x);
+      if (sx == 0) throw NumericError("a template rule takes atan2(0, 0)");
+      return sx > 0 ? Real(Rational(0)) : pi();
+    }
+    return Real::make(Op::atan2, y, x);
+  }
+};
+
+}  // namespace
+
+template <class I>
+void rules_in(const std::string& name, const BasicTemplateRuleValues<I>& v,
+              const std::function<void(const BasicTemplateRule<I>&)>& check) {
+  using A = RuleArithmetic<I>;
   auto value = [&](const char* key) { return v.value(key); };
   auto point = [&](const char* key) { return v.point(key); };
   // an optional angle: its value, or the template's default
   auto angle_or = [&](const char* key, const I& fallback) { return v.has(key) ? v.value(key) : fallback; };
-  auto c = [](double x) { return I(x, x); };
+  auto c = [](double x) { return A::exactly(x); };
   auto rule = [&](const char* key, std::vector<const char*> reads, std::function<I()> margin, std::string text,
                   std::string refusal) {
-    check(TemplateRule{key, std::move(reads), std::move(margin), std::move(text), std::move(refusal)});
+    check(BasicTemplateRule<I>{key, std::move(reads), std::move(margin), std::move(text), std::move(refusal)});
   };
   auto positive = [&](std::initializer_list<const char*> keys) {
     for (const char* key : keys) rule(key, {key}, [&, key] { return value(key); }, std::string(key) + " > 0", "must be positive");
   };
   const I pi = A::pi();
-  const I tiny = c(1e-9);
+  const I tiny = A::constant(Rational(1, 1000000000));
   if (name == "geneva_wheel") {
     positive({"slot_width", "slot_inner_radius", "slot_outer_radius", "lock_center_radius", "lock_radius"});
     rule("slot_inner_radius", {"slot_inner_radius", "slot_width"},
@@ -76,7 +304,8 @@ void template_rules(const std::string& name, const TemplateRuleValues& v,
              I wx = A::sqrt(I(outer * outer - half * half)), wy = -half;
              I x = wx * A::cos(sector) - wy * A::sin(sector), y = wx * A::sin(sector) + wy * A::cos(sector);
              I dx = x - value("lock_center_radius");
-             return I(A::sqrt(I(dx * dx + y * y)) - value("lock_radius") - tiny);
+             // 1e-9 of lock_radius: the same in any unit of length (the box reads mm)
+             return I(A::sqrt(I(dx * dx + y * y)) - value("lock_radius") * I(c(1) + tiny));
            },
            "the locking arcs clear of the slot walls (lock_radius and slot_outer_radius)",
            "the locking arcs cut into the slot walls: reduce lock_radius or slot_outer_radius");
@@ -99,9 +328,9 @@ void template_rules(const std::string& name, const TemplateRuleValues& v,
       auto tip = [&] { return angle_or("tip_angle", c(0)); };
       auto face = [&] { return angle_or("face_angle", c(0)); };
       const std::string below = "tip_angle + face_angle must stay below 3/4 of the tooth pitch";
-      rule("face_angle", {"face_angle"}, [&] { return I(c(0.75) * pitch - tip() - face()); },
+      rule("face_angle", {"face_angle"}, [&] { return I(A::constant(Rational(3, 4)) * pitch - tip() - face()); },
            "tip_angle + face_angle < 3/4 of the tooth pitch", below);
-      rule("tip_angle", {"tip_angle", "face_angle"}, [&] { return I(c(0.75) * pitch - tip() - face()); },
+      rule("tip_angle", {"tip_angle", "face_angle"}, [&] { return I(A::constant(Rational(3, 4)) * pitch - tip() - face()); },
            "tip_angle + face_angle < 3/4 of the tooth pitch", below);
       if (v.has("back_angle")) {   // absent: ratchet teeth, no root arc (the back is pitch + face_angle)
         const std::string base = "must exceed face_angle and tip_angle (the tooth needs a base)";
@@ -121,8 +350,8 @@ void template_rules(const std::string& name, const TemplateRuleValues& v,
                angle_or("pallet_extent", A::constant(Rational(174533, 500000))));   // the template's default extent
     };
     const std::string sum = "lift + lock + pallet_extent must stay below 1.2 rad";
-    rule("lift", {"lift", "lock"}, [&] { return I(c(1.2) - angles()); }, "lift + lock + pallet_extent < 1.2 rad", sum);
-    rule("pallet_extent", {"pallet_extent", "lift", "lock"}, [&] { return I(c(1.2) - angles()); },
+    rule("lift", {"lift", "lock"}, [&] { return I(A::constant(Rational(6, 5)) - angles()); }, "lift + lock + pallet_extent < 1.2 rad", sum);
+    rule("pallet_extent", {"pallet_extent", "lift", "lock"}, [&] { return I(A::constant(Rational(6, 5)) - angles()); },
          "lift + lock + pallet_extent < 1.2 rad", sum);
     auto distance_squared = [&] {
       kernels::Vector<I> d = point("center") - point("wheel_center");
@@ -170,9 +399,9 @@ void template_rules(const std::string& name, const TemplateRuleValues& v,
          "dedendum < pitch_radius", "must be less than pitch_radius");
     if (v.has("pressure_angle")) {   // absent: 20 degrees
       const std::string range = "must lie between 0.01 and 0.7 rad (about 0.6 to 40 degrees)";
-      rule("pressure_angle", {"pressure_angle"}, [&] { return I(value("pressure_angle") - c(0.01)); },
+      rule("pressure_angle", {"pressure_angle"}, [&] { return I(value("pressure_angle") - A::constant(Rational(1, 100))); },
            "pressure_angle > 0.01 rad", range);
-      rule("pressure_angle", {"pressure_angle"}, [&] { return I(c(0.7) - value("pressure_angle")); },
+      rule("pressure_angle", {"pressure_angle"}, [&] { return I(A::constant(Rational(7, 10)) - value("pressure_angle")); },
            "pressure_angle < 0.7 rad", range);
     }
   } else if (name == "ratchet_wheel") {
@@ -182,15 +411,29 @@ void template_rules(const std::string& name, const TemplateRuleValues& v,
   }
 }
 
-void check_template_rules_exactly(const std::string& name, const TemplateRuleValues& values, const std::string& pointer) {
-  template_rules(name, values, [&](const TemplateRule& rule) {
+void template_rules(const std::string& name, const TemplateRuleValues& values,
+                    const std::function<void(const TemplateRule&)>& check) {
+  rules_in<kernels::Interval>(name, values, check);
+}
+
+void check_template_rules_exactly(const std::string& name, const ExactTemplateRuleValues& values,
+                                  const std::string& pointer) {
+  BasicTemplateRuleValues<Real> exact;
+  exact.has = values.has;
+  exact.value = [&](const char* key) { return Real(values.value(key)); };
+  exact.point = [&](const char* key) {
+    kernels::Vector<Rational> p = values.point(key);
+    return kernels::Vector<Real>{Real(p.x), Real(p.y)};
+  };
+  exact.count = values.count;
+  rules_in<Real>(name, exact, [&](const BasicTemplateRule<Real>& rule) {
     bool positive = false;
     try {
-      positive = rule.margin().lo > 0;
+      positive = sign(rule.margin()) > 0;
     } catch (const ModelError&) {
       throw;
     } catch (const Error&) {
-      // a margin that does not evaluate (outside its functions' domains) refuses too
+      // a margin that does not evaluate (outside its functions' domains) or is not decided refuses
     }
     if (!positive) throw ModelError(pointer + "/" + rule.key, rule.refusal);
   });

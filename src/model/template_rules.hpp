@@ -1,9 +1,9 @@
 // The rules of the feature templates (session 61): each written once, as a margin that must be
 // positive, enclosed in certified interval arithmetic, and served to both of its users:
-//   - the exact expansion (templates*.cpp, check_template_rules_exactly): the margin enclosed at
-//     the template's exact argument values (lengths in the template's unit, template_geometry.hpp
-//     LengthScaleScope); a margin not certainly positive refuses the geometry with the
-//     template's own message at the argument the rule names;
+//   - the exact expansion (templates*.cpp, check_template_rules_exactly): the margin's sign
+//     decided exactly at the template's exact argument values (lengths in the template's unit,
+//     template_geometry.hpp LengthScaleScope); a margin not positive refuses the geometry with
+//     the template's own message at the argument the rule names;
 //   - a tolerance box (ParametricModel::check_choices): the margin enclosed over the box; a
 //     margin not certainly positive refuses the box, naming the toleranced parameters it reads.
 // Until session 61 the box check wrote every rule a second time. The templates' constructive
@@ -15,6 +15,8 @@
 #include "kernels/interval.hpp"
 #include "kernels/vector.hpp"
 
+#include <hipair/rational.hpp>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -22,34 +24,54 @@
 namespace hipair::model_detail {
 
 /// The values a template's rules read: enclosures of its arguments (of one exact vector, or
-/// over a tolerance box).
-struct TemplateRuleValues {
+/// over a tolerance box), in number type T (kernels::Interval here; the exact expansion's own
+/// exact reals inside template_rules.cpp).
+template <class T>
+struct BasicTemplateRuleValues {
   std::function<bool(const char*)> has;
-  /// A number argument's enclosure (present: the rules ask only for those or use defaults).
-  std::function<kernels::Interval(const char*)> value;
-  std::function<kernels::Vector<kernels::Interval>(const char*)> point;
+  /// A number argument's value (present: the rules ask only for those or use defaults).
+  std::function<T(const char*)> value;
+  std::function<kernels::Vector<T>(const char*)> point;
   /// The template's tooth or slot count; 0 when unknown (it depends on a toleranced parameter):
   /// the rules that need it are then not checked.
   long count = 0;
 };
+using TemplateRuleValues = BasicTemplateRuleValues<kernels::Interval>;
 
-/// One rule: `margin` must be certainly positive (its enclosure's lower end > 0).
-struct TemplateRule {
+/// One rule: `margin` must be positive (an enclosure: its lower end > 0).
+template <class T>
+struct BasicTemplateRule {
   const char* key;                   ///< the argument a refusal names
   std::vector<const char*> reads;    ///< the arguments the margin reads (absent ones: defaults)
-  std::function<kernels::Interval()> margin;
+  std::function<T()> margin;
   std::string rule;                  ///< the rule, as a tolerance box's refusal states it
   std::string refusal;               ///< the exact expansion's message at `key`
 };
+using TemplateRule = BasicTemplateRule<kernels::Interval>;
 
 /// Calls `check` with every rule of template `name` (in the order the expansion checks them; none
 /// for a template without rules). The margins are evaluated only when `check` asks.
 void template_rules(const std::string& name, const TemplateRuleValues& values,
                     const std::function<void(const TemplateRule&)>& check);
 
-/// The exact expansion's check of template `name`'s rules at `values` (a point).
+/// A template's exact argument values (lengths in the template's unit).
+struct ExactTemplateRuleValues {
+  std::function<bool(const char*)> has;
+  std::function<Rational(const char*)> value;
+  std::function<kernels::Vector<Rational>(const char*)> point;
+  long count = 0;
+};
+
+/// The exact expansion's check of template `name`'s rules at `values` (session 61, tol61b): each
+/// margin's sign decided exactly, the same rules as template_rules written once over exact reals:
+/// rational margins and margins a + b sqrt(s) (a, b, s rational) by exact rational arithmetic
+/// (comparing squares), others (pi, sin, cos, atan2) by MPFI enclosures refined from 64 to 65536
+/// bits. A margin exactly zero refuses (every rule is strict).
 /// \throws ModelError at pointer + "/" + key with the rule's refusal when a margin is not
-/// certainly positive (or does not evaluate).
-void check_template_rules_exactly(const std::string& name, const TemplateRuleValues& values, const std::string& pointer);
+/// positive, does not evaluate (a square root of a negative, atan2(0, 0)), or is not decided
+/// at 65536 bits (only a margin vanishing exactly without being rational or quadratic: refused,
+/// as a zero margin is).
+void check_template_rules_exactly(const std::string& name, const ExactTemplateRuleValues& values,
+                                  const std::string& pointer);
 
 }  // namespace hipair::model_detail

@@ -196,18 +196,16 @@ void check_rules(const std::string& name, const Arguments& arguments, long count
     return false;
   };
   const Rational& unit = tg::length_unit();
-  auto in_unit = [&](const Rational& length) {
-    return kernels::Interval::enclose(unit == 1 ? length : Rational(length / unit));
-  };
-  TemplateRuleValues values;
+  auto in_unit = [&](const Rational& length) { return unit == 1 ? length : Rational(length / unit); };
+  ExactTemplateRuleValues values;
   values.has = [&](const char* key) { return arguments.has(key); };
   values.value = [&](const char* key) {
     Rational number = arguments.number(key);
-    return is_length(key) ? in_unit(number) : kernels::Interval::enclose(number);
+    return is_length(key) ? in_unit(number) : number;
   };
   values.point = [&](const char* key) {
     Point p = arguments.point(key);
-    return kernels::Vector<kernels::Interval>{in_unit(p.x), in_unit(p.y)};
+    return kernels::Vector<Rational>{in_unit(p.x), in_unit(p.y)};
   };
   values.count = count;
   check_template_rules_exactly(name, values, arguments.pointer());

@@ -18,8 +18,10 @@
 #include "kinematics/axis.hpp"
 #include "kinematics/slice.hpp"
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 
 #include <hipair/error.hpp>
+#include <hipair/kernel_slice.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
 
@@ -712,6 +714,111 @@ TEST(AnalyzeShortRange, PathPassesThroughTheEventsOfARangeShorterThanAGridStep) 
   EXPECT_NE(driver(path.points[1]), driver(path.points[0]));
   EXPECT_FALSE(path.points[0].contact);
   EXPECT_TRUE(path.points.back().contact);
+}
+
+
+// Session 61 (tol61b): the public windowed slice (hipair::KernelSlicer::slice with window_lo,
+// window_hi; tolerance --contact-changes relies on it) gives exactly the whole slice's answer
+// inside the window. Generated: random spur gear pairs and the cam examples, random driver and
+// follower chart values, windows with ends drawn from chart values, the chart's ends and beyond,
+// the whole slice's exact points and its points' isolating bounds (next to points). Oracle: the
+// whole chart's slice on the same slicer, restricted to the window clipped to the chart: the
+// same points (exactly equal numbers, features, may_touch) and the same classes between them,
+// `outside` for the empty piece at a point on a window end.
+TEST(KernelSlicerWindows, WindowedSlicesAreTheWholeSlicesInside) {
+  const std::uint64_t seed = test::test_seed(61);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::mt19937_64 random(seed);
+  std::vector<std::pair<std::string, Model>> models;
+  for (int trial = 0; trial < 2; ++trial) {
+    std::string name;
+    Model model = random_gear_pair(random, 6, 6, name);
+    models.emplace_back(name, std::move(model));
+  }
+  for (const char* file : {"cam-follower.json", "cam-drive.json"}) models.emplace_back(file, read_model_file(example(file)));
+  auto to_real = [](const AlgebraicNumber& a) {
+    algebra::Real r;
+    r.polynomial = a.polynomial;
+    r.lower = a.lower;
+    r.upper = a.upper;
+    r.exact = a.exact;
+    return r;
+  };
+  std::size_t windows = 0, points = 0, at_ends = 0;
+  for (const auto& [name, model] : models)
+    for (std::size_t pair = 0; pair < model.pairs.size(); ++pair)
+      for (std::size_t follower : {model.pairs[pair].first, model.pairs[pair].second}) {
+        const std::size_t other = follower == model.pairs[pair].first ? model.pairs[pair].second : model.pairs[pair].first;
+        std::unique_ptr<PairSlicer> charts;
+        try {
+          charts = make_kernel_slicer(model, pair, follower);
+        } catch (const GeometryError&) {
+          continue;   // a fixed follower, or not a fixed-axis pair
+        }
+        if (!charts->other_moves()) continue;
+        KernelSlicer slicer(model, other, follower);
+        for (int position = 0; position < 4; ++position) {
+          const ChartAxis& o_axis = charts->other_charts()[random() % charts->other_charts().size()];
+          const ChartAxis& f_axis = charts->follower_charts()[random() % charts->follower_charts().size()];
+          const Rational o_t = chart_value(o_axis, random), f_t = chart_value(f_axis, random);
+          const std::string where = name + " pair " + std::to_string(pair) + " follower " + std::to_string(follower) +
+                                    " at " + o_t.get_str() + (o_axis.half_turn ? " (half)" : "") + ", " + f_t.get_str() +
+                                    (f_axis.half_turn ? " (half)" : "");
+          std::optional<KernelSlice> whole = slicer.slice(o_t, o_axis.half_turn, f_t, f_axis.half_turn);
+          ASSERT_TRUE(whole.has_value()) << where;
+          ASSERT_EQ(whole->kinds.size(), whole->points.size() + 1) << where;
+          std::vector<algebra::Real> reals;
+          for (const KernelSlice::Point& p : whole->points) reals.push_back(to_real(p.at));
+          // window ends: chart values, the chart's ends and beyond, exact points, isolating bounds
+          std::vector<Rational> ends{f_axis.lo, f_axis.hi, Rational(f_axis.lo - 1), Rational(f_axis.hi + 1)};
+          for (int k = 0; k < 4; ++k) ends.push_back(chart_value(f_axis, random));
+          std::vector<Rational> exact_points;
+          for (const algebra::Real& r : reals) {
+            ends.push_back(r.lower);
+            if (!r.exact) ends.push_back(r.upper);
+            else exact_points.push_back(r.lower);
+          }
+          for (int w = 0; w < 10; ++w) {
+            Rational lo = ends[random() % ends.size()], hi = ends[random() % ends.size()];
+            if (w % 3 == 0 && !exact_points.empty()) lo = exact_points[random() % exact_points.size()];   // a point on an end
+            if (hi < lo) std::swap(lo, hi);
+            const Rational clip_lo = std::max(lo, f_axis.lo), clip_hi = std::min(hi, f_axis.hi);
+            if (!(lo < hi) || !(clip_lo < clip_hi)) continue;
+            const std::string case_name = where + " window " + lo.get_str() + " .. " + hi.get_str();
+            std::optional<KernelSlice> part = slicer.slice(o_t, o_axis.half_turn, f_t, f_axis.half_turn, lo, hi);
+            ASSERT_TRUE(part.has_value()) << case_name;
+            // the whole slice's points in [clip_lo, clip_hi]: indices [first, last)
+            std::size_t first = 0, last = 0;
+            while (first < reals.size() && reals[first].compare(clip_lo) < 0) ++first;
+            last = first;
+            while (last < reals.size() && reals[last].compare(clip_hi) <= 0) ++last;
+            ASSERT_EQ(part->points.size(), last - first) << case_name;
+            ASSERT_EQ(part->kinds.size(), part->points.size() + 1) << case_name;
+            for (std::size_t i = 0; i < part->points.size(); ++i) {
+              const KernelSlice::Point &got = part->points[i], &want = whole->points[first + i];
+              EXPECT_EQ(algebra::compare(to_real(got.at), reals[first + i]), 0) << case_name << ": point " << i;
+              EXPECT_EQ(got.may_touch, want.may_touch) << case_name << ": point " << i;
+              EXPECT_TRUE(got.features == want.features) << case_name << ": point " << i;
+              // the class after the point (up to the next point, or to the window's end)
+              const bool at_end = i + 1 == part->points.size() && reals[first + i].compare(clip_hi) == 0;
+              EXPECT_EQ(part->kinds[i + 1], at_end ? KernelSlice::Kind::outside : whole->kinds[first + i + 1])
+                  << case_name << ": after point " << i;
+              at_ends += at_end;
+            }
+            const bool at_start = !part->points.empty() && reals[first].compare(clip_lo) == 0;
+            EXPECT_EQ(part->kinds.front(), at_start ? KernelSlice::Kind::outside : whole->kinds[first])
+                << case_name << ": before the first point";
+            at_ends += at_start;
+            ++windows;
+            points += part->points.size();
+            if (HasFailure()) return;
+          }
+        }
+      }
+  EXPECT_GT(windows, 100u);
+  EXPECT_GT(points, windows);
+  EXPECT_GT(at_ends, 5u);
+  std::cout << windows << " windows, " << points << " points, " << at_ends << " on a window end\n";
 }
 
 }  // namespace

@@ -6,8 +6,11 @@
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
+#include <mpfi.h>
 
 #include <cmath>
+#include <functional>
+#include <iostream>
 #include <random>
 #include <set>
 #include <sstream>
@@ -526,6 +529,251 @@ TEST(Templates, RoundingsCarryPointersAndBounds) {
     EXPECT_GT(rounding.bound, 0);
     EXPECT_LT(rounding.bound, q("1/1000000"));
   }
+}
+
+
+// Session 61 (tol61b): the templates' rules are decided exactly at their bounds. Until session
+// 60 the rational rules were exact comparisons and the angle rules double comparisons; session
+// 61's shared rules enclosed every margin in double intervals and refused valid vectors within
+// about 1e-15 (relative) of a bound. Generated: for every rule of every template a vector exactly
+// ON the bound where the bound is rational (every rule is strict: refused), 2^-k above and below
+// it (k = 40 ... 200), and, where the bound is irrational (pi, sin, a square root), its MPFI
+// enclosure's two ends at 4096 bits (within 2^-4000 of it) and 2^-k beyond them; lengths at
+// scales 1, 1e-300 and 1e400. The oracle: the rule's closed form (the bound B exact or enclosed),
+// a vector passing iff it lies on the rule's side of B. Expected: refused by that rule (its
+// pointer and message) exactly when it does not pass; a passing vector may still be refused by
+// a later rule or constructive check (counted, not allowed to be this rule).
+struct Bound {
+  Rational lo, hi;   // B in [lo, hi]; lo == hi: B exact, else lo < B < hi
+};
+
+// An MPFI enclosure at 4096 bits, as rationals (the function `f` writes it).
+Bound enclosed(const std::function<void(mpfi_ptr)>& f) {
+  mpfi_t x;
+  mpfi_init2(x, 4096);
+  f(x);
+  mpfr_t end;
+  mpfr_init2(end, 4096);
+  Bound b;
+  mpfi_get_left(end, x);
+  mpfr_get_q(b.lo.get_mpq_t(), end);
+  mpfi_get_right(end, x);
+  mpfr_get_q(b.hi.get_mpq_t(), end);
+  mpfr_clear(end);
+  mpfi_clear(x);
+  return b;
+}
+
+Bound exactly(const Rational& b) { return Bound{b, b}; }
+
+// sqrt(q) enclosed.
+Bound root_of(const Rational& q_value) {
+  return enclosed([&](mpfi_ptr x) {
+    mpfi_set_q(x, q_value.get_mpq_t());
+    mpfi_sqrt(x, x);
+  });
+}
+
+Rational power_of_two(int k) {   // 2^-k
+  mpz_class d;
+  mpz_ui_pow_ui(d.get_mpz_t(), 2, static_cast<unsigned long>(k));
+  return Rational(mpz_class(1), d);
+}
+
+Rational power_of_ten(int e) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+
+struct RuleCase {
+  std::string name, key, refusal;   // the template, the argument the rule names, its message (part)
+  int side;                         // +1: the argument must exceed B; -1: stay below it
+  bool length;                      // the varied argument is a length (scaled with the others)
+  Bound bound;                      // B at scale 1
+  std::function<Arguments(const Rational& x, const Rational& scale)> arguments;
+};
+
+TEST(Templates, RulesAreDecidedExactlyAtTheirBounds) {
+  auto L = [](const char* text, const Rational& s) { return Rational(q(text) * s); };
+  auto P = [](const char* x, const char* y, const Rational& s) { return Point{Rational(q(x) * s), Rational(q(y) * s)}; };
+  const Rational milli(1, 1000000000);   // the angle rules' 1e-9
+  auto pi_times = [](const Rational& factor, const Rational& minus) {   // factor pi - minus
+    return enclosed([&](mpfi_ptr x) {
+      mpfi_const_pi(x);
+      mpfi_mul_q(x, x, factor.get_mpq_t());
+      mpfi_sub_q(x, x, minus.get_mpq_t());
+    });
+  };
+  // geneva_wheel (4 slots, docs/examples.md's proportions; slot_width 6)
+  auto wheel = [&](const Rational& s) {
+    Arguments a = geneva_wheel_arguments(4);
+    for (const char* key : {"slot_width", "slot_inner_radius", "slot_outer_radius", "lock_center_radius", "lock_radius"})
+      a[key] = Rational(std::get<Rational>(a[key]) * s);
+    return a;
+  };
+  const Rational inner4 = std::get<Rational>(geneva_wheel_arguments(4)["slot_inner_radius"]);
+  auto anchor = [&](const Rational& s, const char* y) {
+    return Arguments{{"center", P("0", y, s)},         {"wheel_center", P("0", "0", s)},
+                     {"wheel_radius", L("20", s)},     {"pallet_width", L("3.6", s)},
+                     {"lift", q("0.1047")},            {"lock", q("0.0349")},
+                     {"fork_length", L("21.7", s)},    {"fork_width", L("5", s)},
+                     {"fork_slot_width", L("2.7", s)}, {"fork_slot_depth", L("2.4", s)}};
+  };
+  const Rational tangent2 = q("23.094") * q("23.094") - 400;   // the base anchor's squared tangent length
+  auto escape = [&](const Rational& s) {
+    return Arguments{{"center", P("0", "0", s)}, {"teeth", Rational(15)},   {"tip_radius", L("20", s)},
+                     {"root_radius", L("15", s)}, {"face_angle", q("0.07")}, {"back_angle", q("0.17")},
+                     {"tip_angle", q("0.02")}};
+  };
+  auto driver = [&](const Rational& s) {
+    return Arguments{{"center", P("80", "0", s)},          {"pin_radius", L("4.5", s)},
+                     {"pin_center_radius", L("56.5", s)}, {"lock_outer_radius", L("46", s)},
+                     {"lock_inner_radius", L("36", s)},   {"lock_span", q("4.9416")}};
+  };
+  auto balance = [&](const Rational& s) {
+    return Arguments{{"center", P("0", "48", s)}, {"radius", L("3", s)}, {"pin_radius", L("1.2", s)},
+                     {"pin_center_radius", L("4", s)}};
+  };
+  auto gear = [&](const Rational& s) {
+    Arguments a = spur_gear_arguments(20);
+    for (const char* key : {"pitch_radius", "addendum", "dedendum", "tooth_thickness"})
+      a[key] = Rational(std::get<Rational>(a[key]) * s);
+    a["pressure_angle"] = q("0.35");
+    return a;
+  };
+  auto with = [](Arguments a, const char* key, const TemplateValue& value) {
+    a[key] = value;
+    return a;
+  };
+  std::vector<RuleCase> cases{
+      {"geneva_wheel", "slot_inner_radius", "would reach the wheel centre", +1, true, exactly(3),
+       [&](const Rational& x, const Rational& s) { return with(wheel(s), "slot_inner_radius", x); }},
+      {"geneva_wheel", "slot_outer_radius", "must reach beyond the slot bottom", +1, true, exactly(5),   // 3, 4, 5
+       [&](const Rational& x, const Rational& s) {
+         return with(with(wheel(s), "slot_inner_radius", Rational(4 * s)), "slot_outer_radius", x);
+       }},
+      {"geneva_wheel", "slot_outer_radius", "must reach beyond the slot bottom", +1, true,
+       root_of(Rational(inner4 * inner4 + 9)),
+       [&](const Rational& x, const Rational& s) { return with(wheel(s), "slot_outer_radius", x); }},
+      {"geneva_wheel", "lock_radius", "would enclose the wheel centre", -1, true, exactly(80),
+       [&](const Rational& x, const Rational& s) { return with(wheel(s), "lock_radius", x); }},
+      {"geneva_wheel", "lock_span", "strictly between 0 and 180", -1, false, pi_times(1, milli),
+       [&](const Rational& x, const Rational& s) { return with(wheel(s), "lock_span", x); }},
+      {"geneva_wheel", "slot_width", "too wide", -1, true,   // 6 slots: 2 * 60 sin(pi/6 - 1e-9)
+       enclosed([&](mpfi_ptr x) {
+         mpfi_const_pi(x);
+         mpfi_div_ui(x, x, 6);
+         mpfi_sub_q(x, x, milli.get_mpq_t());
+         mpfi_sin(x, x);
+         mpfi_mul_ui(x, x, 120);
+       }),
+       [&](const Rational& x, const Rational& s) {
+         Arguments a = geneva_wheel_arguments(6);
+         for (const char* key : {"lock_center_radius", "lock_radius"}) a[key] = Rational(std::get<Rational>(a[key]) * s);
+         a["slot_outer_radius"] = Rational(60 * s);
+         a["slot_inner_radius"] = Rational(40 * s);
+         a["slot_width"] = x;
+         return a;
+       }},
+      {"geneva_driver", "lock_inner_radius", "must be less than lock_outer_radius", -1, true, exactly(46),
+       [&](const Rational& x, const Rational& s) { return with(driver(s), "lock_inner_radius", x); }},
+      {"geneva_driver", "lock_span", "strictly between 0 and 360", -1, false, pi_times(2, milli),
+       [&](const Rational& x, const Rational& s) { return with(driver(s), "lock_span", x); }},
+      {"escape_wheel", "root_radius", "must be less than tip_radius", -1, true, exactly(20),
+       [&](const Rational& x, const Rational& s) { return with(escape(s), "root_radius", x); }},
+      {"escape_wheel", "face_angle", "3/4 of the tooth pitch", -1, false, pi_times(Rational(1, 10), q("0.02")),
+       [&](const Rational& x, const Rational& s) { return with(escape(s), "face_angle", x); }},
+      {"escape_wheel", "back_angle", "must exceed face_angle", +1, false, exactly(q("0.07") + milli),
+       [&](const Rational& x, const Rational& s) { return with(escape(s), "back_angle", x); }},
+      {"escape_wheel", "back_angle", "must be less than the tooth pitch", -1, false,
+       pi_times(Rational(2, 15), Rational(milli - q("0.07"))),
+       [&](const Rational& x, const Rational& s) { return with(escape(s), "back_angle", x); }},
+      {"anchor", "center", "outside the escape wheel", -1, true, exactly(q("23.094")),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "23.094"), "wheel_radius", x); }},
+      {"anchor", "lift", "must stay below 1.2 rad", -1, false, exactly(q("1.2") - q("0.1047") - q("0.0349")),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "23.094"), "pallet_extent", x); }},
+      {"anchor", "pallet_width", "wider than twice the pallet radius", -1, true, exactly(30),   // tangent 15
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "25"), "pallet_width", x); }},
+      {"anchor", "pallet_width", "wider than twice the pallet radius", -1, true, root_of(Rational(4 * tangent2)),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "23.094"), "pallet_width", x); }},
+      {"anchor", "fork_width", "wider than the anchor's pallet circle", -1, true, exactly(q("33.6")),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "25"), "fork_width", x); }},
+      {"anchor", "fork_width", "wider than the anchor's pallet circle", -1, true,
+       [&] {
+         Bound b = root_of(Rational(4 * tangent2));
+         return Bound{Rational(b.lo + q("3.6")), Rational(b.hi + q("3.6"))};
+       }(),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "23.094"), "fork_width", x); }},
+      {"anchor", "fork_slot_width", "must be less than fork_width", -1, true, exactly(5),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "23.094"), "fork_slot_width", x); }},
+      {"anchor", "fork_slot_depth", "must end outside the pallet circle", -1, true, exactly(q("4.9")),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "25"), "fork_slot_depth", x); }},
+      {"anchor", "fork_slot_depth", "must end outside the pallet circle", -1, true,
+       [&] {
+         Bound b = root_of(tangent2);
+         return Bound{Rational(q("19.9") - b.hi), Rational(q("19.9") - b.lo)};
+       }(),
+       [&](const Rational& x, const Rational& s) { return with(anchor(s, "23.094"), "fork_slot_depth", x); }},
+      {"balance", "pin_center_radius", "lies inside the disc", +1, true, exactly(q("1.8")),
+       [&](const Rational& x, const Rational& s) { return with(balance(s), "pin_center_radius", x); }},
+      {"balance", "pin_center_radius", "detached from the disc", -1, true, exactly(q("4.2")),
+       [&](const Rational& x, const Rational& s) { return with(balance(s), "pin_center_radius", x); }},
+      {"balance", "pin_radius", "would swallow the disc", -1, true, exactly(7),
+       [&](const Rational& x, const Rational& s) { return with(balance(s), "pin_radius", x); }},
+      {"spur_gear", "dedendum", "must be less than pitch_radius", -1, true, exactly(20),
+       [&](const Rational& x, const Rational& s) { return with(gear(s), "dedendum", x); }},
+      {"spur_gear", "pressure_angle", "between 0.01 and 0.7", +1, false, exactly(q("0.01")),
+       [&](const Rational& x, const Rational& s) { return with(gear(s), "pressure_angle", x); }},
+      {"spur_gear", "pressure_angle", "between 0.01 and 0.7", -1, false, exactly(q("0.7")),
+       [&](const Rational& x, const Rational& s) { return with(gear(s), "pressure_angle", x); }},
+      {"ratchet_wheel", "root_radius", "must be less than tip_radius", -1, true, exactly(30),
+       [&](const Rational& x, const Rational& s) {
+         return Arguments{{"center", P("1", "2", s)}, {"teeth", Rational(12)}, {"tip_radius", L("30", s)}, {"root_radius", x}};
+       }},
+  };
+  const std::vector<int> ks{40, 52, 53, 54, 64, 80, 100, 128, 160, 200};
+  int refused = 0, passed = 0, expanded = 0;
+  for (const RuleCase& c : cases) {
+    for (const Rational& scale : {Rational(1), power_of_ten(-300), power_of_ten(400)}) {
+      const Rational s = c.length ? scale : Rational(1);
+      const Bound b{Rational(c.bound.lo * s), Rational(c.bound.hi * s)};
+      // (x, the sign of x - B)
+      std::vector<std::pair<Rational, int>> xs;
+      if (b.lo == b.hi) xs.push_back({b.lo, 0});
+      else {
+        xs.push_back({b.lo, -1});
+        xs.push_back({b.hi, +1});
+      }
+      for (int k : ks) {
+        const Rational d = power_of_two(k) * s;
+        xs.push_back({Rational(b.lo - d), -1});
+        xs.push_back({Rational(b.hi + d), +1});
+      }
+      for (const auto& [x, relation] : xs) {
+        const bool passes = c.side * relation > 0;
+        SCOPED_TRACE(c.name + "/" + c.key + " (" + c.refusal + ") at " + x.get_str() + (c.length ? " scale " + scale.get_str() : "") +
+                     (passes ? ": passes" : ": fails") + " the rule");
+        if (x <= 0) continue;   // (none: every bound is positive and 2^-40 below it too)
+        const std::string pointer = "/parts/0/features/0/" + c.name;
+        bool by_rule = false;
+        std::vector<Rounding> roundings;
+        try {
+          expand_template(c.name, c.arguments(x, scale), pointer, roundings);
+          ++expanded;
+        } catch (const ModelError& error) {
+          by_rule = error.pointer() == pointer + "/" + c.key && error.reason().find(c.refusal) != std::string::npos;
+          if (!by_rule && !passes) ADD_FAILURE() << "refused elsewhere: " << error.what();
+        }
+        EXPECT_EQ(by_rule, !passes);
+        (passes ? passed : refused) += 1;
+      }
+    }
+  }
+  EXPECT_GE(refused, 500);
+  EXPECT_GE(passed, 500);
+  EXPECT_GE(expanded, 300);   // most passing vectors expand fully
+  std::cout << refused << " refused by their rule, " << passed << " kept by it (" << expanded << " expanded)\n";
 }
 
 }  // namespace
