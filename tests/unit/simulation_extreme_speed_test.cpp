@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -68,6 +69,25 @@ bool finite_state(const SimulationState& state) {
   return std::isfinite(state.time);
 }
 
+// geneva-drive.json's geometry (tests/unit/simulation_test.cpp, SimulationGeneva): crank 56.5 mm,
+// centre distance 80 mm, pin centre free by 0.5 mm either side of the slot's axis
+constexpr double geneva_centre = 80, geneva_crank = 56.5, geneva_half_clearance = 0.5,
+                 geneva_lambda = geneva_crank / geneva_centre;
+
+// In the drive (the pin in a slot, away from its ends: driver angle within pi / 4 - 0.02 of the
+// centres' line), the wheel angle theta's excess over the closed form
+// tan theta = -lambda sin psi / (1 - lambda cos psi) beyond the slot's play (rad); nullopt outside
+// the drive.
+std::optional<double> geneva_drive_excess(double phi, double theta) {
+  const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
+  if (!(std::abs(psi) < std::numbers::pi / 4 - 0.02)) return std::nullopt;
+  const double lambda = geneva_lambda, crank = geneva_crank;
+  const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
+  const double rho = std::hypot(geneva_centre - crank * std::cos(psi), crank * std::sin(psi));
+  const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
+  return std::abs(rel) - std::asin(geneva_half_clearance / rho);
+}
+
 // One driver turn of geneva-drive.json at `speed` rad/s: the events and the largest excess of
 // the wheel angle over the closed form's play during the drive (rad).
 struct GenevaTurn {
@@ -79,9 +99,6 @@ struct GenevaTurn {
 
 GenevaTurn geneva_turn(double speed) {
   Simulation s = Simulation::create(example_at("geneva-drive.json", "driver-speed", speed));
-  // the model's geometry (tests/unit/simulation_test.cpp, SimulationGeneva): crank 56.5 mm,
-  // centre distance 80 mm, pin centre free by 0.5 mm either side of the slot's axis
-  const double centre = 80, crank = 56.5, half_clearance = 0.5, lambda = crank / centre;
   const double turn = 2 * std::numbers::pi / speed;
   GenevaTurn out;
   while (s.state().time < turn) {
@@ -89,12 +106,8 @@ GenevaTurn geneva_turn(double speed) {
     EXPECT_TRUE(finite_state(s.state())) << "at " << text(speed) << " rad/s, t " << s.state().time;
     const double phi = s.state().position[0], theta = s.state().position[1];
     EXPECT_NEAR(phi, speed * s.state().time, 1e-12 * (1 + phi)) << "the driver's law at " << text(speed);
-    const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
-    if (std::abs(psi) < std::numbers::pi / 4 - 0.02) {
-      const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
-      const double rho = std::hypot(centre - crank * std::cos(psi), crank * std::sin(psi));
-      const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
-      out.excess = std::max(out.excess, std::abs(rel) - std::asin(half_clearance / rho));
+    if (const std::optional<double> excess = geneva_drive_excess(phi, theta)) {
+      out.excess = std::max(out.excess, *excess);
       ++out.drive_states;
     }
     if (phi > 0.87 * 2 * std::numbers::pi)
@@ -238,7 +251,7 @@ struct GenevaRun {
 // driver's law (phi = phi0 + w t, in units of phi's own rounding)
 GenevaRun geneva_run(double speed, long turns, double count) {
   Simulation s = Simulation::create(geneva_after(speed, turns));
-  const double centre = 80, crank = 56.5, half_clearance = 0.5, lambda = crank / centre;
+  const double lambda = geneva_lambda;
   const double end = count * 2 * std::numbers::pi / speed;
   const double phi0 = s.state().position[0];
   GenevaRun out;
@@ -251,12 +264,8 @@ GenevaRun geneva_run(double speed, long turns, double count) {
     // (the published angles are rounded once: half a unit in the last place of each)
     out.law_error = std::max(out.law_error, std::abs(phi - (phi0 + speed * s.state().time)) /
                                                 (std::numeric_limits<double>::epsilon() * (1 + std::abs(phi))));
-    const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
-    if (std::abs(psi) < std::numbers::pi / 4 - 0.02) {
-      const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
-      const double rho = std::hypot(centre - crank * std::cos(psi), crank * std::sin(psi));
-      const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
-      out.excess = std::max(out.excess, std::abs(rel) - std::asin(half_clearance / rho));
+    if (const std::optional<double> excess = geneva_drive_excess(phi, theta)) {
+      out.excess = std::max(out.excess, *excess);
       ++out.drive_states;
     }
     // the dwell, away from the lock's ends (psi within 0.13 turn of the drive's centre's opposite)
@@ -478,6 +487,7 @@ TEST(SimulationLongRun, GearPairFromManyWholeTurnsMakesTheEventsOfTheFirstTurns)
     }
   }
 }
+
 
 }  // namespace
 }  // namespace hipair
