@@ -16,7 +16,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
@@ -27,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "simulation/whole_turns.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -488,6 +491,65 @@ TEST(SimulationLongRun, GearPairFromManyWholeTurnsMakesTheEventsOfTheFirstTurns)
   }
 }
 
+
+// ------------------------------------------------------------------ whole turns, exactly
+// simulation/whole_turns.hpp against an oracle of its own: pi to 50 digits as a rational (an error
+// of n 10^-50 in x - 2 pi n, far below half a unit in the last place of a residue of order 1 for
+// n < 10^25) and exact rational arithmetic, each result rounded to the nearest double here.
+
+// the double nearest to x, a tie to the even one (mpq_get_d truncates toward zero; a small x whose
+// residue is x itself, 54 significant bits, is a tie)
+double nearest(const Rational& x) {
+  const double d = x.get_d();
+  const double other = std::nextafter(d, sgn(x) >= 0 ? std::numeric_limits<double>::infinity()
+                                                     : -std::numeric_limits<double>::infinity());
+  const int c = cmp(abs(Rational(other) - x), abs(Rational(d) - x));
+  if (c != 0) return c < 0 ? other : d;
+  return (std::bit_cast<std::uint64_t>(d) & 1) == 0 ? d : other;
+}
+
+TEST(SimulationWholeTurns, ReduceMinusAndAddTurnsRoundOnceLikeTheRationalOracle) {
+  const Rational pi("31415926535897932384626433832795028841971693993751/"
+                    "10000000000000000000000000000000000000000000000000");
+  const std::uint64_t seed = hipair::test::test_seed(61);
+  RecordProperty("seed", static_cast<int>(seed % 1000000));
+  std::mt19937_64 random(seed);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial) + " (seed " + std::to_string(seed) + ")");
+    // x = +-m / 2^k: a 62-bit numerator, k so that |x| spreads over 2^-10 ... 2^80 rad
+    const int exponent = static_cast<int>(random() % 91) - 10;
+    Rational x(mpz_class(static_cast<unsigned long>(random() >> 2)));
+    x /= Rational(mpz_class(1) << 62);
+    if (exponent >= 0) x *= Rational(mpz_class(1) << exponent);
+    else x /= Rational(mpz_class(1) << -exponent);
+    if (random() % 2) x = -x;
+    const simulation::ReducedAngle r = simulation::reduce_turns(x);
+    ASSERT_EQ(r.turns.get_den(), 1) << "whole turns";
+    const Rational residue = x - 2 * pi * r.turns;
+    EXPECT_LE(abs(residue), pi + Rational(1, 1000000)) << "the nearest whole turn";
+    EXPECT_EQ(r.angle, nearest(residue)) << "x - 2 pi n rounded once; x = " << x << ", n = " << r.turns;
+    EXPECT_EQ(simulation::minus_turns(x, r.turns), r.angle);
+    // another turn count: the residue by those turns, rounded once
+    const Rational other = r.turns + Rational(static_cast<long>(random() % 7) - 3);
+    EXPECT_EQ(simulation::minus_turns(x, other), nearest(x - 2 * pi * other));
+    // back: r + 2 pi n rounded once (r the double)
+    EXPECT_EQ(simulation::add_turns(r.angle, r.turns), nearest(Rational(r.angle) + 2 * pi * r.turns));
+    ++checked;
+  }
+  EXPECT_EQ(checked, 400);
+  // no turns: r itself; a non-finite r is its own sum (its rational aborted in GMP)
+  EXPECT_EQ(simulation::add_turns(0.25, Rational(0)), 0.25);
+  EXPECT_EQ(simulation::add_turns(std::numeric_limits<double>::infinity(), Rational(3)),
+            std::numeric_limits<double>::infinity());
+  EXPECT_EQ(simulation::add_turns(-std::numeric_limits<double>::infinity(), Rational(-5)),
+            -std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(std::isnan(simulation::add_turns(std::numeric_limits<double>::quiet_NaN(), Rational(2))));
+  // exactly representable cases: 0 and the nearest turn of a small x
+  EXPECT_EQ(simulation::reduce_turns(Rational(0)).turns, 0);
+  EXPECT_EQ(simulation::reduce_turns(Rational(0)).angle, 0.0);
+  EXPECT_EQ(simulation::reduce_turns(Rational(7)).turns, 1);   // 7 - 2 pi = 0.7168...
+}
 
 }  // namespace
 }  // namespace hipair
