@@ -4,6 +4,7 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace hipair::simulation {
 namespace {
@@ -64,7 +65,9 @@ double minus_turns(const Rational& x, const Rational& turns) {
 }
 
 double add_turns(double r, const Rational& turns) {
-  if (sgn(turns) == 0) return r;
+  // (a non-finite r is its own sum: its rational would abort in GMP, and a published state that
+  // is not finite is reported by the step)
+  if (sgn(turns) == 0 || !std::isfinite(r)) return r;
   const long bits = std::max(magnitude_bits(Rational(r)), magnitude_bits(turns) + 3) + guard_bits;
   Mpfr value(bits);
   mpfr_set_d(value.v, r, MPFR_RNDN);

@@ -28,7 +28,7 @@ ReducedAngle reduce_turns(const Rational& x);
 // x - 2 pi n, rounded once to the nearest double (n an integer)
 double minus_turns(const Rational& x, const Rational& turns);
 
-// r + 2 pi n rounded once to the nearest double (n an integer; r when n = 0)
+// r + 2 pi n rounded once to the nearest double (n an integer; r when n = 0 or r is not finite)
 double add_turns(double r, const Rational& turns);
 
 }  // namespace hipair::simulation

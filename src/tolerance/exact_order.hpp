@@ -28,7 +28,7 @@ int compare(const AlgebraicNumber& a, const AlgebraicNumber& b);
 /// interval refined by exact bisection until it excludes 0, then mapped by -1 / x (increasing on
 /// either side of 0). nullopt when a = 0 (the angle is the other chart's infinity).
 std::optional<AlgebraicNumber> other_half_turn(const AlgebraicNumber& a);
-/// -1 / x for a rational x != 0, as an exact AlgebraicNumber (degree-1 polynomial).
+/// The rational x as an exact AlgebraicNumber (the degree-1 polynomial q x - p of x = p / q).
 AlgebraicNumber exact_algebraic(const Rational& x);
 
 /// Where a follower coordinate t lies among the ordered points of a slice (exact):

@@ -16,16 +16,20 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "simulation/whole_turns.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -68,6 +72,25 @@ bool finite_state(const SimulationState& state) {
   return std::isfinite(state.time);
 }
 
+// geneva-drive.json's geometry (tests/unit/simulation_test.cpp, SimulationGeneva): crank 56.5 mm,
+// centre distance 80 mm, pin centre free by 0.5 mm either side of the slot's axis
+constexpr double geneva_centre = 80, geneva_crank = 56.5, geneva_half_clearance = 0.5,
+                 geneva_lambda = geneva_crank / geneva_centre;
+
+// In the drive (the pin in a slot, away from its ends: driver angle within pi / 4 - 0.02 of the
+// centres' line), the wheel angle theta's excess over the closed form
+// tan theta = -lambda sin psi / (1 - lambda cos psi) beyond the slot's play (rad); nullopt outside
+// the drive.
+std::optional<double> geneva_drive_excess(double phi, double theta) {
+  const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
+  if (!(std::abs(psi) < std::numbers::pi / 4 - 0.02)) return std::nullopt;
+  const double lambda = geneva_lambda, crank = geneva_crank;
+  const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
+  const double rho = std::hypot(geneva_centre - crank * std::cos(psi), crank * std::sin(psi));
+  const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
+  return std::abs(rel) - std::asin(geneva_half_clearance / rho);
+}
+
 // One driver turn of geneva-drive.json at `speed` rad/s: the events and the largest excess of
 // the wheel angle over the closed form's play during the drive (rad).
 struct GenevaTurn {
@@ -79,9 +102,6 @@ struct GenevaTurn {
 
 GenevaTurn geneva_turn(double speed) {
   Simulation s = Simulation::create(example_at("geneva-drive.json", "driver-speed", speed));
-  // the model's geometry (tests/unit/simulation_test.cpp, SimulationGeneva): crank 56.5 mm,
-  // centre distance 80 mm, pin centre free by 0.5 mm either side of the slot's axis
-  const double centre = 80, crank = 56.5, half_clearance = 0.5, lambda = crank / centre;
   const double turn = 2 * std::numbers::pi / speed;
   GenevaTurn out;
   while (s.state().time < turn) {
@@ -89,12 +109,8 @@ GenevaTurn geneva_turn(double speed) {
     EXPECT_TRUE(finite_state(s.state())) << "at " << text(speed) << " rad/s, t " << s.state().time;
     const double phi = s.state().position[0], theta = s.state().position[1];
     EXPECT_NEAR(phi, speed * s.state().time, 1e-12 * (1 + phi)) << "the driver's law at " << text(speed);
-    const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
-    if (std::abs(psi) < std::numbers::pi / 4 - 0.02) {
-      const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
-      const double rho = std::hypot(centre - crank * std::cos(psi), crank * std::sin(psi));
-      const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
-      out.excess = std::max(out.excess, std::abs(rel) - std::asin(half_clearance / rho));
+    if (const std::optional<double> excess = geneva_drive_excess(phi, theta)) {
+      out.excess = std::max(out.excess, *excess);
       ++out.drive_states;
     }
     if (phi > 0.87 * 2 * std::numbers::pi)
@@ -238,7 +254,7 @@ struct GenevaRun {
 // driver's law (phi = phi0 + w t, in units of phi's own rounding)
 GenevaRun geneva_run(double speed, long turns, double count) {
   Simulation s = Simulation::create(geneva_after(speed, turns));
-  const double centre = 80, crank = 56.5, half_clearance = 0.5, lambda = crank / centre;
+  const double lambda = geneva_lambda;
   const double end = count * 2 * std::numbers::pi / speed;
   const double phi0 = s.state().position[0];
   GenevaRun out;
@@ -251,12 +267,8 @@ GenevaRun geneva_run(double speed, long turns, double count) {
     // (the published angles are rounded once: half a unit in the last place of each)
     out.law_error = std::max(out.law_error, std::abs(phi - (phi0 + speed * s.state().time)) /
                                                 (std::numeric_limits<double>::epsilon() * (1 + std::abs(phi))));
-    const double psi = std::remainder(phi - std::numbers::pi, 2 * std::numbers::pi);
-    if (std::abs(psi) < std::numbers::pi / 4 - 0.02) {
-      const double expected = -std::atan(lambda * std::sin(psi) / (1 - lambda * std::cos(psi)));
-      const double rho = std::hypot(centre - crank * std::cos(psi), crank * std::sin(psi));
-      const double rel = std::remainder(theta - expected - std::numbers::pi / 4, std::numbers::pi / 2);
-      out.excess = std::max(out.excess, std::abs(rel) - std::asin(half_clearance / rho));
+    if (const std::optional<double> excess = geneva_drive_excess(phi, theta)) {
+      out.excess = std::max(out.excess, *excess);
       ++out.drive_states;
     }
     // the dwell, away from the lock's ends (psi within 0.13 turn of the drive's centre's opposite)
@@ -477,6 +489,66 @@ TEST(SimulationLongRun, GearPairFromManyWholeTurnsMakesTheEventsOfTheFirstTurns)
           << p;
     }
   }
+}
+
+
+// ------------------------------------------------------------------ whole turns, exactly
+// simulation/whole_turns.hpp against an oracle of its own: pi to 50 digits as a rational (an error
+// of n 10^-50 in x - 2 pi n, far below half a unit in the last place of a residue of order 1 for
+// n < 10^25) and exact rational arithmetic, each result rounded to the nearest double here.
+
+// the double nearest to x, a tie to the even one (mpq_get_d truncates toward zero; a small x whose
+// residue is x itself, 54 significant bits, is a tie)
+double nearest(const Rational& x) {
+  const double d = x.get_d();
+  const double other = std::nextafter(d, sgn(x) >= 0 ? std::numeric_limits<double>::infinity()
+                                                     : -std::numeric_limits<double>::infinity());
+  const int c = cmp(abs(Rational(other) - x), abs(Rational(d) - x));
+  if (c != 0) return c < 0 ? other : d;
+  return (std::bit_cast<std::uint64_t>(d) & 1) == 0 ? d : other;
+}
+
+TEST(SimulationWholeTurns, ReduceMinusAndAddTurnsRoundOnceLikeTheRationalOracle) {
+  const Rational pi("31415926535897932384626433832795028841971693993751/"
+                    "10000000000000000000000000000000000000000000000000");
+  const std::uint64_t seed = hipair::test::test_seed(61);
+  RecordProperty("seed", static_cast<int>(seed % 1000000));
+  std::mt19937_64 random(seed);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial) + " (seed " + std::to_string(seed) + ")");
+    // x = +-m / 2^k: a 62-bit numerator, k so that |x| spreads over 2^-10 ... 2^80 rad
+    const int exponent = static_cast<int>(random() % 91) - 10;
+    Rational x(mpz_class(static_cast<unsigned long>(random() >> 2)));
+    x /= Rational(mpz_class(1) << 62);
+    if (exponent >= 0) x *= Rational(mpz_class(1) << exponent);
+    else x /= Rational(mpz_class(1) << -exponent);
+    if (random() % 2) x = -x;
+    const simulation::ReducedAngle r = simulation::reduce_turns(x);
+    ASSERT_EQ(r.turns.get_den(), 1) << "whole turns";
+    const Rational residue = x - 2 * pi * r.turns;
+    EXPECT_LE(abs(residue), pi + Rational(1, 1000000)) << "the nearest whole turn";
+    EXPECT_EQ(r.angle, nearest(residue)) << "x - 2 pi n rounded once; x = " << x << ", n = " << r.turns;
+    EXPECT_EQ(simulation::minus_turns(x, r.turns), r.angle);
+    // another turn count: the residue by those turns, rounded once
+    const Rational other = r.turns + Rational(static_cast<long>(random() % 7) - 3);
+    EXPECT_EQ(simulation::minus_turns(x, other), nearest(x - 2 * pi * other));
+    // back: r + 2 pi n rounded once (r the double)
+    EXPECT_EQ(simulation::add_turns(r.angle, r.turns), nearest(Rational(r.angle) + 2 * pi * r.turns));
+    ++checked;
+  }
+  EXPECT_EQ(checked, 400);
+  // no turns: r itself; a non-finite r is its own sum (its rational aborted in GMP)
+  EXPECT_EQ(simulation::add_turns(0.25, Rational(0)), 0.25);
+  EXPECT_EQ(simulation::add_turns(std::numeric_limits<double>::infinity(), Rational(3)),
+            std::numeric_limits<double>::infinity());
+  EXPECT_EQ(simulation::add_turns(-std::numeric_limits<double>::infinity(), Rational(-5)),
+            -std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(std::isnan(simulation::add_turns(std::numeric_limits<double>::quiet_NaN(), Rational(2))));
+  // exactly representable cases: 0 and the nearest turn of a small x
+  EXPECT_EQ(simulation::reduce_turns(Rational(0)).turns, 0);
+  EXPECT_EQ(simulation::reduce_turns(Rational(0)).angle, 0.0);
+  EXPECT_EQ(simulation::reduce_turns(Rational(7)).turns, 1);   // 7 - 2 pi = 0.7168...
 }
 
 }  // namespace

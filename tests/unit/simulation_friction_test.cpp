@@ -16,6 +16,7 @@
 #include <hipair/simulation.hpp>
 
 #include "simulation/friction.hpp"
+#include "eigen_bits.hpp"
 
 #include <gtest/gtest.h>
 
@@ -499,12 +500,7 @@ simulation::FrictionalSolution fresh_frictional(const Eigen::MatrixXd& G, const 
   return best;
 }
 
-bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  if (a.size() != b.size()) return false;
-  for (Eigen::Index i = 0; i < a.size(); ++i)
-    if (std::bit_cast<std::uint64_t>(a(i)) != std::bit_cast<std::uint64_t>(b(i))) return false;
-  return true;
-}
+using test::same_bits;
 
 TEST(SimulationFriction, KeptStorageGivesTheFreshObjectsDoubles) {
   std::mt19937 random(6060);

@@ -12,6 +12,7 @@
 //   the escapement with its pairs' friction switched on and off in every mixed way.
 #include "simulation/friction.hpp"
 #include "simulation/kept_scratch.hpp"
+#include "eigen_bits.hpp"
 #include "simulation_side_by_side.hpp"
 
 #include <hipair/model.hpp>
@@ -34,12 +35,7 @@
 namespace hipair {
 namespace {
 
-bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  if (a.size() != b.size()) return false;
-  for (Eigen::Index i = 0; i < a.size(); ++i)
-    if (std::bit_cast<std::uint64_t>(a(i)) != std::bit_cast<std::uint64_t>(b(i))) return false;
-  return true;
-}
+using test::same_bits;
 
 TEST(SimulationKeptScratch, BilateralWorkEqualsFreshSolves) {
   std::mt19937_64 random(20261203);
