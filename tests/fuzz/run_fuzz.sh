@@ -23,7 +23,8 @@ mkdir -p "$objects_dir"
 shopt -s nullglob
 case "$target" in
   model_reader)
-    sources=("$source"/tests/fuzz/model_reader_fuzzer.cpp)
+    # the template rules (src/model) take their interval sine and cosine from the parametric model
+    sources=("$source"/tests/fuzz/model_reader_fuzzer.cpp "$source"/src/model/parametric/number_traits.cpp)
     seeds=("$source"/examples/models/*.json "$source"/tests/data/good/*.json "$source"/tests/data/bad/*.json
            "$source"/tests/fuzz/regressions/*)
     dictionary=model.dict ;;
