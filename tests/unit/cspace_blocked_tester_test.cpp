@@ -776,6 +776,25 @@ TEST(BlockedTester, CandidateLoopKeepsTheDefinitionsPairsInOrder) {
   EXPECT_GT(nonempty, 200);   // lists that keep some pairs and drop others
 }
 
+// One step of a cell walk mixing the generator's and the builder's orders: every `every`-th step
+// a new place (depth 2 to 14), else the next column, the next row or a child of the last cell.
+void next_walk_cell(Random& random, int n, int every, int& depth, long& i, long& j) {
+  const long side = 1L << depth;
+  if (n % every == 0) {   // a new place
+    depth = 2 + static_cast<int>(random() % 13);
+    i = static_cast<long>(random() % (1UL << depth));
+    j = static_cast<long>(random() % (1UL << depth));
+  } else if (random() % 3 == 0) {
+    i = std::min(side - 1, i + 1);   // the next column
+  } else if (random() % 2 == 0) {
+    j = std::min(side - 1, j + 1);   // the next row
+  } else if (depth < 14) {           // a child
+    ++depth;
+    i = 2 * i + static_cast<long>(random() % 2);
+    j = 2 * j + static_cast<long>(random() % 2);
+  }
+}
+
 // Asks `grid` (of chart box x, y or a tile of it) `count` cells in turn, as the curve
 // generator's and the builder's walks mix them: every fourth a new place (depth 2 to 14), else
 // the next column, the next row or a child of the last cell. A cell the grid calls free must be
@@ -796,20 +815,7 @@ int walk_grid(cspace::BlockedCells& grid, const cspace::BlockedTester& tester, c
   int depth = 2;
   long i = 0, j = 0;
   for (int n = 0; n < count; ++n) {
-    const long side = 1L << depth;
-    if (n % 4 == 0) {   // a new place
-      depth = 2 + static_cast<int>(random() % 13);
-      i = static_cast<long>(random() % (1UL << depth));
-      j = static_cast<long>(random() % (1UL << depth));
-    } else if (random() % 3 == 0) {
-      i = std::min(side - 1, i + 1);   // the next column
-    } else if (random() % 2 == 0) {
-      j = std::min(side - 1, j + 1);   // the next row
-    } else if (depth < 14) {           // a child
-      ++depth;
-      i = 2 * i + static_cast<long>(random() % 2);
-      j = 2 * j + static_cast<long>(random() % 2);
-    }
+    next_walk_cell(random, n, 4, depth, i, j);
     const Interval bx = grid.cell_x(depth, i), by = grid.cell_y(depth, j);
     const bool answer = grid.blocked(depth, i, j);
     const bool plain = tester.blocked(x, y, bx, by);
@@ -975,20 +981,7 @@ TEST(BlockedTester, GridsSharingPosesAnswerAsGridsWithTheirOwnCaches) {
         int depth = 2;
         long i = 0, j = 0;
         for (int n = 0; n < count; ++n) {
-          const long side = 1L << depth;
-          if (n % 5 == 0) {   // a new place
-            depth = 2 + static_cast<int>(random() % 13);
-            i = static_cast<long>(random() % (1UL << depth));
-            j = static_cast<long>(random() % (1UL << depth));
-          } else if (random() % 3 == 0) {
-            i = std::min(side - 1, i + 1);   // the next column
-          } else if (random() % 2 == 0) {
-            j = std::min(side - 1, j + 1);   // the next row
-          } else if (depth < 14) {           // a child
-            ++depth;
-            i = 2 * i + static_cast<long>(random() % 2);
-            j = 2 * j + static_cast<long>(random() % 2);
-          }
+          next_walk_cell(random, n, 5, depth, i, j);
           const std::string where = what + " (seed " + std::to_string(seed) + ", " + std::to_string(kept) +
                                     " kept) cell " + std::to_string(depth) + ", " + std::to_string(i) + ", " +
                                     std::to_string(j);

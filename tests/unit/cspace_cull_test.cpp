@@ -428,6 +428,39 @@ std::string json_of(const CSpace& space) {
   return out.str();
 }
 
+// `built` against `plain`, a build of the same pair with some shortcut switched off: every chart's
+// kept curves, windows and surviving cells equal (doubles compared exactly) and the same C-space,
+// its JSON text byte for byte; then `built` against the exact overlap oracle at `points` random
+// rational configurations (a free location is apart, a blocked one overlapping). `windows` counts
+// the windows compared.
+void expect_same_space_then_oracle(const Model& model, const std::string& first, const std::string& second,
+                                   const CSpace& built, const CSpace& plain, std::uint64_t seed, int points,
+                                   std::size_t* windows) {
+  const auto& a = cspace::impl_of(built);
+  const auto& b = cspace::impl_of(plain);
+  ASSERT_EQ(a.charts.size(), b.charts.size());
+  for (std::size_t c = 0; c < a.charts.size(); ++c) {
+    EXPECT_EQ(a.charts[c].curve_global, b.charts[c].curve_global) << "chart " << c;
+    EXPECT_EQ(a.charts[c].windows, b.charts[c].windows) << "chart " << c;
+    EXPECT_EQ(a.charts[c].cells, b.charts[c].cells) << "chart " << c;
+    for (const auto& w : a.charts[c].windows) *windows += w.size();
+  }
+  EXPECT_EQ(json_of(built), json_of(plain));
+  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
+  std::mt19937_64 random(seed);
+  for (int i = 0; i < points; ++i) {
+    const ChartPoint q = test::random_tile_point(built, random);
+    const CSpaceChart& chart = built.charts()[q.chart];
+    const Location location = built.locate(q);
+    if (location.kind != Location::Kind::free && location.kind != Location::Kind::blocked) continue;
+    const cspace::Overlap overlap = cspace::classify_overlap(
+        model, axes, test::axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
+        test::axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
+    EXPECT_EQ(overlap, location.kind == Location::Kind::free ? cspace::Overlap::apart : cspace::Overlap::overlapping)
+        << "chart " << q.chart << " at " << q.x << ", " << q.y;
+  }
+}
+
 // The row cache against the plain evaluation per cell: every chart's kept curves, windows and
 // surviving cells equal (doubles compared exactly) and the same C-space, its JSON text byte
 // for byte; then the cached build against the exact overlap oracle at `points` random
@@ -442,29 +475,7 @@ void expect_row_cache_builds_the_plain_space(const Model& model, const std::stri
   }
   ASSERT_TRUE(cspace::culling_row_cache().load());
   CSpace cached = CSpace::build(model, first, second, options);
-  const auto& a = cspace::impl_of(cached);
-  const auto& b = cspace::impl_of(*plain);
-  ASSERT_EQ(a.charts.size(), b.charts.size());
-  for (std::size_t c = 0; c < a.charts.size(); ++c) {
-    EXPECT_EQ(a.charts[c].curve_global, b.charts[c].curve_global) << "chart " << c;
-    EXPECT_EQ(a.charts[c].windows, b.charts[c].windows) << "chart " << c;
-    EXPECT_EQ(a.charts[c].cells, b.charts[c].cells) << "chart " << c;
-    for (const auto& w : a.charts[c].windows) *windows += w.size();
-  }
-  EXPECT_EQ(json_of(cached), json_of(*plain));
-  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
-  std::mt19937_64 random(seed);
-  for (int i = 0; i < points; ++i) {
-    const ChartPoint q = test::random_tile_point(cached, random);
-    const CSpaceChart& chart = cached.charts()[q.chart];
-    const Location location = cached.locate(q);
-    if (location.kind != Location::Kind::free && location.kind != Location::Kind::blocked) continue;
-    const cspace::Overlap overlap = cspace::classify_overlap(
-        model, axes, test::axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
-        test::axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
-    EXPECT_EQ(overlap, location.kind == Location::Kind::free ? cspace::Overlap::apart : cspace::Overlap::overlapping)
-        << "chart " << q.chart << " at " << q.x << ", " << q.y;
-  }
+  expect_same_space_then_oracle(model, first, second, cached, *plain, seed, points, windows);
 }
 
 // Generated pairs (random rational star polygons, levers with arcs and a notch of exactly the
@@ -529,29 +540,7 @@ void expect_shortcuts_build_the_plain_space(const Model& model, const std::strin
   ASSERT_TRUE(cspace::culling_known_blocked().load());
   ASSERT_TRUE(cspace::shared_chart_poses().load());
   CSpace fast = CSpace::build(model, first, second, options);
-  const auto& a = cspace::impl_of(fast);
-  const auto& b = cspace::impl_of(*plain);
-  ASSERT_EQ(a.charts.size(), b.charts.size());
-  for (std::size_t c = 0; c < a.charts.size(); ++c) {
-    EXPECT_EQ(a.charts[c].curve_global, b.charts[c].curve_global) << "chart " << c;
-    EXPECT_EQ(a.charts[c].windows, b.charts[c].windows) << "chart " << c;
-    EXPECT_EQ(a.charts[c].cells, b.charts[c].cells) << "chart " << c;
-    for (const auto& w : a.charts[c].windows) *windows += w.size();
-  }
-  EXPECT_EQ(json_of(fast), json_of(*plain));
-  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
-  std::mt19937_64 random(seed);
-  for (int i = 0; i < points; ++i) {
-    const ChartPoint q = test::random_tile_point(fast, random);
-    const CSpaceChart& chart = fast.charts()[q.chart];
-    const Location location = fast.locate(q);
-    if (location.kind != Location::Kind::free && location.kind != Location::Kind::blocked) continue;
-    const cspace::Overlap overlap = cspace::classify_overlap(
-        model, axes, test::axis_of(chart.x_kind, chart.x_half_turn, chart.x_lo, chart.x_hi),
-        test::axis_of(chart.y_kind, chart.y_half_turn, chart.y_lo, chart.y_hi), cspace::ChartPoint{q.x, q.y});
-    EXPECT_EQ(overlap, location.kind == Location::Kind::free ? cspace::Overlap::apart : cspace::Overlap::overlapping)
-        << "chart " << q.chart << " at " << q.x << ", " << q.y;
-  }
+  expect_same_space_then_oracle(model, first, second, fast, *plain, seed, points, windows);
 }
 
 // Whole charts (generated star polygons and levers with a notch of exactly the tip's width,
