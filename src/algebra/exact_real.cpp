@@ -853,8 +853,8 @@ std::atomic<bool>& refine_jump_enabled() {
   return enabled;
 }
 
-std::atomic<std::size_t>& refine_jumps() {
-  static std::atomic<std::size_t> jumps{0};
+std::size_t& refine_jumps() {
+  thread_local std::size_t jumps = 0;   // per thread: no shared cache line in parallel builds
   return jumps;
 }
 
@@ -988,7 +988,7 @@ void Real::refine_to(const Rational& width) {
       if (auto cell = filtered_cell(filter, lower_box, span_box, lower_sign, std::min<unsigned long>(halvings, 52))) {
         small_j = cell->first;
         k = cell->second;
-        refine_jumps().fetch_add(1, std::memory_order_relaxed);
+        ++refine_jumps();
       }
     while (k < 52 && k < halvings) {
       std::uint64_t small_m = 2 * small_j + 1;
@@ -1153,7 +1153,7 @@ bool dyadic_steps_in_machine_integers(const Polynomial& polynomial, const SignFi
     if (auto cell = filtered_dyadic_cell(filter, lower_sign, low, step, scale_bits, std::min<unsigned long>(steps, 50))) {
       low = cell->first;
       first = cell->second + 1;
-      refine_jumps().fetch_add(1, std::memory_order_relaxed);
+      ++refine_jumps();
     }
   for (unsigned long i = first; i <= steps; ++i) {
     low *= 2;

@@ -23,7 +23,7 @@ std::string root_description(const Polynomial& polynomial, const Rational& lower
 /// cell the certified filter confirms (the same intervals and exact roots as halving step by
 /// step). On by default; tests turn it off to compare.
 std::atomic<bool>& refine_jump_enabled();
-/// How many times refine_to took its halvings at once (tests).
-std::atomic<std::size_t>& refine_jumps();
+/// How many times refine_to or refine_dyadically took halvings at once in this thread (tests).
+std::size_t& refine_jumps();
 
 }  // namespace hipair::cspace::algebra

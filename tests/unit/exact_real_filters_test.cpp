@@ -367,7 +367,7 @@ TEST(ExactRealFilters, RefinementFromAFilteredNewtonCellIsTheStepByStepBisection
   std::mt19937_64 random(seed);
   SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
   std::size_t compared = 0, exact_ends = 0;
-  const std::size_t jumps_before = refine_jumps().load();
+  const std::size_t jumps_before = refine_jumps();
   auto scaled = [&](mpz_class z, int exponent) {
     return exponent >= 0 ? mpz_class(z << exponent) : z;
   };
@@ -469,7 +469,7 @@ TEST(ExactRealFilters, RefinementFromAFilteredNewtonCellIsTheStepByStepBisection
     ++compared;
     ++exact_ends;
   }
-  const std::size_t jumps = refine_jumps().load() - jumps_before;
+  const std::size_t jumps = refine_jumps() - jumps_before;
   std::cout << compared << " refinements, " << exact_ends << " exact, " << jumps << " jumps\n";
   EXPECT_GT(compared, 1000u);
   EXPECT_GT(jumps, compared / 4);
