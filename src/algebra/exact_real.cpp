@@ -5,6 +5,7 @@
 #include "algebra/modular_gcd.hpp"
 #include "algebra/multiprecision_sign.hpp"
 #include "algebra/ordinate.hpp"
+#include "algebra/real_approximation.hpp"
 #include "algebra/near_quotient.hpp"
 #include "algebra/rational_root.hpp"
 #include "algebra/rational_order.hpp"
@@ -756,6 +757,17 @@ class SignFilter {
     bool away = upper ? sgn(z) > 0 : sgn(z) < 0;
     return away ? std::nextafter(d, upper ? HUGE_VAL : -HUGE_VAL) : d;
   }
+  /// p(x) and p'(x) in plain doubles from the coefficients' lower bounds (an approximation only,
+  /// for a Newton iterate whose cell the certified sign() then checks); false when not finite.
+  bool approximate_value(double x, double& value, double& slope) const {
+    value = 0;
+    slope = 0;
+    for (auto c = coefficients_.rbegin(); c != coefficients_.rend(); ++c) {
+      slope = slope * x + value;
+      value = value * x + c->lo;
+    }
+    return std::isfinite(value) && std::isfinite(slope);
+  }
   int sign(Interval x) const {
     if (coefficients_.empty()) return 0;
     const Interval value = horner_from_leading(coefficients_, x);
@@ -836,6 +848,75 @@ double negative_power_of_two(unsigned long n) {
 
 }  // namespace
 
+std::atomic<bool>& refine_jump_enabled() {
+  static std::atomic<bool> enabled{true};
+  return enabled;
+}
+
+std::size_t& refine_jumps() {
+  thread_local std::size_t jumps = 0;   // per thread: no shared cache line in parallel builds
+  return jumps;
+}
+
+namespace {
+
+// The root's place t in (0, 1) along the interval (start, start + span), approximately: Newton
+// steps in plain doubles from the middle (approximate_value), nothing when an iterate leaves the
+// interval or a value is not finite. (The filtered cells below check what it suggests.)
+std::optional<double> newton_place(const SignFilter& filter, double start, double span) {
+  if (!std::isfinite(start) || !std::isfinite(span) || !(span > 0)) return std::nullopt;
+  double x = start + span / 2;
+  for (int i = 0; i < 8; ++i) {
+    double value = 0, slope = 0;
+    if (!filter.approximate_value(x, value, slope) || slope == 0) return std::nullopt;
+    const double step = value / slope;
+    if (!std::isfinite(step)) return std::nullopt;
+    x -= step;
+    if (!(x > start && x < start + span)) return std::nullopt;
+    if (std::fabs(step) <= span * 0x1p-56) break;
+  }
+  return (x - start) / span;
+}
+
+// refine_to's filtered halvings taken at once: the cell (m, m + 1) / 2^level of the halvings'
+// grid over (lower, lower + span) that holds the root, with level <= deepest (<= 52), found from
+// a Newton iterate in plain doubles and accepted only where the certified filter gives the sign
+// of p(lower) at its start and the other sign at its end (both ends strictly inside the
+// interval). The root is then strictly inside that cell, so it is no grid point of that level or
+// a coarser one: no halving meets it exactly, each keeps the half holding it, and the halvings
+// reach this cell, m at that level — the same j and k as taking the steps one by one (the
+// signs are certified either way). Nothing when the iterate leaves the interval or the filter
+// cannot decide at a level's ends down to level 8: the caller halves as before.
+std::optional<std::pair<std::uint64_t, unsigned long>> filtered_cell(const SignFilter& filter, const Interval& lower_box,
+                                                                       const Interval& span_box, int lower_sign,
+                                                                       unsigned long deepest) {
+  const std::optional<double> t = newton_place(filter, lower_box.lo + (lower_box.hi - lower_box.lo) / 2,
+                                               span_box.lo + (span_box.hi - span_box.lo) / 2);
+  if (!t) return std::nullopt;
+  for (unsigned long level = deepest; level >= 8; level = level >= 16 ? level - 8 : 0) {
+    const double cells = std::ldexp(1.0, static_cast<int>(level));
+    double m = std::floor(*t * cells);
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      if (!(m >= 1 && m + 1 < cells)) break;   // an end of the interval: halve as before
+      const int at_start = filter.sign(lower_box + span_box * Interval{m / cells, m / cells});   // exact: m < 2^52
+      const int at_end = filter.sign(lower_box + span_box * Interval{(m + 1) / cells, (m + 1) / cells});
+      if (at_start == 0 || at_end == 0) break;   // undecided: a coarser level
+      if (at_start != lower_sign) {
+        m -= 1;   // the root is below the cell
+        continue;
+      }
+      if (at_end == lower_sign) {
+        m += 1;   // above
+        continue;
+      }
+      return std::pair<std::uint64_t, unsigned long>{static_cast<std::uint64_t>(m), level};
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 void Real::refine_to(const Rational& width) {
   if (exact) return;
   Rational span = upper - lower;   // once: the width test here and the bisection below
@@ -903,6 +984,12 @@ void Real::refine_to(const Rational& width) {
       ++halvings;
     }
     std::uint64_t small_j = 0;
+    if (refine_jump_enabled().load(std::memory_order_relaxed) && halvings >= 12)
+      if (auto cell = filtered_cell(filter, lower_box, span_box, lower_sign, std::min<unsigned long>(halvings, 52))) {
+        small_j = cell->first;
+        k = cell->second;
+        ++refine_jumps();
+      }
     while (k < 52 && k < halvings) {
       std::uint64_t small_m = 2 * small_j + 1;
       double t = static_cast<double>(small_m) * negative_power_of_two(k + 1);   // exact: m < 2^52
@@ -988,6 +1075,58 @@ unsigned long halvings(const mpz_class& needed, const mpz_class& reached) {
   return steps;
 }
 
+// The certified filter's sign of p(m / 2^k), m below 2^126 in magnitude, k <= 900: m enclosed
+// by the nearest double and its neighbour on the far side, scaled by 2^-k exactly while normal
+// (checked); 0 when undecided.
+int wide_filter_sign(const SignFilter& filter, Wide m, unsigned long k) {
+  const double d = static_cast<double>(m);   // nearest; the far side's neighbour bounds m
+  const Wide back = static_cast<Wide>(d);    // exact: |d| <= 2^126
+  double lo = d, hi = d;
+  if (back < m) hi = std::nextafter(d, HUGE_VAL);
+  if (back > m) lo = std::nextafter(d, -HUGE_VAL);
+  const double unit = negative_power_of_two(k);   // 2^-k, k <= 900: exact products
+  lo *= unit;
+  hi *= unit;
+  const bool normal = (lo == 0 || std::fabs(lo) >= 0x1p-1000) && (hi == 0 || std::fabs(hi) >= 0x1p-1000);
+  return normal ? filter.sign(Interval{lo, hi}) : 0;
+}
+
+// dyadic_steps_in_machine_integers' first halvings at once, as filtered_cell for refine_to: the
+// cell (low 2^L + m step, low 2^L + (m + 1) step) / 2^(scale_bits + L) at a level L <= deepest
+// (<= 50, so that m is a double's integer and every numerator stays below 2^126: the caller's
+// bits + steps <= 124) whose ends the filter certifies to have the sign of p at the interval's
+// start and the other sign; the root is then strictly inside it and the halvings reach it (see
+// filtered_cell). Returns (its start's numerator, L); nothing down to level 8: the caller steps.
+std::optional<std::pair<Wide, unsigned long>> filtered_dyadic_cell(const SignFilter& filter, int lower_sign, Wide low,
+                                                                   Wide step, unsigned long scale_bits,
+                                                                   unsigned long deepest) {
+  if (scale_bits > 800) return std::nullopt;
+  const double unit = negative_power_of_two(scale_bits);
+  const std::optional<double> t = newton_place(filter, static_cast<double>(low) * unit, static_cast<double>(step) * unit);
+  if (!t) return std::nullopt;
+  for (unsigned long level = deepest; level >= 8; level = level >= 16 ? level - 8 : 0) {
+    const double cells = std::ldexp(1.0, static_cast<int>(level));
+    double m = std::floor(*t * cells);
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      if (!(m >= 1 && m + 1 < cells)) break;
+      const Wide start = low * (static_cast<Wide>(1) << level) + static_cast<Wide>(m) * step;
+      const int at_start = wide_filter_sign(filter, start, scale_bits + level);
+      const int at_end = wide_filter_sign(filter, start + step, scale_bits + level);
+      if (at_start == 0 || at_end == 0) break;
+      if (at_start != lower_sign) {
+        m -= 1;
+        continue;
+      }
+      if (at_end == lower_sign) {
+        m += 1;
+        continue;
+      }
+      return std::pair<Wide, unsigned long>{start, level};
+    }
+  }
+  return std::nullopt;
+}
+
 // refine_dyadically's bisection steps with its numerators as machine integers: the loop
 //   while (needed > reached) { a = 2 a; middle = a + difference; scale, reached doubled;
 //                              a = middle when p(middle / scale) has lower_sign }
@@ -1009,22 +1148,17 @@ bool dyadic_steps_in_machine_integers(const Polynomial& polynomial, const SignFi
   if (bits + steps > 124 || scale_bits + steps > 900) return false;
   const Wide step = to_wide(difference);
   Wide low = to_wide(a);
-  for (unsigned long i = 1; i <= steps; ++i) {
+  unsigned long first = 1;
+  if (refine_jump_enabled().load(std::memory_order_relaxed) && steps >= 12)
+    if (auto cell = filtered_dyadic_cell(filter, lower_sign, low, step, scale_bits, std::min<unsigned long>(steps, 50))) {
+      low = cell->first;
+      first = cell->second + 1;
+      ++refine_jumps();
+    }
+  for (unsigned long i = first; i <= steps; ++i) {
     low *= 2;
     const Wide m = low + step;
-    int s = 0;
-    {
-      const double d = static_cast<double>(m);   // nearest; the far side's neighbour bounds m
-      const Wide back = static_cast<Wide>(d);    // exact: |d| <= 2^126
-      double lo = d, hi = d;
-      if (back < m) hi = std::nextafter(d, HUGE_VAL);
-      if (back > m) lo = std::nextafter(d, -HUGE_VAL);
-      const double unit = negative_power_of_two(scale_bits + i);   // 2^-k, k <= 900: exact products
-      lo *= unit;
-      hi *= unit;
-      const bool normal = (lo == 0 || std::fabs(lo) >= 0x1p-1000) && (hi == 0 || std::fabs(hi) >= 0x1p-1000);
-      if (normal) s = filter.sign(Interval{lo, hi});
-    }
+    int s = wide_filter_sign(filter, m, scale_bits + i);
     if (s == 0) {
       from_wide(m, middle);
       mpz_mul_2exp(scale.get_mpz_t(), scale.get_mpz_t(), i);   // 2^(scale_bits + i)
@@ -1272,11 +1406,20 @@ void Real::detect_rational() {
 double Real::approximate() const {
   if (exact) return lower.get_d();
   Real copy = *this;
-  Rational width = abs(upper) + abs(lower);
-  width /= Rational(mpz_class(1) << 60);
+  return approximate_refining(copy);
+}
+
+double approximate_refining(Real& copy) {
+  if (copy.exact) return copy.lower.get_d();
+  Rational width = abs(copy.upper) + abs(copy.lower);
+  mpq_div_2exp(width.get_mpq_t(), width.get_mpq_t(), 60);   // / 2^60
   if (width == 0) width = Rational(1, mpz_class(1) << 60);
   copy.refine_to(width);
-  return Rational((copy.lower + copy.upper) / 2).get_d();
+  // the middle: the sum halved by a shift of the denominator (the same rational as dividing by 2)
+  Rational middle;
+  mpq_add(middle.get_mpq_t(), copy.lower.get_mpq_t(), copy.upper.get_mpq_t());
+  mpq_div_2exp(middle.get_mpq_t(), middle.get_mpq_t(), 1);
+  return middle.get_d();
 }
 
 int Real::compare(const Rational& r) const {
@@ -1292,9 +1435,22 @@ int Real::compare(const Rational& r) const {
 }
 
 std::string Real::description(const std::string& variable) const {
+  return root_description(polynomial, lower, upper, exact, variable);
+}
+
+std::string root_description(const Polynomial& polynomial, const Rational& lower, const Rational& upper, bool exact,
+                             const std::string& variable) {
   if (exact) return to_exact_string(lower);
-  return to_string(polynomial, variable) + " = 0, " + variable + " in (" + to_exact_string(lower) +
-         ", " + to_exact_string(upper) + ")";
+  // appended into one string (no temporary per part)
+  std::string text = to_string(polynomial, variable);
+  text += " = 0, ";
+  text += variable;
+  text += " in (";
+  text += to_exact_string(lower);
+  text += ", ";
+  text += to_exact_string(upper);
+  text += ')';
+  return text;
 }
 
 namespace {

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 
 namespace hipair::cli {
@@ -79,11 +80,26 @@ JsonText& JsonText::key(std::string_view name) {
   if (!level.empty && !(std::string_view(level.last_key) < name))
     throw Error("cspace --json: internal: key '" + std::string(name) + "' after '" + level.last_key +
                 "' (an object's keys are written in ascending order)");
-  text_ += level.empty ? "\n" : ",\n";
+  if (plain(name)) {
+    // the member's text in one piece: [","] "\n", the indentation, the quoted name, ": "
+    const std::size_t start = text_.size(), comma = level.empty ? 0 : 1;
+    text_.resize(start + comma + 1 + depth_ + name.size() + 4);
+    char* at = text_.data() + start;
+    if (comma) *at++ = ',';
+    *at++ = '\n';
+    std::memset(at, ' ', depth_);
+    at += depth_;
+    *at++ = '"';
+    std::memcpy(at, name.data(), name.size());
+    at += name.size();
+    std::memcpy(at, "\": ", 3);
+  } else {
+    text_ += level.empty ? "\n" : ",\n";
+    text_.append(depth_, ' ');
+    quoted(name);
+    text_ += ": ";
+  }
   level.empty = false;
-  text_.append(depth_, ' ');
-  quoted(name);
-  text_ += ": ";
   level.last_key.assign(name);
   after_key_ = true;
   return *this;
@@ -334,7 +350,10 @@ void write_decimal(JsonText& json, double value, long unit, mpfr_rnd_t round = M
 }
 
 void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit) {
-  const AlgebraicNumber n = in_mm(given, unit);
+  // (a number of a rotation axis, unit 0, is written as it is: no copy)
+  std::optional<AlgebraicNumber> scaled;
+  if (unit != 0) scaled = in_mm(given, unit);
+  const AlgebraicNumber& n = scaled ? *scaled : given;
   json.begin_object();
   json.key("decimal");
   write_decimal(json, given.approximate(), unit);
@@ -433,7 +452,10 @@ void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& verte
       char digits[16];
       scratch.append(digits, std::to_chars(digits, digits + sizeof digits, vertex.y_branch).ptr);
       scratch += " (ascending, from 0) in y of ";
-      append_polynomial_text(scratch, polynomial_in_mm(vertex.y_curve, x_unit, y_unit));
+      if (x_unit == 0 && y_unit == 0)
+        append_polynomial_text(scratch, vertex.y_curve);
+      else
+        append_polynomial_text(scratch, polynomial_in_mm(vertex.y_curve, x_unit, y_unit));
       scratch += " at this x";
       json.key("exact").string(scratch);
       json.key("interval").begin_array();

@@ -158,6 +158,11 @@ Rational parse_exact_literal(std::string_view text) {
 }
 
 std::string to_exact_string(const Rational& value) {
+  // a denominator 1, or a power of two over an odd numerator, is canonical already (positive: a
+  // gmpxx rational's denominator is, unless made by hand): no copy and no gcd
+  const mpz_srcptr den = value.get_den_mpz_t(), num = value.get_num_mpz_t();
+  if (mpz_sgn(den) > 0 && mpz_scan1(den, 0) + 1 == mpz_sizeinbase(den, 2) && (mpz_cmp_ui(den, 1) == 0 || mpz_odd_p(num)))
+    return value.get_str(10);
   Rational canonical = value;
   canonical.canonicalize();
   return canonical.get_str(10);

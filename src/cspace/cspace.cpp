@@ -5,6 +5,7 @@
 #include <hipair/error.hpp>
 
 #include "cspace/builder_impl.hpp"
+#include "algebra/real_approximation.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -23,21 +24,17 @@ CSpace CSpaceAccess::make(std::shared_ptr<const CSpace::Impl> impl) {
 }
 
 double AlgebraicNumber::approximate() const {
+  if (exact) return lower.get_d();
   cspace::algebra::Real r;
   r.polynomial = polynomial;
   r.lower = lower;
   r.upper = upper;
   r.exact = exact;
-  return r.approximate();
+  return cspace::algebra::approximate_refining(r);   // (r is this function's own copy)
 }
 
 std::string AlgebraicNumber::to_string(const std::string& variable) const {
-  cspace::algebra::Real r;
-  r.polynomial = polynomial;
-  r.lower = lower;
-  r.upper = upper;
-  r.exact = exact;
-  return r.description(variable);
+  return cspace::algebra::root_description(polynomial, lower, upper, exact, variable);
 }
 
 namespace {

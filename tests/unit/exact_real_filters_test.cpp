@@ -8,6 +8,8 @@
 #include "algebra/exact_real.hpp"
 #include "algebra/rational_order.hpp"
 #include "algebra/real_filters.hpp"
+#include "algebra/real_approximation.hpp"
+#include "test_seed.hpp"
 
 #include <gtest/gtest.h>
 
@@ -315,6 +317,20 @@ TEST(ExactRealFilters, FilteredComparisonWithRationalsIsTheExactOne) {
 
 // Coefficients beyond 53 bits (the sign filter's outward-moved bounds) and beyond 900 bits (its
 // scaled path): refine_to's filtered bisection gives the canonical bisection's intervals.
+// The reference refinement: canonical halving with exact signs until the interval is at most
+// `width` wide (a midpoint that is a root ends it).
+Real canonical_halving(Real reference, const Rational& width) {
+  const int lower_sign = sign_at(reference.polynomial, reference.lower);
+  while (!reference.exact && reference.upper - reference.lower > width) {
+    Rational middle = (reference.lower + reference.upper) / 2;
+    const int s = sign_at(reference.polynomial, middle);
+    if (s == 0) reference = Real::from_rational(middle);
+    else if (s == lower_sign) reference.lower = middle;
+    else reference.upper = middle;
+  }
+  return reference;
+}
+
 TEST(ExactRealFilters, RefinementWithLargeCoefficientsIsTheExactBisection) {
   std::mt19937_64 random(99);
   for (int n = 0; n < 200; ++n) {
@@ -326,17 +342,8 @@ TEST(ExactRealFilters, RefinementWithLargeCoefficientsIsTheExactBisection) {
     Polynomial p = times({-q.get_num(), mpz_class(0), q.get_den()}, {-big, big + 1});
     for (Real root : real_roots(p)) {
       if (root.exact) continue;
-      Real reference = root;
       const Rational width = (root.upper - root.lower) / Rational(mpz_class(1) << 70);
-      // the reference: canonical halving with exact signs
-      const int lower_sign = sign_at(reference.polynomial, reference.lower);
-      while (!reference.exact && reference.upper - reference.lower > width) {
-        Rational middle = (reference.lower + reference.upper) / 2;
-        const int s = sign_at(reference.polynomial, middle);
-        if (s == 0) reference = Real::from_rational(middle);
-        else if (s == lower_sign) reference.lower = middle;
-        else reference.upper = middle;
-      }
+      const Real reference = canonical_halving(root, width);
       root.refine_to(width);
       ASSERT_EQ(root.exact, reference.exact);
       ASSERT_EQ(root.lower, reference.lower);
@@ -345,6 +352,129 @@ TEST(ExactRealFilters, RefinementWithLargeCoefficientsIsTheExactBisection) {
   }
 }
 
+
+// refine_to's and refine_dyadically's first halvings taken at once (a Newton iterate in doubles,
+// its cell at level <= 52 (50) confirmed by the certified filter's signs at the cell's two ends)
+// against the same functions halving one step at a time (refine_jump_enabled() off) and, for
+// every fourth, refine_to against canonical halving with exact signs: roots of products of two to four factors d x - n (n / d dyadic at times: a
+// midpoint, so an exact end) and d x^2 - n (irrational roots; neighbouring roots near each other
+// at times), coefficients of 1 to 200 bits at scales 2^-80 .. 2^80, widths 2^-1 .. 2^-140 of the
+// interval, approximate()'s width, and a second refinement from the first's ends (unreduced
+// and dyadic ends, the jump's m at the interval's ends). The same exact flag, ends and
+// approximate() double every time; the jump must be taken (counted) often.
+TEST(ExactRealFilters, RefinementFromAFilteredNewtonCellIsTheStepByStepBisection) {
+  const std::uint64_t seed = hipair::test::test_seed(62);
+  std::mt19937_64 random(seed);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::size_t compared = 0, exact_ends = 0;
+  const std::size_t jumps_before = refine_jumps();
+  auto scaled = [&](mpz_class z, int exponent) {
+    return exponent >= 0 ? mpz_class(z << exponent) : z;
+  };
+  for (int n = 0; n < 400; ++n) {
+    Polynomial p{mpz_class(1)};
+    const int factors = 2 + static_cast<int>(random() % 3);
+    const int exponent = static_cast<int>(random() % 161) - 80;
+    for (int f = 0; f < factors; ++f) {
+      const unsigned bits = 1 + static_cast<unsigned>(random() % 200);
+      mpz_class num = random_integer(random, bits);
+      if (num == 0) num = 1;
+      if (random() % 2) num = -num;
+      if (random() % 3 == 0) {
+        const Rational q = non_square(random, exponent / 2);
+        p = times(p, {-q.get_num(), mpz_class(0), q.get_den()});
+      } else {
+        mpz_class den = random() % 3 == 0 ? mpz_class(1) << (random() % 100) : random_integer(random, bits);
+        if (den == 0) den = 1;
+        p = times(p, {-scaled(num, std::max(exponent, 0)), scaled(den, std::max(-exponent, 0))});
+      }
+    }
+    const bool check_canonical = n % 4 == 0;
+    for (const Real& found : real_roots(p)) {
+      if (found.exact) continue;
+      Real first = found, first_stepwise = found;
+      for (int round = 0; round < 2 && !first.exact; ++round) {
+        const int shift = round == 1 && random() % 2 ? 60 : 1 + static_cast<int>(random() % 140);
+        Rational width = (first.upper - first.lower) / Rational(mpz_class(1) << shift);
+        if (round == 1 && shift == 60) width = (abs(first.upper) + abs(first.lower)) / Rational(mpz_class(1) << 60);
+        Real jumped = first, stepwise = first_stepwise;
+        Real dyadic_jumped = first, dyadic_stepwise = first_stepwise;
+        refine_jump_enabled().store(false);
+        stepwise.refine_to(width);
+        refine_dyadically(dyadic_stepwise, width);
+        const double stepwise_double = first_stepwise.approximate();
+        refine_jump_enabled().store(true);
+        jumped.refine_to(width);
+        refine_dyadically(dyadic_jumped, width);
+        const double jumped_double = first.approximate();
+        ASSERT_EQ(jumped.exact, stepwise.exact) << n;
+        ASSERT_EQ(jumped.lower, stepwise.lower) << n;
+        ASSERT_EQ(jumped.upper, stepwise.upper) << n;
+        ASSERT_TRUE(same_bits(jumped_double, stepwise_double)) << n;
+        ASSERT_EQ(dyadic_jumped.exact, dyadic_stepwise.exact) << n;
+        ASSERT_EQ(dyadic_jumped.lower, dyadic_stepwise.lower) << n;
+        ASSERT_EQ(dyadic_jumped.upper, dyadic_stepwise.upper) << n;
+        if (check_canonical) {
+          const Real reference = canonical_halving(first, width);
+          ASSERT_EQ(jumped.exact, reference.exact) << n;
+          ASSERT_EQ(jumped.lower, reference.lower) << n;
+          ASSERT_EQ(jumped.upper, reference.upper) << n;
+        }
+        ++compared;
+        if (jumped.exact) ++exact_ends;
+        first = jumped;
+        first_stepwise = stepwise;
+      }
+    }
+  }
+  // dyadic roots r0 = num / 2^k of (2^k x - num)(x^2 - q) in intervals (r0 - a s, r0 + (2^e - a) s),
+  // s = 2^-(e + 20 .. e + 119): r0 is a point of the halvings' grid at level e (1 .. 40), where both
+  // functions must end exactly at r0 (no jump may step over it)
+  for (int n = 0; n < 400; ++n) {
+    const unsigned k = static_cast<unsigned>(random() % 80);
+    mpz_class num = random_integer(random, 1 + static_cast<unsigned>(random() % 100));
+    if (random() % 2) num = -num;
+    Rational r0(num, mpz_class(1) << k);
+    r0.canonicalize();
+    const Rational q = non_square(random, static_cast<int>(random() % 20) - 10);
+    Real root;
+    root.polynomial = times({-num, mpz_class(1) << k}, {-q.get_num(), mpz_class(0), q.get_den()});
+    const unsigned e = 1 + static_cast<unsigned>(random() % 40);
+    const mpz_class cells = mpz_class(1) << e;
+    mpz_class a = 1 + mpz_class(static_cast<unsigned long>(random())) % (cells - 1);
+    const Rational step(mpz_class(1), mpz_class(1) << (e + 20 + random() % 100));
+    root.lower = r0 - Rational(a) * step;
+    root.upper = r0 + Rational(cells - a) * step;
+    root.lower.canonicalize();
+    root.upper.canonicalize();
+    // (an interval that also holds a root of x^2 - q isolates nothing: not a case)
+    if (SturmSequence(root.polynomial).count(root.lower, root.upper) != 1) continue;
+    ASSERT_NE(sign_at(root.polynomial, root.lower), sign_at(root.polynomial, root.upper)) << n;
+    const Rational width = (root.upper - root.lower) / Rational(mpz_class(1) << (e + random() % 60));
+    Real jumped = root, stepwise = root, dyadic_jumped = root, dyadic_stepwise = root;
+    refine_jump_enabled().store(false);
+    stepwise.refine_to(width);
+    refine_dyadically(dyadic_stepwise, width);
+    refine_jump_enabled().store(true);
+    jumped.refine_to(width);
+    refine_dyadically(dyadic_jumped, width);
+    ASSERT_TRUE(jumped.exact) << n;
+    ASSERT_EQ(jumped.lower, r0) << n;
+    ASSERT_EQ(jumped.exact, stepwise.exact) << n;
+    ASSERT_EQ(jumped.lower, stepwise.lower) << n;
+    ASSERT_EQ(jumped.upper, stepwise.upper) << n;
+    ASSERT_EQ(dyadic_jumped.exact, dyadic_stepwise.exact) << n;
+    ASSERT_EQ(dyadic_jumped.lower, dyadic_stepwise.lower) << n;
+    ASSERT_EQ(dyadic_jumped.upper, dyadic_stepwise.upper) << n;
+    ++compared;
+    ++exact_ends;
+  }
+  const std::size_t jumps = refine_jumps() - jumps_before;
+  std::cout << compared << " refinements, " << exact_ends << " exact, " << jumps << " jumps\n";
+  EXPECT_GT(compared, 1000u);
+  EXPECT_GT(jumps, compared / 4);
+  EXPECT_GE(exact_ends, 350u);
+}
 
 // refine_dyadically's definition with exact rationals only: inward dyadic ends a / 2^k, b / 2^k
 // with 2^-k <= (upper - lower) / 4, then halving [a, b] with exact signs until it is at most
