@@ -152,7 +152,12 @@ std::optional<Box> divide(const Box& a, const Box& b) {
   Box inverse{1 / b.hi, 1 / b.lo};
   return a * inverse;
 }
-Rational mid(const Box& b) { return (b.lo + b.hi) / 2; }
+// The simplest rational (least denominator) of the closed box, canonical.
+Rational simplest_inside(const Box& b) {
+  Rational out = b.lo < b.hi ? cspace::algebra::simplest_between(b.lo, b.hi) : b.lo;
+  out.canonicalize();
+  return out;
+}
 
 // Certified double intervals (kernels::Interval, widened outwards by an ulp per operation): the
 // fourth arithmetic of the formulas, for the filter that proves an event polynomial has no
@@ -575,12 +580,12 @@ class Certifier {
         if (box_inside(free_, rb.c * rel.x + rb.s * rel.y + Box(pivot_.x), rb.c * rel.y - rb.s * rel.x + Box(pivot_.y)))
           return true;
       }
-      Rational um = mid(Box{t.lower, t.upper});
-      um.canonicalize();
+      // a configuration of the enclosure: the simplest rationals of its angle's interval and of
+      // its point's box (the witness is then checked over the whole enclosure, so any of its
+      // configurations will do; the middles carried twice the bits into every exact overlap test)
+      Rational um = simplest_inside(Box{t.lower, t.upper});
       Rotation<Rational> rm = exact_rotation(um);
-      Point d{mid(pb->x), mid(pb->y)};
-      d.x.canonicalize();
-      d.y.canonicalize();
+      Point d{simplest_inside(pb->x), simplest_inside(pb->y)};
       const PartOverlap relation = overlap_at(um, rm, d);
       // a configuration of the enclosure that is not overlapping: no certificate (kept) — after
       // the finer stage: the mid of a coarse box may lie far from the event (the crossing of two
