@@ -81,6 +81,14 @@ verify::IntervalMap interval_map(const Part& part, const RationalInterval& range
   }
 }
 
+std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
+                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b) {
+  if (!asked) return sgn(bound) > 0 ? std::optional<Rational>(round_down(bound, 6)) : std::nullopt;
+  if (bound >= *asked || verify::boundary_distance_at_least(verify::place(a, map_a), verify::place(b, map_b), *asked))
+    return asked;
+  return std::nullopt;
+}
+
 Rational round_down(const Rational& value, int digits) {
   if (sgn(value) == 0) return value;
   // floor(log10 |value|), exactly (no double: any magnitude).
@@ -249,8 +257,9 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
   Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(map_a), verify::shape_of(b), verify::to_interval_map(map_b), cap);
-  if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
-  c.distance = distance ? *distance : round_down(bound, 6);
+  std::optional<Rational> claimed = claimed_clearance(bound, distance, a, map_a, b, map_b);
+  if (!claimed) return std::nullopt;
+  c.distance = *claimed;
   c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;

@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""Session 62 (hunt62): certify and hipair-verify at every scale, judged by scale covariance.
+
+Each example (examples/models/NAME.json) is scaled exactly by each factor (tests/fuzz/scale_model.py;
+angles unchanged, every length times S) and for each declared pair `hipair certify` is asked for
+a clearance and an interference at the initial configuration, free passage over the driver's
+turn (a rotating driver) and a jam (the default search; a translating driver's step and travel
+times S). Oracles:
+  * the truth of each claim is the same at every scale (angles are unchanged, lengths scale), so
+    the certify exit code must be the same at every scale as at S = 1 (a difference is printed
+    as a finding to look at);
+  * every certificate written verifies (exit 0) against its own scaled model;
+  * a clearance certificate's distance, moved up by 2^-k of itself (k = 4, 30, 64), gets the
+    same verdict at every scale (the claim "at least d(1 + 2^-k)" is as true at S as at 1);
+  * no signal, no crash text, at most one line of error.
+usage: scaled_certify_hunt.py HIPAIR HIPAIR_VERIFY REPO WORK MODELS SCALES
+  MODELS  comma-separated names; SCALES comma-separated factors (1 is always run first)"""
+import json, os, re, subprocess, sys
+from fractions import Fraction as F
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hunt_common import run, crash_problems
+
+hipair, verify, repo, work, models, scales = sys.argv[1:7]
+scales = ['1'] + [s for s in scales.split(',') if s != '1']
+os.makedirs(work, exist_ok=True)
+findings = 0
+
+
+def finding(text):
+    global findings
+    findings += 1
+    print('  FINDING:', text)
+
+
+def factor(text):
+    m = re.fullmatch(r'1e(-?\d+)', text)
+    return F(10) ** int(m.group(1)) if m else F(text)
+
+
+def scaled_model(name, scale):
+    out = f'{work}/{name}@{scale}.json'
+    if scale == '1':
+        return f'{repo}/examples/models/{name}.json'
+    subprocess.run([sys.executable, f'{repo}/tests/fuzz/scale_model.py', f'{repo}/examples/models/{name}.json', scale, out],
+                   check=True)
+    return out
+
+
+def literal(q):
+    return f'{q.numerator}/{q.denominator}' if q.denominator != 1 else str(q.numerator)
+
+
+for name in models.split(','):
+    source = json.load(open(f'{repo}/examples/models/{name}.json'))
+    parts = {p['name']: p for p in source['parts']}
+    pairs = [p['parts'] for p in source.get('pairs', [])] or [[p['name'] for p in source['parts'][:2]]]
+    results = {}   # (pair, claim) -> {scale: (rc, certificate or None)}
+    for scale in scales:
+        model = scaled_model(name, scale)
+        s = factor(scale)
+        for a, b in pairs:
+            kinds = [parts[x]['motion'] if isinstance(parts[x]['motion'], str) else next(iter(parts[x]['motion'])) for x in (a, b)]
+            if any(k in ('planar', 'pin_slot') for k in kinds):
+                claims = [('clearance', []), ('interference', [])]
+            else:
+                driver = a if kinds[0] != 'fixed' else b
+                dkind = kinds[0] if driver == a else kinds[1]
+                claims = [('clearance', []), ('interference', [])]
+                if dkind == 'rotation':
+                    claims += [('free', ['--driver', driver]), ('jam', ['--driver', driver])]
+                else:
+                    claims += [('jam', ['--driver', driver, '--step', literal(s / 100), '--travel', literal(100 * s)])]
+            for claim, extra in claims:
+                cert = f'{work}/{name}@{scale}-{a}-{b}-{claim}.json'
+                if os.path.exists(cert):
+                    os.remove(cert)
+                rc, out, err = run([hipair, 'certify', model, '--claim', claim, '--pair', f'{a}:{b}', *extra, '--out', cert],
+                                   timeout=300)
+                problems = crash_problems(rc, out + err)
+                if problems:
+                    finding(f'{name}@{scale} {a}:{b} certify {claim}: {problems} {err.strip()[-200:]}')
+                    continue
+                if rc not in (0, 1, 2):
+                    finding(f'{name}@{scale} {a}:{b} certify {claim}: exit {rc}: {err.strip()[-200:]}')
+                if rc != 0 and len(err.strip().splitlines()) > 1:
+                    finding(f'{name}@{scale} {a}:{b} certify {claim}: {len(err.strip().splitlines())} lines: {err.strip()[-300:]}')
+                c = None
+                if rc == 0:
+                    vrc, vout, verr = run([verify, cert, model], timeout=300)
+                    if vrc != 0:
+                        finding(f'{name}@{scale} {a}:{b} certify {claim} verifies {vrc}: {(vout + verr).strip()[-300:]}')
+                    c = json.load(open(cert))
+                results.setdefault((a, b, claim), {})[scale] = (rc, c, err.strip().splitlines()[-1:] if rc else '')
+                # clearance moved up by 2^-k, scale by scale (compared below)
+                if c and claim in ('clearance', 'free'):
+                    body = c[claim if claim == 'clearance' else 'free_passage']
+                    d = F(body['distance'])
+                    verdicts = []
+                    for k in (4, 30, 64):
+                        m = json.loads(json.dumps(c))
+                        mb = m[claim if claim == 'clearance' else 'free_passage']
+                        mb['distance'] = literal(d * (1 + F(1, 2 ** k)))
+                        mfile = f'{work}/mutant.json'
+                        json.dump(m, open(mfile, 'w'))
+                        vrc, vout, verr = run([verify, mfile, model], timeout=300)
+                        if crash_problems(vrc, vout + verr):
+                            finding(f'{name}@{scale} {claim} +2^-{k}: crash {vout + verr}')
+                        verdicts.append(vrc)
+                    results[(a, b, claim)][scale] += (verdicts,)
+    for key, by_scale in results.items():
+        base = by_scale.get('1')
+        line = f'{name} {key[0]}:{key[1]} {key[2]}: ' + ', '.join(f'{s}: {v[0]}' + (f' {v[3]}' if len(v) > 3 else '') for s, v in by_scale.items())
+        print(line)
+        for scale, v in by_scale.items():
+            if base and v[0] != base[0]:
+                finding(f'{name} {key}: certify exit {v[0]} at {scale}, {base[0]} at 1: {v[2]} / {base[2]}')
+            if base and len(v) > 3 and len(base) > 3 and v[3] != base[3]:
+                finding(f'{name} {key}: verdicts of the raised distance {v[3]} at {scale}, {base[3]} at 1')
+            if base and base[1] and v[1] and key[2] == 'clearance':
+                d1, ds = F(base[1]['clearance']['distance']), F(v[1]['clearance']['distance'])
+                if d1 > 0 and abs(ds / factor(scale) / d1 - 1) > F(1, 10 ** 6):
+                    finding(f'{name} {key}: distance {ds} at {scale}, {d1} at 1')
+print('findings', findings)
+sys.exit(1 if findings else 0)
