@@ -94,12 +94,12 @@ for name in models.split(','):
                 results.setdefault((a, b, claim), {})[scale] = (rc, c, err.strip().splitlines()[-1:] if rc else '')
                 # clearance moved up by 2^-k, scale by scale (compared below)
                 if c and claim in ('clearance', 'free'):
-                    body = c[claim if claim == 'clearance' else 'free_passage']
+                    body = c[c['claim']]
                     d = F(body['distance'])
                     verdicts = []
                     for k in (4, 30, 64):
                         m = json.loads(json.dumps(c))
-                        mb = m[claim if claim == 'clearance' else 'free_passage']
+                        mb = m[m['claim']]
                         mb['distance'] = literal(d * (1 + F(1, 2 ** k)))
                         mfile = f'{work}/mutant.json'
                         json.dump(m, open(mfile, 'w'))
@@ -118,7 +118,7 @@ for name in models.split(','):
             if base and len(v) > 3 and len(base) > 3 and v[3] != base[3]:
                 finding(f'{name} {key}: verdicts of the raised distance {v[3]} at {scale}, {base[3]} at 1')
             if base and base[1] and v[1] and key[2] == 'clearance':
-                d1, ds = F(base[1]['clearance']['distance']), F(v[1]['clearance']['distance'])
+                d1, ds = F(base[1][base[1]['claim']]['distance']), F(v[1][v[1]['claim']]['distance'])
                 if d1 > 0 and abs(ds / factor(scale) / d1 - 1) > F(1, 10 ** 6):
                     finding(f'{name} {key}: distance {ds} at {scale}, {d1} at 1')
 print('findings', findings)

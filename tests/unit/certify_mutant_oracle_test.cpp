@@ -30,6 +30,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "certificate_test_support.hpp"
 #include "test_seed.hpp"
@@ -321,6 +322,15 @@ TEST(CertifyMutantOracle, FixedAxisClearanceAtTheExactDistanceHoldsAtEveryScale)
 })";
     const Model model = read_model(text, "bar-wall-disc-post.json");
     const Rational u = model.parameters.at(0).nominal;
+    // the distance found (no distance asked) is the same at every scale where it has 6 digits:
+    // 10 u (the bar at 0) and 15 u (the disc at 0), not 9.99999 u where the bound is a hair under
+    for (const auto& [first, second, at, exact] :
+         {std::tuple{"bar", "wall", ExactPosition{Rational(0), false, false, {}, {}}, Rational(10 * u)},
+          std::tuple{"disc", "post", ExactPosition{Rational(0), true, false, {}, {}}, Rational(15 * u)}}) {
+      std::optional<Certificate> found = certify_clearance(model, first, second, {{first, at}});
+      ASSERT_TRUE(found);
+      EXPECT_EQ(found->distance, exact) << "u=" << unit << " " << first;
+    }
     for (int i = 0; i < 12; ++i) {
       const bool bar = i % 2 == 0;
       std::map<std::string, ExactPosition> at;
@@ -349,7 +359,6 @@ TEST(CertifyMutantOracle, FixedAxisClearanceAtTheExactDistanceHoldsAtEveryScale)
         if (!c) c = certify_clearance(model, first, second, at);   // the found bound, then the claim edited
         ASSERT_TRUE(c);
         c->distance = claimed;
-        std::string reason;
         c->statement = certificate_statement(*c, model);
         VerificationResult v = check_certificate(read_certificate(write_certificate(*c)), model);
         EXPECT_EQ(v.valid, side <= 0) << v.reason;
