@@ -61,6 +61,12 @@ def literal(q):
     return f'{q.numerator}/{q.denominator}' if q.denominator != 1 else str(q.numerator)
 
 
+# claims beyond the defaults (angles only: the same at every scale)
+EXTRA = {('cam-follower', 'cam', 'follower'): [('free', ('--driver', 'cam', '--from', '0', '--to', '1/20'))],
+         ('lever-stop', 'lever', 'stop'): [('free', ('--driver', 'lever', '--from', '-1/2', '--to', '1/25'))],
+         ('ratchet', 'wheel', 'pawl'): [('free', ('--driver', 'wheel', '--from', '0', '--to', '1/50'))]}
+
+
 def leaves(tree, path=()):
     """(path, Fraction) of every exact number of a claim's data"""
     if isinstance(tree, dict):
@@ -134,8 +140,9 @@ for name in models.split(','):
                     claims += [('free', ['--driver', driver]), ('jam', ['--driver', driver])]
                 else:
                     claims += [('jam', ['--driver', driver, '--step', literal(s / 100), '--travel', literal(100 * s)])]
-            for claim, extra in claims:
-                cert = f'{work}/{name}@{scale}-{a}-{b}-{claim}.json'
+            claims += [(claim, list(extra)) for claim, extra in EXTRA.get((name, a, b), [])]
+            for index, (claim, extra) in enumerate(claims):
+                cert = f'{work}/{name}@{scale}-{a}-{b}-{claim}-{index}.json'
                 if os.path.exists(cert):
                     os.remove(cert)
                 rc, out, err = run([hipair, 'certify', model, '--claim', claim, '--pair', f'{a}:{b}', *extra, '--out', cert],
@@ -154,7 +161,7 @@ for name in models.split(','):
                     if vrc != 0:
                         finding(f'{name}@{scale} {a}:{b} certify {claim} verifies {vrc}: {(vout + verr).strip()[-300:]}')
                     c = json.load(open(cert))
-                results.setdefault((a, b, claim), {})[scale] = (rc, c, err.strip().splitlines()[-1:] if rc else '', model)
+                results.setdefault((a, b, f'{claim}#{index}'), {})[scale] = (rc, c, err.strip().splitlines()[-1:] if rc else '', model)
                 # clearance moved up by 2^-k, scale by scale (compared below)
                 if c and claim in ('clearance', 'free'):
                     body = c[c['claim']]
@@ -170,9 +177,9 @@ for name in models.split(','):
                         if crash_problems(vrc, vout + verr):
                             finding(f'{name}@{scale} {claim} +2^-{k}: crash {vout + verr}')
                         verdicts.append(vrc)
-                    results[(a, b, claim)][scale] += (verdicts,)
+                    results[(a, b, f'{claim}#{index}')][scale] += (verdicts,)
                 elif c:
-                    results[(a, b, claim)][scale] += (None,)
+                    results[(a, b, f'{claim}#{index}')][scale] += (None,)
     for key, by_scale in results.items():
         base = by_scale.get('1')
         line = f'{name} {key[0]}:{key[1]} {key[2]}: ' + ', '.join(f'{s}: {v[0]}' + (f' {v[4]}' if len(v) > 4 and v[4] else '') for s, v in by_scale.items())
@@ -184,7 +191,7 @@ for name in models.split(','):
                 finding(f'{name} {key}: verdicts of the raised distance {v[4]} at {scale}, {base[4]} at 1')
             if mutants and scale != '1' and base and base[1] and v[1]:
                 mutate_alike(name, key, base, v, scale)
-            if base and base[1] and v[1] and key[2] == 'clearance':
+            if base and base[1] and v[1] and key[2].startswith('clearance'):
                 d1, ds = F(base[1][base[1]['claim']]['distance']), F(v[1][v[1]['claim']]['distance'])
                 if d1 > 0 and abs(ds / factor(scale) / d1 - 1) > F(1, 10 ** 6):
                     finding(f'{name} {key}: distance {ds} at {scale}, {d1} at 1')
