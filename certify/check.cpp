@@ -370,12 +370,17 @@ std::string check_clearance(const Certificate& c, const Model& model) {
   std::string closest;
   Rational bound = boundary_distance_lower_bound(shape_of(a), to_interval_map(map_a), shape_of(b), to_interval_map(map_b),
                                                  c.distance, &closest);
-  if (bound < c.distance) {
+  PlacedPart placed_a = place(a, map_a), placed_b = place(b, map_b);
+  // the MPFI bound falls a hair short of an exact distance: decide it exactly, as for planar
+  // poses (hunt41). Until session 62 (hunt62) a fixed-axis claim of exactly the distance was
+  // refused where the enclosures are not exact: the cam follower 1/2 mm from its cam verified
+  // at x 1 and was refused at x 10^-300 ("4.99999...97e-301, less than the claimed 5e-301").
+  if (bound < c.distance && !boundary_distance_at_least(placed_a, placed_b, c.distance)) {
     auto [found, claimed] = show_apart(bound, c.distance);
     reject("at " + configuration_text(c) + " the certified distance lower bound of " + closest + " is " + found +
            ", less than the claimed " + claimed);
   }
-  check_nesting(place(a, map_a), place(b, map_b), "at " + configuration_text(c));
+  check_nesting(placed_a, placed_b, "at " + configuration_text(c));
   return "parts '" + c.first + "' and '" + c.second + "' are at least " + show(c.distance) + " mm apart at " +
          configuration_text(c);
 }

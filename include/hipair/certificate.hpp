@@ -278,8 +278,8 @@ std::optional<Certificate> certify_interference(const Model& model, const std::s
                                                 const std::map<std::string, ExactPosition>& positions,
                                                 const CertifyContext& context = {});
 
-/// Certifies that the pair is at least `distance` apart at `positions`; when `distance` is
-/// absent, the largest certified lower bound found (rounded down to 6 significant digits).
+/// Certifies that the pair is at least `distance` apart at `positions` (exactly the distance too, at any scale); when
+/// absent, the certified lower bound found to 6 digits (rounded down, or up to the distance when that holds exactly).
 /// \returns nullopt when the parts touch or overlap there, or the bound cannot be certified.
 std::optional<Certificate> certify_clearance(const Model& model, const std::string& first,
                                              const std::string& second,
@@ -295,7 +295,7 @@ std::optional<Certificate> certify_planar_interference(const Model& model, const
                                                        const CertifyContext& context = {});
 
 /// Certifies that at the exact pose the planar part is at least `distance` from the fixed part
-/// (absent: the largest certified lower bound found, rounded down to 6 significant digits).
+/// (absent: the distance found, as for certify_clearance).
 /// \returns nullopt when the parts touch or overlap there, or the bound cannot be certified.
 std::optional<Certificate> certify_planar_clearance(const Model& model, const std::string& fixed, const PlanarPose& pose,
                                                     std::optional<Rational> distance = std::nullopt,

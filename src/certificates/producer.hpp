@@ -58,6 +58,13 @@ verify::ExactMap exact_map(const Part& part, const ExactPosition* position);
 /// All poses of `part` with its coordinate (rad or mm) in `range` (identity if fixed).
 verify::IntervalMap interval_map(const Part& part, const RationalInterval& range);
 
+/// The distance a clearance certificate claims: `asked` when the parts at their exact maps are at
+/// least that far apart (the MPFI `bound` first, then exactly, as the verifier decides it: a
+/// claim of exactly the distance holds at any magnitude), else nothing; without `asked`, `bound`
+/// rounded down to 6 digits (nothing when it is not positive).
+std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
+                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b);
+
 /// `value` rounded towards zero to `digits` significant decimal digits.
 Rational round_down(const Rational& value, int digits);
 

@@ -81,9 +81,10 @@ verify::IntervalMap interval_map(const Part& part, const RationalInterval& range
   }
 }
 
-Rational round_down(const Rational& value, int digits) {
-  if (sgn(value) == 0) return value;
-  // floor(log10 |value|), exactly (no double: any magnitude).
+namespace {
+// 10^(floor(log10 |value|) - digits + 1): the last of `digits` significant decimal digits of a
+// non-zero value (exactly: no double, any magnitude).
+Rational decimal_unit(const Rational& value, int digits) {
   Rational magnitude = abs(value);
   long exponent = long(mpz_sizeinbase(magnitude.get_num_mpz_t(), 10)) - long(mpz_sizeinbase(magnitude.get_den_mpz_t(), 10));
   auto power = [](long e) {
@@ -93,10 +94,31 @@ Rational round_down(const Rational& value, int digits) {
   };
   while (power(exponent) > magnitude) --exponent;
   while (power(exponent + 1) <= magnitude) ++exponent;
-  exponent = exponent - digits + 1;
-  mpz_class scale;
-  mpz_ui_pow_ui(scale.get_mpz_t(), 10, unsigned(std::abs(exponent)));
-  Rational unit = exponent >= 0 ? Rational(scale) : Rational(1, 1) / Rational(scale);
+  return power(exponent - digits + 1);
+}
+}  // namespace
+
+std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
+                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b) {
+  auto exactly = [&](const Rational& d) {
+    return verify::boundary_distance_at_least(verify::place(a, map_a), verify::place(b, map_b), d);
+  };
+  if (asked) return bound >= *asked || exactly(*asked) ? asked : std::nullopt;
+  if (sgn(bound) <= 0) return std::nullopt;
+  // The bound rounded down to 6 digits; when the bound is a hair under the next 6-digit value
+  // (an exact distance of 2e-300 mm enclosed as 1.99999...97e-300), that value if it holds
+  // exactly: the found distance is then the same at every scale (session 62, hunt62).
+  Rational down = round_down(bound, 6);
+  if (down < bound) {
+    Rational up = down + decimal_unit(bound, 6);
+    if (exactly(up)) return up;
+  }
+  return down;
+}
+
+Rational round_down(const Rational& value, int digits) {
+  if (sgn(value) == 0) return value;
+  Rational unit = decimal_unit(value, digits);
   Rational steps = value / unit;
   mpz_class whole;
   mpz_tdiv_q(whole.get_mpz_t(), steps.get_num_mpz_t(), steps.get_den_mpz_t());
@@ -249,8 +271,9 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
   Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(map_a), verify::shape_of(b), verify::to_interval_map(map_b), cap);
-  if (sgn(bound) <= 0 || (distance && bound < *distance)) return std::nullopt;
-  c.distance = distance ? *distance : round_down(bound, 6);
+  std::optional<Rational> claimed = claimed_clearance(bound, distance, a, map_a, b, map_b);
+  if (!claimed) return std::nullopt;
+  c.distance = *claimed;
   c.statement = certificate_statement(c, model);
   self_check(c, model);
   return c;

@@ -13,7 +13,10 @@ kinematics.csv away from the contact changes:
 delta = 10^-6 rad or mm is far above the CSV's rounding (10^-9 deg or mm) and far below any
 play of these mechanisms at the chosen samples (a sample is taken only where the reported play
 exceeds 10 delta).
-usage: analyze_contact_sides.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_MODELS"""
+Session 62 (hunt62): an optional MODELS argument (comma-separated names) chooses among them and
+`gears`: spur-gears.json with tooth counts drawn from 6..40 each (the backlash drawn within its
+tolerance, the exact centre distance m (z1 + z2) / 2).
+usage: analyze_contact_sides.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_MODELS [MODELS]"""
 import csv, json, math, os, random, subprocess, sys
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
@@ -35,10 +38,20 @@ def turning_stop(path):
     return path
 
 
+def gears(path):
+    t = json.load(open(os.path.join(repo, 'examples/models/spur-gears.json')))
+    t['parameters']['teeth-1'] = {'nominal': rng.randrange(6, 41)}
+    t['parameters']['teeth-2'] = {'nominal': rng.randrange(6, 41)}
+    json.dump(t, open(path, 'w'), indent=1)
+    return path
+
+
 MODELS = [('turning-stop', lambda p: turning_stop(p), ['--range', '0:60']),
           ('ratchet', lambda p: os.path.join(repo, 'examples/models/ratchet.json'), ['--range', '0:40']),
           ('cam-follower', lambda p: os.path.join(repo, 'examples/models/cam-follower.json'), ['--range', '0:180']),
           ('geneva', lambda p: os.path.join(repo, 'examples/models/geneva.json'), ['--range', '130:240'])]
+if len(sys.argv) > 7:
+    MODELS = [m for m in MODELS + [('gears', gears, ['--range', '0:40'])] if m[0] in sys.argv[7].split(',')]
 
 
 def variant_sets(model):

@@ -30,8 +30,10 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "certificate_test_support.hpp"
+#include "test_seed.hpp"
 #include "test_paths.hpp"
 
 namespace hipair {
@@ -285,6 +287,86 @@ TEST(CertifyMutantOracle, MovedPosesWitnessesAndConfigurationsAreValidOnlyWhenTh
   }
   EXPECT_GT(valid, 40);
   EXPECT_GT(invalid, 10);
+}
+
+// Fixed-axis clearance claims at the exact distance, at 10^-300, 1, 10^-30 and 10^400 mm (session
+// 62, hunt62). A bar of 10 u x 2 u turning about the origin by a rational half-angle tangent against
+// a fixed wall at x = 20 u (distance 20 u - (10 u c + u |s|), its corner against the wall's face),
+// and a disc of radius 2 u sliding along y = 40 u against a fixed post of radius 3 u at x = 20 u
+// (distance |20 u - offset| - 5 u, two circles on their centre line). The claim at the exact
+// distance and 10^-30 u below it is certified (certify_clearance with the distance) and valid;
+// 10^-30 u above it is not certified and refused. Until session 62 the fixed-axis check had no
+// exact fallback: where the 256-bit enclosures are not exact (every case at 10^-300 and 10^400,
+// the turned bar at any scale) a true claim of exactly the distance was refused ("the certified
+// distance lower bound ... is 4.99999...97e-301, less than the claimed 5e-301": the cam
+// follower's certificate at 1/2 mm verified at x 1, its copy at x 10^-300 did not).
+TEST(CertifyMutantOracle, FixedAxisClearanceAtTheExactDistanceHoldsAtEveryScale) {
+  std::mt19937_64 random(test::test_seed(6262));
+  int checked = 0;
+  for (const char* unit : {"1e-300", "1", "1e-30", "1e400"}) {
+    const std::string text = std::string(R"({
+  "hipair": 1, "name": "bar-wall-disc-post", "units": { "length": "mm", "angle": "rad" },
+  "parameters": { "u": { "nominal": ")") + unit + R"(" } },
+  "parts": [
+    { "name": "bar", "motion": { "rotation": { "pivot": [0, 0] } }, "loops": [
+        { "start": [0, "-u"], "edges": [ { "line_to": ["10 * u", "-u"] }, { "line_to": ["10 * u", "u"] },
+                                        { "line_to": [0, "u"] }, { "line_to": [0, "-u"] } ] } ] },
+    { "name": "wall", "motion": "fixed", "loops": [
+        { "start": ["20 * u", "-50 * u"], "edges": [ { "line_to": ["30 * u", "-50 * u"] }, { "line_to": ["30 * u", "50 * u"] },
+                                                   { "line_to": ["20 * u", "50 * u"] }, { "line_to": ["20 * u", "-50 * u"] } ] } ] },
+    { "name": "disc", "motion": { "translation": { "direction": [1, 0] } }, "loops": [
+        { "circle": { "center": [0, "40 * u"], "radius": "2 * u" } } ] },
+    { "name": "post", "motion": "fixed", "loops": [ { "circle": { "center": ["20 * u", "40 * u"], "radius": "3 * u" } } ] }
+  ],
+  "pairs": [ { "parts": ["bar", "wall"] }, { "parts": ["disc", "post"] } ]
+})";
+    const Model model = read_model(text, "bar-wall-disc-post.json");
+    const Rational u = model.parameters.at(0).nominal;
+    // the distance found (no distance asked) is the same at every scale where it has 6 digits:
+    // 10 u (the bar at 0) and 15 u (the disc at 0), not 9.99999 u where the bound is a hair under
+    for (const auto& [first, second, at, exact] :
+         {std::tuple{"bar", "wall", ExactPosition{Rational(0), false, false, {}, {}}, Rational(10 * u)},
+          std::tuple{"disc", "post", ExactPosition{Rational(0), true, false, {}, {}}, Rational(15 * u)}}) {
+      std::optional<Certificate> found = certify_clearance(model, first, second, {{first, at}});
+      ASSERT_TRUE(found);
+      EXPECT_EQ(found->distance, exact) << "u=" << unit << " " << first;
+    }
+    for (int i = 0; i < 12; ++i) {
+      const bool bar = i % 2 == 0;
+      std::map<std::string, ExactPosition> at;
+      Rational distance;
+      if (bar) {
+        Rational t(static_cast<long>(random() % 81) - 40, 97);
+        t.canonicalize();
+        const Rational w = 1 + t * t, c = (1 - t * t) / w, s = 2 * t / w;
+        at["bar"] = ExactPosition{t, false, false, {}, {}};
+        distance = 20 * u - (10 * u * c + u * abs(s));
+      } else {
+        Rational offset = Rational(static_cast<long>(random() % 241) - 120, 13) * u;
+        offset.canonicalize();
+        at["disc"] = ExactPosition{offset, true, false, {}, {}};
+        distance = abs(Rational(20 * u - offset)) - 5 * u;
+      }
+      distance.canonicalize();
+      ASSERT_GT(distance, 0);
+      const std::string first = bar ? "bar" : "disc", second = bar ? "wall" : "post";
+      for (int side : {-1, 0, 1}) {
+        Rational claimed = distance + side * pow10(-30) * u;
+        claimed.canonicalize();
+        SCOPED_TRACE(std::string("u=") + unit + " " + first + " claimed=" + claimed.get_str());
+        std::optional<Certificate> c = certify_clearance(model, first, second, at, claimed);
+        EXPECT_EQ(bool(c), side <= 0);
+        if (!c) c = certify_clearance(model, first, second, at);   // the found bound, then the claim edited
+        ASSERT_TRUE(c);
+        c->distance = claimed;
+        c->statement = certificate_statement(*c, model);
+        VerificationResult v = check_certificate(read_certificate(write_certificate(*c)), model);
+        EXPECT_EQ(v.valid, side <= 0) << v.reason;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 144);
 }
 
 }  // namespace
