@@ -78,11 +78,12 @@ std::optional<Matrix<T>> solve(Matrix<T> A, Matrix<T> B) {
   return B;
 }
 
-inline Rational exact(double v) {
+// the doubles as exact rationals, and as point intervals
+inline Rational exact_value(double v) {
   if (!std::isfinite(v)) throw NumericError("a held contact's force problem is not finite (a row, a mass or a load)");
   return Rational(v);
 }
-inline kernels::Interval enclose(double v) { return kernels::Interval::point(v); }
+inline kernels::Interval point_interval(double v) { return kernels::Interval::point(v); }
 
 /// A = J M^-1 J^T and b = J M^-1 Q + kappa over the rows `set`, in T (none: M's elimination undecided).
 template <typename T, typename Convert>
@@ -175,7 +176,7 @@ inline std::vector<std::size_t> all_rows(const HeldForceRows& p) {
 
 inline std::pair<Matrix<Rational>, std::vector<Rational>> exact_delassus(const HeldForceRows& p,
                                                                         const std::vector<std::size_t>& set) {
-  auto out = delassus<Rational>(p, set, exact);
+  auto out = delassus<Rational>(p, set, [](double v) { return exact_value(v); });
   if (!out) throw NumericError("a held contact's force problem: the mass matrix is singular");
   return std::move(*out);
 }
@@ -201,7 +202,7 @@ inline std::vector<int> held_force_signs(const HeldForceRows& p, HeldForceCount*
   const std::size_t k = set.size();
   std::vector<int> signs(k, 0);
   if (k == 0) return signs;
-  if (const auto filtered = delassus<Interval>(p, set, enclose)) {
+  if (const auto filtered = delassus<Interval>(p, set, [](double v) { return point_interval(v); })) {
     Matrix<Interval> minus_b(k, std::vector<Interval>(1));
     for (std::size_t i = 0; i < k; ++i) minus_b[i][0] = -filtered->second[i];
     if (const auto lambda = solve(filtered->first, std::move(minus_b))) {
