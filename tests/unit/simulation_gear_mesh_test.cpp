@@ -220,14 +220,32 @@ constexpr double kVertexTolerance = 2 * 2 * 3e-9;
 // exactly at the pinion turned on by delta past the locked state (pinion p, gear g; the pinion is
 // the space's x axis, t = tan(theta / 2)), and no free interval of that 1-D slice may meet the gear
 // angles [g - 1.2 delta, g + 1.2 delta] — every gear angle there, not samples, is blocked (or on
-// contact space): the channel is closed ahead, for delta = 1e-4 and 1e-6 rad. An interval counts as
-// meeting the window when its ends' isolating bounds allow it (a test that can only err towards
-// failing). LockedPairCannotTurnOn also finds the sliver behind (a free interval certainly inside
-// the window at p - delta).
+// contact space): the channel is closed ahead, for delta = 1e-4 and 1e-6 rad. The intervals' ends
+// are the slice's exact algebraic points, compared with the window's rational ends exactly (the
+// sign of their polynomial). LockedPairCannotTurnOn also finds the sliver behind (a free interval
+// meeting the window at p - delta).
 constexpr double kLockDelta = 1e-4;
+// -1, 0, +1: the sign of a - y, exactly (a the unique root of its square-free polynomial in
+// (lower, upper), or `lower` when exact)
+int compare(const AlgebraicNumber& a, const Rational& y) {
+  if (a.exact) return cmp(a.lower, y) < 0 ? -1 : cmp(a.lower, y) > 0 ? 1 : 0;
+  if (y <= a.lower) return 1;
+  if (y >= a.upper) return -1;
+  auto value = [&](const Rational& x) {
+    Rational sum = 0;
+    for (std::size_t i = a.polynomial.size(); i-- > 0;) sum = sum * x + Rational(a.polynomial[i]);
+    return sum;
+  };
+  const int at_y = sgn(value(y));
+  if (at_y == 0) return 0;
+  const int at_lower = sgn(value(a.lower)), at_upper = sgn(value(a.upper));
+  // the one root lies between the end whose sign differs from y's and y
+  if (at_lower != 0 && at_lower != at_y) return -1;   // root in (lower, y)
+  if (at_upper != 0 && at_upper != at_y) return 1;    // root in (y, upper)
+  return at_lower == 0 ? 1 : -1;                      // (a root at an end: the other side)
+}
 struct SliceWindow {
-  std::size_t may_meet = 0;    // free intervals that may meet the window
-  std::size_t certain = 0;     // free intervals certainly meeting it
+  std::size_t free = 0;        // free intervals meeting the window (exactly)
   bool found = false;          // the slice through the window's chart was found
 };
 SliceWindow free_in_window(const CSpace& space, double pinion, double gear, double half_width) {
@@ -243,14 +261,10 @@ SliceWindow free_in_window(const CSpace& space, double pinion, double gear, doub
     out.found = true;
     for (std::size_t i = 0; i < slice.intervals.size(); ++i) {
       if (slice.intervals[i].kind != CellKind::free) continue;
-      // the interval's ends' isolating bounds: (a_lo, a_hi) holds its lower end, (b_lo, b_hi) its upper
-      const Rational a_lo = i == 0 ? slice.lower : slice.points[i - 1].at.lower;
-      const Rational a_hi = i == 0 ? slice.lower : slice.points[i - 1].at.exact ? a_lo : slice.points[i - 1].at.upper;
-      const bool last = i + 1 == slice.intervals.size();
-      const Rational b_lo = last ? slice.upper : slice.points[i].at.lower;
-      const Rational b_hi = last ? slice.upper : slice.points[i].at.exact ? b_lo : slice.points[i].at.upper;
-      if (a_lo < y_hi && b_hi > y_lo) ++out.may_meet;
-      if (a_hi < y_hi && b_lo > y_lo) ++out.certain;
+      // the interval (A, B) meets [y_lo, y_hi] when A < y_hi and B > y_lo
+      const bool below_top = i == 0 ? slice.lower < y_hi : compare(slice.points[i - 1].at, y_hi) < 0;
+      const bool above_bottom = i + 1 == slice.intervals.size() ? slice.upper > y_lo : compare(slice.points[i].at, y_lo) > 0;
+      if (below_top && above_bottom) ++out.free;
     }
   }
   return out;
@@ -260,7 +274,7 @@ void expect_cannot_turn_on(const CSpace& space, double p, double g, const std::s
   for (const double delta : {kLockDelta, 1e-6}) {
     const SliceWindow ahead = free_in_window(space, p + delta, g, 1.2 * delta);
     ASSERT_TRUE(ahead.found) << where << ": no slice of the built space at pinion " << p + delta;
-    EXPECT_EQ(ahead.may_meet, 0u) << where << ": locked at pinion " << p << ", but turned on by " << delta
+    EXPECT_EQ(ahead.free, 0u) << where << ": locked at pinion " << p << ", but turned on by " << delta
                                   << " rad a free interval of gear angles meets " << g << " +- " << 1.2 * delta;
   }
 }
@@ -481,7 +495,7 @@ TEST(SimulationGearMesh, LockedPairCannotTurnOn) {
   EXPECT_NEAR(p, 0.18935, 1e-5);
   expect_cannot_turn_on(*run.space, p, g, "6x8 lock");
   const SliceWindow behind = free_in_window(*run.space, p - kLockDelta, g, 1.2 * kLockDelta);
-  EXPECT_GE(behind.certain, 1u) << "the sliver behind the lock was not found: the slice cannot see the channel";
+  EXPECT_GE(behind.free, 1u) << "the sliver behind the lock was not found: the slice cannot see the channel";
   // the overlap oracle agrees at the sliver's middle and ahead
   EXPECT_EQ(relation(model, p + kLockDelta, g), PartRelation::overlapping);
 }
