@@ -362,7 +362,11 @@ void require_start_loads_in_double_range(const Model& model, const Rational& for
     const Rational k = c.stiffness * force;
     const Rational arm = std::max({Rational(1), lever(a, c.first_point), lever(b, c.second_point)});
     const Rational moment = k * stretch * arm;
-    if (stretch <= largest && moment <= largest) continue;
+    // the energy it stores, k stretch^2 / 2 (mN mm; published by every simulator: until session
+    // 62 a stretch far below the force bound's, e.g. a rest length of 1e154 mm on 0.05 N/mm, made
+    // it infinite in `simulate`'s summary)
+    const Rational energy = k * stretch * stretch / 2;
+    if (stretch <= largest && moment <= largest && energy <= largest) continue;
     terms.emplace_back(k, c.pointer + "/stiffness");
     terms.emplace_back(lever(a, c.first_point), c.pointer + "/points/0");
     terms.emplace_back(lever(b, c.second_point), c.pointer + "/points/1");
@@ -373,6 +377,10 @@ void require_start_loads_in_double_range(const Model& model, const Rational& for
     if (stretch > largest)
       text << "its attachment points up to " << decimal(reach_a + reach_b) << " mm apart at the start and its rest length "
            << decimal(c.rest_length) << " mm make a stretch of up to " << decimal(stretch) << " mm";
+    else if (moment <= largest)
+      text << "its stiffness " << decimal(k) << " mN/mm and its stretch (attachment points up to "
+           << decimal(reach_a + reach_b) << " mm apart at the start, rest length " << decimal(c.rest_length)
+           << " mm) store an energy k stretch^2 / 2 of up to " << decimal(energy) << " mN mm";
     else
       text << "its stiffness " << decimal(k) << " mN/mm times its stretch (attachment points up to "
            << decimal(reach_a + reach_b) << " mm apart at the start, rest length " << decimal(c.rest_length)
@@ -398,12 +406,18 @@ void require_start_loads_in_double_range(const Model& model, const Rational& for
         q_at = part.motion.pointer;
       }
       const Rational k = spring->stiffness * force, stretch = q + abs(spring->rest), load = k * stretch;
-      if (stretch <= largest && load <= largest) return;
+      const Rational energy = load * stretch / 2;   // k stretch^2 / 2, the energy it stores (session 62)
+      if (stretch <= largest && load <= largest && energy <= largest) return;
       std::ostringstream text;
       text << "the " << words << " of part '" << part.name << "': its stiffness " << decimal(k) << " " << load_unit
            << " per " << unit << " times its stretch |" << coordinate << " - rest| (rest " << decimal(spring->rest) << " "
-           << unit << ", " << coordinate << " up to " << decimal(q) << " " << unit << ") makes a load of up to "
-           << decimal(load) << " " << load_unit << beyond_loads;
+           << unit << ", " << coordinate << " up to " << decimal(q) << " " << unit << ") makes ";
+      if (stretch <= largest && load <= largest)
+        text << "a load of " << decimal(load) << " " << load_unit << " but stores an energy k stretch^2 / 2 of up to "
+             << decimal(energy) << " mN mm";
+      else
+        text << "a load of up to " << decimal(load) << " " << load_unit;
+      text << beyond_loads;
       throw ModelError(largest_term(Terms{{k, at + key + "/stiffness"}, {spring->rest, at + key + "/rest"}, {q, q_at}}),
                        text.str());
     };

@@ -43,6 +43,7 @@
 
 #include "core/angle_limits.hpp"
 #include "simulation/held_extent.hpp"
+#include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
@@ -875,8 +876,10 @@ struct PinSlotSimulation::Impl {
     for (const Pair& p : pairs) public_state.pair_configurations.push_back(p.q);
     public_state.contacts.clear();
     if (!held.empty()) {   // the forces at this state (the bilateral multipliers of the held set)
+      // (a multiplier exactly 0 on the rows, the tie a contact stays held at, published as 0)
       const Eigen::VectorXd lambda = held_multipliers(y, t, forces(y));
-      for (std::size_t i = 0; i < held.size(); ++i) held[i].force = lambda(static_cast<Eigen::Index>(i));
+      const std::vector<int> signs = simulation::held_force_signs(force_rows(y, t), &force_count);
+      for (std::size_t i = 0; i < held.size(); ++i) held[i].force = signs[i] == 0 ? 0.0 : lambda(static_cast<Eigen::Index>(i));
     }
     for (const Held& h : held)
       public_state.contacts.push_back(
@@ -1073,13 +1076,21 @@ struct PinSlotSimulation::Impl {
       if (h.pair == pi && h.features.fixed == f.fixed && h.features.free == f.free) return true;
     return false;
   }
-  // A held contact's multiplier below -tolerance counts as negative (the bilateral solve's round-off).
-  double force_tolerance(const State& s) const {
-    double M[2][2], Q[2];
-    dynamics(s, M, Q);
-    const double loads = std::abs(Q[0]) + std::abs(Q[1]) / reach_at({&s}) + mass * rest_speed * rest_speed / delta;
-    return 1e-9 * loads;
+  // The held contacts' force problem at a state as the doubles give it (rows, mass matrix, loads,
+  // velocity terms), whose multipliers' signs are decided exactly (held_force_sign.hpp; session 62:
+  // until then a multiplier below -10^-9 of the loads counted as negative).
+  simulation::HeldForceRows force_rows(const State& s, double time) const {
+    simulation::HeldForceRows out;
+    std::vector<HeldRow> rows;
+    for (const Held& h : held) rows.push_back(held_row(h, s, time));
+    out.J = jacobian(rows);
+    out.kappa.resize(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i) out.kappa(static_cast<Eigen::Index>(i)) = rows[i].kappa;
+    out.M = mass_matrix(s);
+    out.Q = forces(s);
+    return out;
   }
+  mutable simulation::HeldForceCount force_count;
   // Whether every held contact's point lies within both its features (the contact table's
   // validity: where it fails the contact has reached its edge's end), decided at the pair's exact
   // relative configuration of the state (held_extent.hpp: a certified interval filter, exact
@@ -1089,10 +1100,11 @@ struct PinSlotSimulation::Impl {
   // Is every held contact's force non-negative and its point on its features at this state?
   bool held_conditions(const State& s, double time) const {
     if (held.empty()) return true;
-    const Eigen::VectorXd lambda = held_multipliers(s, time, forces(s));
-    const double tol = force_tolerance(s);
-    for (Eigen::Index i = 0; i < lambda.size(); ++i)
-      if (!(lambda(i) >= -tol)) return false;
+    if (!finite(s)) return false;
+    const simulation::HeldForceRows rows = force_rows(s, time);
+    if (!rows.J.allFinite() || !rows.M.allFinite() || !rows.Q.allFinite() || !rows.kappa.allFinite()) return false;
+    for (const int sign : simulation::held_force_signs(rows, &force_count))
+      if (sign < 0) return false;
     for (const Held& h : held)
       if (!held_valid(h, s, time)) return false;
     return true;
@@ -1253,31 +1265,28 @@ void PinSlotSimulation::Impl::update_held() {
     held.erase(held.begin() + static_cast<std::ptrdiff_t>(i));
   }
   if (held.empty()) return;
+  // the force signs, exactly on the rows (the values published stay the doubles' multipliers, 0
+  // where the exact sign is 0)
+  const simulation::HeldForceRows rows = force_rows(y, t);
+  const std::vector<int> signs = simulation::held_force_signs(rows, &force_count);
   const HeldProblem problem = held_problem(y, t, forces(y));
   const Eigen::VectorXd bilateral = problem.A.completeOrthogonalDecomposition().solve(-problem.b);
-  const double tol = force_tolerance(y);
-  bool negative = false;
-  for (Eigen::Index i = 0; i < bilateral.size(); ++i) negative = negative || bilateral(i) < -tol;
-  if (!negative) {
-    for (std::size_t i = 0; i < held.size(); ++i) held[i].force = bilateral(static_cast<Eigen::Index>(i));
+  if (std::none_of(signs.begin(), signs.end(), [](int sign) { return sign < 0; })) {
+    for (std::size_t i = 0; i < held.size(); ++i)
+      held[i].force = signs[i] == 0 ? 0.0 : std::max(bilateral(static_cast<Eigen::Index>(i)), 0.0);
     return;
   }
-  // the contact LCP: lambda >= 0, w = A lambda + b >= 0 (the gaps' accelerations), complementary
+  // the contact LCP (lambda >= 0, w = A lambda + b >= 0, complementary) solved exactly on the same
+  // rows for the contacts that stay; the doubles' LCP for the forces published
+  const std::optional<std::vector<bool>> stays = simulation::held_after_lift_off(rows);
   const simulation::LcpSolution lcp = simulation::solve_lcp(problem.A, problem.b);
   std::vector<Held> kept;
   for (std::size_t i = 0; i < held.size(); ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
-    const bool lifts = lcp.solved ? (lcp.lambda(ii) <= 0 && lcp.w(ii) > 0) : bilateral(ii) < -tol;
-    held[i].force = lcp.solved ? lcp.lambda(ii) : 0.0;
+    const bool lifts = stays ? !(*stays)[i] : signs[i] < 0;
+    held[i].force = lcp.solved && !lifts ? std::max(lcp.lambda(ii), 0.0) : 0.0;
     if (lifts) events.push_back(held_event(SimulationEvent::Kind::lift_off, held[i], y, t));
     else kept.push_back(held[i]);
-  }
-  if (kept.size() == held.size()) {   // no contact left: the one most negative lifts
-    std::size_t worst = 0;
-    for (std::size_t i = 1; i < held.size(); ++i)
-      if (bilateral(static_cast<Eigen::Index>(i)) < bilateral(static_cast<Eigen::Index>(worst))) worst = i;
-    events.push_back(held_event(SimulationEvent::Kind::lift_off, held[worst], y, t));
-    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(worst));
   }
   held = std::move(kept);
 }

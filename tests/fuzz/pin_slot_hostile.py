@@ -22,6 +22,7 @@ or a torque of 10^100 ran for hours; slide limits of 10^9 mm stopped the run at 
 import copy
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -92,6 +93,16 @@ def main(argv):
         # (session 61: the torsional spring's rest near the doubles' end; exit 3, no pointer, on base61)
         'spring-rest-1e308': (lambda m: follower(m)['dynamics']['torsional_spring'].__setitem__('rest', -1e308), [], 2,
                               '/parts/1/dynamics/torsional_spring/rest'),
+        # (session 62: a slide spring pressing the follower onto its slot's upper end, its rest at
+        # 1e154 mm: 5e155 mN, inside the force bound, but k stretch^2 / 2 = 2.5e309 mN mm printed
+        # "energy inf" and wrote "energy": null on base62; refused as data at the rest since exact62.
+        # At 1e150 mm the energy is 2.5e301 mN mm: runs)
+        'linear-spring-rest-1e154': (lambda m: (follower(m)['dynamics'].__setitem__(
+            'linear_spring', {'stiffness': 0.05, 'rest': 1e154}), follower(m)['initial'].__setitem__('offset', 30)),
+            [], 2, '/parts/1/dynamics/linear_spring/rest: the linear spring'),
+        'linear-spring-rest-1e150': (lambda m: (follower(m)['dynamics'].__setitem__(
+            'linear_spring', {'stiffness': 0.05, 'rest': 1e150}), follower(m)['initial'].__setitem__('offset', 30)),
+            ['--t-end=0.001'], 0, ''),
         'driver-1e300': (lambda m: m['simulation']['drivers'][0].__setitem__('speed', 1e300), [], 2,
                          '/simulation/drivers/0'),
         'restitution-2': (lambda m: m['pairs'][0].__setitem__('restitution', 2), [], 2, '/pairs/0/restitution'),
@@ -189,6 +200,14 @@ def main(argv):
                     problems.append('the message does not name %s' % text)
                 if os.path.exists(out):
                     problems.append('output directory written')
+        # (session 62: no infinite or undefined number in a run's outputs: an energy overflowed to
+        # "inf" on stdout and null in events.json)
+        if rc == 0 and not problems:
+            events_path = os.path.join(out, 'events.json')
+            if os.path.exists(events_path) and '"energy": null' in open(events_path).read():
+                problems.append('events.json has "energy": null')
+            if re.search(r'\b(-?inf|nan)\b', so):
+                problems.append('stdout has a non-finite number')
         status = 'ok' if not problems else 'PROBLEM ' + '; '.join(problems)
         print('%-22s exit %-7s %5.1f s  %s | %s' % (name, rc, seconds, status, (lines[-1] if lines else '')[:160]))
         failures += bool(problems)

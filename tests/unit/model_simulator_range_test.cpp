@@ -322,7 +322,9 @@ TEST(ModelSimulatorRange, ValuesBeyondTheDoublesInTheSimulatorsUnitsAreRefusedAt
 // 200 mm), refused at the datum's pointer when it is beyond DBL_MAX, and accepted when the
 // reader's bound is within (the spring's moment: its force times the lever's 1-norm, 15 mm;
 // between the two either, at the pointer); values clear of each boundary by 1 %; seeded
-// (HIPAIR_TEST_SEED).
+// (HIPAIR_TEST_SEED). Since session 62 (exact62) a spring's stored energy k stretch^2 / 2 is
+// bounded too (it overflowed `simulate`'s summary far below the force bound): the two springs'
+// rest cases are drawn about that bound, their oracle the energy in closed form.
 TEST(ModelSimulatorRange, StartLoadsBeyondTheDoublesAreRefusedAtTheirLargestFactor) {
   const std::uint64_t seed = hipair::test::test_seed(61);
   std::mt19937_64 rng(seed);
@@ -343,11 +345,17 @@ TEST(ModelSimulatorRange, StartLoadsBeyondTheDoublesAreRefusedAtTheirLargestFact
     double factor;              // the load (or the internal value) per unit of the datum
     double bound;               // the reader's bound on it per unit of the datum
     bool below;                 // refused below DBL_MIN (a damping), else above DBL_MAX
+    int power = 1;              // the load (and the bound) per unit of the datum's power: 2 for an energy
   };
   const std::vector<Case> cases = {
       {&block, "spring-block.json", "/parts/1/dynamics/mass", 300, 308, 9810.0, 9810.0, false},           // m g, mN
-      {&bar, "bouncing-bar.json", "/parts/0/dynamics/torsional_spring/rest", 300, 308, 1000.0, 1000.0, false},
-      {&block, "spring-block.json", "/simulation/springs/0/rest_length", 300, 308, 50.0, 750.0, false},    // k rest
+      // the torsional spring's energy k rest^2 / 2 (its load k rest is in range up to 1.8e305 rad;
+      // session 62: the energy bound, k (|q| + |rest|)^2 / 2, refuses from 6e152 rad on)
+      {&bar, "bouncing-bar.json", "/parts/0/dynamics/torsional_spring/rest", 150, 156, 500.0, 500.0, false, 2},
+      // the spring's stored energy k stretch^2 / 2 (session 62: it overflowed the summary's energy
+      // from a rest length of 2.7e153 mm on, while its force k rest stays in range up to 2.4e305):
+      // the true 25 (L - rest)^2 mN mm and the reader's bound 25 (170 + rest)^2, equal to 1e-150 here
+      {&block, "spring-block.json", "/simulation/springs/0/rest_length", 150, 156, 25.0, 25.0, false, 2},
       {&block_ms, "spring-block.json", "/simulation/springs/0/damping", -308, -305, 1e-3, 1e-3, true},     // mN s
   };
   std::size_t refused = 0, kept = 0;
@@ -359,8 +367,9 @@ TEST(ModelSimulatorRange, StartLoadsBeyondTheDoublesAreRefusedAtTheirLargestFact
       literal << mantissa(rng) << "e" << exponent(rng);
       const double value = std::strtod(literal.str().c_str(), nullptr);
       if (!(value >= std::numeric_limits<double>::min()) || !(value <= largest)) continue;   // the datum's own range
-      const long double internal = static_cast<long double>(value) * c.factor;
-      const long double bounded = static_cast<long double>(value) * c.bound;
+      const long double power = c.power == 2 ? static_cast<long double>(value) * value : static_cast<long double>(value);
+      const long double internal = power * c.factor;
+      const long double bounded = power * c.bound;
       const long double end = c.below ? std::numeric_limits<double>::min() : largest;
       if (std::abs(internal / end - 1) < 0.01L || std::abs(bounded / end - 1) < 0.01L) continue;   // clear of the ends
       const bool beyond = c.below ? internal < end : internal > end;

@@ -36,6 +36,7 @@
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
+#include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
@@ -43,11 +44,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -137,6 +140,7 @@ struct GearRun {
   bool complete = true;
   double end_speed = 0;                           // the larger of the two end speeds (rad/s)
   std::vector<SimulationContact> end_contacts;    // the contacts held at the end
+  std::shared_ptr<const CSpace> space;            // the pair's built C-space (the lock's exact check)
 };
 
 // `check_overlap`: every accepted state checked by the exact overlap predicate, or (`sparse`)
@@ -150,6 +154,7 @@ GearRun simulate(const Model& model, double t_end, std::size_t above_edges, cons
   Simulation s = Simulation::create(model, options);
   GearRun run;
   run.complete = s.spaces()[0]->complete();
+  run.space = s.spaces()[0];
   run.states.push_back({s.state().time, s.state().position[0], s.state().position[1]});
   std::size_t overlaps = 0;
   auto check = [&] {
@@ -210,16 +215,68 @@ std::string untoothed(const std::string& label) {
 // states of the same vertex of the periodic space are a pitch apart within twice that.
 constexpr double kVertexTolerance = 2 * 2 * 3e-9;
 
-// A lock checked exactly: with the pinion turned on by delta = 1e-4 rad past the locked state
-// (pinion p, gear g), no gear angle within +-1.2 delta of g (steps delta / 100) is free by the
-// exact overlap predicate (the channel is closed ahead; LockedPairCannotTurnOn also finds the
-// sliver behind).
+// A lock checked exactly through the adaptor (session 62, exact62; until then 241 samples of the
+// exact overlap predicate at gear angles g + k delta / 100, |k| <= 120): the pair's C-space sliced
+// exactly at the pinion turned on by delta past the locked state (pinion p, gear g; the pinion is
+// the space's x axis, t = tan(theta / 2)), and no free interval of that 1-D slice may meet the gear
+// angles [g - 1.2 delta, g + 1.2 delta] — every gear angle there, not samples, is blocked (or on
+// contact space): the channel is closed ahead, for delta = 1e-4 and 1e-6 rad. The intervals' ends
+// are the slice's exact algebraic points, compared with the window's rational ends exactly (the
+// sign of their polynomial). LockedPairCannotTurnOn also finds the sliver behind (a free interval
+// meeting the window at p - delta).
 constexpr double kLockDelta = 1e-4;
-void expect_cannot_turn_on(const Model& model, double p, double g, const std::string& where) {
-  const double step = kLockDelta / 100;
-  for (int k = -120; k <= 120; ++k)
-    EXPECT_EQ(relation(model, p + kLockDelta, g + k * step), PartRelation::overlapping)
-        << where << ": locked at pinion " << p << ", but the pinion turned on is free at gear " << g + k * step;
+// -1, 0, +1: the sign of a - y, exactly (a the unique root of its square-free polynomial in
+// (lower, upper), or `lower` when exact)
+int compare(const AlgebraicNumber& a, const Rational& y) {
+  if (a.exact) return cmp(a.lower, y) < 0 ? -1 : cmp(a.lower, y) > 0 ? 1 : 0;
+  if (y <= a.lower) return 1;
+  if (y >= a.upper) return -1;
+  auto value = [&](const Rational& x) {
+    Rational sum = 0;
+    for (std::size_t i = a.polynomial.size(); i-- > 0;) sum = sum * x + Rational(a.polynomial[i]);
+    return sum;
+  };
+  const int at_y = sgn(value(y));
+  if (at_y == 0) return 0;
+  const int at_lower = sgn(value(a.lower)), at_upper = sgn(value(a.upper));
+  // the one root lies between the end whose sign differs from y's and y
+  if (at_lower != 0 && at_lower != at_y) return -1;   // root in (lower, y)
+  if (at_upper != 0 && at_upper != at_y) return 1;    // root in (y, upper)
+  return at_lower == 0 ? 1 : -1;                      // (a root at an end: the other side)
+}
+struct SliceWindow {
+  std::size_t free = 0;        // free intervals meeting the window (exactly)
+  bool found = false;          // the slice through the window's chart was found
+};
+SliceWindow free_in_window(const CSpace& space, double pinion, double gear, double half_width) {
+  using Kind = PartCoordinate::Kind;
+  SliceWindow out;
+  const PartCoordinate x{Kind::half_angle_tangent, Rational(std::tan(pinion / 2))};
+  const auto lo = space.to_chart(x, PartCoordinate{Kind::half_angle_tangent, Rational(std::tan((gear - half_width) / 2))});
+  const auto hi = space.to_chart(x, PartCoordinate{Kind::half_angle_tangent, Rational(std::tan((gear + half_width) / 2))});
+  if (!lo || !hi || lo->chart != hi->chart) return out;
+  const Rational y_lo = std::min(lo->y, hi->y), y_hi = std::max(lo->y, hi->y);
+  for (const Slice& slice : space.slice(SliceAxis::x, lo->x)) {
+    if (slice.chart != lo->chart) continue;
+    out.found = true;
+    for (std::size_t i = 0; i < slice.intervals.size(); ++i) {
+      if (slice.intervals[i].kind != CellKind::free) continue;
+      // the interval (A, B) meets [y_lo, y_hi] when A < y_hi and B > y_lo
+      const bool below_top = i == 0 ? slice.lower < y_hi : compare(slice.points[i - 1].at, y_hi) < 0;
+      const bool above_bottom = i + 1 == slice.intervals.size() ? slice.upper > y_lo : compare(slice.points[i].at, y_lo) > 0;
+      if (below_top && above_bottom) ++out.free;
+    }
+  }
+  return out;
+}
+void expect_cannot_turn_on(const CSpace& space, double p, double g, const std::string& where) {
+  ASSERT_EQ(space.x_part(), "pinion") << where;
+  for (const double delta : {kLockDelta, 1e-6}) {
+    const SliceWindow ahead = free_in_window(space, p + delta, g, 1.2 * delta);
+    ASSERT_TRUE(ahead.found) << where << ": no slice of the built space at pinion " << p + delta;
+    EXPECT_EQ(ahead.free, 0u) << where << ": locked at pinion " << p << ", but turned on by " << delta
+                                  << " rad a free interval of gear angles meets " << g << " +- " << 1.2 * delta;
+  }
 }
 
 struct MeshSummary {
@@ -262,7 +319,7 @@ MeshSummary expect_meshing(long z1, long z2, const Rational& backlash, const Rat
       back = back || m->gear_flank == "R";
     }
     EXPECT_TRUE(drive && back) << where << ": locked, but not between a drive and a back flank";
-    expect_cannot_turn_on(model, run.states.back().pinion, run.states.back().gear, where);
+    expect_cannot_turn_on(*run.space, run.states.back().pinion, run.states.back().gear, where);
     return summary;
   }
   // The drive flanks ("L" of both gears under this torque) meet tooth pair after tooth pair, one
@@ -426,9 +483,9 @@ TEST(SimulationGearMesh, PairsThatFailedAtDrawnParametersLockAtTheirCuspOrMesh) 
 // at pinion 0.18935 rad the gear's tooth 1 tip, on the pinion's tooth 6 radial flank, meets the
 // back flanks' contact, and the free channel closes in a cusp (the two contact curves meet there
 // with slopes -0.835 and -0.754). The simulator holds both contacts and the pair stays at rest,
-// driven into the cusp. The exact overlap predicate says the same: at the pinion turned on by
-// delta no gear angle near the lock is free, and turned back by delta the sliver between the two
-// curves (about 0.08 delta wide in gear angle) is found.
+// driven into the cusp. The exact slice of its C-space says the same (expect_cannot_turn_on): at
+// the pinion turned on by delta no gear angle near the lock is free, and turned back by delta the
+// sliver between the two curves (about 0.08 delta wide in gear angle) is a free interval.
 TEST(SimulationGearMesh, LockedPairCannotTurnOn) {
   Model model = gear_pair(6, 8, Rational(87, 1000), Rational(-13, 1000));
   GearRun run = simulate(model, 0.1, 100, "6x8 lock", true);
@@ -436,12 +493,11 @@ TEST(SimulationGearMesh, LockedPairCannotTurnOn) {
   EXPECT_LT(run.end_speed, 1e-9);
   const double p = run.states.back().pinion, g = run.states.back().gear;
   EXPECT_NEAR(p, 0.18935, 1e-5);
-  expect_cannot_turn_on(model, p, g, "6x8 lock");
-  const double delta = kLockDelta, step = delta / 100;
-  std::size_t free_behind = 0;
-  for (int k = -120; k <= 120; ++k)
-    if (relation(model, p - delta, g + k * step) != PartRelation::overlapping) ++free_behind;
-  EXPECT_GE(free_behind, 3u) << "the sliver behind the lock was not found: the scan cannot see the channel";
+  expect_cannot_turn_on(*run.space, p, g, "6x8 lock");
+  const SliceWindow behind = free_in_window(*run.space, p - kLockDelta, g, 1.2 * kLockDelta);
+  EXPECT_GE(behind.free, 1u) << "the sliver behind the lock was not found: the slice cannot see the channel";
+  // the overlap oracle agrees at the sliver's middle and ahead
+  EXPECT_EQ(relation(model, p + kLockDelta, g), PartRelation::overlapping);
 }
 
 TEST(SimulationGearMesh, TheOperatingRegionRunsAsTheWholeSpace) {
