@@ -575,9 +575,10 @@ namespace {
 // the margin reads that vary in the box; each split where its share of the box is widest), at
 // 160, 640 and 2560 bits. A sub-box whose enclosure is certainly negative (a corner of the box,
 // tried first, or any other) fails the box; a box left undecided when a stage's budget or its
-// precision is spent goes to the next stage, and is undecided after the last. Only margins
-// vanishing on the box (a box ending exactly on a rule's bound: every rule is strict) or
-// closer to 0 than about 2^-2500 of their values stay undecided.
+// precision is spent (or a corner's enclosure holds 0) goes to the next stage, and is undecided
+// after the last. Only margins vanishing on the box (a box ending exactly on a rule's bound:
+// every rule is strict) or closer to 0 than about 2^-2500 of their values stay undecided; the
+// caller refuses the box then, as the exact expansion refuses a zero margin.
 enum class BoxVerdict { holds, fails, undecided };
 
 BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Rational>& lo,
@@ -600,16 +601,22 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Ra
   constexpr std::size_t budget = 3000;   // sub-boxes per stage
   for (mpfr_prec_t bits : {160, 640, 2560}) {
     PrecisionScope precision(bits);
-    // the box's corners first: a failing box mostly fails at one (every rule is monotone in most
-    // of its arguments)
+    // The box's corners first: a failing box mostly fails at one (the rules are monotone in most
+    // of their arguments). A corner whose enclosure holds 0 at this precision (a margin vanishing
+    // there: a box ending on a rule's bound) leaves the stage undecided: every sub-box holding
+    // it encloses at least the corner's enclosure.
+    bool corner_undecided = false;
     if (read.size() <= 6) {
-      for (std::size_t mask = 0; mask < (std::size_t(1) << read.size()); ++mask) {
+      for (std::size_t mask = 0; mask < (std::size_t(1) << read.size()) && !corner_undecided; ++mask) {
         std::vector<Rational> corner = lo;
         for (std::size_t j = 0; j < read.size(); ++j)
           if (mask & (std::size_t(1) << j)) corner[read[j]] = hi[read[j]];
-        if (evaluate(corner, corner).sign() < 0) return BoxVerdict::fails;
+        const int sign = evaluate(corner, corner).sign();
+        if (sign < 0) return BoxVerdict::fails;
+        corner_undecided = sign == 0;
       }
     }
+    if (corner_undecided) continue;
     // the smallest share of a parameter's box a sub-box is split to at this precision
     const Rational finest(mpz_class(1), mpz_class(1) << static_cast<mp_bitcnt_t>(bits - 32));
     std::vector<std::pair<std::vector<Rational>, std::vector<Rational>>> stack{{lo, hi}};
