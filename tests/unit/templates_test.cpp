@@ -870,7 +870,14 @@ TEST(Templates, BoxChecksOfTheRulesAreExactAtEveryScale) {
               R"(}}, "parts": [{"name": "p", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{")" + c.name +
               "\": {" + json_arguments(c.arguments(middle, scale), varied, as) + R"(}}]}], "pairs": []})";
           SCOPED_TRACE(text);
-          const ParametricModel form = ParametricModel::read(text);
+          std::optional<ParametricModel> read;
+          try {
+            read = ParametricModel::read(text);
+          } catch (const ModelError&) {   // invalid at the range's middle (the reader's loop checks)
+            ++aside;
+            continue;
+          }
+          const ParametricModel& form = *read;
           const Parameter& p = form.nominal().parameters.at(0);
           const std::vector<Rational> box_lo{Rational(p.range.lo - p.nominal)}, box_hi{Rational(p.range.hi - p.nominal)};
           auto check = [&](const ParametricModel& checked) -> std::optional<bool> {   // refused by the rule; none: aside
