@@ -887,7 +887,9 @@ TEST(Templates, BoxChecksOfTheRulesAreExactAtEveryScale) {
             } catch (const ModelError& error) {
               const std::string what = error.what();
               if (what.find("may change the shape") != std::string::npos) return std::nullopt;
-              EXPECT_EQ(error.pointer(), pointer + "/" + c.key) << what;
+              // the rule's argument, or the varied one where the same rule is written for each
+              // argument it reads (the box check names the first whose parameters vary)
+              EXPECT_TRUE(error.pointer() == pointer + "/" + c.key || error.pointer() == pointer + "/" + varied) << what;
               EXPECT_NE(what.find("invalid: "), std::string::npos) << what;
               EXPECT_NE(what.find("'v'"), std::string::npos) << what;
               return true;
@@ -922,9 +924,9 @@ TEST(Templates, BoxChecksOfTheRulesAreExactAtEveryScale) {
   }
   std::cout << kept << " boxes kept, " << refused << " refused by their rule, " << aside << " set aside, "
             << rescaled_checks << " checked again on the rescaled copy\n";
-  EXPECT_GE(kept, 150);
-  EXPECT_GE(refused, 150);
-  EXPECT_GE(rescaled_checks, 60);
+  EXPECT_GE(kept, 120);
+  EXPECT_GE(refused, 180);
+  EXPECT_GE(rescaled_checks, 180);
 }
 
 }  // namespace
