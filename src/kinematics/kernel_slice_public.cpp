@@ -65,12 +65,9 @@ struct KernelSlicer::Impl {
   std::unique_ptr<kinematics_detail::PairSlicer> slicer;
 };
 
-KernelSlicer::KernelSlicer(const Model& model, std::size_t other, std::size_t follower) : impl_(std::make_unique<Impl>()) {
-  std::optional<std::size_t> pair = pair_of(model, other, follower);
-  if (!pair) throw GeometryError("kernel slice: the model has no pair of the two parts");
-  impl_->model = model;
-  impl_->slicer = kinematics_detail::make_kernel_slicer(impl_->model, *pair, follower);
-}
+// (a copy of the caller's model, kept as the moved-in one is: one body)
+KernelSlicer::KernelSlicer(const Model& model, std::size_t other, std::size_t follower)
+    : KernelSlicer(Model(model), other, follower) {}
 
 KernelSlicer::KernelSlicer(Model&& model, std::size_t other, std::size_t follower) : impl_(std::make_unique<Impl>()) {
   std::optional<std::size_t> pair = pair_of(model, other, follower);

@@ -3,6 +3,7 @@
 // double checks' 1e-9, in the template's unit of length on the exact side).
 #include "model/template_rules.hpp"
 
+#include "model/parametric/mpfi_arithmetic.hpp"
 #include "model/parametric/number_traits.hpp"
 
 #include <hipair/error.hpp>
@@ -205,6 +206,18 @@ struct RuleArithmetic<kernels::Interval> {
   static I sin(const I& x) { return A::sin(x); }
   static I cos(const I& x) { return A::cos(x); }
   static I atan2(const I& y, const I& x) { return A::atan2(y, x); }
+};
+
+template <>
+struct RuleArithmetic<Interval> {
+  using A = Arithmetic<Interval>;
+  static Interval exactly(double x) { return Interval(Rational(x)); }
+  static Interval constant(const Rational& q) { return Interval(q); }
+  static Interval pi() { return Interval::pi(); }
+  static Interval sqrt(const Interval& x) { return A::sqrt(x); }
+  static Interval sin(const Interval& x) { return A::sin(x); }
+  static Interval cos(const Interval& x) { return A::cos(x); }
+  static Interval atan2(const Interval& y, const Interval& x) { return A::atan2(y, x); }
 };
 
 template <>
@@ -414,6 +427,11 @@ void rules_in(const std::string& name, const BasicTemplateRuleValues<I>& v,
 void template_rules(const std::string& name, const TemplateRuleValues& values,
                     const std::function<void(const TemplateRule&)>& check) {
   rules_in<kernels::Interval>(name, values, check);
+}
+
+void template_rules(const std::string& name, const BasicTemplateRuleValues<Interval>& values,
+                    const std::function<void(const BasicTemplateRule<Interval>&)>& check) {
+  rules_in<Interval>(name, values, check);
 }
 
 void check_template_rules_exactly(const std::string& name, const ExactTemplateRuleValues& values,

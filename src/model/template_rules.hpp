@@ -14,6 +14,7 @@
 
 #include "kernels/interval.hpp"
 #include "kernels/vector.hpp"
+#include "model/interval.hpp"
 
 #include <hipair/rational.hpp>
 
@@ -53,6 +54,12 @@ using TemplateRule = BasicTemplateRule<kernels::Interval>;
 /// for a template without rules). The margins are evaluated only when `check` asks.
 void template_rules(const std::string& name, const TemplateRuleValues& values,
                     const std::function<void(const TemplateRule&)>& check);
+
+/// The same rules over MPFI enclosures at the thread's working precision (session 62): the
+/// certified box check (ParametricModel::check_choices) when the doubles' enclosures leave a
+/// margin undecided; an argument's enclosure over a sub-box of the exact tolerance box.
+void template_rules(const std::string& name, const BasicTemplateRuleValues<Interval>& values,
+                    const std::function<void(const BasicTemplateRule<Interval>&)>& check);
 
 /// A template's exact argument values (lengths in the template's unit).
 struct ExactTemplateRuleValues {

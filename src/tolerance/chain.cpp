@@ -212,9 +212,7 @@ class ChainAnalysis {
       if (parametric) return parametric;
       parametric = analysed_form(model_detail::ParametricModel::read(text_, "<string>", design_read_options(options_), nominal),
                                  options_);
-      if (!parametric->generic())
-        throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " +
-                                 parametric->exact_only_feature() + " has an exact form only");
+      parametric->require_generic();
       return parametric;
     };
     if (kernel) parametric_model();
@@ -371,8 +369,16 @@ class ChainAnalysis {
       result.sigma.push_back(d.sigma);
       result.mean_shift.push_back(d.mean);
     }
-    // the templates' nominal shapes kept over the box (as a single pair's analysis checks)
-    parametric->check_choices(out.box.lo, out.box.hi);
+    // the templates' nominal shapes kept over the box (as a single pair's analysis checks, over
+    // the exact box)
+    {
+      std::vector<Rational> lo, hi;
+      for (const Parameter& p : m.parameters) {
+        lo.emplace_back(p.range.lo - p.nominal);
+        hi.emplace_back(p.range.hi - p.nominal);
+      }
+      parametric->check_choices(lo, hi);
+    }
     auto solver = std::make_shared<CurveSolver>(parametric);
     solver->set_compact_jets(options_.fast_paths);
     solver->set_second_order(false);

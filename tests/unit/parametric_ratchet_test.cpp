@@ -17,6 +17,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -110,6 +112,35 @@ TEST(ParametricRatchet, RatchetPairToleranceAnalysisHoldsEveryMonteCarloSample) 
     radius_dominates = radius_dominates || region.ranked.front().parameter == "tip-radius" ||
                        region.ranked.front().parameter == "root-radius";
   EXPECT_TRUE(radius_dominates);
+}
+
+
+// Session 62 (hunt): ratchet.json with every tolerance 0 (and 1e-13 mm) — the certified band is
+// then an enclosure of the nominal follower as narrow as a Monte Carlo sample's own, and an
+// enclosure reaching past the band was counted "outside the certified band: 240 (A DEFECT)"
+// (8 samples, seed 3). A sample is outside only when its enclosure is apart from the band's.
+TEST(ParametricRatchet, ZeroTolerancesKeepEveryMonteCarloSampleInTheBand) {
+  std::ifstream file(std::filesystem::path(HIPAIR_EXAMPLES) / "ratchet.json");
+  const std::string example((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  for (const std::string& tolerance : {std::string("0"), std::string("1e-13")}) {
+    SCOPED_TRACE("tolerances " + tolerance);
+    std::string text = example;
+    for (const std::string& old : {"\"tolerance\": 0.02", "\"tolerance\": 0.05"})
+      for (std::size_t at = text.find(old); at != std::string::npos; at = text.find(old))
+        text.replace(at, old.size(), "\"tolerance\": " + tolerance);
+    ASSERT_EQ(text.find("\"tolerance\": 0.0"), std::string::npos);
+    ToleranceOptions options;
+    options.driver = "wheel";
+    options.follower = "pawl";
+    options.monte_carlo = 8;
+    options.seed = 3;
+    options.threads = 1;
+    ToleranceResult result = analyze_tolerances_text(text, options);
+    ASSERT_TRUE(result.monte_carlo);
+    EXPECT_GE(result.monte_carlo->evaluations, 2000u);
+    EXPECT_EQ(result.monte_carlo->outside_certified, 0u);
+    EXPECT_EQ(result.monte_carlo->not_certified, 0u);
+  }
 }
 
 }  // namespace

@@ -1019,6 +1019,75 @@ TEST(ParametricTemplates, TemplateRulesAreCheckedOverTheWholeBox) {
   EXPECT_GE(kept, 4);
 }
 
+// Session 62 (issue 12): a template's tooth or slot count varying with a toleranced parameter
+// (directly or through a derived one) is refused by the tolerance analysis at the count's
+// pointer, naming the parameter (the analysis keeps counts fixed: a generic form has a fixed
+// number of teeth); until session 62 it said only "has an exact form only", at no pointer. A
+// count derived from fixed parameters keeps the generic form (until session 62 every derived
+// parameter counted as varying, and such a wheel was refused as exact only).
+TEST(ParametricTemplates, ATolerancedCountIsRefusedAtItsPointerAFixedDerivedOneKept) {
+  struct Case {
+    std::string name, key, arguments;   // arguments besides the count
+    int count;
+  };
+  const std::vector<Case> cases{
+      {"ratchet_wheel", "teeth", R"("center": [0, 0], "tip_radius": 20, "root_radius": 16)", 12},
+      {"escape_wheel", "teeth", R"("center": [0, 0], "tip_radius": 20, "root_radius": 15, "face_angle": 4, "tip_angle": 2)", 15},
+      {"spur_gear", "teeth", R"("center": [0, 0], "pitch_radius": 20, "addendum": 1, "dedendum": 1, "tooth_thickness": "pi - 0.1", "pressure_angle": 20)", 20},
+      {"geneva_wheel", "slots", R"("center": [0, 0], "slot_width": 10, "slot_inner_radius": 20, "slot_outer_radius": 60, "lock_center_radius": 80, "lock_radius": 46.683, "lock_span": 90)", 4},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    auto text = [&](const std::string& parameters, const std::string& count) {
+      return model(parameters, R"({"name": "w", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{")" + c.name +
+                                   "\": {\"" + c.key + "\": " + count + ", " + c.arguments + "}}]}");
+    };
+    const std::string n = std::to_string(c.count), half = std::to_string(c.count / 2) + (c.count % 2 ? ".5" : "");
+    // toleranced, directly and through a derived parameter
+    for (const auto& [parameters, named] :
+         {std::pair<std::string, std::string>{"\"n\": {\"nominal\": " + n + ", \"tolerance\": 1}", "'n'"},
+          {"\"k\": {\"nominal\": " + half + ", \"tolerance\": 0.5}, \"n\": {\"nominal\": \"2 * k\"}", "'n'"}}) {
+      const std::string model_text = text(parameters, "\"n\"");
+      SCOPED_TRACE(model_text);
+      const ParametricModel form = ParametricModel::read(model_text);
+      EXPECT_FALSE(form.generic());
+      try {
+        form.require_generic();
+        ADD_FAILURE() << "not refused";
+      } catch (const ModelError& error) {
+        EXPECT_EQ(error.pointer(), "/parts/0/features/0/" + c.name + "/" + c.key) << error.what();
+        EXPECT_NE(std::string(error.what()).find(named), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("count"), std::string::npos) << error.what();
+      }
+    }
+    // fixed, directly and through a derived parameter of fixed ones: the generic form
+    for (const std::string& parameters :
+         {"\"n\": {\"nominal\": " + n + "}", "\"k\": {\"nominal\": " + half + "}, \"n\": {\"nominal\": \"2 * k\"}"}) {
+      const std::string model_text = text(parameters, "\"n\"");
+      SCOPED_TRACE(model_text);
+      const ParametricModel form = ParametricModel::read(model_text);
+      EXPECT_TRUE(form.generic()) << form.exact_only_feature();
+      EXPECT_NO_THROW(form.require_generic());
+    }
+  }
+  // through the analysis (hipair tolerance): refused at the pointer, exit 2's ModelError
+  const std::string ratchet = R"({"hipair": 1, "name": "r", "units": {"length": "mm", "angle": "deg"},
+    "parameters": {"n": {"nominal": 12, "tolerance": 1}, "r": {"nominal": 16, "tolerance": 0.01}},
+    "parts": [{"name": "wheel", "motion": {"rotation": {"pivot": [0, 0]}}, "features": [{"ratchet_wheel": {"center": [0, 0],
+       "teeth": "n", "tip_radius": 20, "root_radius": "r"}}]},
+      {"name": "pawl", "motion": {"rotation": {"pivot": [0, 30]}}, "loops": [{"circle": {"center": [0, 21], "radius": 1}}]}],
+    "pairs": [{"parts": ["wheel", "pawl"]}]})";
+  ToleranceOptions options;
+  options.driver = "wheel";
+  try {
+    analyze_tolerances_text(ratchet, options);
+    ADD_FAILURE() << "not refused";
+  } catch (const ModelError& error) {
+    EXPECT_EQ(error.pointer(), "/parts/0/features/0/ratchet_wheel/teeth") << error.what();
+    EXPECT_NE(std::string(error.what()).find("'n'"), std::string::npos) << error.what();
+  }
+}
+
 // Session 61: the templates' rules live once (src/model/template_rules.cpp) and serve the exact
 // expansion and the tolerance box. Generated: seven templates with every rule's arguments
 // toleranced, random rational vectors spread far beyond the box (half of them break a rule);

@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 #include "tolerance/exact_order.hpp"
 
 namespace hipair {
@@ -163,6 +164,74 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces)
     EXPECT_EQ(a.bracket_confirmed, b.bracket_confirmed) << a.bracket_evidence << " / " << b.bracket_evidence;
     if (vary.empty()) EXPECT_TRUE(b.bracket_confirmed) << b.bracket_evidence;
     if (b.bracket_confirmed) EXPECT_NE(b.bracket_evidence.find("contact kernels"), std::string::npos) << b.bracket_evidence;
+  }
+}
+
+// Session 62 (issue 12): the kernel slices' confirmations serve a translating follower's whole
+// stroke. Its chart's coordinate is a length (one chart, no half-turn seam); until session 62
+// the confirmations looked for the seam at +-1 there too, found no slice beyond it, and left a
+// channel lying past 1 mm unconfirmed. Generated yokes (two bars, `clearance` c above and below
+// an eccentric cam of radius R, the yoke's channel about 10 mm + e sin(theta), so every position
+// lies beyond 1 mm): the channel 2 (c - dR) wide closes exactly at dR = c (closed form: scale
+// c / t for R's tolerance t). The threshold and the bracket confirmed on the kernel slices
+// exactly as on the whole exact C-spaces at the witness.
+TEST(ToleranceThresholdBracket, KernelSliceConfirmationsServeATranslatingFollowersWholeStroke) {
+  const std::uint64_t seed = test::test_seed(62);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::mt19937_64 random(seed);
+  for (int round = 0; round < 2; ++round) {
+    const int e = std::uniform_int_distribution<int>(3, 8)(random), r = std::uniform_int_distribution<int>(10, 20)(random);
+    const int c = std::uniform_int_distribution<int>(5, 30)(random);                // clearance, hundredths
+    const int t = std::uniform_int_distribution<int>(c / 3 + 1, c - 1)(random);   // R's tolerance, hundredths
+    auto mm = [](int hundredths) {   // exact decimal text of hundredths / 100
+      const int a = std::abs(hundredths);
+      return std::string(hundredths < 0 ? "-" : "") + std::to_string(a / 100) + "." + (a % 100 < 10 ? "0" : "") +
+             std::to_string(a % 100);
+    };
+    const int top = 100 * r + c - 1000, bottom = -(100 * r + c) - 1000, reach = 100 * (e + r + 5);
+    auto bar = [&](int y0, int y1) {
+      return R"({"start": [)" + mm(-reach) + ", " + mm(y0) + R"(], "edges": [{"line_to": [)" + mm(reach) + ", " + mm(y0) +
+             R"(]}, {"line_to": [)" + mm(reach) + ", " + mm(y1) + R"(]}, {"line_to": [)" + mm(-reach) + ", " + mm(y1) +
+             R"(]}, {"line_to": [)" + mm(-reach) + ", " + mm(y0) + "]}]}";
+    };
+    const std::string text = R"({"hipair": 1, "name": "yoke", "units": {"length": "mm", "angle": "rad"},
+      "parameters": {"R": {"nominal": )" + std::to_string(r) + R"(, "tolerance": )" + mm(t) + R"(}},
+      "parts": [
+        {"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},
+         "loops": [{"circle": {"center": [)" + std::to_string(e) + R"(, 0], "radius": "R"}}]},
+        {"name": "yoke", "motion": {"translation": {"direction": [0, 1], "limits": [-40, 40]}}, "initial": {"offset": 10},
+         "loops": [)" + bar(top, top + 500) + ", " + bar(bottom - 500, bottom) + R"(],
+         "dynamics": {"mass": 0.1, "force": [0, -10]}}
+      ],
+      "pairs": [{"parts": ["cam", "yoke"]}]})";
+    SCOPED_TRACE(text);
+    ToleranceOptions options;
+    options.driver = "cam";
+    options.positions = 36;
+    options.threshold = true;
+    options.threshold_bracket = 1e-2;
+    ToleranceResult whole = analyze_tolerances_text(text, options);
+    tolerance_detail::whole_space_confirmations_switch() = false;
+    ToleranceResult kernels = analyze_tolerances_text(text, options);
+    tolerance_detail::whole_space_confirmations_switch() = true;
+    ASSERT_TRUE(whole.threshold && kernels.threshold);
+    const JammingThreshold &a = *whole.threshold, &b = *kernels.threshold;
+    ASSERT_TRUE(a.found) << a.evidence;
+    // the closed form: R + dR reaches the bars at dR = c, tolerances x c / t
+    EXPECT_NEAR(a.scale, double(c) / t, 1e-6 * c / t);
+    EXPECT_TRUE(a.confirmed) << a.evidence;
+    EXPECT_EQ(a.confirmed, b.confirmed) << a.evidence << " / " << b.evidence;
+    EXPECT_EQ(a.confirmed_scale, b.confirmed_scale);
+    EXPECT_EQ(a.worst_values, b.worst_values);
+    EXPECT_NE(b.evidence.find("contact kernels"), std::string::npos) << b.evidence;
+    ASSERT_TRUE(a.bracketed) << a.bracket_evidence;
+    EXPECT_EQ(a.bracketed, b.bracketed);
+    EXPECT_TRUE(a.bracket_above == b.bracket_above);
+    EXPECT_LE(Rational(t, c) * a.bracket_below, 1);   // not closed below the closed form's scale
+    EXPECT_GE(Rational(t, c) * a.bracket_above, 1);
+    EXPECT_TRUE(a.bracket_confirmed) << a.bracket_evidence;
+    EXPECT_EQ(a.bracket_confirmed, b.bracket_confirmed) << a.bracket_evidence << " / " << b.bracket_evidence;
+    EXPECT_NE(b.bracket_evidence.find("contact kernels"), std::string::npos) << b.bracket_evidence;
   }
 }
 

@@ -2,6 +2,7 @@
 // exact evaluation at a parameter vector (ExactEvaluator), which repeats the reader's steps on
 // the recorded slots. See parametric.hpp.
 #include "model/parametric/parametric.hpp"
+#include "model/parametric/mpfi_arithmetic.hpp"
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/self_check.hpp"
 
@@ -15,6 +16,7 @@
 
 #include "core/model_scale.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -240,17 +242,46 @@ class RecipeBuilder {
   Slot number_slot(const JsonValue& value) { return raw_slot(value); }
   // A count argument's value at the nominal vector, or 0 when it depends on a toleranced
   // parameter (a tooth count cannot vary continuously: the template then stays exact only).
+  // A template's tooth (slot) count: its value at nominal when no parameter it reads varies, else
+  // 0 (the template then has no generic form: its edge count would vary over the box). Session
+  // 62: a derived parameter varies only when it has its own tolerance or reads one that varies
+  // (until then every derived parameter was taken as varying), and a varying count is recorded
+  // with its pointer and parameters for the analysis's refusal (ParametricModel::require_generic).
   long fixed_count(const FeatureRecipe& feature, const char* key) {
     auto found = feature.arguments.find(key);
     if (found == feature.arguments.end()) return 0;
-    bool varies = false;
     const Model& nominal = *model_.nominal_;
-    double value = evaluate_formula<double>(*found->second.number.formula, [&](std::size_t i) {
+    std::function<bool(std::size_t)> parameter_varies = [&](std::size_t i) {
       const Parameter& parameter = nominal.parameters[i];
-      varies = varies || parameter.range.lo != parameter.range.hi || model_.derived_[i];
-      return parameter.nominal.get_d();
+      if (parameter.range.lo != parameter.range.hi) return true;
+      if (!model_.derived_[i]) return false;
+      bool reads = false;
+      evaluate_formula<double>(*model_.parameter_nominals_[i].formula, [&](std::size_t j) {
+        reads = reads || parameter_varies(j);
+        return nominal.parameters[j].nominal.get_d();
+      });
+      return reads;
+    };
+    std::vector<std::string> varying;
+    double value = evaluate_formula<double>(*found->second.number.formula, [&](std::size_t i) {
+      if (parameter_varies(i) && std::find(varying.begin(), varying.end(), nominal.parameters[i].name) == varying.end())
+        varying.push_back(nominal.parameters[i].name);
+      return nominal.parameters[i].nominal.get_d();
     });
-    return varies ? 0 : std::lround(value);
+    if (varying.empty()) return std::lround(value);
+    if (model_.count_refusal_.first.empty()) {
+      std::string list;
+      for (const std::string& name : varying) list += (list.empty() ? "'" : ", '") + name + "'";
+      model_.count_refusal_ = {
+          feature.pointer + "/" + key,
+          std::string("the ") + (std::string(key) == "slots" ? "slot" : "tooth") + " count of feature template " +
+              feature.name + " varies with toleranced parameter" + (varying.size() == 1 ? " " : "s ") + list +
+              ": the tolerance analysis keeps a template's count fixed over the tolerance box (a count is no "
+              "dimension: its generic form has a fixed number of " + (std::string(key) == "slots" ? "slots" : "teeth") +
+              "); give " + (varying.size() == 1 ? "that parameter" : "those parameters") +
+              " no tolerance and analyse each count on its own (e.g. --set " + varying.front() + "=N)"};
+    }
+    return 0;
   }
   // A spur_gear has the generic form with flank_radius (one arc per flank): the crossings of
   // the flank circle with the tip and root circles that the exact template takes (the one
@@ -539,23 +570,119 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
 
 namespace {
 
+// Whether `margin` is positive over the whole exact box [lo, hi] of parameter deviations
+// (session 62): MPFI enclosures over sub-boxes, bisected along the parameters in `read` (those
+// the margin reads that vary in the box; each split where its share of the box is widest), at
+// 160, 640 and 2560 bits. A sub-box whose enclosure is certainly negative (a corner of the box,
+// tried first, or any other) fails the box; a box left undecided when a stage's budget or its
+// precision is spent (or a corner's enclosure holds 0) goes to the next stage, and is undecided
+// after the last. Only margins vanishing on the box (a box ending exactly on a rule's bound:
+// every rule is strict) or closer to 0 than about 2^-2500 of their values stay undecided; the
+// caller refuses the box then, as the exact expansion refuses a zero margin.
+enum class BoxVerdict { holds, fails, undecided };
+
+BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Rational>& lo,
+                              const std::vector<Rational>& hi, const std::vector<std::size_t>& read,
+                              const std::function<Interval(const std::vector<Interval>&)>& margin) {
+  const std::size_t n = lo.size();
+  // the margin's enclosure over [a, b] (the ends exact rationals: enclosed outward)
+  auto evaluate = [&](const std::vector<Rational>& a, const std::vector<Rational>& b) {
+    std::vector<Interval> deviations(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (a[i] == b[i]) deviations[i] = Interval(a[i]);
+      else mpfi_interv_q(deviations[i].get(), a[i].get_mpq_t(), b[i].get_mpq_t());
+    }
+    try {
+      return margin(model.parameter_values<Interval>(deviations));
+    } catch (const Error&) {
+      return Interval(Rational(0));   // does not evaluate there: undecided
+    }
+  };
+  constexpr std::size_t budget = 3000;   // sub-boxes per stage
+  for (mpfr_prec_t bits : {160, 640, 2560}) {
+    PrecisionScope precision(bits);
+    // The box's corners first: a failing box mostly fails at one (the rules are monotone in most
+    // of their arguments). A corner whose enclosure holds 0 at this precision (a margin vanishing
+    // there: a box ending on a rule's bound) leaves the stage undecided: every sub-box holding
+    // it encloses at least the corner's enclosure.
+    bool corner_undecided = false;
+    if (read.size() <= 6) {
+      for (std::size_t mask = 0; mask < (std::size_t(1) << read.size()) && !corner_undecided; ++mask) {
+        std::vector<Rational> corner = lo;
+        for (std::size_t j = 0; j < read.size(); ++j)
+          if (mask & (std::size_t(1) << j)) corner[read[j]] = hi[read[j]];
+        const int sign = evaluate(corner, corner).sign();
+        if (sign < 0) return BoxVerdict::fails;
+        corner_undecided = sign == 0;
+      }
+    }
+    if (corner_undecided) continue;
+    // the smallest share of a parameter's box a sub-box is split to at this precision
+    const Rational finest(mpz_class(1), mpz_class(1) << static_cast<mp_bitcnt_t>(bits - 32));
+    std::vector<std::pair<std::vector<Rational>, std::vector<Rational>>> stack{{lo, hi}};
+    std::size_t evaluated = 0;
+    bool undecided = false;
+    while (!stack.empty() && !undecided) {
+      auto [a, b] = std::move(stack.back());
+      stack.pop_back();
+      const Interval m = evaluate(a, b);
+      if (m.sign() > 0) continue;
+      if (m.sign() < 0) return BoxVerdict::fails;
+      std::optional<std::size_t> widest;
+      Rational share(0);
+      for (std::size_t i : read) {
+        const Rational s = (b[i] - a[i]) / (hi[i] - lo[i]);
+        if (s > share) {
+          share = s;
+          widest = i;
+        }
+      }
+      if (++evaluated > budget || !widest || share < finest) {
+        undecided = true;
+        break;
+      }
+      const Rational middle = (a[*widest] + b[*widest]) / 2;
+      std::vector<Rational> upper_a = a, lower_b = b;
+      upper_a[*widest] = middle;
+      lower_b[*widest] = middle;
+      stack.emplace_back(std::move(upper_a), b);
+      stack.emplace_back(a, std::move(lower_b));
+    }
+    if (!undecided) return BoxVerdict::holds;
+  }
+  return BoxVerdict::undecided;
+}
+
 // ParametricModel::check_choices' rules of the feature templates over the box (session 59; since
 // session 61 the templates' own rules, template_rules.hpp, enclosed over the box): \throws
 // ModelError naming the argument and the toleranced parameters the rule reads when a margin is
 // not certainly positive over the box. A rule reading no parameter that varies in the box is
-// held at nominal, where the template was expanded.
+// held at nominal, where the template was expanded. Since session 62 a margin the doubles'
+// enclosure over the (outward-rounded) box leaves undecided is decided over the exact box
+// [lo_exact, hi_exact] in MPFI (certified_positive): a box valid up to 2^-k of a rule's bound, or
+// drawn at 1e-300 or 1e400 mm, is kept; one reaching the bound or beyond it is refused.
 void check_template_rules(
-    const FeatureRecipe& feature, const std::vector<kernels::Interval>& p, const std::vector<double>& lo,
-    const std::vector<double>& hi, const std::function<void(const Formula&, std::vector<char>&)>& mark_read,
-    const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point, const Model& nominal) {
+    const FeatureRecipe& feature, const std::vector<kernels::Interval>& p, const std::vector<Rational>& lo_exact,
+    const std::vector<Rational>& hi_exact,
+    const std::function<void(const Formula&, std::vector<char>&)>& mark_read,
+    const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point, const ParametricModel& model) {
   using namespace parametric_detail;
+  const Model& nominal = model.nominal();
   const std::size_t n = p.size();
   TemplateRuleValues values;
   values.has = [&](const char* key) { return feature.arguments.count(key) > 0; };
   values.value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
   values.point = [&](const char* key) { return point_value(feature.arguments.at(key).point, p); };
   values.count = feature.teeth;
-  // the varying parameters read by the rule's (present) arguments
+  // the same rules over MPFI enclosures of the parameters' values over a sub-box (`exact` is
+  // pointed at them while a margin is evaluated)
+  const std::vector<Interval>* exact = nullptr;
+  BasicTemplateRuleValues<Interval> certified;
+  certified.has = values.has;
+  certified.value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, *exact); };
+  certified.point = [&](const char* key) { return point_value(feature.arguments.at(key).point, *exact); };
+  certified.count = feature.teeth;
+  // the parameters varying in the box read by the rule's (present) arguments
   auto varying = [&](const std::vector<const char*>& keys) {
     std::vector<char> read(n, 0);
     for (const char* key : keys) {
@@ -564,41 +691,84 @@ void check_template_rules(
       if (a->second.kind == ArgumentKind::point) mark_point(a->second.point, read);
       else if (a->second.number.formula) mark_read(*a->second.number.formula, read);
     }
-    std::vector<std::string> names;
+    std::vector<std::size_t> indices;
     for (std::size_t i = 0; i < n; ++i)
-      if (read[i] && lo[i] != hi[i]) names.push_back(nominal.parameters[i].name);
-    return names;
+      if (read[i] && lo_exact[i] != hi_exact[i]) indices.push_back(i);
+    return indices;
   };
+  std::size_t index = 0;   // the rule's place in the template's order (the same in both number types)
   template_rules(feature.name, values, [&](const TemplateRule& rule) {
-    std::vector<std::string> names = varying(rule.reads);
-    if (names.empty()) return;   // held at nominal, where the template was expanded
+    const std::size_t place = index++;
+    std::vector<std::size_t> read = varying(rule.reads);
+    if (read.empty()) return;   // held at nominal, where the template was expanded
     if (rule.margin().lo > 0) return;
+    // undecided in doubles: decided over the exact box
+    BoxVerdict verdict = BoxVerdict::undecided;
+    std::size_t at = 0;
+    template_rules(feature.name, certified, [&](const BasicTemplateRule<Interval>& same) {
+      if (at++ != place) return;
+      verdict = certified_positive(model, lo_exact, hi_exact, read, [&](const std::vector<Interval>& values_over) {
+        exact = &values_over;
+        return same.margin();
+      });
+    });
+    if (verdict == BoxVerdict::holds) return;
     std::string list;
-    for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
+    for (std::size_t i : read) list += (list.empty() ? "'" : ", '") + nominal.parameters[i].name + "'";
     throw ModelError(feature.pointer + "/" + rule.key,
                      "the tolerance box may make feature template " + feature.name + " invalid: " + rule.rule +
                          " may fail for some parameter values within the box (toleranced parameter" +
-                         (names.size() == 1 ? " " : "s ") + list +
-                         "), where the template refuses the geometry; narrow " + (names.size() == 1 ? "its" : "their") +
-                         " tolerance" + (names.size() == 1 ? "" : "s"));
+                         (read.size() == 1 ? " " : "s ") + list +
+                         "), where the template refuses the geometry; narrow " + (read.size() == 1 ? "its" : "their") +
+                         " tolerance" + (read.size() == 1 ? "" : "s"));
   });
 }
 
 }  // namespace
 
+void ParametricModel::require_generic() const {
+  if (generic_) return;
+  if (!count_refusal_.first.empty()) throw ModelError(count_refusal_.first, count_refusal_.second);
+  throw ModelError("", "tolerance analysis needs the generic parametric form; feature template " + exact_only_feature_ +
+                           " has an exact form only");
+}
+
 void ParametricModel::check_choices(const std::vector<double>& lo, const std::vector<double>& hi) const {
+  const std::size_t n = parameter_count();
+  if (lo.size() != n || hi.size() != n)
+    throw ModelError("/parameters", "expected a box of " + std::to_string(n) + " parameter deviations");
+  std::vector<Rational> lo_exact(n), hi_exact(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(lo[i]) || !std::isfinite(hi[i]))
+      throw ModelError("/parameters/" + nominal_->parameters[i].name, "the tolerance box's deviations are not finite");
+    lo_exact[i] = Rational(lo[i]);
+    hi_exact[i] = Rational(hi[i]);
+  }
+  check_choices(lo_exact, hi_exact);
+}
+
+void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const std::vector<Rational>& hi_exact) const {
   using I = kernels::Interval;
   using namespace parametric_detail;
   std::size_t n = parameter_count();
-  if (lo.size() != n || hi.size() != n)
+  if (lo_exact.size() != n || hi_exact.size() != n)
     throw ModelError("/parameters", "expected a box of " + std::to_string(n) + " parameter deviations");
+  // the doubles' box about the exact one (outward) for the enclosures in doubles; the rules'
+  // margins they leave undecided are decided over the exact box (check_template_rules)
+  std::vector<double> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (hi_exact[i] < lo_exact[i])
+      throw ModelError("/parameters/" + nominal_->parameters[i].name, "the tolerance box's deviations are not ascending");
+    lo[i] = I::enclose(lo_exact[i]).lo;
+    hi[i] = I::enclose(hi_exact[i]).hi;
+  }
   std::vector<I> box(n);
   for (std::size_t i = 0; i < n; ++i) box[i] = I(lo[i], hi[i]);
   std::vector<I> p = parameter_values(box);
   // whether a formula reads a parameter that varies in the box (directly or through a derived one)
   std::function<bool(const Formula&)> varies = [&](const Formula& f) -> bool {
     if (f.op == Formula::Op::parameter)
-      return lo[f.parameter] != hi[f.parameter] || (derived_[f.parameter] && varies(*parameter_nominals_[f.parameter].formula));
+      return lo_exact[f.parameter] != hi_exact[f.parameter] || (derived_[f.parameter] && varies(*parameter_nominals_[f.parameter].formula));
     for (const FormulaPtr& argument : f.arguments)
       if (varies(*argument)) return true;
     return false;
@@ -632,7 +802,7 @@ void ParametricModel::check_choices(const std::vector<double>& lo, const std::ve
       // certainly positive (the templates' own margins kept); rules whose arguments read no
       // parameter varying in the box held at nominal, where the template was expanded.
       try {
-        check_template_rules(feature, p, lo, hi, mark_read, mark_point, *nominal_);
+        check_template_rules(feature, p, lo_exact, hi_exact, mark_read, mark_point, *this);
       } catch (const ModelError&) {
         throw;
       } catch (const Error& error) {
@@ -716,7 +886,7 @@ void ParametricModel::check_choices(const std::vector<double>& lo, const std::ve
             if (feature.arguments.count(key)) mark(*feature.arguments.at(key).number.formula);
           std::vector<std::size_t> moving;
           for (std::size_t i = 0; i < n; ++i)
-            if (lo[i] != hi[i] && read[i]) moving.push_back(i);
+            if (lo_exact[i] != hi_exact[i] && read[i]) moving.push_back(i);
           // The flank's points over a sub-box as involute_flank places them, each involute
           // function inv(a) = tan a - a enclosed by its values at the ends of a's enclosure (it
           // increases on [0, pi/2): derivative tan^2 a): tan a - a in interval arithmetic

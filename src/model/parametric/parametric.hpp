@@ -80,7 +80,7 @@ struct FeatureRecipe {
   };
   std::map<std::string, Argument> arguments;
   std::size_t loop_count = 0;   ///< loops it expanded to in the nominal model
-  long teeth = 0;               ///< ratchet_wheel, spur_gear: the tooth count (fixed: no toleranced parameter)
+  long teeth = 0;               ///< the tooth (slot) count; 0 when it varies with a toleranced parameter (no generic form)
   /// spur_gear (flank_radius form): which crossing of the flank circle with the tip (root)
   /// circle the exact template takes (+1 / -1 along perp(centre), decided at nominal), and the
   /// flank arc's turning sense there.
@@ -169,6 +169,10 @@ class ParametricModel {
   bool generic() const { return generic_; }
   /// The first template that is exact only, for messages.
   const std::string& exact_only_feature() const { return exact_only_feature_; }
+  /// \throws ModelError when the model has no generic form: at a template's tooth or slot count
+  /// when one varies with a toleranced parameter (session 62: the analysis keeps counts fixed),
+  /// else naming the first template that is exact only.
+  void require_generic() const;
 
   /// The exact model at a deviation vector. \throws ModelError when the geometry is invalid
   /// there (loops crossing, ...), naming the pointer.
@@ -215,7 +219,12 @@ class ParametricModel {
   /// the turning sense of its flank arcs), decided by certified interval enclosures over the
   /// box. \throws ModelError naming the template's argument when a vector of the box may
   /// change a choice (the generic form would then describe another shape than the exact one).
+  /// The box given in doubles: checked as the exact box of those doubles.
   void check_choices(const std::vector<double>& lo, const std::vector<double>& hi) const;
+  /// The exact box of deviations (session 62): the templates' rules are decided over it exactly
+  /// where the doubles' enclosures cannot (a box within 2^-k of a rule's bound, lengths far
+  /// beyond the doubles); the shape choices are checked on its outward rounding to doubles.
+  void check_choices(const std::vector<Rational>& lo, const std::vector<Rational>& hi) const;
 
  private:
   /// Edge `edge` of a ratchet_wheel's loop in the template's own order (templates_gears.cpp:
@@ -282,6 +291,8 @@ class ParametricModel {
   std::vector<PartRecipe> parts_;
   bool generic_ = true;
   std::string exact_only_feature_;
+  /// the first tooth or slot count varying with a toleranced parameter: its pointer, the refusal
+  std::pair<std::string, std::string> count_refusal_;
 
   friend class RecipeBuilder;
 };
