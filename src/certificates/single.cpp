@@ -108,10 +108,15 @@ std::optional<Rational> claimed_clearance(const Rational& bound, const std::opti
   // The bound rounded down to 6 digits; when the bound is a hair under the next 6-digit value
   // (an exact distance of 2e-300 mm enclosed as 1.99999...97e-300), that value if it holds
   // exactly: the found distance is then the same at every scale (session 62, hunt62).
+  // The exact test (quadratic in the parts' edges, rational) is asked only when the next 6-digit
+  // value is within the enclosure's own width of the bound (the bound comes from 256-bit
+  // intervals: 2^-192 of it is wider than that); farther up, a tight bound says it fails.
   Rational down = round_down(bound, 6);
   if (down < bound) {
     Rational up = down + decimal_unit(bound, 6);
-    if (exactly(up)) return up;
+    mpz_class width_scale;
+    mpz_ui_pow_ui(width_scale.get_mpz_t(), 2, 192);
+    if ((up - bound) * Rational(width_scale) <= bound && exactly(up)) return up;
   }
   return down;
 }

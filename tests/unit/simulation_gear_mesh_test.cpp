@@ -35,6 +35,7 @@
 //   way the old one did (session 58, slip58).
 #include "test_paths.hpp"
 #include "test_seed.hpp"
+#include "tolerance/exact_order.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
@@ -225,25 +226,8 @@ constexpr double kVertexTolerance = 2 * 2 * 3e-9;
 // sign of their polynomial). LockedPairCannotTurnOn also finds the sliver behind (a free interval
 // meeting the window at p - delta).
 constexpr double kLockDelta = 1e-4;
-// -1, 0, +1: the sign of a - y, exactly (a the unique root of its square-free polynomial in
-// (lower, upper), or `lower` when exact)
-int compare(const AlgebraicNumber& a, const Rational& y) {
-  if (a.exact) return cmp(a.lower, y) < 0 ? -1 : cmp(a.lower, y) > 0 ? 1 : 0;
-  if (y <= a.lower) return 1;
-  if (y >= a.upper) return -1;
-  auto value = [&](const Rational& x) {
-    Rational sum = 0;
-    for (std::size_t i = a.polynomial.size(); i-- > 0;) sum = sum * x + Rational(a.polynomial[i]);
-    return sum;
-  };
-  const int at_y = sgn(value(y));
-  if (at_y == 0) return 0;
-  const int at_lower = sgn(value(a.lower)), at_upper = sgn(value(a.upper));
-  // the one root lies between the end whose sign differs from y's and y
-  if (at_lower != 0 && at_lower != at_y) return -1;   // root in (lower, y)
-  if (at_upper != 0 && at_upper != at_y) return 1;    // root in (y, upper)
-  return at_lower == 0 ? 1 : -1;                      // (a root at an end: the other side)
-}
+// -1, 0, +1: the sign of a - y, exactly (the tolerance analysis' exact order of slice points).
+using tolerance_detail::compare;
 struct SliceWindow {
   std::size_t free = 0;        // free intervals meeting the window (exactly)
   bool found = false;          // the slice through the window's chart was found
