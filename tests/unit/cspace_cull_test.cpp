@@ -478,6 +478,25 @@ void expect_row_cache_builds_the_plain_space(const Model& model, const std::stri
   expect_same_space_then_oracle(model, first, second, cached, *plain, seed, points, windows);
 }
 
+// The generated pairs of the culling tests, drawn from `random` in a fixed order: at each scale
+// 1, 10^-30 and 10^40 (exact rationals) a random star polygon pair (check(..., -1)), then levers
+// with a notch of exactly the tip's width, wider and narrower (lever 0, 1, 2 at scale 1; lever 0
+// at the others): zero clearance and tangencies.
+template <class Check>
+void for_each_generated_pair(std::mt19937_64& random, Check&& check) {
+  for (int scale : {0, -30, 40}) {
+    SCOPED_TRACE("scale 1e" + std::to_string(scale));
+    check(star_pair(random, power_of_ten(scale)), "a", "b", -1);
+    for (int n = 0; n < (scale == 0 ? 3 : 1); ++n) {
+      Rational w = random_rational(random, 0.6, 1.0, 16);
+      Rational a = random_rational(random, 2.0, 4.0, 16);
+      Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
+      Rational c = random_rational(random, 0.5, 1.5, 8);
+      check(lever_pair(w, Rational(10), a, Rational(a + width), c, power_of_ten(scale)), "crank", "rocker", n);
+    }
+  }
+}
+
 // Generated pairs (random rational star polygons, levers with arcs and a notch of exactly the
 // tip's width, wider and narrower: zero clearance and tangencies; lengths times 1, 10^-30 and
 // 10^40 as exact rationals) and Geneva.
@@ -485,20 +504,11 @@ TEST(CSpaceCull, RowCacheBuildsThePlainEvaluationsSpaceOnGeneratedPairs) {
   std::mt19937_64 random(3401);
   std::size_t windows = 0;
   int spaces = 0;
-  for (int scale : {0, -30, 40}) {
-    SCOPED_TRACE("scale 1e" + std::to_string(scale));
-    expect_row_cache_builds_the_plain_space(star_pair(random, power_of_ten(scale)), "a", "b", 31, {}, 40, &windows);
+  for_each_generated_pair(random, [&](const Model& model, const char* first, const char* second, int lever) {
+    expect_row_cache_builds_the_plain_space(model, first, second, lever < 0 ? 31 : 41 + static_cast<std::uint64_t>(lever),
+                                            {}, 40, &windows);
     ++spaces;
-    for (int n = 0; n < (scale == 0 ? 3 : 1); ++n) {
-      Rational w = random_rational(random, 0.6, 1.0, 16);
-      Rational a = random_rational(random, 2.0, 4.0, 16);
-      Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
-      Rational c = random_rational(random, 0.5, 1.5, 8);
-      expect_row_cache_builds_the_plain_space(lever_pair(w, Rational(10), a, Rational(a + width), c, power_of_ten(scale)),
-                                              "crank", "rocker", 41 + n, {}, 40, &windows);
-      ++spaces;
-    }
-  }
+  });
   std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
   if (std::filesystem::exists(geneva)) {
     expect_row_cache_builds_the_plain_space(read_model_file(geneva), "driver", "wheel", 51, {}, 60, &windows);
@@ -552,20 +562,11 @@ TEST(CSpaceCull, KnownBlockedLeaveAndSharedPosesBuildThePlainSpace) {
   std::mt19937_64 random(test::test_seed(6101));
   std::size_t windows = 0;
   int spaces = 0;
-  for (int scale : {0, -30, 40}) {
-    SCOPED_TRACE("scale 1e" + std::to_string(scale));
-    expect_shortcuts_build_the_plain_space(star_pair(random, power_of_ten(scale)), "a", "b", 61, {}, 30, &windows);
+  for_each_generated_pair(random, [&](const Model& model, const char* first, const char* second, int lever) {
+    expect_shortcuts_build_the_plain_space(model, first, second, lever < 0 ? 61 : 62 + static_cast<std::uint64_t>(lever),
+                                           {}, 30, &windows);
     ++spaces;
-    for (int n = 0; n < (scale == 0 ? 3 : 1); ++n) {
-      Rational w = random_rational(random, 0.6, 1.0, 16);
-      Rational a = random_rational(random, 2.0, 4.0, 16);
-      Rational width = n == 0 ? Rational(2 * w) : n == 1 ? Rational(2 * w + Rational(1, 4)) : Rational(2 * w - Rational(1, 8));
-      Rational c = random_rational(random, 0.5, 1.5, 8);
-      expect_shortcuts_build_the_plain_space(lever_pair(w, Rational(10), a, Rational(a + width), c, power_of_ten(scale)),
-                                             "crank", "rocker", 62 + static_cast<std::uint64_t>(n), {}, 30, &windows);
-      ++spaces;
-    }
-  }
+  });
   std::filesystem::path geneva = std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json";
   if (std::filesystem::exists(geneva)) {
     expect_shortcuts_build_the_plain_space(read_model_file(geneva), "driver", "wheel", 65, {}, 60, &windows);
