@@ -186,6 +186,14 @@ inline std::size_t& second_order_exclusions() { return thread_counter<SecondOrde
 // from the same a too) and the stretch's X'', Y'' — computed once instead of once per curve (pure
 // functions: the same bits). On by default; tests switch it off per thread to compare
 // (CSpaceSecondOrderShared.*). Counter: the computations taken again.
+// The second-order form's nested (Horner) enclosure start + h (rate_at + [0, h / 2] curvature),
+// tried where the summed one fails (cspace_queries.cpp, second_order_excludes): only adds
+// certified exclusions. On by default; tests switch it off per thread to compare
+// (CSpaceNestedTaylor.*). Counter: the curves it excluded that the summed form did not.
+struct NestedTaylorTag;
+inline bool& nested_taylor() { return thread_switch<NestedTaylorTag>(); }
+struct NestedTaylorExclusionsTag;
+inline std::size_t& nested_taylor_exclusions() { return thread_counter<NestedTaylorExclusionsTag>(); }
 struct SecondOrderSharedTag;
 inline bool& second_order_shared() { return thread_switch<SecondOrderSharedTag>(); }
 struct SecondOrderSharedHitsTag;

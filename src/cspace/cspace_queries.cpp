@@ -2467,8 +2467,26 @@ class MotionScanner {
                   fy * ddy;
     DInterval half_square = DInterval{0, 0.5} * (h * h);
     DInterval value = start + h * rate_at + half_square * curvature;
-    if (!std::isfinite(value.lo) || !std::isfinite(value.hi) || value.contains_zero()) return false;
+    if (std::isfinite(value.lo) && std::isfinite(value.hi) && !value.contains_zero()) {
+      ++cspace::second_order_exclusions();
+      return true;
+    }
+    // The same Taylor form nested (cspace::nested_taylor()): for t = u - a in [0, h],
+    // f(a) + t (f'(a) + (t / 2) f''(xi)) with t / 2 in [0, h / 2], enclosed as
+    // start + h (rate_at + [0, h / 2] curvature). The first factor t and the t in t / 2 are the
+    // same number, taken here independently: still an enclosure, and within subdistributivity
+    // (h (r + s c) is in h r + h s c) no wider than the sum above in exact interval arithmetic.
+    // Where the sum fails because h r's lower end 0 and (h^2 / 2) c's negative lower end are
+    // taken at different t (a motion leaving a curve: f(a) > 0 tiny, f'(a) > 0, c < 0), the
+    // nested form keeps f >= f(a) > 0 on every t with f'(a) + t c / 2 > 0: stretches up to
+    // 2 f'(a) / |c| instead of sqrt(2 f(a) / |c|). Tried only where the sum fails (its
+    // exclusions all kept: a stretch excluded before is excluded now).
+    if (!cspace::nested_taylor()) return false;
+    DInterval half_h = DInterval{0, 0.5} * h;
+    DInterval nested = start + h * (rate_at + half_h * curvature);
+    if (!std::isfinite(nested.lo) || !std::isfinite(nested.hi) || nested.contains_zero()) return false;
     ++cspace::second_order_exclusions();
+    ++cspace::nested_taylor_exclusions();
     return true;
   }
 
