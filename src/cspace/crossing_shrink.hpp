@@ -33,4 +33,16 @@ inline bool& skip_left() { return thread_switch<SkipLeftTag>(); }
 struct SkippedLeftTag;
 inline std::size_t& skipped_left() { return thread_counter<SkippedLeftTag>(); }
 
+// The proposal's bounds narrowed by Newton steps from anchors inside them before the node is
+// chosen (cspace_queries.cpp, CrossingRun::refine and MotionScanner::newton_from): from the
+// curve's value at a cell before the root and its rate over the proposal's cells, the root lies
+// in a narrower span of cells; a deeper node holds it. As the first proposal, it only chooses
+// which nodes holding the root are skipped: the stretches evaluated are the halving's, by the
+// same tests. On by default; tests switch it off per thread to compare (CSpaceNewtonRefine.*).
+struct NewtonRefineTag;
+inline bool& newton_refine() { return thread_switch<NewtonRefineTag>(); }
+// How many Newton steps from an anchor were taken on this thread (tests, profiles).
+struct NewtonRefineStepsTag;
+inline std::size_t& newton_refine_steps() { return thread_counter<NewtonRefineStepsTag>(); }
+
 }  // namespace hipair::cspace

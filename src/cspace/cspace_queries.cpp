@@ -1893,6 +1893,9 @@ class MotionScanner {
     // (u - a) newton_r_max < newton_s_min, and f(u) has the sign opposite to f(a)'s for
     // (u - a) newton_r_min > newton_s_max
     double newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
+    bool newton_positive = false;   // f(a) > 0 (else < 0)
+    // the chart systems of the stretch's one piece per axis (rotation, half turn: x, then y)
+    std::array<bool, 4> newton_systems{};
   };
 
   // `filtered_point` (a == b): the point through the stretches' filter, its angle pieces widened
@@ -2366,6 +2369,7 @@ class MotionScanner {
     SecondOrderShared shared{static_cast<std::size_t>(sx - xa.begin()), static_cast<std::size_t>(sy - ya.begin())};
     bool newton = false;
     double newton_lo = 0, newton_hi = 0, newton_s_min = 0, newton_s_max = 0, newton_r_min = 0, newton_r_max = 0;
+    bool newton_positive = false;
     for (const Possible& p : possible) {
       const Gradient& g = gradient(p.chart, p.curve);
       DInterval start = curve_enclosure(impl_, *memo_, p.chart, p.curve).evaluate(x_at, y_at);
@@ -2398,11 +2402,14 @@ class MotionScanner {
         newton_s_max = s_max;
         newton_r_min = r_min;
         newton_r_max = r_max;
+        newton_positive = start.lo > 0;
       }
     }
     possible.swap(kept);
     if (proposal && newton && possible.size() == 1) {
       proposal->newton = true;
+      proposal->newton_positive = newton_positive;
+      proposal->newton_systems = {px.rotation, px.half_turn, py.rotation, py.half_turn};
       proposal->newton_lo = newton_lo;
       proposal->newton_hi = newton_hi;
       proposal->newton_s_min = newton_s_min;
@@ -2412,6 +2419,57 @@ class MotionScanner {
     }
   }
 
+public:
+  // The Newton proposal's bounds again from an anchor inside the stretch (CrossingRun::shrink,
+  // cspace::newton_refine()): for the one curve p left over a stretch [a, b] (`at`) whose value at a and
+  // rate over [a, b] exclude 0 with opposite signs (so its only root r in [a, b] lies past
+  // `anchor` and before `end`, both in [a, b]), f(anchor) and the rate over the box of
+  // [anchor, end] on the systems of the stretch's pieces: by the mean value theorem 0 = f(r) =
+  // f(anchor) + (r - anchor) f'(xi) with xi in [anchor, end], so r - anchor lies in
+  // [s_min / r_max, s_max / r_min] of these enclosures. Set only where f(anchor) has the sign
+  // `positive` and the rate the other one (both certified, finite); nothing is decided by it.
+  struct NewtonBounds {
+    double s_min = 0, s_max = 0, r_min = 0, r_max = 0;
+  };
+  std::optional<NewtonBounds> newton_from(const Rational& anchor, const Rational& end, const Evaluation& at) {
+    if (!at.newton || at.possible.size() != 1) return std::nullopt;
+    const Possible& p = at.possible.front();
+    const bool positive = at.newton_positive;
+    bool wide = false;
+    const bool planar = impl_.dimension == 2;
+    const AxisPiece flat{false, false, ExactBound(), ExactBound()};
+    std::vector<AxisPiece> xa = pieces(path_.x, anchor, anchor, wide, false);
+    std::vector<AxisPiece> xs = pieces(path_.x, anchor, end, wide, false);
+    std::vector<AxisPiece> ya = planar ? pieces(path_.y, anchor, anchor, wide, false) : std::vector<AxisPiece>{flat};
+    std::vector<AxisPiece> ys = planar ? pieces(path_.y, anchor, end, wide, false) : std::vector<AxisPiece>{flat};
+    if (wide || xa.size() != 1 || xs.size() != 1 || ya.size() != 1 || ys.size() != 1) return std::nullopt;
+    auto same = [&](const AxisPiece& u, int k) {
+      return u.rotation == at.newton_systems[k] && u.half_turn == at.newton_systems[k + 1];
+    };
+    if (!same(xa[0], 0) || !same(xs[0], 0) || !same(ya[0], 2) || !same(ys[0], 2)) return std::nullopt;
+    const bool carried = cspace::carried_bounds();
+    auto box = [&](const AxisPiece& q) {
+      return carried ? DInterval{q.dlo, q.dhi} : enclose_range(q.lo.rational(), q.hi.rational());
+    };
+    DInterval start = curve_enclosure(impl_, *memo_, p.chart, p.curve).evaluate(box(xa[0]), box(ya[0]));
+    const Gradient& g = gradient(p.chart, p.curve);
+    const DInterval x = box(xs[0]), y = box(ys[0]);
+    DInterval dx = chart_derivative(path_.x, anchor, end, xs[0]);
+    DInterval dy = planar ? chart_derivative(path_.y, anchor, end, ys[0]) : DInterval{0, 0};
+    DInterval rate = g.fx.evaluate(x, y) * dx + g.fy.evaluate(x, y) * dy;
+    for (double v : {start.lo, start.hi, rate.lo, rate.hi})
+      if (!std::isfinite(v)) return std::nullopt;
+    bool toward = positive ? (start.lo > 0 && rate.hi < 0) : (start.hi < 0 && rate.lo > 0);
+    if (!toward) return std::nullopt;
+    NewtonBounds out;
+    out.s_min = positive ? start.lo : -start.hi;
+    out.s_max = positive ? start.hi : -start.lo;
+    out.r_min = positive ? -rate.hi : rate.lo;
+    out.r_max = positive ? -rate.lo : rate.hi;
+    return out;
+  }
+
+ private:
   // The second-order (Taylor) exclusion, tried where the mean-value form fails: a motion that
   // starts next to a contact curve and slides along it (a sustained contact just released, the
   // Geneva wheel's locking arc on the driver's disc) has f'(a) near 0 while the enclosure of
@@ -2959,6 +3017,7 @@ class CrossingRun {
   // The stretches evaluated are the halving's minus those nodes: the same answer (see
   // crossing_shrink.hpp).
   void shrink(const Rational& a, const Rational& b, const MotionScanner::Evaluation& at) {
+    refined_anchor = -1;
     if (cspace::newton_shrink() && at.newton) {
       Rational& cells = scratch().c;
       cspace::sum_into(cells, b, a, -1);
@@ -2971,6 +3030,7 @@ class CrossingRun {
         // vanishes inside every node between [a, b] and the node proposed
         if ((n & (n - 1)) == 0 && lo >= 0 && hi <= static_cast<double>(n)) {
           long k_lo = static_cast<long>(lo), k_hi = static_cast<long>(hi);
+          if (cspace::newton_refine()) refine(a, at, k_lo, k_hi);
           // the widening by a cell dropped where the certified bounds allow it: the curve
           // certainly nonzero up to cell k_lo + 1, certainly past its sign change from k_hi - 1
           // (so a sign change, which no stretch's exclusion can pass, lies between)
@@ -3011,7 +3071,8 @@ class CrossingRun {
               stack.emplace_back(scratch().v, at_cell(first + size));
               // the siblings left of the node, [a, a + first cells), certified free when the
               // curve's mean-value bound keeps it off 0 there (crossing_shrink.hpp, skip_left)
-              if (!left.empty() && cspace::skip_left() && free_before(cells_of(first), at)) {
+              if (!left.empty() && cspace::skip_left() &&
+                  (free_before(cells_of(first), at) || refined_free_before(first))) {
                 cspace::skipped_left() += left.size();
                 return;
               }
@@ -3037,6 +3098,54 @@ class CrossingRun {
       }
     }
     split(a, b);
+  }
+
+  // The proposal's cells [k_lo, k_hi) of [a, b] (the root of the one curve left certainly
+  // inside) narrowed by Newton steps from anchors inside it (MotionScanner::newton_from,
+  // cspace::newton_refine()): from the anchor a + k_lo cells, before the root, and the rate
+  // over [a + k_lo, a + k_hi] cells, which holds it, the root lies s_min / r_max ... s_max / r_min
+  // past the anchor; widened by a cell either way (and the relative 2^-48 the doubles' rounding
+  // needs, as the first proposal) and kept only inside [k_lo, k_hi]. The bounds only choose the
+  // node to go to: each narrowing keeps the root inside, so the nodes skipped hold it (the
+  // halving would only have halved them) as without it. At most four steps, while each takes
+  // off at least a quarter of the span and the span is wider than four cells.
+  // The last anchor's cell and bounds are kept (refined_anchor, refined_bounds) for
+  // refined_free_before.
+  void refine(const Rational& a, const MotionScanner::Evaluation& at, long& k_lo, long& k_hi) {
+    refined_anchor = -1;
+    thread_local Rational anchor, end;
+    for (int step = 0; step < 4 && k_hi - k_lo > 4; ++step) {
+      cspace::sum_multiple_into(anchor, a, resolution, k_lo);
+      cspace::sum_multiple_into(end, a, resolution, k_hi);
+      std::optional<MotionScanner::NewtonBounds> bounds = scanner.newton_from(anchor, end, at);
+      ++cspace::newton_refine_steps();
+      if (!bounds) return;
+      refined_anchor = k_lo;
+      refined_bounds = *bounds;
+      double lo = std::floor(bounds->s_min / bounds->r_max / resolution_d * (1 - 0x1p-48)) - 1;
+      double hi = std::ceil(bounds->s_max / bounds->r_min / resolution_d * (1 + 0x1p-48)) + 1;
+      const double span = static_cast<double>(k_hi - k_lo);
+      if (!(lo < span) || !(hi >= 0)) return;   // (NaN, or outside: nothing narrowed)
+      long new_lo = lo > 0 ? k_lo + static_cast<long>(lo) : k_lo;
+      long new_hi = hi < span ? k_lo + static_cast<long>(hi) : k_hi;
+      if (new_lo >= new_hi) return;
+      bool enough = 4 * (new_hi - new_lo) <= 3 * (k_hi - k_lo);
+      k_lo = new_lo;
+      k_hi = new_hi;
+      if (!enough) return;
+    }
+  }
+
+  // Whether the one curve left over [a, b] (as free_before) certainly does not vanish on
+  // [a, a + k cells], from refine's last anchor a + j cells: f has one sign of rate over
+  // [a, b] (monotone there) and f(a + j cells) the sign of f(a), so f != 0 on [a, a + j cells];
+  // past it f(u) lies in f(anchor) + (u - anchor) rate over the anchor's box [anchor, end],
+  // which holds [anchor, a + k cells] where k is below refine's final k_lo (as free_before:
+  // exact, (k - j) cells r_max < s_min in rationals).
+  bool refined_free_before(long k) {
+    if (refined_anchor < 0) return false;
+    if (k <= refined_anchor) return true;
+    return cspace::compare_product(cells_of(k - refined_anchor), refined_bounds.r_max, refined_bounds.s_min, skip_bound) < 0;
   }
 
   // Whether the one curve left over the stretch [a, b] just evaluated (`at`: every other curve
@@ -3194,6 +3303,8 @@ class CrossingRun {
     thread_local Scratch kept;
     return kept;
   }
+  long refined_anchor = -1;                         // refine's last anchor (cells of the stretch) or -1
+  MotionScanner::NewtonBounds refined_bounds;       // and its bounds
   std::optional<MotionScanner::Evaluation> last;   // the excluded stretch ending at u_end
   std::vector<AnchorBox> excluded_boxes;           // the anchor boxes it leaves (its start's, its excluded stretches')
 };
