@@ -316,7 +316,11 @@ Tally compared(void (*generate)(Tally&)) {
   return tally;
 }
 
+// (the proposals without session 63's narrowing, cspace::newton_refine: with it a proposal goes
+// deeper at once and fewer are taken — RefinedProposalsLeaveTheAnswerOnGeneratedMotions below
+// compares the shrink with and without it on these motions)
 TEST(CSpaceCrossingShrink, AnswersEqualTheHalvingsOnGeneratedMotions) {
+  test::FlagSwitch<&cspace::newton_refine> unrefined(false);
   Tally tally = compared(generated_on_examples);
   ASSERT_FALSE(HasFatalFailure());
   EXPECT_GE(tally.motions, 4000);
@@ -350,6 +354,25 @@ TEST(CSpaceCrossingShrink, SkippedSiblingsLeaveTheAnswerOnGeneratedMotions) {
   EXPECT_GE(tally.crossings, 2500);
   EXPECT_GE(tally.helped, 1000);   // motions with a stretch skipped
   EXPECT_GE(tally.steps, 3000);    // stretches skipped
+}
+
+// Session 63's narrowing of the proposals (cspace::newton_refine: Newton steps from anchors
+// inside the proposed cells, and the left siblings up to the last anchor skipped as certified
+// free). Against the shrink without it, on the same generated motions (and their shifted
+// copies, whose roots lie a few cells past a node boundary): the same answer field for field,
+// the brackets' ends located exactly.
+TEST(CSpaceCrossingShrink, RefinedProposalsLeaveTheAnswerOnGeneratedMotions) {
+  Toggling refine(Toggled{&cspace::newton_refine, &cspace::newton_refine_steps});
+  Tally tally;
+  generated_on_examples(tally);
+  ASSERT_FALSE(HasFatalFailure());
+  generated_on_degenerate_spaces(tally);
+  ASSERT_FALSE(HasFatalFailure());
+  report(tally);
+  EXPECT_GE(tally.motions, 5500);
+  EXPECT_GE(tally.crossings, 2500);
+  EXPECT_GE(tally.helped, 300);   // motions with a Newton step from an anchor
+  EXPECT_GE(tally.ends_checked, 3000);
 }
 
 }  // namespace
