@@ -1,5 +1,7 @@
 #include "algebra/nearest_double.hpp"
 
+#include "core/mp_values.hpp"
+
 #include <mpfi.h>
 #include <mpfr.h>
 
@@ -10,21 +12,8 @@
 namespace hipair::cspace::algebra {
 namespace {
 
-struct Mpfr {
-  mpfr_t v;
-  explicit Mpfr(mpfr_prec_t precision) { mpfr_init2(v, precision); }
-  ~Mpfr() { mpfr_clear(v); }
-  Mpfr(const Mpfr&) = delete;
-  Mpfr& operator=(const Mpfr&) = delete;
-};
-
-struct Mpfi {
-  mpfi_t v;
-  explicit Mpfi(mpfr_prec_t precision) { mpfi_init2(v, precision); }
-  ~Mpfi() { mpfi_clear(v); }
-  Mpfi(const Mpfi&) = delete;
-  Mpfi& operator=(const Mpfi&) = delete;
-};
+using Mpfr = MpfrValue;
+using Mpfi = MpfiValue;
 
 // A zero result with the exact value's sign (the rounding of a number below the least subnormal).
 double signed_result(double rounded, int sign) {
