@@ -6,6 +6,7 @@
 // counts only when both ends of the bracket round to the same double).
 #include "algebra/exact_real.hpp"
 #include "algebra/nearest_double.hpp"
+#include "pin_slot_test_support.hpp"
 #include "test_seed.hpp"
 
 #include <hipair/model.hpp>
@@ -216,17 +217,7 @@ TEST(NearestDouble, HalfAngleDegreesOfRandomTangents) {
 // 2.9e-199 at 10^200, the refinement measured against the interval, not the value).
 TEST(NearestDouble, PinSlotCriticalDegreesOfAFarClaw) {
   for (int exponent : {60, 200}) {
-    const std::string y = "1" + std::string(static_cast<std::size_t>(exponent), '0');
-    const Model model = read_model(R"({"hipair": 1, "name": "claw", "units": {"length": "mm", "angle": "deg"},
-      "parts": [
-        {"name": "block", "motion": {"translation": {"direction": [0, 1], "limits": [-5, 5]}},
-         "loops": [{"label": "block", "start": [20.5, -14], "edges": [{"line_to": [21.5, -14]},
-           {"line_to": [21.5, -9.2]}, {"line_to": [20.5, -9.2]}, {"line_to": [20.5, -14]}]}]},
-        {"name": "claw", "motion": {"pin_slot": {"pivot": [0, )" + y + R"(], "direction": [0, 1],
-           "angle_limits": [-1, 1], "limits": [-6, 6]}},
-         "loops": [{"label": "claw", "start": [14, -13], "edges": [{"line_to": [20, -13]},
-           {"line_to": [20, -11]}, {"line_to": [14, -11]}, {"line_to": [14, -13]}]}]}],
-      "pairs": [{"parts": ["block", "claw"]}]})");
+    const Model model = pin_slot_test::claw_far_along_slot(exponent);
     PinSlotBuildOptions options;
     options.normalise_lengths = true;
     const PinSlotSpace space = PinSlotSpace::build(model, "block", "claw", options);
