@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <sstream>
 
@@ -205,13 +206,28 @@ std::pair<std::string, std::string> to_decimal_strings_apart(const Rational& a, 
 }
 
 double to_double(const Rational& value) {
-  // mpq_get_d truncates; MPFR at 53 bits rounds the exact quotient to nearest.
+  // mpq_get_d truncates; MPFR at 53 bits rounds the exact quotient to nearest. That is the
+  // double nearest the value unless the result is subnormal (or 0): there the doubles have
+  // fewer bits, and rounding the 53-bit number again could round twice.
   mpfr_t rounded;
   mpfr_init2(rounded, 53);
   mpfr_set_q(rounded, value.get_mpq_t(), MPFR_RNDN);
   double result = mpfr_get_d(rounded, MPFR_RNDN);
   mpfr_clear(rounded);
-  return result;
+  if (std::fabs(result) >= std::numeric_limits<double>::min() || sgn(value) == 0) return result;
+  // below the normal doubles: enclose the value by directed roundings until both ends round to
+  // the same double (RN is monotone); a tie is a dyadic number, exact at 64 bits already
+  for (mpfr_prec_t precision = 64;; precision *= 2) {
+    mpfr_t lo, hi;
+    mpfr_init2(lo, precision);
+    mpfr_init2(hi, precision);
+    const bool exact = mpfr_set_q(lo, value.get_mpq_t(), MPFR_RNDD) == 0;
+    mpfr_set_q(hi, value.get_mpq_t(), MPFR_RNDU);
+    const double a = mpfr_get_d(lo, MPFR_RNDN), b = mpfr_get_d(hi, MPFR_RNDN);
+    mpfr_clear(lo);
+    mpfr_clear(hi);
+    if (exact || a == b) return a;
+  }
 }
 
 }  // namespace hipair

@@ -10,6 +10,7 @@
 #include <hipair/error.hpp>
 #include <hipair/motion_words.hpp>
 
+#include "algebra/nearest_double.hpp"
 #include "core/angle_limits.hpp"
 
 #include <algorithm>
@@ -296,7 +297,7 @@ PinSlotCycle pin_slot_cycle(const Model& model, const PinSlotCycleOptions& optio
     sample.slide = best.slide;
     sample.clearance = best.length;
     sample.driver_bounds = best.bounds;
-    sample.psi_degrees = 2 * std::atan(to_double(best.tau)) * 180 / std::numbers::pi;
+    sample.psi_degrees = cspace::algebra::half_angle_degrees(best.tau);   // correctly rounded
     tau_before = tau_previous;
     tau_previous = best.tau;
     {

@@ -7,6 +7,7 @@
 #include <hipair/error.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "algebra/nearest_double.hpp"
 #include "sliced/witness_filter.hpp"
 #include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
@@ -352,7 +353,7 @@ struct PinSlotSpace::Impl {
     auto space = slice(tau);
     PinSlotSlice out;
     out.tau = tau;
-    out.degrees = 2 * std::atan(to_double(tau)) * 180 / std::numbers::pi;
+    out.degrees = cspace::algebra::half_angle_degrees(tau);   // correctly rounded
     out.refinement = refinement;
     out.cells = space->cells().size();
     for (std::size_t c = 0; c < space->cells().size(); ++c) {
@@ -963,7 +964,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
       PinSlotCritical c;
       cspace::algebra::refine_dyadically(r, Rational(1, 1 << 30));
       c.tau = sliced::algebraic_of(r);
-      c.degrees = 2 * std::atan(r.approximate()) * 180 / std::numbers::pi;
+      c.degrees = cspace::algebra::half_angle_degrees(r);   // correctly rounded (an interval about 0 included)
       impl->critical.push_back(std::move(c));
     }
     if (half_turn_critical) {

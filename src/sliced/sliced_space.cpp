@@ -7,6 +7,7 @@
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
 
+#include "algebra/nearest_double.hpp"
 #include "sliced/critical_angles.hpp"
 #include "sliced/motion.hpp"
 #include "sliced/nearby.hpp"
@@ -729,7 +730,7 @@ struct SlicedSpace::Impl {
         out.t.lower = c.t.lower;
         out.t.upper = c.t.upper;
         out.t.exact = c.t.exact;
-        out.degrees = 2 * std::atan(c.t.approximate()) * 180 / 3.141592653589793;
+        out.degrees = algebra::half_angle_degrees(c.t);   // correctly rounded, whatever the scale
       }
       critical_public.push_back(std::move(out));
     }

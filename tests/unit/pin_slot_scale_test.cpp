@@ -334,19 +334,7 @@ TEST(PinSlotScale, FarAndHugePairsLocateMillimetreConfigurationsAsAtOneMillimetr
 // the parts' unit). Every witness is free by the exact overlap oracle at 17 angles along its
 // segment (pin_slot_scale_check_witnesses).
 TEST(PinSlotScale, AClawFarAlongItsSlotJoinsTheSameCellsAtEveryDistance) {
-  auto claw_pair = [](int exponent) {
-    const std::string y = "1" + std::string(static_cast<std::size_t>(exponent), '0');
-    return read_model(R"({"hipair": 1, "name": "claw", "units": {"length": "mm", "angle": "deg"},
-      "parts": [
-        {"name": "block", "motion": {"translation": {"direction": [0, 1], "limits": [-5, 5]}},
-         "loops": [{"label": "block", "start": [20.5, -14], "edges": [{"line_to": [21.5, -14]},
-           {"line_to": [21.5, -9.2]}, {"line_to": [20.5, -9.2]}, {"line_to": [20.5, -14]}]}]},
-        {"name": "claw", "motion": {"pin_slot": {"pivot": [0, )" + y + R"(], "direction": [0, 1],
-           "angle_limits": [-1, 1], "limits": [-6, 6]}},
-         "loops": [{"label": "claw", "start": [14, -13], "edges": [{"line_to": [20, -13]},
-           {"line_to": [20, -11]}, {"line_to": [14, -11]}, {"line_to": [14, -13]}]}]}],
-      "pairs": [{"parts": ["block", "claw"]}]})");
-  };
+  auto claw_pair = [](int exponent) { return pin_slot_test::claw_far_along_slot(exponent); };
   PinSlotBuildOptions options;
   options.normalise_lengths = true;   // as `hipair cspace`
   const Model near = claw_pair(6);

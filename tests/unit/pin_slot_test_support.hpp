@@ -3,6 +3,7 @@
 #pragma once
 
 #include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
 #include <hipair/rational.hpp>
 
 #include <gmpxx.h>
@@ -45,6 +46,22 @@ inline std::string free_structure(const CSpace& space) {
   std::string out;
   for (const auto& c : cells) out += "[" + c + "] ";
   return out;
+}
+
+// The claw far along its slot (session 61): a 6 x 2 mm claw on a pin-slot part pivoted at
+// (0, 10^exponent) whose tip (x = 20) swings across a translating block's side (x = 20.5).
+inline Model claw_far_along_slot(int exponent) {
+  const std::string y = "1" + std::string(static_cast<std::size_t>(exponent), '0');
+  return read_model(R"({"hipair": 1, "name": "claw", "units": {"length": "mm", "angle": "deg"},
+      "parts": [
+        {"name": "block", "motion": {"translation": {"direction": [0, 1], "limits": [-5, 5]}},
+         "loops": [{"label": "block", "start": [20.5, -14], "edges": [{"line_to": [21.5, -14]},
+           {"line_to": [21.5, -9.2]}, {"line_to": [20.5, -9.2]}, {"line_to": [20.5, -14]}]}]},
+        {"name": "claw", "motion": {"pin_slot": {"pivot": [0, )" + y + R"(], "direction": [0, 1],
+           "angle_limits": [-1, 1], "limits": [-6, 6]}},
+         "loops": [{"label": "claw", "start": [14, -13], "edges": [{"line_to": [20, -13]},
+           {"line_to": [20, -11]}, {"line_to": [14, -11]}, {"line_to": [14, -13]}]}]}],
+      "pairs": [{"parts": ["block", "claw"]}]})");
 }
 
 }  // namespace hipair::pin_slot_test
