@@ -128,6 +128,14 @@ std::string shown(double v, int power) {
   return text + "e" + std::to_string(exponent + shift);
 }
 
+// The run's energy line's value and unit: "0.2 N·mm", or, when a term of it is beyond the doubles
+// (kinetic and potential energies of a part thrown by a load of 1e308 overflow, their sum
+// printed "-nan" until session 63, hunt63), a sentence saying so.
+std::string energy_text(double energy, const std::string& force_unit) {
+  if (std::isfinite(energy)) return shown(energy, 2) + " " + force_unit + "·mm";
+  return "beyond the doubles' range (a term of it overflows)";
+}
+
 // The unit name `unit` in units of (10^E mm)^power: "N" or "1e400 N" (see shown()).
 std::string scaled_unit(const std::string& unit, int power) {
   const long shift = power * length_display_exponent();
@@ -952,7 +960,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
               << " mm, angle " << number(end[k].angle) << " rad; velocity (" << shown(end[k].vx, 1) << ", "
               << shown(end[k].vy, 1) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
               << (end[k].resting ? " (at rest)" : "") << "\n";
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
+  std::cout << "  energy " << energy_text(simulation.energy(), fu) << "\n";
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
@@ -1075,7 +1083,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   std::cout << "  " << name << ": slide " << shown(end.slide, 1) << " mm, angle " << number(end.angle)
             << " rad; rates " << shown(end.slide_rate, 1) << " mm/" << tu << ", " << number(end.angle_rate) << " rad/"
             << tu << "\n";
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
+  std::cout << "  energy " << energy_text(simulation.energy(), fu) << "\n";
   std::cout << "  collision tests: " << simulation.chord_tests() << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   print_events(simulation.events(), tu, fu);
@@ -1303,8 +1311,8 @@ int run(const SimulateOptions& options) {
   // kinetic + potential, the potential of a constant torque T (or force F) being -T theta
   // (-F x): the total is negative once a driving torque has given less kinetic energy than the
   // work it did (spur-gears.json: -132.6 N·mm at 0.3 s, kinetic 240.0, the torque's -372.6)
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu
-            << "·mm (kinetic + potential; a constant torque's potential is -T·angle)\n";
+  std::cout << "  energy " << energy_text(simulation.energy(), fu)
+            << " (kinetic + potential; a constant torque's potential is -T·angle)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
