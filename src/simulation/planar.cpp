@@ -119,14 +119,15 @@ std::string largest_motion_datum(const Model& model) {
   return out.str();
 }
 
-// A "not finite" stop of a step, with the largest velocity or load named
+// A "not finite" stop of a step, or one beyond the doubles' resolution, with the largest velocity or load named
 template <class Step>
 void naming_the_data(const Model& model, Step&& step) {
   try {
     step();
   } catch (const NumericError& e) {
     const std::string what = e.what();
-    if (what.find("not finite") == std::string::npos) throw;
+    if (what.find("not finite") == std::string::npos && what.find("beyond the doubles' resolution") == std::string::npos)
+      throw;
     throw NumericError(what + largest_motion_datum(model));
   }
 }
@@ -991,6 +992,18 @@ bool PlanarSimulation::Impl::advance(double span) {
     double tau = std::min(horizon, tau_cap);
     if (bend > 0) tau = std::min(tau, std::sqrt(8 * std::max(delta - slack, 0.5 * delta) / bend));
     tau *= shorten;
+    // A chord the doubles cannot take (session 63, hunt63): a part spun by an impact at a speed
+    // near the doubles' end (a ladder or a peg thrown at 1e308 mm/s) bends its path by more than
+    // the doubles hold (bend = inf, so tau = 0); the certified advances then shrank geometrically
+    // towards the contact and, once below the slack, stopped: the loop spun for ever, unbounded
+    // by the step budget (a step's advances and chords do not count against it).
+    if (!(tau > 0) || !(sa + tau > sa)) {
+      std::ostringstream out;
+      out << where(t + sa) << " moves beyond the doubles' resolution: at speed " << speed << " mm/s (angular "
+          << wmax << " rad/s) a chord of its path within the chord deviation " << delta << " mm would last " << tau
+          << " s, too short to advance the run's time " << (t + sa) / time_scale << " " << time_unit;
+      throw NumericError(out.str());
+    }
     if (safe >= tau) {
       ++stats.advancement_steps;
       sa = safe >= horizon ? (horizon == remaining ? span : sa + horizon) : sa + safe;
