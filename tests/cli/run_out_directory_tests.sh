@@ -34,19 +34,25 @@ cam=$m/cam-follower.json film=$m/film-advance.json peg=$m/peg-throw.json
 word() { printf '%s' "$(tr -dc 'a-z' </dev/urandom | head -c $((RANDOM % 6 + 4)))q$RANDOM"; }
 listing() { (cd "$work" && find . -path ./run -prune -o -print | LC_ALL=C sort | xargs -d '\n' md5sum 2>/dev/null; find . | LC_ALL=C sort); }
 
+refused() {   # WHAT TEXT REGEX ARGS...: the command ARGS refused before it ran, exit 3, one line holding
+              # TEXT (fixed) and matching REGEX, nothing on stdout, no file changed
+  local what=$1 text=$2 regex=$3
+  shift 3
+  local before
+  before=$(listing)
+  (cd "$work" && timeout 120 "$hipair" "$@" >"$work/run/bad.out" 2>"$work/run/bad.err")
+  status=$?
+  [ "$status" -eq 3 ] || fail "$what: exit $status, not 3: $(head -c 300 "$work/run/bad.err")"
+  [ -s "$work/run/bad.out" ] && fail "$what: ran before refusing (stdout: $(head -c 200 "$work/run/bad.out"))"
+  [ "$(wc -l <"$work/run/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/run/bad.err")"
+  grep -qF -- "$text" "$work/run/bad.err" || fail "$what: the message lacks '$text': $(head -c 300 "$work/run/bad.err")"
+  grep -qE -- "$regex" "$work/run/bad.err" || fail "$what: the message says not why: $(head -c 300 "$work/run/bad.err")"
+  [ "$(listing)" = "$before" ] || fail "$what: files changed"
+}
 refused_out() {   # WHAT OUT ARGS... (the command with --out OUT last)
   local what=$1 out=$2
   shift 2
-  local before
-  before=$(listing)
-  (cd "$work" && timeout 120 "$hipair" "$@" --out "$out" >"$work/run/bad.out" 2>"$work/run/bad.err")
-  status=$?
-  [ "$status" -eq 3 ] || fail "$what: exit $status, not 3: $(head -c 300 "$work/run/bad.err")"
-  [ -s "$work/run/bad.out" ] && fail "$what: ran before refusing --out (stdout: $(head -c 200 "$work/run/bad.out"))"
-  [ "$(wc -l <"$work/run/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/run/bad.err")"
-  grep -qF -- "--out '$out': " "$work/run/bad.err" || fail "$what: the message names no --out '$out': $(head -c 300 "$work/run/bad.err")"
-  grep -qF "is not a directory" "$work/run/bad.err" || fail "$what: the message says not why: $(head -c 300 "$work/run/bad.err")"
-  [ "$(listing)" = "$before" ] || fail "$what: files changed"
+  refused "$what" "--out '$out': " "is not a directory" "$@" --out "$out"
 }
 
 mkdir -p "$work/run" && touch "$work/run/bad.out" "$work/run/bad.err"
@@ -122,16 +128,7 @@ done
 refused_place() {   # WHAT EXPECTED-TEXT ARGS... (the command, its output path last)
   local what=$1 text=$2
   shift 2
-  local before
-  before=$(listing)
-  (cd "$work" && timeout 120 "$hipair" "$@" >"$work/run/bad.out" 2>"$work/run/bad.err")
-  status=$?
-  [ "$status" -eq 3 ] || fail "$what: exit $status, not 3: $(head -c 300 "$work/run/bad.err")"
-  [ -s "$work/run/bad.out" ] && fail "$what: ran before refusing (stdout: $(head -c 200 "$work/run/bad.out"))"
-  [ "$(wc -l <"$work/run/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/run/bad.err")"
-  grep -qF -- "$text" "$work/run/bad.err" || fail "$what: the message lacks '$text': $(head -c 300 "$work/run/bad.err")"
-  grep -qE "nothing was (run|built) or written\)$" "$work/run/bad.err" || fail "$what: not refused before the run: $(head -c 300 "$work/run/bad.err")"
-  [ "$(listing)" = "$before" ] || fail "$what: files changed"
+  refused "$what" "$text" "nothing was (run|built) or written\)$" "$@"
 }
 places=()
 if [ -d /proc/self ] && ! mkdir "/proc/hipair-probe-$RANDOM" 2>/dev/null; then places+=("/proc:/proc/$(word)"); fi
