@@ -60,6 +60,7 @@ struct SimulateOptions {
   std::vector<std::string> works_advance;   // --works-advance PART=STEP[:TOL] (repeatable)
   double works_max_decay = -1;              // --works-max-decay RATE; < 0: not given
   double fps = 25;                  // animation frames per second of playback
+  bool fps_given = false;           // --fps on the command line
   double animation_duration = 0;    // playback seconds; 0: the simulated time (real time), at least 1 s
 };
 
@@ -1229,6 +1230,20 @@ int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   check_times(options);
   io::refuse_unusable_output_directory(options.out, "--out");   // before any run (hours, for a long one)
+  // options that do not apply (session 63, hunt63; until then taken and ignored, against the
+  // rule of session 45): --jobs without a sweep, the animation's playback where no animation.svg
+  // is written (a sweep writes sweep.json only)
+  if (options.jobs > 0 && options.sweep.empty())
+    throw ModelError("", "--jobs sets the parallel runs of a --sweep: give --sweep, or leave --jobs out");
+  if (options.fps_given || options.animation_duration > 0) {
+    const char* why = !options.sweep.empty() ? "a --sweep writes no animation (sweep.json only)"
+                      : options.out.empty()  ? "without --out no animation.svg is written"
+                      : options.no_pictures  ? "--no-pictures writes no animation.svg"
+                                             : nullptr;
+    if (why)
+      throw ModelError("", std::string(options.fps_given ? "--fps" : "--animation-duration") +
+                               " sets animation.svg's playback, but " + why);
+  }
   if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
@@ -1428,8 +1443,8 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"auto", "full", "operating"}));
   command->add_flag("--quiet", options->quiet, "No progress on the terminal");
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
-  command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
-      ->check(real_range(1.0, 240.0));
+  CLI::Option* fps = command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
+                         ->check(real_range(1.0, 240.0));
   command->add_option("--animation-duration", options->animation_duration,
                       "Playback time of animation.svg in seconds (default: the simulated time, at least 1 s)")
       ->check(real_range(0.01, 3600.0));
@@ -1453,7 +1468,10 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 256));
   add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
-  command->callback([options, &action] { action = [options] { return run(*options); }; });
+  command->callback([options, fps, &action] {
+    options->fps_given = fps->count() > 0;
+    action = [options] { return run(*options); };
+  });
 }
 
 }  // namespace hipair::cli
