@@ -60,6 +60,7 @@ struct SimulateOptions {
   std::vector<std::string> works_advance;   // --works-advance PART=STEP[:TOL] (repeatable)
   double works_max_decay = -1;              // --works-max-decay RATE; < 0: not given
   double fps = 25;                  // animation frames per second of playback
+  bool fps_given = false;           // --fps on the command line
   double animation_duration = 0;    // playback seconds; 0: the simulated time (real time), at least 1 s
 };
 
@@ -126,6 +127,14 @@ std::string shown(double v, int power) {
     text.erase(e);
   }
   return text + "e" + std::to_string(exponent + shift);
+}
+
+// The run's energy line's value and unit: "0.2 N·mm", or, when a term of it is beyond the doubles
+// (kinetic and potential energies of a part thrown by a load of 1e308 overflow, their sum
+// printed "-nan" until session 63, hunt63), a sentence saying so.
+std::string energy_text(double energy, const std::string& force_unit) {
+  if (std::isfinite(energy)) return shown(energy, 2) + " " + force_unit + "·mm";
+  return "beyond the doubles' range (a term of it overflows)";
 }
 
 // The unit name `unit` in units of (10^E mm)^power: "N" or "1e400 N" (see shown()).
@@ -952,7 +961,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
               << " mm, angle " << number(end[k].angle) << " rad; velocity (" << shown(end[k].vx, 1) << ", "
               << shown(end[k].vy, 1) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
               << (end[k].resting ? " (at rest)" : "") << "\n";
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
+  std::cout << "  energy " << energy_text(simulation.energy(), fu) << "\n";
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
@@ -1075,7 +1084,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   std::cout << "  " << name << ": slide " << shown(end.slide, 1) << " mm, angle " << number(end.angle)
             << " rad; rates " << shown(end.slide_rate, 1) << " mm/" << tu << ", " << number(end.angle_rate) << " rad/"
             << tu << "\n";
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu << "·mm\n";
+  std::cout << "  energy " << energy_text(simulation.energy(), fu) << "\n";
   std::cout << "  collision tests: " << simulation.chord_tests() << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   print_events(simulation.events(), tu, fu);
@@ -1221,6 +1230,20 @@ int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   check_times(options);
   io::refuse_unusable_output_directory(options.out, "--out");   // before any run (hours, for a long one)
+  // options that do not apply (session 63, hunt63; until then taken and ignored, against the
+  // rule of session 45): --jobs without a sweep, the animation's playback where no animation.svg
+  // is written (a sweep writes sweep.json only)
+  if (options.jobs > 0 && options.sweep.empty())
+    throw ModelError("", "--jobs sets the parallel runs of a --sweep: give --sweep, or leave --jobs out");
+  if (options.fps_given || options.animation_duration > 0) {
+    const char* why = !options.sweep.empty() ? "a --sweep writes no animation (sweep.json only)"
+                      : options.out.empty()  ? "without --out no animation.svg is written"
+                      : options.no_pictures  ? "--no-pictures writes no animation.svg"
+                                             : nullptr;
+    if (why)
+      throw ModelError("", std::string(options.fps_given ? "--fps" : "--animation-duration") +
+                               " sets animation.svg's playback, but " + why);
+  }
   if (!options.sweep.empty()) return run_sweep(options);
   if (!options.works_period.empty() || !options.works_advance.empty() || options.works_max_decay >= 0)
     throw ModelError("", "--works-period, --works-advance and --works-max-decay judge a --sweep's runs: give --sweep");
@@ -1303,8 +1326,8 @@ int run(const SimulateOptions& options) {
   // kinetic + potential, the potential of a constant torque T (or force F) being -T theta
   // (-F x): the total is negative once a driving torque has given less kinetic energy than the
   // work it did (spur-gears.json: -132.6 N·mm at 0.3 s, kinetic 240.0, the torque's -372.6)
-  std::cout << "  energy " << shown(simulation.energy(), 2) << " " << fu
-            << "·mm (kinetic + potential; a constant torque's potential is -T·angle)\n";
+  std::cout << "  energy " << energy_text(simulation.energy(), fu)
+            << " (kinetic + potential; a constant torque's potential is -T·angle)\n";
   print_events(simulation.events(), tu, fu);
   if (options.out.empty()) return 0;
 
@@ -1420,8 +1443,8 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"auto", "full", "operating"}));
   command->add_flag("--quiet", options->quiet, "No progress on the terminal");
   command->add_flag("--no-pictures", options->no_pictures, "Write the CSV and the event log only");
-  command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
-      ->check(real_range(1.0, 240.0));
+  CLI::Option* fps = command->add_option("--fps", options->fps, "Frames per second of animation.svg's playback (default 25)")
+                         ->check(real_range(1.0, 240.0));
   command->add_option("--animation-duration", options->animation_duration,
                       "Playback time of animation.svg in seconds (default: the simulated time, at least 1 s)")
       ->check(real_range(0.01, 3600.0));
@@ -1445,7 +1468,10 @@ void register_simulate(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 256));
   add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
-  command->callback([options, &action] { action = [options] { return run(*options); }; });
+  command->callback([options, fps, &action] {
+    options->fps_given = fps->count() > 0;
+    action = [options] { return run(*options); };
+  });
 }
 
 }  // namespace hipair::cli

@@ -2,7 +2,14 @@
 
 #include <hipair/error.hpp>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <optional>
+#include <random>
 
 namespace hipair::io {
 namespace {
@@ -69,26 +76,94 @@ std::optional<std::filesystem::path> existing_non_directory(const std::filesyste
   }
 }
 
+// The nearest existing ancestor-or-self of `path` (absolute, lexically normal).
+std::filesystem::path nearest_existing(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path at = path;
+  while (!fs::exists(fs::status(at, ec)) && at != at.parent_path()) at = at.parent_path();
+  return at;
+}
+
+// Why nothing can be created in the existing directory `directory` (none when something can): a
+// uniquely named probe entry, a directory when `as_directory` (publish_directory's staging
+// directory) or else a file (write_file_atomically's temporary file), is created there and removed
+// at once, so the answer is the file system's own (permissions, a read-only mount, /proc and /sys,
+// which take no new entries, even from root; access(2) says yes to root there).
+std::optional<std::string> cannot_create_in(const std::filesystem::path& directory, bool as_directory) {
+  std::random_device seed;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const std::filesystem::path probe = directory / (".hipair-probe-" + std::to_string(seed()));
+    int fd = -1;
+    const int made = as_directory ? ::mkdir(probe.c_str(), 0700)
+                                  : (fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600));
+    if (made < 0) {
+      if (errno == EEXIST) continue;
+      return std::string(std::strerror(errno));
+    }
+    if (as_directory) {
+      ::rmdir(probe.c_str());
+    } else {
+      ::close(fd);
+      ::unlink(probe.c_str());
+    }
+    return std::nullopt;
+  }
+  return std::nullopt;   // names taken eight times: left to the writer
+}
+
 }  // namespace
 
 void refuse_unusable_output_directory(const std::filesystem::path& directory, const std::string& option) {
+  namespace fs = std::filesystem;
   if (directory.empty()) return;
-  std::optional<std::filesystem::path> file = existing_non_directory(directory);
-  if (!file) return;
   std::error_code ec;
-  if (std::filesystem::exists(directory, ec))   // DIR itself is that file
-    throw IoError(option + " " + quoted(directory) + ": it exists and is not a directory (nothing was run or written)");
-  throw IoError(option + " " + quoted(directory) + ": " + quoted(*file) +
-                " exists and is not a directory, so the output directory cannot be made (nothing was run or written)");
+  if (std::optional<fs::path> file = existing_non_directory(directory)) {
+    if (fs::exists(directory, ec))   // DIR itself is that file
+      throw IoError(option + " " + quoted(directory) + ": it exists and is not a directory (nothing was run or written)");
+    throw IoError(option + " " + quoted(directory) + ": " + quoted(*file) +
+                  " exists and is not a directory, so the output directory cannot be made (nothing was run or written)");
+  }
+  // Where io::publish_directory will create entries: its staging directory beside DIR (in the
+  // nearest existing directory on DIR's way, the rest of the way made first), and, DIR existing,
+  // the run's files moved into DIR. Until session 63 (hunt63) a place that takes no new entry
+  // (a directory without write permission, a read-only mount, /proc, /sys) was found only there,
+  // after the whole run: its results printed, then `cannot create '.../.DIR.tmp-N'`, exit 3.
+  fs::path target = fs::absolute(directory, ec).lexically_normal();
+  if (ec) return;   // left to the writer's own message
+  if (target.filename().empty()) target = target.parent_path();
+  std::vector<fs::path> places{nearest_existing(target.parent_path())};
+  if (fs::is_directory(target, ec)) places.push_back(target);
+  for (const fs::path& place : places)
+    if (std::optional<std::string> why = cannot_create_in(place, true))
+      throw IoError(option + " " + quoted(directory) + ": nothing can be created in " + quoted(place) + ": " + *why +
+                    " (nothing was run or written)");
 }
 
 void refuse_unusable_output_files(const std::vector<PlannedOutput>& outputs) {
+  namespace fs = std::filesystem;
   for (const PlannedOutput& output : outputs) {
     if (output.path.empty()) continue;
-    std::filesystem::path parent = std::filesystem::absolute(output.path).lexically_normal().parent_path();
-    if (std::optional<std::filesystem::path> file = existing_non_directory(parent))
+    std::error_code ec;
+    fs::path parent = fs::absolute(output.path, ec).lexically_normal().parent_path();
+    if (ec) continue;   // left to the writer's own message
+    if (std::optional<fs::path> file = existing_non_directory(parent))
       throw IoError(output.option + " " + quoted(output.path) + ": " + quoted(*file) +
                     " exists and is not a directory, so the file cannot be written there (nothing was built or written)");
+    // What io::write_file_atomically will meet once the build or search is done (session 63,
+    // hunt63; until then each was found only after it, exit 3): a directory that does not exist
+    // (the writer makes none), or one that takes no new file (its temporary file is created
+    // there). A symbolic link (written through, also /dev/stdout and /proc/self/fd/N) or a
+    // device, FIFO or socket (written to) is left to it, and so is a path that is a directory
+    // (`cspace` of several pairs writes PATH-A-B beside it).
+    const fs::file_status own = fs::symlink_status(output.path, ec);
+    if (fs::is_symlink(own) || (fs::exists(own) && !fs::is_regular_file(own))) continue;
+    if (!fs::is_directory(parent, ec))
+      throw IoError(output.option + " " + quoted(output.path) + ": directory " + quoted(parent) +
+                    " does not exist (nothing was built or written)");
+    if (std::optional<std::string> why = cannot_create_in(parent, false))
+      throw IoError(output.option + " " + quoted(output.path) + ": nothing can be created in " + quoted(parent) + ": " +
+                    *why + " (nothing was built or written)");
   }
 }
 

@@ -30,15 +30,21 @@ void refuse_overwriting_input(const std::filesystem::path& output, const std::st
 
 /// Throws IoError, before a command computes anything, when `directory` (an `--out DIR`) cannot
 /// receive the run's files: it, or a directory it would lie in, exists and is not a directory (a
-/// regular file, the model file itself, a device). The message names `option` and the path.
-/// Until session 52 such a DIR was refused only when the run's files were published, after the
-/// whole analysis or simulation (hours for a long simulate, the results printed, then exit 3).
+/// regular file, the model file itself, a device), or the place where the publication creates
+/// entries (the nearest existing directory on DIR's way, and DIR itself when it exists) takes no
+/// new entry (no write permission, a read-only mount, /proc, /sys: probed by creating and removing
+/// an entry there). The message names `option` and the path.
+/// Until session 52 (a file in the way) and session 63 (a place taking no entry) such a DIR was
+/// refused only when the run's files were published, after the whole analysis or simulation
+/// (hours for a long simulate, the results printed, then exit 3).
 void refuse_unusable_output_directory(const std::filesystem::path& directory, const std::string& option);
 
 /// Throws IoError, before a command computes anything, when an output file's directory cannot
 /// hold it: the directory, or one it would lie in, exists and is not a directory (`--json
-/// f.txt/x.json`). Until session 52 `cspace` of a 3-DOF or pin-slot pair and `certify` built
-/// everything first.
+/// f.txt/x.json`), the directory does not exist, or it takes no new file (probed by creating and
+/// removing one: the writer's temporary file is made there). Until session 52 (a file in the
+/// way) and session 63 (a missing directory, one taking no file) `cspace` of a 3-DOF or pin-slot
+/// pair and `certify` built everything first.
 void refuse_unusable_output_files(const std::vector<PlannedOutput>& outputs);
 
 }  // namespace hipair::io

@@ -119,14 +119,15 @@ std::string largest_motion_datum(const Model& model) {
   return out.str();
 }
 
-// A "not finite" stop of a step, with the largest velocity or load named
+// A "not finite" stop of a step, or one beyond the doubles' resolution, with the largest velocity or load named
 template <class Step>
 void naming_the_data(const Model& model, Step&& step) {
   try {
     step();
   } catch (const NumericError& e) {
     const std::string what = e.what();
-    if (what.find("not finite") == std::string::npos) throw;
+    if (what.find("not finite") == std::string::npos && what.find("beyond the doubles' resolution") == std::string::npos)
+      throw;
     throw NumericError(what + largest_motion_datum(model));
   }
 }
@@ -991,6 +992,20 @@ bool PlanarSimulation::Impl::advance(double span) {
     double tau = std::min(horizon, tau_cap);
     if (bend > 0) tau = std::min(tau, std::sqrt(8 * std::max(delta - slack, 0.5 * delta) / bend));
     tau *= shorten;
+    // A chord the doubles cannot take (session 63, hunt63): a part spun by an impact at a speed
+    // near the doubles' end (a ladder or a peg thrown at 1e308 mm/s) bends its path by more than
+    // the doubles hold (bend = inf, so tau = 0); the certified advances then shrank geometrically
+    // towards the contact and, once below the slack, stopped: the loop spun for ever, unbounded
+    // by the step budget (a step's advances and chords do not count against it). Stopped when the
+    // move it would take (the advance, else the chord) no longer advances the step's time.
+    if (!(sa + (safe >= tau ? safe : tau) > sa)) {
+      std::ostringstream out;
+      out << where(t + sa) << " moves beyond the doubles' resolution: at speed " << speed << " mm/s (angular "
+          << wmax << " rad/s) its certified free advance (" << safe << " s) and a chord of its path within the chord "
+          << "deviation " << delta << " mm (" << tau << " s) are too short to advance the run's time "
+          << (t + sa) / time_scale << " " << time_unit;
+      throw NumericError(out.str());
+    }
     if (safe >= tau) {
       ++stats.advancement_steps;
       sa = safe >= horizon ? (horizon == remaining ? span : sa + horizon) : sa + safe;
@@ -2862,6 +2877,11 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       for (std::size_t i = 0; i < bodies.size(); ++i)
         rate = std::max(rate, std::hypot((*ks)[i].vx, (*ks)[i].vy) + std::abs((*ks)[i].omega) * bodies[i].reach);
     rate = 2 * std::max(rate, std::numeric_limits<double>::min());
+    // a point speed beyond half the doubles' range (a driver at 1.8e308 mm/s): the back-off steps
+    // delta / rate are 0 and no free state was found, "(an internal error)" until session 63
+    if (!std::isfinite(rate))
+      throw NumericError(where(t) + ": the parts' point speeds before the contact are not finite in doubles "
+                                    "(twice the fastest exceeds 1.8e308 mm/s)");
     bool free_everywhere = false;
     for (int back = 0; back < 80 && !free_everywhere; ++back) {
       double s = back == 0 ? s_contact : s_contact - std::ldexp(delta / rate, back - 1);

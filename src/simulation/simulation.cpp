@@ -2376,6 +2376,19 @@ struct Simulation::Impl {
       if (at_time != events.rbegin()) {
         const SimulationEvent& e = *std::prev(at_time);
         out << " after the " << to_string(e.kind) << " of pair (" << e.first_part << ", " << e.second_part << ")";
+        // the pair's pointer and its coefficients (session 63, hunt63: an impact with friction
+        // 1.8e308 left the velocities NaN, and the message named no place of the data)
+        for (const PairSpec& pair : model.pairs) {
+          const std::string& a = model.parts[pair.first].name;
+          const std::string& b = model.parts[pair.second].name;
+          if (!((a == e.first_part && b == e.second_part) || (a == e.second_part && b == e.first_part))) continue;
+          out << " (" << pair.pointer;
+          if (pair.friction) out << ", friction " << to_d(*pair.friction);
+          if (pair.kinetic_friction) out << ", kinetic " << to_d(*pair.kinetic_friction);
+          if (pair.restitution) out << ", restitution " << to_d(*pair.restitution);
+          out << ")";
+          break;
+        }
         if (!e.features.empty()) out << " [" << e.features.front() << "]";
         if (e.kind == SimulationEvent::Kind::impact)
           out << " at normal speed " << e.normal_speed_before << " mm/" << time_unit << " (impulse " << e.impulse << ")";

@@ -152,7 +152,12 @@ std::vector<NearPair> near_features(const Model& model, std::size_t fixed, std::
         Point d = minus(seg.second, seg.first), w = minus(arc.center, seg.first);
         Rational k = cross(d, w), length2 = dot(d, d);
         Bounds h = root_bounds(k * k / length2), r = root_bounds(arc.r2);
-        Rational lo = std::max(Rational(0), Rational(h.lo - r.hi));
+        // every point of the segment lies at least the centre's distance from the segment (not
+        // its line: session 63, hunt63) from the centre, so at least that minus r from the circle;
+        // the line's distance let a disc flying along a long floor's line far beyond its end
+        // advance by the floor's height per step (gravity 1.8e308 along the floor: > 10 min)
+        Bounds centre = root_bounds(kernels::point_segment_squared_distance(arc.center, seg.first, seg.second));
+        Rational lo = std::max(Rational(0), Rational(centre.lo - r.hi));
         Rational hi = std::min(root_bounds(kernels::point_segment_squared_distance(arc.source, seg.first, seg.second)).hi,
                                std::min(point_arc(seg.first, arc, delta).distance.hi, point_arc(seg.second, arc, delta).distance.hi));
         if (arc.full) hi = std::min(point_arc(seg.first, arc, delta).distance.hi, point_arc(seg.second, arc, delta).distance.hi);

@@ -3,8 +3,8 @@
 // from a feature pair's contact curve equals the world distance of the two features (the least
 // translation that brings them into contact). Vertex–segment and vertex–arc distances are
 // compared with the query distance exactly (squared, and signs of a + b sqrt(c)); pairs of two
-// curves (segment–arc, arc–arc) get a certified lower bound (the distance of their supporting
-// line and circles) and an upper bound (distances of actual points), and are reported whenever
+// curves (segment–arc, arc–arc) get a certified lower bound (the distance of the arc's circle
+// from the segment, of the two circles) and an upper bound (distances of actual points), and are reported whenever
 // the lower bound does not exclude them. CGAL-free.
 #pragma once
 

@@ -29,6 +29,7 @@ source "$(dirname "$0")/seeded_test.sh" "$@"
 source "$(dirname "$0")/expect_refused.sh"
 m=$source/examples/models
 geneva=$m/geneva.json lever=$m/lever-stop.json ratchet=$m/ratchet.json pih=$m/peg-in-hole.json film=$m/film-advance.json
+bar=$m/bouncing-bar.json
 
 refused() {   # WHAT PATTERN ARGS... (PATTERN a fixed string)
   local what=$1 pattern=$2
@@ -115,6 +116,21 @@ for round in $(seq 1 4); do
     certify "$lever" --claim jam --trap 0:0.1 $s --out "$work/c.json"
   refused "certify --allow-out-of-tolerance" "--allow-out-of-tolerance: a certificate is proved for parameter values within their tolerance ranges only" \
     certify "$lever" --claim "$( ((RANDOM % 2)) && echo clearance || echo jam)" --allow-out-of-tolerance --set stop-gap=3 --out "$work/c.json"
+  # simulate (session 63, hunt63; until then taken and ignored): --jobs without --sweep, and the
+  # animation's playback where no animation.svg is written
+  refused "simulate --jobs without --sweep" "--jobs sets the parallel runs of a --sweep" \
+    simulate "$bar" --t-end 0.01 --jobs $((RANDOM % 4 + 1)) --out "$work/out"
+  play=("--fps $((RANDOM % 200 + 1))" "--animation-duration $((RANDOM % 100 + 1))")
+  p=${play[$((RANDOM % 2))]}
+  # shellcheck disable=SC2086
+  refused "simulate $p --no-pictures" "${p%% *} sets animation.svg's playback, but --no-pictures writes no animation.svg" \
+    simulate "$bar" --t-end 0.01 $p --no-pictures --out "$work/out"
+  # shellcheck disable=SC2086
+  refused "simulate $p without --out" "${p%% *} sets animation.svg's playback, but without --out no animation.svg is written" \
+    simulate "$bar" --t-end 0.01 $p
+  # shellcheck disable=SC2086
+  refused "simulate $p --sweep" "${p%% *} sets animation.svg's playback, but a --sweep writes no animation" \
+    simulate "$bar" --t-end 0.01 $p --sweep speed=2:2:1 --out "$work/out"
 done
 
 # controls: where the options apply they are taken
@@ -130,6 +146,8 @@ ok "cspace lever-stop --region operating --tiles 2 --spurious --svg" cspace "$le
 ok "certify --claim jam --trap --direction" certify "$lever" --claim jam --trap 0:0.1 --direction +1 --out "$work/ok.json"
 ok "certify --claim free --to --distance" certify "$lever" --claim free --to 0.01 --distance 1 --out "$work/ok-free.json"
 ok "simulate --sweep a parameter of the model" simulate "$geneva" --t-end 0.01 --no-pictures --sweep pin-radius=4.5:4.5:1
+ok "simulate --fps --animation-duration --out" simulate "$bar" --t-end 0.01 --fps 10 --animation-duration 1 --out "$work/ok-sim"
+ok "simulate --sweep --jobs" simulate "$bar" --t-end 0.01 --sweep speed=2:2:1 --jobs 1
 
 if [ $failures -gt 0 ]; then
   echo "$failures failure(s) (seed $seed)"

@@ -34,19 +34,25 @@ cam=$m/cam-follower.json film=$m/film-advance.json peg=$m/peg-throw.json
 word() { printf '%s' "$(tr -dc 'a-z' </dev/urandom | head -c $((RANDOM % 6 + 4)))q$RANDOM"; }
 listing() { (cd "$work" && find . -path ./run -prune -o -print | LC_ALL=C sort | xargs -d '\n' md5sum 2>/dev/null; find . | LC_ALL=C sort); }
 
+refused() {   # WHAT TEXT REGEX ARGS...: the command ARGS refused before it ran, exit 3, one line holding
+              # TEXT (fixed) and matching REGEX, nothing on stdout, no file changed
+  local what=$1 text=$2 regex=$3
+  shift 3
+  local before
+  before=$(listing)
+  (cd "$work" && timeout 120 "$hipair" "$@" >"$work/run/bad.out" 2>"$work/run/bad.err")
+  status=$?
+  [ "$status" -eq 3 ] || fail "$what: exit $status, not 3: $(head -c 300 "$work/run/bad.err")"
+  [ -s "$work/run/bad.out" ] && fail "$what: ran before refusing (stdout: $(head -c 200 "$work/run/bad.out"))"
+  [ "$(wc -l <"$work/run/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/run/bad.err")"
+  grep -qF -- "$text" "$work/run/bad.err" || fail "$what: the message lacks '$text': $(head -c 300 "$work/run/bad.err")"
+  grep -qE -- "$regex" "$work/run/bad.err" || fail "$what: the message says not why: $(head -c 300 "$work/run/bad.err")"
+  [ "$(listing)" = "$before" ] || fail "$what: files changed"
+}
 refused_out() {   # WHAT OUT ARGS... (the command with --out OUT last)
   local what=$1 out=$2
   shift 2
-  local before
-  before=$(listing)
-  (cd "$work" && timeout 120 "$hipair" "$@" --out "$out" >"$work/run/bad.out" 2>"$work/run/bad.err")
-  status=$?
-  [ "$status" -eq 3 ] || fail "$what: exit $status, not 3: $(head -c 300 "$work/run/bad.err")"
-  [ -s "$work/run/bad.out" ] && fail "$what: ran before refusing --out (stdout: $(head -c 200 "$work/run/bad.out"))"
-  [ "$(wc -l <"$work/run/bad.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/run/bad.err")"
-  grep -qF -- "--out '$out': " "$work/run/bad.err" || fail "$what: the message names no --out '$out': $(head -c 300 "$work/run/bad.err")"
-  grep -qF "is not a directory" "$work/run/bad.err" || fail "$what: the message says not why: $(head -c 300 "$work/run/bad.err")"
-  [ "$(listing)" = "$before" ] || fail "$what: files changed"
+  refused "$what" "--out '$out': " "is not a directory" "$@" --out "$out"
 }
 
 mkdir -p "$work/run" && touch "$work/run/bad.out" "$work/run/bad.err"
@@ -111,6 +117,49 @@ for round in $(seq 1 3); do
     fail "sweep into a new DIR: exit $?: $(tail -c 300 "$work/run/ok.out")"
   rm -rf "$d"
 done
+
+# Places that take no new entry (session 63, hunt63): a directory under /proc (which takes none,
+# even from root), a directory without write permission (when not root), and for one-file outputs
+# a directory that does not exist (their writer makes none). Each refused before the computation
+# naming the option and the place, exit 3, nothing on stdout, nothing created; until session 63
+# the whole analysis, simulation, C-space build or search ran first (`cspace gear-train.json
+# --json /proc/x.json`: 7.6 s, then `cannot write '/proc/x.json'`; `simulate --out /sys/x` printed
+# its results, then `cannot create '/sys/.x.tmp-N'`).
+refused_place() {   # WHAT EXPECTED-TEXT ARGS... (the command, its output path last)
+  local what=$1 text=$2
+  shift 2
+  refused "$what" "$text" "nothing was (run|built) or written\)$" "$@"
+}
+places=()
+if [ -d /proc/self ] && ! mkdir "/proc/hipair-probe-$RANDOM" 2>/dev/null; then places+=("/proc:/proc/$(word)"); fi
+if [ "$(id -u)" != 0 ]; then
+  mkdir -p "$work/locked" && chmod 0555 "$work/locked" && places+=("$work/locked:$work/locked/$(word)")
+fi
+for place in "${places[@]}"; do
+  at=${place%%:*} path=${place#*:}
+  for c in "analyze $cam --quiet" "tolerance $cam --positions 16 --quiet" \
+           "simulate $escapement --t-end 0.02 --allow-out-of-tolerance --no-pictures" \
+           "simulate $escapement --t-end 0.02 --allow-out-of-tolerance --sweep drive-torque=-200:-300:2" \
+           "simulate $peg --t-end 0.02 --no-pictures"; do
+    # shellcheck disable=SC2206
+    command=($c)
+    for out in "$path" "$path/$(word)"; do
+      refused_place "$c --out $out" "--out '$out': nothing can be created in '$at': " "${command[@]}" --out "$out"
+    done
+  done
+done
+for c in "cspace $m/gear-train.json --json" "cspace $m/peg-in-hole.json --svg" "certify $m/lever-stop.json --claim jam --out" \
+         "show $m/lever-stop.json --svg"; do
+  # shellcheck disable=SC2206
+  command=($c)
+  missing="$work/$(word)/$(word).$( ((RANDOM % 2)) && echo json || echo svg)"
+  refused_place "$c MISSING-DIR/x" "${command[-1]} '$missing': directory '${missing%/*}' does not exist" "${command[@]}" "$missing"
+  for place in "${places[@]}"; do
+    at=${place%%:*} path=${place#*:}.json
+    refused_place "$c $path" "${command[-1]} '$path': nothing can be created in '$at': " "${command[@]}" "$path"
+  done
+done
+[ -d "$work/locked" ] && chmod 0755 "$work/locked" && rmdir "$work/locked"
 
 # an empty output path
 for c in "simulate $escapement --t-end 0.002 --allow-out-of-tolerance --out" "analyze $cam --quiet --out" \

@@ -10,6 +10,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 
 #include <gtest/gtest.h>
 
@@ -328,6 +329,44 @@ TEST(SlicedQueries, FeaturesNearAtAContactConfiguration) {
   auto wider = space.features_near(SlicedConfiguration{1, 0, SlicedAngle{0, false}}, 2);
   EXPECT_GT(wider.size(), near.size());   // the top and bottom sides at 1 mm
   EXPECT_THROW(space.features_near(SlicedConfiguration{1, 0, SlicedAngle{0, false}}, -1), GeometryError);
+}
+
+// A disc above and far beyond the end of a floor (session 63, hunt63): the nearest pair's lower
+// bound is the disc's true distance from the floor, |c - nearest point of the floor| - r (to the
+// bounds' 2^-40), never above it. Until then a segment-arc pair was bounded by the distance of
+// the circle from the segment's LINE: a disc 10^6 mm beyond the floor's end and 100 mm above
+// its line got 90 mm, and the planar simulator's conservative advancement crept along the line
+// by the floor's height per query (disc-incline.json with gravity 1.8e308 along the floor: no
+// end in 10 minutes).
+TEST(SlicedQueries, FeaturesNearBoundADiscBeyondAFloorsEndByItsTrueDistance) {
+  Random random(test::test_seed(63));
+  const Rational r(10);
+  const Model model = pair_model(rectangle(0, -20, 400, 0), circle(0, 0, r));
+  SlicedBuildOptions options;
+  options.cell_structure = false;
+  SlicedSpace space = SlicedSpace::build(model, "fixed", "free", options);
+  int beyond = 0;
+  for (int i = 0; i < 200; ++i) {
+    // the disc's centre above the floor (x in [0, 400]) or beyond its end (x up to 10^6)
+    const bool past_end = i % 4 != 0;
+    const Rational x = past_end ? random_rational(random, Rational(401), Rational(1000000), 1009)
+                                : random_rational(random, Rational(0), Rational(400));
+    const Rational y = random_rational(random, Rational(21, 2), Rational(300));
+    const Rational dx = past_end ? Rational(x - 400) : Rational(0);
+    const double truth = std::sqrt(to_double(Rational(dx * dx + y * y))) - to_double(r);
+    const SlicedConfiguration q{x, y, SlicedAngle{0, false}};
+    auto near = space.features_near(q, Rational(2 * static_cast<long>(truth) + 2));
+    ASSERT_FALSE(near.empty()) << "x " << to_double(x) << ", y " << to_double(y);
+    const Rational& lower = near.front().distance_lower;
+    // certified: (lower + r)^2 <= |c - p|^2 exactly
+    EXPECT_LE(Rational((lower + r) * (lower + r)), Rational(dx * dx + y * y))
+        << "x " << to_double(x) << ", y " << to_double(y) << ": lower bound " << to_double(lower) << " above the distance";
+    EXPECT_GE(to_double(lower), truth * (1 - 1e-9) - 1e-9)
+        << "x " << to_double(x) << ", y " << to_double(y) << ": lower bound " << to_double(lower) << ", distance " << truth
+        << " (" << near.front().pair.label << ")";
+    beyond += past_end;
+  }
+  EXPECT_GT(beyond, 100);
 }
 
 // A path's motions are each free: dense exact sampling of every motion.
