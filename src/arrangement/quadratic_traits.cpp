@@ -154,8 +154,7 @@ Polynomial resultant_y(const std::vector<Polynomial>& f, const std::vector<Polyn
   return sub(mul(af_cd, af_cd), mul(sub(mul(a, e), mul(b, d)), sub(mul(b, ff), mul(c, e))));
 }
 
-/// A hash of a column list (every coefficient's size and lowest limb).
-// (h mixed with an integer's size and lowest limb)
+/// h mixed with an integer's size and lowest limb.
 std::size_t mix_integer(std::size_t h, const mpz_class& c) {
   const mpz_srcptr z = c.get_mpz_t();
   h = (h ^ static_cast<std::size_t>(z->_mp_size)) * 0x100000001b3ULL;
@@ -163,6 +162,7 @@ std::size_t mix_integer(std::size_t h, const mpz_class& c) {
   return h;
 }
 
+/// A hash of a column list (every coefficient's size and lowest limb).
 std::size_t column_hash(const std::vector<Polynomial>& cols) {
   std::size_t h = cols.size();
   for (const Polynomial& column : cols) {
@@ -309,16 +309,7 @@ bool certainly_no_root(const Polynomial& p, const Rational& lo, const Rational& 
 /// square-freeness test) behind certainly_no_root.
 std::vector<Real> roots_in(const Polynomial& p, const Rational& lo, const Rational& hi) {
   if (certainly_no_root(p, lo, hi)) return {};
-  // Remembered per thread (session 63): the tiles of one column of an operating region share
-  // their x-range, and the curves crossing from one tile to the next ask again for the roots of
-  // the same resultants, discriminants and atoms over it (18 x 27 gears: 17 202 isolations,
-  // 7 842 distinct). The roots are a pure function of (p, lo, hi), compared exactly.
-  thread_local ExactMemo<std::tuple<Polynomial, Rational, Rational>, std::vector<Real>, 2048> memo;
-  std::size_t h = p.size();
-  for (const mpz_class& c : p) h = mix_integer(h, c);
-  for (const Rational* r : {&lo, &hi}) h = mix_integer(mix_integer(h, r->get_num()), r->get_den());
-  return memo.get(h, std::tuple<Polynomial, Rational, Rational>{p, lo, hi},
-                  [&] { return algebra::descartes_real_roots(p, lo, hi); });
+  return algebra::descartes_real_roots(p, lo, hi);
 }
 
 // ------------------------------------------------------------------ multiple-precision intervals

@@ -1646,7 +1646,8 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // box, so the blocks skipped hold none. (Before, every edge of the first part was posed:
   // 465 K instructions a call on the 18 x 27 gears, 10 % of their operating region.)
   thread_local std::vector<Box> blocks;
-  bool lazy = !first.blocks.empty() && relative.tame();
+  // (set_lazy_placement(false): every edge posed, as before; tests compare the two)
+  bool lazy = lazy_placement_enabled && !first.blocks.empty() && relative.tame();
   if (lazy) {
     blocks.resize(first.blocks.size());
     for (std::size_t k = 0; k < first.blocks.size() && lazy; ++k)
