@@ -117,9 +117,6 @@ TEST(OracleLazyPlacement, LazyClassifyIsTheEagerOracleOnGeneratedGearPairs) {
               static_cast<unsigned long long>(edges));
 }
 
-}  // namespace
-}  // namespace hipair
-
 // Session 63 (perf63): PairOverlap::certainly_overlapping (the certified filter in front of the
 // algebraic oracle) poses the first part a block at a time too — an edge's interval geometry
 // made only in blocks whose posed disk meets the second part's box — where it posed every edge.
@@ -175,3 +172,6 @@ TEST(OracleLazyPlacement, LazyFilterIsTheEagerFilterOnGeneratedGearPairs) {
   EXPECT_LT(decided, asked);
   std::printf("[lazy filter] %zu boxes, %zu decided overlapping\n", asked, decided);
 }
+
+}  // namespace
+}  // namespace hipair
