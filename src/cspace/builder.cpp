@@ -1374,8 +1374,10 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
     // the ordinate's expression (vertex_ordinate) is needed. Not where the point is rational
     // (the exact oracle at it costs less) or one contact decides it (below, no oracle call).
     auto filtered = [&] {
-      return certainly_overlapping && certainly_overlapping(x ? Real::from_rational(*x) : vertex.x, vertex.y_exact ? vertex.y.lower : vertex.y_lower,
-                                                            vertex.y_exact ? vertex.y.upper : vertex.y_upper);
+      if (!certainly_overlapping) return false;
+      const Rational& y_lower = vertex.y_exact ? vertex.y.lower : vertex.y_lower;
+      const Rational& y_upper = vertex.y_exact ? vertex.y.upper : vertex.y_upper;
+      return certainly_overlapping(x ? Real::from_rational(*x) : vertex.x, y_lower, y_upper);
     };
     if (vertex.y_exact && x && !y) {
       if (filtered()) continue;
