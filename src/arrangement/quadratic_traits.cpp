@@ -154,19 +154,43 @@ Polynomial resultant_y(const std::vector<Polynomial>& f, const std::vector<Polyn
   return sub(mul(af_cd, af_cd), mul(sub(mul(a, e), mul(b, d)), sub(mul(b, ff), mul(c, e))));
 }
 
+/// h mixed with an integer's size and lowest limb.
+std::size_t mix_integer(std::size_t h, const mpz_class& c) {
+  const mpz_srcptr z = c.get_mpz_t();
+  h = (h ^ static_cast<std::size_t>(z->_mp_size)) * 0x100000001b3ULL;
+  if (z->_mp_size != 0) h = (h ^ static_cast<std::size_t>(z->_mp_d[0])) * 0x100000001b3ULL;
+  return h;
+}
+
 /// A hash of a column list (every coefficient's size and lowest limb).
 std::size_t column_hash(const std::vector<Polynomial>& cols) {
   std::size_t h = cols.size();
   for (const Polynomial& column : cols) {
     h = h * 131u + column.size();
-    for (const mpz_class& c : column) {
-      const mpz_srcptr z = c.get_mpz_t();
-      h = (h ^ static_cast<std::size_t>(z->_mp_size)) * 0x100000001b3ULL;
-      if (z->_mp_size != 0) h = (h ^ static_cast<std::size_t>(z->_mp_d[0])) * 0x100000001b3ULL;
-    }
+    for (const mpz_class& c : column) h = mix_integer(h, c);
   }
   return h;
 }
+
+// A bounded per-thread memo of a pure function of exact values (`Key`, compared exactly; `hash`
+// only spreads them): a hit returns what the function would. Emptied when it holds `capacity`.
+template <class Key, class Value, std::size_t capacity>
+class ExactMemo {
+ public:
+  template <class Compute>
+  Value get(std::size_t hash, Key key, Compute compute) {
+    auto [first, last] = entries_.equal_range(hash);
+    for (auto it = first; it != last; ++it)
+      if (it->second.first == key) return it->second.second;
+    Value value = compute();
+    if (entries_.size() >= capacity) entries_.clear();
+    entries_.emplace(hash, std::pair<Key, Value>{std::move(key), value});
+    return value;
+  }
+
+ private:
+  std::unordered_multimap<std::size_t, std::pair<Key, Value>> entries_;
+};
 
 /// resultant_y, remembered per thread. A chart's curves do not depend on the tile's box, so
 /// the tiles a curve crosses ask again for the same resultants (its horizontal tangents, its
@@ -1667,8 +1691,17 @@ class QuadraticBuilder {
     if (r.entry->x.exact) {
       algebra::Polynomial fiber = algebra::substitute_x(out.y_curve, r.entry->x.lower);
       if (algebra::degree(fiber) < 1) throw NotApplicable{"vanishing fibre"};
-      out.y = algebra::nth_real_root(fiber, out.y_branch);
-      algebra::refine_dyadically(out.y, Rational(1, mpz_class(1) << 64));
+      // Remembered per thread (session 63): a vertex on a side shared by two tiles of an
+      // operating region is the same root of the same fibre in both (a pure function of the
+      // fibre and the branch, compared exactly).
+      thread_local ExactMemo<std::pair<algebra::Polynomial, int>, Real, 2048> memo;
+      std::size_t h = fiber.size() * 131u + static_cast<std::size_t>(out.y_branch);
+      for (const mpz_class& c : fiber) h = mix_integer(h, c);
+      out.y = memo.get(h, std::pair<algebra::Polynomial, int>{fiber, out.y_branch}, [&] {
+        Real y = algebra::nth_real_root(fiber, out.y_branch);
+        algebra::refine_dyadically(y, Rational(1, mpz_class(1) << 64));
+        return y;
+      });
       out.y_exact = true;
       out.y_lower = out.y.lower;
       out.y_upper = out.y.upper;

@@ -1284,7 +1284,8 @@ std::optional<RadicalOrdinate> vertex_ordinate(const raw::Arrangement& arrangeme
 // of each whether the parts only touch there (a channel of zero width: EdgeRole::touching) or
 // overlap (a curve through blocked space: spurious).
 void find_touching(ChartData& chart, const Classifier& classify, const AlgebraicClassifier& classify_algebraic,
-                   const OrdinateClassifier& classify_ordinate, ContactSides* sides, bool check, CSpaceStatistics& stats,
+                   const OrdinateClassifier& classify_ordinate, const OverlapFilter& certainly_overlapping,
+                   ContactSides* sides, bool check, CSpaceStatistics& stats,
                    const std::function<void(std::size_t, std::size_t)>& tick = {}) {
   const auto& arrangement = chart.arrangement;
   // (progress: tick(done, total) over the edges, then the vertices)
@@ -1366,7 +1367,22 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
     auto x = rational_value(vertex.x, false);   // rational vertices come out exact (or linear)
     // (an irrational abscissa: only an exact or linear ordinate is looked for, cheaply)
     std::optional<Rational> y;
-    if (vertex.y_exact) y = rational_value(vertex.y, x.has_value());
+    if (vertex.y_exact) y = rational_value(vertex.y, false);
+    // Session 63: the classifiers' certified filter over the vertex's box, first — where the
+    // parts certainly overlap throughout it, every route below answers "overlapping" (not
+    // touching), and neither the complete rational test of the ordinate (Hensel lifting) nor
+    // the ordinate's expression (vertex_ordinate) is needed. Not where the point is rational
+    // (the exact oracle at it costs less) or one contact decides it (below, no oracle call).
+    auto filtered = [&] {
+      if (!certainly_overlapping) return false;
+      const Rational& y_lower = vertex.y_exact ? vertex.y.lower : vertex.y_lower;
+      const Rational& y_upper = vertex.y_exact ? vertex.y.upper : vertex.y_upper;
+      return certainly_overlapping(x ? Real::from_rational(*x) : vertex.x, y_lower, y_upper);
+    };
+    if (vertex.y_exact && x && !y) {
+      if (filtered()) continue;
+      y = rational_value(vertex.y, true);
+    }
     if (!x || !y) {
       // One contact curve at the vertex (every edge there carries the same single curve): the
       // parts' relation at it is its edges' — along a curve it changes only where another
@@ -1378,6 +1394,7 @@ void find_touching(ChartData& chart, const Classifier& classify, const Algebraic
       for (const auto& incidence : vertex.around)
         if (arrangement.edges[incidence.edge].box_side >= 0 || chart.edges[incidence.edge].curves != first) one_curve = false;
       if (one_curve) continue;
+      if (!(vertex.y_exact && x) && filtered()) continue;   // (asked above when x is rational)
       // one coordinate irrational: the exact oracle at the algebraic point; both irrational (or
       // an ordinate known by its curve only): at the ordinate as a rational function of the
       // abscissa (vertex_ordinate); undecided (counted) where neither applies
@@ -1933,6 +1950,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     Classifier classify;
     AlgebraicClassifier classify_algebraic;
     OrdinateClassifier classify_ordinate;
+    OverlapFilter certainly_overlapping;
   };
   std::vector<Deferred> deferred(chart_count);
   // progress (options.progress): the charts built, then (2-D) the charts classified, then the
@@ -2046,6 +2064,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     deferred[c].classify = std::move(chart_input.classify);
     deferred[c].classify_algebraic = std::move(chart_input.classify_algebraic);
     deferred[c].classify_ordinate = std::move(chart_input.classify_ordinate);
+    deferred[c].certainly_overlapping = std::move(chart_input.certainly_overlapping);
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
@@ -2085,7 +2104,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       const bool propagate = sides && input.curve_statistics.identically_zero == 0;
       classify_faces(chart, deferred[c].classify, sides ? &*sides : nullptr, options.check_face_classification,
                      propagate);
-      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate, sides ? &*sides : nullptr, options.check_face_classification, stats, tick);
+      find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate,
+                    deferred[c].certainly_overlapping, sides ? &*sides : nullptr, options.check_face_classification, stats, tick);
       deferred[c] = Deferred{};
       ++progress_done;
     }
@@ -2270,9 +2290,17 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   // grown vector leaves fresh rationals behind: reserved for all charts at once)
   {
     std::size_t vertex_count = impl->vertices.size();
-    for (const ChartData& chart : impl->charts)
+    std::size_t edge_count = impl->edges.size();
+    for (const ChartData& chart : impl->charts) {
       vertex_count += input.dimension == 1 ? chart.points.size() : chart.arrangement.vertices.size();
+      if (input.dimension == 2) edge_count += chart.arrangement.edges.size();
+    }
     impl->vertices.reserve(vertex_count);
+    // (the global lists too, once: reserved per chart, each chart's growth moved every earlier
+    // chart's edges again — quadratic in the tiles of an operating region)
+    impl->vertex_local.reserve(impl->vertex_local.size() + (vertex_count - impl->vertices.size()));
+    impl->edge_local.reserve(edge_count);
+    impl->edges.reserve(edge_count);
   }
   for (std::size_t c = 0; c < impl->charts.size(); ++c) {
     ChartData& chart = impl->charts[c];
@@ -2297,9 +2325,6 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     const auto& arrangement = chart.arrangement;
     // (the per-chart lists and each vertex's edges reserved to the size they get: no regrowth)
     chart.vertex_global.reserve(chart.vertex_global.size() + arrangement.vertices.size());
-    impl->vertex_local.reserve(impl->vertex_local.size() + arrangement.vertices.size());
-    impl->edge_local.reserve(impl->edge_local.size() + arrangement.edges.size());
-    impl->edges.reserve(impl->edges.size() + arrangement.edges.size());
     for (std::size_t v = 0; v < arrangement.vertices.size(); ++v) {
       chart.vertex_global.push_back(impl->vertices.size() + v);
       impl->vertex_local.emplace_back(c, v);

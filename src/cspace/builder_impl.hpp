@@ -33,6 +33,11 @@ using AlgebraicClassifier = std::function<std::optional<Overlap>(const algebra::
 /// irrational: curves/algebraic_overlap.hpp, RadicalOrdinate).
 using OrdinateClassifier = std::function<std::optional<Overlap>(const algebra::Real&, const RadicalOrdinate&)>;
 
+/// The certified filter of the algebraic classifiers alone (curves/algebraic_overlap.hpp,
+/// certainly_overlapping_over): true only where the parts certainly overlap at every point of
+/// the box of x (its value or isolating interval) and [y_lower, y_upper]; false says nothing.
+using OverlapFilter = std::function<bool(const algebra::Real& x, const Rational& y_lower, const Rational& y_upper)>;
+
 /// Input of one chart: its axes, its contact curves and its oracle.
 struct ChartInput {
   std::size_t x_index = 0;           ///< index of the x chart axis in the layout (seams glue
@@ -46,6 +51,9 @@ struct ChartInput {
   /// Optional: the oracle at zero-clearance vertices with both coordinates irrational (empty:
   /// those stay undecided).
   OrdinateClassifier classify_ordinate;
+  /// Optional: their certified filter alone, asked first at zero-clearance candidates (where it
+  /// answers, the parts overlap there: no exact work; empty: the classifiers decide alone).
+  OverlapFilter certainly_overlapping;
   /// Optional: the box's certainly-blocked cells (the merged cull's grid, whose cells the
   /// curve generator has already tested). Curve parts in blocked cells bound nothing and are
   /// not inserted (the curves' windows); its depth is the culling quadtree's.

@@ -524,6 +524,10 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     chart.classify_ordinate = [&model, axes, chart_axes, overlap](const algebra::Real& qx, const RadicalOrdinate& qy) {
       return algebraic_overlap(model, axes, chart_axes->x, chart_axes->y, qx, qy, overlap.get());
     };
+    chart.certainly_overlapping = [axes, chart_axes, overlap](const algebra::Real& qx, const Rational& y_lower,
+                                                              const Rational& y_upper) {
+      return certainly_overlapping_over(axes, chart_axes->x, chart_axes->y, qx, y_lower, y_upper, overlap.get());
+    };
     if (building.dimension == 2 && cells && cells->usable()) chart.blocked_cells = std::move(cells);
     return chart;
   };

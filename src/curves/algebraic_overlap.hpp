@@ -43,6 +43,15 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
                                          const ChartAxis& y_axis, const algebra::Real& x, const algebra::Real& y,
                                          const PairOverlap* filter = nullptr);
 
+/// The certified filter of algebraic_overlap alone (PairOverlap::certainly_overlapping, when
+/// `filter` is given and algebraic_filter_switch is on) over the box of x's value or isolating
+/// interval and [y_lower, y_upper] (a 1-D space: y = 0): true only where the parts' interiors
+/// certainly overlap at every configuration of the box — the exact relation at any point of it
+/// is "overlapping"; false says nothing.
+bool certainly_overlapping_over(const PairAxes& axes, const ChartAxis& x_axis, const ChartAxis& y_axis,
+                                const algebra::Real& x, const Rational& y_lower, const Rational& y_upper,
+                                const PairOverlap* filter);
+
 /// A chart ordinate given as an expression in the abscissa (algebra/ordinate.hpp): y =
 /// (numerator(x) + √radicand(x)) / denominator(x) at the point's x (an empty radicand: a
 /// rational function), with lower <= y <= upper (the caller's enclosure; checked exactly). A

@@ -865,6 +865,14 @@ std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axe
   return relation_at(model, axes, x_axis, y_axis, SignAt(x, y_used));
 }
 
+bool certainly_overlapping_over(const PairAxes& axes, const ChartAxis& x_axis, const ChartAxis& y_axis, const Real& x,
+                                const Rational& y_lower, const Rational& y_upper, const PairOverlap* filter) {
+  if (!filter || !algebraic_filter_switch()) return false;
+  const kernels::Interval y = axes.dimension() < 2 ? kernel_box(Real::from_rational(Rational(0)))
+                                                  : kernels::Interval(algebra::lower_double(y_lower), algebra::upper_double(y_upper));
+  return filter->certainly_overlapping(x_axis, y_axis, kernel_box(x), y);
+}
+
 std::optional<Overlap> algebraic_overlap(const Model& model, const PairAxes& axes, const ChartAxis& x_axis,
                                          const ChartAxis& y_axis, const Real& x, const RadicalOrdinate& y,
                                          const PairOverlap* filter) {

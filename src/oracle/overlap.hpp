@@ -77,7 +77,8 @@ std::array<std::uint64_t, 3> lazy_placement_counts();
 
 /// Tests and measurements: PairOverlap::classify places the first part lazily and the analysis
 /// skips the second part's edge boxes a block at a time (the default), or neither (the route
-/// before session 47). Not thread safe: set it before any use.
+/// before session 47); PairOverlap::certainly_overlapping poses the first part a block at a
+/// time (session 63), or every edge. Not thread safe: set it before any use.
 void set_lazy_placement(bool on);
 
 /// Where a point lies with respect to a part's material (closed region bounded by its loops).

@@ -11,11 +11,15 @@
 #include "curves/contact_curves.hpp"
 #include "oracle/overlap.hpp"
 #include "spur_gear_pairs.hpp"
+#include "test_seed.hpp"
+#include "algebra/exact_real.hpp"
 
 #include <hipair/model.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -111,6 +115,62 @@ TEST(OracleLazyPlacement, LazyClassifyIsTheEagerOracleOnGeneratedGearPairs) {
   std::printf("[lazy placement] %zu points (%zu apart, %zu overlapping, %zu touching, %zu bisected), %llu of %llu edges placed\n",
               asked, apart, overlapping, touching, near_boundary, static_cast<unsigned long long>(placed),
               static_cast<unsigned long long>(edges));
+}
+
+// Session 63 (perf63): PairOverlap::certainly_overlapping (the certified filter in front of the
+// algebraic oracle) poses the first part a block at a time too — an edge's interval geometry
+// made only in blocks whose posed disk meets the second part's box — where it posed every edge.
+// On generated spur-gear pairs, over boxes of every chart pair (narrow boxes about random points,
+// as the builder's vertices have, and wider ones up to 1/8 of the chart), the answer must be the
+// eager route's (set_lazy_placement(false)); where it answers, the exact oracle at the box's
+// corners and middle says "overlapping". Mutants: a block skipped when its disk meets the second
+// part's box (the test inverted), or the blocks' disks posed at the box's middle only, fail it.
+TEST(OracleLazyPlacement, LazyFilterIsTheEagerFilterOnGeneratedGearPairs) {
+  std::mt19937_64 random(hipair::test::test_seed(6301));
+  std::size_t asked = 0, decided = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const long z1 = 6 + static_cast<long>(random() % 35), z2 = 6 + static_cast<long>(random() % 35);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z1, z2, name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    ASSERT_EQ(axes.dimension(), 2);
+    const cspace::PairOverlap oracle(model, axes);
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts)
+        for (int k = 0; k < 150; ++k) {
+          // a box about a random point: from a few doubles wide to 1/8 of the chart
+          const Rational px = between(x, random, 1 << 20), py = between(y, random, 1 << 20);
+          const int shrink = 3 + static_cast<int>(random() % 48);
+          const Rational wx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink);
+          const Rational wy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
+          Rational xlo = std::max(Rational(px - wx), x.lo), xhi = std::min(Rational(px + wx), x.hi);
+          Rational ylo = std::max(Rational(py - wy), y.lo), yhi = std::min(Rational(py + wy), y.hi);
+          for (Rational* r : {&xlo, &xhi, &ylo, &yhi}) r->canonicalize();
+          const kernels::Interval bx(cspace::algebra::lower_double(xlo), cspace::algebra::upper_double(xhi));
+          const kernels::Interval by(cspace::algebra::lower_double(ylo), cspace::algebra::upper_double(yhi));
+          cspace::set_lazy_placement(false);
+          const bool eager = oracle.certainly_overlapping(x, y, bx, by);
+          cspace::set_lazy_placement(true);
+          const bool lazy = oracle.certainly_overlapping(x, y, bx, by);
+          ++asked;
+          EXPECT_EQ(lazy, eager) << "over [" << xlo.get_str() << ", " << xhi.get_str() << "] x [" << ylo.get_str()
+                                 << ", " << yhi.get_str() << "]";
+          if (!lazy) continue;
+          ++decided;
+          Rational mx = (xlo + xhi) / 2, my = (ylo + yhi) / 2;
+          mx.canonicalize();
+          my.canonicalize();
+          for (const auto& [qx, qy] : {std::pair{xlo, ylo}, std::pair{xhi, yhi}, std::pair{xlo, yhi}, std::pair{mx, my}})
+            EXPECT_EQ(oracle.classify(x, y, cspace::ChartPoint{qx, qy}), cspace::Overlap::overlapping)
+                << "at (" << qx.get_str() << ", " << qy.get_str() << "), where the filter said overlapping";
+        }
+  }
+  // the filter answers on a good share of the boxes (most of a chart is blocked) and not on all
+  EXPECT_GT(decided * 5, asked) << decided << " of " << asked;
+  EXPECT_LT(decided, asked);
+  std::printf("[lazy filter] %zu boxes, %zu decided overlapping\n", asked, decided);
 }
 
 }  // namespace
