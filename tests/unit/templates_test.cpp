@@ -1100,7 +1100,7 @@ TEST(Templates, InvoluteGearShapeChecksAreTheSameAtEveryScale) {
   std::mt19937_64 random(seed);
   auto draw = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
   int kept = 0, refused = 0;
-  for (int round = 0; round < 6; ++round) {
+  for (int round = 0; round < 4; ++round) {
     const int teeth = draw(8, 14);
     const Rational module(draw(5, 40), 10), alpha(draw(300, 450), 1000);
     const Rational pitch = module * teeth / 2, addendum = module, dedendum = module * draw(110, 135) / 100,
@@ -1162,7 +1162,7 @@ TEST(Templates, InvoluteGearShapeChecksAreTheSameAtEveryScale) {
     }
   }
   std::cout << kept << " gears kept, " << refused << " refused (at every scale alike)\n";
-  EXPECT_GE(kept, 4);
+  EXPECT_GE(kept, 3);
 }
 
 }  // namespace

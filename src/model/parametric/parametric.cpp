@@ -1077,14 +1077,17 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
             std::size_t k = moving[static_cast<std::size_t>(depth) % moving.size()];
             I whole = sub[k];
             double middle = 0.5 * (whole.lo + whole.hi);
+            // both halves: one certainly changed settles it, though the other be left open
             sub[k] = I(whole.lo, middle);
-            Senses kept = senses_in_doubles(sub, depth + 1);
-            if (kept == Senses::kept) {
+            const Senses lower = senses_in_doubles(sub, depth + 1);
+            Senses upper = Senses::kept;
+            if (lower != Senses::changed) {
               sub[k] = I(middle, whole.hi);
-              kept = senses_in_doubles(sub, depth + 1);
+              upper = senses_in_doubles(sub, depth + 1);
             }
             sub[k] = whole;
-            return kept;
+            if (lower == Senses::changed || upper == Senses::changed) return Senses::changed;
+            return lower == Senses::open || upper == Senses::open ? Senses::open : Senses::kept;
           };
           std::vector<I> whole_box = box;
           const Senses in_doubles = senses_in_doubles(whole_box, 0);
