@@ -749,6 +749,27 @@ bool flank_senses_certified(const ParametricModel& model, const std::vector<bool
   return true;
 }
 
+// The parameters varying in the box [lo, hi] that the feature's (present) arguments `keys` read,
+// directly or through derived parameters (check_choices' rules and shape checks).
+std::vector<std::size_t> varying_read(const FeatureRecipe& feature, const std::vector<const char*>& keys,
+                                      const std::vector<Rational>& lo, const std::vector<Rational>& hi,
+                                      const std::function<void(const Formula&, std::vector<char>&)>& mark_read,
+                                      const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point) {
+  using namespace parametric_detail;
+  const std::size_t n = lo.size();
+  std::vector<char> read(n, 0);
+  for (const char* key : keys) {
+    auto a = feature.arguments.find(key);
+    if (a == feature.arguments.end()) continue;
+    if (a->second.kind == ArgumentKind::point) mark_point(a->second.point, read);
+    else if (a->second.number.formula) mark_read(*a->second.number.formula, read);
+  }
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < n; ++i)
+    if (read[i] && lo[i] != hi[i]) indices.push_back(i);
+  return indices;
+}
+
 // ParametricModel::check_choices' rules of the feature templates over the box (session 59; since
 // session 61 the templates' own rules, template_rules.hpp, enclosed over the box): \throws
 // ModelError naming the argument and the toleranced parameters the rule reads when a margin is
@@ -765,7 +786,6 @@ void check_template_rules(
     const std::vector<bool>& derived) {
   using namespace parametric_detail;
   const Model& nominal = model.nominal();
-  const std::size_t n = p.size();
   TemplateRuleValues values;
   values.has = [&](const char* key) { return feature.arguments.count(key) > 0; };
   values.value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
@@ -781,17 +801,7 @@ void check_template_rules(
   certified.count = feature.teeth;
   // the parameters varying in the box read by the rule's (present) arguments
   auto varying = [&](const std::vector<const char*>& keys) {
-    std::vector<char> read(n, 0);
-    for (const char* key : keys) {
-      auto a = feature.arguments.find(key);
-      if (a == feature.arguments.end()) continue;
-      if (a->second.kind == ArgumentKind::point) mark_point(a->second.point, read);
-      else if (a->second.number.formula) mark_read(*a->second.number.formula, read);
-    }
-    std::vector<std::size_t> indices;
-    for (std::size_t i = 0; i < n; ++i)
-      if (read[i] && lo_exact[i] != hi_exact[i]) indices.push_back(i);
-    return indices;
+    return varying_read(feature, keys, lo_exact, hi_exact, mark_read, mark_point);
   };
   std::size_t index = 0;   // the rule's place in the template's order (the same in both number types)
   template_rules(feature.name, values, [&](const TemplateRule& rule) {
@@ -916,17 +926,7 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
       // the parameters varying in the box that the arguments `keys` read (directly or through
       // derived parameters)
       auto reads = [&](std::initializer_list<const char*> keys) {
-        std::vector<char> read(n, 0);
-        for (const char* key : keys) {
-          auto a = feature.arguments.find(key);
-          if (a == feature.arguments.end()) continue;
-          if (a->second.kind == ArgumentKind::point) mark_point(a->second.point, read);
-          else if (a->second.number.formula) mark_read(*a->second.number.formula, read);
-        }
-        std::vector<std::size_t> indices;
-        for (std::size_t i = 0; i < n; ++i)
-          if (read[i] && lo_exact[i] != hi_exact[i]) indices.push_back(i);
-        return indices;
+        return varying_read(feature, std::vector<const char*>(keys), lo_exact, hi_exact, mark_read, mark_point);
       };
       // Whether margin(parameter values) is positive (strict) or non-negative over the whole box
       // (session 63): its enclosure in doubles over the outward-rounded box first (every ordinary
