@@ -181,6 +181,11 @@ struct MonteCarloSummary {
   /// contact function found, even by the wider search): the Monte Carlo's own failure, not a
   /// value outside the band; not among `evaluations` (docs/tolerance.md "Monte Carlo").
   std::size_t not_certified = 0;
+  /// Certified values whose enclosure meets an edge of the certified band (session 63): neither
+  /// certainly inside nor certainly outside it, counted on their own (among `evaluations`), never
+  /// as inside or outside. The root's enclosure is first narrowed at the edge by the contact
+  /// function's certain sign there.
+  std::size_t undecided_certified = 0;
   std::size_t outside_linear = 0;      ///< positions beyond the linearised band
   double linearisation_error = 0;      ///< largest excess beyond the linearised band (part units)
   double seconds = 0;

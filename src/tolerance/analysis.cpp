@@ -118,8 +118,11 @@ void rank_regions(ToleranceResult& result) {
 // (session 62: an enclosure merely reaching past the band is no evidence; at zero tolerances the
 // band is itself an enclosure of the nominal root as narrow as the sample's, and ratchet.json's
 // 8 samples were reported "outside the certified band: 240 (A DEFECT)").
+// Inside only when certainly so (session 63): an enclosure meeting an edge of the band is
+// undecided, counted on its own (until session 63 it was counted inside).
 void MonteCarloOutcome::record(std::size_t k, const Interval& part, const VariationSample& sample) {
   if (part.hi < sample.certified.lower || part.lo > sample.certified.upper) ++outside_certified;
+  else if (!(part.lo >= sample.certified.lower && part.hi <= sample.certified.upper)) ++undecided_certified;
   record_linear(k, part.middle(), sample);
 }
 
@@ -138,6 +141,7 @@ void merge_monte_carlo(const std::vector<MonteCarloOutcome>& outcomes, MonteCarl
     const MonteCarloOutcome& o = outcomes[i];
     summary.outside_certified += o.outside_certified;
     summary.not_certified += o.not_certified;
+    summary.undecided_certified += o.undecided_certified;
     summary.outside_linear += o.outside_linear;
     summary.evaluations += o.evaluations;
     summary.linearisation_error = std::max(summary.linearisation_error, o.excess);
@@ -969,9 +973,29 @@ class Analysis {
           root = found.root;
         }
         ++outcome.evaluations;
+        // A root enclosure meeting an edge of the band (session 63) is narrowed there by the
+        // contact function's sign at the edge: certain and that of the enclosure's lower end, the
+        // sign change (the root) lies above the edge; that of its upper end, below it; exactly 0,
+        // the root is the edge. An edge where the sign is not certain leaves the value undecided.
+        auto cut = [&](double edge) {
+          if (!(root.lo < edge && edge < root.hi)) return;
+          const int at_edge = solver_->point_sign(state.curve, *pair_geometry, edge);
+          if (at_edge == 0) {
+            root = Interval(edge, edge);
+            return;
+          }
+          const int at_lo = solver_->point_sign(state.curve, *pair_geometry, root.lo);
+          const int at_hi = solver_->point_sign(state.curve, *pair_geometry, root.hi);
+          if ((at_lo != 1 && at_lo != -1) || at_hi != -at_lo || (at_edge != 1 && at_edge != -1)) return;
+          root = at_edge == at_lo ? Interval(edge, root.hi) : Interval(root.lo, edge);
+        };
+        cut(c.lo);
+        cut(c.hi);
         // Outside the certified band: decided on the chart enclosure (the band's own units), only
-        // when the root's enclosure is apart from the band's (record above).
+        // when the root's enclosure is apart from the band's (record above); inside only when it
+        // lies within it; else undecided (session 63: until then counted inside).
         if (root.hi < c.lo || root.lo > c.hi) ++outcome.outside_certified;
+        else if (!(root.lo >= c.lo && root.hi <= c.hi)) ++outcome.undecided_certified;
         Interval part = to_part(root, result_.follower_rotates, state.follower_chart.half, sample.nominal);
         outcome.record_linear(k, part.middle(), sample);
       }

@@ -241,6 +241,9 @@ std::string tolerance_text_report(const ToleranceResult& r) {
                                           "Carlo's own failures, neither inside nor outside the band; not among the "
                                           "certified positions)")
         << "\n";
+    if (mc.undecided_certified > 0)
+      out << "  undecided against the certified band: " << mc.undecided_certified
+          << " (certified values whose enclosure meets the band's edge: neither inside nor outside it)\n";
     out << "  outside the linearised band: " << mc.outside_linear << " (linearisation error up to "
         << fv(mc.linearisation_error, 3) << " " << u << ")\n";
   }
@@ -384,6 +387,7 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                         {"evaluations", mc.evaluations},
                         {"outside_certified", mc.outside_certified},
                         {"not_certified", mc.not_certified},
+                        {"undecided_certified", mc.undecided_certified},
                         {"outside_linear", mc.outside_linear},
                         {"linearisation_error", mc.linearisation_error},
                         {"seconds", mc.seconds},

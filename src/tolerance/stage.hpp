@@ -96,9 +96,12 @@ struct MonteCarloOutcome {
   std::vector<double> value;   ///< part coordinate per driver position (NaN: not evaluated)
   std::size_t outside_certified = 0, outside_linear = 0, evaluations = 0;
   std::size_t not_certified = 0;   ///< positions without a certified value (not among evaluations)
+  /// certified values whose enclosure meets the certified band's edge: neither inside nor outside
+  std::size_t undecided_certified = 0;
   double excess = 0;           ///< largest excess beyond the linearised band
   /// The value at position k (certified enclosure `value`, part units): outside the certified
-  /// band or beyond the linearised one.
+  /// band (its enclosure apart from the band), undecided against it (meeting an edge), or
+  /// beyond the linearised band.
   void record(std::size_t k, const kernels::Interval& value, const VariationSample& sample);
   /// The value at position k (part units), against the linearised band only.
   void record_linear(std::size_t k, double value, const VariationSample& sample);

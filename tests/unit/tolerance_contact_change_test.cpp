@@ -179,9 +179,10 @@ TEST(ToleranceContactChange, KernelSliceConfirmationsAgreeWithTheWholeSpaces) {
     const std::string text = two_pin_wedge(tol(ta), tol(tb), ratio(gap));
     SCOPED_TRACE("tol rA " + tol(ta) + " tol rB " + tol(tb) + " gap " + ratio(gap));
     ToleranceResult whole = analyze_tolerances_text(text, options());
-    tolerance_detail::whole_space_confirmations_switch() = false;
-    ToleranceResult kernels = analyze_tolerances_text(text, options());
-    tolerance_detail::whole_space_confirmations_switch() = true;
+    const ToleranceResult kernels = [&] {
+      tolerance_detail::KernelSliceConfirmationsScope kernel_slices;
+      return analyze_tolerances_text(text, options());
+    }();
     ASSERT_TRUE(whole.contact_changes && kernels.contact_changes);
     const std::vector<ContactChange>& a = whole.contact_changes->changes;
     const std::vector<ContactChange>& b = kernels.contact_changes->changes;

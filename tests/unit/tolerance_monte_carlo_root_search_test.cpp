@@ -26,6 +26,7 @@
 #include "gear_train_models.hpp"
 #include "tolerance/root_search.hpp"
 #include "tolerance/stage.hpp"
+#include "test_seed.hpp"
 
 #include <hipair/tolerance.hpp>
 
@@ -274,6 +275,68 @@ TEST(ToleranceMonteCarloRootSearch, ChainCountsCertifiedInsideOutsideAndNotCerti
   for (const std::string& note : r.notes)
     noted = noted || note.find("no value certified at " + std::to_string(held) + " output position(s)") != std::string::npos;
   EXPECT_TRUE(noted) << "a note counts the positions not certified";
+}
+
+// Session 63 (issue 12): a certified value whose enclosure meets an edge of the certified band is
+// undecided, counted on its own, never inside (until session 63 it counted inside) nor outside.
+// Generated bands [L, U] and sample enclosures placed against them: strictly inside, ending
+// exactly on an edge from inside (inside: the band is closed), straddling L or U by a few ulps or
+// by a share of the band, covering the whole band, apart below or above. The oracle: the
+// interval relations (apart: outside; within: inside; else undecided), and the linearised count
+// unchanged by the verdict.
+TEST(ToleranceMonteCarloRootSearch, ValuesMeetingTheBandsEdgeAreUndecided) {
+  const std::uint64_t seed = hipair::test::test_seed(63);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> centre(-10, 10), width(1e-9, 1);
+  std::size_t inside = 0, outside = 0, undecided = 0;
+  for (int round = 0; round < 2000; ++round) {
+    hipair::VariationSample sample;
+    const double l = centre(random), u = l + width(random);
+    sample.certified.lower = l;
+    sample.certified.upper = u;
+    sample.linear_lower = l;
+    sample.linear_upper = u;
+    const double w = u - l, e = std::uniform_real_distribution<double>(0, 0.5)(random) * w;
+    const int ulps = std::uniform_int_distribution<int>(1, 8)(random);
+    auto down = [&](double x) {
+      for (int i = 0; i < ulps; ++i) x = std::nextafter(x, -INFINITY);
+      return x;
+    };
+    auto up = [&](double x) {
+      for (int i = 0; i < ulps; ++i) x = std::nextafter(x, INFINITY);
+      return x;
+    };
+    // (enclosure, expected: -1 outside, 0 undecided, +1 inside)
+    const std::vector<std::pair<hipair::kernels::Interval, int>> cases{
+        {{l + 0.25 * w, l + 0.75 * w}, +1},
+        {{l, l + 0.5 * w}, +1},
+        {{l + 0.5 * w, u}, +1},
+        {{l, u}, +1},
+        {{down(l), l + 0.5 * w}, 0},
+        {{l - e - 1e-12, l + e}, 0},
+        {{l + 0.5 * w, up(u)}, 0},
+        {{u - e, u + e + 1e-12}, 0},
+        {{down(l), up(u)}, 0},
+        {{down(l), down(l)}, -1},
+        {{l - w - 1, l - w}, -1},
+        {{up(u), up(u)}, -1},
+        {{u + e + 1e-12, u + w + 1}, -1},
+    };
+    for (const auto& [value, expected] : cases) {
+      hipair::tolerance_detail::MonteCarloOutcome outcome;
+      outcome.value.assign(1, std::nan(""));
+      outcome.record(0, value, sample);
+      const int verdict = outcome.outside_certified ? -1 : outcome.undecided_certified ? 0 : +1;
+      EXPECT_EQ(outcome.outside_certified + outcome.undecided_certified, verdict == 1 ? 0u : 1u);
+      ASSERT_EQ(verdict, expected) << "band [" << l << ", " << u << "], value [" << value.lo << ", " << value.hi << "]";
+      (verdict > 0 ? inside : verdict < 0 ? outside : undecided) += 1;
+      // the linearised band is the certified one here: beyond it exactly when the middle is outside
+      const double middle = value.middle();
+      EXPECT_EQ(outcome.outside_linear, (middle < l || middle > u) ? 1u : 0u);
+    }
+  }
+  EXPECT_EQ(undecided, 2000u * 5);
 }
 
 }  // namespace

@@ -148,9 +148,10 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces)
     SCOPED_TRACE(std::to_string(vary.size()) + " parameters varied (0: all)");
     const ToleranceOptions options = bracket_options(vary, 1e-2);
     ToleranceResult whole = analyze_tolerances(geneva(), options);
-    tolerance_detail::whole_space_confirmations_switch() = false;
-    ToleranceResult kernels = analyze_tolerances(geneva(), options);
-    tolerance_detail::whole_space_confirmations_switch() = true;
+    const ToleranceResult kernels = [&] {
+      tolerance_detail::KernelSliceConfirmationsScope kernel_slices;
+      return analyze_tolerances(geneva(), options);
+    }();
     ASSERT_TRUE(whole.threshold && kernels.threshold);
     const JammingThreshold &a = *whole.threshold, &b = *kernels.threshold;
     ASSERT_TRUE(a.found && a.bracketed) << a.bracket_evidence;
@@ -165,6 +166,26 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsAgreeWithTheWholeSpaces)
     if (vary.empty()) EXPECT_TRUE(b.bracket_confirmed) << b.bracket_evidence;
     if (b.bracket_confirmed) EXPECT_NE(b.bracket_evidence.find("contact kernels"), std::string::npos) << b.bracket_evidence;
   }
+}
+
+// Session 63 (issue 12): the kernel slices' switch is set by a scope that restores the value it
+// found however it is left (an exception from the analysis, a failed ASSERT_* in a lambda), so a
+// failing comparison cannot leave the whole-space confirmations off for the tests that follow.
+TEST(ToleranceThresholdBracket, KernelSliceConfirmationsScopeRestoresTheSwitch) {
+  ASSERT_TRUE(tolerance_detail::whole_space_confirmations_switch());
+  try {
+    tolerance_detail::KernelSliceConfirmationsScope kernel_slices;
+    EXPECT_FALSE(tolerance_detail::whole_space_confirmations_switch());
+    {
+      tolerance_detail::KernelSliceConfirmationsScope nested;
+      EXPECT_FALSE(tolerance_detail::whole_space_confirmations_switch());
+    }
+    EXPECT_FALSE(tolerance_detail::whole_space_confirmations_switch());   // the outer scope's value
+    analyze_tolerances_text("{", ToleranceOptions{});                        // throws: not a model
+    ADD_FAILURE() << "an unreadable model was analysed";
+  } catch (const Error&) {
+  }
+  EXPECT_TRUE(tolerance_detail::whole_space_confirmations_switch());
 }
 
 // Session 62 (issue 12): the kernel slices' confirmations serve a translating follower's whole
@@ -211,9 +232,10 @@ TEST(ToleranceThresholdBracket, KernelSliceConfirmationsServeATranslatingFollowe
     options.threshold = true;
     options.threshold_bracket = 1e-2;
     ToleranceResult whole = analyze_tolerances_text(text, options);
-    tolerance_detail::whole_space_confirmations_switch() = false;
-    ToleranceResult kernels = analyze_tolerances_text(text, options);
-    tolerance_detail::whole_space_confirmations_switch() = true;
+    const ToleranceResult kernels = [&] {
+      tolerance_detail::KernelSliceConfirmationsScope kernel_slices;
+      return analyze_tolerances_text(text, options);
+    }();
     ASSERT_TRUE(whole.threshold && kernels.threshold);
     const JammingThreshold &a = *whole.threshold, &b = *kernels.threshold;
     ASSERT_TRUE(a.found) << a.evidence;

@@ -579,24 +579,47 @@ namespace {
 // after the last. Only margins vanishing on the box (a box ending exactly on a rule's bound:
 // every rule is strict) or closer to 0 than about 2^-2500 of their values stay undecided; the
 // caller refuses the box then, as the exact expansion refuses a zero margin.
+// Since session 63 (the shape checks of check_choices) also `strict` false: the margin must be
+// non-negative (a box ending exactly on 0 kept: an enclosure whose lower end is exactly 0
+// holds); and the parameters read as written (`derived` false) are enclosed from their exact
+// values nominal + deviation at the sub-box's ends, so a margin that is such a parameter (an
+// angle whose range ends on 0) is enclosed exactly there ([0, x], not [-e, x]). Strict: an
+// enclosure that is exactly the point 0 fails (the margin vanishes there).
 enum class BoxVerdict { holds, fails, undecided };
 
-BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Rational>& lo,
-                              const std::vector<Rational>& hi, const std::vector<std::size_t>& read,
-                              const std::function<Interval(const std::vector<Interval>&)>& margin) {
+BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bool>& derived,
+                              const std::vector<Rational>& lo, const std::vector<Rational>& hi,
+                              const std::vector<std::size_t>& read,
+                              const std::function<Interval(const std::vector<Interval>&)>& margin, bool strict = true) {
   const std::size_t n = lo.size();
+  const std::vector<Parameter>& parameters = model.nominal().parameters;
   // the margin's enclosure over [a, b] (the ends exact rationals: enclosed outward)
-  auto evaluate = [&](const std::vector<Rational>& a, const std::vector<Rational>& b) {
+  auto enclosure = [&](const std::vector<Rational>& a, const std::vector<Rational>& b) {
     std::vector<Interval> deviations(n);
     for (std::size_t i = 0; i < n; ++i) {
       if (a[i] == b[i]) deviations[i] = Interval(a[i]);
       else mpfi_interv_q(deviations[i].get(), a[i].get_mpq_t(), b[i].get_mpq_t());
     }
     try {
-      return margin(model.parameter_values<Interval>(deviations));
+      std::vector<Interval> values = model.parameter_values<Interval>(deviations);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (derived[i]) continue;
+        const Rational low = parameters[i].nominal + a[i], high = parameters[i].nominal + b[i];
+        if (low == high) values[i] = Interval(low);
+        else mpfi_interv_q(values[i].get(), low.get_mpq_t(), high.get_mpq_t());
+      }
+      return margin(values);
     } catch (const Error&) {
       return Interval(Rational(0));   // does not evaluate there: undecided
     }
+  };
+  // +1: the margin certainly holds over the sub-box, -1: certainly fails somewhere, 0: open
+  auto evaluate_sign = [&](const std::vector<Rational>& a, const std::vector<Rational>& b) {
+    const Interval m = enclosure(a, b);
+    const int sign = m.sign();
+    if (sign != 0 || !m.is_bounded()) return sign;
+    if (strict) return mpfi_is_zero(m.get()) > 0 ? -1 : 0;   // exactly 0 over the sub-box: fails
+    return mpfi_is_nonneg(m.get()) > 0 ? 1 : 0;
   };
   constexpr std::size_t budget = 3000;   // sub-boxes per stage
   for (mpfr_prec_t bits : {160, 640, 2560}) {
@@ -611,7 +634,7 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Ra
         std::vector<Rational> corner = lo;
         for (std::size_t j = 0; j < read.size(); ++j)
           if (mask & (std::size_t(1) << j)) corner[read[j]] = hi[read[j]];
-        const int sign = evaluate(corner, corner).sign();
+        const int sign = evaluate_sign(corner, corner);
         if (sign < 0) return BoxVerdict::fails;
         corner_undecided = sign == 0;
       }
@@ -625,9 +648,9 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Ra
     while (!stack.empty() && !undecided) {
       auto [a, b] = std::move(stack.back());
       stack.pop_back();
-      const Interval m = evaluate(a, b);
-      if (m.sign() > 0) continue;
-      if (m.sign() < 0) return BoxVerdict::fails;
+      const int sign = evaluate_sign(a, b);
+      if (sign > 0) continue;
+      if (sign < 0) return BoxVerdict::fails;
       std::optional<std::size_t> widest;
       Rational share(0);
       for (std::size_t i : read) {
@@ -653,6 +676,100 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<Ra
   return BoxVerdict::undecided;
 }
 
+// The involute function inv(a) = tan a - a over an enclosure of a, by its values at a's ends
+// where a lies in [0, 1.5) (it increases there: derivative tan^2 a); tan a - a in interval
+// arithmetic loses the cancellation (session 58: near the root circle of a 62-tooth gear at
+// 23 deg, 0.2 deg of pressure angle tolerance made the root point's polar angle 0.027 rad wide,
+// 1.6 mm at its radius, against d.n = 0.17 mm). In doubles and (session 63) in MPFI.
+kernels::Interval involute_enclosure(const kernels::Interval& a) {
+  using I = kernels::Interval;
+  using A = Arithmetic<I>;
+  if (!(a.lo >= 0 && a.hi < 1.5)) return I(A::tan(a) - a);
+  I low(a.lo, a.lo), high(a.hi, a.hi);
+  return I((A::tan(low) - low).lo, (A::tan(high) - high).hi);
+}
+
+Interval involute_enclosure(const Interval& a) {
+  using A = Arithmetic<Interval>;
+  if (!a.is_bounded() || mpfi_is_nonneg(a.get()) <= 0 || mpfr_cmp_d(&a.get()->right, 1.5) >= 0) return A::tan(a) - a;
+  Interval low, high;
+  mpfi_set_fr(low.get(), &a.get()->left);   // (outward if a carries more bits: still about the end)
+  mpfi_set_fr(high.get(), &a.get()->right);
+  const Interval at_low = A::tan(low) - low, at_high = A::tan(high) - high;
+  Interval result;
+  mpfi_interv_fr(result.get(), &at_low.get()->left, &at_high.get()->right);
+  return result;
+}
+
+// The flank arcs' turning senses of an involute spur gear kept over the exact box [lo, hi]
+// (session 63; check_choices, where the doubles leave them open or cannot enclose them at all:
+// lengths of 1e400 mm), in MPFI: `terms(values)` gives each arc's (d.n, n x d) (check_choices'
+// flank_terms); their signs at the box's middle (160, 640, then 2560 bits) must give the nominal
+// senses (`keeps(arc, sign of d.n, sign of n x d)`), and each term must keep its sign over the
+// whole box (certified_positive, bisecting along `read`). A term vanishing at the middle, or not
+// certainly of one sign over the box, refuses (false).
+template <class Terms, class Keeps>
+bool flank_senses_certified(const ParametricModel& model, const std::vector<bool>& derived, const std::vector<Rational>& lo,
+                            const std::vector<Rational>& hi, const std::vector<std::size_t>& read, const Terms& terms,
+                            const Keeps& keeps) {
+  const std::size_t n = lo.size();
+  const std::vector<Parameter>& parameters = model.nominal().parameters;
+  std::vector<std::pair<int, int>> signs;
+  for (mpfr_prec_t bits : {160, 640, 2560}) {
+    PrecisionScope precision(bits);
+    std::vector<Interval> deviations(n);
+    std::vector<Rational> middle(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      middle[i] = (lo[i] + hi[i]) / 2;
+      deviations[i] = Interval(middle[i]);
+    }
+    signs.clear();
+    try {
+      std::vector<Interval> values = model.parameter_values<Interval>(deviations);
+      for (std::size_t i = 0; i < n; ++i)
+        if (!derived[i]) values[i] = Interval(Rational(parameters[i].nominal + middle[i]));
+      for (const auto& [along, across] : terms(values)) signs.emplace_back(along.sign(), across.sign());
+    } catch (const Error&) {
+      return false;
+    }
+    if (std::all_of(signs.begin(), signs.end(), [](const auto& s) { return s.first != 0 && s.second != 0; })) break;
+  }
+  for (std::size_t j = 0; j < signs.size(); ++j)
+    if (signs[j].first == 0 || signs[j].second == 0 || !keeps(j, signs[j].first, signs[j].second)) return false;
+  for (std::size_t j = 0; j < signs.size(); ++j)
+    for (int which : {0, 1}) {
+      const int sign = which ? signs[j].second : signs[j].first;
+      const BoxVerdict verdict = certified_positive(model, derived, lo, hi, read, [&](const std::vector<Interval>& q) {
+        const auto t = terms(q);
+        const Interval& term = which ? t.at(j).second : t.at(j).first;
+        return sign > 0 ? term : Interval(-term);
+      });
+      if (verdict != BoxVerdict::holds) return false;
+    }
+  return true;
+}
+
+// The parameters varying in the box [lo, hi] that the feature's (present) arguments `keys` read,
+// directly or through derived parameters (check_choices' rules and shape checks).
+std::vector<std::size_t> varying_read(const FeatureRecipe& feature, const std::vector<const char*>& keys,
+                                      const std::vector<Rational>& lo, const std::vector<Rational>& hi,
+                                      const std::function<void(const Formula&, std::vector<char>&)>& mark_read,
+                                      const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point) {
+  using namespace parametric_detail;
+  const std::size_t n = lo.size();
+  std::vector<char> read(n, 0);
+  for (const char* key : keys) {
+    auto a = feature.arguments.find(key);
+    if (a == feature.arguments.end()) continue;
+    if (a->second.kind == ArgumentKind::point) mark_point(a->second.point, read);
+    else if (a->second.number.formula) mark_read(*a->second.number.formula, read);
+  }
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < n; ++i)
+    if (read[i] && lo[i] != hi[i]) indices.push_back(i);
+  return indices;
+}
+
 // ParametricModel::check_choices' rules of the feature templates over the box (session 59; since
 // session 61 the templates' own rules, template_rules.hpp, enclosed over the box): \throws
 // ModelError naming the argument and the toleranced parameters the rule reads when a margin is
@@ -665,10 +782,10 @@ void check_template_rules(
     const FeatureRecipe& feature, const std::vector<kernels::Interval>& p, const std::vector<Rational>& lo_exact,
     const std::vector<Rational>& hi_exact,
     const std::function<void(const Formula&, std::vector<char>&)>& mark_read,
-    const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point, const ParametricModel& model) {
+    const std::function<void(const PointRecipe&, std::vector<char>&)>& mark_point, const ParametricModel& model,
+    const std::vector<bool>& derived) {
   using namespace parametric_detail;
   const Model& nominal = model.nominal();
-  const std::size_t n = p.size();
   TemplateRuleValues values;
   values.has = [&](const char* key) { return feature.arguments.count(key) > 0; };
   values.value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
@@ -684,17 +801,7 @@ void check_template_rules(
   certified.count = feature.teeth;
   // the parameters varying in the box read by the rule's (present) arguments
   auto varying = [&](const std::vector<const char*>& keys) {
-    std::vector<char> read(n, 0);
-    for (const char* key : keys) {
-      auto a = feature.arguments.find(key);
-      if (a == feature.arguments.end()) continue;
-      if (a->second.kind == ArgumentKind::point) mark_point(a->second.point, read);
-      else if (a->second.number.formula) mark_read(*a->second.number.formula, read);
-    }
-    std::vector<std::size_t> indices;
-    for (std::size_t i = 0; i < n; ++i)
-      if (read[i] && lo_exact[i] != hi_exact[i]) indices.push_back(i);
-    return indices;
+    return varying_read(feature, keys, lo_exact, hi_exact, mark_read, mark_point);
   };
   std::size_t index = 0;   // the rule's place in the template's order (the same in both number types)
   template_rules(feature.name, values, [&](const TemplateRule& rule) {
@@ -707,7 +814,7 @@ void check_template_rules(
     std::size_t at = 0;
     template_rules(feature.name, certified, [&](const BasicTemplateRule<Interval>& same) {
       if (at++ != place) return;
-      verdict = certified_positive(model, lo_exact, hi_exact, read, [&](const std::vector<Interval>& values_over) {
+      verdict = certified_positive(model, derived, lo_exact, hi_exact, read, [&](const std::vector<Interval>& values_over) {
         exact = &values_over;
         return same.margin();
       });
@@ -802,7 +909,7 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
       // certainly positive (the templates' own margins kept); rules whose arguments read no
       // parameter varying in the box held at nominal, where the template was expanded.
       try {
-        check_template_rules(feature, p, lo_exact, hi_exact, mark_read, mark_point, *this);
+        check_template_rules(feature, p, lo_exact, hi_exact, mark_read, mark_point, *this, derived_);
       } catch (const ModelError&) {
         throw;
       } catch (const Error& error) {
@@ -816,15 +923,37 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
                              "; the generic form follows the nominal shape, so this box is refused (narrow the "
                              "tolerances of the parameters it depends on)");
       };
-      auto value = [&](const char* key) { return slot_value(feature.arguments.at(key).number, p); };
+      // the parameters varying in the box that the arguments `keys` read (directly or through
+      // derived parameters)
+      auto reads = [&](std::initializer_list<const char*> keys) {
+        return varying_read(feature, std::vector<const char*>(keys), lo_exact, hi_exact, mark_read, mark_point);
+      };
+      // Whether margin(parameter values) is positive (strict) or non-negative over the whole box
+      // (session 63): its enclosure in doubles over the outward-rounded box first (every ordinary
+      // box is decided there), else over the exact box in MPFI (certified_positive: a box ending
+      // exactly on a non-strict bound, or 2^-k from any bound, or lengths of 1e-300 or 1e400 mm
+      // beyond the doubles). `margin` is generic: called with the doubles' enclosures and with MPFI ones.
+      auto certain = [&](const std::vector<std::size_t>& read, bool strict, const auto& margin) {
+        try {
+          const I m = margin(p);
+          if (strict ? m.lo > 0 : m.lo >= 0) return true;
+        } catch (const Error&) {
+        }
+        return certified_positive(
+                   *this, derived_, lo_exact, hi_exact, read,
+                   [&](const std::vector<Interval>& q) { return Interval(margin(q)); }, strict) == BoxVerdict::holds;
+      };
+      auto slot_margin = [&](const char* key) {
+        const Slot* slot = &feature.arguments.at(key).number;
+        return [slot](const auto& q) { return slot_value(*slot, q); };
+      };
       try {
         // values the template itself refuses (session 58, hunt58: an escape wheel's face_angle of
         // 0 +- 0.05 deg was analysed, though every negative value in the box is refused by the
         // reader, "must not be negative"); the exact expansion has no shape there to follow
         auto refuse_below = [&](const char* key, bool strict, const char* what) {
           if (!feature.arguments.count(key)) return;
-          const I v = value(key);
-          if (strict ? !(v.lo > 0) : !(v.lo >= 0))
+          if (!certain(reads({key}), strict, slot_margin(key)))
             refuse(key, std::string(key) + " may become " + (strict ? "zero or negative" : "negative") +
                             " within the box, which the template refuses (" + what + ")");
         };
@@ -839,8 +968,7 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
         if (feature.name == "escape_wheel" && feature.teeth > 0 && feature.arguments.count("tip_angle")) {
           std::size_t per_tooth = feature.edge_counts.at(0) / static_cast<std::size_t>(feature.teeth);
           bool top = per_tooth == (feature.arguments.count("back_angle") ? 4u : 3u);
-          I t = value("tip_angle");
-          if (top && !(t.lo > 0))
+          if (top && !certain(reads({"tip_angle"}), true, slot_margin("tip_angle")))
             refuse("tip_angle", "tip_angle may reach 0 within the box (the nominal teeth have flat tops)");
           if (!top && varies(*feature.arguments.at("tip_angle").number.formula))
             refuse("tip_angle", "tip_angle is 0 at nominal (pointed teeth) and varies within the box");
@@ -853,103 +981,123 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
               refuse("lock_inner_radius", "lock_inner_radius is 0 at nominal (a sector) and varies within the box");
             continue;
           }
-          I r = value("lock_inner_radius");
-          if (!(r.lo > 0))
+          if (!certain(reads({"lock_inner_radius"}), true, slot_margin("lock_inner_radius")))
             refuse("lock_inner_radius", "lock_inner_radius may reach 0 within the box (the nominal crescent has an inner arc)");
         } else if (feature.name == "spur_gear" && !feature.arguments.count("flank_radius")) {
-          using A = Arithmetic<I>;
-          bool radial = involute_radial(feature);
-          I pitch = value("pitch_radius");
-          auto pressure = feature.arguments.find("pressure_angle");
-          I alpha = pressure != feature.arguments.end() ? slot_value(pressure->second.number, p)
-                                                        : I(A::constant(Rational(1, 9)) * A::pi());
-          I margin = pitch * A::cos(alpha) - (pitch - value("dedendum"));   // base - root radius
-          if (radial ? !(margin.lo > 0) : !(margin.hi < 0))
+          const bool radial = involute_radial(feature);
+          const auto pressure = feature.arguments.find("pressure_angle");
+          auto number = [&](const char* key, const auto& q) { return slot_value(feature.arguments.at(key).number, q); };
+          auto alpha_of = [&](const auto& q) {
+            using T = typename std::decay_t<decltype(q)>::value_type;
+            using A = Arithmetic<T>;
+            return pressure != feature.arguments.end() ? slot_value(pressure->second.number, q)
+                                                       : T(A::constant(Rational(1, 9)) * A::pi());
+          };
+          // base - root radius: positive over the box where the nominal flank has its radial
+          // segment (the root inside the base circle), negative where it has none
+          auto base_margin = [&](const auto& q) {
+            using T = typename std::decay_t<decltype(q)>::value_type;
+            using A = Arithmetic<T>;
+            const T pitch = number("pitch_radius", q);
+            const T margin = T(pitch * A::cos(alpha_of(q)) - T(pitch - number("dedendum", q)));
+            return radial ? margin : T(-margin);
+          };
+          if (!certain(reads({"pitch_radius", "dedendum", "pressure_angle"}), true, base_margin))
             refuse("dedendum", std::string("the root circle may cross the base circle within the box (at nominal it lies ") +
                                    (radial ? "inside" : "outside") + " it: the flank " +
                                    (radial ? "has" : "has no") + " radial segment)");
           // Each flank arc is tangent at the pitch point P to the normal's perpendicular, centre
           // c = P + s n with s = |d|^2 / (2 d.n), d = (far end) - P: its turning sense from the
           // far end to P is sign(d.n) sign(n x d), from P to the far end the opposite (enclosed
-          // so, without the dependency of c on d). Where the enclosures over a box leave a sign
-          // open, the box is bisected (its varying parameters in turn, 2^14 boxes at most).
-          // the varying parameters the canonical flank reads (not the centre's nor the phase's)
-          std::vector<char> read(n, 0);
-          std::function<void(const Formula&)> mark = [&](const Formula& f) {
-            if (f.op == Formula::Op::parameter) {
-              read[f.parameter] = 1;
-              if (derived_[f.parameter]) mark(*parameter_nominals_[f.parameter].formula);
-            }
-            for (const FormulaPtr& argument : f.arguments) mark(*argument);
-          };
-          for (const char* key : {"pitch_radius", "addendum", "dedendum", "tooth_thickness", "pressure_angle"})
-            if (feature.arguments.count(key)) mark(*feature.arguments.at(key).number.formula);
-          std::vector<std::size_t> moving;
-          for (std::size_t i = 0; i < n; ++i)
-            if (lo_exact[i] != hi_exact[i] && read[i]) moving.push_back(i);
-          // The flank's points over a sub-box as involute_flank places them, each involute
-          // function inv(a) = tan a - a enclosed by its values at the ends of a's enclosure (it
-          // increases on [0, pi/2): derivative tan^2 a): tan a - a in interval arithmetic
-          // loses the cancellation (session 58: near the root circle of a 62-tooth gear at
-          // 23 deg, 0.2 deg of pressure angle tolerance made the root point's polar angle
-          // 0.027 rad wide, 1.6 mm at its radius, against d.n = 0.17 mm: undecided after 2^14
-          // sub-boxes, the box refused).
-          auto involute_of = [](const I& a) {
-            if (!(a.lo >= 0 && a.hi < 1.5)) return I(A::tan(a) - a);
-            I low(a.lo, a.lo), high(a.hi, a.hi);
-            return I((A::tan(low) - low).lo, (A::tan(high) - high).hi);
-          };
-          std::function<bool(std::vector<I>&, int)> senses_kept = [&](std::vector<I>& sub, int depth) -> bool {
-            std::vector<I> q = parameter_values(sub);
-            auto number = [&](const char* key) { return slot_value(feature.arguments.at(key).number, q); };
-            I pitch_q = number("pitch_radius");
-            I alpha_q = pressure != feature.arguments.end() ? slot_value(pressure->second.number, q)
-                                                            : I(A::constant(Rational(1, 9)) * A::pi());
-            I beta = number("tooth_thickness") / (pitch_q + pitch_q);
-            kernels::Vector<I> normal{-A::sin(alpha_q - beta), A::cos(alpha_q - beta)};
-            kernels::Vector<I> pitch_point{pitch_q * A::cos(beta), -(pitch_q * A::sin(beta))};
-            I base_q = pitch_q * A::cos(alpha_q);
-            I start_angle = beta + involute_of(alpha_q);   // the involute starts at polar angle -start_angle
-            auto involute_point = [&](const I& r) {
-              I c = base_q / r;
-              I a = A::atan2(A::sqrt(I(1.0, 1.0) - c * c), c);   // the pressure angle at r
-              I angle = involute_of(a) - start_angle;
-              return kernels::Vector<I>{r * A::cos(angle), r * A::sin(angle)};
+          // so, without the dependency of c on d). flank_terms: (d.n, n x d) of the flank's arcs
+          // over a box, for the doubles' enclosures and for MPFI ones.
+          const std::size_t first = radial ? 1 : 0, pieces = radial ? 3 : 2;
+          auto flank_terms = [&](const auto& q) {
+            using T = typename std::decay_t<decltype(q)>::value_type;
+            using A = Arithmetic<T>;
+            const T pitch_q = number("pitch_radius", q), alpha_q = alpha_of(q);
+            const T beta = T(number("tooth_thickness", q) / T(pitch_q + pitch_q));
+            const kernels::Vector<T> normal{T(-A::sin(T(alpha_q - beta))), A::cos(T(alpha_q - beta))};
+            const kernels::Vector<T> pitch_point{T(pitch_q * A::cos(beta)), T(-T(pitch_q * A::sin(beta)))};
+            const T base_q = T(pitch_q * A::cos(alpha_q));
+            const T start_angle = T(beta + involute_enclosure(alpha_q));   // the involute starts at polar angle -start_angle
+            auto involute_point = [&](const T& r) {
+              const T c = T(base_q / r);
+              const T a = A::atan2(A::sqrt(T(A::constant(Rational(1)) - T(c * c))), c);   // the pressure angle at r
+              const T angle = T(involute_enclosure(a) - start_angle);
+              return kernels::Vector<T>{T(r * A::cos(angle)), T(r * A::sin(angle))};
             };
-            // far ends of the pieces: [0] the lower arc's (root, or base point), [1] the upper's
-            kernels::Vector<I> lower_end =
-                radial ? kernels::Vector<I>{base_q * A::cos(-start_angle), base_q * A::sin(-start_angle)}
-                       : involute_point(pitch_q - number("dedendum"));
-            kernels::Vector<I> upper_end = involute_point(pitch_q + number("addendum"));
-            const std::size_t pieces = radial ? 3 : 2;
+            // far ends of the pieces: the lower arc's (root, or base point), the upper's
+            const kernels::Vector<T> lower_end =
+                radial ? kernels::Vector<T>{T(base_q * A::cos(T(-start_angle))), T(base_q * A::sin(T(-start_angle)))}
+                       : involute_point(T(pitch_q - number("dedendum", q)));
+            const kernels::Vector<T> upper_end = involute_point(T(pitch_q + number("addendum", q)));
+            std::vector<std::pair<T, T>> terms;
+            for (std::size_t i = first; i < pieces; ++i) {
+              const kernels::Vector<T> d = (i + 2 == pieces ? lower_end : upper_end) - pitch_point;   // the lower arc runs to P
+              terms.emplace_back(kernels::dot(d, normal), kernels::cross(normal, d));
+            }
+            return terms;
+          };
+          // the sense of piece i from the signs of its terms
+          auto sense_of = [&](std::size_t i, int along, int across) {
+            const bool sense = (along > 0) == (across > 0);   // sign(d.n) sign(n x d) > 0
+            return i + 2 == pieces ? sense : !sense;
+          };
+          const std::vector<std::size_t> moving =
+              reads({"pitch_radius", "addendum", "dedendum", "tooth_thickness", "pressure_angle"});
+          // In doubles: where the enclosures over a box leave a sign open, the box is bisected
+          // (its varying parameters in turn, 2^14 boxes at most; the involute function
+          // inv(a) = tan a - a enclosed by its values at the ends of a's enclosure, involute_enclosure:
+          // session 58). A box the doubles leave open (or cannot enclose: lengths beyond them) is
+          // decided in MPFI below.
+          enum class Senses { kept, changed, open };
+          std::function<Senses(std::vector<I>&, int)> senses_in_doubles = [&](std::vector<I>& sub, int depth) -> Senses {
+            std::vector<std::pair<I, I>> terms;
+            try {
+              terms = flank_terms(parameter_values(sub));
+            } catch (const Error&) {
+              return Senses::open;
+            }
             bool open = false;
-            for (std::size_t i = radial ? 1 : 0; i < pieces; ++i) {
-              bool towards_pitch = i + 2 == pieces;   // the lower arc runs to P
-              kernels::Vector<I> far = towards_pitch ? lower_end : upper_end;
-              kernels::Vector<I> d = far - pitch_point;
-              I along = kernels::dot(d, normal), across = kernels::cross(normal, d);
+            for (std::size_t j = 0; j < terms.size(); ++j) {
+              const I &along = terms[j].first, &across = terms[j].second;
+              if (!std::isfinite(along.lo) || !std::isfinite(along.hi) || !std::isfinite(across.lo) ||
+                  !std::isfinite(across.hi))
+                return Senses::open;   // beyond the doubles
               if (!((along.lo > 0 || along.hi < 0) && (across.lo > 0 || across.hi < 0))) {
                 open = true;
                 continue;
               }
-              bool sense = (along.lo > 0) == (across.lo > 0);   // sign(d.n) sign(n x d) > 0
-              if (!towards_pitch) sense = !sense;
-              if (sense != feature.ccw.at(0).at(i)) return false;   // certainly changed
+              if (sense_of(first + j, along.lo > 0 ? 1 : -1, across.lo > 0 ? 1 : -1) != feature.ccw.at(0).at(first + j))
+                return Senses::changed;   // certainly changed
             }
-            if (!open) return true;
-            if (moving.empty() || depth >= 14) return false;
+            if (!open) return Senses::kept;
+            if (moving.empty() || depth >= 14) return Senses::open;
             std::size_t k = moving[static_cast<std::size_t>(depth) % moving.size()];
             I whole = sub[k];
             double middle = 0.5 * (whole.lo + whole.hi);
+            // both halves: one certainly changed settles it, though the other be left open
             sub[k] = I(whole.lo, middle);
-            bool kept = senses_kept(sub, depth + 1);
-            sub[k] = I(middle, whole.hi);
-            kept = kept && senses_kept(sub, depth + 1);
+            const Senses lower = senses_in_doubles(sub, depth + 1);
+            Senses upper = Senses::kept;
+            if (lower != Senses::changed) {
+              sub[k] = I(middle, whole.hi);
+              upper = senses_in_doubles(sub, depth + 1);
+            }
             sub[k] = whole;
-            return kept;
+            if (lower == Senses::changed || upper == Senses::changed) return Senses::changed;
+            return lower == Senses::open || upper == Senses::open ? Senses::open : Senses::kept;
           };
           std::vector<I> whole_box = box;
-          if (!senses_kept(whole_box, 0))
+          const Senses in_doubles = senses_in_doubles(whole_box, 0);
+          if (in_doubles == Senses::changed)
+            refuse("", "a flank arc's turning sense may change within the box (the arc degenerates)");
+          if (in_doubles == Senses::open && !flank_senses_certified(*this, derived_, lo_exact, hi_exact, moving, flank_terms,
+                                                                   [&](std::size_t j, int along, int across) {
+                                                                     return sense_of(first + j, along, across) ==
+                                                                            feature.ccw.at(0).at(first + j);
+                                                                   }))
             refuse("", "a flank arc's turning sense may change within the box (the arc degenerates)");
         }
       } catch (const ModelError&) {

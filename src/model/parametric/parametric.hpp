@@ -223,7 +223,8 @@ class ParametricModel {
   void check_choices(const std::vector<double>& lo, const std::vector<double>& hi) const;
   /// The exact box of deviations (session 62): the templates' rules are decided over it exactly
   /// where the doubles' enclosures cannot (a box within 2^-k of a rule's bound, lengths far
-  /// beyond the doubles); the shape choices are checked on its outward rounding to doubles.
+  /// beyond the doubles); since session 63 the shape choices too (MPFI over the exact box where
+  /// the doubles over its outward rounding leave them open).
   void check_choices(const std::vector<Rational>& lo, const std::vector<Rational>& hi) const;
 
  private:
