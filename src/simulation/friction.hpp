@@ -19,6 +19,7 @@
 // active-set search on stick/slip states; no iteration with a stopping rule).
 #pragma once
 
+#include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 
 #include <Eigen/Dense>
@@ -28,6 +29,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -201,6 +203,106 @@ inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen:
   FrictionalSolution s;
   solve_bilateral(G, minv, a0, h, friction, state, undetermined_plain, w, s);
   return s;
+}
+
+/// The held contacts' force problem at given stick/slip states as exact rows
+/// (held_force_sign.hpp): the constraint rows [G; T_S] and the force rows [W; T_S] (W_k = G_k -
+/// sign (mu_k / s_k) T_k for a sliding contact, the double reduce() forms; T_S the sticking
+/// contacts' tangent rows, whose multipliers are their friction forces), the velocity terms
+/// [h; bias_S], the diagonal inverse masses and the free accelerations a0. `sticking` gets the
+/// contact of each tangent row (the rows after G's).
+inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                                     const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                                     const std::vector<int>& state, std::vector<std::size_t>& sticking) {
+  const Eigen::Index m = G.rows(), n = G.cols();
+  sticking.clear();
+  for (Eigen::Index k = 0; k < m; ++k)
+    if (friction[static_cast<std::size_t>(k)].on && state[static_cast<std::size_t>(k)] == stick)
+      sticking.push_back(static_cast<std::size_t>(k));
+  const auto rows = m + static_cast<Eigen::Index>(sticking.size());
+  HeldForceRows p;
+  p.J.resize(rows, n);
+  p.kappa.resize(rows);
+  p.J.topRows(m) = G;
+  p.kappa.head(m) = h;
+  for (std::size_t j = 0; j < sticking.size(); ++j) {
+    const Friction& c = friction[sticking[j]];
+    p.J.row(m + static_cast<Eigen::Index>(j)) = c.T.transpose();
+    p.kappa(m + static_cast<Eigen::Index>(j)) = c.bias;
+  }
+  p.W = p.J;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const Friction& c = friction[static_cast<std::size_t>(k)];
+    const int st = state[static_cast<std::size_t>(k)];
+    if (c.on && (st == slip_positive || st == slip_negative)) p.W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
+  }
+  p.minv = minv;
+  p.a0 = a0;
+  return p;
+}
+
+/// The held conditions of contacts moving at fixed stick/slip states, decided exactly on their
+/// rows (docs/simulation.md, "Session 63 (exact63)"): per contact the sign of its normal
+/// multiplier (lift-off: negative; exactly 0 stays held), and per sticking contact whether its
+/// friction force exceeds the static limit, |f| > mu_s N with N = max(lambda, 0) / s (stick ->
+/// slip; exactly at the limit it sticks). Contacts of one collinear group (`group`, by contact;
+/// empty: each its own — the planar simulators' split_collinear) share their friction in
+/// proportion to their normal forces: the group's |sum f| against mu_s sum N decides for every
+/// member that carries a normal force (every member when none does). The multipliers are the
+/// exact minimum-norm solution of the rows (frictional_rows) — the interval filter first, exact
+/// rationals where it does not decide (decide_on_multipliers); mu_s and s are the doubles'
+/// values.
+struct HeldVerdict {
+  std::vector<int> force_sign;        ///< per contact: -1, 0, +1
+  std::vector<bool> beyond_static;    ///< per contact: sticking, and its friction beyond mu_s N
+};
+
+inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                                const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                                const std::vector<int>& state, const std::vector<std::size_t>& group = {},
+                                HeldForceCount* count = nullptr) {
+  std::vector<std::size_t> sticking;
+  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, sticking);
+  const std::size_t m = static_cast<std::size_t>(G.rows());
+  auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
+  return decide_on_multipliers(
+      rows,
+      [&](const auto& x) -> std::optional<HeldVerdict> {
+        using T = std::decay_t<decltype(x[0])>;
+        auto value = [](double d) {
+          if constexpr (std::is_same_v<T, Rational>) return held_force_detail::exact_value(d);
+          else return kernels::Interval::point(d);
+        };
+        HeldVerdict v;
+        v.force_sign.assign(m, 0);
+        v.beyond_static.assign(m, false);
+        for (std::size_t k = 0; k < m; ++k)
+          if ((v.force_sign[k] = exact_sign(x[k])) == 2) return std::nullopt;
+        std::vector<bool> done(m, false);
+        for (std::size_t j = 0; j < sticking.size(); ++j) {
+          const std::size_t g = group_of(sticking[j]);
+          if (done[g]) continue;
+          done[g] = true;
+          T force = T(0), normal = T(0);
+          int normal_sign = 0;
+          for (std::size_t i = j; i < sticking.size(); ++i) {
+            const std::size_t k = sticking[i];
+            if (group_of(k) != g) continue;
+            force = force + x[m + i];
+            normal = normal + nonnegative_part(x[k]) / value(friction[k].s);
+            normal_sign = std::max(normal_sign, v.force_sign[k]);
+          }
+          const int margin = exact_sign(value(friction[sticking[j]].mu_static) * normal - magnitude_of(force));
+          if (margin == 2) return std::nullopt;
+          if (margin >= 0) continue;
+          for (std::size_t i = j; i < sticking.size(); ++i) {
+            const std::size_t k = sticking[i];
+            if (group_of(k) == g && (v.force_sign[k] > 0 || normal_sign <= 0)) v.beyond_static[k] = true;
+          }
+        }
+        return v;
+      },
+      count);
 }
 
 /// True when the Coulomb conditions hold for the solution (stick: |f| <= mu_s N; a slip decided
