@@ -47,6 +47,7 @@ struct HeldForceRows {
   Eigen::VectorXd Q, kappa;
   Eigen::MatrixXd W;           ///< force rows (empty: W = J)
   Eigen::VectorXd minv, a0;    ///< the diagonal form (empty: M and Q)
+  std::size_t equalities = 0;  ///< the last rows: sticking tangent rows (solve_with_equalities)
 };
 
 /// How the decisions were taken (a test's count): by the interval filter alone, or in rationals.
@@ -202,12 +203,62 @@ inline std::pair<Matrix<Rational>, std::vector<Rational>> exact_delassus(const H
 
 }  // namespace held_force_detail
 
-/// The exact minimum-norm bilateral multipliers of the rows (held_force_signs' exact path; a
-/// test's oracle of the LCP's forces).
+namespace held_force_detail {
+
+/// The multipliers of A lambda = -b whose last `equalities` rows are sticking tangent rows
+/// (friction.hpp's frictional_rows): those rows' forces first, lambda after, as the doubles'
+/// reduce() and solve_bilateral() take them — with K the tangent rows' block, D and E the
+/// couplings, c and b_G the right-hand sides: f = -K^+ (c + D lambda) and lambda the minimum-norm
+/// solution of (A_GG - E K^+ D) lambda = -(b_G - E K^+ c). Where the rows are dependent (a normal
+/// row that the sticking rows already hold: a pusher's face along a sticking block's ground) the
+/// sticking rows carry the load and the normal multipliers only what they leave — the doubles'
+/// convention, exactly (a joint minimum norm would split it between them). Without equalities:
+/// the minimum-norm solution. Regular systems have one solution, whatever the order.
+inline std::vector<Rational> solve_with_equalities(const Matrix<Rational>& A, const std::vector<Rational>& b,
+                                                   std::size_t equalities) {
+  if (equalities == 0) return minimum_norm(A, b);
+  const std::size_t total = A.size(), k = total - equalities, p = equalities;
+  Matrix<Rational> K(p, std::vector<Rational>(p));
+  std::vector<Rational> c(p);
+  for (std::size_t i = 0; i < p; ++i) {
+    c[i] = b[k + i];
+    for (std::size_t j = 0; j < p; ++j) K[i][j] = A[k + i][k + j];
+  }
+  const std::vector<Rational> f0 = minimum_norm(K, c);   // -K^+ c
+  Matrix<Rational> F(p, std::vector<Rational>(k));      // -K^+ D
+  for (std::size_t j = 0; j < k; ++j) {
+    std::vector<Rational> d(p);
+    for (std::size_t i = 0; i < p; ++i) d[i] = A[k + i][j];
+    const std::vector<Rational> column = minimum_norm(K, d);
+    for (std::size_t i = 0; i < p; ++i) F[i][j] = column[i];
+  }
+  Matrix<Rational> reduced(k, std::vector<Rational>(k));
+  std::vector<Rational> reduced_b(k);
+  for (std::size_t i = 0; i < k; ++i) {
+    reduced_b[i] = b[i];
+    for (std::size_t l = 0; l < p; ++l) reduced_b[i] += A[i][k + l] * f0[l];
+    for (std::size_t j = 0; j < k; ++j) {
+      reduced[i][j] = A[i][j];
+      for (std::size_t l = 0; l < p; ++l) reduced[i][j] += A[i][k + l] * F[l][j];
+    }
+  }
+  std::vector<Rational> out = k > 0 ? minimum_norm(reduced, reduced_b) : std::vector<Rational>{};
+  out.resize(total);
+  for (std::size_t i = 0; i < p; ++i) {
+    out[k + i] = f0[i];
+    for (std::size_t j = 0; j < k; ++j) out[k + i] += F[i][j] * out[j];
+  }
+  return out;
+}
+
+}  // namespace held_force_detail
+
+/// The exact bilateral multipliers of the rows (held_force_signs' exact path; a test's oracle of
+/// the LCP's forces): minimum-norm, the `equalities` last rows' first (solve_with_equalities).
 inline std::vector<Rational> exact_held_multipliers(const HeldForceRows& p) {
   using namespace held_force_detail;
   const auto [A, b] = exact_delassus(p, all_rows(p));
-  return minimum_norm(A, b);
+  return solve_with_equalities(A, b, p.equalities);
 }
 
 /// A decision on the exact multipliers of the rows (every row's, in order), taken first on their
@@ -325,7 +376,9 @@ inline std::optional<std::vector<bool>> held_after_lift_off(const HeldForceRows&
         bs[i] = b[set[i]];
         for (std::size_t j = 0; j < set.size(); ++j) As[i][j] = A[set[i]][set[j]];
       }
-      const std::vector<Rational> ls = set.empty() ? std::vector<Rational>{} : minimum_norm(As, bs);
+      std::size_t equalities = 0;   // (the companions come last in the set)
+      for (const std::size_t i : set) equalities += i >= m;
+      const std::vector<Rational> ls = set.empty() ? std::vector<Rational>{} : solve_with_equalities(As, bs, equalities);
       std::vector<Rational> lambda(total, Rational(0));
       bool ok = true;
       for (std::size_t i = 0; i < set.size() && ok; ++i) {

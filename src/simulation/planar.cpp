@@ -436,7 +436,7 @@ void solve_held_forces(Problem& p, const Eigen::VectorXd& minv, const std::vecto
   const std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
   auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
   if (unilateral) {
-    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
+    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split, false, &group);
   } else {
     p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
     split(p.solution);

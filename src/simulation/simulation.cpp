@@ -812,7 +812,8 @@ struct Simulation::Impl {
       }
       simulation::FrictionalSolution& s = w.solution;
       if (lifting) {
-        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged());
+        static const std::vector<std::size_t> no_groups;   // (exact stick limits, except in a wedge)
+        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged(), wedged() ? nullptr : &no_groups);
         if (!s.solved) {
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
