@@ -354,6 +354,43 @@ inline std::vector<int> held_force_signs(const HeldForceRows& p, HeldForceCount*
 /// (a sticking contact's tangent row) with a free multiplier, held exactly while the contact
 /// companion[j - contacts] is: they take part in every set that contact is in, and are not
 /// enumerated. The result has one entry per contact row.
+namespace held_force_detail {
+
+/// Whether the held set `pick` (one entry per contact row; companions held with their contact)
+/// solves the contact LCP exactly on A, b: its exact multipliers (solve_with_equalities) >= 0,
+/// its gaps' accelerations exactly 0 on it and >= 0 off it, its companion equalities exactly 0.
+inline bool consistent_set(const Matrix<Rational>& A, const std::vector<Rational>& b, std::size_t m,
+                           const std::vector<std::size_t>& companion, const std::vector<bool>& pick) {
+  const std::size_t total = A.size();
+  std::vector<std::size_t> set;
+  std::vector<bool> in(total, false);
+  for (std::size_t i = 0; i < total; ++i)
+    if (in[i] = i < m ? bool(pick[i]) : bool(pick[companion[i - m]]); in[i]) set.push_back(i);
+  Matrix<Rational> As(set.size(), std::vector<Rational>(set.size()));
+  std::vector<Rational> bs(set.size());
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    bs[i] = b[set[i]];
+    for (std::size_t j = 0; j < set.size(); ++j) As[i][j] = A[set[i]][set[j]];
+  }
+  std::size_t equalities = 0;   // (the companions come last in the set)
+  for (const std::size_t i : set) equalities += i >= m;
+  const std::vector<Rational> ls = set.empty() ? std::vector<Rational>{} : solve_with_equalities(As, bs, equalities);
+  std::vector<Rational> lambda(total, Rational(0));
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    lambda[set[i]] = ls[i];
+    if (set[i] < m && sgn(ls[i]) < 0) return false;
+  }
+  for (std::size_t i = 0; i < total; ++i) {
+    if (i >= m && !in[i]) continue;
+    Rational w = b[i];
+    for (std::size_t j = 0; j < total; ++j) w += A[i][j] * lambda[j];
+    if ((i >= m || pick[i]) ? sgn(w) != 0 : sgn(w) < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace held_force_detail
+
 inline std::optional<std::vector<bool>> held_after_lift_off(const HeldForceRows& p,
                                                            const std::vector<std::size_t>& companion = {}) {
   using namespace held_force_detail;
@@ -366,37 +403,7 @@ inline std::optional<std::vector<bool>> held_after_lift_off(const HeldForceRows&
     pick.assign(m, false);
     std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(size), true);
     do {
-      std::vector<std::size_t> set;
-      std::vector<bool> in(total, false);
-      for (std::size_t i = 0; i < total; ++i)
-        if (in[i] = i < m ? bool(pick[i]) : bool(pick[companion[i - m]]); in[i]) set.push_back(i);
-      Matrix<Rational> As(set.size(), std::vector<Rational>(set.size()));
-      std::vector<Rational> bs(set.size());
-      for (std::size_t i = 0; i < set.size(); ++i) {
-        bs[i] = b[set[i]];
-        for (std::size_t j = 0; j < set.size(); ++j) As[i][j] = A[set[i]][set[j]];
-      }
-      std::size_t equalities = 0;   // (the companions come last in the set)
-      for (const std::size_t i : set) equalities += i >= m;
-      const std::vector<Rational> ls = set.empty() ? std::vector<Rational>{} : solve_with_equalities(As, bs, equalities);
-      std::vector<Rational> lambda(total, Rational(0));
-      bool ok = true;
-      for (std::size_t i = 0; i < set.size() && ok; ++i) {
-        lambda[set[i]] = ls[i];
-        ok = set[i] >= m || sgn(ls[i]) >= 0;
-      }
-      for (std::size_t i = 0; i < m && ok; ++i) {
-        Rational w = b[i];
-        for (std::size_t j = 0; j < total; ++j) w += A[i][j] * lambda[j];
-        ok = pick[i] ? sgn(w) == 0 : sgn(w) >= 0;
-      }
-      for (std::size_t i = m; i < total && ok; ++i) {   // a companion equality holds exactly
-        if (!in[i]) continue;
-        Rational w = b[i];
-        for (std::size_t j = 0; j < total; ++j) w += A[i][j] * lambda[j];
-        ok = sgn(w) == 0;
-      }
-      if (ok) return pick;
+      if (consistent_set(A, b, m, companion, pick)) return pick;
     } while (std::prev_permutation(pick.begin(), pick.end()));
   }
   return std::nullopt;

@@ -430,13 +430,17 @@ void split_collinear(simulation::FrictionalSolution& s, const std::vector<simula
 // The forces of a held-contact problem `p` (rows G, h, free accelerations a0, friction rows):
 // unilateral, the frictional complementarity problem; else bilateral at the given stick/slip
 // states. Collinear rows of one pair share their sticking friction (split_collinear).
+// `exact_limits` (unilateral): the stick limits decided exactly too (exact_stick_holds; off where
+// the states are forced by the model-exact rest decision, exact_rest_state, which decides on the
+// model's exact numbers and takes precedence).
 template <class Problem>
 void solve_held_forces(Problem& p, const Eigen::VectorXd& minv, const std::vector<std::size_t>& pair_of,
-                       bool unilateral, const std::vector<int>& states) {
+                       bool unilateral, const std::vector<int>& states, bool exact_limits = true) {
   const std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
   auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
   if (unilateral) {
-    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split, false, &group);
+    p.solution =
+        simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split, false, exact_limits ? &group : nullptr);
   } else {
     p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
     split(p.solution);
@@ -558,13 +562,12 @@ unsigned held_violations(const Problem& p, const std::vector<HeldT>& held, const
 }
 
 // Which held contacts lift off at a step's start (problem p: the frictional LCP's solution and
-// its stick/slip states; inverse masses minv), decided exactly on p's rows: the exact
-// multipliers of every held row at the solution's states (held_verdict); when none is negative
-// none lifts off (a force exactly 0 stays held: the tie rule of docs/simulation.md, "Session
-// 63 (exact63)"); else the exact contact LCP at those states (held_after_lift_off; a sticking
-// contact's tangent row held with its contact) says which stay. Where that LCP has no
-// consistent set (a Painlevé-type frictional problem) the doubles' LCP decides (lambda <= 0 and
-// separating), as before without a tolerance.
+// its stick/slip states; inverse masses minv): the exact multipliers of every held row at the
+// solution's states (held_verdict); when none is negative none lifts off (a force exactly 0
+// stays held: the tie rule of docs/simulation.md, "Session 63 (exact63)"); else the doubles'
+// LCP says which (lambda <= 0 and separating, without a tolerance). (A frictional contact LCP
+// can have several solutions: the exact enumeration, held_after_lift_off, chose another one
+// than the doubles for examples/models/pushed-block.json when its pusher stops — left.)
 template <class Problem>
 std::vector<bool> lift_offs(const Problem& p, const Eigen::VectorXd& minv, const std::vector<std::size_t>& pair_of) {
   const std::size_t m = static_cast<std::size_t>(p.G.rows());
@@ -572,13 +575,6 @@ std::vector<bool> lift_offs(const Problem& p, const Eigen::VectorXd& minv, const
                                                                    collinear_groups(p.friction, pair_of));
   std::vector<bool> lifts(m, false);
   if (std::none_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int s) { return s < 0; })) return lifts;
-  std::vector<std::size_t> sticking;
-  const simulation::HeldForceRows rows =
-      simulation::frictional_rows(p.G, minv, p.a0, p.h, p.friction, p.solution.state, sticking);
-  if (const auto stays = simulation::held_after_lift_off(rows, sticking)) {
-    for (std::size_t c = 0; c < m; ++c) lifts[c] = !(*stays)[c];
-    return lifts;
-  }
   for (std::size_t c = 0; c < m; ++c) {
     const auto r = static_cast<Eigen::Index>(c);
     lifts[c] = p.solution.lambda(r) <= 0 && p.solution.w(r) > 0;
@@ -1317,7 +1313,7 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
   }
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
-  solve_held_forces(p, inverse_mass(), pair_of, unilateral, states);
+  solve_held_forces(p, inverse_mass(), pair_of, unilateral, states, !forced);
   return p;
 }
 
