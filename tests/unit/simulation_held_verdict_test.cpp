@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "simulation/friction.hpp"
+#include "held_oracle_support.hpp"
 #include "test_seed.hpp"
 
 #include <cmath>
@@ -23,48 +24,13 @@
 namespace hipair {
 namespace {
 
-using RMatrix = std::vector<std::vector<Rational>>;
+using held_oracle::cramer;
+using held_oracle::det;
+using held_oracle::Rng;
+using held_oracle::RMatrix;
 
-struct Rng {
-  std::uint64_t s;
-  double uniform(double a, double b) {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return a + (b - a) * static_cast<double>(s >> 11) / 9007199254740992.0;
-  }
-  int below(int n) { return static_cast<int>(uniform(0, n)) % n; }
-};
 
-Rational det(const RMatrix& a) {
-  const std::size_t n = a.size();
-  if (n == 0) return 1;
-  if (n == 1) return a[0][0];
-  Rational out = 0;
-  for (std::size_t c = 0; c < n; ++c) {
-    if (sgn(a[0][c]) == 0) continue;
-    RMatrix minor;
-    for (std::size_t r = 1; r < n; ++r) {
-      std::vector<Rational> row;
-      for (std::size_t j = 0; j < n; ++j)
-        if (j != c) row.push_back(a[r][j]);
-      minor.push_back(row);
-    }
-    const Rational term = a[0][c] * det(minor);
-    out += c % 2 == 0 ? term : Rational(-term);
-  }
-  return out;
-}
 
-// x with A x = -b by Cramer's rule (A regular)
-std::vector<Rational> cramer(const RMatrix& A, const std::vector<Rational>& b) {
-  const Rational d = det(A);
-  std::vector<Rational> out;
-  for (std::size_t i = 0; i < A.size(); ++i) {
-    RMatrix Ai = A;
-    for (std::size_t r = 0; r < A.size(); ++r) Ai[r][i] = -b[r];
-    out.push_back(det(Ai) / d);
-  }
-  return out;
-}
 
 struct Problem {
   Eigen::MatrixXd G;
