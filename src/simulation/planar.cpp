@@ -565,7 +565,8 @@ unsigned held_violations(const Problem& p, const std::vector<HeldT>& held, const
 // its stick/slip states; inverse masses minv): the exact multipliers of every held row at the
 // solution's states (held_verdict); when none is negative none lifts off (a force exactly 0
 // stays held: the tie rule of docs/simulation.md, "Session 63 (exact63)"); else the doubles'
-// LCP says which (lambda <= 0 and separating, without a tolerance). (A frictional contact LCP
+// LCP's lift-offs (lambda <= 0 and separating, without a tolerance) and every contact whose
+// exact force is negative. (A frictional contact LCP
 // can have several solutions: the exact enumeration, held_after_lift_off, chose another one
 // than the doubles for examples/models/pushed-block.json when its pusher stops — left.)
 template <class Problem>
@@ -577,7 +578,9 @@ std::vector<bool> lift_offs(const Problem& p, const Eigen::VectorXd& minv, const
   if (std::none_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int s) { return s < 0; })) return lifts;
   for (std::size_t c = 0; c < m; ++c) {
     const auto r = static_cast<Eigen::Index>(c);
-    lifts[c] = p.solution.lambda(r) <= 0 && p.solution.w(r) > 0;
+    // the doubles' LCP's lift-offs, and every contact whose exact force is negative (else the
+    // step's exact held conditions would cut it at its start, again and again)
+    lifts[c] = (p.solution.lambda(r) <= 0 && p.solution.w(r) > 0) || verdict.force_sign[c] < 0;
   }
   return lifts;
 }
