@@ -19,6 +19,7 @@
 // active-set search on stick/slip states; no iteration with a stopping rule).
 #pragma once
 
+#include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 
 #include <Eigen/Dense>
@@ -28,6 +29,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -203,6 +205,116 @@ inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen:
   return s;
 }
 
+/// The held contacts' force problem at given stick/slip states as exact rows
+/// (held_force_sign.hpp; the tangent rows its `equalities`, solved first as reduce() does):
+/// the constraint rows [G; T_S] and the force rows [W; T_S] (W_k = G_k -
+/// sign (mu_k / s_k) T_k for a sliding contact, the double reduce() forms; T_S the sticking
+/// contacts' tangent rows, whose multipliers are their friction forces), the velocity terms
+/// [h; bias_S], the diagonal inverse masses and the free accelerations a0. `sticking` gets the
+/// contact of each tangent row (the rows after G's).
+/// `group` (by contact; empty: each its own): of a collinear group's sticking contacts only the
+/// first has a tangent row (the group's: its multiplier is the group's friction; the members'
+/// rows agree to the grouping's 10^-12, and the split among them is left open by the equations).
+inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                                     const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                                     const std::vector<int>& state, std::vector<std::size_t>& sticking,
+                                     const std::vector<std::size_t>& group = {}) {
+  const Eigen::Index m = G.rows(), n = G.cols();
+  sticking.clear();
+  std::vector<bool> represented(static_cast<std::size_t>(m), false);
+  for (Eigen::Index k = 0; k < m; ++k)
+    if (friction[static_cast<std::size_t>(k)].on && state[static_cast<std::size_t>(k)] == stick) {
+      const std::size_t g = group.empty() ? static_cast<std::size_t>(k) : group[static_cast<std::size_t>(k)];
+      if (represented[g]) continue;
+      represented[g] = true;
+      sticking.push_back(static_cast<std::size_t>(k));
+    }
+  const auto rows = m + static_cast<Eigen::Index>(sticking.size());
+  HeldForceRows p;
+  p.J.resize(rows, n);
+  p.kappa.resize(rows);
+  p.J.topRows(m) = G;
+  p.kappa.head(m) = h;
+  for (std::size_t j = 0; j < sticking.size(); ++j) {
+    const Friction& c = friction[sticking[j]];
+    p.J.row(m + static_cast<Eigen::Index>(j)) = c.T.transpose();
+    p.kappa(m + static_cast<Eigen::Index>(j)) = c.bias;
+  }
+  p.W = p.J;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const Friction& c = friction[static_cast<std::size_t>(k)];
+    const int st = state[static_cast<std::size_t>(k)];
+    if (c.on && (st == slip_positive || st == slip_negative)) p.W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
+  }
+  p.minv = minv;
+  p.a0 = a0;
+  p.equalities = sticking.size();
+  return p;
+}
+
+/// The held conditions of contacts moving at fixed stick/slip states, decided exactly on their
+/// rows (docs/simulation.md, "Session 63 (exact63)"): per contact the sign of its normal
+/// multiplier (lift-off: negative; exactly 0 stays held), and per sticking contact whether its
+/// friction force exceeds the static limit, |f| > mu_s N with N = max(lambda, 0) / s (stick ->
+/// slip; exactly at the limit it sticks). Contacts of one collinear group (`group`, by contact;
+/// empty: each its own — the planar simulators' split_collinear) share their friction in
+/// proportion to their normal forces: the group's |sum f| against mu_s sum N decides for every
+/// member that carries a normal force (every member when none does). The multipliers are the
+/// exact solution of the rows (frictional_rows: the sticking rows' forces first, then the
+/// minimum-norm normal multipliers, as solve_bilateral) — the interval filter first (a regular
+/// system: one solution), exact rationals where it does not decide (decide_on_multipliers);
+/// mu_s and s are the doubles' values.
+struct HeldVerdict {
+  std::vector<int> force_sign;        ///< per contact: -1, 0, +1
+  std::vector<bool> beyond_static;    ///< per contact: sticking, and its friction beyond mu_s N
+};
+
+inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                                const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                                const std::vector<int>& state, const std::vector<std::size_t>& group = {},
+                                HeldForceCount* count = nullptr) {
+  std::vector<std::size_t> sticking;   // one tangent row per group
+  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, sticking, group);
+  const std::size_t m = static_cast<std::size_t>(G.rows());
+  auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
+  return decide_on_multipliers(
+      rows,
+      [&](const auto& x) -> std::optional<HeldVerdict> {
+        using T = std::decay_t<decltype(x[0])>;
+        auto value = [](double d) {
+          if constexpr (std::is_same_v<T, Rational>) return held_force_detail::exact_value(d);
+          else return kernels::Interval::point(d);
+        };
+        HeldVerdict v;
+        v.force_sign.assign(m, 0);
+        v.beyond_static.assign(m, false);
+        for (std::size_t k = 0; k < m; ++k)
+          if ((v.force_sign[k] = exact_sign(x[k])) == 2) return std::nullopt;
+        std::vector<bool> done(m, false);
+        for (std::size_t j = 0; j < sticking.size(); ++j) {
+          const std::size_t g = group_of(sticking[j]);
+          if (done[g]) continue;
+          done[g] = true;
+          const T force = x[m + j];   // the group's friction (its one tangent row)
+          T normal = T(0);
+          int normal_sign = 0;
+          for (std::size_t k = 0; k < m; ++k) {
+            if (group_of(k) != g || !friction[k].on || state[k] != stick) continue;
+            normal = normal + nonnegative_part(x[k]) / value(friction[k].s);
+            normal_sign = std::max(normal_sign, v.force_sign[k]);
+          }
+          const int margin = exact_sign(value(friction[sticking[j]].mu_static) * normal - magnitude_of(force));
+          if (margin == 2) return std::nullopt;
+          if (margin >= 0) continue;
+          for (std::size_t k = 0; k < m; ++k)
+            if (group_of(k) == g && friction[k].on && state[k] == stick && (v.force_sign[k] > 0 || normal_sign <= 0))
+              v.beyond_static[k] = true;
+        }
+        return v;
+      },
+      count);
+}
+
 /// True when the Coulomb conditions hold for the solution (stick: |f| <= mu_s N; a slip decided
 /// here: it accelerates (or moves) in its sliding direction).
 inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction) {
@@ -224,6 +336,50 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
   return true;
 }
 
+/// The stick limits of a candidate solution s decided exactly (held_verdict) on the rows of its
+/// held contacts (all but those the LCP lets separate: lambda 0 and w beyond its tolerance), at
+/// its states: false when a sticking contact's friction exceeds mu_s N exactly. `group`: the
+/// collinear groups by contact (empty: each its own).
+inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                              const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                              const FrictionalSolution& s, const std::vector<std::size_t>& group) {
+  const auto m = static_cast<std::size_t>(G.rows());
+  bool any = false;
+  for (std::size_t k = 0; k < m; ++k) any = any || (friction[k].on && s.state[k] == stick);
+  if (!any) return true;
+  std::vector<std::size_t> held;
+  for (std::size_t k = 0; k < m; ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    if (s.lambda(r) <= 0 && s.w(r) > s.tolerance) continue;
+    held.push_back(k);
+  }
+  const auto n = static_cast<Eigen::Index>(held.size());
+  Eigen::MatrixXd Gh(n, G.cols());
+  Eigen::VectorXd hh(n);
+  std::vector<Friction> fh;
+  std::vector<int> sh;
+  std::vector<std::size_t> gh;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const std::size_t k = held[i];
+    Gh.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(k));
+    hh(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(k));
+    fh.push_back(friction[k]);
+    sh.push_back(s.state[k]);
+    std::size_t first = i;   // the group's first held member
+    if (!group.empty())
+      for (std::size_t j = 0; j < i; ++j)
+        if (group[held[j]] == group[k]) {
+          first = j;
+          break;
+        }
+    gh.push_back(first);
+  }
+  const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh);
+  for (std::size_t i = 0; i < held.size(); ++i)
+    if (v.beyond_static[i]) return false;
+  return true;
+}
+
 /// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
 /// enumeration (fewest sliding contacts first; at most 3^8 assignments), each assignment's
 /// normal LCP solved by solve_lcp. solved = false when no assignment is consistent.
@@ -232,12 +388,15 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// contacts, whose split the equations leave open, in proportion to their normal forces).
 /// `undetermined_plain`: an assignment whose sticking rows leave the multipliers open is also
 /// tried with the frictionless multipliers (undetermined(), above; the fixed-axis simulator's
-/// wedges, session 36).
+/// wedges, session 36). `exact_groups` (given: the collinear groups by contact, empty for none):
+/// an assignment's stick limits are also decided exactly (exact_stick_holds; session 63), a
+/// friction force beyond mu_s N by any amount rejects the sticking assignment.
 inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                            const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
                                            const std::vector<Friction>& friction,
                                            const std::function<void(FrictionalSolution&)>& adjust = {},
-                                           bool undetermined_plain = false) {
+                                           bool undetermined_plain = false,
+                                           const std::vector<std::size_t>* exact_groups = nullptr) {
   const std::size_t m = friction.size();
   std::vector<std::size_t> open;
   std::vector<int> state(m, frictionless);
@@ -290,7 +449,8 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       s.tolerance = lcp.tolerance;
       complete(s, r, G, h, friction);
       if (adjust) adjust(s);
-      if (coulomb_satisfied(s, friction)) {
+      if (coulomb_satisfied(s, friction) &&
+          (!exact_groups || exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups))) {
         s.solved = true;
         return s;
       }

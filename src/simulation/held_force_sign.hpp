@@ -15,13 +15,16 @@
 #include <hipair/rational.hpp>
 
 #include "kernels/interval.hpp"
+#include "simulation/exact_elimination.hpp"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace hipair::simulation {
@@ -33,9 +36,18 @@ namespace hipair::simulation {
 /// A = J M^-1 J^T, b = J M^-1 Q + kappa. The bilateral multipliers solve A lambda = -b: the
 /// minimum-norm solution where A is singular (dependent rows), the least-squares one where -b is
 /// not in A's range (A^+ (-b), as the simulators' complete orthogonal decomposition gives it).
+///
+/// Frictional problems (friction.hpp's held_verdict) give two more things: force rows W (k x n)
+/// distinct from J — a contact sliding with kinetic friction pushes along W_k = J_k - sign mu_k T_k
+/// while its gap keeps J_k: then A = J M^-1 W^T, not symmetric — and a diagonal mass matrix by
+/// its inverse `minv` (0 for a driven coordinate) with the free accelerations a0 = M^-1 Q (then
+/// M and Q are not read): b = J a0 + kappa.
 struct HeldForceRows {
   Eigen::MatrixXd J, M;
   Eigen::VectorXd Q, kappa;
+  Eigen::MatrixXd W;           ///< force rows (empty: W = J)
+  Eigen::VectorXd minv, a0;    ///< the diagonal form (empty: M and Q)
+  std::size_t equalities = 0;  ///< the last rows: sticking tangent rows (solve_with_equalities)
 };
 
 /// How the decisions were taken (a test's count): by the interval filter alone, or in rationals.
@@ -85,19 +97,31 @@ inline Rational exact_value(double v) {
 }
 inline kernels::Interval point_interval(double v) { return kernels::Interval::point(v); }
 
-/// A = J M^-1 J^T and b = J M^-1 Q + kappa over the rows `set`, in T (none: M's elimination undecided).
+/// A = J M^-1 W^T and b = J M^-1 Q + kappa over the rows `set`, in T (none: M's elimination undecided).
 template <typename T, typename Convert>
 std::optional<std::pair<Matrix<T>, std::vector<T>>> delassus(const HeldForceRows& p, const std::vector<std::size_t>& set,
                                                             Convert convert) {
-  const auto n = static_cast<std::size_t>(p.M.rows());
+  const bool diagonal = p.minv.size() > 0;
+  const Eigen::MatrixXd& W = p.W.size() > 0 ? p.W : p.J;
+  const auto n = static_cast<std::size_t>(p.J.cols());
   const std::size_t k = set.size();
   Matrix<T> M(n, std::vector<T>(n)), rhs(n, std::vector<T>(k + 1));
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) M[i][j] = convert(p.M(Eigen::Index(i), Eigen::Index(j)));
-    for (std::size_t r = 0; r < k; ++r) rhs[i][r] = convert(p.J(Eigen::Index(set[r]), Eigen::Index(i)));
-    rhs[i][k] = convert(p.Q(Eigen::Index(i)));
+    if (!diagonal)
+      for (std::size_t j = 0; j < n; ++j) M[i][j] = convert(p.M(Eigen::Index(i), Eigen::Index(j)));
+    for (std::size_t r = 0; r < k; ++r) rhs[i][r] = convert(W(Eigen::Index(set[r]), Eigen::Index(i)));
+    rhs[i][k] = convert(diagonal ? p.a0(Eigen::Index(i)) : p.Q(Eigen::Index(i)));
   }
-  const std::optional<Matrix<T>> X = solve(std::move(M), std::move(rhs));   // M^-1 [J^T Q]
+  std::optional<Matrix<T>> X;   // M^-1 [W^T Q]
+  if (diagonal) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const T minv = convert(p.minv(Eigen::Index(i)));
+      for (std::size_t r = 0; r < k; ++r) rhs[i][r] = minv * rhs[i][r];   // (a0 is M^-1 Q already)
+    }
+    X = std::move(rhs);
+  } else {
+    X = solve(std::move(M), std::move(rhs));
+  }
   if (!X) return std::nullopt;
   Matrix<T> A(k, std::vector<T>(k));
   std::vector<T> b(k);
@@ -116,45 +140,41 @@ std::optional<std::pair<Matrix<T>, std::vector<T>>> delassus(const HeldForceRows
   return std::pair{std::move(A), std::move(b)};
 }
 
-/// The exact minimum-norm (least-squares) solution of A lambda = -b, A symmetric positive
-/// semidefinite: lambda = C (C^T A C)^-1 C^T (-b) with C a basis of A's range (its independent
-/// columns, found by exact elimination). C^T A C is positive definite, lambda lies in A's range and
-/// A lambda is -b's projection onto it: lambda = A^+ (-b). With A regular, C = A and lambda = A^-1 (-b).
+/// The exact minimum-norm least-squares solution of A lambda = -b, lambda = A^+ (-b), by a
+/// full-rank factorization: with C A's independent columns and R its independent rows (exact
+/// elimination, exact_elimination.hpp), A^+ = R^T (C^T A R^T)^-1 C^T (C^T A R^T is regular).
+/// Symmetric A (frictionless rows): R = C^T and lambda = C (C^T A C)^-1 C^T (-b). With A
+/// regular, lambda = A^-1 (-b).
 inline std::vector<Rational> minimum_norm(const Matrix<Rational>& A, const std::vector<Rational>& b) {
   const std::size_t k = A.size();
-  // the independent columns: row echelon form of a copy
   Matrix<Rational> E = A;
-  std::vector<std::size_t> columns;
-  std::size_t row = 0;
-  for (std::size_t c = 0; c < k && row < k; ++c) {
-    std::size_t r = row;
-    while (r < k && sgn(E[r][c]) == 0) ++r;
-    if (r == k) continue;
-    std::swap(E[r], E[row]);
-    for (std::size_t i = row + 1; i < k; ++i) {
-      if (sgn(E[i][c]) == 0) continue;
-      const Rational f = E[i][c] / E[row][c];
-      for (std::size_t j = c; j < k; ++j) E[i][j] -= f * E[row][j];
-    }
-    columns.push_back(c);
-    ++row;
-  }
+  const std::vector<std::size_t> columns = row_echelon(E, k);
   const std::size_t r = columns.size();
   std::vector<Rational> lambda(k, Rational(0));
   if (r == 0) return lambda;   // A = 0: the minimum norm is 0
-  // AC = A C (k x r), G = C^T A C = C^T (A C) (r x r), h = C^T (-b)
-  Matrix<Rational> AC(k, std::vector<Rational>(r));
+  bool symmetric = true;
+  for (std::size_t i = 0; i < k && symmetric; ++i)
+    for (std::size_t j = 0; j < i && symmetric; ++j) symmetric = A[i][j] == A[j][i];
+  std::vector<std::size_t> rows = columns;   // A's independent rows (columns of A^T)
+  if (!symmetric) {
+    Matrix<Rational> Et(k, std::vector<Rational>(k));
+    for (std::size_t i = 0; i < k; ++i)
+      for (std::size_t j = 0; j < k; ++j) Et[i][j] = A[j][i];
+    rows = row_echelon(Et, k);
+  }
+  // ART = A R^T (k x r), G = C^T A R^T (r x r), h = C^T (-b)
+  Matrix<Rational> ART(k, std::vector<Rational>(r));
   for (std::size_t i = 0; i < k; ++i)
     for (std::size_t j = 0; j < r; ++j) {
       Rational sum = 0;
-      for (std::size_t l = 0; l < k; ++l) sum += A[i][l] * A[l][columns[j]];
-      AC[i][j] = sum;
+      for (std::size_t l = 0; l < k; ++l) sum += A[i][l] * A[rows[j]][l];
+      ART[i][j] = sum;
     }
   Matrix<Rational> G(r, std::vector<Rational>(r)), h(r, std::vector<Rational>(1));
   for (std::size_t i = 0; i < r; ++i) {
     for (std::size_t j = 0; j < r; ++j) {
       Rational sum = 0;
-      for (std::size_t l = 0; l < k; ++l) sum += A[l][columns[i]] * AC[l][j];
+      for (std::size_t l = 0; l < k; ++l) sum += A[l][columns[i]] * ART[l][j];
       G[i][j] = sum;
     }
     Rational sum = 0;
@@ -164,7 +184,7 @@ inline std::vector<Rational> minimum_norm(const Matrix<Rational>& A, const std::
   const std::optional<Matrix<Rational>> mu = solve(std::move(G), std::move(h));
   if (!mu) throw NumericError("a held contact's force problem: the range basis is singular (internal)");
   for (std::size_t i = 0; i < k; ++i)
-    for (std::size_t j = 0; j < r; ++j) lambda[i] += A[i][columns[j]] * (*mu)[j][0];
+    for (std::size_t j = 0; j < r; ++j) lambda[i] += A[rows[j]][i] * (*mu)[j][0];
   return lambda;
 }
 
@@ -183,12 +203,129 @@ inline std::pair<Matrix<Rational>, std::vector<Rational>> exact_delassus(const H
 
 }  // namespace held_force_detail
 
-/// The exact minimum-norm bilateral multipliers of the rows (held_force_signs' exact path; a
-/// test's oracle of the LCP's forces).
+namespace held_force_detail {
+
+/// The multipliers of A lambda = -b whose last `equalities` rows are sticking tangent rows
+/// (friction.hpp's frictional_rows): those rows' forces first, lambda after, as the doubles'
+/// reduce() and solve_bilateral() take them — with K the tangent rows' block, D and E the
+/// couplings, c and b_G the right-hand sides: f = -K^+ (c + D lambda) and lambda the minimum-norm
+/// solution of (A_GG - E K^+ D) lambda = -(b_G - E K^+ c). Where the rows are dependent (a normal
+/// row that the sticking rows already hold: a pusher's face along a sticking block's ground) the
+/// sticking rows carry the load and the normal multipliers only what they leave — the doubles'
+/// convention, exactly (a joint minimum norm would split it between them). Without equalities:
+/// the minimum-norm solution. Regular systems have one solution, whatever the order.
+inline std::vector<Rational> solve_with_equalities(const Matrix<Rational>& A, const std::vector<Rational>& b,
+                                                   std::size_t equalities) {
+  if (equalities == 0) return minimum_norm(A, b);
+  const std::size_t total = A.size(), k = total - equalities, p = equalities;
+  Matrix<Rational> K(p, std::vector<Rational>(p));
+  std::vector<Rational> c(p);
+  for (std::size_t i = 0; i < p; ++i) {
+    c[i] = b[k + i];
+    for (std::size_t j = 0; j < p; ++j) K[i][j] = A[k + i][k + j];
+  }
+  const std::vector<Rational> f0 = minimum_norm(K, c);   // -K^+ c
+  Matrix<Rational> F(p, std::vector<Rational>(k));      // -K^+ D
+  for (std::size_t j = 0; j < k; ++j) {
+    std::vector<Rational> d(p);
+    for (std::size_t i = 0; i < p; ++i) d[i] = A[k + i][j];
+    const std::vector<Rational> column = minimum_norm(K, d);
+    for (std::size_t i = 0; i < p; ++i) F[i][j] = column[i];
+  }
+  Matrix<Rational> reduced(k, std::vector<Rational>(k));
+  std::vector<Rational> reduced_b(k);
+  for (std::size_t i = 0; i < k; ++i) {
+    reduced_b[i] = b[i];
+    for (std::size_t l = 0; l < p; ++l) reduced_b[i] += A[i][k + l] * f0[l];
+    for (std::size_t j = 0; j < k; ++j) {
+      reduced[i][j] = A[i][j];
+      for (std::size_t l = 0; l < p; ++l) reduced[i][j] += A[i][k + l] * F[l][j];
+    }
+  }
+  std::vector<Rational> out = k > 0 ? minimum_norm(reduced, reduced_b) : std::vector<Rational>{};
+  out.resize(total);
+  for (std::size_t i = 0; i < p; ++i) {
+    out[k + i] = f0[i];
+    for (std::size_t j = 0; j < k; ++j) out[k + i] += F[i][j] * out[j];
+  }
+  return out;
+}
+
+}  // namespace held_force_detail
+
+/// The exact bilateral multipliers of the rows (held_force_signs' exact path; a test's oracle of
+/// the LCP's forces): minimum-norm, the `equalities` last rows' first (solve_with_equalities).
 inline std::vector<Rational> exact_held_multipliers(const HeldForceRows& p) {
   using namespace held_force_detail;
   const auto [A, b] = exact_delassus(p, all_rows(p));
-  return minimum_norm(A, b);
+  return solve_with_equalities(A, b, p.equalities);
+}
+
+/// A decision on the exact multipliers of the rows (every row's, in order), taken first on their
+/// enclosures and, where those do not decide, on the exact rationals: `decide` is called with a
+/// std::vector<kernels::Interval> (the system A lambda = -b enclosed from the rows' doubles and
+/// solved by interval elimination; not called when a pivot's enclosure holds 0) and returns an
+/// empty optional when the enclosures do not decide; then it is called with the exact
+/// minimum-norm multipliers (std::vector<Rational>) and must decide. `exact_sign` and
+/// `nonnegative_part` / `magnitude_of` below are the comparisons both kinds share.
+template <typename Decide>
+auto decide_on_multipliers(const HeldForceRows& p, Decide decide, HeldForceCount* count = nullptr)
+    -> std::decay_t<decltype(*decide(std::vector<Rational>{}))> {
+  using namespace held_force_detail;
+  using kernels::Interval;
+  const std::vector<std::size_t> set = all_rows(p);
+  const std::size_t k = set.size();
+  if (k == 0) return std::move(*decide(std::vector<Rational>{}));   // nothing held: nothing counted
+  if (const auto filtered = delassus<Interval>(p, set, [](double v) { return point_interval(v); })) {
+    Matrix<Interval> minus_b(k, std::vector<Interval>(1));
+    for (std::size_t i = 0; i < k; ++i) minus_b[i][0] = -filtered->second[i];
+    if (const auto lambda = solve(filtered->first, std::move(minus_b))) {
+      std::vector<Interval> x(k);
+      for (std::size_t i = 0; i < k; ++i) x[i] = (*lambda)[i][0];
+      if (auto decided = decide(x)) {
+        if (count) ++count->filtered;
+        return std::move(*decided);
+      }
+    }
+  }
+  if (count) ++count->exact;
+  return std::move(*decide(exact_held_multipliers(p)));
+}
+
+/// The sign of an enclosure (2: it holds 0 and is not {0}) or of an exact value.
+inline int exact_sign(const kernels::Interval& v) { return v.sign(); }
+inline int exact_sign(const Rational& v) { return sgn(v); }
+/// max(v, 0) and |v|, enclosed or exact.
+inline kernels::Interval nonnegative_part(const kernels::Interval& v) {
+  return kernels::Interval(std::max(v.lo, 0.0), std::max(v.hi, 0.0));
+}
+inline Rational nonnegative_part(const Rational& v) { return sgn(v) > 0 ? v : Rational(0); }
+inline kernels::Interval magnitude_of(const kernels::Interval& v) {
+  if (v.lo >= 0) return v;
+  if (v.hi <= 0) return -v;
+  return kernels::Interval(0.0, std::max(-v.lo, v.hi));
+}
+inline Rational magnitude_of(const Rational& v) { return abs(v); }
+
+/// The sign of a . b for vectors of doubles, exactly: the double sum decides when it exceeds its
+/// rounding bound (products and sums: gamma_2n sum |a_i b_i|, plus the products' underflow, n
+/// half subnormal units each), else the exact rationals.
+inline int exact_dot_sign(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double sum = 0, magnitude = 0;
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    sum += a(i) * b(i);
+    magnitude += std::abs(a(i) * b(i));
+  }
+  if (std::isfinite(magnitude)) {
+    const double n = static_cast<double>(2 * a.size() + 2);
+    const double bound = n * 0x1p-52 * magnitude + n * std::numeric_limits<double>::denorm_min();
+    if (sum > bound) return 1;
+    if (sum < -bound) return -1;
+  }
+  Rational exact = 0;
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    exact += held_force_detail::exact_value(a(i)) * held_force_detail::exact_value(b(i));
+  return sgn(exact);
 }
 
 /// The signs (-1, 0, +1) of the held contacts' bilateral multipliers, exactly on the rows: the
@@ -196,32 +333,15 @@ inline std::vector<Rational> exact_held_multipliers(const HeldForceRows& p) {
 /// elimination: decided when no pivot and no multiplier's enclosure holds 0, or an enclosure is
 /// the point 0), the exact rationals where it does not decide.
 inline std::vector<int> held_force_signs(const HeldForceRows& p, HeldForceCount* count = nullptr) {
-  using namespace held_force_detail;
-  using kernels::Interval;
-  const std::vector<std::size_t> set = all_rows(p);
-  const std::size_t k = set.size();
-  std::vector<int> signs(k, 0);
-  if (k == 0) return signs;
-  if (const auto filtered = delassus<Interval>(p, set, [](double v) { return point_interval(v); })) {
-    Matrix<Interval> minus_b(k, std::vector<Interval>(1));
-    for (std::size_t i = 0; i < k; ++i) minus_b[i][0] = -filtered->second[i];
-    if (const auto lambda = solve(filtered->first, std::move(minus_b))) {
-      bool decided = true;
-      for (std::size_t i = 0; i < k && decided; ++i) {
-        const int s = (*lambda)[i][0].sign();
-        decided = s != 2;
-        signs[i] = s;
-      }
-      if (decided) {
-        if (count) ++count->filtered;
+  return decide_on_multipliers(
+      p,
+      [](const auto& lambda) -> std::optional<std::vector<int>> {
+        std::vector<int> signs(lambda.size());
+        for (std::size_t i = 0; i < lambda.size(); ++i)
+          if ((signs[i] = exact_sign(lambda[i])) == 2) return std::nullopt;
         return signs;
-      }
-    }
-  }
-  if (count) ++count->exact;
-  const std::vector<Rational> lambda = exact_held_multipliers(p);
-  for (std::size_t i = 0; i < k; ++i) signs[i] = sgn(lambda[i]);
-  return signs;
+      },
+      count);
 }
 
 /// Which held contacts stay held when a multiplier is negative: the contact LCP (lambda >= 0,
@@ -230,10 +350,52 @@ inline std::vector<int> held_force_signs(const HeldForceRows& p, HeldForceCount*
 /// lambda_S the exact minimum-norm multipliers of S, accepted when lambda_S >= 0, w_S = 0 and
 /// w_j >= 0 off S. A multiplier exactly 0 in S, or a w_j exactly 0 off S, is a tie the larger set
 /// takes first (held with zero force). None when no set is consistent (2^k sets; k <= 12).
-inline std::optional<std::vector<bool>> held_after_lift_off(const HeldForceRows& p) {
+/// `companion` (frictional rows, friction.hpp): rows beyond the first `contacts` are equalities
+/// (a sticking contact's tangent row) with a free multiplier, held exactly while the contact
+/// companion[j - contacts] is: they take part in every set that contact is in, and are not
+/// enumerated. The result has one entry per contact row.
+namespace held_force_detail {
+
+/// Whether the held set `pick` (one entry per contact row; companions held with their contact)
+/// solves the contact LCP exactly on A, b: its exact multipliers (solve_with_equalities) >= 0,
+/// its gaps' accelerations exactly 0 on it and >= 0 off it, its companion equalities exactly 0.
+inline bool consistent_set(const Matrix<Rational>& A, const std::vector<Rational>& b, std::size_t m,
+                           const std::vector<std::size_t>& companion, const std::vector<bool>& pick) {
+  const std::size_t total = A.size();
+  std::vector<std::size_t> set;
+  std::vector<bool> in(total, false);
+  for (std::size_t i = 0; i < total; ++i)
+    if (in[i] = i < m ? bool(pick[i]) : bool(pick[companion[i - m]]); in[i]) set.push_back(i);
+  Matrix<Rational> As(set.size(), std::vector<Rational>(set.size()));
+  std::vector<Rational> bs(set.size());
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    bs[i] = b[set[i]];
+    for (std::size_t j = 0; j < set.size(); ++j) As[i][j] = A[set[i]][set[j]];
+  }
+  std::size_t equalities = 0;   // (the companions come last in the set)
+  for (const std::size_t i : set) equalities += i >= m;
+  const std::vector<Rational> ls = set.empty() ? std::vector<Rational>{} : solve_with_equalities(As, bs, equalities);
+  std::vector<Rational> lambda(total, Rational(0));
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    lambda[set[i]] = ls[i];
+    if (set[i] < m && sgn(ls[i]) < 0) return false;
+  }
+  for (std::size_t i = 0; i < total; ++i) {
+    if (i >= m && !in[i]) continue;
+    Rational w = b[i];
+    for (std::size_t j = 0; j < total; ++j) w += A[i][j] * lambda[j];
+    if ((i >= m || pick[i]) ? sgn(w) != 0 : sgn(w) < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace held_force_detail
+
+inline std::optional<std::vector<bool>> held_after_lift_off(const HeldForceRows& p,
+                                                           const std::vector<std::size_t>& companion = {}) {
   using namespace held_force_detail;
   const std::vector<std::size_t> rows = all_rows(p);
-  const std::size_t m = rows.size();
+  const std::size_t total = rows.size(), m = total - companion.size();
   if (m > 12) return std::nullopt;
   const auto [A, b] = exact_delassus(p, rows);
   std::vector<bool> pick;
@@ -241,28 +403,7 @@ inline std::optional<std::vector<bool>> held_after_lift_off(const HeldForceRows&
     pick.assign(m, false);
     std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(size), true);
     do {
-      std::vector<std::size_t> set;
-      for (std::size_t i = 0; i < m; ++i)
-        if (pick[i]) set.push_back(i);
-      Matrix<Rational> As(set.size(), std::vector<Rational>(set.size()));
-      std::vector<Rational> bs(set.size());
-      for (std::size_t i = 0; i < set.size(); ++i) {
-        bs[i] = b[set[i]];
-        for (std::size_t j = 0; j < set.size(); ++j) As[i][j] = A[set[i]][set[j]];
-      }
-      const std::vector<Rational> ls = set.empty() ? std::vector<Rational>{} : minimum_norm(As, bs);
-      std::vector<Rational> lambda(m, Rational(0));
-      bool ok = true;
-      for (std::size_t i = 0; i < set.size() && ok; ++i) {
-        lambda[set[i]] = ls[i];
-        ok = sgn(ls[i]) >= 0;
-      }
-      for (std::size_t i = 0; i < m && ok; ++i) {
-        Rational w = b[i];
-        for (std::size_t j = 0; j < m; ++j) w += A[i][j] * lambda[j];
-        ok = pick[i] ? sgn(w) == 0 : sgn(w) >= 0;
-      }
-      if (ok) return pick;
+      if (consistent_set(A, b, m, companion, pick)) return pick;
     } while (std::prev_permutation(pick.begin(), pick.end()));
   }
   return std::nullopt;

@@ -8,6 +8,8 @@
 
 #include <hipair/rational.hpp>
 
+#include "simulation/exact_elimination.hpp"
+
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -79,21 +81,8 @@ inline std::vector<Rational> exact_projection_change(const std::vector<const Exa
     G[i][k] = s;
   }
   // forward elimination (exact: a pivot is any non-zero entry)
-  std::vector<std::size_t> pivot_column;
-  std::size_t r = 0;
-  for (std::size_t c = 0; c < k && r < k; ++c) {
-    std::size_t p = r;
-    while (p < k && sgn(G[p][c]) == 0) ++p;
-    if (p == k) continue;
-    std::swap(G[p], G[r]);
-    for (std::size_t i = r + 1; i < k; ++i) {
-      if (sgn(G[i][c]) == 0) continue;
-      const Rational f = G[i][c] / G[r][c];
-      for (std::size_t j = c; j <= k; ++j) G[i][j] -= f * G[r][j];
-    }
-    pivot_column.push_back(c);
-    ++r;
-  }
+  const std::vector<std::size_t> pivot_column = row_echelon(G, k);
+  const std::size_t r = pivot_column.size();
   std::vector<Rational> lambda(k, Rational(0));
   for (std::size_t i = r; i-- > 0;) {
     const std::size_t c = pivot_column[i];

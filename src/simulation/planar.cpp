@@ -431,13 +431,17 @@ void split_collinear(simulation::FrictionalSolution& s, const std::vector<simula
 // The forces of a held-contact problem `p` (rows G, h, free accelerations a0, friction rows):
 // unilateral, the frictional complementarity problem; else bilateral at the given stick/slip
 // states. Collinear rows of one pair share their sticking friction (split_collinear).
+// `exact_limits` (unilateral): the stick limits decided exactly too (exact_stick_holds; off where
+// the states are forced by the model-exact rest decision, exact_rest_state, which decides on the
+// model's exact numbers and takes precedence).
 template <class Problem>
 void solve_held_forces(Problem& p, const Eigen::VectorXd& minv, const std::vector<std::size_t>& pair_of,
-                       bool unilateral, const std::vector<int>& states) {
+                       bool unilateral, const std::vector<int>& states, bool exact_limits = true) {
   const std::vector<std::size_t> group = collinear_groups(p.friction, pair_of);
   auto split = [&](simulation::FrictionalSolution& s) { split_collinear(s, p.friction, group); };
   if (unilateral) {
-    p.solution = simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split);
+    p.solution =
+        simulation::solve_frictional(p.G, minv, p.a0, p.h, p.friction, split, false, exact_limits ? &group : nullptr);
   } else {
     p.solution = simulation::solve_bilateral(p.G, minv, p.a0, p.h, p.friction, states);
     split(p.solution);
@@ -528,31 +532,58 @@ void project_held(std::size_t m, const Eigen::VectorXd& minv, double hold_gap, b
 }
 
 // The held conditions at a state integrated with fixed states (problem p: frames, friction,
-// bilateral solution; velocities v): 0 when all hold, else bits 1 lift-off (a force below 0),
-// 2 stick -> slip, 4 slip -> stick (the sliding velocity changes sign), 8 edge end (the foot
-// leaves the segment); per contact in `per_contact` when given.
+// bilateral solution; velocities v; inverse masses minv): 0 when all hold, else bits 1 lift-off
+// (a force below 0), 2 stick -> slip, 4 slip -> stick (the sliding velocity changes sign), 8
+// edge end (the foot leaves the segment); per contact in `per_contact` when given. Bits 1 and 2
+// are decided exactly on the problem's rows (friction.hpp's held_verdict: a force exactly 0
+// stays held, a friction force exactly at mu_s N sticks; docs/simulation.md, "Session 63
+// (exact63)"), bit 4 by the exact sign of T . v.
 template <class Problem, class HeldT, class PairT>
 unsigned held_violations(const Problem& p, const std::vector<HeldT>& held, const std::vector<PairT>& pairs,
-                         const Eigen::VectorXd& v, double force_tolerance, std::vector<unsigned>* per_contact) {
+                         const Eigen::VectorXd& v, const Eigen::VectorXd& minv, std::vector<unsigned>* per_contact) {
   unsigned all = 0;
   if (per_contact) per_contact->assign(held.size(), 0);
+  if (held.empty()) return 0;
+  std::vector<std::size_t> pair_of;
+  for (const HeldT& c : held) pair_of.push_back(c.pair);
+  const simulation::HeldVerdict verdict = simulation::held_verdict(
+      p.G, minv, p.a0, p.h, p.friction, p.solution.state, collinear_groups(p.friction, pair_of));
   for (std::size_t k = 0; k < held.size(); ++k) {
-    const auto r = static_cast<Eigen::Index>(k);
     const HeldT& c = held[k];
     unsigned bits = 0;
-    const double lambda = p.solution.lambda(r);
-    if (lambda < -force_tolerance) bits |= 1;
-    if (p.friction[k].on && c.state == simulation::stick) {
-      double limit = pairs[c.pair].mu_static * std::max(lambda, 0.0), f = std::abs(p.solution.f(r));
-      if (f > limit + 2e-9 * (limit + f) + force_tolerance) bits |= 2;
-    }
+    if (verdict.force_sign[k] < 0) bits |= 1;
+    if (p.friction[k].on && c.state == simulation::stick && verdict.beyond_static[k]) bits |= 2;
     if (p.friction[k].on && (c.state == simulation::slip_positive || c.state == simulation::slip_negative))
-      if (c.state * p.frames[k].T.dot(v) < 0) bits |= 4;
+      if (c.state * simulation::exact_dot_sign(p.frames[k].T, v) < 0) bits |= 4;
     if (p.frames[k].along < 0 || p.frames[k].along > 1) bits |= 8;
     all |= bits;
     if (per_contact) (*per_contact)[k] = bits;
   }
   return all;
+}
+
+// Which held contacts lift off at a step's start (problem p: the frictional LCP's solution and
+// its stick/slip states; inverse masses minv): the exact multipliers of every held row at the
+// solution's states (held_verdict); when none is negative none lifts off (a force exactly 0
+// stays held: the tie rule of docs/simulation.md, "Session 63 (exact63)"); else the doubles'
+// LCP's lift-offs (lambda <= 0 and separating, without a tolerance) and every contact whose
+// exact force is negative. (A frictional contact LCP
+// can have several solutions: the exact enumeration, held_after_lift_off, chose another one
+// than the doubles for examples/models/pushed-block.json when its pusher stops — left.)
+template <class Problem>
+std::vector<bool> lift_offs(const Problem& p, const Eigen::VectorXd& minv, const std::vector<std::size_t>& pair_of) {
+  const std::size_t m = static_cast<std::size_t>(p.G.rows());
+  const simulation::HeldVerdict verdict = simulation::held_verdict(p.G, minv, p.a0, p.h, p.friction, p.solution.state,
+                                                                   collinear_groups(p.friction, pair_of));
+  std::vector<bool> lifts(m, false);
+  if (std::none_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int s) { return s < 0; })) return lifts;
+  for (std::size_t c = 0; c < m; ++c) {
+    const auto r = static_cast<Eigen::Index>(c);
+    // the doubles' LCP's lift-offs, and every contact whose exact force is negative (else the
+    // step's exact held conditions would cut it at its start, again and again)
+    lifts[c] = (p.solution.lambda(r) <= 0 && p.solution.w(r) > 0) || verdict.force_sign[c] < 0;
+  }
+  return lifts;
 }
 
 // The friction data of a held contact (frame f: tangent row T, tangential curvature term h_t)
@@ -847,14 +878,6 @@ struct PlanarSimulation::Impl {
   std::optional<int> exact_rest_state() const;
   Eigen::Vector3d inverse_mass() const { return Eigen::Vector3d(1 / mass, 1 / mass, 1 / inertia); }
   double tangential_tolerance() const { return rest_speed; }
-  double force_tolerance() const {
-    Kinematic still = k;
-    still.vx = still.vy = still.omega = 0;
-    Eigen::Vector3d a = free_acceleration(still);   // loads and springs
-    return 1e-9 * (mass * (std::hypot(accel[0], accel[1]) + std::hypot(a(0), a(1))) +
-                   (std::abs(torque) + inertia * std::abs(a(2))) / std::max(reach, 1.0) + 1e-300) *
-           static_cast<double>(1 + held.size());
-  }
   // Projects a state onto the held contacts' surfaces (gap = hold_gap) and their velocities
   // onto J v = 0 (and T v = 0 for sticking contacts), mass-weighted.
   void project(Kinematic& at, bool positions) const;
@@ -1308,7 +1331,7 @@ PlanarSimulation::Impl::HeldProblem PlanarSimulation::Impl::held_problem(const K
   }
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
-  solve_held_forces(p, inverse_mass(), pair_of, unilateral, states);
+  solve_held_forces(p, inverse_mass(), pair_of, unilateral, states, !forced);
   return p;
 }
 
@@ -1346,7 +1369,7 @@ Kinematic PlanarSimulation::Impl::held_step(const Kinematic& from, double span) 
 
 unsigned PlanarSimulation::Impl::violated(const Kinematic& at, std::vector<unsigned>* per_contact) const {
   return held_violations(held_problem(at, false), held, pairs, Eigen::VectorXd(Eigen::Vector3d(at.vx, at.vy, at.omega)),
-                         force_tolerance(), per_contact);
+                         Eigen::VectorXd(inverse_mass()), per_contact);
 }
 
 SimulationEvent PlanarSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
@@ -1449,14 +1472,17 @@ bool PlanarSimulation::Impl::decide() {
   if (!p.solution.solved)
     throw NumericError(where(t) + ": the contact problem of its held contacts has no consistent solution "
                                   "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
+  std::vector<std::size_t> pair_of;
+  for (const Held& c : held) pair_of.push_back(c.pair);
+  const std::vector<bool> lifts = lift_offs(p, Eigen::VectorXd(inverse_mass()), pair_of);
   std::vector<Held> kept;
   std::vector<HeldFrame> frames;
   bool changed = false;
   for (std::size_t c = 0; c < held.size(); ++c) {
     const auto r = static_cast<Eigen::Index>(c);
     Held h = held[c];
-    double lambda = p.solution.lambda(r), w = p.solution.w(r);
-    if (lambda <= force_tolerance() && w > 0) {   // no force and separating: lift-off
+    double lambda = p.solution.lambda(r);
+    if (lifts[c]) {   // no force and separating, exactly: lift-off
       events.push_back(held_event(SimulationEvent::Kind::lift_off, h, p.frames[c], 0, 0));
       continue;
     }
@@ -2238,7 +2264,6 @@ struct PlanarSystemSimulation::Impl {
       ks[i].omega = v(static_cast<Eigen::Index>(3 * i + 2));
     }
   }
-  double force_tolerance() const;
   // The accelerations of the motion: free, or with the held contacts' forces (their states fixed)
   std::vector<double> motion_accelerations(const std::vector<Kinematic>& ks) const {
     if (held.empty()) return accelerations(ks);
@@ -2399,20 +2424,6 @@ PlanarSystemSimulation::Impl::HeldProblem PlanarSystemSimulation::Impl::held_pro
   return p;
 }
 
-double PlanarSystemSimulation::Impl::force_tolerance() const {
-  std::vector<Kinematic> still = k;
-  for (Kinematic& s : still) s.vx = s.vy = s.omega = 0;
-  const std::vector<double> a = accelerations(still);   // loads and springs
-  double scale = 0;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Body& b = bodies[i];
-    if (b.driven) continue;
-    scale += b.mass * (std::hypot(b.accel[0], b.accel[1]) + std::hypot(a[3 * i], a[3 * i + 1])) +
-             (std::abs(b.torque) + b.inertia * std::abs(a[3 * i + 2])) / std::max(b.reach, 1.0);
-  }
-  return 1e-9 * (scale + 1e-300) * static_cast<double>(1 + held.size());
-}
-
 void PlanarSystemSimulation::Impl::held_rhs(const StateN& y, StateN& dy) const {
   if (held.empty()) {
     rhs(y, dy);
@@ -2445,7 +2456,7 @@ void PlanarSystemSimulation::Impl::project(std::vector<Kinematic>& ks, bool posi
 }
 
 unsigned PlanarSystemSimulation::Impl::violated(const std::vector<Kinematic>& ks, std::vector<unsigned>* per_contact) const {
-  return held_violations(held_problem(ks, false), held, pairs, velocity(ks), force_tolerance(), per_contact);
+  return held_violations(held_problem(ks, false), held, pairs, velocity(ks), inverse_mass(), per_contact);
 }
 
 SimulationEvent PlanarSystemSimulation::Impl::held_event(SimulationEvent::Kind kind, const Held& c, const HeldFrame& f,
@@ -2461,6 +2472,9 @@ bool PlanarSystemSimulation::Impl::decide() {
   if (!p.solution.solved)
     throw NumericError(where(t) + ": the contact problem of the held contacts has no consistent solution "
                                   "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
+  std::vector<std::size_t> pair_of;
+  for (const Held& c : held) pair_of.push_back(c.pair);
+  const std::vector<bool> lifts = lift_offs(p, inverse_mass(), pair_of);
   std::vector<Held> kept;
   std::vector<HeldFrame> frames;
   std::vector<Eigen::Index> rows;
@@ -2468,8 +2482,8 @@ bool PlanarSystemSimulation::Impl::decide() {
   for (std::size_t c = 0; c < held.size(); ++c) {
     const auto r = static_cast<Eigen::Index>(c);
     Held h = held[c];
-    const double lambda = p.solution.lambda(r), w = p.solution.w(r);
-    if (lambda <= force_tolerance() && w > 0) {   // no force and separating: lift-off
+    const double lambda = p.solution.lambda(r);
+    if (lifts[c]) {   // no force and separating, exactly: lift-off
       events.push_back(held_event(SimulationEvent::Kind::lift_off, h, p.frames[c], 0, 0));
       continue;
     }

@@ -153,6 +153,12 @@ struct ContactForces {
   Vec normal, tangential;    // physical normal and friction force (internal units)
   Vec vt;                    // relative tangential velocity
   Vec mu_static;
+  // held contacts (bilateral, at their states): each multiplier's sign and whether a sticking
+  // contact's friction exceeds mu_s N, decided exactly on the rows (friction.hpp's held_verdict;
+  // docs/simulation.md, "Session 63 (exact63)"), or from the doubles where the sticking rows
+  // of a wedge leave the multipliers open (solve_bilateral's undetermined_plain)
+  std::vector<int> force_sign;
+  std::vector<bool> beyond_static;
 };
 
 struct ContactRow {
@@ -697,6 +703,33 @@ struct Simulation::Impl {
   };
   mutable Scratch scratch_;
 
+  // The held conditions of the bilateral solution s (rows G, h; inverse masses minv; free
+  // accelerations a0; states), exactly: simulation::held_verdict. A wedge (some active contact
+  // a wedge: solve_bilateral may take the frictionless multipliers the sticking rows leave
+  // open) keeps the doubles' signs and limits: which multipliers the equations leave open is
+  // itself decided in floating point there (friction.hpp's undetermined()).
+  void held_conditions(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                       const Eigen::VectorXd& h, const std::vector<simulation::Friction>& friction,
+                       const std::vector<int>& state, const simulation::FrictionalSolution& s, ContactForces& out) const {
+    const auto m = static_cast<std::size_t>(G.rows());
+    if (!wedged()) {
+      simulation::HeldVerdict verdict = simulation::held_verdict(G, minv, a0, h, friction, state);
+      out.force_sign = std::move(verdict.force_sign);
+      out.beyond_static = std::move(verdict.beyond_static);
+      return;
+    }
+    out.force_sign.assign(m, 0);
+    out.beyond_static.assign(m, false);
+    for (std::size_t k = 0; k < m; ++k) {
+      const double lambda = s.lambda(static_cast<Eigen::Index>(k));
+      out.force_sign[k] = (lambda > 0) - (lambda < 0);
+      const simulation::Friction& c = friction[k];
+      if (!c.on || state[k] != simulation::stick) continue;
+      const double limit = c.mu_static * lambda / c.s;   // (the former margin: 2e-9 over the 1e-9 of the start)
+      out.beyond_static[k] = std::abs(s.f(static_cast<Eigen::Index>(k))) > limit * (1 + 2e-9) + 1e-300;
+    }
+  }
+
   // accelerations (all dofs) and multipliers of the active constraints; false when a
   // constraint is outside its edge. `lifting` null: every active contact is held (a bilateral
   // constraint: the multipliers may come out negative, which the step's bisection detects).
@@ -779,7 +812,8 @@ struct Simulation::Impl {
       }
       simulation::FrictionalSolution& s = w.solution;
       if (lifting) {
-        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged());
+        static const std::vector<std::size_t> no_groups;   // (exact stick limits, except in a wedge)
+        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged(), wedged() ? nullptr : &no_groups);
         if (!s.solved) {
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
@@ -790,6 +824,7 @@ struct Simulation::Impl {
           if (s.lambda(k) == 0 && s.w(k) > s.tolerance) lifting->push_back(k);
       } else {
         simulation::solve_bilateral(G, minv, a0, h, friction, state, wedged(), w.work, s);
+        if (out) held_conditions(G, minv, a0, h, friction, state, s, *out);
       }
       for (std::size_t i = 0; i < n; ++i) acc[i] = s.x(i);
       lambda.assign(s.lambda.data(), s.lambda.data() + m);
@@ -838,6 +873,14 @@ struct Simulation::Impl {
       rhs = -(G * a0 + h);
       w.solve.compute(A);
       l = w.solve.solve(rhs);
+      if (out) {   // the multipliers' signs, exact (frictionless rows)
+        inverse_masses(w.minv);
+        for (std::size_t k = 0; k < m; ++k) simulation::reset(friction[k]);
+        w.state.assign(m, simulation::frictionless);
+        w.solution.lambda = l;
+        w.solution.f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m));
+        held_conditions(G, w.minv, a0, h, friction, w.state, w.solution, *out);
+      }
     }
     Eigen::VectorXd& da = w.da;
     da.noalias() = MinvGt * l;
@@ -2549,18 +2592,18 @@ struct Simulation::Impl {
         return found(2, 0, 3 * n);   // (no contact named, as before)
       for (std::size_t k = 0; k < lambda.size(); ++k) {
         if (k < n) p.margins[n + k] = lambda[k];
-        if (lambda[k] < 0) return found(1, k, n + k);
+        if (cf.force_sign[k] < 0) return found(1, k, n + k);   // exact (held_conditions)
       }
       if (cf.friction && start.friction)
         for (std::size_t k = 0; k < cf.state.size() && k < start.vt.size(); ++k) {
           if (k < coulomb_ignored.size() && coulomb_ignored[k]) continue;
           int st = cf.state[k];
           if (st == simulation::stick) {
-            // stick -> slip: the static limit reached (with a margin of 2e-9 over the 1e-9 the
-            // step-start decision allows, so that the next step does not stick again)
+            // stick -> slip: the friction force beyond the static limit, exactly (held_conditions;
+            // the margin only proposes probes)
             double limit = cf.mu_static[k] * cf.normal[k];
-            if (k < n) p.margins[2 * n + k] = limit * (1 + 2e-9) + 1e-300 - std::abs(cf.tangential[k]);
-            if (std::abs(cf.tangential[k]) > limit * (1 + 2e-9) + 1e-300) return found(3, k, 2 * n + k);
+            if (k < n) p.margins[2 * n + k] = limit - std::abs(cf.tangential[k]);
+            if (cf.beyond_static[k]) return found(3, k, 2 * n + k);
           } else if (st == simulation::slip_positive || st == simulation::slip_negative) {
             // slip -> stick (or reversal): the relative tangential velocity crosses zero
             double threshold = std::min(0.0, st * start.vt[k]);

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "simulation/held_force_sign.hpp"
+#include "held_oracle_support.hpp"
 #include "test_seed.hpp"
 
 #include <algorithm>
@@ -21,36 +22,12 @@
 namespace hipair {
 namespace {
 
-using RMatrix = std::vector<std::vector<Rational>>;
+using held_oracle::cramer;
+using held_oracle::det;
+using held_oracle::Rng;
+using held_oracle::RMatrix;
 
-struct Rng {
-  std::uint64_t s;
-  double uniform(double a, double b) {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return a + (b - a) * static_cast<double>(s >> 11) / 9007199254740992.0;
-  }
-  int below(int n) { return static_cast<int>(uniform(0, n)) % n; }
-};
 
-// det by cofactor expansion along the first row (n <= 4)
-Rational det(const RMatrix& a) {
-  const std::size_t n = a.size();
-  if (n == 0) return 1;
-  if (n == 1) return a[0][0];
-  Rational out = 0;
-  for (std::size_t c = 0; c < n; ++c) {
-    RMatrix minor;
-    for (std::size_t r = 1; r < n; ++r) {
-      std::vector<Rational> row;
-      for (std::size_t j = 0; j < n; ++j)
-        if (j != c) row.push_back(a[r][j]);
-      minor.push_back(row);
-    }
-    const Rational term = a[0][c] * det(minor);
-    out += c % 2 == 0 ? term : Rational(-term);
-  }
-  return out;
-}
 
 // A^-1 by the adjugate
 RMatrix inverse(const RMatrix& a) {
@@ -94,17 +71,6 @@ void oracle_problem(const simulation::HeldForceRows& p, RMatrix& A, std::vector<
   }
 }
 
-// Cramer's rule: lambda_i = det(A with column i replaced by -b) / det A (A regular)
-std::vector<Rational> cramer(const RMatrix& A, const std::vector<Rational>& b) {
-  const Rational d = det(A);
-  std::vector<Rational> out;
-  for (std::size_t i = 0; i < A.size(); ++i) {
-    RMatrix Ai = A;
-    for (std::size_t r = 0; r < A.size(); ++r) Ai[r][i] = -b[r];
-    out.push_back(det(Ai) / d);
-  }
-  return out;
-}
 
 // A generated problem: n coordinates, k independent rows, M = L L^T + diag (symmetric positive
 // definite), entries at the masses' scale sm, loads and velocity terms at the scale sq.

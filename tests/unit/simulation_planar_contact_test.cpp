@@ -112,6 +112,45 @@ std::size_t run_to(PlanarSimulation& s, SimulationEvent::Kind kind, double t_end
   }
 }
 
+// A held contact's force sign, exact (docs/simulation.md, "Session 63 (exact63)"): a block
+// thrown into the corner of a floor and a wall (plastic, frictionless), held there with gravity
+// g_x = -9810 mm/s^2 into the wall and g_y = sigma 2^-k 9810 along the floor's normal (k up to
+// 80). Its floor contacts' forces are -m g_y: a pull (sigma = 1) lifts the block off the floor
+// however small, a push (sigma = -1) holds it; the wall's contacts carry m |g_x| and never lift
+// off. Before session 63 the planar simulators held a contact until its force fell below 10^-9
+// of the loads (force_tolerance): pulls below that stayed held with a negative force. (Not at
+// 2^-100 g, nor with no load at all: the landing's plastic impact leaves velocities of
+// round-off's size whose velocity terms are in the rows exactly and decide the sign there — a
+// push of 2^-100 g was lifted by them: the rows' doubles, docs/simulation.md.)
+TEST(SimulationPlanarContact, BlockInACornerLiftsOffTheFloorExactlyWhenItsLoadPullsAway) {
+  int cases = 0;
+  for (const int k : {1, 20, 29, 33, 40, 52, 53, 64, 80})
+    for (const int sigma : {1, -1}) {
+      double w = 10, h = 4, gap = 1e-3;
+      Scene scene = block_scene(w, h, gap);
+      scene.wall = true;
+      scene.x = w / 2 + gap;
+      scene.vx = scene.vy = -100;
+      scene.gx = -9810;
+      scene.gy = sigma * std::ldexp(9810.0, -k);
+      PlanarSimulation s = PlanarSimulation::create(scene.model());
+      s.run_until(0.002);
+      std::size_t floor_lifts = 0, wall_lifts = 0, floor_contacts = 0;
+      for (const SimulationEvent& e : s.events()) {
+        const bool floor = !e.features.empty() && e.features[0].find("floor") != std::string::npos;
+        const bool wall = !e.features.empty() && e.features[0].find("wall") != std::string::npos;
+        if (e.kind == SimulationEvent::Kind::lift_off) (floor ? floor_lifts : wall_lifts) += floor || wall;
+        if (e.kind == SimulationEvent::Kind::contact && floor) ++floor_contacts;
+      }
+      ASSERT_GT(floor_contacts, 0u) << "k " << k << " sigma " << sigma;   // held on the floor after the landing
+      EXPECT_EQ(wall_lifts, 0u) << "k " << k << " sigma " << sigma;
+      if (sigma > 0) EXPECT_GT(floor_lifts, 0u) << "k " << k << ": a pull of 2^-" << k << " g stayed held";
+      else EXPECT_EQ(floor_lifts, 0u) << "k " << k << " sigma " << sigma;
+      ++cases;
+    }
+  EXPECT_EQ(cases, 18);
+}
+
 // A block w x h dropped flat from a gap of 10^-3 mm with horizontal speed v lands (plastic) at
 // t_f = sqrt(2 gap / g) with normal speed v_n = g t_f; the impact's Coulomb impulse leaves
 // v+ = v - mu_k v_n (it slides through the impact); then it decelerates at mu_k g and stops
