@@ -44,5 +44,20 @@ inline bool& newton_refine() { return thread_switch<NewtonRefineTag>(); }
 // How many Newton steps from an anchor were taken on this thread (tests, profiles).
 struct NewtonRefineStepsTag;
 inline std::size_t& newton_refine_steps() { return thread_counter<NewtonRefineStepsTag>(); }
+// What the refinement achieved, not what it tried (session 64): proposals whose cells a Newton
+// step from an anchor narrowed (refine_narrowings), and left siblings skipped because the last
+// anchor proved them free where the stretch's own mean-value bound could not
+// (refined_free_before; refined_skips counts the proposals, refined_skipped_stretches the
+// sibling stretches not evaluated). Counted on this thread (tests, profiles).
+struct RefineNarrowingsTag;
+inline std::size_t& refine_narrowings() { return thread_counter<RefineNarrowingsTag>(); }
+struct RefinedSkipsTag;
+inline std::size_t& refined_skips() { return thread_counter<RefinedSkipsTag>(); }
+struct RefinedSkippedStretchesTag;
+inline std::size_t& refined_skipped_stretches() { return thread_counter<RefinedSkippedStretchesTag>(); }
+// The anchor's skip alone (refined_free_before), with the narrowing kept: on by default; tests
+// switch it off per thread to compare (CSpaceNewtonRefine.AnchorSkips*).
+struct RefinedSkipTag;
+inline bool& refined_skip() { return thread_switch<RefinedSkipTag>(); }
 
 }  // namespace hipair::cspace

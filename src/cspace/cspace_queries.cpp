@@ -3071,10 +3071,17 @@ class CrossingRun {
               stack.emplace_back(scratch().v, at_cell(first + size));
               // the siblings left of the node, [a, a + first cells), certified free when the
               // curve's mean-value bound keeps it off 0 there (crossing_shrink.hpp, skip_left)
-              if (!left.empty() && cspace::skip_left() &&
-                  (free_before(cells_of(first), at) || refined_free_before(first))) {
-                cspace::skipped_left() += left.size();
-                return;
+              if (!left.empty() && cspace::skip_left()) {
+                bool skip = free_before(cells_of(first), at);
+                if (!skip && cspace::refined_skip() && refined_free_before(first)) {
+                  skip = true;
+                  ++cspace::refined_skips();
+                  cspace::refined_skipped_stretches() += left.size();
+                }
+                if (skip) {
+                  cspace::skipped_left() += left.size();
+                  return;
+                }
               }
               for (auto it = left.rbegin(); it != left.rend(); ++it) {
                 scratch().v = at_cell(it->first);
@@ -3129,6 +3136,7 @@ class CrossingRun {
       long new_lo = lo > 0 ? k_lo + static_cast<long>(lo) : k_lo;
       long new_hi = hi < span ? k_lo + static_cast<long>(hi) : k_hi;
       if (new_lo >= new_hi) return;
+      if (new_lo > k_lo || new_hi < k_hi) ++cspace::refine_narrowings();
       bool enough = 4 * (new_hi - new_lo) <= 3 * (k_hi - k_lo);
       k_lo = new_lo;
       k_hi = new_hi;

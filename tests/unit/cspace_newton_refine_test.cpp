@@ -25,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -48,20 +49,24 @@ TEST(CSpaceNewtonRefine, AnswersAreThoseWithoutIt) {
 }
 
 // The steps (stretches evaluated, CrossingQuery::step) each generated motion's query takes with
-// the refinement on and off: the same answer, and no more steps in all with it on (it exists to
-// take fewer; a deeper node's left siblings are skipped as far as its last anchor proves free).
-TEST(CSpaceNewtonRefine, RefinedQueriesTakeFewerSteps) {
-  const std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
-  std::mt19937_64 random(test::test_seed(6302));
+// the switch Flag on and off (seed `seed`, 120 motions per example space): the same answer, and
+// the sums and per-motion comparisons of the steps.
+struct StepCounts {
   long with_steps = 0, without_steps = 0;
   int motions = 0, fewer = 0, more = 0;
+};
+template <bool& (*Flag)()>
+StepCounts steps_on_and_off(std::uint64_t seed) {
+  StepCounts counts;
+  const std::vector<std::unique_ptr<CSpace>> spaces = test::example_spaces();
+  std::mt19937_64 random(seed);
   for (const auto& space : spaces) {
     const std::vector<std::size_t> edges = test::real_edges(*space);
     for (int i = 0; i < 120; ++i) {
       std::optional<test::GeneratedMotion> motion = test::generated_motion(*space, edges, random);
       if (!motion) continue;
       auto run = [&](bool on, long& steps) -> std::string {
-        test::FlagSwitch<&cspace::newton_refine> flag(on);
+        test::FlagSwitch<Flag> flag(on);
         try {
           CrossingQuery query(*space, motion->path, CrossingOptions{});
           long n = 0;
@@ -75,19 +80,70 @@ TEST(CSpaceNewtonRefine, RefinedQueriesTakeFewerSteps) {
       };
       long on = 0, off = 0;
       const std::string with = run(true, on), without = run(false, off);
-      ASSERT_EQ(with, without) << space->first_part() << ":" << space->second_part() << " motion " << i;
-      with_steps += on;
-      without_steps += off;
-      ++motions;
-      fewer += on < off;
-      more += on > off;
+      EXPECT_EQ(with, without) << space->first_part() << ":" << space->second_part() << " motion " << i;
+      if (with != without) return counts;
+      counts.with_steps += on;
+      counts.without_steps += off;
+      ++counts.motions;
+      counts.fewer += on < off;
+      counts.more += on > off;
     }
   }
-  std::printf("motions %d: steps %ld with the refinement, %ld without; fewer in %d, more in %d\n", motions, with_steps,
-              without_steps, fewer, more);
-  EXPECT_GE(motions, 500);
-  EXPECT_GT(fewer, 0);
-  EXPECT_LT(with_steps, without_steps);
+  return counts;
+}
+
+// The refinement on and off: it exists to take fewer steps (a deeper node's left siblings are
+// skipped as far as its last anchor proves free).
+TEST(CSpaceNewtonRefine, RefinedQueriesTakeFewerSteps) {
+  const StepCounts c = steps_on_and_off<&cspace::newton_refine>(test::test_seed(6302));
+  ASSERT_FALSE(HasFailure());
+  std::printf("motions %d: steps %ld with the refinement, %ld without; fewer in %d, more in %d\n", c.motions,
+              c.with_steps, c.without_steps, c.fewer, c.more);
+  EXPECT_GE(c.motions, 500);
+  EXPECT_GT(c.fewer, 0);
+  EXPECT_LT(c.with_steps, c.without_steps);
+}
+
+// Session 64: what the refinement achieves, counted where it succeeds (not where it is tried):
+// proposals narrowed by a Newton step from an anchor (cspace::refine_narrowings), and left
+// siblings skipped on the last anchor's proof alone (refined_free_before, where the stretch's
+// own bound could not: cspace::refined_skips). Each must happen on generated motions, the
+// anchor's skip alone switched off (cspace::refined_skip) must leave every answer as it was
+// and take more steps. A refinement that never narrows, or a refined_free_before that never
+// proves anything, fails here (the counts of attempts above do not see it).
+TEST(CSpaceNewtonRefine, NarrowingsHappenOnGeneratedMotions) {
+  test::SwitchCounts counts;
+  test::switch_answers_equal_on_examples<&cspace::newton_refine, &cspace::refine_narrowings>(
+      120, test::test_seed(6401), counts);
+  ASSERT_FALSE(HasFatalFailure());
+  std::printf("motions %d: crossing %d, none %d, other %d; proposals narrowed %zu\n", counts.motions, counts.crossing,
+              counts.none, counts.other, counts.hits);
+  EXPECT_GE(counts.motions, 500);
+  EXPECT_GE(counts.hits, 20u);
+}
+
+TEST(CSpaceNewtonRefine, AnchorSkipsHappenAndLeaveTheAnswers) {
+  test::SwitchCounts counts;
+  test::switch_answers_equal_on_examples<&cspace::refined_skip, &cspace::refined_skipped_stretches>(
+      120, test::test_seed(6402), counts);
+  ASSERT_FALSE(HasFatalFailure());
+  std::printf("motions %d: crossing %d, none %d, other %d; stretches skipped on an anchor's proof %zu\n",
+              counts.motions, counts.crossing, counts.none, counts.other, counts.hits);
+  EXPECT_GE(counts.motions, 500);
+  EXPECT_GE(counts.hits, 10u);
+}
+
+TEST(CSpaceNewtonRefine, AnchorSkipsTakeFewerSteps) {
+  const std::size_t before = cspace::refined_skips();
+  const StepCounts c = steps_on_and_off<&cspace::refined_skip>(test::test_seed(6403));
+  ASSERT_FALSE(HasFailure());
+  std::printf("motions %d: steps %ld with the anchor's skips, %ld without; fewer in %d, more in %d; %zu skips\n",
+              c.motions, c.with_steps, c.without_steps, c.fewer, c.more, cspace::refined_skips() - before);
+  EXPECT_GE(c.motions, 500);
+  EXPECT_GT(c.fewer, 0);
+  EXPECT_EQ(c.more, 0);
+  EXPECT_LT(c.with_steps, c.without_steps);
+  EXPECT_GE(cspace::refined_skips() - before, static_cast<std::size_t>(c.fewer));
 }
 
 TEST(CSpaceNestedTaylor, AnswersAreThoseWithoutIt) {
@@ -104,13 +160,19 @@ TEST(CSpaceNestedTaylor, AnswersAreThoseWithoutIt) {
 
 TEST(CSpaceNewtonRefine, SimulationRunsEqualTheRunsWithoutIt) {
   const std::size_t before = cspace::newton_refine_steps();
+  const std::size_t narrowed = cspace::refine_narrowings(), skipped = cspace::refined_skips();
   test::SideBySide runs = test::examples_side_by_side<cspace::newton_refine>(
       {{"escapement.json", 0.5, 1e-3}, {"geneva-drive.json", 2.0, 1e-3}, {"ratchet.json", 0.1, 1e-6}});
   ASSERT_FALSE(HasFailure());
-  std::printf("Newton refinement: %zu steps, %zu events equal with the switch off; %zu Newton steps\n", runs.steps,
-              runs.events, cspace::newton_refine_steps() - before);
+  std::printf("Newton refinement: %zu steps, %zu events equal with the switch off; %zu Newton steps, %zu proposals "
+              "narrowed, %zu anchor skips\n",
+              runs.steps, runs.events, cspace::newton_refine_steps() - before, cspace::refine_narrowings() - narrowed,
+              cspace::refined_skips() - skipped);
   EXPECT_GT(runs.events, 20u);
   EXPECT_GT(cspace::newton_refine_steps() - before, 0u);
+  // (session 64) the runs' queries narrow proposals and skip siblings on an anchor's proof
+  EXPECT_GT(cspace::refine_narrowings() - narrowed, 0u);
+  EXPECT_GT(cspace::refined_skips() - skipped, 0u);
 }
 
 TEST(CSpaceNestedTaylor, SimulationRunsEqualTheRunsWithoutIt) {
