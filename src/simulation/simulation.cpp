@@ -1353,6 +1353,9 @@ struct Simulation::Impl {
     if (!simulation::nudge_check()) return true;
     double length = 0;
     for (std::size_t i = 0; i < q.size(); ++i) length = std::max(length, std::abs(q[i] - start[i]));
+    // a move within the allowance is the rounding itself: certified without a query, and
+    // without making its exact path (simulation::move_certified's first test, taken here)
+    if (length <= simulation::nudge_allowance * first) return true;
     const CSpace& space = *spaces[pair];
     MotionPath back;
     auto axis = [&](const std::string& part) {
