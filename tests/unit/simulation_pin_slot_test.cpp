@@ -1442,6 +1442,13 @@ TEST(SimulationPinSlot, FrictionHoldsTheBarBelowTheStaticThresholdAndSlidesAbove
     EXPECT_EQ(kinds[0], SimulationEvent::Kind::impact);
     EXPECT_EQ(kinds[1], SimulationEvent::Kind::contact);
     EXPECT_EQ(kinds[2], second);
+    // the landing is a Coulomb impact: its tangential impulse within mu_s times the normal one
+    // where the bar sticks, mu_k times it where it slides (the landing speed along the slot,
+    // Fx t / m, against the normal impulse tau t / (C . u): the same threshold rho = 1)
+    const SimulationEvent& landing = sim.events().front();
+    if (sticks) EXPECT_LE(std::abs(landing.tangential_impulse), b.mu_s * landing.impulse);
+    else EXPECT_NEAR(std::abs(landing.tangential_impulse), b.mu_k * landing.impulse, 1e-9 * landing.impulse);
+    EXPECT_GT(std::abs(landing.tangential_impulse), 0.0);
     const SimulationEvent& last = sim.events().back();
     EXPECT_NEAR(last.normal_force, N, 1e-6 * N);
     if (!sticks) EXPECT_EQ(last.slip_direction, b.Fx > 0 ? -1 : 1);   // (the bar's point along -+t: t = -u)
