@@ -1507,5 +1507,28 @@ TEST(SimulationPinSlot, SlidingBarComesToRestAtTheClosedFormTimeAndSticks) {
   }
 }
 
+
+// The friction events do not depend on the step limit: the sliding bar's impact, contact, slip
+// and stick with no limit, 1 ms and 0.2 ms (the same kinds and features; the times within 8 delta
+// over the approach speed plus 10^-6 of the slide's duration).
+TEST(SimulationPinSlot, FrictionEventsDoNotDependOnTheStepSize) {
+  const std::uint64_t seed = test::test_seed(6403);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int c = 0; c < 3; ++c) {
+    PegBar b = random_peg_bar(rng);
+    const double N = b.normal_force();
+    b.Fx = rng.uniform(-0.8, 0.8) * b.mu_k * N;
+    b.v0 = (c % 2 == 0 ? 1 : -1) * rng.uniform(5, 30);
+    const double a = 1000 * (b.mu_k * N - std::abs(b.Fx)) / b.m, t_stop = std::abs(b.v0) / a;   // (at least: Fx's sign)
+    const Model model = read_model(b.json(), "<sliding bar>");
+    double delta = 0;
+    const auto runs = events_per_step_limit(model, {0.0, 1e-3, 2e-4}, 3 * t_stop, delta);
+    ASSERT_EQ(runs[0].size(), 4u) << "case " << c;
+    EXPECT_EQ(runs[0][2].kind, SimulationEvent::Kind::slip);
+    EXPECT_EQ(runs[0][3].kind, SimulationEvent::Kind::stick);
+    expect_same_event_sequences(runs, delta, 0.0, 1e-6 * t_stop, "case " + std::to_string(c));
+  }
+}
 }  // namespace
 }  // namespace hipair
