@@ -1734,8 +1734,38 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     }
     const Eigen::MatrixXd Gz = llt.matrixL().solve(G.transpose()).transpose();
     const Eigen::VectorXd vz = llt.matrixU() * rates(y);
-    const simulation::FrictionalSolution sol =
-        simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(n), vz, hv, friction);
+    // Newton's restitution with Coulomb friction can create energy where the normal and tangent
+    // rows couple (Kane and Levinson): where the kinetic energy (|x|^2 / 2 in these coordinates)
+    // would grow and no constant-speed driver takes part (a driver may do work), the restitution
+    // is scaled down to the largest factor (bisection, 2^-30) whose impact creates none, as the
+    // planar simulators' frictional_impact
+    Eigen::VectorXd restitution_part = Eigen::VectorXd::Zero(k), offsets = Eigen::VectorXd::Zero(k);
+    bool driven = false;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto ii = static_cast<Eigen::Index>(i);
+      offsets(ii) = -rows[i].v_other;
+      restitution_part(ii) = hv(ii) - offsets(ii);
+      driven = driven || rows[i].v_other != 0 || (friction[i].on && friction[i].bias != 0);
+    }
+    auto solve = [&](double scale) {
+      return simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part, friction);
+    };
+    simulation::FrictionalSolution sol = solve(1);
+    if (sol.solved && !driven && sol.x.squaredNorm() > vz.squaredNorm()) {
+      double lo = 0, hi = 1;
+      simulation::FrictionalSolution best = solve(0);
+      for (int i = 0; i < 30 && best.solved; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        simulation::FrictionalSolution trial = solve(mid);
+        if (!trial.solved || trial.x.squaredNorm() > vz.squaredNorm()) {
+          hi = mid;
+        } else {
+          lo = mid;
+          best = std::move(trial);
+        }
+      }
+      sol = std::move(best);
+    }
     if (!sol.solved) {
       std::ostringstream out;
       out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
