@@ -26,6 +26,9 @@ struct PinSlotContact {
   std::size_t pair = 0;   ///< index into Model::pairs
   std::string feature;    ///< the feature pair's label
   double normal_force = 0;   ///< force unit: the contact LCP's multiplier at the last step's start
+  /// force unit: its Coulomb friction force on the pin-slot part along the tangent (-n_y, n_x)
+  /// (n the normal from the other part into the pin-slot part); 0 without friction
+  double friction_force = 0;
 };
 
 /// The state of a pin-in-slot simulation, in the model's units (mm, rad, time unit).

@@ -42,6 +42,7 @@
 #include <hipair/pin_slot_simulation.hpp>
 
 #include "core/angle_limits.hpp"
+#include "simulation/friction.hpp"
 #include "simulation/held_extent.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
@@ -368,6 +369,7 @@ struct PinSlotSimulation::Impl {
     std::size_t index = 0;   // into Model::pairs
     std::size_t other = 0;   // model part
     double restitution = 0;
+    double mu_static = 0, mu_kinetic = 0;   // Coulomb friction (session 64; 0: frictionless)
     std::shared_ptr<Model> frame_model;   // the other part fixed at its zero configuration, the pin-slot part planar
     SlicedSpace space;
     SlicedConfiguration q;   // the state's exact configuration (free)
@@ -388,6 +390,13 @@ struct PinSlotSimulation::Impl {
     kernels::FeatureGeometry<Rational> fixed_exact, free_exact;
     kernels::FeatureGeometry<kernels::Interval> fixed_box, free_box;
     double force = 0;   // internal units (mN), the last multiplier
+    // Coulomb friction (session 64): stick, slip_positive / slip_negative (the pin-slot part's
+    // contact point sliding along +-t = k x n relative to the other part) or frictionless (also a
+    // frictional contact before its first decision: `decided` false); its friction force (mN,
+    // along t on the pin-slot part) at the last decision
+    int state = simulation::frictionless;
+    bool decided = false;
+    double friction_force = 0;
   };
   std::vector<Held> held;
   // A held contact's gap and its derivatives at a state: g, J = dg/d(s, psi), g_phi = dg/dphi
@@ -683,6 +692,158 @@ struct PinSlotSimulation::Impl {
     }
     return J;
   }
+  // ---- Coulomb friction (session 64; docs/simulation.md, "Friction at a pin-slot part's
+  // contacts"). A contact's tangent row at the world point p with the unit normal n (from the
+  // other part into the pin-slot part): the pin-slot part's contact point moves relative to the
+  // other part along t = k x n at T . rates - v_other (v_other: a constant-speed driver's surface
+  // speed along t) — T = [t . u, n . (p - P)] over (s, psi), the free driver's column
+  // -n . (p - C), the slider's -t . d (the normal rows' columns with t for n).
+  struct Tangent {
+    Eigen::VectorXd T;
+    double v_other = 0;
+  };
+  Tangent tangent_at(std::size_t pi, const double p[2], const double n[2], const State& s) const {
+    Tangent out;
+    out.T = Eigen::VectorXd::Zero(coordinates());
+    const double tx = -n[1], ty = n[0];
+    const double c = std::cos(s[1]), sn = std::sin(s[1]);
+    const double u[2] = {c * d[0] - sn * d[1], sn * d[0] + c * d[1]};
+    out.T(0) = tx * u[0] + ty * u[1];
+    out.T(1) = n[0] * (p[0] - P[0]) + n[1] * (p[1] - P[1]);   // t . (k x (p - P))
+    const Pair& pair = pairs[pi];
+    const std::size_t dr = driver_of[pair.other];
+    if (dr != no_index) {
+      const Point& C = model.parts[pair.other].motion.pivot;
+      const double lever = n[0] * (p[0] - C.x.get_d()) + n[1] * (p[1] - C.y.get_d());
+      if (drivers[dr].free) out.T(2) = -lever;
+      else out.v_other = driver_rate(dr, s) * lever;
+    }
+    if (pair.other == slider.part) out.T(x_column()) = -(tx * slider.dir[0] + ty * slider.dir[1]);
+    return out;
+  }
+  // A held contact's world point and unit normal at a state, in doubles: n the gradient of its gap
+  // over a translation of the pin-slot part (forward mode), p the vertex of a vertex contact, else
+  // the point of the arc's circle along n.
+  void held_point_normal(const Held& h, const State& s, double time, double p[2], double n[2]) const {
+    const double zero[4] = {0, 0, 0, 0};
+    const auto [other, follower] = held_poses(h, s, time, zero);
+    for (int k = 0; k < 2; ++k) {
+      TPose moved = follower;
+      (k == 0 ? moved.origin.x : moved.origin.y).d = 1;
+      n[k] = feature_gap(other, h.fixed_geometry, moved, h.free_geometry)->d;
+    }
+    const double length = std::hypot(n[0], n[1]);
+    n[0] /= length;
+    n[1] /= length;
+    using kernels::FeatureShape;
+    const auto& fa = h.fixed_geometry;
+    const auto& fb = h.free_geometry;
+    auto set = [&](const TPoint& q, double r) {
+      p[0] = q.x.v + r * n[0];
+      p[1] = q.y.v + r * n[1];
+    };
+    if (fa.shape == FeatureShape::vertex) set(other.place(fa.point), 0);
+    else if (fb.shape == FeatureShape::vertex) set(follower.place(fb.point), 0);
+    else if (fa.shape == FeatureShape::arc) set(other.place(fa.center), (fa.convex ? 1 : -1) * std::sqrt(fa.radius_squared));
+    else set(follower.place(fb.center), (fb.convex ? -1 : 1) * std::sqrt(fb.radius_squared));
+  }
+  bool frictional(const Held& h) const { return !h.limit && pairs[h.pair].mu_static > 0; }
+  bool any_friction() const {
+    return std::any_of(held.begin(), held.end(), [&](const Held& h) { return frictional(h); });
+  }
+  // Friction data of a contact (the tangent row in the problem's coordinates, see FrictionProblem)
+  // with normal row G: off where the tangent is parallel to the normal row (as the fixed-axis
+  // simulator's).
+  static simulation::Friction friction_of(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eigen::VectorXd& G,
+                                          const Tangent& tangent, const Pair& pair) {
+    simulation::Friction fr;
+    const double gg = G.squaredNorm(), tt = tangent.T.squaredNorm(), tg = tangent.T.dot(G);
+    if (!(gg > 0) || !(tt > 0) || !(tt - tg * tg / gg > 1e-18 * tt)) return fr;
+    fr.on = true;
+    fr.T = llt.matrixL().solve(tangent.T);
+    fr.mu_static = pair.mu_static;
+    fr.mu_kinetic = pair.mu_kinetic;
+    return fr;
+  }
+  // The held contacts' frictional force problem at a state in the coordinates z = L^T q (M = L L^T,
+  // its Cholesky factor): there the mass matrix is the identity, so the problem is friction.hpp's
+  // (diagonal inverse masses 1) — rows G = J L^-T and T L^-T, free accelerations L^-1 Q, the
+  // accelerations a = L^-T x. The multipliers and friction forces are the same numbers.
+  struct FrictionProblem {
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    Eigen::MatrixXd G;
+    Eigen::VectorXd minv, a0, h;
+    std::vector<simulation::Friction> friction;
+    std::vector<Tangent> tangents;
+    std::vector<double> vt;   // each contact's tangential speed at the state (0 without friction)
+  };
+  FrictionProblem friction_problem(const State& s, double time) const {
+    FrictionProblem out;
+    out.llt.compute(mass_matrix(s));
+    std::vector<HeldRow> rows;
+    for (const Held& h : held) rows.push_back(held_row(h, s, time));
+    const Eigen::MatrixXd J = jacobian(rows);
+    out.G = out.llt.matrixL().solve(J.transpose()).transpose();
+    out.a0 = out.llt.matrixL().solve(forces(s));
+    out.minv = Eigen::VectorXd::Ones(coordinates());
+    out.h.resize(J.rows());
+    const Eigen::VectorXd v = rates(s);
+    for (std::size_t i = 0; i < held.size(); ++i) {
+      const auto r = static_cast<Eigen::Index>(i);
+      out.h(r) = rows[i].kappa;
+      Tangent tangent;
+      simulation::Friction fr;
+      if (frictional(held[i])) {
+        tangent = held_tangent(held[i], s, time);
+        fr = friction_of(out.llt, J.row(r).transpose(), tangent, pairs[held[i].pair]);
+      }
+      fr.state = held[i].state;
+      fr.decided = true;
+      out.vt.push_back(fr.on ? tangent.T.dot(v) - tangent.v_other : 0.0);
+      out.friction.push_back(std::move(fr));
+      out.tangents.push_back(std::move(tangent));
+    }
+    return out;
+  }
+  Tangent held_tangent(const Held& h, const State& s, double time) const {
+    double p[2], n[2];
+    held_point_normal(h, s, time, p, n);
+    return tangent_at(h.pair, p, n, s);
+  }
+  // The held contacts' stick/slip states as integrated (frictionless where friction is off).
+  std::vector<int> held_states(const FrictionProblem& fp) const {
+    std::vector<int> out;
+    for (std::size_t i = 0; i < held.size(); ++i) out.push_back(fp.friction[i].on ? held[i].state : simulation::frictionless);
+    return out;
+  }
+  // The accelerations with frictional held contacts at their states (friction.hpp's bilateral
+  // solve: a sticking contact keeps its tangential acceleration 0, a sliding one pushes along
+  // J - sign mu_k T); `power`: the rate at which friction dissipates energy, -sum f v_t.
+  Eigen::VectorXd frictional_accelerations(const State& s, double time, double* power,
+                                           simulation::FrictionalSolution* out = nullptr) const {
+    const FrictionProblem fp = friction_problem(s, time);
+    simulation::FrictionalSolution sol =
+        simulation::solve_bilateral(fp.G, fp.minv, fp.a0, fp.h, fp.friction, held_states(fp));
+    if (power) {
+      *power = 0;
+      for (std::size_t i = 0; i < held.size(); ++i)
+        if (fp.friction[i].on) *power -= sol.f(static_cast<Eigen::Index>(i)) * fp.vt[i];
+    }
+    Eigen::VectorXd a = fp.llt.matrixU().solve(sol.x);
+    if (out) *out = std::move(sol);
+    return a;
+  }
+  // The exact sign of a contact's tangential speed T . rates - v_other (the rates and the row as
+  // their doubles give them).
+  int tangential_sign(const Tangent& tangent, const State& s) const {
+    const Eigen::Index n = tangent.T.size();
+    Eigen::VectorXd a(n + 1), b(n + 1);
+    a.head(n) = tangent.T;
+    a(n) = -tangent.v_other;
+    b.head(n) = rates(s);
+    b(n) = 1;
+    return simulation::exact_dot_sign(a, b);
+  }
   // The held contacts' bilateral multipliers at a state (the minimum-norm solution when their
   // rows are dependent).
   Eigen::VectorXd held_multipliers(const State& s, double time, const Eigen::VectorXd& Q) const {
@@ -744,9 +905,12 @@ struct PinSlotSimulation::Impl {
     ds[6] = s[7];
     ds[7] = 0;
     ds[8] = 0;
-    if (free_driver != no_index || has_slider()) {   // the free driver's and the slider's coordinates too
+    const bool friction = any_friction();
+    if (free_driver != no_index || has_slider() || friction) {   // the free driver's and the slider's coordinates too
       Eigen::VectorXd a;
+      double power = 0;   // friction's dissipation (session 64)
       if (held.empty()) a = inverse_mass(s) * forces(s);
+      else if (friction) a = frictional_accelerations(s, time, &power);
       else a = held_accelerations(s, time);
       ds[2] = a(0);
       ds[3] = a(1);
@@ -756,6 +920,7 @@ struct PinSlotSimulation::Impl {
         ds[8] = slider.damping * s[7] * s[7];   // the damping's work (dissipated)
       }
       if (damping > 0) ds[8] += damping * s[2] * s[2];   // the slide's damping's work
+      if (friction) ds[8] += power;                        // friction's work
       return;
     }
     double M[2][2], Q[2], a[2];
@@ -875,7 +1040,18 @@ struct PinSlotSimulation::Impl {
     public_state.pair_configurations.clear();
     for (const Pair& p : pairs) public_state.pair_configurations.push_back(p.q);
     public_state.contacts.clear();
-    if (!held.empty()) {   // the forces at this state (the bilateral multipliers of the held set)
+    if (!held.empty() && any_friction()) {   // (session 64) the frictional held set's multipliers at its states
+      simulation::FrictionalSolution sol;
+      frictional_accelerations(y, t, nullptr, &sol);
+      const FrictionProblem fp = friction_problem(y, t);
+      const simulation::HeldVerdict verdict =
+          simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, held_states(fp), {}, &force_count);
+      for (std::size_t i = 0; i < held.size(); ++i) {
+        const auto r = static_cast<Eigen::Index>(i);
+        held[i].force = verdict.force_sign[i] == 0 ? 0.0 : sol.lambda(r);
+        held[i].friction_force = fp.friction[i].on ? sol.f(r) : 0.0;
+      }
+    } else if (!held.empty()) {   // the forces at this state (the bilateral multipliers of the held set)
       // (a multiplier exactly 0 on the rows, the tie a contact stays held at, published as 0)
       const Eigen::VectorXd lambda = held_multipliers(y, t, forces(y));
       const std::vector<int> signs = simulation::held_force_signs(force_rows(y, t), &force_count);
@@ -883,7 +1059,8 @@ struct PinSlotSimulation::Impl {
     }
     for (const Held& h : held)
       public_state.contacts.push_back(
-          PinSlotContact{h.limit ? no_index : pairs[h.pair].index, h.features.label, h.force / force_scale});
+          PinSlotContact{h.limit ? no_index : pairs[h.pair].index, h.features.label, h.force / force_scale,
+                         h.friction_force / force_scale});
   }
   // Are the parts of the pair certainly farther apart than d at configuration q (exact: every
   // edge box of the pin-slot part placed at q against every edge box of the other part)?
@@ -1101,6 +1278,25 @@ struct PinSlotSimulation::Impl {
   bool held_conditions(const State& s, double time) const {
     if (held.empty()) return true;
     if (!finite(s)) return false;
+    if (any_friction()) {
+      // (session 64) the force signs and the stick limits exactly on the frictional rows at the
+      // integrated states (friction.hpp's held_verdict: a force exactly 0 stays held, a friction
+      // force exactly at mu_s N sticks), a slide's end by the exact sign of its tangential speed
+      const FrictionProblem fp = friction_problem(s, time);
+      if (!fp.G.allFinite() || !fp.a0.allFinite() || !fp.h.allFinite()) return false;
+      const std::vector<int> states = held_states(fp);
+      const simulation::HeldVerdict verdict =
+          simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, states, {}, &force_count);
+      for (std::size_t i = 0; i < held.size(); ++i) {
+        if (verdict.force_sign[i] < 0 || verdict.beyond_static[i]) return false;
+        if ((states[i] == simulation::slip_positive || states[i] == simulation::slip_negative) &&
+            states[i] * tangential_sign(fp.tangents[i], s) < 0)
+          return false;
+      }
+      for (const Held& h : held)
+        if (!held_valid(h, s, time)) return false;
+      return true;
+    }
     const simulation::HeldForceRows rows = force_rows(s, time);
     if (!rows.J.allFinite() || !rows.M.allFinite() || !rows.Q.allFinite() || !rows.kappa.allFinite()) return false;
     for (const int sign : simulation::held_force_signs(rows, &force_count))
@@ -1119,6 +1315,10 @@ struct PinSlotSimulation::Impl {
   // At a step's start: held contacts past their edge's end leave (edge-end); when a held force
   // is negative the contact LCP decides which contacts lift off.
   void update_held();
+  // update_held's decision with frictional contacts (session 64): the frictional contact LCP
+  // (friction.hpp's solve_frictional, its stick limits exact) decides each contact's stick/slip
+  // state and its lift-off (held_verdict's exact force signs, as the planar simulators' lift_offs)
+  void update_friction();
   SimulationEvent held_event(SimulationEvent::Kind kind, const Held& h, const State& s, double time) const;
   bool advance(double span);
 };
@@ -1177,7 +1377,25 @@ State PinSlotSimulation::Impl::project(const State& from, double time, const std
     const Eigen::MatrixXd J = jacobian(rows);
     Eigen::VectorXd v(k);
     for (Eigen::Index i = 0; i < k; ++i) v(i) = rows[static_cast<std::size_t>(i)].speed(s);
-    add_rates(s, correction(s, J, v));
+    // (session 64) and a sticking contact's tangential speed to 0
+    std::vector<Tangent> sticking;
+    for (const Held& h : held)
+      if (frictional(h) && h.decided && h.state == simulation::stick) sticking.push_back(held_tangent(h, s, time));
+    if (sticking.empty()) {
+      add_rates(s, correction(s, J, v));
+      continue;
+    }
+    const auto m = static_cast<Eigen::Index>(sticking.size());
+    Eigen::MatrixXd Jt(k + m, J.cols());
+    Eigen::VectorXd vt(k + m);
+    Jt.topRows(k) = J;
+    vt.head(k) = v;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const Tangent& tg = sticking[static_cast<std::size_t>(j)];
+      Jt.row(k + j) = tg.T.transpose();
+      vt(k + j) = tg.T.dot(rates(s)) - tg.v_other;
+    }
+    add_rates(s, correction(s, Jt, vt));
   }
   return s;
 }
@@ -1265,6 +1483,10 @@ void PinSlotSimulation::Impl::update_held() {
     held.erase(held.begin() + static_cast<std::ptrdiff_t>(i));
   }
   if (held.empty()) return;
+  if (any_friction()) {
+    update_friction();
+    return;
+  }
   // the force signs, exactly on the rows (the values published stay the doubles' multipliers, 0
   // where the exact sign is 0)
   const simulation::HeldForceRows rows = force_rows(y, t);
@@ -1289,6 +1511,65 @@ void PinSlotSimulation::Impl::update_held() {
     else kept.push_back(held[i]);
   }
   held = std::move(kept);
+}
+
+void PinSlotSimulation::Impl::update_friction() {
+  FrictionProblem fp = friction_problem(y, t);
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    simulation::Friction& fr = fp.friction[i];
+    if (!fr.on) continue;
+    // sliding (decided) when faster than the rest speed or still sliding the way it slid; else
+    // stick or slip is decided by the enumeration (a slide's end is located by bisection)
+    const double vt = fp.vt[i];
+    fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
+    fr.decided = std::abs(vt) > rest_speed || (held[i].decided && vt != 0 && held[i].state == fr.state);
+  }
+  const std::vector<std::size_t> own_groups;   // (each contact its own: stick limits decided exactly)
+  const simulation::FrictionalSolution sol =
+      simulation::solve_frictional(fp.G, fp.minv, fp.a0, fp.h, fp.friction, {}, false, &own_groups);
+  if (!sol.solved)
+    throw NumericError(where(t) + ": the contact problem of the held contacts of '" + model.parts[part].name +
+                       "' has no consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more "
+                       "than 8 contacts)");
+  const simulation::HeldVerdict verdict =
+      simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, sol.state, {}, &force_count);
+  const bool negative = std::any_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int v) { return v < 0; });
+  std::vector<Held> kept;
+  bool sticks = false;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    Held h = held[i];
+    const double lambda = sol.lambda(r);
+    if (negative && ((lambda <= 0 && sol.w(r) > 0) || verdict.force_sign[i] < 0)) {
+      h.force = 0;
+      events.push_back(held_event(SimulationEvent::Kind::lift_off, h, y, t));
+      continue;
+    }
+    h.force = verdict.force_sign[i] == 0 ? 0.0 : std::max(lambda, 0.0);
+    if (fp.friction[i].on) {
+      const int state = sol.state[i];
+      h.friction_force = sol.f(r);
+      if (!h.decided || state != h.state) {
+        h.state = state;
+        SimulationEvent ev =
+            held_event(state == simulation::stick ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip, h, y, t);
+        ev.friction_force = h.friction_force / force_scale;
+        if (state != simulation::stick) ev.slip_direction = state;
+        double p[2], n[2];
+        held_point_normal(h, y, t, p, n);
+        ev.point = {p[0], p[1]};
+        ev.normal = {n[0], n[1]};
+        events.push_back(std::move(ev));
+        sticks = sticks || state == simulation::stick;
+      }
+      h.decided = true;
+    }
+    kept.push_back(std::move(h));
+  }
+  held = std::move(kept);
+  // a contact that begins to stick keeps no sliding speed: removed by the projection (mass-weighted,
+  // dissipative: settle_loss), its chord certified free as every projection's
+  if (sticks) settle();
 }
 
 std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
@@ -1421,41 +1702,119 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   const double energy_before = energy_of(y);
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
-  // Newton's law over every row at once, the contact LCP: lambda >= 0, w = A lambda + b >= 0,
-  // lambda w = 0, with A = J M^-1 J^T and b = (1 + e) v for an approaching row (v otherwise):
-  // w is the row's speed after less e times its approach (src/simulation/lcp.hpp)
-  const auto k = static_cast<Eigen::Index>(rows.size());
-  Eigen::MatrixXd A(k, k);
-  Eigen::VectorXd bv(k);
-  for (Eigen::Index i = 0; i < k; ++i) {
-    const Row& ri = rows[static_cast<std::size_t>(i)];
-    double mj[2];
-    inverse_mass_times(y[0], ri.J, mj);
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const Row& rj = rows[static_cast<std::size_t>(j)];
-      A(i, j) = rj.J[0] * mj[0] + rj.J[1] * mj[1];
-      if (free) A(i, j) += rj.J[2] * ri.J[2] * inverse_inertia;
-      if (has_slider()) A(i, j) += rj.J[3] * ri.J[3] * inverse_slider_mass;
+  // (session 64) a pair with friction: Coulomb impacts
+  std::vector<double> tangential(rows.size(), 0.0);
+  bool coulomb = false;
+  for (const Row& r : rows) coulomb = coulomb || (!r.limit && pairs[r.pair].mu_static > 0);
+  if (coulomb) {
+    // Newton's restitution with Coulomb-limited tangential impulses (friction.hpp's frictional
+    // LCP, every contact's stick or slip by enumeration; mu_s limits a sticking impulse, mu_k a
+    // sliding one) in the coordinates z = L^T q of the mass matrix's Cholesky factor (there M is
+    // the identity, friction.hpp's diagonal form): x the velocities after, w = G x + h with
+    // h = e v- for an approaching row less the driver's surface speed; a held contact's row
+    // plastic.
+    const auto k = static_cast<Eigen::Index>(rows.size());
+    const Eigen::Index n = coordinates();
+    const Eigen::LLT<Eigen::MatrixXd> llt(mass_matrix(y));
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(k, n);
+    Eigen::VectorXd hv(k);
+    std::vector<simulation::Friction> friction(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Row& r = rows[i];
+      const auto ii = static_cast<Eigen::Index>(i);
+      G(ii, 0) = r.J[0];
+      G(ii, 1) = r.J[1];
+      if (free) G(ii, 2) = r.free ? r.J[2] : 0.0;
+      if (has_slider()) G(ii, x_column()) = r.slider ? r.J[3] : 0.0;
+      hv(ii) = -r.v_other + (before[i] < 0 ? r.restitution * before[i] : 0.0);
+      if (r.limit || !(pairs[r.pair].mu_static > 0)) continue;
+      const Tangent tangent = r.held ? held_tangent(held[i - fresh_rows], y, t) : tangent_at(r.pair, r.point, r.normal, y);
+      friction[i] = friction_of(llt, G.row(ii).transpose(), tangent, pairs[r.pair]);
+      friction[i].bias = -tangent.v_other;
     }
-    const double v = before[static_cast<std::size_t>(i)];
-    bv(i) = v < 0 ? (1 + ri.restitution) * v : v;
-  }
-  const simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
-  if (!lcp.solved) {
-    std::ostringstream out;
-    out << where(t) << ": the impact of '" << model.parts[part].name << "' on " << rows.size()
-        << " contacts has no solution of its complementarity problem (" << rows.front().label << ")";
-    throw NumericError(out.str());
-  }
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const double lambda = lcp.lambda(static_cast<Eigen::Index>(i));
-    if (!(lambda > 0)) continue;
-    const Row& r = rows[i];
-    total[i] = lambda;
-    y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
-    y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
-    if (free) y[5] += r.J[2] * inverse_inertia * lambda;
-    if (has_slider()) y[7] += r.J[3] * inverse_slider_mass * lambda;
+    const Eigen::MatrixXd Gz = llt.matrixL().solve(G.transpose()).transpose();
+    const Eigen::VectorXd vz = llt.matrixU() * rates(y);
+    // Newton's restitution with Coulomb friction can create energy where the normal and tangent
+    // rows couple (Kane and Levinson): where the kinetic energy (|x|^2 / 2 in these coordinates)
+    // would grow and no constant-speed driver takes part (a driver may do work), the restitution
+    // is scaled down to the largest factor (bisection, 2^-30) whose impact creates none, as the
+    // planar simulators' frictional_impact
+    Eigen::VectorXd restitution_part = Eigen::VectorXd::Zero(k), offsets = Eigen::VectorXd::Zero(k);
+    bool driven = false;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto ii = static_cast<Eigen::Index>(i);
+      offsets(ii) = -rows[i].v_other;
+      restitution_part(ii) = hv(ii) - offsets(ii);
+      driven = driven || rows[i].v_other != 0 || (friction[i].on && friction[i].bias != 0);
+    }
+    auto solve = [&](double scale) {
+      return simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part, friction);
+    };
+    simulation::FrictionalSolution sol = solve(1);
+    if (sol.solved && !driven && sol.x.squaredNorm() > vz.squaredNorm()) {
+      double lo = 0, hi = 1;
+      simulation::FrictionalSolution best = solve(0);
+      for (int i = 0; i < 30 && best.solved; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        simulation::FrictionalSolution trial = solve(mid);
+        if (!trial.solved || trial.x.squaredNorm() > vz.squaredNorm()) {
+          hi = mid;
+        } else {
+          lo = mid;
+          best = std::move(trial);
+        }
+      }
+      sol = std::move(best);
+    }
+    if (!sol.solved) {
+      std::ostringstream out;
+      out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
+          << " contacts has no consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more than 8 "
+          << "contacts; " << rows.front().label << ")";
+      throw NumericError(out.str());
+    }
+    add_rates(y, Eigen::VectorXd(llt.matrixU().solve(sol.x) - rates(y)));
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      total[i] = std::max(sol.lambda(static_cast<Eigen::Index>(i)), 0.0);
+      tangential[i] = friction[i].on ? sol.f(static_cast<Eigen::Index>(i)) : 0.0;
+    }
+  } else {
+    // Newton's law over every row at once, the contact LCP: lambda >= 0, w = A lambda + b >= 0,
+    // lambda w = 0, with A = J M^-1 J^T and b = (1 + e) v for an approaching row (v otherwise):
+    // w is the row's speed after less e times its approach (src/simulation/lcp.hpp)
+    const auto k = static_cast<Eigen::Index>(rows.size());
+    Eigen::MatrixXd A(k, k);
+    Eigen::VectorXd bv(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      const Row& ri = rows[static_cast<std::size_t>(i)];
+      double mj[2];
+      inverse_mass_times(y[0], ri.J, mj);
+      for (Eigen::Index j = 0; j < k; ++j) {
+        const Row& rj = rows[static_cast<std::size_t>(j)];
+        A(i, j) = rj.J[0] * mj[0] + rj.J[1] * mj[1];
+        if (free) A(i, j) += rj.J[2] * ri.J[2] * inverse_inertia;
+        if (has_slider()) A(i, j) += rj.J[3] * ri.J[3] * inverse_slider_mass;
+      }
+      const double v = before[static_cast<std::size_t>(i)];
+      bv(i) = v < 0 ? (1 + ri.restitution) * v : v;
+    }
+    const simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
+    if (!lcp.solved) {
+      std::ostringstream out;
+      out << where(t) << ": the impact of '" << model.parts[part].name << "' on " << rows.size()
+          << " contacts has no solution of its complementarity problem (" << rows.front().label << ")";
+      throw NumericError(out.str());
+    }
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const double lambda = lcp.lambda(static_cast<Eigen::Index>(i));
+      if (!(lambda > 0)) continue;
+      const Row& r = rows[i];
+      total[i] = lambda;
+      y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
+      y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
+      if (free) y[5] += r.J[2] * inverse_inertia * lambda;
+      if (has_slider()) y[7] += r.J[3] * inverse_slider_mass * lambda;
+    }
   }
   impact_loss += energy_before - energy_of(y);
   for (std::size_t i = 0; i < fresh_rows; ++i) {
@@ -1468,6 +1827,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     ev.second_part = model.parts[rows[i].limit ? limit_part(rows[i].limit) : part].name;
     ev.features = {rows[i].label};
     ev.impulse = total[i] / (force_scale * time_scale);
+    ev.tangential_impulse = tangential[i] / (force_scale * time_scale);
     ev.normal_speed_before = -before[i] * time_scale;
     ev.normal_speed_after = speed(rows[i]) * time_scale;
     ev.point = {rows[i].point[0], rows[i].point[1]};
@@ -2051,8 +2411,10 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     Impl::Pair p;
     p.index = i;
     p.other = spec_pair.first == found ? spec_pair.second : spec_pair.first;
-    if (spec_pair.friction && sgn(*spec_pair.friction) > 0)
-      throw ModelError(spec_pair.pointer + "/friction", "a pin-slot simulation is frictionless");
+    if (spec_pair.friction) {   // Coulomb friction (session 64): mu_s sticks, mu_k slides
+      p.mu_static = spec_pair.friction->get_d();
+      p.mu_kinetic = spec_pair.kinetic_friction ? spec_pair.kinetic_friction->get_d() : p.mu_static;
+    }
     p.restitution = spec_pair.restitution ? spec_pair.restitution->get_d() : 0.0;
     auto frame = std::make_shared<Model>(model);
     frame->parts[p.other].motion.kind = Motion::Kind::fixed;

@@ -1334,5 +1334,201 @@ TEST(SimulationPinSlot, SpunFollowerRunsItsWholeSpanAtEveryRateUpToTheRefusalBou
     EXPECT_NEAR(sim.state().angle, 0.5, 1e-6);
   }
 }
+
+// ---- Session 64 (pinslot64): Coulomb friction at a pin-slot part's contacts.
+
+// A bar on a pin at the origin sliding along its slot (1, 0), its face the slot's line y = 0
+// (from x = -40 to 25), pressed by a clockwise torque tau onto a fixed peg (a disc of radius r
+// centred at (L, -(r + z0)): its top z0 below the face) and pushed along the slot by a force Fx.
+// Its centre of mass is on the pin. Held on the peg the bar keeps its angle psi_c (the face
+// tangent to the peg, L sin psi + (r + z0) cos psi = r) and the peg's normal force balances the
+// torque: N = tau / (C . u), C the peg's centre, u the slot direction (the lever of a force along
+// the face normal at the contact point); the face passes through the pin, so the friction on the
+// face has no moment about it and the slide obeys m s'' = Fx + friction alone.
+struct PegBar {
+  double m = 0.02, I = 20, tau = 3, Fx = 1, L = 15, r = 3, z0 = 1e-6, mu_s = 0.5, mu_k = 0.4, v0 = 0;
+  std::string json() const {
+    const std::string bar = R"({ "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0] } },
+      "initial": { "angle": 0, "offset": 0 },
+      "dynamics": { "mass": )" + num(m) + R"(, "moment_of_inertia": )" + num(I) + R"(, "torque": )" + num(-tau) +
+                            R"(, "force": [)" + num(Fx) + R"(, 0] },
+      "loops": [ { "start": [-40, 0], "edges": [ { "line_to": [25, 0], "label": "bar face" }, { "line_to": [25, 8] },
+        { "line_to": [-40, 8] }, { "line_to": [-40, 0] } ] } ] })";
+    const std::string peg = R"({ "name": "peg", "motion": "fixed", "features": [ { "circle": { "center": [)" + num(L) +
+                            ", " + num(-(r + z0)) + R"(], "radius": )" + num(r) + R"( } } ] })";
+    return model_json(peg + ", " + bar,
+                      R"({ "parts": ["peg", "bar"], "friction": { "static": )" + num(mu_s) + R"(, "kinetic": )" +
+                          num(mu_k) + " } }",
+                      R"("accuracy": 1e-10, "velocities": { "bar": { "slide": )" + num(v0) + R"(, "angle": 0 } })");
+  }
+  double psi_contact() const {
+    const double R = std::hypot(L, r + z0), phi = std::atan2(r + z0, L);
+    return std::asin(r / R) - phi;
+  }
+  double normal_force() const {   // N (the model's force unit)
+    const double psi = psi_contact();
+    return tau / (L * std::cos(psi) - (r + z0) * std::sin(psi));
+  }
+};
+
+PegBar random_peg_bar(Lcg& rng) {
+  PegBar b;
+  b.m = rng.uniform(0.005, 0.05);
+  b.I = b.m * rng.uniform(500, 2000);
+  b.tau = rng.uniform(1, 5);
+  b.L = rng.uniform(8, 20);
+  b.r = rng.uniform(1, 5);
+  b.mu_s = rng.uniform(0.2, 0.8);
+  b.mu_k = b.mu_s * rng.uniform(0.5, 1);
+  return b;
+}
+
+// The threshold of static friction: pushed along its slot by Fx = rho mu_s N, the bar lands on
+// the peg and sticks for rho < 1 (it stays where it landed, the friction force Fx, the normal
+// force N), and for rho > 1 slides with m s'' = Fx - sign mu_k N from the state after its slip
+// event (s and s' against the closed form at every state for 10 ms); energy() + dissipated()
+// (friction's work included) kept; the events impact, contact, then stick or slip.
+TEST(SimulationPinSlot, FrictionHoldsTheBarBelowTheStaticThresholdAndSlidesAboveIt) {
+  const std::uint64_t seed = test::test_seed(64);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int c = 0; c < 8; ++c) {
+    PegBar b = random_peg_bar(rng);
+    const bool sticks = c % 2 == 0;
+    const double rho = sticks ? rng.uniform(0.3, 0.95) : rng.uniform(1.05, 2.5);
+    const double N = b.normal_force();
+    b.Fx = (rng.uniform(0, 1) < 0.5 ? -1 : 1) * rho * b.mu_s * N;
+    SCOPED_TRACE("case " + std::to_string(c) + ": rho " + num(rho) + ", mu_s " + num(b.mu_s) + ", mu_k " + num(b.mu_k) +
+                 ", N " + num(N) + " N, Fx " + num(b.Fx) + " N");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(b.json(), "<peg bar>"));
+    const double e0 = sim.energy();
+    bool decided = false;
+    double t1 = 0, s1 = 0, v1 = 0, travel = 0;
+    const double a = 1000 * (b.Fx - (b.Fx > 0 ? 1 : -1) * b.mu_k * N) / b.m;   // sliding (mm/s^2)
+    step_checked(sim, 0.01, {0}, {}, [&] {
+      const PinSlotState& st = sim.state();
+      travel = std::max(travel, std::abs(st.slide));
+      const double work = 1000 * std::abs(b.Fx) * travel + 1000 * b.tau * std::abs(st.angle);   // (mN mm -> N mm: / 1000)
+      EXPECT_NEAR(sim.energy() + sim.dissipated(), e0, 1e-7 * work / 1000 + 1e-12) << "t = " << st.time;
+      if (!decided) {
+        for (const SimulationEvent& ev : sim.events())
+          if (ev.kind == SimulationEvent::Kind::stick || ev.kind == SimulationEvent::Kind::slip) decided = true;
+        if (!decided) return;
+        t1 = st.time;
+        s1 = st.slide;
+        v1 = st.slide_rate;
+        return;
+      }
+      ASSERT_EQ(st.contacts.size(), 1u);
+      EXPECT_NEAR(st.angle, b.psi_contact(), 1e-6 * std::abs(b.psi_contact()) + 1e-9);
+      EXPECT_NEAR(st.contacts[0].normal_force, N, 1e-6 * N);
+      if (sticks) {
+        EXPECT_NEAR(st.slide, s1, 1e-3 * sim.chord_deviation());   // (still, to the integration's round-off)
+        EXPECT_LE(std::abs(st.slide_rate), 1e-9 * std::abs(a));
+        EXPECT_NEAR(st.contacts[0].friction_force, b.Fx, 1e-6 * N);   // (t = -u: the friction -f balances Fx)
+      } else {
+        const double dt = st.time - t1;
+        EXPECT_NEAR(st.slide_rate, v1 + a * dt, 1e-6 * (std::abs(a) * dt + std::abs(v1)));
+        EXPECT_NEAR(st.slide, s1 + v1 * dt + a * dt * dt / 2, 1e-6 * (std::abs(a) * dt * dt + std::abs(v1) * dt) + 1e-9);
+        EXPECT_NEAR(st.contacts[0].friction_force, (b.Fx > 0 ? 1 : -1) * b.mu_k * N, 1e-6 * N);
+      }
+    });
+    ASSERT_TRUE(decided) << "no stick or slip decision";
+    EXPECT_GT(sim.state().time, t1 + 0.007);
+    std::vector<SimulationEvent::Kind> kinds;
+    for (const SimulationEvent& ev : sim.events()) kinds.push_back(ev.kind);
+    const auto second = sticks ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip;
+    ASSERT_EQ(kinds.size(), 3u);
+    EXPECT_EQ(kinds[0], SimulationEvent::Kind::impact);
+    EXPECT_EQ(kinds[1], SimulationEvent::Kind::contact);
+    EXPECT_EQ(kinds[2], second);
+    // the landing is a Coulomb impact: its tangential impulse within mu_s times the normal one
+    // where the bar sticks, mu_k times it where it slides (the landing speed along the slot,
+    // Fx t / m, against the normal impulse tau t / (C . u): the same threshold rho = 1)
+    const SimulationEvent& landing = sim.events().front();
+    if (sticks) EXPECT_LE(std::abs(landing.tangential_impulse), b.mu_s * landing.impulse);
+    else EXPECT_NEAR(std::abs(landing.tangential_impulse), b.mu_k * landing.impulse, 1e-9 * landing.impulse);
+    EXPECT_GT(std::abs(landing.tangential_impulse), 0.0);
+    const SimulationEvent& last = sim.events().back();
+    EXPECT_NEAR(last.normal_force, N, 1e-6 * N);
+    if (!sticks) EXPECT_EQ(last.slip_direction, b.Fx > 0 ? -1 : 1);   // (the bar's point along -+t: t = -u)
+  }
+}
+
+// Slip to stick: thrown along its slot at v0 onto the peg under a force below the kinetic limit,
+// the bar slides to rest at the closed-form time t1 + |v1| / |a| and place s1 + v1^2 / 2|a| (a =
+// (Fx - sign(v1) mu_k N) / m, from the state after its slip event) and sticks there: a stick
+// event at that time, the bar still afterwards with the friction force Fx; the work of friction
+// mu_k N |s - s1| equals the energy lost over the slide.
+TEST(SimulationPinSlot, SlidingBarComesToRestAtTheClosedFormTimeAndSticks) {
+  const std::uint64_t seed = test::test_seed(6401);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int c = 0; c < 6; ++c) {
+    PegBar b = random_peg_bar(rng);
+    const double N = b.normal_force();
+    b.Fx = rng.uniform(-0.8, 0.8) * b.mu_k * N;
+    b.v0 = (c % 2 == 0 ? 1 : -1) * rng.uniform(5, 30);
+    SCOPED_TRACE("case " + std::to_string(c) + ": v0 " + num(b.v0) + " mm/s, mu_k " + num(b.mu_k) + ", N " + num(N) +
+                 " N, Fx " + num(b.Fx) + " N");
+    PinSlotSimulation sim = PinSlotSimulation::create(read_model(b.json(), "<sliding bar>"));
+    bool sliding = false;
+    double t1 = 0, s1 = 0, v1 = 0, e1 = 0, k1 = 0, a = 0;
+    std::size_t seen = 0;
+    step_checked(sim, 0.5, {0}, [&] { return sim.state().time > t1 + 2 * std::abs(v1 / (a == 0 ? 1 : a)) && sliding; },
+                 [&] {
+                   const PinSlotState& st = sim.state();
+                   if (!sliding && !sim.events().empty() && sim.events().back().kind == SimulationEvent::Kind::slip) {
+                     sliding = true;
+                     t1 = st.time;
+                     s1 = st.slide;
+                     v1 = st.slide_rate;
+                     e1 = sim.energy() + sim.dissipated();
+                     k1 = sim.energy();
+                     a = 1000 * (b.Fx - (v1 > 0 ? 1 : -1) * b.mu_k * N) / b.m;
+                     seen = sim.events().size();
+                   }
+                 });
+    ASSERT_TRUE(sliding) << "no slip event";
+    ASSERT_EQ(sim.events().size(), seen + 1) << "one event after the slip";
+    const SimulationEvent& stick = sim.events().back();
+    ASSERT_EQ(stick.kind, SimulationEvent::Kind::stick);
+    const double ts = t1 - v1 / a, ss = s1 - v1 * v1 / (2 * a);
+    EXPECT_NEAR(stick.time, ts, 1e-6 * (ts - t1));
+    EXPECT_NEAR(sim.state().slide, ss, 1e-6 * std::abs(ss - s1));
+    EXPECT_LE(std::abs(sim.state().slide_rate), 1e-9 * std::abs(v1));
+    ASSERT_EQ(sim.state().contacts.size(), 1u);
+    EXPECT_NEAR(sim.state().contacts[0].friction_force, b.Fx, 1e-6 * N);
+    // the energy lost over the slide is friction's work (and the projection's removal of the
+    // integration's last sliding speed, below the tolerance): mu_k N |ss - s1| (N mm)
+    const double lost = k1 - sim.energy(), work = b.mu_k * N * std::abs(ss - s1);
+    EXPECT_NEAR(sim.energy() + sim.dissipated(), e1, 1e-7 * work);
+    EXPECT_NEAR(lost, work, 1e-6 * work);
+  }
+}
+
+
+// The friction events do not depend on the step limit: the sliding bar's impact, contact, slip
+// and stick with no limit, 1 ms and 0.2 ms (the same kinds and features; the times within 8 delta
+// over the approach speed plus 10^-6 of the slide's duration).
+TEST(SimulationPinSlot, FrictionEventsDoNotDependOnTheStepSize) {
+  const std::uint64_t seed = test::test_seed(6403);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int c = 0; c < 3; ++c) {
+    PegBar b = random_peg_bar(rng);
+    const double N = b.normal_force();
+    b.Fx = rng.uniform(-0.8, 0.8) * b.mu_k * N;
+    b.v0 = (c % 2 == 0 ? 1 : -1) * rng.uniform(5, 30);
+    const double a = 1000 * (b.mu_k * N - std::abs(b.Fx)) / b.m, t_stop = std::abs(b.v0) / a;   // (at least: Fx's sign)
+    const Model model = read_model(b.json(), "<sliding bar>");
+    double delta = 0;
+    const auto runs = events_per_step_limit(model, {0.0, 1e-3, 2e-4}, 3 * t_stop, delta);
+    ASSERT_EQ(runs[0].size(), 4u) << "case " << c;
+    EXPECT_EQ(runs[0][2].kind, SimulationEvent::Kind::slip);
+    EXPECT_EQ(runs[0][3].kind, SimulationEvent::Kind::stick);
+    expect_same_event_sequences(runs, delta, 0.0, 1e-6 * t_stop, "case " + std::to_string(c));
+  }
+}
 }  // namespace
 }  // namespace hipair
