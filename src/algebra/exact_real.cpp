@@ -2116,11 +2116,11 @@ std::vector<Real> descartes_real_roots(const Polynomial& input, const Rational& 
     mpz_mul(denominator_power.get_mpz_t(), denominator_power.get_mpz_t(), denominator.get_mpz_t());
     mpz_addmul(q[0].get_mpz_t(), p[static_cast<std::size_t>(i)].get_mpz_t(), denominator_power.get_mpz_t());
   }
-  {
-    mpz_class g = content(q);
-    if (g > 1)
-      for (auto& c : q) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
-  }
+  // q's common power of two removed (the isolation reads only signs: any positive multiple of
+  // q isolates the same roots in the same intervals). The whole content was divided out before:
+  // on the 18 x 27 gears' operating region it is a power of two times an odd part of ~5 bits
+  // on average (15 810 calls), and the gcds that found it cost 1.6 % of the build.
+  remove_common_power_of_two(q);
   const bool lo_root = sgn(q[0]) == 0;
   mpz_class total = 0;
   for (const auto& c : q) total += c;
@@ -2658,6 +2658,16 @@ struct Factor {
     }
   }
 };
+// The product 0 * f, the first product of every Horner chain: where both ends of f are finite,
+// each end product is a zero (of either sign, for every sign kind's choice of ends and
+// comparisons) and outward() widens a zero by 2 denorm_min on each side, so the product is
+// {-2 denorm_min, 2 denorm_min} bit for bit, without the product; otherwise (an infinite or NaN
+// end: 0 * inf) f.times, as before.
+template <SignKind S>
+[[gnu::always_inline]] inline v2d zero_times(const Factor<S>& f, Interval factor) {
+  if (finite(magnitude(load(factor)))) return v2d{-2 * 4.9406564584124654e-324, 2 * 4.9406564584124654e-324};
+  return f.times(v2d{0, 0});
+}
 }  // namespace lanes
 
 // One row of the nested Horner at y (the sum over j of c_j y^j, enclosed) in the two lanes:
@@ -2692,7 +2702,7 @@ template <SignKind SX, SignKind SY>
   const lanes::Factor<SX> fx(x);
   const lanes::Factor<SY> fy(y);
   // the first product of each Horner chain, 0 times the factor: the same for every chain
-  const v2d zero{0, 0}, zero_x = fx.times(zero), zero_y = fy.times(zero);
+  const v2d zero{0, 0}, zero_x = lanes::zero_times(fx, x), zero_y = lanes::zero_times(fy, y);
   v2d result = zero;
   for (auto row = rows.rbegin(); row != rows.rend(); ++row)
     result = outer_step(result, row == rows.rbegin(), fx, zero_x, row_at(*row, fy, zero_y));
@@ -2714,7 +2724,7 @@ Interval horner_x(const std::vector<std::vector<Interval>>& rows, Interval x, In
 template <SignKind SY>
 [[gnu::flatten]] void rows_of(const std::vector<std::vector<Interval>>& rows, Interval y, std::vector<Interval>& out) {
   const lanes::Factor<SY> fy(y);
-  const lanes::v2d zero_y = fy.times(lanes::v2d{0, 0});
+  const lanes::v2d zero_y = lanes::zero_times(fy, y);
   out.resize(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const lanes::v2d inner = row_at(rows[i], fy, zero_y);
@@ -2730,7 +2740,8 @@ template <SignKind SX>
   if (row == inner.rend()) return {0, 0};
   const lanes::Factor<SX> fx(x);
   const lanes::v2d zero{0, 0};
-  lanes::v2d result = from_leading ? lanes::load(*row) : outer_step(zero, true, fx, fx.times(zero), lanes::load(*row));
+  lanes::v2d result =
+      from_leading ? lanes::load(*row) : outer_step(zero, true, fx, lanes::zero_times(fx, x), lanes::load(*row));
   for (++row; row != inner.rend(); ++row) result = outer_step(result, false, fx, zero, lanes::load(*row));
   return {result[0], result[1]};
 }

@@ -214,8 +214,11 @@ class CurveCuller {
       const std::vector<algebra::Interval>& rows = row_cache_ ? rows_of(f, f_slot_, depth + 1, 2 * j + dj) : rows_;
       for (long di = 0; di < 2; ++di) values[di][dj] = f.evaluate_rows(cell_x(depth + 1, 2 * i + di), rows);
     }
+    // (a child where f cannot vanish is left here, as its visit would leave it at once)
     for (long di = 0; di < 2; ++di)
-      for (long dj = 0; dj < 2; ++dj) visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
+      for (long dj = 0; dj < 2; ++dj)
+        if (values[di][dj].contains_zero())
+          visit(f, clauses, depth + 1, 2 * i + di, 2 * j + dj, found, values[di][dj], settled);
   }
 
   // The grid's cell sides (BlockedCells::cell_x / cell_y, pure functions of depth and index),

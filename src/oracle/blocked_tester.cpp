@@ -1118,7 +1118,9 @@ bool BlockedCells::blocked(int depth, long i, long j) {
     // the cells below the finest depth any caller tests (the builder's windows, the curve
     // generator's pairs to depth 9 at least) need no list
     const bool keep_list = depth < std::max(depth_, 9);
-    std::vector<BlockedTester::DiskPair> narrowed;
+    // (gathered in a scratch list kept by the thread, then stored at its exact size: one
+    // allocation per kept list instead of the growth of a new vector and its shrink)
+    thread_local std::vector<BlockedTester::DiskPair> narrowed;
     const BlockedTester::GridCell cell{depth, i, dimension_ == 2 ? j : 0};
     result = tester_->blocked(x_axis_, y_axis_, cell_x(depth, i), cell_y(depth, j), cache_, candidates,
                               keep_list ? &narrowed : nullptr, &cell);
@@ -1126,8 +1128,7 @@ bool BlockedCells::blocked(int depth, long i, long j) {
       answer = is_blocked;
     } else if (keep_list) {
       answer = first_list + static_cast<std::int32_t>(lists_.size());
-      narrowed.shrink_to_fit();
-      lists_.push_back(std::move(narrowed));
+      lists_.emplace_back(narrowed.begin(), narrowed.end());
     } else {
       answer = not_blocked;
     }
