@@ -55,17 +55,36 @@ double chart_slope(double t, bool rotates) { return rotates ? 2 / (1 + t * t) : 
 
 std::pair<double, double> linear_bands(VariationSample& sample, const std::vector<double>& s,
                                        const std::vector<Distribution>& dist) {
-  double lower = 0, upper = 0, mean = 0, variance = 0;
+  double lower = 0, upper = 0, mean = 0, variance = 0, largest = 0;
+  bool ordinary = true;   // every factor within 1e-75 .. 1e75 (or 0): s^2 sigma^2 neither overflows nor underflows
+  auto moderate = [](double x) { return x == 0 || (std::fabs(x) >= 1e-75 && std::fabs(x) <= 1e75); };
   for (std::size_t i = 0; i < s.size(); ++i) {
     lower += std::min(s[i] * dist[i].lo, s[i] * dist[i].hi);
     upper += std::max(s[i] * dist[i].lo, s[i] * dist[i].hi);
     mean += s[i] * dist[i].mean;
+    if (s[i] == 0 || dist[i].sigma == 0) continue;   // (an infinite square times 0 was NaN)
     variance += s[i] * s[i] * dist[i].sigma * dist[i].sigma;
+    largest = std::max(largest, std::fabs(s[i] * dist[i].sigma));
+    ordinary = ordinary && moderate(s[i]) && moderate(dist[i].sigma);
+  }
+  double deviation = std::sqrt(variance);
+  // Elsewhere (session 64, tol64) the standard deviation sqrt(sum (s_i sigma_i)^2) with each term
+  // divided by the largest before it is squared: s_i^2 sigma_i^2 as a product of squares overflowed
+  // or underflowed where a sensitivity and a sigma lie at opposite extremes (a model whose
+  // parameters are lengths of 1e-300 mm: s ~ 1e300 per mm, sigma ~ 1e-302 mm: the band was +-0).
+  if (!ordinary && largest > 0 && std::isfinite(largest)) {
+    double sum = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (s[i] == 0 || dist[i].sigma == 0) continue;
+      const double term = s[i] * dist[i].sigma / largest;
+      sum += term * term;
+    }
+    deviation = largest * std::sqrt(sum);
   }
   sample.linear_lower = sample.nominal + lower;
   sample.linear_upper = sample.nominal + upper;
-  sample.rss_lower = sample.nominal + mean - 3 * std::sqrt(variance);
-  sample.rss_upper = sample.nominal + mean + 3 * std::sqrt(variance);
+  sample.rss_lower = sample.nominal + mean - 3 * deviation;
+  sample.rss_upper = sample.nominal + mean + 3 * deviation;
   sample.sensitivities = s;
   return {lower, upper};
 }

@@ -1089,6 +1089,79 @@ TEST(Templates, ShapeChecksOfTheBoxAreExactAtEveryScale) {
   EXPECT_GE(refused, 60);
 }
 
+// Session 64 (tol64, issue 12): a shape check whose argument is a formula of the parameter, not
+// the parameter itself ("v - C", "K*(v - C)", "C - v", "(v - C)*v/C", C and K drawn from the test
+// seed, not dyadic), over a range whose margin ends exactly on the check's bound 0, 2^-k inside or
+// 2^-k beyond it, at scales 1, 1e-300 and 1e400 (lengths): the enclosures straddle 0 at the tie,
+// and it is decided by the margin's monotony and its exact value at the box's corner. Oracle: the
+// sign of the margin at the near end (a non-strict check keeps a range ending on 0, a strict one
+// refuses it). Until session 64 every non-strict tie was refused (the enclosure of C - C holds 0).
+TEST(Templates, ShapeChecksThroughAFormulaDecideExactTies) {
+  const std::uint64_t seed = test::test_seed(64);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::mt19937_64 random(seed);
+  auto draw = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+  auto non_dyadic = [&](int lo, int hi) {   // p/q in [lo, hi], q odd > 1
+    const int den = 2 * draw(1, 20) + 1;
+    return Rational(mpz_class(draw(lo * den, hi * den)), mpz_class(den));
+  };
+  int kept = 0, refused = 0, ties_kept = 0;
+  for (const ShapeCase& c : shape_cases()) {
+    if (c.bound.lo != 0 || c.bound.hi != 0) continue;   // the ties at 0
+    for (int form = 0; form < 4; ++form) {
+      const Rational c0 = non_dyadic(1, 3), k = non_dyadic(1, 5);
+      for (const Rational& scale : {Rational(1), power_of_ten(-300), power_of_ten(400)}) {
+        if (!c.length && scale != 1) continue;
+        const Rational& s = scale;
+        const Rational big_c = c0 * s, width = c.width * s;
+        const std::string ct = "(" + big_c.get_str() + ")", kt = "(" + k.get_str() + ")";
+        std::vector<Rational> nears{Rational(0)};
+        for (int e : {40, 200}) {
+          nears.push_back(Rational(power_of_two(e) * s));
+          nears.push_back(Rational(-power_of_two(e) * s));
+        }
+        for (const Rational& d : nears) {
+          const bool keeps = c.strict ? d > 0 : d >= 0;
+          // v at the margin's near end (d) and far end (d + width)
+          std::string as;
+          Rational v_near, v_far;
+          switch (form) {
+            case 0: as = "v - " + ct; v_near = big_c + d; v_far = big_c + d + width; break;
+            case 1: as = kt + "*(v - " + ct + ")"; v_near = big_c + d / k; v_far = big_c + (d + width) / k; break;
+            case 2: as = ct + " - v"; v_near = big_c - d; v_far = big_c - d - width; break;
+            default: as = "(v - " + ct + ")*v/" + ct; v_near = big_c + d; v_far = big_c + d + width; break;
+          }
+          const Rational lo = std::min(v_near, v_far), hi = std::max(v_near, v_far);
+          // the other arguments at the margin's middle value (the check's argument is replaced by `as`)
+          const std::string text = box_model(c.name, c.arguments(Rational(d + width / 2), s), c.key, as, Rational(1), lo, hi, c.length);
+          SCOPED_TRACE(c.name + "/" + c.key + " as " + as + ", near margin " + d.get_str() + (keeps ? ": kept" : ": refused"));
+          std::optional<ParametricModel> read;
+          try {
+            read = ParametricModel::read(text);
+          } catch (const ModelError& error) {
+            ADD_FAILURE() << "the middle is refused: " << error.what() << "\n" << text;
+            continue;
+          }
+          const Parameter& p = read->nominal().parameters.at(0);
+          try {
+            read->check_choices({Rational(p.range.lo - p.nominal)}, {Rational(p.range.hi - p.nominal)});
+            EXPECT_TRUE(keeps) << "kept, though the margin is negative at its near end\n" << text;
+            ++kept;
+            if (d == 0) ++ties_kept;
+          } catch (const ModelError& error) {
+            EXPECT_FALSE(keeps) << "refused: " << error.what() << "\n" << text;
+            if (!keeps) EXPECT_EQ(error.pointer(), "/parts/0/features/0/" + c.name + "/" + c.key) << error.what();
+            ++refused;
+          }
+        }
+      }
+    }
+  }
+  std::cout << kept << " boxes kept (" << ties_kept << " ending exactly on a non-strict bound), " << refused << " refused\n";
+  EXPECT_GE(ties_kept, 8);
+  EXPECT_GE(refused, 40);
+}
+
 // Generated involute gears (teeth, module, pressure angle and tolerances drawn from the test
 // seed), every dimension toleranced, at scales 1, 1e-300 and 1e400 (raw lengths and, away from 1,
 // factors of the scale): the shape check is invariant under the scale (the gears are similar),

@@ -5,6 +5,7 @@
 #include "model/parametric/mpfi_arithmetic.hpp"
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/self_check.hpp"
+#include "model/parametric/tie_arithmetic.hpp"
 
 #include "model/exact_trig.hpp"
 #include "model/expression.hpp"
@@ -585,12 +586,24 @@ namespace {
 // values nominal + deviation at the sub-box's ends, so a margin that is such a parameter (an
 // angle whose range ends on 0) is enclosed exactly there ([0, x], not [-e, x]). Strict: an
 // enclosure that is exactly the point 0 fails (the margin vanishes there).
+// Since session 64 (tol64), given `ties` (the margin as a jet and as an exact value): a sub-box
+// whose enclosure holds 0 is decided by the margin's monotony where every partial derivative keeps
+// one sign over it (the margin is then smallest at one of its corners) and the exact value
+// (rational + rational * pi) at that corner: a margin reaching its bound exactly there (a
+// non-strict check "a - 0.1" over a in [0.1, 0.2]) holds, one vanishing there fails a strict
+// check, a negative one fails. A corner of the box whose enclosure holds 0 is decided so too.
 enum class BoxVerdict { holds, fails, undecided };
+
+struct MarginTies {
+  std::function<MpfiJet(const std::vector<MpfiJet>&)> jet;
+  std::function<PiRational(const std::vector<PiRational>&)> exact;
+};
 
 BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bool>& derived,
                               const std::vector<Rational>& lo, const std::vector<Rational>& hi,
                               const std::vector<std::size_t>& read,
-                              const std::function<Interval(const std::vector<Interval>&)>& margin, bool strict = true) {
+                              const std::function<Interval(const std::vector<Interval>&)>& margin, bool strict = true,
+                              const MarginTies* ties = nullptr) {
   const std::size_t n = lo.size();
   const std::vector<Parameter>& parameters = model.nominal().parameters;
   // the margin's enclosure over [a, b] (the ends exact rationals: enclosed outward)
@@ -621,6 +634,51 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bo
     if (strict) return mpfi_is_zero(m.get()) > 0 ? -1 : 0;   // exactly 0 over the sub-box: fails
     return mpfi_is_nonneg(m.get()) > 0 ? 1 : 0;
   };
+  // the exact sign of the margin at the deviation vector c (nullopt: not exact there)
+  auto exact_sign = [&](const std::vector<Rational>& c) -> std::optional<int> {
+    std::vector<PiRational> deviations;
+    for (const Rational& x : c) deviations.emplace_back(x);
+    try {
+      return ties->exact(model.parameter_values<PiRational>(deviations)).sign();
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  };
+  // the sub-box [a, b] by the margin's monotony and its exact value at its smallest corner
+  // (+1 holds, -1 fails, 0 open)
+  auto monotone_sign = [&](const std::vector<Rational>& a, const std::vector<Rational>& b) {
+    if (!ties) return 0;
+    std::vector<Rational> corner = a;
+    if (a != b) {
+      std::vector<MpfiJet> deviations;
+      for (std::size_t i = 0; i < n; ++i) {
+        Interval v(a[i]);
+        if (a[i] != b[i]) mpfi_interv_q(v.get(), a[i].get_mpq_t(), b[i].get_mpq_t());
+        std::vector<Interval> unit(n, Interval(Rational(0)));
+        unit[i] = Interval(Rational(1));
+        deviations.emplace_back(std::move(v), std::move(unit));
+      }
+      MpfiJet m;
+      try {
+        m = ties->jet(model.parameter_values<MpfiJet>(deviations));
+      } catch (const Error&) {
+        return 0;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        if (a[i] == b[i] || i >= m.derivatives.size()) continue;
+        const Interval& d = m.derivatives[i];
+        if (!d.is_bounded()) return 0;
+        if (mpfi_is_nonneg(d.get()) > 0) continue;                        // smallest at a[i]
+        if (mpfi_is_nonpos(d.get()) > 0) corner[i] = b[i]; else return 0;  // at b[i], or no monotony
+      }
+    }
+    const int enclosed = evaluate_sign(corner, corner);
+    if (enclosed < 0) return -1;
+    if (enclosed > 0) return 1;   // margin >= its value at the corner, certainly positive (or non-negative)
+    const std::optional<int> s = exact_sign(corner);
+    if (!s) return 0;
+    return (strict ? *s > 0 : *s >= 0) ? 1 : -1;
+  };
   constexpr std::size_t budget = 3000;   // sub-boxes per stage
   for (mpfr_prec_t bits : {160, 640, 2560}) {
     PrecisionScope precision(bits);
@@ -634,7 +692,8 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bo
         std::vector<Rational> corner = lo;
         for (std::size_t j = 0; j < read.size(); ++j)
           if (mask & (std::size_t(1) << j)) corner[read[j]] = hi[read[j]];
-        const int sign = evaluate_sign(corner, corner);
+        int sign = evaluate_sign(corner, corner);
+        if (sign == 0) sign = monotone_sign(corner, corner);
         if (sign < 0) return BoxVerdict::fails;
         corner_undecided = sign == 0;
       }
@@ -648,7 +707,8 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bo
     while (!stack.empty() && !undecided) {
       auto [a, b] = std::move(stack.back());
       stack.pop_back();
-      const int sign = evaluate_sign(a, b);
+      int sign = evaluate_sign(a, b);
+      if (sign == 0) sign = monotone_sign(a, b);
       if (sign > 0) continue;
       if (sign < 0) return BoxVerdict::fails;
       std::optional<std::size_t> widest;
@@ -939,9 +999,11 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
           if (strict ? m.lo > 0 : m.lo >= 0) return true;
         } catch (const Error&) {
         }
+        const MarginTies ties{[&](const std::vector<MpfiJet>& q) { return MpfiJet(margin(q)); },
+                              [&](const std::vector<PiRational>& q) { return PiRational(margin(q)); }};
         return certified_positive(
                    *this, derived_, lo_exact, hi_exact, read,
-                   [&](const std::vector<Interval>& q) { return Interval(margin(q)); }, strict) == BoxVerdict::holds;
+                   [&](const std::vector<Interval>& q) { return Interval(margin(q)); }, strict, &ties) == BoxVerdict::holds;
       };
       auto slot_margin = [&](const char* key) {
         const Slot* slot = &feature.arguments.at(key).number;
