@@ -264,18 +264,24 @@ inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::Vect
 /// minimum-norm normal multipliers, as solve_bilateral) — the interval filter first (a regular
 /// system: one solution), exact rationals where it does not decide (decide_on_multipliers);
 /// mu_s and s are the doubles' values.
+/// `open_sign` (only with open rows given): per open row (a contact not held: its normal row
+/// G_o and velocity term h_o), the sign of its gap's acceleration G_o x + h_o at the held
+/// contacts' exact solution x = a0 + M^-1 (W^T lambda + T_S^T f), decided exactly as well.
 struct HeldVerdict {
   std::vector<int> force_sign;        ///< per contact: -1, 0, +1
   std::vector<bool> beyond_static;    ///< per contact: sticking, and its friction beyond mu_s N
+  std::vector<int> open_sign;         ///< per open row: -1, 0, +1
 };
 
 inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
                                 const Eigen::VectorXd& h, const std::vector<Friction>& friction,
                                 const std::vector<int>& state, const std::vector<std::size_t>& group = {},
-                                HeldForceCount* count = nullptr) {
+                                HeldForceCount* count = nullptr, const Eigen::MatrixXd* open_G = nullptr,
+                                const Eigen::VectorXd* open_h = nullptr) {
   std::vector<std::size_t> sticking;   // one tangent row per group
   const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, sticking, group);
   const std::size_t m = static_cast<std::size_t>(G.rows());
+  const std::size_t open = open_G ? static_cast<std::size_t>(open_G->rows()) : 0;
   auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
   return decide_on_multipliers(
       rows,
@@ -310,6 +316,25 @@ inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd&
             if (group_of(k) == g && friction[k].on && state[k] == stick && (v.force_sign[k] > 0 || normal_sign <= 0))
               v.beyond_static[k] = true;
         }
+        if (open > 0) {
+          // the accelerations the held forces give, x_i = a0_i + minv_i sum_r W_ri x_r, and the
+          // open rows' gap accelerations on them
+          const auto n = static_cast<std::size_t>(G.cols());
+          std::vector<T> acc(n, T(0));
+          for (std::size_t i = 0; i < n; ++i) {
+            T sum = T(0);
+            for (std::size_t r = 0; r < x.size(); ++r)
+              sum = sum + value(rows.W(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i))) * x[r];
+            acc[i] = value(a0(static_cast<Eigen::Index>(i))) + value(minv(static_cast<Eigen::Index>(i))) * sum;
+          }
+          v.open_sign.assign(open, 0);
+          for (std::size_t o = 0; o < open; ++o) {
+            T gap = value((*open_h)(static_cast<Eigen::Index>(o)));
+            for (std::size_t i = 0; i < n; ++i)
+              gap = gap + value((*open_G)(static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i))) * acc[i];
+            if ((v.open_sign[o] = exact_sign(gap)) == 2) return std::nullopt;
+          }
+        }
         return v;
       },
       count);
@@ -340,6 +365,19 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// held contacts (all but those the LCP lets separate: lambda 0 and w beyond its tolerance), at
 /// its states: false when a sticking contact's friction exceeds mu_s N exactly. `group`: the
 /// collinear groups by contact (empty: each its own).
+/// A first, sufficient test (session 64): the candidate's own active set verified exactly. Where
+/// the LCP leaves contacts at zero force with a gap acceleration within its tolerance (`resting`:
+/// lambda 0, w <= tolerance), the held rows with them can be dependent (the escapement's anchor
+/// on its banking pin while the exit pallet locks a tooth whose normal passes through the
+/// anchor's pivot: three rows, banking, lock and the lock's tangent, on two coordinates), and the
+/// exact multipliers of all of them are one choice (friction first, minimum norm) among many —
+/// there, a friction beyond mu_s N on that choice says nothing about the candidate, whose own
+/// forces (the resting contacts' zero) may be consistent. So the rows of the pressing contacts
+/// (lambda > 0) alone are solved exactly: when every pressing force is not negative, no sticking
+/// friction exceeds mu_s N and every resting contact's gap acceleration is not negative, all
+/// exactly, the candidate is an exact solution of the frictional problem at its states and its
+/// stick holds. Otherwise (or where a resting contact sticks: its tangent row is part of the
+/// candidate) the test of all held contacts decides, as before.
 inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
                               const Eigen::VectorXd& h, const std::vector<Friction>& friction,
                               const FrictionalSolution& s, const std::vector<std::size_t>& group) {
@@ -347,34 +385,62 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& m
   bool any = false;
   for (std::size_t k = 0; k < m; ++k) any = any || (friction[k].on && s.state[k] == stick);
   if (!any) return true;
-  std::vector<std::size_t> held;
+  std::vector<std::size_t> held, pressing, resting;
+  bool resting_sticks = false;
   for (std::size_t k = 0; k < m; ++k) {
     const auto r = static_cast<Eigen::Index>(k);
     if (s.lambda(r) <= 0 && s.w(r) > s.tolerance) continue;
     held.push_back(k);
+    if (s.lambda(r) > 0) {
+      pressing.push_back(k);
+    } else {
+      resting.push_back(k);
+      resting_sticks = resting_sticks || (friction[k].on && s.state[k] == stick);
+    }
   }
-  const auto n = static_cast<Eigen::Index>(held.size());
-  Eigen::MatrixXd Gh(n, G.cols());
-  Eigen::VectorXd hh(n);
-  std::vector<Friction> fh;
-  std::vector<int> sh;
-  std::vector<std::size_t> gh;
-  for (std::size_t i = 0; i < held.size(); ++i) {
-    const std::size_t k = held[i];
-    Gh.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(k));
-    hh(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(k));
-    fh.push_back(friction[k]);
-    sh.push_back(s.state[k]);
-    std::size_t first = i;   // the group's first held member
-    if (!group.empty())
-      for (std::size_t j = 0; j < i; ++j)
-        if (group[held[j]] == group[k]) {
-          first = j;
-          break;
-        }
-    gh.push_back(first);
+  // the verdict on the rows `set` (their groups' first members by position in set), the rows
+  // `open` watched
+  auto verdict = [&](const std::vector<std::size_t>& set, const std::vector<std::size_t>& open) {
+    const auto n = static_cast<Eigen::Index>(set.size());
+    Eigen::MatrixXd Gh(n, G.cols());
+    Eigen::VectorXd hh(n);
+    std::vector<Friction> fh;
+    std::vector<int> sh;
+    std::vector<std::size_t> gh;
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const std::size_t k = set[i];
+      Gh.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(k));
+      hh(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(k));
+      fh.push_back(friction[k]);
+      sh.push_back(s.state[k]);
+      std::size_t first = i;   // the group's first held member
+      if (!group.empty())
+        for (std::size_t j = 0; j < i; ++j)
+          if (group[set[j]] == group[k]) {
+            first = j;
+            break;
+          }
+      gh.push_back(first);
+    }
+    const auto o = static_cast<Eigen::Index>(open.size());
+    Eigen::MatrixXd Go(o, G.cols());
+    Eigen::VectorXd ho(o);
+    for (std::size_t i = 0; i < open.size(); ++i) {
+      Go.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(open[i]));
+      ho(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(open[i]));
+    }
+    return held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, open.empty() ? nullptr : &Go,
+                        open.empty() ? nullptr : &ho);
+  };
+  if (!resting.empty() && !resting_sticks) {
+    const HeldVerdict v = verdict(pressing, resting);
+    const bool consistent =
+        std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }) &&
+        std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool beyond) { return beyond; }) &&
+        std::none_of(v.open_sign.begin(), v.open_sign.end(), [](int sign) { return sign < 0; });
+    if (consistent) return true;
   }
-  const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh);
+  const HeldVerdict v = verdict(held, {});
   for (std::size_t i = 0; i < held.size(); ++i)
     if (v.beyond_static[i]) return false;
   return true;
