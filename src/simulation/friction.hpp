@@ -19,6 +19,7 @@
 // active-set search on stick/slip states; no iteration with a stopping rule).
 #pragma once
 
+#include "simulation/exact_elimination.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 
@@ -341,8 +342,10 @@ inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd&
 }
 
 /// True when the Coulomb conditions hold for the solution (stick: |f| <= mu_s N; a slip decided
-/// here: it accelerates (or moves) in its sliding direction).
-inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction) {
+/// here: it accelerates (or moves) in its sliding direction). `stick_limits` false: the stick
+/// limits are not tested here (decided exactly instead: exact_stick_holds).
+inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction,
+                              bool stick_limits = true) {
   for (std::size_t k = 0; k < friction.size(); ++k) {
     const Friction& c = friction[k];
     if (!c.on) continue;
@@ -350,6 +353,7 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
     double N = s.lambda(i) / c.s;
     int st = s.state[k];
     if (st == stick) {
+      if (!stick_limits) continue;
       double limit = c.mu_static * N;
       if (std::abs(s.f(i)) > limit + 1e-9 * (limit + std::abs(s.f(i))) + 1e-300) return false;
     } else if (!c.decided && (st == slip_positive || st == slip_negative)) {
@@ -365,42 +369,38 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// held contacts (all but those the LCP lets separate: lambda 0 and w beyond its tolerance), at
 /// its states: false when a sticking contact's friction exceeds mu_s N exactly. `group`: the
 /// collinear groups by contact (empty: each its own).
-/// A first, sufficient test (session 64): the candidate's own active set verified exactly. Where
-/// the LCP leaves contacts at zero force with a gap acceleration within its tolerance (`resting`:
-/// lambda 0, w <= tolerance), the held rows with them can be dependent (the escapement's anchor
-/// on its banking pin while the exit pallet locks a tooth whose normal passes through the
-/// anchor's pivot: three rows, banking, lock and the lock's tangent, on two coordinates), and the
-/// exact multipliers of all of them are one choice (friction first, minimum norm) among many —
-/// there, a friction beyond mu_s N on that choice says nothing about the candidate, whose own
-/// forces (the resting contacts' zero) may be consistent. So the rows of the pressing contacts
-/// (lambda > 0) alone are solved exactly: when every pressing force is not negative, no sticking
-/// friction exceeds mu_s N and every resting contact's gap acceleration is not negative, all
-/// exactly, the candidate is an exact solution of the frictional problem at its states and its
-/// stick holds. Otherwise (or where a resting contact sticks: its tangent row is part of the
-/// candidate) the test of all held contacts decides, as before.
+/// Dependent rows (session 64, stick64): where the held contacts' rows with the sticking tangent
+/// rows are dependent (the exact rank of [G; T_S] M^-1 [W; T_S]^T below their count: the
+/// escapement's anchor on its banking pin while the exit pallet locks a tooth whose normal passes
+/// through the anchor's pivot — banking, lock and the lock's tangent rows on two coordinates) the
+/// forces are a family, and the exact multipliers above (friction first, minimum norm) are one
+/// choice in it: a friction beyond mu_s N there says nothing about the others. Then the stick
+/// holds when some member is exactly consistent at a vertex where held contacts without friction
+/// state of their own (frictionless or sliding) carry no force: for each such set Z (smallest
+/// first), the rows without Z solved exactly, every remaining force not negative, no sticking
+/// friction beyond mu_s N, and every contact of Z not pressed into (its gap acceleration at that
+/// solution not negative) — all exact. A consistent stick whose forces leave room on every
+/// normal (inside the cone) is reached by moving along the family until a normal force vanishes
+/// or a friction reaches mu_s N; the latter is a slip candidate of the enumeration (at zero
+/// sliding acceleration), the former one of these sets. Regular rows (one solution) are decided
+/// by the test of all held contacts alone, as before.
 inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
                               const Eigen::VectorXd& h, const std::vector<Friction>& friction,
-                              const FrictionalSolution& s, const std::vector<std::size_t>& group) {
+                              const FrictionalSolution& s, const std::vector<std::size_t>& group,
+                              bool dependent_only = false) {
   const auto m = static_cast<std::size_t>(G.rows());
   bool any = false;
   for (std::size_t k = 0; k < m; ++k) any = any || (friction[k].on && s.state[k] == stick);
   if (!any) return true;
-  std::vector<std::size_t> held, pressing, resting;
-  bool resting_sticks = false;
+  std::vector<std::size_t> held;
   for (std::size_t k = 0; k < m; ++k) {
     const auto r = static_cast<Eigen::Index>(k);
     if (s.lambda(r) <= 0 && s.w(r) > s.tolerance) continue;
     held.push_back(k);
-    if (s.lambda(r) > 0) {
-      pressing.push_back(k);
-    } else {
-      resting.push_back(k);
-      resting_sticks = resting_sticks || (friction[k].on && s.state[k] == stick);
-    }
   }
-  // the verdict on the rows `set` (their groups' first members by position in set), the rows
-  // `open` watched
-  auto verdict = [&](const std::vector<std::size_t>& set, const std::vector<std::size_t>& open) {
+  // the rows `set` (their groups' first members by position in set), the rows `open` watched
+  auto verdict = [&](const std::vector<std::size_t>& set, const std::vector<std::size_t>& open,
+                     bool& dependent) {
     const auto n = static_cast<Eigen::Index>(set.size());
     Eigen::MatrixXd Gh(n, G.cols());
     Eigen::VectorXd hh(n);
@@ -429,21 +429,55 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& m
       Go.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(open[i]));
       ho(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(open[i]));
     }
-    return held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, open.empty() ? nullptr : &Go,
-                        open.empty() ? nullptr : &ho);
+    const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, open.empty() ? nullptr : &Go,
+                                       open.empty() ? nullptr : &ho);
+    if (!open.empty() || dependent) return v;
+    // the rows' dependence, exactly (asked only where this test of all held contacts fails)
+    bool beyond = std::any_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
+    bool pulls = std::any_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; });
+    if (beyond || pulls) {
+      std::vector<std::size_t> sticking;
+      const HeldForceRows rows = frictional_rows(Gh, minv, a0, hh, fh, sh, sticking, gh);
+      auto [A, b] = held_force_detail::exact_delassus(rows, held_force_detail::all_rows(rows));
+      dependent = row_echelon(A, A.size()).size() < A.size();
+    }
+    return v;
   };
-  if (!resting.empty() && !resting_sticks) {
-    const HeldVerdict v = verdict(pressing, resting);
+  bool dependent = false;
+  {
+    const HeldVerdict v = verdict(held, {}, dependent);
+    const bool within = std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
+    // regular rows: their one solution decides the limits (a negative force there is the LCP's
+    // lift-off, as before); dependent rows: the chosen member only where it is consistent
+    if (!dependent) return within && !dependent_only;
+    if (within && !dependent_only &&
+        std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }))
+      return true;
+  }
+  std::vector<std::size_t> free;   // held contacts without a sticking tangent row
+  for (std::size_t k : held)
+    if (!(friction[k].on && s.state[k] == stick)) free.push_back(k);
+  if (free.empty() || free.size() > 8) return false;
+  std::vector<std::size_t> codes((std::size_t{1} << free.size()) - 1);
+  for (std::size_t c = 0; c < codes.size(); ++c) codes[c] = c + 1;
+  std::stable_sort(codes.begin(), codes.end(), [](std::size_t x, std::size_t y) {
+    return __builtin_popcountll(x) < __builtin_popcountll(y);
+  });
+  for (std::size_t code : codes) {
+    std::vector<std::size_t> kept, open;
+    for (std::size_t k : held) {
+      const auto at = std::find(free.begin(), free.end(), k);
+      const bool dropped = at != free.end() && ((code >> static_cast<std::size_t>(at - free.begin())) & 1);
+      (dropped ? open : kept).push_back(k);
+    }
+    const HeldVerdict v = verdict(kept, open, dependent);
     const bool consistent =
         std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }) &&
-        std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool beyond) { return beyond; }) &&
+        std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; }) &&
         std::none_of(v.open_sign.begin(), v.open_sign.end(), [](int sign) { return sign < 0; });
     if (consistent) return true;
   }
-  const HeldVerdict v = verdict(held, {});
-  for (std::size_t i = 0; i < held.size(); ++i)
-    if (v.beyond_static[i]) return false;
-  return true;
+  return false;
 }
 
 /// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
@@ -515,8 +549,16 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       s.tolerance = lcp.tolerance;
       complete(s, r, G, h, friction);
       if (adjust) adjust(s);
-      if (coulomb_satisfied(s, friction) &&
-          (!exact_groups || exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups))) {
+      // (with exact stick limits the doubles' own, |f| <= mu_s N (1 + 1e-9), is not asked first: a
+      // friction that is round-off of an exact 0 exceeds a limit mu_s N below it, mu_s = 2^-118)
+      // (a stick the doubles' own test, |f| <= mu_s N (1 + 1e-9), rejects is still taken where
+      // its rows are dependent and a member of their force family is exactly consistent: the
+      // doubles' f is the friction-first choice there, exact_stick_holds)
+      if (exact_groups ? (coulomb_satisfied(s, friction) ? exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups)
+                                                         : coulomb_satisfied(s, friction, false) &&
+                                                               exact_stick_holds(G, minv, a0, h, friction, s,
+                                                                                 *exact_groups, true))
+                       : coulomb_satisfied(s, friction)) {
         s.solved = true;
         return s;
       }
