@@ -19,6 +19,7 @@
 // active-set search on stick/slip states; no iteration with a stopping rule).
 #pragma once
 
+#include "simulation/exact_elimination.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 
@@ -264,18 +265,24 @@ inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::Vect
 /// minimum-norm normal multipliers, as solve_bilateral) — the interval filter first (a regular
 /// system: one solution), exact rationals where it does not decide (decide_on_multipliers);
 /// mu_s and s are the doubles' values.
+/// `open_sign` (only with open rows given): per open row (a contact not held: its normal row
+/// G_o and velocity term h_o), the sign of its gap's acceleration G_o x + h_o at the held
+/// contacts' exact solution x = a0 + M^-1 (W^T lambda + T_S^T f), decided exactly as well.
 struct HeldVerdict {
   std::vector<int> force_sign;        ///< per contact: -1, 0, +1
   std::vector<bool> beyond_static;    ///< per contact: sticking, and its friction beyond mu_s N
+  std::vector<int> open_sign;         ///< per open row: -1, 0, +1
 };
 
 inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
                                 const Eigen::VectorXd& h, const std::vector<Friction>& friction,
                                 const std::vector<int>& state, const std::vector<std::size_t>& group = {},
-                                HeldForceCount* count = nullptr) {
+                                HeldForceCount* count = nullptr, const Eigen::MatrixXd* open_G = nullptr,
+                                const Eigen::VectorXd* open_h = nullptr) {
   std::vector<std::size_t> sticking;   // one tangent row per group
   const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, sticking, group);
   const std::size_t m = static_cast<std::size_t>(G.rows());
+  const std::size_t open = open_G ? static_cast<std::size_t>(open_G->rows()) : 0;
   auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
   return decide_on_multipliers(
       rows,
@@ -310,14 +317,35 @@ inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd&
             if (group_of(k) == g && friction[k].on && state[k] == stick && (v.force_sign[k] > 0 || normal_sign <= 0))
               v.beyond_static[k] = true;
         }
+        if (open > 0) {
+          // the accelerations the held forces give, x_i = a0_i + minv_i sum_r W_ri x_r, and the
+          // open rows' gap accelerations on them
+          const auto n = static_cast<std::size_t>(G.cols());
+          std::vector<T> acc(n, T(0));
+          for (std::size_t i = 0; i < n; ++i) {
+            T sum = T(0);
+            for (std::size_t r = 0; r < x.size(); ++r)
+              sum = sum + value(rows.W(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i))) * x[r];
+            acc[i] = value(a0(static_cast<Eigen::Index>(i))) + value(minv(static_cast<Eigen::Index>(i))) * sum;
+          }
+          v.open_sign.assign(open, 0);
+          for (std::size_t o = 0; o < open; ++o) {
+            T gap = value((*open_h)(static_cast<Eigen::Index>(o)));
+            for (std::size_t i = 0; i < n; ++i)
+              gap = gap + value((*open_G)(static_cast<Eigen::Index>(o), static_cast<Eigen::Index>(i))) * acc[i];
+            if ((v.open_sign[o] = exact_sign(gap)) == 2) return std::nullopt;
+          }
+        }
         return v;
       },
       count);
 }
 
 /// True when the Coulomb conditions hold for the solution (stick: |f| <= mu_s N; a slip decided
-/// here: it accelerates (or moves) in its sliding direction).
-inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction) {
+/// here: it accelerates (or moves) in its sliding direction). `stick_limits` false: the stick
+/// limits are not tested here (decided exactly instead: exact_stick_holds).
+inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction,
+                              bool stick_limits = true) {
   for (std::size_t k = 0; k < friction.size(); ++k) {
     const Friction& c = friction[k];
     if (!c.on) continue;
@@ -325,6 +353,7 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
     double N = s.lambda(i) / c.s;
     int st = s.state[k];
     if (st == stick) {
+      if (!stick_limits) continue;
       double limit = c.mu_static * N;
       if (std::abs(s.f(i)) > limit + 1e-9 * (limit + std::abs(s.f(i))) + 1e-300) return false;
     } else if (!c.decided && (st == slip_positive || st == slip_negative)) {
@@ -340,9 +369,25 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// held contacts (all but those the LCP lets separate: lambda 0 and w beyond its tolerance), at
 /// its states: false when a sticking contact's friction exceeds mu_s N exactly. `group`: the
 /// collinear groups by contact (empty: each its own).
+/// Dependent rows (session 64, stick64): where the held contacts' rows with the sticking tangent
+/// rows are dependent (the exact rank of [G; T_S] M^-1 [W; T_S]^T below their count: the
+/// escapement's anchor on its banking pin while the exit pallet locks a tooth whose normal passes
+/// through the anchor's pivot — banking, lock and the lock's tangent rows on two coordinates) the
+/// forces are a family, and the exact multipliers above (friction first, minimum norm) are one
+/// choice in it: a friction beyond mu_s N there says nothing about the others. Then the stick
+/// holds when some member is exactly consistent at a vertex where held contacts without friction
+/// state of their own (frictionless or sliding) carry no force: for each such set Z (smallest
+/// first), the rows without Z solved exactly, every remaining force not negative, no sticking
+/// friction beyond mu_s N, and every contact of Z not pressed into (its gap acceleration at that
+/// solution not negative) — all exact. A consistent stick whose forces leave room on every
+/// normal (inside the cone) is reached by moving along the family until a normal force vanishes
+/// or a friction reaches mu_s N; the latter is a slip candidate of the enumeration (at zero
+/// sliding acceleration), the former one of these sets. Regular rows (one solution) are decided
+/// by the test of all held contacts alone, as before.
 inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
                               const Eigen::VectorXd& h, const std::vector<Friction>& friction,
-                              const FrictionalSolution& s, const std::vector<std::size_t>& group) {
+                              const FrictionalSolution& s, const std::vector<std::size_t>& group,
+                              bool dependent_only = false) {
   const auto m = static_cast<std::size_t>(G.rows());
   bool any = false;
   for (std::size_t k = 0; k < m; ++k) any = any || (friction[k].on && s.state[k] == stick);
@@ -353,31 +398,86 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& m
     if (s.lambda(r) <= 0 && s.w(r) > s.tolerance) continue;
     held.push_back(k);
   }
-  const auto n = static_cast<Eigen::Index>(held.size());
-  Eigen::MatrixXd Gh(n, G.cols());
-  Eigen::VectorXd hh(n);
-  std::vector<Friction> fh;
-  std::vector<int> sh;
-  std::vector<std::size_t> gh;
-  for (std::size_t i = 0; i < held.size(); ++i) {
-    const std::size_t k = held[i];
-    Gh.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(k));
-    hh(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(k));
-    fh.push_back(friction[k]);
-    sh.push_back(s.state[k]);
-    std::size_t first = i;   // the group's first held member
-    if (!group.empty())
-      for (std::size_t j = 0; j < i; ++j)
-        if (group[held[j]] == group[k]) {
-          first = j;
-          break;
-        }
-    gh.push_back(first);
+  // the rows `set` (their groups' first members by position in set), the rows `open` watched
+  auto verdict = [&](const std::vector<std::size_t>& set, const std::vector<std::size_t>& open,
+                     bool& dependent) {
+    const auto n = static_cast<Eigen::Index>(set.size());
+    Eigen::MatrixXd Gh(n, G.cols());
+    Eigen::VectorXd hh(n);
+    std::vector<Friction> fh;
+    std::vector<int> sh;
+    std::vector<std::size_t> gh;
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const std::size_t k = set[i];
+      Gh.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(k));
+      hh(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(k));
+      fh.push_back(friction[k]);
+      sh.push_back(s.state[k]);
+      std::size_t first = i;   // the group's first held member
+      if (!group.empty())
+        for (std::size_t j = 0; j < i; ++j)
+          if (group[set[j]] == group[k]) {
+            first = j;
+            break;
+          }
+      gh.push_back(first);
+    }
+    const auto o = static_cast<Eigen::Index>(open.size());
+    Eigen::MatrixXd Go(o, G.cols());
+    Eigen::VectorXd ho(o);
+    for (std::size_t i = 0; i < open.size(); ++i) {
+      Go.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(open[i]));
+      ho(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(open[i]));
+    }
+    const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, open.empty() ? nullptr : &Go,
+                                       open.empty() ? nullptr : &ho);
+    if (!open.empty() || dependent) return v;
+    // the rows' dependence, exactly (asked only where this test of all held contacts fails)
+    bool beyond = std::any_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
+    bool pulls = std::any_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; });
+    if (beyond || pulls) {
+      std::vector<std::size_t> sticking;
+      const HeldForceRows rows = frictional_rows(Gh, minv, a0, hh, fh, sh, sticking, gh);
+      auto [A, b] = held_force_detail::exact_delassus(rows, held_force_detail::all_rows(rows));
+      dependent = row_echelon(A, A.size()).size() < A.size();
+    }
+    return v;
+  };
+  bool dependent = false;
+  {
+    const HeldVerdict v = verdict(held, {}, dependent);
+    const bool within = std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
+    // regular rows: their one solution decides the limits (a negative force there is the LCP's
+    // lift-off, as before); dependent rows: the chosen member only where it is consistent
+    if (!dependent) return within && !dependent_only;
+    if (within && !dependent_only &&
+        std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }))
+      return true;
   }
-  const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh);
-  for (std::size_t i = 0; i < held.size(); ++i)
-    if (v.beyond_static[i]) return false;
-  return true;
+  std::vector<std::size_t> free;   // held contacts without a sticking tangent row
+  for (std::size_t k : held)
+    if (!(friction[k].on && s.state[k] == stick)) free.push_back(k);
+  if (free.empty() || free.size() > 8) return false;
+  std::vector<std::size_t> codes((std::size_t{1} << free.size()) - 1);
+  for (std::size_t c = 0; c < codes.size(); ++c) codes[c] = c + 1;
+  std::stable_sort(codes.begin(), codes.end(), [](std::size_t x, std::size_t y) {
+    return __builtin_popcountll(x) < __builtin_popcountll(y);
+  });
+  for (std::size_t code : codes) {
+    std::vector<std::size_t> kept, open;
+    for (std::size_t k : held) {
+      const auto at = std::find(free.begin(), free.end(), k);
+      const bool dropped = at != free.end() && ((code >> static_cast<std::size_t>(at - free.begin())) & 1);
+      (dropped ? open : kept).push_back(k);
+    }
+    const HeldVerdict v = verdict(kept, open, dependent);
+    const bool consistent =
+        std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }) &&
+        std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; }) &&
+        std::none_of(v.open_sign.begin(), v.open_sign.end(), [](int sign) { return sign < 0; });
+    if (consistent) return true;
+  }
+  return false;
 }
 
 /// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
@@ -449,8 +549,16 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       s.tolerance = lcp.tolerance;
       complete(s, r, G, h, friction);
       if (adjust) adjust(s);
-      if (coulomb_satisfied(s, friction) &&
-          (!exact_groups || exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups))) {
+      // (with exact stick limits the doubles' own, |f| <= mu_s N (1 + 1e-9), is not asked first: a
+      // friction that is round-off of an exact 0 exceeds a limit mu_s N below it, mu_s = 2^-118)
+      // (a stick the doubles' own test, |f| <= mu_s N (1 + 1e-9), rejects is still taken where
+      // its rows are dependent and a member of their force family is exactly consistent: the
+      // doubles' f is the friction-first choice there, exact_stick_holds)
+      if (exact_groups ? (coulomb_satisfied(s, friction) ? exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups)
+                                                         : coulomb_satisfied(s, friction, false) &&
+                                                               exact_stick_holds(G, minv, a0, h, friction, s,
+                                                                                 *exact_groups, true))
+                       : coulomb_satisfied(s, friction)) {
         s.solved = true;
         return s;
       }

@@ -812,11 +812,8 @@ struct Simulation::Impl {
       }
       simulation::FrictionalSolution& s = w.solution;
       if (lifting) {
-        // (the step start's stick choice keeps the doubles' Coulomb test: the exact stick limits
-        // here (session 63, exact63) turned the escapement's lock at t = 0.0547 s into a slip and
-        // a cascade of impacts at one instant, 81 -> 107 events; the held conditions along the
-        // step are decided exactly, held_conditions)
-        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged());
+        static const std::vector<std::size_t> no_groups;   // (exact stick limits, except in a wedge)
+        s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged(), wedged() ? nullptr : &no_groups);
         if (!s.solved) {
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
@@ -1884,8 +1881,30 @@ struct Simulation::Impl {
         separate.push_back(k);
       }
     }
+    // A held contact the impact lets separate (no impulse, its normal speed after the impact
+    // above the velocity tolerance) lifts off at the impact. Before (session 64, stick64), the
+    // projection below put every held contact's normal speed back to 0, undoing the impact's
+    // outcome: the escapement's balance pin striking the fork while the anchor rested on its
+    // banking pin pushed the anchor off the pin, the projection took that speed away, the pin
+    // struck again at the same instant, and again (25 impacts at t = 0.0712 s, each losing a
+    // twelfth of the speed, when the exit pallet's lock slipped at t = 0.0547 s).
+    std::vector<std::pair<std::size_t, Vec>> lifted;   // (active index, its normal beyond)
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (rows[k].crossing || lambda[k] != 0) continue;
+      double after = 0;
+      for (std::size_t i = 0; i < dofs.size(); ++i) after += rows[k].g[i] * v[i];
+      if (after > vtol) lifted.emplace_back(rows[k].active, Vec());
+    }
+    std::sort(lifted.begin(), lifted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<std::pair<std::size_t, Vec>> gone;   // (pair, its normal)
+    for (auto& [index, normal] : lifted) {
+      gone.emplace_back(active[index].pair, Vec());
+      release(index, SimulationEvent::Kind::lift_off, false, &gone.back().second);
+    }
     project_active();
     for (std::size_t k : separate) nudge_free(rows[k].pair, rows[k].g);
+    for (auto& [pair, G] : gone)
+      if (!in_active(pair)) nudge_free(pair, G);
   }
 
   // ---------------------------------------------------------------- one step
