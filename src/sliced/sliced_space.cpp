@@ -137,9 +137,9 @@ Rational reach(const Part& part, const Point& pivot, const Rational& unit) {
 // The lever of a free part about its pivot: 1 when the part's reach about its pivot is within
 // 16 times its reach about its own first vertex (the pivot on or near the part: every ordinary
 // model), else the least power of two at least the ratio. A pure rotation by dt of the
-// half-angle tangent moves the part's points by up to 2 dt reach(pivot): the crossings try
-// angle ranges narrowed by this factor, so that the part moves as little across them as a part
-// turning about a point of its own (session 57, hunt57: a peg-in-hole with the peg's pivot 10^6
+// half-angle tangent moves the part's points by up to 2 dt reach(pivot): a lever above 1 makes
+// the crossings turn the part about its own centre (session 58; sessions 57-63 also narrowed
+// their angle ranges by the lever: session 57, hunt57, a peg-in-hole with the peg's pivot 10^6
 // mm away had 9 components for 5).
 Rational pivot_lever(const Part& free, const Rational& unit) {
   if (free.loops.empty() || free.loops.front().edges.empty()) return 1;
@@ -339,8 +339,8 @@ struct SlicedSpace::Impl {
   Rational bound;
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
   long length_unit_exponent = 0;   // lengths in units of 2^this mm (SlicedBuildOptions::normalise_lengths)
-  // The free part's lever about its pivot (pivot_lever): 1, or the power of two by which the
-  // crossings' angle ranges are narrowed for a pivot far from the part (session 57).
+  // The free part's lever about its pivot (pivot_lever): 1, or (a pivot far from the part) the
+  // power of two of its reach about the pivot over its own size (session 57).
   Rational lever = 1;
   // A pivot far from the free part (lever above 1): the crossings turn the part about its own
   // bounding box's centre `reference` Q (model units, part_centre), not about the pivot P
@@ -601,11 +601,13 @@ struct SlicedSpace::Impl {
   Near near(std::size_t i, int halvings) const {
     const sliced::Critical& c = critical[i];
     Near out;
-    // The range found (separated from the other critical angles) is then narrowed by the pivot's
-    // lever: a point of the free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6
-    // part sizes away swept the part across the plate's hole within 2^-16 of t, so no sample was
-    // steady and the hole's cells ended at every critical angle (9 components for 5; with a
-    // clearance of 10^-9 the range next to a critical angle 10^-10 away moved the peg 10^-4).
+    // The range found (separated from the other critical angles) is not narrowed by the pivot's
+    // lever (sessions 57-63 narrowed it so: a pure rotation about a pivot 10^6 part sizes away
+    // swept the part across the plate's hole, and the chord about P that stood for the turn about
+    // Q left that turn by |Q - P| dt^2): a part with a far pivot turns about its own centre Q and
+    // that turn itself is certified (turn_free), so its crossings are those of the part pivoted at
+    // Q, with the ranges of such a part (session 64; at 10^100 mm the narrowed ranges' 330-bit
+    // tangents made the crossings' exact overlap tests 68 % of the time).
     Rational width = Rational(1) / Rational(mpz_class(1) << (10 + 2 * halvings));
     auto separated = [&](const Rational& lo, const Rational& hi) {
       for (std::size_t k = 0; k < critical.size(); ++k) {
@@ -619,7 +621,6 @@ struct SlicedSpace::Impl {
       Rational d = width;
       for (std::size_t k = 0; k < critical.size(); ++k)
         while (!critical[k].half_turn && (critical[k].t.compare(-1 / d) <= 0 || critical[k].t.compare(1 / d) >= 0)) d /= 2;
-      d /= lever;
       out.flip = true;
       out.u_lo = -d;
       out.u_hi = d;
@@ -632,17 +633,14 @@ struct SlicedSpace::Impl {
     if (t.exact) {
       Rational d = width;
       while (!separated(t.lower - d, t.lower + d)) d /= 2;
-      d /= lever;
       lo = t.lower - d;
       hi = t.lower + d;
     } else {
       algebra::refine_dyadically(t, width);
       while (!t.exact && !separated(t.lower, t.upper)) algebra::refine_dyadically(t, (t.upper - t.lower) / 4);
-      if (!t.exact && lever != 1) algebra::refine_dyadically(t, (t.upper - t.lower) / lever);
       if (t.exact) {
         Rational d = width;
         while (!separated(t.lower - d, t.lower + d)) d /= 2;
-        d /= lever;
         lo = t.lower - d;
         hi = t.lower + d;
       } else {
