@@ -137,9 +137,9 @@ Rational reach(const Part& part, const Point& pivot, const Rational& unit) {
 // The lever of a free part about its pivot: 1 when the part's reach about its pivot is within
 // 16 times its reach about its own first vertex (the pivot on or near the part: every ordinary
 // model), else the least power of two at least the ratio. A pure rotation by dt of the
-// half-angle tangent moves the part's points by up to 2 dt reach(pivot): a lever above 1 makes
-// the crossings turn the part about its own centre (session 58; sessions 57-63 also narrowed
-// their angle ranges by the lever: session 57, hunt57, a peg-in-hole with the peg's pivot 10^6
+// half-angle tangent moves the part's points by up to 2 dt reach(pivot): the crossings try
+// angle ranges narrowed by this factor, so that the part moves as little across them as a part
+// turning about a point of its own (session 57, hunt57: a peg-in-hole with the peg's pivot 10^6
 // mm away had 9 components for 5).
 Rational pivot_lever(const Part& free, const Rational& unit) {
   if (free.loops.empty() || free.loops.front().edges.empty()) return 1;
@@ -339,8 +339,8 @@ struct SlicedSpace::Impl {
   Rational bound;
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
   long length_unit_exponent = 0;   // lengths in units of 2^this mm (SlicedBuildOptions::normalise_lengths)
-  // The free part's lever about its pivot (pivot_lever): 1, or (a pivot far from the part) the
-  // power of two of its reach about the pivot over its own size (session 57).
+  // The free part's lever about its pivot (pivot_lever): 1, or the power of two by which the
+  // crossings' angle ranges are narrowed for a pivot far from the part (session 57).
   Rational lever = 1;
   // A pivot far from the free part (lever above 1): the crossings turn the part about its own
   // bounding box's centre `reference` Q (model units, part_centre), not about the pivot P
@@ -354,9 +354,6 @@ struct SlicedSpace::Impl {
   std::optional<Point> reference;
   std::optional<Part> near_free;
   Rational near_bound;
-  // The model with the free part pivoted at Q, and its first-contact query (turn_free).
-  std::optional<Model> near_model;
-  std::optional<sliced::MotionChecker> near_motion;
   // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
   // scale_free_factor k, the coordinates integers, then divided by the power of two that brings
   // them to an ordinary size, sliced::size_unit: `frame` = k / that unit): the parts times
@@ -419,16 +416,16 @@ struct SlicedSpace::Impl {
     return Point{Rational(q.x + v.x), Rational(q.y + v.y)};
   }
 
-  // The turn about Q at offset q (model units, about Q) over [u_lo, u_hi] (chart about pi when
-  // `flip`), ends included: certified free by the exact first-contact query of the part pivoted
-  // at Q (`near_motion`: the pure rotation at offset q there), whose numbers are of the part's
-  // size. Until session 64 the chord of the model's chart about P between the turn's ends was
-  // certified instead: its candidate polynomials carried the pivot's |Q - P| (10^400 mm against a
-  // part of 12 mm) in every coefficient, 47 % of the peg in the slot's time at 10^30 mm.
-  bool turn_free(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
-    sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, u_hi, flip, {}};
+  // The turn about Q at offset q (model units, about Q) over [u_lo, u_hi] is approximated by
+  // the straight motion of the model's chart between its two ends (offsets about P, chart
+  // coordinates u_lo and u_hi): certified free by the exact first-contact query, ends included.
+  // The chord leaves the turn's curve by |Q - P| times the square of the range at most; near()
+  // narrows the range by the lever, so the chord moves the part hardly more than the turn.
+  bool chord_free(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
+    const Point a = from_reference(q, chart_angle(u_lo, flip)), b = from_reference(q, chart_angle(u_hi, flip));
+    sliced::StraightMotion m{a.x, a.y, u_lo, b.x, b.y, u_hi, flip, {}};
     for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
-    sliced::MotionResult r = near_motion->first_contact(m);
+    sliced::MotionResult r = motion->first_contact(m);
     return r.starts_apart && !r.found;
   }
 
@@ -484,9 +481,9 @@ struct SlicedSpace::Impl {
 
   // steady() for a point q of the crossings' frame (the model's q / k): the scaled pair's
   // contact lines are the model's times k, so steady_along on it is the same exact test.
-  // A far pivot (`reference`): q is about Q, and the turn about Q is checked (turn_free).
+  // A far pivot (`reference`): q is about Q, and the chord about P is checked (chord_free).
   bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip, bool exact_fallback) const {
-    if (reference) return turn_free(frame ? Point{Rational(q.x / *frame), Rational(q.y / *frame)} : q, u_lo, u_hi, flip);
+    if (reference) return chord_free(frame ? Point{Rational(q.x / *frame), Rational(q.y / *frame)} : q, u_lo, u_hi, flip);
     if (!frame) return steady(q, u_lo, u_hi, flip, exact_fallback);
     if (frame_pair && sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip)) return true;
     if (frame_pair && !exact_fallback) return false;
@@ -601,13 +598,11 @@ struct SlicedSpace::Impl {
   Near near(std::size_t i, int halvings) const {
     const sliced::Critical& c = critical[i];
     Near out;
-    // The range found (separated from the other critical angles) is not narrowed by the pivot's
-    // lever (sessions 57-63 narrowed it so: a pure rotation about a pivot 10^6 part sizes away
-    // swept the part across the plate's hole, and the chord about P that stood for the turn about
-    // Q left that turn by |Q - P| dt^2): a part with a far pivot turns about its own centre Q and
-    // that turn itself is certified (turn_free), so its crossings are those of the part pivoted at
-    // Q, with the ranges of such a part (session 64; at 10^100 mm the narrowed ranges' 330-bit
-    // tangents made the crossings' exact overlap tests 68 % of the time).
+    // The range found (separated from the other critical angles) is then narrowed by the pivot's
+    // lever: a point of the free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6
+    // part sizes away swept the part across the plate's hole within 2^-16 of t, so no sample was
+    // steady and the hole's cells ended at every critical angle (9 components for 5; with a
+    // clearance of 10^-9 the range next to a critical angle 10^-10 away moved the peg 10^-4).
     Rational width = Rational(1) / Rational(mpz_class(1) << (10 + 2 * halvings));
     auto separated = [&](const Rational& lo, const Rational& hi) {
       for (std::size_t k = 0; k < critical.size(); ++k) {
@@ -621,6 +616,7 @@ struct SlicedSpace::Impl {
       Rational d = width;
       for (std::size_t k = 0; k < critical.size(); ++k)
         while (!critical[k].half_turn && (critical[k].t.compare(-1 / d) <= 0 || critical[k].t.compare(1 / d) >= 0)) d /= 2;
+      d /= lever;
       out.flip = true;
       out.u_lo = -d;
       out.u_hi = d;
@@ -633,14 +629,17 @@ struct SlicedSpace::Impl {
     if (t.exact) {
       Rational d = width;
       while (!separated(t.lower - d, t.lower + d)) d /= 2;
+      d /= lever;
       lo = t.lower - d;
       hi = t.lower + d;
     } else {
       algebra::refine_dyadically(t, width);
       while (!t.exact && !separated(t.lower, t.upper)) algebra::refine_dyadically(t, (t.upper - t.lower) / 4);
+      if (!t.exact && lever != 1) algebra::refine_dyadically(t, (t.upper - t.lower) / lever);
       if (t.exact) {
         Rational d = width;
         while (!separated(t.lower - d, t.lower + d)) d /= 2;
+        d /= lever;
         lo = t.lower - d;
         hi = t.lower + d;
       } else {
@@ -853,10 +852,10 @@ struct SlicedSpace::Impl {
           right_done.insert(b);
           Point w = q;   // the model's configuration
           if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
-          // about Q (a far pivot): the turn's two ends, the model's offsets about P
+          // about Q (a far pivot): the chord's two ends, the model's offsets about P
           const Point wl = reference ? from_reference(w, nr.left) : w, wr = reference ? from_reference(w, nr.right) : w;
           SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip,
-                                reference};
+                                std::nullopt};
           for (Rational* r : {&link.left_witness.x, &link.left_witness.y, &link.right_witness.x, &link.right_witness.y}) r->canonicalize();
           link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
           link.right_witness.angle.t.canonicalize();
@@ -985,9 +984,6 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
     impl->near_free = b;
     impl->near_free->motion.pivot = *impl->reference;
     impl->near_bound = reach(a, *impl->reference, impl->unit) + reach(b, *impl->reference, impl->unit) + 2 * impl->unit;
-    impl->near_model = impl->model;
-    impl->near_model->parts[*free].motion.pivot = *impl->reference;
-    impl->near_motion.emplace(*impl->near_model, *fixed, *free);
   }
   impl->motion.emplace(impl->model, *fixed, *free);
   if (options.cell_structure) impl->build_structure();

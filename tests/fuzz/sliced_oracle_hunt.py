@@ -15,9 +15,10 @@ Each generated model is written with literal rationals, its C-space built by `hi
   * every crossing's witnesses are free, and so is the certified motion between them at 17
     rational points in between (a necessary condition of "certified free"): the straight motion of
     the chart (the offset moving linearly with the half-angle tangent: a pure rotation when the two
-    offsets are equal, as about a pivot on the part), or about a far pivot (session 64: the
-    witness's `turn_centre` Q) the turn about Q between the two ends (sessions 58-63: the chord of
-    the chart between them), which must end at the right witness;
+    offsets are equal, as about a pivot on the part; about a far pivot the chord between the two
+    ends of a turn about the part's centre, session 58), or, when a witness names a `turn_centre` Q
+    (SlicedConnection::turn_centre, unset since session 64's revert), the turn about Q, which must
+    end at the right witness;
   * the critical angles are in increasing order of t, every representative lies strictly between
     its interval's two critical angles (exact interval bounds), each slice's free cells have
     component numbers below `components`;
