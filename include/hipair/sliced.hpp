@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -36,7 +37,16 @@ struct SlicedAngle {
   bool half_turn = false;   ///< theta = pi (t ignored)
   /// The angle in radians (double, for display): 2 atan(t), or pi.
   double radians() const;
+  /// The angle in degrees, correctly rounded: the double nearest 360 atan(t) / pi (MPFR, the
+  /// exact t; 0 for t = 0 and the exact sign below the least subnormal), or 180 for the half
+  /// turn. Every published figure of a sliced pair (JSON `degrees`, SVG labels) is this.
+  double degrees() const;
 };
+
+/// The double nearest an exact (algebraic) number, correctly rounded (round to nearest, ties to
+/// even; the isolating interval refined on a copy until both ends round alike); the sliced
+/// JSON's `t.decimal`. AlgebraicNumber::approximate() is within one unit in the last place.
+double nearest_double(const AlgebraicNumber& number);
 
 /// A configuration of the free part relative to the fixed part.
 struct SlicedConfiguration {
@@ -58,7 +68,7 @@ struct CriticalAngle {
   AlgebraicNumber t;
   bool half_turn = false;
   std::vector<CriticalEvent> events;   ///< kinds of event found there (distinct)
-  double degrees = 0;                  ///< approximate, for display
+  double degrees = 0;                  ///< 360 atan(t) / pi (180 at the half turn), correctly rounded
 };
 
 /// Result of exact point location in (x, y, theta).
@@ -77,14 +87,20 @@ struct SlicedConnection {
   std::size_t left_cell = no_index;
   std::size_t right_cell = no_index;
   /// A witness of the connection: a configuration at an angle inside the left interval and one
-  /// inside the right interval; the straight motion between them (through the half turn when
-  /// `through_half_turn`) is certified free. For a part near its pivot both have the same offset
-  /// (x, y) (a pure rotation: no vertex–edge contact line passes the offset); for a part far from
-  /// its pivot (lever above 1) the offsets differ: the ends of the chord of a turn about the
-  /// part's own centre, certified by the exact first-contact query (docs/cspace.md, "A pivot far
-  /// from the free part").
+  /// inside the right interval, and a motion between them certified free. For a part near its
+  /// pivot both have the same offset (x, y) and the motion is the straight motion between them
+  /// (through the half turn when `through_half_turn`): a pure rotation (no vertex–edge contact
+  /// line passes the offset). For a part far from its pivot (lever above 1) the offsets differ:
+  /// the motion is the turn of the part about its own centre `turn_centre` (a body point, model
+  /// coordinates: the configurations (x, y) + (R(t_left) - R(t)) (turn_centre - pivot), t from
+  /// the left angle to the right one within the interval the chart's half-angle tangent spans
+  /// linearly), certified by the exact first-contact query of the part pivoted there
+  /// (docs/cspace.md, "A pivot far from the free part"; until session 64 the straight chord
+  /// between the two ends about the pivot, whose polynomials carried the pivot's distance).
   SlicedConfiguration left_witness, right_witness;
   bool through_half_turn = false;
+  /// The body point the witnesses' motion turns about (a far pivot); empty: the pure rotation.
+  std::optional<Point> turn_centre;
 };
 
 /// One open interval of angles between two consecutive critical angles.

@@ -9,7 +9,6 @@
 
 #include <cstdio>
 #include <iostream>
-#include <numbers>
 
 namespace hipair::cli {
 namespace {
@@ -29,7 +28,7 @@ json angle_json(const SlicedAngle& angle) {
   json out;
   out["half_turn"] = angle.half_turn;
   out["t"] = angle.half_turn ? json(nullptr) : json(to_exact_string(angle.t));
-  out["degrees"] = angle.radians() * 180 / std::numbers::pi;
+  out["degrees"] = angle.degrees();   // correctly rounded
   return out;
 }
 
@@ -119,7 +118,7 @@ std::string sliced_json(const SlicedSpace& space, bool with_times) {
     if (c.half_turn) {
       j["t"] = nullptr;
     } else {
-      j["t"] = {{"exact", c.t.to_string("t")}, {"decimal", c.t.approximate()}};
+      j["t"] = {{"exact", c.t.to_string("t")}, {"decimal", nearest_double(c.t)}};
       if (!c.t.exact) j["t"]["interval"] = {to_exact_string(c.t.lower), to_exact_string(c.t.upper)};
     }
     j["degrees"] = c.degrees;
@@ -168,9 +167,12 @@ std::string sliced_json(const SlicedSpace& space, bool with_times) {
     json witnesses = json::array();   // parallel to connections
     for (const auto& c : crossing.connections) {
       connections.push_back({c.left_cell, c.right_cell});
-      witnesses.push_back({{"left", configuration_json(c.left_witness, unit)},
-                           {"right", configuration_json(c.right_witness, unit)},
-                           {"through_half_turn", c.through_half_turn}});
+      json w = {{"left", configuration_json(c.left_witness, unit)},
+                {"right", configuration_json(c.right_witness, unit)},
+                {"through_half_turn", c.through_half_turn}};
+      // a far pivot: the certified motion is the turn about this body point (mm), not the chord
+      if (c.turn_centre) w["turn_centre"] = {{"x", mm_text(c.turn_centre->x, unit)}, {"y", mm_text(c.turn_centre->y, unit)}};
+      witnesses.push_back(w);
     }
     j["connections"] = connections;
     j["witnesses"] = witnesses;

@@ -25,7 +25,7 @@ std::string degrees_text(double degrees) {
 
 std::string sliced_interval_label(const SlicedSpace& space, std::size_t interval) {
   const SlicedInterval& in = space.intervals().at(interval);
-  const double representative = in.representative.radians() * 180 / std::numbers::pi;
+  const double representative = in.representative.degrees();   // correctly rounded, as the JSON
   std::string slice = "slice at \u03b8 = " + degrees_text(representative);
   if (in.lower_critical == no_index) return "all \u03b8, " + slice;
   double lo = space.critical_angles()[in.lower_critical].degrees;

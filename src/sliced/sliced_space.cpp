@@ -34,6 +34,17 @@ double SlicedAngle::radians() const {
   return 2 * std::atan(to_double(t));
 }
 
+double SlicedAngle::degrees() const { return half_turn ? 180.0 : algebra::half_angle_degrees(t); }
+
+double nearest_double(const AlgebraicNumber& number) {
+  Real r;
+  r.polynomial = number.polynomial;
+  r.lower = number.lower;
+  r.upper = number.upper;
+  r.exact = number.exact;
+  return algebra::nearest_double(r);
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -843,7 +854,8 @@ struct SlicedSpace::Impl {
           if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
           // about Q (a far pivot): the chord's two ends, the model's offsets about P
           const Point wl = reference ? from_reference(w, nr.left) : w, wr = reference ? from_reference(w, nr.right) : w;
-          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip};
+          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip,
+                                std::nullopt};
           for (Rational* r : {&link.left_witness.x, &link.left_witness.y, &link.right_witness.x, &link.right_witness.y}) r->canonicalize();
           link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
           link.right_witness.angle.t.canonicalize();

@@ -1,12 +1,13 @@
 // Correctly rounded figures of exact numbers (issue 13, session 63): to_double of rationals,
 // algebra::nearest_double of real algebraic numbers (isolating intervals about 0 included) and
-// algebra::half_angle_degrees, at scales 2^-1200 ... 2^1100, against an oracle of this file's
-// own: round to nearest even on the exact rational in integers (no MPFR), atan by its
-// alternating series and pi between two 60-digit decimals (a bracket of the value; the case
+// algebra::half_angle_degrees, at scales 2^-1200 ... 2^1100, against the oracle of
+// rounding_oracle.hpp: round to nearest even on the exact rational in integers (no MPFR), atan by
+// its alternating series and pi between two 60-digit decimals (a bracket of the value; the case
 // counts only when both ends of the bracket round to the same double).
 #include "algebra/exact_real.hpp"
 #include "algebra/nearest_double.hpp"
 #include "pin_slot_test_support.hpp"
+#include "rounding_oracle.hpp"
 #include "test_seed.hpp"
 
 #include <hipair/model.hpp>
@@ -29,79 +30,10 @@ namespace {
 namespace algebra = cspace::algebra;
 using algebra::Real;
 
-Rational power_of_two(long e) {
-  Rational r(1);
-  if (e >= 0)
-    mpq_mul_2exp(r.get_mpq_t(), r.get_mpq_t(), static_cast<mp_bitcnt_t>(e));
-  else
-    mpq_div_2exp(r.get_mpq_t(), r.get_mpq_t(), static_cast<mp_bitcnt_t>(-e));
-  return r;
-}
-
-// floor(log2 q), q > 0
-long floor_log2(const Rational& q) {
-  long e = static_cast<long>(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - static_cast<long>(mpz_sizeinbase(q.get_den_mpz_t(), 2));
-  while (q < power_of_two(e)) --e;
-  while (q >= power_of_two(e + 1)) ++e;
-  return e;
-}
-
-// The oracle: q rounded to the IEEE double grid (53 bits, subnormal spacing 2^-1074), ties to
-// even, overflow to infinity; a zero keeps q's sign.
-double oracle_round(const Rational& value) {
-  const int sign = sgn(value);
-  if (sign == 0) return 0.0;
-  const Rational q = abs(value);
-  const long e = std::max(floor_log2(q) - 52, -1074L);
-  const Rational m = q / power_of_two(e);   // in [2^52, 2^53), or below on the subnormal grid
-  mpz_class n = m.get_num() / m.get_den();
-  const Rational fraction = m - Rational(n);
-  if (fraction > Rational(1, 2) || (fraction == Rational(1, 2) && mpz_odd_p(n.get_mpz_t()))) n += 1;
-  double d = 0;
-  if (n == 0)
-    d = 0.0;
-  else if (e + static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2)) > 1024)
-    d = std::numeric_limits<double>::infinity();
-  else
-    d = std::ldexp(n.get_d(), static_cast<int>(e));   // n < 2^54: exact
-  return sign < 0 ? -d : d;
-}
-
-bool same_double(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
-
-// pi between two rationals 10^-60 apart
-const Rational& pi_lower() {
-  static const Rational r("3141592653589793238462643383279502884197169399375105820974944/1000000000000000000000000000000000000000000000000000000000000");
-  return r;
-}
-const Rational& pi_upper() {
-  static const Rational r(pi_lower() + Rational(1, mpz_class("1000000000000000000000000000000000000000000000000000000000000")));
-  return r;
-}
-
-// atan(x) for 0 < x <= 1/2 between two partial sums of its alternating series (relative width
-// below 2^-200).
-std::pair<Rational, Rational> atan_bracket(const Rational& x) {
-  Rational sum = 0, power = x, term;
-  const Rational x2 = x * x;
-  for (long k = 0;; ++k) {
-    term = power / (2 * k + 1);
-    const Rational before = sum;
-    sum += (k % 2 == 0) ? term : Rational(-term);
-    if (term < x * power_of_two(-200)) return sum < before ? std::pair{sum, before} : std::pair{before, sum};
-    power *= x2;
-  }
-}
-
-// The expected degrees of a half-angle tangent in [xlo, xhi] (0 < xlo <= xhi <= 1/2): the oracle's
-// rounding of both ends of the bracket of 360 atan(x) / pi; nullopt when they differ.
-std::optional<double> expected_degrees(const Rational& xlo, const Rational& xhi) {
-  const Rational lo = 360 * atan_bracket(xlo).first / pi_upper();
-  const Rational hi = 360 * atan_bracket(xhi).second / pi_lower();
-  const double a = oracle_round(lo), b = oracle_round(hi);
-  if (!same_double(a, b)) return std::nullopt;
-  return a;
-}
+using test::rounding::expected_degrees;
+using test::rounding::oracle_round;
+using test::rounding::power_of_two;
+using test::rounding::same_double;
 
 // A root of an integer polynomial in its isolating interval.
 Real root(algebra::Polynomial p, const Rational& lower, const Rational& upper) {
