@@ -23,7 +23,6 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -87,20 +86,14 @@ struct SlicedConnection {
   std::size_t left_cell = no_index;
   std::size_t right_cell = no_index;
   /// A witness of the connection: a configuration at an angle inside the left interval and one
-  /// inside the right interval, and a motion between them certified free. For a part near its
-  /// pivot both have the same offset (x, y) and the motion is the straight motion between them
-  /// (through the half turn when `through_half_turn`): a pure rotation (no vertex–edge contact
-  /// line passes the offset). For a part far from its pivot (lever above 1) the offsets differ:
-  /// the motion is the turn of the part about its own centre `turn_centre` (a body point, model
-  /// coordinates: the configurations (x, y) + (R(t_left) - R(t)) (turn_centre - pivot), t from
-  /// the left angle to the right one within the interval the chart's half-angle tangent spans
-  /// linearly), certified by the exact first-contact query of the part pivoted there
-  /// (docs/cspace.md, "A pivot far from the free part"; until session 64 the straight chord
-  /// between the two ends about the pivot, whose polynomials carried the pivot's distance).
+  /// inside the right interval; the straight motion between them (through the half turn when
+  /// `through_half_turn`) is certified free. For a part near its pivot both have the same offset
+  /// (x, y) (a pure rotation: no vertex–edge contact line passes the offset); for a part far from
+  /// its pivot (lever above 1) the offsets differ: the ends of the chord of a turn about the
+  /// part's own centre, certified by the exact first-contact query (docs/cspace.md, "A pivot far
+  /// from the free part").
   SlicedConfiguration left_witness, right_witness;
   bool through_half_turn = false;
-  /// The body point the witnesses' motion turns about (a far pivot); empty: the pure rotation.
-  std::optional<Point> turn_centre;
 };
 
 /// One open interval of angles between two consecutive critical angles.

@@ -170,8 +170,6 @@ std::string sliced_json(const SlicedSpace& space, bool with_times) {
       json w = {{"left", configuration_json(c.left_witness, unit)},
                 {"right", configuration_json(c.right_witness, unit)},
                 {"through_half_turn", c.through_half_turn}};
-      // a far pivot: the certified motion is the turn about this body point (mm), not the chord
-      if (c.turn_centre) w["turn_centre"] = {{"x", mm_text(c.turn_centre->x, unit)}, {"y", mm_text(c.turn_centre->y, unit)}};
       witnesses.push_back(w);
     }
     j["connections"] = connections;

@@ -16,9 +16,7 @@ Each generated model is written with literal rationals, its C-space built by `hi
     rational points in between (a necessary condition of "certified free"): the straight motion of
     the chart (the offset moving linearly with the half-angle tangent: a pure rotation when the two
     offsets are equal, as about a pivot on the part; about a far pivot the chord between the two
-    ends of a turn about the part's centre, session 58), or, when a witness names a `turn_centre` Q
-    (SlicedConnection::turn_centre, unset since session 64's revert), the turn about Q, which must
-    end at the right witness;
+    ends of a turn about the part's centre, session 58);
   * the critical angles are in increasing order of t, every representative lies strictly between
     its interval's two critical angles (exact interval bounds), each slice's free cells have
     component numbers below `components`;
@@ -208,21 +206,9 @@ def check_json(label, d, plate, peg, pivot, expected_components, findings, rotat
             else:
                 tl, tr = t_of(left), t_of(right)
                 angles = [(tl + (tr - tl) * k / (rotations + 1), False) for k in range(rotations + 2)]
-            centre = w.get('turn_centre')
-            if centre is not None:   # (session 64) a far pivot P: the turn about the body point Q
-                qx, qy = F(centre['x']) - pivot[0], F(centre['y']) - pivot[1]
-                cl, sl_ = rotation(F(0), True) if left.get('half_turn') else rotation(F(left['t']))
-            # the straight motion of the chart: the offset moves linearly with the chart's coordinate;
-            # about a far pivot the turn about Q: offset left + (R(t_left) - R(t)) (Q - P)
+            # the straight motion of the chart: the offset moves linearly with the chart's coordinate
             for k, (t, half) in enumerate(angles):
                 px, py = x + (x1 - x) * k / (rotations + 1), y + (y1 - y) * k / (rotations + 1)
-                if centre is not None:
-                    c, s = rotation(t, half)
-                    px = x + (cl - c) * qx - (sl_ - s) * qy
-                    py = y + (sl_ - s) * qx + (cl - c) * qy
-                    if k == rotations + 1 and (px, py) != (x1, y1):
-                        findings.append('%s: crossing %d turn about (%s, %s) does not end at the right witness' %
-                                        (label, cr['critical'], centre['x'], centre['y']))
                 if not free_at(px, py, t, half):
                     findings.append('%s: crossing %d witness (%s, %s) not free at t = %s' %
                                     (label, cr['critical'], px, py, 'pi' if half else t))
