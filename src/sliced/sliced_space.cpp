@@ -854,8 +854,7 @@ struct SlicedSpace::Impl {
           if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
           // about Q (a far pivot): the chord's two ends, the model's offsets about P
           const Point wl = reference ? from_reference(w, nr.left) : w, wr = reference ? from_reference(w, nr.right) : w;
-          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip,
-                                std::nullopt};
+          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip};
           for (Rational* r : {&link.left_witness.x, &link.left_witness.y, &link.right_witness.x, &link.right_witness.y}) r->canonicalize();
           link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
           link.right_witness.angle.t.canonicalize();
