@@ -27,6 +27,7 @@
 #include "simulation/frame_cache.hpp"
 #include "simulation/frame_rate.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/friction_names.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/normal_side.hpp"
@@ -821,6 +822,9 @@ struct Simulation::Impl {
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
                << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
+          std::vector<std::size_t> involved;
+          for (std::size_t k = 0; k < m; ++k) involved.push_back(active[k].pair);
+          text << simulation::named_friction(model, involved);
           throw NumericError(text.str());
         }
         for (std::size_t k = 0; k < m; ++k)
@@ -1717,6 +1721,9 @@ struct Simulation::Impl {
         std::ostringstream out;
         out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
             << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
+        std::vector<std::size_t> involved;
+        for (const ContactRow& r : rows) involved.push_back(r.pair);
+        out << simulation::named_friction(model, involved);
         throw NumericError(out.str());
       }
       for (std::size_t i = 0; i < n; ++i)
