@@ -30,7 +30,8 @@ limit message that named the pair, not the part; (session 63) a disc pulled alon
 mm/s (no end), an impact with friction 1.8e308 (no pointer) and a driver at 1.8e308 mm/s ("an
 internal error"); (session 64) a ladder with friction 1e308 (NaN velocities, gravity named) and
 one pulled along x at 1.79e308 mm/s^2 (one step of 25 000 collision tests, unbounded by the
-budget). A run that succeeds must print no "nan".
+budget), the scotch yoke's crank at a torque of 1e300 N mm (SIGFPE). A run that succeeds must
+print no "nan".
 Without --all a seeded sample of the mutations runs (the ctest); --all runs every one.
 Found by it (session 60): several planar parts (friction-slide.json, pushed-block.json) with an
 initial velocity or gravity of 1e308 died of SIGFPE (GMP's mpq_set_d(inf) on a step's query
@@ -84,7 +85,7 @@ def bases(source):
     extra_bases.clear()
     extra_bases['spring-block-ms-mN'] = (block_ms, '0.05', [])
     extra_bases['cam-drive-thrown'] = (load(os.path.join(ex, 'cam-drive.json')), '0.05', [])
-    for name in ('disc-incline', 'ladder', 'peg-throw', 'escapement', 'pusher-blocks'):   # the session-63 fixed cases
+    for name in ('disc-incline', 'ladder', 'peg-throw', 'escapement', 'pusher-blocks', 'scotch-yoke'):   # the session-63/64 fixed cases
         extra_bases[name] = (load(os.path.join(ex, name + '.json')), '0.02', [])
     return [
         ('bouncing-bar', load(os.path.join(ex, 'bouncing-bar.json')), '0.05', []),
@@ -221,6 +222,9 @@ def fixed_cases(source):
         # the ladder pulled along x at 1.79e308 mm/s^2 slid off the floor in ONE step of 1665
         # certified advances and 23819 exact chords (11 s under --max-steps 2000, exit 0): the
         # budget now bounds the run's advances and chords too
+        # the scotch yoke's crank at a torque of 1e300 N mm: a trial step's stage overflowed and its
+        # NaN configuration reached mpq_set_d in the held contact's row (SIGFPE)
+        ('scotch-yoke', ['parts', 0, 'dynamics', 'torque'], 1e300, 3, "part 'crank' (/parts/0/dynamics", None),
         ('ladder', ['simulation', 'gravity', 0], 1.7976931348623157e308, 3, 'collision tests used up the step budget (--max-steps 2000)', None),
     ]
 
