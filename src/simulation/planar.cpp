@@ -678,6 +678,21 @@ double first_trial(const State& y, Rhs rhs, double span) {
   return std::min(span, 0x1p20 * scale / rate);
 }
 
+// The pairs (into s.pairs) of either planar simulator's held contacts, and the friction data of
+// some of its pairs for a message (simulation/friction_names.hpp).
+template <class State>
+std::vector<std::size_t> pairs_of_held(const State& s) {
+  std::vector<std::size_t> out;
+  for (const auto& c : s.held) out.push_back(c.pair);
+  return out;
+}
+template <class State>
+std::string friction_of_pairs(const State& s, const std::vector<std::size_t>& of) {
+  std::vector<std::size_t> indices;
+  for (std::size_t i : of) indices.push_back(s.pairs[i].index);
+  return simulation::named_friction(s.model, indices);
+}
+
 // Steps until t_end (the model's time unit) for either planar simulator: `s` is its state (internal
 // time `t`, `time_scale`, `events`, `public_state`), `step` one step towards t_end.
 template <class State, class Step>
@@ -849,16 +864,8 @@ struct PlanarSimulation::Impl {
   };
   std::vector<Held> held;
   // the pairs (into pairs) of the held contacts, and some pairs' friction data for a message
-  std::vector<std::size_t> held_pairs() const {
-    std::vector<std::size_t> out;
-    for (const Held& c : held) out.push_back(c.pair);
-    return out;
-  }
-  std::string named_pairs(const std::vector<std::size_t>& of) const {
-    std::vector<std::size_t> indices;
-    for (std::size_t i : of) indices.push_back(pairs[i].index);
-    return simulation::named_friction(model, indices);
-  }
+  std::vector<std::size_t> held_pairs() const { return pairs_of_held(*this); }
+  std::string named_pairs(const std::vector<std::size_t>& of) const { return friction_of_pairs(*this, of); }
   double hold_gap = 0;                           // the gap (mm) held contacts are projected to
   double step_guess = 0;                         // the integrator's suggested next step (s)
   double accuracy = 1e-9;
@@ -2244,16 +2251,8 @@ struct PlanarSystemSimulation::Impl {
   };
   std::vector<Held> held;
   // the pairs (into pairs) of the held contacts, and some pairs' friction data for a message
-  std::vector<std::size_t> held_pairs() const {
-    std::vector<std::size_t> out;
-    for (const Held& c : held) out.push_back(c.pair);
-    return out;
-  }
-  std::string named_pairs(const std::vector<std::size_t>& of) const {
-    std::vector<std::size_t> indices;
-    for (std::size_t i : of) indices.push_back(pairs[i].index);
-    return simulation::named_friction(model, indices);
-  }
+  std::vector<std::size_t> held_pairs() const { return pairs_of_held(*this); }
+  std::string named_pairs(const std::vector<std::size_t>& of) const { return friction_of_pairs(*this, of); }
   double hold_gap = 0;     // the gap (mm) held contacts are projected to (3/4 delta)
   bool resting = false;    // every part at rest on its held contacts (constant loads): stays
   // The kernels' contact function of a vertex–segment feature pair at double states, in the
