@@ -15,7 +15,8 @@
 
 namespace hipair::simulation {
 
-/// "; pairs involved: (a, b) (/pairs/1, friction 0.3, kinetic 0.2)" for the model pairs
+/// "; pairs involved: (a /parts/0, b /parts/1) (/pairs/1, friction 0.3, kinetic 0.2)" (the parts'
+/// pointers too: a mass of 1.79e308 makes the problem inconsistent as well) for the model pairs
 /// `indices` (into Model::pairs; repeated ones named once), "" for none.
 inline std::string named_friction(const Model& model, std::vector<std::size_t> indices) {
   std::sort(indices.begin(), indices.end());
@@ -25,8 +26,8 @@ inline std::string named_friction(const Model& model, std::vector<std::size_t> i
   for (std::size_t i : indices) {
     if (i >= model.pairs.size()) continue;
     const PairSpec& pair = model.pairs[i];
-    out << separator << "(" << model.parts[pair.first].name << ", " << model.parts[pair.second].name << ") ("
-        << pair.pointer;
+    out << separator << "(" << model.parts[pair.first].name << " " << model.parts[pair.first].pointer << ", "
+        << model.parts[pair.second].name << " " << model.parts[pair.second].pointer << ") (" << pair.pointer;
     if (pair.friction) out << ", friction " << pair.friction->get_d();
     if (pair.kinetic_friction) out << ", kinetic " << pair.kinetic_friction->get_d();
     out << ")";
