@@ -44,6 +44,7 @@
 #include "kernels/dual.hpp"
 #include "kernels/model_features.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/friction_names.hpp"
 #include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
 #include "simulation/lcp.hpp"
@@ -459,13 +460,13 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
                                                  const Eigen::VectorXd& v, const Eigen::VectorXd& h,
                                                  const std::vector<simulation::Friction>& friction,
                                                  const std::vector<std::size_t>& group, const std::string& where,
-                                                 bool& limited) {
+                                                 const std::string& named, bool& limited) {
   auto solve = [&](double scale) {
     simulation::FrictionalSolution sol = simulation::solve_frictional(
         J, minv, v, scale * h, friction, [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
     if (!sol.solved)
       throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
-                                 "inconsistency of Coulomb friction, or more than 8 contacts)");
+                                 "inconsistency of Coulomb friction, or more than 8 contacts)" + named);
     return sol;
   };
   auto kinetic = [&](const Eigen::VectorXd& u) {
@@ -677,6 +678,21 @@ double first_trial(const State& y, Rhs rhs, double span) {
   return std::min(span, 0x1p20 * scale / rate);
 }
 
+// The pairs (into s.pairs) of either planar simulator's held contacts, and the friction data of
+// some of its pairs for a message (simulation/friction_names.hpp).
+template <class State>
+std::vector<std::size_t> pairs_of_held(const State& s) {
+  std::vector<std::size_t> out;
+  for (const auto& c : s.held) out.push_back(c.pair);
+  return out;
+}
+template <class State>
+std::string friction_of_pairs(const State& s, const std::vector<std::size_t>& of) {
+  std::vector<std::size_t> indices;
+  for (std::size_t i : of) indices.push_back(s.pairs[i].index);
+  return simulation::named_friction(s.model, indices);
+}
+
 // Steps until t_end (the model's time unit) for either planar simulator: `s` is its state (internal
 // time `t`, `time_scale`, `events`, `public_state`), `step` one step towards t_end.
 template <class State, class Step>
@@ -847,6 +863,9 @@ struct PlanarSimulation::Impl {
     int state = simulation::frictionless;        // stick, slip +-1 (friction), frictionless
   };
   std::vector<Held> held;
+  // the pairs (into pairs) of the held contacts, and some pairs' friction data for a message
+  std::vector<std::size_t> held_pairs() const { return pairs_of_held(*this); }
+  std::string named_pairs(const std::vector<std::size_t>& of) const { return friction_of_pairs(*this, of); }
   double hold_gap = 0;                           // the gap (mm) held contacts are projected to
   double step_guess = 0;                         // the integrator's suggested next step (s)
   double accuracy = 1e-9;
@@ -969,6 +988,20 @@ bool PlanarSimulation::Impl::advance(double span) {
   const double slack = 64 * std::numeric_limits<double>::epsilon() * (std::abs(k.x) + std::abs(k.y) + reach + 1);
   double shorten = 1;   // < 1 after a chord met a contact the path leaves (see below)
   while (sa < span) {
+    // The step budget bounds the collision tests too (session 64, hunt64): a step's certified
+    // advances and exact chords are not steps, and one step of the ladder pulled along x at
+    // 1.79e308 mm/s^2 took 1665 advances and 23819 chords (11 s) under --max-steps 2000. The
+    // run's advances and chords together are at most --max-steps (ordinary runs take about as
+    // many as steps: the ladder to 0.5 s 5188 of them in 5181 steps).
+    if (stats.advancement_steps + stats.chord_tests >= options.max_steps) {
+      std::ostringstream out;
+      out << where(t + sa) << ": its collision tests used up the step budget (--max-steps " << options.max_steps
+          << "): " << stats.advancement_steps << " certified advances and " << stats.chord_tests
+          << " exact chord tests, within " << steps << " steps, at speed "
+          << std::hypot(node.vx, node.vy) << " mm/s" << largest_motion_datum(model)
+          << "; give a larger --max-steps or a shorter --t-end";
+      throw NumericError(out.str());
+    }
     double remaining = span - sa;
     // The horizon of the bounds: short enough that the speed at most about doubles over it (a
     // bound over a whole long step would be dominated by the speed gained at its end), at
@@ -1196,7 +1229,8 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
     Eigen::VectorXd h = b - before;   // e J v-
     bool limited = false;
     simulation::FrictionalSolution sol = frictional_impact(J, Eigen::VectorXd(minv), v, h, friction,
-                                                           collinear_groups(friction, rows_pair), where(time), limited);
+                                                           collinear_groups(friction, rows_pair), where(time),
+                                                           named_pairs(rows_pair), limited);
     if (limited) ++stats.restitution_limited;
     lcp.lambda = sol.lambda;
     lcp.solved = true;
@@ -1471,7 +1505,8 @@ bool PlanarSimulation::Impl::decide() {
   }
   if (!p.solution.solved)
     throw NumericError(where(t) + ": the contact problem of its held contacts has no consistent solution "
-                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
+                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)" +
+                       named_pairs(held_pairs()));
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
   const std::vector<bool> lifts = lift_offs(p, Eigen::VectorXd(inverse_mass()), pair_of);
@@ -2215,6 +2250,9 @@ struct PlanarSystemSimulation::Impl {
     int state = simulation::frictionless;   // stick, slip +-1 (friction), frictionless
   };
   std::vector<Held> held;
+  // the pairs (into pairs) of the held contacts, and some pairs' friction data for a message
+  std::vector<std::size_t> held_pairs() const { return pairs_of_held(*this); }
+  std::string named_pairs(const std::vector<std::size_t>& of) const { return friction_of_pairs(*this, of); }
   double hold_gap = 0;     // the gap (mm) held contacts are projected to (3/4 delta)
   bool resting = false;    // every part at rest on its held contacts (constant loads): stays
   // The kernels' contact function of a vertex–segment feature pair at double states, in the
@@ -2471,7 +2509,8 @@ bool PlanarSystemSimulation::Impl::decide() {
   HeldProblem p = held_problem(k, true);
   if (!p.solution.solved)
     throw NumericError(where(t) + ": the contact problem of the held contacts has no consistent solution "
-                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)");
+                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)" +
+                       named_pairs(held_pairs()));
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
   const std::vector<bool> lifts = lift_offs(p, inverse_mass(), pair_of);
@@ -2658,7 +2697,8 @@ void PlanarSystemSimulation::Impl::impact(double time,
     }
     bool limited = false;
     simulation::FrictionalSolution sol = frictional_impact(J, minv, v, b - before, friction,
-                                                           collinear_groups(friction, row_pair), where(time), limited);
+                                                           collinear_groups(friction, row_pair), where(time),
+                                                           named_pairs(row_pair), limited);
     if (limited) ++stats.restitution_limited;
     lambda = sol.lambda;
     tangential = sol.f;

@@ -27,6 +27,7 @@
 #include "simulation/frame_cache.hpp"
 #include "simulation/frame_rate.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/friction_names.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/normal_side.hpp"
@@ -818,6 +819,9 @@ struct Simulation::Impl {
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
                << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
+          std::vector<std::size_t> involved;
+          for (std::size_t k = 0; k < m; ++k) involved.push_back(active[k].pair);
+          text << simulation::named_friction(model, involved);
           throw NumericError(text.str());
         }
         for (std::size_t k = 0; k < m; ++k)
@@ -919,6 +923,15 @@ struct Simulation::Impl {
     return x;
   }
   void rhs(const Vec& x, Vec& dxdt, double time) const {
+    // A stage of a trial step whose state overflowed (a load of 1e300 accelerates a part beyond
+    // the doubles within the stages): its derivative is not a number, so the trial is rejected
+    // (step(): a non-finite result is retried shorter). Until session 64 (hunt64) the stage's
+    // NaN configuration reached the held contact's row and GMP's mpq_set_d(NaN) killed the
+    // process with SIGFPE (scotch-yoke.json with the crank's torque 1e300 N mm).
+    if (!std::all_of(x.begin(), x.end(), [](double value) { return std::isfinite(value); })) {
+      dxdt.assign(x.size(), std::numeric_limits<double>::quiet_NaN());
+      return;
+    }
     std::optional<Scratch> fresh;   // (made only with the switch off: its destructor is not free)
     Scratch& w = simulation::kept_scratch() ? scratch_ : fresh.emplace();
     Vec &qs = w.rhs_q, &vs = w.rhs_v, &acc = w.rhs_acc, &lambda = w.rhs_lambda;
@@ -1717,6 +1730,9 @@ struct Simulation::Impl {
         std::ostringstream out;
         out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
             << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
+        std::vector<std::size_t> involved;
+        for (const ContactRow& r : rows) involved.push_back(r.pair);
+        out << simulation::named_friction(model, involved);
         throw NumericError(out.str());
       }
       for (std::size_t i = 0; i < n; ++i)
@@ -2552,6 +2568,17 @@ struct Simulation::Impl {
         if (overflowed)
           out << ": every trial step down to " << dt * 4 / time_scale << " " << time_unit
               << " gave a non-finite state (accelerations or velocities beyond the doubles' range)";
+        if (overflowed) {
+          // the parts and their loads' place in the file (session 64, hunt64: the scotch yoke's
+          // crank at a torque of 1e300 N mm named no place of the data)
+          const char* separator = "; the moving parts: ";
+          for (std::size_t i : free_dofs) {
+            out << separator << "part '" << model.parts[dofs[i].part].name << "' (" << model.parts[dofs[i].part].pointer
+                << "/dynamics, moving at " << v[i] * time_scale << (dofs[i].rotation ? " rad/" : " mm/") << time_unit
+                << ")";
+            separator = ", ";
+          }
+        }
         throw NumericError(out.str());
       }
     }

@@ -28,7 +28,10 @@ own-period refusal (stiffness 1 N mm/rad on 3e-308 kg mm^2 said "period 0 s"), a
 limit message that named the pair, not the part; (session 63) a disc pulled along a floor at
 1.8e308 mm/s^2 (more than 10 minutes, then "energy -nan"), a ladder or peg thrown at 1e308
 mm/s (no end), an impact with friction 1.8e308 (no pointer) and a driver at 1.8e308 mm/s ("an
-internal error"). A run that succeeds must print no "nan".
+internal error"); (session 64) a ladder with friction 1e308 (NaN velocities, gravity named) and
+one pulled along x at 1.79e308 mm/s^2 (one step of 25 000 collision tests, unbounded by the
+budget), the scotch yoke's crank at a torque of 1e300 N mm (SIGFPE). A run that succeeds must
+print no "nan".
 Without --all a seeded sample of the mutations runs (the ctest); --all runs every one.
 Found by it (session 60): several planar parts (friction-slide.json, pushed-block.json) with an
 initial velocity or gravity of 1e308 died of SIGFPE (GMP's mpq_set_d(inf) on a step's query
@@ -82,7 +85,7 @@ def bases(source):
     extra_bases.clear()
     extra_bases['spring-block-ms-mN'] = (block_ms, '0.05', [])
     extra_bases['cam-drive-thrown'] = (load(os.path.join(ex, 'cam-drive.json')), '0.05', [])
-    for name in ('disc-incline', 'ladder', 'peg-throw', 'escapement', 'pusher-blocks'):   # the session-63 fixed cases
+    for name in ('disc-incline', 'ladder', 'peg-throw', 'escapement', 'pusher-blocks', 'scotch-yoke'):   # the session-63/64 fixed cases
         extra_bases[name] = (load(os.path.join(ex, name + '.json')), '0.02', [])
     return [
         ('bouncing-bar', load(os.path.join(ex, 'bouncing-bar.json')), '0.05', []),
@@ -204,9 +207,25 @@ def fixed_cases(source):
         ('peg-throw', ['simulation', 'velocities', 'peg', 'y'], -1e308, 3, '/simulation/velocities/peg', None),
         # an impact with friction 1.8e308 left NaN velocities, named no place of the data; a driver
         # at 1.8e308 mm/s stopped with "no free state before the contact (an internal error)"
-        ('escapement', ['pairs', 1, 'friction'], 1.7976931348623157e308, 3, '(/pairs/1, friction ', None),
+        # (session 64: with the NaN candidate rejected, the escapement at friction 1.8e308 runs to
+        # 0.02 s; to 0.5 s it stops at t = 0.0254 s naming both pairs' friction, "(/pairs/1,
+        # friction 1.79769e+308)")
+        ('escapement', ['pairs', 1, 'friction'], 1.7976931348623157e308, 0, '', no_nan),
         ('pusher-blocks', ['simulation', 'drivers', 0, 'speed', 'x'], 1.7976931348623157e308, 3, '/simulation/drivers/0',
          None),
+        # session 64 (hunt64): a planar impact with friction 1e308 took a NaN candidate of the
+        # frictional enumeration (NaN passes every Coulomb comparison) and stopped at "the part's
+        # velocity is not finite", naming gravity; now the candidate is rejected and the message
+        # names the pairs' friction
+        ('ladder', ['pairs', 0, 'friction'], 1e308, 3, '(/pairs/0, friction 1e+308)', no_nan),
+        ('ladder', ['pairs', 0, 'friction'], 1.7976931348623157e308, 3, '(/pairs/0, friction ', no_nan),
+        # the ladder pulled along x at 1.79e308 mm/s^2 slid off the floor in ONE step of 1665
+        # certified advances and 23819 exact chords (11 s under --max-steps 2000, exit 0): the
+        # budget now bounds the run's advances and chords too
+        # the scotch yoke's crank at a torque of 1e300 N mm: a trial step's stage overflowed and its
+        # NaN configuration reached mpq_set_d in the held contact's row (SIGFPE)
+        ('scotch-yoke', ['parts', 0, 'dynamics', 'torque'], 1e300, 3, "part 'crank' (/parts/0/dynamics", None),
+        ('ladder', ['simulation', 'gravity', 0], 1.7976931348623157e308, 3, 'collision tests used up the step budget (--max-steps 2000)', None),
     ]
 
 

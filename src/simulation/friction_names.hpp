@@ -1,0 +1,39 @@
+// HIPAIR — the pairs' friction data named in a simulator's message (session 64, hunt64): a
+// frictional impact or held-contact problem without a consistent stick/slip solution names the
+// pairs it involves, their JSON pointers and Coulomb coefficients, as the file gives them (a
+// friction of 1e308 makes the slip rows G - mu T overflow, so no assignment is consistent; until
+// session 64 the message named no place of the data, and before the candidates' finiteness test
+// the velocities were left NaN).
+#pragma once
+
+#include <hipair/model.hpp>
+
+#include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace hipair::simulation {
+
+/// "; pairs involved: (a /parts/0, b /parts/1) (/pairs/1, friction 0.3, kinetic 0.2)" (the parts'
+/// pointers too: a mass of 1.79e308 makes the problem inconsistent as well) for the model pairs
+/// `indices` (into Model::pairs; repeated ones named once), "" for none.
+inline std::string named_friction(const Model& model, std::vector<std::size_t> indices) {
+  std::sort(indices.begin(), indices.end());
+  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+  std::ostringstream out;
+  const char* separator = "; pairs involved: ";
+  for (std::size_t i : indices) {
+    if (i >= model.pairs.size()) continue;
+    const PairSpec& pair = model.pairs[i];
+    out << separator << "(" << model.parts[pair.first].name << " " << model.parts[pair.first].pointer << ", "
+        << model.parts[pair.second].name << " " << model.parts[pair.second].pointer << ") (" << pair.pointer;
+    if (pair.friction) out << ", friction " << pair.friction->get_d();
+    if (pair.kinetic_friction) out << ", kinetic " << pair.kinetic_friction->get_d();
+    out << ")";
+    separator = "; ";
+  }
+  return out.str();
+}
+
+}  // namespace hipair::simulation
