@@ -346,8 +346,6 @@ inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd&
 /// limits are not tested here (decided exactly instead: exact_stick_holds).
 inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction,
                               bool stick_limits = true) {
-/// here: it accelerates (or moves) in its sliding direction).
-inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Friction>& friction) {
   // A candidate with a non-finite multiplier, force or acceleration satisfies nothing: NaN fails
   // every comparison below, so until session 64 (hunt64) it passed them all (a slip assignment
   // at friction 1e308: rows G - mu T of 1e308 turned the LCP's solution into NaN, which the
