@@ -991,12 +991,19 @@ bool PlanarSimulation::Impl::advance(double span) {
     // The step budget bounds the collision tests too (session 64, hunt64): a step's certified
     // advances and exact chords are not steps, and one step of the ladder pulled along x at
     // 1.79e308 mm/s^2 took 1665 advances and 23819 chords (11 s) under --max-steps 2000. The
-    // run's advances and chords together are at most --max-steps (ordinary runs take about as
-    // many as steps: the ladder to 0.5 s 5188 of them in 5181 steps).
-    if (stats.advancement_steps + stats.chord_tests >= options.max_steps) {
+    // run's advances and chords together are at most collision_tests_per_step times --max-steps
+    // (ordinary runs take about one per step: the ladder to 0.5 s 5188 of them in 5181 steps, far
+    // below the bound, so --max-steps keeps its meaning of steps for them).
+    constexpr std::size_t collision_tests_per_step = 8;
+    const std::size_t collision_budget =
+        options.max_steps > std::numeric_limits<std::size_t>::max() / collision_tests_per_step
+            ? std::numeric_limits<std::size_t>::max()
+            : collision_tests_per_step * options.max_steps;
+    if (stats.advancement_steps + stats.chord_tests >= collision_budget) {
       std::ostringstream out;
       out << where(t + sa) << ": its collision tests used up the step budget (--max-steps " << options.max_steps
-          << "): " << stats.advancement_steps << " certified advances and " << stats.chord_tests
+          << " allows " << collision_budget << " certified advances and exact chord tests): "
+          << stats.advancement_steps << " certified advances and " << stats.chord_tests
           << " exact chord tests, within " << steps << " steps, at speed "
           << std::hypot(node.vx, node.vy) << " mm/s" << largest_motion_datum(model)
           << "; give a larger --max-steps or a shorter --t-end";

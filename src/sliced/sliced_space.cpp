@@ -36,14 +36,7 @@ double SlicedAngle::radians() const {
 
 double SlicedAngle::degrees() const { return half_turn ? 180.0 : algebra::half_angle_degrees(t); }
 
-double nearest_double(const AlgebraicNumber& number) {
-  Real r;
-  r.polynomial = number.polynomial;
-  r.lower = number.lower;
-  r.upper = number.upper;
-  r.exact = number.exact;
-  return algebra::nearest_double(r);
-}
+double nearest_double(const AlgebraicNumber& number) { return algebra::nearest_double(sliced::real_of(number)); }
 
 namespace {
 

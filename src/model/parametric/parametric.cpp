@@ -621,14 +621,20 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bo
         if (low == high) values[i] = Interval(low);
         else mpfi_interv_q(values[i].get(), low.get_mpq_t(), high.get_mpq_t());
       }
-      return margin(values);
+      return std::optional<Interval>(margin(values));
     } catch (const Error&) {
-      return Interval(Rational(0));   // does not evaluate there: undecided
+      return std::optional<Interval>();   // does not evaluate there
     }
   };
   // +1: the margin certainly holds over the sub-box, -1: certainly fails somewhere, 0: open
   auto evaluate_sign = [&](const std::vector<Rational>& a, const std::vector<Rational>& b) {
-    const Interval m = enclosure(a, b);
+    const std::optional<Interval> enclosed = enclosure(a, b);
+    // A margin that does not evaluate at a point fails there; over a sub-box (an enclosure too
+    // wide to evaluate) a strict check fails as before and a non-strict one is open: split
+    // further. (Until session 64 the enclosure was [0, 0] there, which a non-strict check read as
+    // holding.)
+    if (!enclosed) return (strict || a == b) ? -1 : 0;
+    const Interval& m = *enclosed;
     const int sign = m.sign();
     if (sign != 0 || !m.is_bounded()) return sign;
     if (strict) return mpfi_is_zero(m.get()) > 0 ? -1 : 0;   // exactly 0 over the sub-box: fails
