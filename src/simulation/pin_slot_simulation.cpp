@@ -780,6 +780,9 @@ struct PinSlotSimulation::Impl {
   FrictionProblem friction_problem(const State& s, double time) const {
     FrictionProblem out;
     out.llt.compute(mass_matrix(s));
+    if (out.llt.info() != Eigen::Success)
+      throw NumericError("the mass matrix of a pin-slot simulation is not positive definite in doubles (its masses and "
+                         "moments of inertia too far apart)");
     std::vector<HeldRow> rows;
     for (const Held& h : held) rows.push_back(held_row(h, s, time));
     const Eigen::MatrixXd J = jacobian(rows);
@@ -1716,6 +1719,9 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     const auto k = static_cast<Eigen::Index>(rows.size());
     const Eigen::Index n = coordinates();
     const Eigen::LLT<Eigen::MatrixXd> llt(mass_matrix(y));
+    if (llt.info() != Eigen::Success)
+      throw NumericError("the mass matrix of a pin-slot simulation is not positive definite in doubles (its masses and "
+                         "moments of inertia too far apart)");
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(k, n);
     Eigen::VectorXd hv(k);
     std::vector<simulation::Friction> friction(rows.size());

@@ -13,6 +13,7 @@
 
 #include "cli/cspace_sliced.hpp"
 #include "rounding_oracle.hpp"
+#include "sliced_peg_in_hole.hpp"
 #include "test_seed.hpp"
 
 #include <gtest/gtest.h>
@@ -126,16 +127,7 @@ TEST(SlicedFigures, NearestDoubleOfAlgebraicNumbers) {
     }
 }
 
-Model peg_in_hole(const std::string& s, const std::string& h) {
-  auto square = [](const std::string& half) {
-    const std::string m = "\"-" + half + "\"", p = "\"" + half + "\"";
-    return R"({ "start": [)" + m + "," + m + R"(], "edges": [ { "line_to": [)" + p + "," + m + R"(] }, { "line_to": [)" + p +
-           "," + p + R"(] }, { "line_to": [)" + m + "," + p + R"(] }, { "line_to": [)" + m + "," + m + "] } ] }";
-  };
-  return read_model(R"({ "hipair": 1, "name": "json", "parts": [
-    { "name": "plate", "motion": "fixed", "loops": [ )" + square("20") + ", " + square(h) + R"( ] },
-    { "name": "peg", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ )" + square(s) + R"( ] } ] })");
-}
+using test::peg_in_hole;
 
 // An angle object of the JSON ({"half_turn", "t", "degrees"}): its degrees the oracle's.
 void expect_angle_rounded(const json& angle, int* checked) {

@@ -10,6 +10,7 @@
 
 #include "cli/cspace_sliced.hpp"
 #include "render/sliced_svg.hpp"
+#include "sliced_peg_in_hole.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -24,17 +25,7 @@ namespace {
 
 using nlohmann::json;
 
-// A square plate [-20, 20]^2 with a square hole of side h, and a square peg of side s.
-Model peg_in_hole(const std::string& s, const std::string& h) {
-  auto square = [](const std::string& half) {
-    const std::string m = "\"-" + half + "\"", p = "\"" + half + "\"";
-    return R"({ "start": [)" + m + "," + m + R"(], "edges": [ { "line_to": [)" + p + "," + m + R"(] }, { "line_to": [)" + p +
-           "," + p + R"(] }, { "line_to": [)" + m + "," + p + R"(] }, { "line_to": [)" + m + "," + m + "] } ] }";
-  };
-  return read_model(R"({ "hipair": 1, "name": "json", "parts": [
-    { "name": "plate", "motion": "fixed", "loops": [ )" + square("20") + ", " + square(h) + R"( ] },
-    { "name": "peg", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ )" + square(s) + R"( ] } ] })");
-}
+using test::peg_in_hole;
 
 SlicedConfiguration read_configuration(const json& j) {
   SlicedConfiguration q;
