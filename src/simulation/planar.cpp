@@ -988,27 +988,6 @@ bool PlanarSimulation::Impl::advance(double span) {
   const double slack = 64 * std::numeric_limits<double>::epsilon() * (std::abs(k.x) + std::abs(k.y) + reach + 1);
   double shorten = 1;   // < 1 after a chord met a contact the path leaves (see below)
   while (sa < span) {
-    // The step budget bounds the collision tests too (session 64, hunt64): a step's certified
-    // advances and exact chords are not steps, and one step of the ladder pulled along x at
-    // 1.79e308 mm/s^2 took 1665 advances and 23819 chords (11 s) under --max-steps 2000. The
-    // run's advances and chords together are at most collision_tests_per_step times --max-steps
-    // (ordinary runs take about one per step, the ladder to 0.5 s 5188 of them in 5181 steps; a
-    // free flight more: the peg dropped takes 40 certified advances in its first step).
-    constexpr std::size_t collision_tests_per_step = 8;
-    const std::size_t collision_budget =
-        options.max_steps > std::numeric_limits<std::size_t>::max() / collision_tests_per_step
-            ? std::numeric_limits<std::size_t>::max()
-            : collision_tests_per_step * options.max_steps;
-    if (stats.advancement_steps + stats.chord_tests >= collision_budget) {
-      std::ostringstream out;
-      out << where(t + sa) << ": the run used up its step budget (--max-steps " << options.max_steps
-          << ") in its collision tests (at most " << collision_tests_per_step << " per step of the budget, "
-          << collision_budget << "): " << stats.advancement_steps << " certified advances and " << stats.chord_tests
-          << " exact chord tests, within " << steps << " steps, at speed "
-          << std::hypot(node.vx, node.vy) << " mm/s" << largest_motion_datum(model)
-          << "; give a larger --max-steps or a shorter --t-end";
-      throw NumericError(out.str());
-    }
     double remaining = span - sa;
     // The horizon of the bounds: short enough that the speed at most about doubles over it (a
     // bound over a whole long step would be dominated by the speed gained at its end), at
