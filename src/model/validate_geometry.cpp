@@ -434,11 +434,21 @@ void check_loop_edges(const Loop& loop) {
       throw ModelError(edge.pointer, "inconsistent arc: its start is not on its circle");
     if (end_distance != start_distance) {
       auto [end_text, start_text] = to_decimal_strings_apart(end_distance, start_distance, 10);
+      // Squared distances that differ only far into their digits (a centre 1e999 mm away, an end
+      // 1e-999 off the circle) were written whole, thousands of digits each, which the console
+      // cuts to their first 60 (shortened_message): both read "9.99999..." with the exponent and
+      // "^(1/2)" cut off (hunt65). Then: 12 digits each, and their exact difference.
+      std::string differ;
+      if (end_text.size() > 40 || start_text.size() > 40) {
+        end_text = to_decimal_string(end_distance, 12);
+        start_text = to_decimal_string(start_distance, 12);
+        differ = ", the squares differing by " + to_decimal_string(Rational(end_distance - start_distance), 12);
+      }
       throw ModelError(edge.pointer, "inconsistent arc: the end " + show(edge.target) + " is at distance " +
                                          end_text + "^(1/2) from the centre " + show(edge.center) +
                                          " but the start " + show(edge.source) + " at distance " +
-                                         start_text +
-                                         "^(1/2) (they must be equal exactly: place the end with a polar point on the arc's circle)");
+                                         start_text + "^(1/2)" + differ +
+                                         " (they must be equal exactly: place the end with a polar point on the arc's circle)");
     }
     if (edge.is_full_circle() && loop.edges.size() > 1)
       throw ModelError(edge.pointer, "a full circle (arc ending at its start) must be a loop of its own");
