@@ -57,9 +57,15 @@ def compare(x, y):
 
 
 def decimal_text(v, digits):
-    """v to `digits` significant digits, without trailing zeros or an exponent"""
+    """v to `digits` significant digits, without trailing zeros; below 1e-21 or from 1e30 on with an
+    exponent, as the library's to_decimal_string writes it ("3.67341e-40": session 29) — until
+    session 65 (hunt65) this wrote 39 zeros there, so the oracle restated a tiny clearance claim
+    unlike hipair and hipair-verify"""
     ctx = decimal.Context(prec=digits, rounding=decimal.ROUND_HALF_EVEN)
     d = ctx.divide(D(v.numerator), D(v.denominator))
+    if d != 0 and not -20 <= d.adjusted() + 1 <= 30:
+        sign, mantissa = ('-' if d < 0 else ''), ''.join(map(str, d.as_tuple().digits)).rstrip('0')
+        return sign + mantissa[0] + ('.' + mantissa[1:] if len(mantissa) > 1 else '') + 'e%d' % d.adjusted()
     text = format(d, 'f')
     if '.' in text:
         text = text.rstrip('0').rstrip('.')

@@ -235,6 +235,7 @@ def mutations(cert, k):
 
 
 def hunt_certificates(hipair, verify, work, quick, rng, findings):
+    true_rejected = {}
     counts = {'base': 0, 'undecided': 0, 'true rejected': 0, 'true accepted': 0, 'false rejected': 0}
     model = os.path.join(work, 'cert_model.json')
     certificate = os.path.join(work, 'cert.json')
@@ -279,10 +280,16 @@ def hunt_certificates(hipair, verify, work, quick, rng, findings):
                 if rc != 0:
                     findings.append('%s: the original certificate is rejected (exit %d)' % (tag, rc))
                 for what, t2 in mutations(cert, k):
-                    problems, code, text = judged(verify, altered, model, t2, truth(plate, peg, t2), counts)
+                    true = truth(plate, peg, t2)
+                    problems, code, text = judged(verify, altered, model, t2, true, counts)
+                    if true and code != 0:   # sound, not complete: counted by kind, not a finding
+                        kind = what.split(' 2^')[0] + ': ' + text.split(':')[1].strip()[:60] if ':' in text else what
+                        true_rejected[kind] = true_rejected.get(kind, 0) + 1
                     for pr in problems:
                         findings.append('%s %s: %s: %s' % (tag, what, pr, text[:200]))
     print('certificates: %s' % counts, flush=True)
+    for kind, n in sorted(true_rejected.items()):
+        print('  true, rejected: %d x %s' % (n, kind))
     return counts
 
 

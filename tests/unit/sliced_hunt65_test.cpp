@@ -13,14 +13,19 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
+#include <hipair/pin_slot.hpp>
 #include <hipair/sliced.hpp>
 
+#include "test_paths.hpp"
 #include "test_seed.hpp"
 
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <algorithm>
 #include <cstdint>
+#include <fstream>
+#include <sstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -286,6 +291,111 @@ TEST(SlicedHunt65, LCorridorAtZeroClearancePointLocationAtCriticalAnglesAndTheir
 TEST(SlicedHunt65, SlotAtZeroClearancePointLocationAtCriticalAnglesAndTheirIsolatingIntervals) {
   Random random(test::test_seed(6507));
   hunt_critical(slot_pair(3, 0), random, random_k(6507));
+}
+
+// The film advance's claw (pin-slot follower against the translating film), its height h made to
+// fit the film's 3 mm perforations exactly at the follower's angle psi0 = 2 atan(1/20) (the claw
+// crosses the film's 1 mm strip, so its extent there is h / cos psi0 + tan psi0 = 3: h = 1157/401),
+// or 2^-k higher / lower: PinSlotSpace::locate (no stack: the exact slice at each tau) against the
+// exact overlap predicate at random (offset, s, tau) and at the film offsets where the claw touches
+// the perforation's upper or lower edge (exact: the claw's highest and lowest points over the
+// strip), at those offsets nudged by +-2^-k and at their midpoint. At psi0 and clearance 0 both
+// touch at once: an isolated contact configuration of the slice.
+TEST(SlicedHunt65, FilmAdvanceClawFittingThePerforationExactlyLocatesAsTheOverlapPredicate) {
+  Random random(test::test_seed(6508));
+  std::ifstream in(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string original = buffer.str();
+  const Rational tau0(1, 20);
+  int located = 0;
+  for (int sign = -1; sign <= 1; ++sign) {
+    const int k = 1 + static_cast<int>(random() % 200);
+    const Rational nudge = power_of_two(-k);
+    const Rational top = Rational(-13) + Rational(1157, 401) + sign * nudge;
+    std::string text = original;
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"[20, -11], \"label\": \"claw tip\"", "[20, \"" + to_exact_string(top) + "\"], \"label\": \"claw tip\""},
+                                   {"[14, -11], \"label\": \"claw top\"", "[14, \"" + to_exact_string(top) + "\"], \"label\": \"claw top\""}}) {
+      const auto at = text.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      text.replace(at, from.size(), to);
+    }
+    const Model model = read_model(text);
+    SCOPED_TRACE("claw top " + top.get_str() + " (k = " + std::to_string(k) + ")");
+    PinSlotBuildOptions lazy;
+    lazy.stack = false;
+    PinSlotSpace space = PinSlotSpace::build(model, "film", "follower", lazy);
+    const Part& film = model.parts[*model.find_part("film")];
+    const Part& follower = model.parts[*model.find_part("follower")];
+    auto oracle = [&](const PinSlotConfiguration& q) {
+      switch (part_overlap(film, part_placement(film, q.other), follower, pin_slot_placement(follower, q.slide, q.tau)).relation) {
+        case PartRelation::apart: return PinSlotLocation::Kind::free;
+        case PartRelation::touching: return PinSlotLocation::Kind::contact;
+        default: return PinSlotLocation::Kind::blocked;
+      }
+    };
+    // the film's pieces: y ranges over the strip x in [20.5, 21.5], in order
+    std::vector<std::pair<Rational, Rational>> pieces;
+    for (const auto& loop : film.loops) {
+      Rational lo = loop.edges[0].source.y, hi = lo;
+      for (const auto& e : loop.edges) lo = std::min(lo, e.source.y), hi = std::max(hi, e.source.y);
+      pieces.push_back({lo, hi});
+    }
+    std::sort(pieces.begin(), pieces.end());
+    const Rational strip_lo(41, 2), strip_hi(43, 2);
+    int kinds[4] = {0, 0, 0, 0};
+    int here = 0;
+    for (int round = 0; here < 10000; ++round) {
+      // tau0 every other round; else psi between about 0.6 and 8 degrees (the claw reaches the strip)
+      const Rational tau = round % 2 == 0 ? tau0 : random_rational(random, Rational(1, 200), Rational(69, 1000), 997);
+      for (int j = 0; j < 20; ++j) {
+        PinSlotConfiguration q;
+        q.other.kind = PartCoordinate::Kind::offset;
+        q.tau = tau;
+        q.slide = random_rational(random, -6, 6, 61);
+        const Placement fp = pin_slot_placement(follower, q.slide, q.tau);
+        // the claw's posed corners (the follower's outline, edges 1..4 start at them)
+        std::vector<Point> claw;
+        for (int e = 1; e <= 4; ++e) {
+          const Point& v = follower.loops[0].edges[e].source;
+          claw.push_back(Point{Rational(fp.cos * v.x - fp.sin * v.y + fp.offset.x), Rational(fp.sin * v.x + fp.cos * v.y + fp.offset.y)});
+        }
+        // its highest and lowest points over the strip: corners within it, edges crossing its sides
+        std::vector<Rational> ys;
+        for (std::size_t e = 0; e < 4; ++e) {
+          const Point& a = claw[e];
+          const Point& b = claw[(e + 1) % 4];
+          if (a.x >= strip_lo && a.x <= strip_hi) ys.push_back(a.y);
+          for (const Rational& x : {strip_lo, strip_hi})
+            if (a.x != b.x && (x - a.x) * (x - b.x) <= 0) ys.push_back(Rational(a.y + (x - a.x) * (b.y - a.y) / (b.x - a.x)));
+        }
+        std::vector<Rational> offsets{random_rational(random, -20, 5, 101)};
+        if (!ys.empty()) {
+          const Rational y_max = *std::max_element(ys.begin(), ys.end()), y_min = *std::min_element(ys.begin(), ys.end());
+          for (std::size_t i = 1; i < pieces.size(); ++i) {
+            const Rational up = y_max - pieces[i].first, down = y_min - pieces[i - 1].second;   // touch above, below
+            for (const Rational& o : {up, down, Rational((up + down) / 2), Rational(up + nudge), Rational(up - nudge),
+                                      Rational(down + nudge), Rational(down - nudge)})
+              offsets.push_back(o);
+          }
+        }
+        for (const Rational& o : offsets) {
+          if (o < -20 || o > 5) continue;
+          q.other.value = o;
+          const PinSlotLocation::Kind want = oracle(q);
+          const PinSlotLocation got = space.locate(q);
+          ++located;
+          ++here;
+          ++kinds[static_cast<int>(want)];
+          ASSERT_EQ(static_cast<int>(got.kind), static_cast<int>(want))
+              << "film offset " << o.get_str() << ", slide " << q.slide.get_str() << ", tau " << tau.get_str();
+        }
+      }
+    }
+    std::cout << "claw top " << top.get_str() << ": " << here << " located (" << kinds[0] << " free, " << kinds[1] << " blocked, "
+              << kinds[2] << " contact)\n";
+  }
+  EXPECT_GE(located, 30000);
 }
 
 // Bad input (hunt65): a peg whose arc's centre lies 10^999 mm away (or 10^-999 off the bisector of
