@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 namespace hipair {
 namespace certify_detail {
@@ -183,7 +184,11 @@ std::map<std::string, ExactPosition> pair_positions(const std::map<std::string, 
 
 using namespace certify_detail;
 
-ExactPosition exact_position_from_angle(const Rational& angle) {
+namespace {
+
+// exact_position_from_angle at the enclosures' current precision; nullopt when the reduction to a
+// turn is not bounded there.
+std::optional<ExactPosition> position_from_angle(const Rational& angle) {
   using model_detail::Interval;
   ExactPosition position;
   position.angle = angle;
@@ -202,14 +207,13 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
   mpfr_get_z(turns.get_mpz_t(), middle, MPFR_RNDN);
   mpfr_clear(middle);
   Interval reduced = Interval(angle) - two_pi * Interval(Rational(turns));
-  auto too_large = [&] { return NumericError("the angle " + to_decimal_string(angle) + " rad is too large to reduce to a turn at 256 bits"); };
-  if (!reduced.is_bounded()) throw too_large();
+  if (!reduced.is_bounded()) return std::nullopt;
   Rational reduced_middle = reduced.middle(), quarter = (Interval::pi() / Interval(Rational(2))).middle();
   position.half_turn = abs(reduced_middle) > quarter;
   Interval shift = position.half_turn ? Interval::pi() * Interval(Rational(sgn(reduced_middle))) : Interval(Rational(0));
   Interval half = (reduced - shift) / Interval(Rational(2)), tangent;
   mpfi_tan(tangent.get(), half.get());
-  if (!tangent.is_bounded()) throw too_large();
+  if (!tangent.is_bounded()) return std::nullopt;
   // Round t to a multiple of 10^-18: the angle moves by at most 2 * 10^-18 rad.
   Rational grid(1, 1000000000000000000ul);
   Rational steps = tangent.middle() / grid;
@@ -220,7 +224,7 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
   mpfi_atan(back.get(), Interval(position.value).get());
   Interval error = (back - half) * Interval(Rational(2)), size;
   mpfi_abs(size.get(), error.get());
-  if (!size.is_bounded()) throw too_large();
+  if (!size.is_bounded()) return std::nullopt;
   position.angle_error = round_down(size.upper(), 2) * 2 + Rational(1, 1000000000000000000ul);
   // An angle beyond about 10^60 rad reduces to a turn with an error above the verifier's limit
   // for a label (verify::max_angle_error): then the position carries no label and the statement
@@ -230,6 +234,31 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
     position.angle_error.reset();
   }
   return position;
+}
+
+}  // namespace
+
+ExactPosition exact_position_from_angle(const Rational& angle) {
+  if (auto position = position_from_angle(angle); position && position->angle) return *position;
+  // Beyond about 10^60 rad the reduction to a turn at 256 bits is coarser than the label's limit,
+  // beyond about 10^77 rad unbounded: retried with the enclosures' precision raised by the angle's
+  // bit length (the reader's limit of 10^1000 needs about 3 600 bits). Until session 65 (hunt65)
+  // the tangent was then any of the coarse enclosure's (1e77 rad: 0.026 turns, 9.5 degrees, from
+  // the angle asked for, without a word) or, from 10^77 rad, `certify --at peg=20,0,1e400` stopped
+  // with exit 3 "too large to reduce to a turn at 256 bits". The position carries no label (the
+  // verifier's 256-bit check of a label could not hold it), as before beyond 10^60 rad.
+  const mpfr_prec_t bits = model_detail::interval_bits + 64 +
+                           static_cast<mpfr_prec_t>(mpz_sizeinbase(angle.get_num_mpz_t(), 2)) -
+                           static_cast<mpfr_prec_t>(mpz_sizeinbase(angle.get_den_mpz_t(), 2));
+  if (bits <= model_detail::most_interval_bits) {
+    model_detail::PrecisionScope scope(bits);
+    if (auto position = position_from_angle(angle)) {
+      position->angle.reset();
+      position->angle_error.reset();
+      return *position;
+    }
+  }
+  throw NumericError("the angle " + to_decimal_string(angle) + " rad is too large to reduce to a turn");
 }
 
 std::optional<Certificate> certify_interference(const Model& model, const std::string& first, const std::string& second,

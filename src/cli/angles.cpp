@@ -35,6 +35,13 @@ ExactPosition exact_position_from_degrees(const Rational& degrees) {
     position.value = -1;
     return position;
   }
+  // Beyond 10^18 degrees the angle is converted from its exact remainder in (-180, 180]: the
+  // product with pi / 180 enclosed at 256 bits has lost the turn there (1e400deg came out at 32
+  // degrees for 280 once exact_position_from_angle reduced huge radians, session 65, hunt65; before,
+  // exit 3 "too large to reduce to a turn"). Ordinary angles are converted as given (their labels
+  // unchanged).
+  if (abs(degrees) > Rational(mpz_class("1000000000000000000")))
+    return exact_position_from_angle(degrees_to_radians(reduced > 180 ? Rational(reduced - 360) : reduced));
   return exact_position_from_angle(degrees_to_radians(degrees));
 }
 

@@ -236,6 +236,11 @@ certify_refused() {   # NAME EXIT MESSAGE MODEL ARGS...: refused with exit EXIT 
 }
 certify_ok peg-clear "$peg" --claim clearance
 certify_ok peg-overlap "$peg" --claim interference --at peg=2,0,10deg
+# an angle of 10^400 rad: reduced to a turn at a precision raised by its size (session 65, hunt65;
+# exit 3 "too large to reduce to a turn at 256 bits" before), 2 atan(t) + pi with t = 0.4737 (mpmath)
+certify_ok peg-huge-radians "$peg" --claim clearance --at peg=20,0,1e400
+grep -qF "2 atan(473667406814735529/500000000000000000) + pi rad" "$work/peg-huge-radians.out" \
+  || fail "certify --at peg=20,0,1e400: not the pose of 1e400 rad: $(cat "$work/peg-huge-radians.out")"
 certify_refused peg-not-clear 1 "touch or overlap" "$peg" --claim clearance --at peg=2,0,10deg
 certify_refused peg-bad-at 2 "--at expects peg=X,Y,ANGLE" "$peg" --claim clearance --at peg=2,0
 for pair in cam:follower pin:follower film:follower; do
@@ -258,8 +263,10 @@ lever=$source/examples/models/lever-stop.json
 certify_refused lever-trap-reversed 2 "--trap 1:0: LO must be below HI" "$lever" --claim jam --trap 1:0
 certify_refused lever-distance-negative 2 "--distance -1: the clearance must be positive" "$lever" --claim clearance --distance -1
 certify_refused lever-distance-zero 2 "--distance 0: the clearance must be positive" "$lever" --claim free --to 0.04 --distance 0
-# an angle in degrees beyond the double range: one message, not a floating-point exception
-certify_refused lever-huge-degrees 3 "is too large to reduce to a turn" "$lever" --claim interference --at lever=1e400deg
+# an angle in degrees beyond the double range: one message, not a floating-point exception; since
+# session 65 (hunt65) reduced to a turn exactly (10^400 = 280 mod 360: -80 degrees, beyond the
+# lever's limits; until then exit 3 "is too large to reduce to a turn")
+certify_refused lever-huge-degrees 2 "the angle of 'lever' (-1.3962634016 rad) is not certainly within its motion limits" "$lever" --claim interference --at lever=1e400deg
 # hipair-verify: the follower's tangent edited beyond its 8 deg limit (2 atan(0.0701) = 8.02 deg)
 sed 's|"tangent": "0"|"tangent": "701/10000"|' "$work/film-pin-clear.json" >"$work/film-pin-turned.json"
 cmp -s "$work/film-pin-clear.json" "$work/film-pin-turned.json" && fail "the tangent edit changed nothing"

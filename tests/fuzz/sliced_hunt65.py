@@ -181,8 +181,8 @@ def truth(plate, peg, cert):
 def statement(cert):
     c = cert[cert['claim']]
     pose = c['pose']
-    words = "Part 'plate' and 'peg' shifted by (%s, %s) mm and turned by 2 atan(%s) rad" % (
-        claim_number(F(pose['x'])), claim_number(F(pose['y'])), F(pose['tangent']))
+    words = "Part 'plate' and 'peg' shifted by (%s, %s) mm and turned by 2 atan(%s)%s rad" % (
+        claim_number(F(pose['x'])), claim_number(F(pose['y'])), F(pose['tangent']), ' + pi' if pose.get('centre') == 'pi' else '')
     return words + (' overlap.' if cert['claim'] == 'planar_interference' else ' are at least %s mm apart.' % claim_number(F(c['distance'])))
 
 

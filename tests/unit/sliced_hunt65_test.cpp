@@ -10,6 +10,7 @@
 // a rational rotation phi; a 6 x p rectangle in an L-shaped corridor of width p + c; a 12 x p peg
 // in two chambers joined by a slot of width p + c; c in {0, 2^-k, -2^-k}. At least 10,000
 // configurations per pair (most of them on or within 2^-k of a contact surface).
+#include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
@@ -20,9 +21,11 @@
 #include "test_seed.hpp"
 
 #include <gtest/gtest.h>
+#include <mpfr.h>
 
 #include <iostream>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -396,6 +399,42 @@ TEST(SlicedHunt65, FilmAdvanceClawFittingThePerforationExactlyLocatesAsTheOverla
               << kinds[2] << " contact)\n";
   }
   EXPECT_GE(located, 30000);
+}
+
+// Bad input (hunt65): a planar pose's angle of 10^77 rad and beyond (the reader takes literals up
+// to 10^1000) could not be reduced to a turn at 256 bits: `certify --at peg=20,0,1e400` stopped with
+// exit 3 ("too large to reduce to a turn at 256 bits", no option named). Now reduced at a precision
+// raised by the angle's bit length: the tangent t of the position stands for an angle within
+// 10^-15 rad of the given one modulo 2 pi — checked here by MPFR at 8 000 bits, independently of
+// the producer's enclosures — and carries no label (as beyond 10^60 rad).
+TEST(SlicedHunt65, AnAngleOfTenToTheFourHundredRadReducesToATurn) {
+  for (const char* text : {"1e77", "3e77", "1e100", "-1e400", "1e400", "123456789e991", "1e1000"}) {
+    SCOPED_TRACE(text);
+    const Rational angle = parse_rational(text);
+    const ExactPosition p = exact_position_from_angle(angle);
+    EXPECT_FALSE(p.is_offset);
+    EXPECT_FALSE(p.angle.has_value());
+    // d = angle - (c + 2 atan t), c = pi at the half-turn chart; d / (2 pi) within 10^-15 of an integer
+    mpfr_t a, t, pi, d, q, r;
+    for (mpfr_ptr x : {a, t, pi, d, q, r}) mpfr_init2(x, 8000);
+    mpfr_set_q(a, angle.get_mpq_t(), MPFR_RNDN);
+    mpfr_set_q(t, p.value.get_mpq_t(), MPFR_RNDN);
+    mpfr_const_pi(pi, MPFR_RNDN);
+    mpfr_atan(t, t, MPFR_RNDN);
+    mpfr_mul_ui(t, t, 2, MPFR_RNDN);
+    if (p.half_turn) mpfr_add(t, t, pi, MPFR_RNDN);
+    mpfr_sub(d, a, t, MPFR_RNDN);
+    mpfr_mul_ui(pi, pi, 2, MPFR_RNDN);
+    mpfr_div(q, d, pi, MPFR_RNDN);
+    mpfr_round(r, q);
+    mpfr_sub(q, q, r, MPFR_RNDN);
+    EXPECT_LT(std::fabs(mpfr_get_d(q, MPFR_RNDN)), 1e-15);
+    for (mpfr_ptr x : {a, t, pi, d, q, r}) mpfr_clear(x);
+  }
+  // ordinary angles keep their label and their tangent
+  const ExactPosition half = exact_position_from_angle(Rational(1, 2));
+  EXPECT_TRUE(half.angle.has_value());
+  EXPECT_EQ(half.value, Rational(127670960610518133, 500000000000000000));
 }
 
 // Bad input (hunt65): a peg whose arc's centre lies 10^999 mm away (or 10^-999 off the bisector of
