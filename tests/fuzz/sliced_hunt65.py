@@ -370,6 +370,43 @@ def hunt_bad_inputs(hipair, work, findings):
     return n
 
 
+def hunt_extreme_poses(hipair, verify, work, findings):
+    """`certify --at` on the peg in the hole of side 12 with huge, tiny and malformed coordinates:
+    exit 0 and a certificate hipair-verify accepts, or exit 1 / 2 with one line and nothing
+    written (session 65: 1e400 rad stopped with exit 3, 1e77 rad was placed 9.5 degrees off)"""
+    model = os.path.join(work, 'extreme.json')
+    plate, peg = peg_in_hole(10, 12)
+    write_model(model, plate, peg)
+    out = os.path.join(work, 'extreme_cert.json')
+    n = 0
+    for at in ('20,0,1e400', '20,0,-1e999', '20,0,1e77', '20,0,1e1000', '20,0,1e400deg', '20,0,-1e999deg', '1e400,0,0',
+               '1e-400,0,0', '0,0,1e-400', '20,1e-999,1e-999', '1e999,1e999,1e999', '20,0,1e1001', '20,0,nan', '20,0,inf',
+               '20,0,1/0', '20,0', '20,0,0,0', 'x,0,0'):
+        for claim in ('clearance', 'interference'):
+            if os.path.exists(out):
+                os.remove(out)
+            rc, so, se = run([hipair, 'certify', model, '--claim', claim, '--at', 'peg=' + at, '--out', out], 120)
+            n += 1
+            text = (so + se).strip()
+            problems = crash_problems(rc, text)
+            if rc == 0:
+                vr, vo, ve = run([verify, out, model], 120)
+                if vr != 0:
+                    problems.append('hipair-verify rejects it: ' + (vo + ve).strip()[:150])
+            elif rc in (1, 2):
+                if len(se.strip().splitlines()) != 1:   # (stdout may say how a 'deg' angle was taken)
+                    problems.append('%d lines on stderr' % len(se.strip().splitlines()))
+                if os.path.exists(out):
+                    problems.append('an output written')
+                if rc == 2 and '--at' not in text and '/parts' not in text:
+                    problems.append('no option or pointer named')
+            else:
+                problems.append('exit %s' % rc)
+            if problems:
+                findings.append('certify --claim %s --at peg=%s: %s: %s' % (claim, at, '; '.join(problems), text[:200]))
+    return n
+
+
 def main():
     if len(sys.argv) < 4:
         sys.exit(__doc__)
@@ -383,7 +420,7 @@ def main():
     findings = []
     builds = hunt_scales(hipair, work, quick, findings)
     counts = hunt_certificates(hipair, verify, work, quick, rng, findings)
-    bad = hunt_bad_inputs(hipair, work, findings)
+    bad = hunt_bad_inputs(hipair, work, findings) + hunt_extreme_poses(hipair, verify, work, findings)
     print('%d builds, %d certificates with %d alterations, %d bad inputs' %
           (builds, counts['base'], sum(counts.values()) - counts['base'], bad))
     for f in findings:
