@@ -10,6 +10,7 @@
 
 #include <hipair/error.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -248,8 +249,8 @@ ExactPosition exact_position_from_angle(const Rational& angle) {
   // with exit 3 "too large to reduce to a turn at 256 bits". The position carries no label (the
   // verifier's 256-bit check of a label could not hold it), as before beyond 10^60 rad.
   const mpfr_prec_t bits = model_detail::interval_bits + 64 +
-                           static_cast<mpfr_prec_t>(mpz_sizeinbase(angle.get_num_mpz_t(), 2)) -
-                           static_cast<mpfr_prec_t>(mpz_sizeinbase(angle.get_den_mpz_t(), 2));
+                           std::max<mpfr_prec_t>(0, static_cast<mpfr_prec_t>(mpz_sizeinbase(angle.get_num_mpz_t(), 2)) -
+                                                        static_cast<mpfr_prec_t>(mpz_sizeinbase(angle.get_den_mpz_t(), 2)));
   if (bits <= model_detail::most_interval_bits) {
     model_detail::PrecisionScope scope(bits);
     if (auto position = position_from_angle(angle)) {
