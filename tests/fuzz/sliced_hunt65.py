@@ -41,16 +41,7 @@ sys.path.insert(0, HERE)
 from exact_planar import locate, parts_apart_by  # noqa: E402
 from exact_oracle import claim_number, judged  # noqa: E402
 from hunt_common import run, crash_problems  # noqa: E402
-from sliced_oracle_hunt import model_json, peg_in_slot, lit  # noqa: E402
-
-
-def square(h):
-    h = F(h) / 2
-    return [(-h, -h), (h, -h), (h, h), (-h, h)]
-
-
-def peg_in_hole(s, h):
-    return [square(max(F(18), F(h) + 6)), square(h)], [square(s)]
+from sliced_oracle_hunt import model_json, peg_in_hole, peg_in_slot, lit  # noqa: E402
 
 
 def write_model(path, plate, peg, pivot=(F(0), F(0))):
