@@ -113,6 +113,44 @@ for round in 1 2 3 4 5 6; do
   fi
 done
 
+# Session 65 (perf65): spur gears at zero backlash (tests/fuzz/zero_backlash_gears.py), where the
+# arc flanks interfere at the start for many tooth counts. An exact start whose parts' interiors
+# meet (the exact overlap predicate) is refused before the channel is built: base65 built the
+# whole operating region first and then located the start in a blocked cell, the same refusal
+# after 38 s of CPU for the 19 x 40 pair (coprime tooth counts: the channel meets every tooth
+# pair, 8 058 tiles). The new refusal says it came from the predicate ("by the exact overlap
+# predicate"; base65: "lies in blocked space of the exact C-space built around it"). Cases: the
+# 19 x 40 pair hunt64 found, a generated pair of 6..16 teeth with a gear of z1 or 2 z1 teeth
+# (most such starts overlap), and the controls 17 x 17 and 18 x 18 (their starts do not overlap:
+# the region is built, exit 0). The oracle: certify --claim interference at the start and
+# hipair-verify.
+z=$((RANDOM % 11 + 6))
+for p in "19 40" "$z $((z * (RANDOM % 2 + 1)))" "17 17" "18 18"; do
+  set -- $p
+  what="spur gears $1 x $2, zero backlash"
+  model=$work/gears-$1-$2.json
+  python3 "$source/tests/fuzz/zero_backlash_gears.py" "$source/examples/models/spur-gears.json" "$1" "$2" "$model"
+  "$hipair" certify "$model" --claim interference --out "$work/i.json" >"$work/i.out" 2>&1
+  certified=$?
+  rm -f "$work/x.json"
+  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/x.json" >"$work/c.out" 2>"$work/c.err"
+  code=$?
+  if [ $certified -eq 0 ]; then
+    "$verify" "$work/i.json" "$model" >"$work/v.out" 2>&1 || { fail "$what: hipair-verify: $(cat "$work/v.out")"; continue; }
+    [ $code -eq 3 ] || fail "$what: overlap verified, cspace --region operating: exit $code, want 3: $(head -c 300 "$work/c.err")"
+    grep -qF "hipair: error: operating region of 'pinion' and 'gear': the parts certainly overlap at the seed configuration (their interiors meet at the initial configuration, by the exact overlap predicate" \
+      "$work/c.err" || fail "$what: message (refused before the build?): $(head -c 300 "$work/c.err")"
+    [ "$(wc -l <"$work/c.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/c.err")"
+    [ -e "$work/x.json" ] && fail "$what: wrote --json"
+  elif [ $certified -eq 1 ]; then
+    [ $code -eq 0 ] || fail "$what: no overlap (certify: $(tail -c 100 "$work/i.out")), cspace --region operating: exit $code: $(head -c 300 "$work/c.err")"
+    [ -s "$work/x.json" ] || fail "$what: no overlap, and no --json written"
+  else
+    fail "$what: certify --claim interference: exit $certified: $(tail -c 300 "$work/i.out")"
+  fi
+done
+[ "$p" = "18 18" ] || fail "the gear cases did not all run"
+
 if [ $failures -gt 0 ]; then
   echo "$failures failure(s) (seed $seed)"
   exit 1

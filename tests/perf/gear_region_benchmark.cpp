@@ -4,6 +4,15 @@
 //                                   the gears run in (CSpaceBuildOptions::operating_region). The
 //                                   whole torus holds n^2 tooth encounters; the channel about n.
 //   BM_EscapementAllPairs/threads   CSpace::build_all on the escapement's pairs, 1 or 2 threads.
+//   BM_GearPairCliCold/k            issue 14's slow gear pairs (session 65, perf65) as a user runs
+//                                   them: the `hipair` program in a fresh process (forked and
+//                                   exec'd), the child's CPU time (user + system, wait4).
+//                                   k = 0: `cspace --region operating`, 19 x 40 teeth at zero
+//                                   backlash (its start overlaps: refused; base65 built the whole
+//                                   channel first, 38 s); 1: the same pair at the model's backlash
+//                                   0.1 mm (coprime tooth counts: the channel meets all 760 tooth
+//                                   pairs, 8 058 tiles); 2: `analyze --no-pictures`, 39 x 31 teeth
+//                                   at zero backlash (a full turn of the pinion).
 // CPU time of the building thread is what Google Benchmark reports for the gears (single thread).
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -11,6 +20,12 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -56,5 +71,54 @@ void BM_EscapementAllPairs(benchmark::State& state) {
   state.counters["pairs"] = static_cast<double>(pairs);
 }
 BENCHMARK(BM_EscapementAllPairs)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
+
+void BM_GearPairCliCold(benchmark::State& state) {
+  const std::string model = example("spur-gears.json").string();
+  char directory[] = "/tmp/hipair-gear-bench-XXXXXX";
+  if (mkdtemp(directory) == nullptr) {
+    state.SkipWithError("mkdtemp failed");
+    return;
+  }
+  std::vector<std::string> args{HIPAIR_CLI};
+  switch (state.range(0)) {
+    case 0:
+      args.insert(args.end(), {"cspace", model, "--set", "teeth-1=19", "--set", "teeth-2=40", "--set", "backlash=0",
+                               "--allow-out-of-tolerance", "--region", "operating"});
+      break;
+    case 1:
+      args.insert(args.end(), {"cspace", model, "--set", "teeth-1=19", "--set", "teeth-2=40", "--allow-out-of-tolerance",
+                               "--region", "operating", "--json", std::string(directory) + "/region.json"});
+      break;
+    default:
+      args.insert(args.end(), {"analyze", model, "--set", "teeth-1=39", "--set", "teeth-2=31", "--set", "backlash=0",
+                               "--allow-out-of-tolerance", "--no-pictures", "--quiet", "--out", std::string(directory) + "/a"});
+      break;
+  }
+  const int expected = state.range(0) == 0 ? 3 : 0;   // the overlapping start is refused (exit 3)
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  for (auto _ : state) {
+    pid_t child = fork();
+    if (child == 0) {
+      // the program's own output is not the benchmark's
+      if (freopen("/dev/null", "w", stdout) == nullptr || freopen("/dev/null", "w", stderr) == nullptr) _exit(127);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    int status = 0;
+    rusage usage{};
+    wait4(child, &status, 0, &usage);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != expected) {
+      state.SkipWithError("the hipair run did not end as expected");
+      break;
+    }
+    auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+    state.SetIterationTime(seconds(usage.ru_utime) + seconds(usage.ru_stime));
+    state.counters["max_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  }
+  std::filesystem::remove_all(directory);
+}
+BENCHMARK(BM_GearPairCliCold)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 
 }  // namespace
