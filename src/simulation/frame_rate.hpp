@@ -58,13 +58,8 @@ inline DualFeatures dual_features(const Model& model, const FeaturePair& pair) {
           kernels::feature_geometry<kernels::Dual>(model, pair.second, d)};
 }
 
-/// The frame of feature pair `pair` of `model` (its geometries `g`: dual_features) with the
-/// pair's first part at (q1, v1) and its second at (q2, v2) (ignored for a fixed part) and its rate.
-inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, const DualFeatures& g, double q1, double v1,
-                            double q2, double v2) {
-  const kernels::ContactFrame<kernels::Dual> frame =
-      kernels::contact_frame(dual_pose(model.parts.at(pair.first.part), q1, v1), g[0],
-                             dual_pose(model.parts.at(pair.second.part), q2, v2), g[1]);
+/// The frame and its rate from the kernels' frame in dual numbers (the unit normal and its rate).
+inline FrameRate frame_rate(const kernels::ContactFrame<kernels::Dual>& frame) {
   FrameRate out;
   if (!frame.defined) return out;
   out.defined = true;
@@ -84,6 +79,14 @@ inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, const D
                        out.normal_rate[1]})
     if (!std::isfinite(value)) return FrameRate{};
   return out;
+}
+
+/// The frame of feature pair `pair` of `model` (its geometries `g`: dual_features) with the
+/// pair's first part at (q1, v1) and its second at (q2, v2) (ignored for a fixed part) and its rate.
+inline FrameRate frame_rate(const Model& model, const FeaturePair& pair, const DualFeatures& g, double q1, double v1,
+                            double q2, double v2) {
+  return frame_rate(kernels::contact_frame(dual_pose(model.parts.at(pair.first.part), q1, v1), g[0],
+                                           dual_pose(model.parts.at(pair.second.part), q2, v2), g[1]));
 }
 
 /// frame_rate with the pair's geometries made here.

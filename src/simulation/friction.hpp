@@ -206,6 +206,20 @@ inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen:
   return s;
 }
 
+/// A frictional problem whose mass matrix is full (session 65, pinslot65: the pin-slot part's
+/// coupled (s, psi), M = [[m, m e], [m e, M22]]). Its doubles are solved in the coordinates of M's
+/// Cholesky factor (rows G L^-T, M the identity there: this header's diagonal form) — rows that
+/// carry the factor's rounding; its exact decisions (held_verdict, exact_stick_holds) are taken on
+/// this form instead: the normal rows G and the Friction data (tangent rows T, bias) as the
+/// simulator computes them over its coordinates, the mass matrix M and the generalized forces Q
+/// (the free accelerations M^-1 Q): A = J M^-1 W^T and b = J M^-1 Q + kappa in exact rationals
+/// (held_force_sign.hpp's full form). The same contacts, order, states, mu and s as the solved form.
+struct FullMass {
+  Eigen::MatrixXd G, M;
+  Eigen::VectorXd Q;
+  std::vector<Friction> friction;
+};
+
 /// The held contacts' force problem at given stick/slip states as exact rows
 /// (held_force_sign.hpp; the tangent rows its `equalities`, solved first as reduce() does):
 /// the constraint rows [G; T_S] and the force rows [W; T_S] (W_k = G_k -
@@ -216,10 +230,15 @@ inline FrictionalSolution solve_bilateral(const Eigen::MatrixXd& G, const Eigen:
 /// `group` (by contact; empty: each its own): of a collinear group's sticking contacts only the
 /// first has a tangent row (the group's: its multiplier is the group's friction; the members'
 /// rows agree to the grouping's 10^-12, and the split among them is left open by the equations).
-inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
-                                     const Eigen::VectorXd& h, const std::vector<Friction>& friction,
-                                     const std::vector<int>& state, std::vector<std::size_t>& sticking,
-                                     const std::vector<std::size_t>& group = {}) {
+/// `full` (given): the problem's full form (FullMass) replaces G, friction, minv and a0: its rows,
+/// its mass matrix M and loads Q.
+inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv,
+                                     const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
+                                     const std::vector<Friction>& friction_given, const std::vector<int>& state,
+                                     std::vector<std::size_t>& sticking, const std::vector<std::size_t>& group = {},
+                                     const FullMass* full = nullptr) {
+  const Eigen::MatrixXd& G = full ? full->G : G_given;
+  const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const Eigen::Index m = G.rows(), n = G.cols();
   sticking.clear();
   std::vector<bool> represented(static_cast<std::size_t>(m), false);
@@ -247,8 +266,13 @@ inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::Vect
     const int st = state[static_cast<std::size_t>(k)];
     if (c.on && (st == slip_positive || st == slip_negative)) p.W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
   }
-  p.minv = minv;
-  p.a0 = a0;
+  if (full) {
+    p.M = full->M;
+    p.Q = full->Q;
+  } else {
+    p.minv = minv;
+    p.a0 = a0;
+  }
   p.equalities = sticking.size();
   return p;
 }
@@ -268,19 +292,23 @@ inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G, const Eigen::Vect
 /// `open_sign` (only with open rows given): per open row (a contact not held: its normal row
 /// G_o and velocity term h_o), the sign of its gap's acceleration G_o x + h_o at the held
 /// contacts' exact solution x = a0 + M^-1 (W^T lambda + T_S^T f), decided exactly as well.
+/// `full` (given): decided on the problem's full form (FullMass: its rows, M and Q replace G,
+/// friction, minv and a0; open rows over its coordinates, x = M^-1 (Q + W^T lambda + T_S^T f)).
 struct HeldVerdict {
   std::vector<int> force_sign;        ///< per contact: -1, 0, +1
   std::vector<bool> beyond_static;    ///< per contact: sticking, and its friction beyond mu_s N
   std::vector<int> open_sign;         ///< per open row: -1, 0, +1
 };
 
-inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
-                                const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+inline HeldVerdict held_verdict(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                                const Eigen::VectorXd& h, const std::vector<Friction>& friction_given,
                                 const std::vector<int>& state, const std::vector<std::size_t>& group = {},
                                 HeldForceCount* count = nullptr, const Eigen::MatrixXd* open_G = nullptr,
-                                const Eigen::VectorXd* open_h = nullptr) {
+                                const Eigen::VectorXd* open_h = nullptr, const FullMass* full = nullptr) {
+  const Eigen::MatrixXd& G = full ? full->G : G_given;
+  const std::vector<Friction>& friction = full ? full->friction : friction_given;
   std::vector<std::size_t> sticking;   // one tangent row per group
-  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, sticking, group);
+  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, sticking, group, full);
   const std::size_t m = static_cast<std::size_t>(G.rows());
   const std::size_t open = open_G ? static_cast<std::size_t>(open_G->rows()) : 0;
   auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
@@ -322,11 +350,28 @@ inline HeldVerdict held_verdict(const Eigen::MatrixXd& G, const Eigen::VectorXd&
           // open rows' gap accelerations on them
           const auto n = static_cast<std::size_t>(G.cols());
           std::vector<T> acc(n, T(0));
+          held_force_detail::Matrix<T> mass(n, std::vector<T>(n, T(0))), load(n, std::vector<T>(1, T(0)));
           for (std::size_t i = 0; i < n; ++i) {
             T sum = T(0);
             for (std::size_t r = 0; r < x.size(); ++r)
               sum = sum + value(rows.W(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i))) * x[r];
+            if (full) {   // M x = Q + W^T (lambda; f), solved below
+              load[i][0] = value(full->Q(static_cast<Eigen::Index>(i))) + sum;
+              for (std::size_t j = 0; j < n; ++j)
+                mass[i][j] = value(full->M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+              continue;
+            }
             acc[i] = value(a0(static_cast<Eigen::Index>(i))) + value(minv(static_cast<Eigen::Index>(i))) * sum;
+          }
+          if (full) {
+            const auto solved = held_force_detail::solve(std::move(mass), std::move(load));
+            if (!solved) {
+              if constexpr (std::is_same_v<T, Rational>)
+                throw NumericError("a held contact's force problem: the mass matrix is singular");
+              else
+                return std::nullopt;
+            }
+            for (std::size_t i = 0; i < n; ++i) acc[i] = (*solved)[i][0];
           }
           v.open_sign.assign(open, 0);
           for (std::size_t o = 0; o < open; ++o) {
@@ -389,10 +434,13 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// or a friction reaches mu_s N; the latter is a slip candidate of the enumeration (at zero
 /// sliding acceleration), the former one of these sets. Regular rows (one solution) are decided
 /// by the test of all held contacts alone, as before.
-inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
-                              const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+/// `full` (given): decided on the problem's full form (FullMass; held_verdict's).
+inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
+                              const Eigen::VectorXd& h, const std::vector<Friction>& friction_given,
                               const FrictionalSolution& s, const std::vector<std::size_t>& group,
-                              bool dependent_only = false) {
+                              bool dependent_only = false, const FullMass* full = nullptr) {
+  const Eigen::MatrixXd& G = full ? full->G : G_given;
+  const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const auto m = static_cast<std::size_t>(G.rows());
   bool any = false;
   for (std::size_t k = 0; k < m; ++k) any = any || (friction[k].on && s.state[k] == stick);
@@ -434,15 +482,17 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& m
       Go.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(open[i]));
       ho(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(open[i]));
     }
+    std::optional<FullMass> sub;   // the rows `set` of the full form
+    if (full) sub = FullMass{Gh, full->M, full->Q, fh};
     const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, open.empty() ? nullptr : &Go,
-                                       open.empty() ? nullptr : &ho);
+                                       open.empty() ? nullptr : &ho, sub ? &*sub : nullptr);
     if (!open.empty() || dependent) return v;
     // the rows' dependence, exactly (asked only where this test of all held contacts fails)
     bool beyond = std::any_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
     bool pulls = std::any_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; });
     if (beyond || pulls) {
       std::vector<std::size_t> sticking;
-      const HeldForceRows rows = frictional_rows(Gh, minv, a0, hh, fh, sh, sticking, gh);
+      const HeldForceRows rows = frictional_rows(Gh, minv, a0, hh, fh, sh, sticking, gh, sub ? &*sub : nullptr);
       auto [A, b] = held_force_detail::exact_delassus(rows, held_force_detail::all_rows(rows));
       dependent = row_echelon(A, A.size()).size() < A.size();
     }
@@ -495,13 +545,15 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G, const Eigen::VectorXd& m
 /// tried with the frictionless multipliers (undetermined(), above; the fixed-axis simulator's
 /// wedges, session 36). `exact_groups` (given: the collinear groups by contact, empty for none):
 /// an assignment's stick limits are also decided exactly (exact_stick_holds; session 63), a
-/// friction force beyond mu_s N by any amount rejects the sticking assignment.
+/// friction force beyond mu_s N by any amount rejects the sticking assignment. `full` (given,
+/// with exact_groups): those limits decided on the problem's full form (FullMass).
 inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                            const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
                                            const std::vector<Friction>& friction,
                                            const std::function<void(FrictionalSolution&)>& adjust = {},
                                            bool undetermined_plain = false,
-                                           const std::vector<std::size_t>* exact_groups = nullptr) {
+                                           const std::vector<std::size_t>* exact_groups = nullptr,
+                                           const FullMass* full = nullptr) {
   const std::size_t m = friction.size();
   std::vector<std::size_t> open;
   std::vector<int> state(m, frictionless);
@@ -559,10 +611,10 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       // dependent and a member of their force family is exactly consistent; on independent rows a
       // stick rejected beyond the 1e-9 slack is not re-decided exactly: not done, session 64,
       // dropping the doubles' test changed the scotch yoke's slip reversal, cause not found)
-      if (exact_groups ? (coulomb_satisfied(s, friction) ? exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups)
-                                                         : coulomb_satisfied(s, friction, false) &&
-                                                               exact_stick_holds(G, minv, a0, h, friction, s,
-                                                                                 *exact_groups, true))
+      if (exact_groups ? (coulomb_satisfied(s, friction)
+                              ? exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, false, full)
+                              : coulomb_satisfied(s, friction, false) &&
+                                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, true, full))
                        : coulomb_satisfied(s, friction)) {
         s.solved = true;
         return s;

@@ -42,7 +42,9 @@
 #include <hipair/pin_slot_simulation.hpp>
 
 #include "core/angle_limits.hpp"
+#include "simulation/frame_rate.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/held_friction.hpp"
 #include "simulation/held_extent.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
@@ -389,6 +391,8 @@ struct PinSlotSimulation::Impl {
     // the same exactly and as certified intervals (the edge-end decision, held_extent.hpp)
     kernels::FeatureGeometry<Rational> fixed_exact, free_exact;
     kernels::FeatureGeometry<kernels::Interval> fixed_box, free_box;
+    // and in dual numbers (the kernels' contact frame with its rate: held_frame)
+    kernels::FeatureGeometry<kernels::Dual> fixed_dual, free_dual;
     double force = 0;   // internal units (mN), the last multiplier
     // Coulomb friction (session 64): stick, slip_positive / slip_negative (the pin-slot part's
     // contact point sliding along +-t = k x n relative to the other part) or frictionless (also a
@@ -605,6 +609,9 @@ struct PinSlotSimulation::Impl {
     h.free_exact = kernels::feature_geometry<Rational>(frame, f.free, [](const Rational& r) { return r; });
     h.fixed_box = simulation::enclose(h.fixed_exact);
     h.free_box = simulation::enclose(h.free_exact);
+    const auto dual = [](const Rational& r) { return kernels::Dual(r.get_d()); };
+    h.fixed_dual = kernels::feature_geometry<kernels::Dual>(frame, f.fixed, dual);
+    h.free_dual = kernels::feature_geometry<kernels::Dual>(frame, f.free, dual);
     return h;
   }
   int outside_limit(const State& s) const {
@@ -698,11 +705,16 @@ struct PinSlotSimulation::Impl {
   // other part along t = k x n at T . rates - v_other (v_other: a constant-speed driver's surface
   // speed along t) — T = [t . u, n . (p - P)] over (s, psi), the free driver's column
   // -n . (p - C), the slider's -t . d (the normal rows' columns with t for n).
+  // With the frame's rates (session 65: a held contact's, held_frame) also the row's drift
+  // T' rates - v_other' along the state's motion: the tangential curvature term a sticking contact
+  // keeps (Friction::bias; T a + drift = 0), with t' = k x n', u' = psi' k x u and the lever's
+  // rate n' . (p - X) + n . p'.
   struct Tangent {
     Eigen::VectorXd T;
-    double v_other = 0;
+    double v_other = 0, drift = 0;
   };
-  Tangent tangent_at(std::size_t pi, const double p[2], const double n[2], const State& s) const {
+  Tangent tangent_at(std::size_t pi, const double p[2], const double n[2], const State& s,
+                     const simulation::FrameRate* rate = nullptr) const {
     Tangent out;
     out.T = Eigen::VectorXd::Zero(coordinates());
     const double tx = -n[1], ty = n[0];
@@ -719,33 +731,50 @@ struct PinSlotSimulation::Impl {
       else out.v_other = driver_rate(dr, s) * lever;
     }
     if (pair.other == slider.part) out.T(x_column()) = -(tx * slider.dir[0] + ty * slider.dir[1]);
+    if (!rate) return out;
+    const double* dp = rate->point_rate;
+    const double* dn = rate->normal_rate;
+    const double dtx = -dn[1], dty = dn[0];
+    const double du[2] = {-s[3] * u[1], s[3] * u[0]};
+    auto lever_rate = [&](double X, double Y) { return dn[0] * (p[0] - X) + dn[1] * (p[1] - Y) + n[0] * dp[0] + n[1] * dp[1]; };
+    double drift = (dtx * u[0] + dty * u[1] + tx * du[0] + ty * du[1]) * s[2] + lever_rate(P[0], P[1]) * s[3];
+    if (dr != no_index) {
+      const Point& C = model.parts[pair.other].motion.pivot;
+      const double dlever = lever_rate(C.x.get_d(), C.y.get_d());
+      if (drivers[dr].free) drift -= dlever * s[5];
+      else drift -= driver_rate(dr, s) * dlever;   // v_other' (a constant speed)
+    }
+    if (pair.other == slider.part) drift -= (dtx * slider.dir[0] + dty * slider.dir[1]) * s[7];
+    out.drift = std::isfinite(drift) ? drift : 0.0;
     return out;
   }
-  // A held contact's world point and unit normal at a state, in doubles: n the gradient of its gap
-  // over a translation of the pin-slot part (forward mode), p the vertex of a vertex contact, else
-  // the point of the arc's circle along n.
-  void held_point_normal(const Held& h, const State& s, double time, double p[2], double n[2]) const {
-    const double zero[4] = {0, 0, 0, 0};
-    const auto [other, follower] = held_poses(h, s, time, zero);
-    for (int k = 0; k < 2; ++k) {
-      TPose moved = follower;
-      (k == 0 ? moved.origin.x : moved.origin.y).d = 1;
-      n[k] = feature_gap(other, h.fixed_geometry, moved, h.free_geometry)->d;
+  // A held contact's contact frame and its rate at a state (session 65; until then a point and a
+  // normal computed here from the held gap's gradient): the kernels' contact frame
+  // (kernels/contact_geometry.hpp) in dual numbers (simulation/frame_rate.hpp), the other part
+  // posed at its angle or offset with its rate, the pin-slot part about P at angle psi shifted by
+  // s R(psi) d with theirs: the world point, the unit normal from the other part into the pin-slot
+  // part and their rates along the state's motion.
+  simulation::FrameRate held_frame(const Held& h, const State& s, double time) const {
+    using kernels::Dual;
+    const Pair& pair = pairs[h.pair];
+    const std::size_t dr = driver_of[pair.other];
+    kernels::Pose<Dual> other = kernels::fixed_pose<Dual>();
+    if (dr != no_index) {
+      const Point& C = model.parts[pair.other].motion.pivot;
+      const double phi = driver_angle(dr, s, time), w = driver_rate(dr, s);
+      other = kernels::rotation_pose_from_cos_sin(kernels::Vector<Dual>{Dual(C.x.get_d()), Dual(C.y.get_d())},
+                                                  Dual(std::cos(phi), -std::sin(phi) * w),
+                                                  Dual(std::sin(phi), std::cos(phi) * w));
+    } else if (pair.other == slider.part) {
+      other = kernels::translation_pose(kernels::Vector<Dual>{Dual(slider.dir[0]), Dual(slider.dir[1])}, Dual(s[6], s[7]));
     }
-    const double length = std::hypot(n[0], n[1]);
-    n[0] /= length;
-    n[1] /= length;
-    using kernels::FeatureShape;
-    const auto& fa = h.fixed_geometry;
-    const auto& fb = h.free_geometry;
-    auto set = [&](const TPoint& q, double r) {
-      p[0] = q.x.v + r * n[0];
-      p[1] = q.y.v + r * n[1];
-    };
-    if (fa.shape == FeatureShape::vertex) set(other.place(fa.point), 0);
-    else if (fb.shape == FeatureShape::vertex) set(follower.place(fb.point), 0);
-    else if (fa.shape == FeatureShape::arc) set(other.place(fa.center), (fa.convex ? 1 : -1) * std::sqrt(fa.radius_squared));
-    else set(follower.place(fb.center), (fb.convex ? -1 : 1) * std::sqrt(fb.radius_squared));
+    const Dual c(std::cos(s[1]), -std::sin(s[1]) * s[3]), sn(std::sin(s[1]), std::cos(s[1]) * s[3]);
+    const Dual slide(s[0], s[2]);
+    kernels::Pose<Dual> follower =
+        kernels::rotation_pose_from_cos_sin(kernels::Vector<Dual>{Dual(P[0]), Dual(P[1])}, c, sn);
+    follower.shift = {slide * (c * d[0] - sn * d[1]), slide * (sn * d[0] + c * d[1])};
+    follower.translates = true;
+    return simulation::frame_rate(kernels::contact_frame(other, h.fixed_dual, follower, h.free_dual));
   }
   bool frictional(const Held& h) const { return !h.limit && pairs[h.pair].mu_static > 0; }
   bool any_friction() const {
@@ -769,7 +798,11 @@ struct PinSlotSimulation::Impl {
   // its Cholesky factor): there the mass matrix is the identity, so the problem is friction.hpp's
   // (diagonal inverse masses 1) — rows G = J L^-T and T L^-T, free accelerations L^-1 Q, the
   // accelerations a = L^-T x. The multipliers and friction forces are the same numbers.
+  // The exact decisions (session 65) are taken on `full`, the problem over (s, psi, ...) with the
+  // mass matrix M itself (friction.hpp's FullMass): the rows J and T, M and Q as computed, not the
+  // factor's rounded rows.
   struct FrictionProblem {
+    simulation::FullMass full;
     Eigen::LLT<Eigen::MatrixXd> llt;
     Eigen::MatrixXd G;
     Eigen::VectorXd minv, a0, h;
@@ -799,19 +832,25 @@ struct PinSlotSimulation::Impl {
       if (frictional(held[i])) {
         tangent = held_tangent(held[i], s, time);
         fr = friction_of(out.llt, J.row(r).transpose(), tangent, pairs[held[i].pair]);
+        fr.bias = fr.on ? tangent.drift : 0.0;   // (session 65; 0 before: the drift neglected)
       }
       fr.state = held[i].state;
       fr.decided = true;
       out.vt.push_back(fr.on ? tangent.T.dot(v) - tangent.v_other : 0.0);
+      simulation::Friction original = fr;   // the full form's: the tangent row over the coordinates
+      if (fr.on) original.T = tangent.T;
+      out.full.friction.push_back(std::move(original));
       out.friction.push_back(std::move(fr));
       out.tangents.push_back(std::move(tangent));
     }
+    out.full.G = J;
+    out.full.M = mass_matrix(s);
+    out.full.Q = forces(s);
     return out;
   }
   Tangent held_tangent(const Held& h, const State& s, double time) const {
-    double p[2], n[2];
-    held_point_normal(h, s, time, p, n);
-    return tangent_at(h.pair, p, n, s);
+    const simulation::FrameRate f = held_frame(h, s, time);
+    return tangent_at(h.pair, f.point, f.normal, s, &f);
   }
   // The held contacts' stick/slip states as integrated (frictionless where friction is off).
   std::vector<int> held_states(const FrictionProblem& fp) const {
@@ -1047,8 +1086,8 @@ struct PinSlotSimulation::Impl {
       simulation::FrictionalSolution sol;
       frictional_accelerations(y, t, nullptr, &sol);
       const FrictionProblem fp = friction_problem(y, t);
-      const simulation::HeldVerdict verdict =
-          simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, held_states(fp), {}, &force_count);
+      const simulation::HeldVerdict verdict = simulation::held_verdict(
+          fp.G, fp.minv, fp.a0, fp.h, fp.friction, held_states(fp), {}, &force_count, nullptr, nullptr, &fp.full);
       for (std::size_t i = 0; i < held.size(); ++i) {
         const auto r = static_cast<Eigen::Index>(i);
         held[i].force = verdict.force_sign[i] == 0 ? 0.0 : sol.lambda(r);
@@ -1288,8 +1327,8 @@ struct PinSlotSimulation::Impl {
       const FrictionProblem fp = friction_problem(s, time);
       if (!fp.G.allFinite() || !fp.a0.allFinite() || !fp.h.allFinite()) return false;
       const std::vector<int> states = held_states(fp);
-      const simulation::HeldVerdict verdict =
-          simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, states, {}, &force_count);
+      const simulation::HeldVerdict verdict = simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, states,
+                                                                       {}, &force_count, nullptr, nullptr, &fp.full);
       for (std::size_t i = 0; i < held.size(); ++i) {
         if (verdict.force_sign[i] < 0 || verdict.beyond_static[i]) return false;
         if ((states[i] == simulation::slip_positive || states[i] == simulation::slip_negative) &&
@@ -1523,27 +1562,28 @@ void PinSlotSimulation::Impl::update_friction() {
     if (!fr.on) continue;
     // sliding (decided) when faster than the rest speed or still sliding the way it slid; else
     // stick or slip is decided by the enumeration (a slide's end is located by bisection)
-    const double vt = fp.vt[i];
-    fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
-    fr.decided = std::abs(vt) > rest_speed || (held[i].decided && vt != 0 && held[i].state == fr.state);
+    // (held_friction.hpp's sliding_state; a contact not yet decided has no slide to keep)
+    simulation::sliding_state(fr, fp.vt[i], rest_speed, held[i].decided ? held[i].state : simulation::frictionless);
+    fp.full.friction[i].state = fr.state;
+    fp.full.friction[i].decided = fr.decided;
   }
   const std::vector<std::size_t> own_groups;   // (each contact its own: stick limits decided exactly)
   const simulation::FrictionalSolution sol =
-      simulation::solve_frictional(fp.G, fp.minv, fp.a0, fp.h, fp.friction, {}, false, &own_groups);
+      simulation::solve_frictional(fp.G, fp.minv, fp.a0, fp.h, fp.friction, {}, false, &own_groups, &fp.full);
   if (!sol.solved)
     throw NumericError(where(t) + ": the contact problem of the held contacts of '" + model.parts[part].name +
                        "' has no consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more "
                        "than 8 contacts)");
-  const simulation::HeldVerdict verdict =
-      simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, sol.state, {}, &force_count);
-  const bool negative = std::any_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int v) { return v < 0; });
+  const simulation::HeldVerdict verdict = simulation::held_verdict(fp.G, fp.minv, fp.a0, fp.h, fp.friction, sol.state,
+                                                                   {}, &force_count, nullptr, nullptr, &fp.full);
+  const std::vector<bool> lifts = simulation::lift_offs(sol, verdict);   // (held_friction.hpp)
   std::vector<Held> kept;
   bool sticks = false;
   for (std::size_t i = 0; i < held.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
     Held h = held[i];
     const double lambda = sol.lambda(r);
-    if (negative && ((lambda <= 0 && sol.w(r) > 0) || verdict.force_sign[i] < 0)) {
+    if (lifts[i]) {
       h.force = 0;
       events.push_back(held_event(SimulationEvent::Kind::lift_off, h, y, t));
       continue;
@@ -1558,10 +1598,9 @@ void PinSlotSimulation::Impl::update_friction() {
             held_event(state == simulation::stick ? SimulationEvent::Kind::stick : SimulationEvent::Kind::slip, h, y, t);
         ev.friction_force = h.friction_force / force_scale;
         if (state != simulation::stick) ev.slip_direction = state;
-        double p[2], n[2];
-        held_point_normal(h, y, t, p, n);
-        ev.point = {p[0], p[1]};
-        ev.normal = {n[0], n[1]};
+        const simulation::FrameRate f = held_frame(h, y, t);
+        ev.point = {f.point[0], f.point[1]};
+        ev.normal = {f.normal[0], f.normal[1]};
         events.push_back(std::move(ev));
         sticks = sticks || state == simulation::stick;
       }
@@ -1744,7 +1783,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     // rows couple (Kane and Levinson): where the kinetic energy (|x|^2 / 2 in these coordinates)
     // would grow and no constant-speed driver takes part (a driver may do work), the restitution
     // is scaled down to the largest factor (bisection, 2^-30) whose impact creates none, as the
-    // planar simulators' frictional_impact
+    // planar simulators' frictional_impact (held_friction.hpp's restitution_limited)
     Eigen::VectorXd restitution_part = Eigen::VectorXd::Zero(k), offsets = Eigen::VectorXd::Zero(k);
     bool driven = false;
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -1756,22 +1795,11 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
     auto solve = [&](double scale) {
       return simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part, friction);
     };
-    simulation::FrictionalSolution sol = solve(1);
-    if (sol.solved && !driven && sol.x.squaredNorm() > vz.squaredNorm()) {
-      double lo = 0, hi = 1;
-      simulation::FrictionalSolution best = solve(0);
-      for (int i = 0; i < 30 && best.solved; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        simulation::FrictionalSolution trial = solve(mid);
-        if (!trial.solved || trial.x.squaredNorm() > vz.squaredNorm()) {
-          hi = mid;
-        } else {
-          lo = mid;
-          best = std::move(trial);
-        }
-      }
-      sol = std::move(best);
-    }
+    bool limited = false;
+    simulation::FrictionalSolution sol =
+        driven ? solve(1)
+               : simulation::restitution_limited(
+                     solve, [](const Eigen::VectorXd& x) { return x.squaredNorm(); }, vz.squaredNorm(), limited);
     if (!sol.solved) {
       std::ostringstream out;
       out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()

@@ -44,6 +44,7 @@
 #include "kernels/dual.hpp"
 #include "kernels/model_features.hpp"
 #include "simulation/friction.hpp"
+#include "simulation/held_friction.hpp"
 #include "simulation/friction_names.hpp"
 #include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
@@ -472,26 +473,7 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
   auto kinetic = [&](const Eigen::VectorXd& u) {
     return 0.5 * (minv.array() > 0).select(u.array().square() / minv.array(), 0.0).sum();
   };
-  const double k_before = kinetic(v);
-  simulation::FrictionalSolution sol = solve(1);
-  limited = false;
-  if (kinetic(sol.x) > k_before) {
-    double lo = 0, hi = 1;
-    simulation::FrictionalSolution best = solve(0);
-    for (int i = 0; i < 30; ++i) {
-      double mid = 0.5 * (lo + hi);
-      simulation::FrictionalSolution trial = solve(mid);
-      if (kinetic(trial.x) > k_before) {
-        hi = mid;
-      } else {
-        lo = mid;
-        best = std::move(trial);
-      }
-    }
-    sol = std::move(best);
-    limited = true;
-  }
-  return sol;
+  return simulation::restitution_limited(solve, kinetic, kinetic(v), limited);
 }
 
 // ---- held contacts, shared by both planar simulators (docs/simulation.md, "Sustained contact
@@ -564,46 +546,15 @@ unsigned held_violations(const Problem& p, const std::vector<HeldT>& held, const
 }
 
 // Which held contacts lift off at a step's start (problem p: the frictional LCP's solution and
-// its stick/slip states; inverse masses minv): the exact multipliers of every held row at the
-// solution's states (held_verdict); when none is negative none lifts off (a force exactly 0
-// stays held: the tie rule of docs/simulation.md, "Session 63 (exact63)"); else the doubles'
-// LCP's lift-offs (lambda <= 0 and separating, without a tolerance) and every contact whose
-// exact force is negative. (A frictional contact LCP
-// can have several solutions: the exact enumeration, held_after_lift_off, chose another one
-// than the doubles for examples/models/pushed-block.json when its pusher stops — left.)
+// its stick/slip states; inverse masses minv): simulation::lift_offs (held_friction.hpp) on the
+// exact verdict of every held row at the solution's states, collinear contacts grouped.
 template <class Problem>
 std::vector<bool> lift_offs(const Problem& p, const Eigen::VectorXd& minv, const std::vector<std::size_t>& pair_of) {
-  const std::size_t m = static_cast<std::size_t>(p.G.rows());
-  const simulation::HeldVerdict verdict = simulation::held_verdict(p.G, minv, p.a0, p.h, p.friction, p.solution.state,
-                                                                   collinear_groups(p.friction, pair_of));
-  std::vector<bool> lifts(m, false);
-  if (std::none_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int s) { return s < 0; })) return lifts;
-  for (std::size_t c = 0; c < m; ++c) {
-    const auto r = static_cast<Eigen::Index>(c);
-    // the doubles' LCP's lift-offs, and every contact whose exact force is negative (else the
-    // step's exact held conditions would cut it at its start, again and again)
-    lifts[c] = (p.solution.lambda(r) <= 0 && p.solution.w(r) > 0) || verdict.force_sign[c] < 0;
-  }
-  return lifts;
+  return simulation::lift_offs(p.solution, simulation::held_verdict(p.G, minv, p.a0, p.h, p.friction, p.solution.state,
+                                                                    collinear_groups(p.friction, pair_of)));
 }
 
-// The friction data of a held contact (frame f: tangent row T, tangential curvature term h_t)
-// of a pair with coefficients mu_s, mu_k at velocities v, previously in state `was`: sliding
-// (decided) when faster than the tangential tolerance or still sliding the way it slid (a slide
-// ends where its velocity changes sign, located by bisection: then it is decided afresh).
-template <class Frame, class Velocity>
-simulation::Friction held_friction(const Frame& f, double mu_s, double mu_k, const Velocity& v, double tolerance, int was) {
-  simulation::Friction fr;
-  fr.on = mu_s > 0;
-  fr.T = f.T;
-  fr.bias = f.h_t;
-  fr.mu_static = mu_s;
-  fr.mu_kinetic = mu_k;
-  const double vt = f.T.dot(v);
-  fr.state = vt > 0 ? simulation::slip_positive : simulation::slip_negative;
-  fr.decided = std::abs(vt) > tolerance || (vt != 0 && was == fr.state);
-  return fr;
-}
+using simulation::held_friction;   // (simulation/held_friction.hpp)
 
 // Cuts a step of length `end` ending at state `at` at its first violated held condition, by
 // bisection to 2^-50 of the step: step(s) is the state after s, violated(state, bits) the

@@ -1,0 +1,98 @@
+// HIPAIR — the pieces of Coulomb friction at held contacts and impacts that the planar simulators
+// (src/simulation/planar.cpp) and the pin-slot simulator (src/simulation/pin_slot_simulation.cpp)
+// share (session 65, pinslot65: until then the pin-slot simulator carried copies of them):
+// a held contact's sliding state at a step's start, the lift-offs after the frictional contact
+// LCP, and the restitution limit of a frictional impact that would create energy.
+// Internal to src/simulation (Eigen; no type of it crosses include/hipair).
+#pragma once
+
+#include "simulation/friction.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace hipair::simulation {
+
+/// A held frictional contact's state at a step's start from its tangential speed vt and its
+/// state `was` (frictionless, stick or a slide's direction): sliding (decided) when faster than
+/// the tangential tolerance or still sliding the way it slid (a slide ends where its velocity
+/// changes sign, located by bisection: then it is decided afresh), else the enumeration decides
+/// stick or slip (`decided` false).
+inline void sliding_state(Friction& fr, double vt, double tolerance, int was) {
+  fr.state = vt > 0 ? slip_positive : slip_negative;
+  fr.decided = std::abs(vt) > tolerance || (vt != 0 && was == fr.state);
+}
+
+/// The friction data of a held contact (frame f: tangent row T, tangential curvature term h_t)
+/// of a pair with coefficients mu_s, mu_k at velocities v, previously in state `was`
+/// (sliding_state).
+template <class Frame, class Velocity>
+Friction held_friction(const Frame& f, double mu_s, double mu_k, const Velocity& v, double tolerance, int was) {
+  Friction fr;
+  fr.on = mu_s > 0;
+  fr.T = f.T;
+  fr.bias = f.h_t;
+  fr.mu_static = mu_s;
+  fr.mu_kinetic = mu_k;
+  sliding_state(fr, f.T.dot(v), tolerance, was);
+  return fr;
+}
+
+/// Which held contacts lift off at a step's start, from the frictional contact LCP's solution
+/// (the doubles' multipliers lambda and gap accelerations w) and the exact verdict on its rows
+/// at its states (held_verdict): when no exact multiplier is negative none lifts off (a force
+/// exactly 0 stays held: the tie rule of docs/simulation.md, "Session 63 (exact63)"); else the
+/// doubles' LCP's lift-offs (lambda <= 0 and separating, without a tolerance) and every contact
+/// whose exact force is negative (else the step's exact held conditions would cut it at its
+/// start, again and again). (A frictional contact LCP can have several solutions: the exact
+/// enumeration, held_after_lift_off, chose another one than the doubles for
+/// examples/models/pushed-block.json when its pusher stops — left.)
+inline std::vector<bool> lift_offs(const FrictionalSolution& solution, const HeldVerdict& verdict) {
+  const std::size_t m = verdict.force_sign.size();
+  std::vector<bool> lifts(m, false);
+  if (std::none_of(verdict.force_sign.begin(), verdict.force_sign.end(), [](int s) { return s < 0; })) return lifts;
+  for (std::size_t c = 0; c < m; ++c) {
+    const auto r = static_cast<Eigen::Index>(c);
+    lifts[c] = (solution.lambda(r) <= 0 && solution.w(r) > 0) || verdict.force_sign[c] < 0;
+  }
+  return lifts;
+}
+
+/// Newton's restitution with Coulomb friction can create energy where the normal and tangential
+/// rows are coupled (J M^-1 T^T != 0: a corner of a turning part; Kane and Levinson). `solve(scale)`
+/// solves the frictional impact with the restitution scaled by `scale`; `kinetic(x)` is a
+/// monotone measure of the kinetic energy of velocities x (the same one as `before`, the
+/// velocities' before the impact). Where the full restitution's solution would exceed `before`,
+/// the restitution is scaled down to the largest factor (bisection to 2^-30) whose solution does
+/// not (a scale whose problem has no solution counts as exceeding), and `limited` is set; the
+/// plastic impact (scale 0) not solved is returned as it is. `scale` (given) gets the factor taken.
+template <class Solve, class Kinetic>
+FrictionalSolution restitution_limited(Solve&& solve, Kinetic&& kinetic, double before, bool& limited,
+                                       double* scale = nullptr) {
+  FrictionalSolution sol = solve(1.0);
+  limited = false;
+  if (scale) *scale = 1;
+  if (!sol.solved || !(kinetic(sol.x) > before)) return sol;
+  double lo = 0, hi = 1;
+  FrictionalSolution best = solve(0.0);
+  for (int i = 0; i < 30 && best.solved; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    FrictionalSolution trial = solve(mid);
+    if (!trial.solved || kinetic(trial.x) > before) {
+      hi = mid;
+    } else {
+      lo = mid;
+      best = std::move(trial);
+    }
+  }
+  limited = true;
+  if (scale) *scale = lo;
+  return best;
+}
+
+}  // namespace hipair::simulation

@@ -1,0 +1,240 @@
+// Frictional problems with a full mass matrix (session 65, pinslot65): friction.hpp's FullMass form,
+// on which the pin-slot simulator's exact decisions are taken (held_verdict, exact_stick_holds
+// through solve_frictional), and held_friction.hpp's restitution limit of a frictional impact.
+//
+// The ties: generated problems over n = 2..4 coordinates with a coupled mass matrix M (integer
+// entries times a power of two: exact doubles), one held contact's normal row J and tangent row T
+// (integers), an acceleration a (integers) with kappa = -J a and bias = -T a, and the multipliers
+// planted: lambda = k 2^p, f = +-mu lambda with mu = j / 16; the loads Q = M a - J^T lambda - T^T f
+// (exact), the normal force of the loads' size. The oracle is the planting: sticking, the friction is exactly mu_s N at mu_s = mu (it
+// sticks: the tie rule) and beyond it at the next double below mu (it slips). The same problems
+// in the coordinates of M's Cholesky factor (the rows J L^-T, T L^-T, M the identity: the pin-slot
+// simulator's decisions until session 65) are counted where they disagree with the oracle.
+#include <gtest/gtest.h>
+
+#include "simulation/friction.hpp"
+#include "simulation/held_friction.hpp"
+#include "held_oracle_support.hpp"
+#include "test_seed.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+using held_oracle::Rng;
+
+struct Tie {
+  simulation::FullMass full;   // the rows over the coordinates, M and Q
+  Eigen::VectorXd kappa;
+  double mu = 0;
+};
+
+Tie planted_tie(Rng& rng, int n) {
+  Tie out;
+  const double unit = std::ldexp(1.0, rng.below(41) - 20);   // the masses' scale
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = rng.below(5) - 2;
+  Eigen::MatrixXd M = A * A.transpose();
+  for (int i = 0; i < n; ++i) M(i, i) += 1 + rng.below(4);
+  M *= unit;
+  Eigen::MatrixXd J(1, n);
+  Eigen::VectorXd T(n), a(n);
+  for (;;) {
+    for (int i = 0; i < n; ++i) {
+      J(0, i) = rng.below(7) - 3;
+      T(i) = rng.below(7) - 3;
+      a(i) = rng.below(9) - 4;
+    }
+    // independent rows: some 2 x 2 minor not 0
+    bool independent = false;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j) independent = independent || J(0, i) * T(j) - J(0, j) * T(i) != 0;
+    if (independent) break;
+  }
+  // (the normal force of the loads' size: where it is far below them the doubles' multipliers
+  // miss the tie by more than solve_frictional's 1e-9 stick slack, and the doubles decide it —
+  // solve_frictional re-decides a stick exactly only where its doubles accept it; left)
+  const double lambda = (1 + rng.below(8)) * unit * std::ldexp(1.0, rng.below(7) - 3);
+  out.mu = (2 + rng.below(14)) / 16.0;
+  const double f = (rng.below(2) == 0 ? 1 : -1) * out.mu * lambda;
+  out.full.G = J;
+  out.full.M = M;
+  out.full.Q = M * a - J.row(0).transpose() * lambda - T * f;   // exact: integers times powers of two
+  out.kappa = Eigen::VectorXd::Constant(1, -J.row(0).dot(a));
+  simulation::Friction fr;
+  fr.on = true;
+  fr.T = T;
+  fr.mu_static = fr.mu_kinetic = out.mu;
+  fr.bias = -T.dot(a);
+  out.full.friction = {fr};
+  return out;
+}
+
+// The same problem in the coordinates z = L^T q of M's Cholesky factor (M = L L^T; doubles)
+struct Transformed {
+  Eigen::MatrixXd G;
+  Eigen::VectorXd minv, a0;
+  std::vector<simulation::Friction> friction;
+};
+Transformed cholesky_form(const Tie& p) {
+  Transformed out;
+  const Eigen::LLT<Eigen::MatrixXd> llt(p.full.M);
+  out.G = llt.matrixL().solve(p.full.G.transpose()).transpose();
+  out.a0 = llt.matrixL().solve(p.full.Q);
+  out.minv = Eigen::VectorXd::Ones(p.full.M.rows());
+  out.friction = p.full.friction;
+  out.friction[0].T = llt.matrixL().solve(p.full.friction[0].T);
+  return out;
+}
+
+void set_mu(Tie& p, Transformed& z, double mu) {
+  for (auto* f : {&p.full.friction[0], &z.friction[0]}) f->mu_static = f->mu_kinetic = mu;
+}
+
+TEST(FullMassFriction, StickLimitsAtPlantedTiesAreDecidedOnTheFullMassRows) {
+  Rng rng{test::test_seed(6501)};
+  int cases = 0, verdict_wrong = 0, enumeration_wrong = 0;
+  const std::vector<std::size_t> own;   // each contact its own group
+  for (int trial = 0; trial < 240; ++trial) {
+    const int n = 2 + trial % 3;
+    Tie p = planted_tie(rng, n);
+    Transformed z = cholesky_form(p);
+    const std::vector<int> stick{simulation::stick};
+    for (const bool at_tie : {true, false}) {
+      set_mu(p, z, at_tie ? p.mu : std::nextafter(p.mu, 0.0));
+      ++cases;
+      // held_verdict: the full form against the planting
+      const simulation::HeldVerdict v =
+          simulation::held_verdict(z.G, z.minv, z.a0, p.kappa, z.friction, stick, {}, nullptr, nullptr, nullptr, &p.full);
+      ASSERT_EQ(v.force_sign[0], 1) << trial;
+      EXPECT_EQ(v.beyond_static[0], !at_tie) << "trial " << trial << " n " << n << " mu " << p.mu;
+      // the Cholesky form (the old decisions) against the planting: counted
+      const simulation::HeldVerdict old = simulation::held_verdict(z.G, z.minv, z.a0, p.kappa, z.friction, stick);
+      verdict_wrong += old.beyond_static[0] != !at_tie;
+      // solve_frictional with exact stick limits on the full form: a stick at the tie, none below it
+      std::vector<simulation::Friction> undecided = z.friction;
+      undecided[0].decided = false;
+      const simulation::FrictionalSolution sol =
+          simulation::solve_frictional(z.G, z.minv, z.a0, p.kappa, undecided, {}, false, &own, &p.full);
+      ASSERT_TRUE(sol.solved) << trial;
+      EXPECT_EQ(sol.state[0] == simulation::stick, at_tie) << "trial " << trial << " n " << n << " mu " << p.mu;
+      const simulation::FrictionalSolution before =
+          simulation::solve_frictional(z.G, z.minv, z.a0, p.kappa, undecided, {}, false, &own);
+      enumeration_wrong += !before.solved || (before.state[0] == simulation::stick) != at_tie;
+    }
+  }
+  std::cout << "planted ties: " << cases << " decisions; the Cholesky form's held_verdict wrong in " << verdict_wrong
+            << ", its enumeration's stick wrong in " << enumeration_wrong << "\n";
+}
+
+// The full form with a diagonal mass matrix (exact inverses: powers of two) decides as the
+// diagonal form, open rows included (exact_stick_holds' open rows, x = M^-1 (Q + W^T lambda)).
+TEST(FullMassFriction, ADiagonalFullFormDecidesAsTheDiagonalForm) {
+  Rng rng{test::test_seed(6502)};
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 3 + trial % 2, m = 2;
+    Eigen::MatrixXd G(m, n), Go(1, n), M = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd minv(n), a0(n), Q(n), h(m), ho(1);
+    for (int i = 0; i < n; ++i) {
+      minv(i) = std::ldexp(1.0, rng.below(9) - 4);
+      M(i, i) = 1 / minv(i);
+      Q(i) = rng.uniform(-1, 1);
+      a0(i) = Q(i) * minv(i);   // exact: a power of two
+      Go(0, i) = rng.uniform(-2, 2);
+    }
+    ho(0) = rng.uniform(-1, 1);
+    std::vector<simulation::Friction> friction(m);
+    std::vector<int> state(m);
+    for (int k = 0; k < m; ++k) {
+      for (int i = 0; i < n; ++i) G(k, i) = rng.uniform(-2, 2);
+      G(k, k) += 3;
+      h(k) = rng.uniform(-1, 1);
+      friction[k].on = k == 0;
+      friction[k].T = Eigen::VectorXd::Zero(n);
+      friction[k].T(n - 1) = 3;
+      friction[k].T(0) += rng.uniform(-1, 1);
+      friction[k].mu_static = friction[k].mu_kinetic = rng.uniform(0.1, 1);
+      friction[k].bias = rng.uniform(-0.5, 0.5);
+      state[k] = k == 0 ? simulation::stick : simulation::frictionless;
+    }
+    const simulation::FullMass full{G, M, Q, friction};
+    const simulation::HeldVerdict d = simulation::held_verdict(G, minv, a0, h, friction, state, {}, nullptr, &Go, &ho);
+    const simulation::HeldVerdict f =
+        simulation::held_verdict(G, minv, a0, h, friction, state, {}, nullptr, &Go, &ho, &full);
+    EXPECT_EQ(d.force_sign, f.force_sign) << trial;
+    EXPECT_EQ(d.beyond_static, f.beyond_static) << trial;
+    EXPECT_EQ(d.open_sign, f.open_sign) << trial;
+  }
+}
+
+// held_friction.hpp's restitution_limited on the pin-slot simulator's frictional impacts: a bar on
+// its pin (M = [[m, m e], [m e, M22]] over (s, psi)) striking with its corner, e = 1, the Coulomb
+// impact solved in the coordinates of M's Cholesky factor as the simulator solves it. Where the
+// full restitution creates kinetic energy (Newton's restitution with Coulomb friction on coupled
+// rows), the restitution taken is the largest (to 2^-30) that creates none: the result's energy
+// 1/2 v^T M v (the mass matrix itself) not above the energy before (to the rounding of the factor's
+// coordinates), and the bracket's upper end 2^-30 above it creating energy.
+TEST(RestitutionLimited, AFrictionalImpactThatWouldCreateEnergyIsScaledToTheLargestRestitutionThatCreatesNone) {
+  Rng rng{test::test_seed(6503)};
+  int limited_cases = 0, cases = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const double m = rng.uniform(0.5, 2), e = rng.uniform(-3, 3), Ic = rng.uniform(0.05, 2) * m;
+    const double b = rng.uniform(-3, 3);
+    Eigen::Matrix2d M;
+    M << m, m * e, m * e, Ic + m * (e * e + b * b);
+    // the corner's contact: normal row J and tangent row T (over (s, psi)), a lever of the corner
+    const double angle = rng.uniform(0, 2 * M_PI), rx = rng.uniform(-3, 3), ry = rng.uniform(-3, 3);
+    const double nx = std::cos(angle), ny = std::sin(angle), ux = 0, uy = 1;
+    Eigen::RowVector2d J(nx * ux + ny * uy, nx * -ry + ny * rx);
+    Eigen::Vector2d T(-ny * ux + nx * uy, nx * rx + ny * ry);
+    Eigen::Vector2d v(rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const double vn = J.dot(v);
+    if (!(vn < -1e-3)) continue;   // approaching
+    ++cases;
+    const Eigen::LLT<Eigen::MatrixXd> llt{Eigen::MatrixXd(M)};
+    const Eigen::MatrixXd Gz = llt.matrixL().solve(Eigen::MatrixXd(J.transpose())).transpose();
+    const Eigen::VectorXd vz = llt.matrixU() * v;
+    std::vector<simulation::Friction> friction(1);
+    friction[0].on = true;
+    friction[0].T = llt.matrixL().solve(T);
+    friction[0].mu_static = rng.uniform(0.2, 1.5);
+    friction[0].mu_kinetic = friction[0].mu_static * rng.uniform(0.5, 1);
+    const Eigen::VectorXd restitution = Eigen::VectorXd::Constant(1, vn);   // e = 1: h = e v-
+    auto solve = [&](double scale) {
+      return simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(2), vz, scale * restitution, friction);
+    };
+    auto kinetic = [](const Eigen::VectorXd& x) { return x.squaredNorm(); };
+    bool limited = false;
+    double scale = -1;
+    const simulation::FrictionalSolution sol =
+        simulation::restitution_limited(solve, kinetic, vz.squaredNorm(), limited, &scale);
+    ASSERT_TRUE(sol.solved) << trial;
+    const simulation::FrictionalSolution full = solve(1);
+    const bool creates = full.solved && kinetic(full.x) > vz.squaredNorm();
+    ASSERT_EQ(limited, creates) << trial;
+    const Eigen::Vector2d after = llt.matrixU().solve(sol.x);
+    const double before_energy = 0.5 * v.dot(M * v), after_energy = 0.5 * after.dot(M * after);
+    const double rounding = 64 * 0x1p-52 * before_energy * (1 + M.norm() * M.inverse().norm());
+    EXPECT_LE(after_energy, before_energy + rounding) << trial;
+    EXPECT_GE(J.dot(after), -1e-9 * std::abs(vn)) << trial;   // no longer approaching
+    if (!limited) {
+      EXPECT_EQ(scale, 1.0);
+      continue;
+    }
+    ++limited_cases;
+    EXPECT_GE(scale, 0.0);
+    EXPECT_LT(scale, 1.0);
+    EXPECT_EQ(solve(scale).x, sol.x) << trial;   // the factor reported is the one taken
+    const simulation::FrictionalSolution above = solve(scale + 0x1p-30);
+    EXPECT_TRUE(!above.solved || kinetic(above.x) > vz.squaredNorm()) << trial;   // the largest, to 2^-30
+  }
+  std::cout << "frictional corner impacts: " << cases << ", restitution limited in " << limited_cases << "\n";
+  EXPECT_GE(limited_cases, cases / 20) << "the generated impacts should reach the guard";
+}
+
+}  // namespace
+}  // namespace hipair
