@@ -618,11 +618,13 @@ struct SlicedSpace::Impl {
     const Rational& lever = by;
     const sliced::Critical& c = critical[i];
     Near out;
-    // The range found (separated from the other critical angles) is then narrowed by the pivot's
-    // lever for a far pivot's published chord (by_lever): a point of the free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6
-    // part sizes away swept the part across the plate's hole within 2^-16 of t, so no sample was
-    // steady and the hole's cells ended at every critical angle (9 components for 5; with a
-    // clearance of 10^-9 the range next to a critical angle 10^-10 away moved the peg 10^-4).
+    // The range found (separated from the other critical angles) is then narrowed by `by` (a far
+    // pivot's published chord; sessions 57-64 narrowed every range by the lever: a point of the
+    // free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6 part sizes away
+    // swept the part across the plate's hole within 2^-16 of t, so no sample was steady and the
+    // hole's cells ended at every critical angle (9 components for 5; with a clearance of 10^-9
+    // the range next to a critical angle 10^-10 away moved the peg 10^-4; since session 65 the
+    // search turns about Q itself, turn_free).
     Rational width = Rational(1) / Rational(mpz_class(1) << (10 + 2 * halvings));
     auto separated = [&](const Rational& lo, const Rational& hi) {
       for (std::size_t k = 0; k < critical.size(); ++k) {
