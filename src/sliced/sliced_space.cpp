@@ -333,8 +333,13 @@ struct SlicedSpace::Impl {
   Rational unit = 1;   // the length the crossings' sample nudges are measured in (sliced::length_unit)
   long length_unit_exponent = 0;   // lengths in units of 2^this mm (SlicedBuildOptions::normalise_lengths)
   // The free part's lever about its pivot (pivot_lever): 1, or the power of two by which the
-  // crossings' angle ranges are narrowed for a pivot far from the part (session 57).
+  // crossings' angle ranges are narrowed for a pivot far from the part (session 57; since
+  // session 65 only those of the published chords).
   Rational lever = 1;
+  // The least power of two whose square is at least the lever: a far pivot's published chord
+  // over a range narrowed by it leaves the turn about Q by |Q - P| dt^2 / lever, the part's own
+  // size times dt^2, with half the bits of the range narrowed by the lever (session 65).
+  Rational root_lever = 1;
   // A pivot far from the free part (lever above 1): the crossings turn the part about its own
   // bounding box's centre `reference` Q (model units, part_centre), not about the pivot P
   // (session 58). The configuration (d, theta) about P places the part as (d - (I - R)(Q - P), theta) about Q
@@ -343,10 +348,14 @@ struct SlicedSpace::Impl {
   // near() gives moves the part by at most its own size times that range. About P the same
   // turn swept a peg 10^6 mm away across a hole 10^-9 wider than it, so the hole's cells were
   // not linked (12 components for 5). `near_free`: the free part with its pivot at Q,
-  // `near_bound` its slices' box.
+  // `near_bound` its slices' box, `near_unit` its nudges' unit (sliced::length_unit of the pair
+  // about Q: the part's scale, not the pivot's distance; session 65), `near_motion` the
+  // first-contact query of the part pivoted at Q (turn_free).
   std::optional<Point> reference;
   std::optional<Part> near_free;
-  Rational near_bound;
+  Rational near_bound, near_unit = 1;
+  std::optional<Model> near_model;
+  std::optional<sliced::MotionChecker> near_motion;
   // The scale-free frame of the crossings (a pair drawn at an extreme scale: sliced::
   // scale_free_factor k, the coordinates integers, then divided by the power of two that brings
   // them to an ordinary size, sliced::size_unit: `frame` = k / that unit): the parts times
@@ -409,11 +418,26 @@ struct SlicedSpace::Impl {
     return Point{Rational(q.x + v.x), Rational(q.y + v.y)};
   }
 
-  // The turn about Q at offset q (model units, about Q) over [u_lo, u_hi] is approximated by
-  // the straight motion of the model's chart between its two ends (offsets about P, chart
-  // coordinates u_lo and u_hi): certified free by the exact first-contact query, ends included.
-  // The chord leaves the turn's curve by |Q - P| times the square of the range at most; near()
-  // narrows the range by the lever, so the chord moves the part hardly more than the turn.
+  // The turn about Q at offset q (model units, about Q) over [u_lo, u_hi] (chart about pi when
+  // `flip`), ends included: certified free by the exact first-contact query of the part pivoted
+  // at Q (near_motion: the pure rotation at offset q there), whose numbers are of the part's size.
+  // The crossings of a far pivot look for their steady samples with it over near()'s ranges not
+  // narrowed by the lever (session 65; sessions 57-64 tried every sample with chord_free over
+  // the narrowed range, whose polynomials carried the pivot's |Q - P| in every coefficient and
+  // the narrowed tangents' 330 bits at 10^100 mm).
+  bool turn_free(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
+    sliced::StraightMotion m{q.x, q.y, u_lo, q.x, q.y, u_hi, flip, {}};
+    for (Rational* r : {&m.x0, &m.y0, &m.w0, &m.x1, &m.y1, &m.w1}) r->canonicalize();
+    sliced::MotionResult r = near_motion->first_contact(m);
+    return r.starts_apart && !r.found;
+  }
+
+  // The published witness of a far pivot's crossing: the turn about Q at offset q (model units,
+  // about Q) over [u_lo, u_hi] is approximated by the straight motion of the model's chart
+  // between its two ends (offsets about P, chart coordinates u_lo and u_hi): certified free by
+  // the exact first-contact query, ends included. The chord leaves the turn's curve by |Q - P|
+  // times the square of the range at most; near() narrows the range by the lever, so the chord
+  // moves the part hardly more than the turn (checked once per link found by turn_free).
   bool chord_free(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip) const {
     const Point a = from_reference(q, chart_angle(u_lo, flip)), b = from_reference(q, chart_angle(u_hi, flip));
     sliced::StraightMotion m{a.x, a.y, u_lo, b.x, b.y, u_hi, flip, {}};
@@ -474,9 +498,10 @@ struct SlicedSpace::Impl {
 
   // steady() for a point q of the crossings' frame (the model's q / k): the scaled pair's
   // contact lines are the model's times k, so steady_along on it is the same exact test.
-  // A far pivot (`reference`): q is about Q, and the chord about P is checked (chord_free).
+  // A far pivot (`reference`): q is about Q, and the turn about Q is checked (turn_free; its
+  // link's published chord about P is certified after, chord_free).
   bool steady_in_frame(const Point& q, const Rational& u_lo, const Rational& u_hi, bool flip, bool exact_fallback) const {
-    if (reference) return chord_free(frame ? Point{Rational(q.x / *frame), Rational(q.y / *frame)} : q, u_lo, u_hi, flip);
+    if (reference) return turn_free(frame ? Point{Rational(q.x / *frame), Rational(q.y / *frame)} : q, u_lo, u_hi, flip);
     if (!frame) return steady(q, u_lo, u_hi, flip, exact_fallback);
     if (frame_pair && sliced::steady_along(*frame_pair, q, u_lo, u_hi, flip)) return true;
     if (frame_pair && !exact_fallback) return false;
@@ -582,20 +607,24 @@ struct SlicedSpace::Impl {
   }
 
   // A rational angle just after critical angle i with the half-angle range to it (u range and
-  // chart flip), narrowed by `halvings`.
+  // chart flip), narrowed by `halvings`, and by `by` (1, or a far pivot's chord: the lever or its
+  // square root).
   struct Near {
     SlicedAngle left, right;
     Rational u_lo, u_hi;
     bool flip = false;
   };
-  Near near(std::size_t i, int halvings) const {
+  Near near(std::size_t i, int halvings, const Rational& by = Rational(1)) const {
+    const Rational& lever = by;
     const sliced::Critical& c = critical[i];
     Near out;
-    // The range found (separated from the other critical angles) is then narrowed by the pivot's
-    // lever: a point of the free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6
-    // part sizes away swept the part across the plate's hole within 2^-16 of t, so no sample was
-    // steady and the hole's cells ended at every critical angle (9 components for 5; with a
-    // clearance of 10^-9 the range next to a critical angle 10^-10 away moved the peg 10^-4).
+    // The range found (separated from the other critical angles) is then narrowed by `by` (a far
+    // pivot's published chord; sessions 57-64 narrowed every range by the lever: a point of the
+    // free part moves |q - pivot| dtheta, and dtheta <= 2 dt; a pivot 10^6 part sizes away
+    // swept the part across the plate's hole within 2^-16 of t, so no sample was steady and the
+    // hole's cells ended at every critical angle (9 components for 5; with a clearance of 10^-9
+    // the range next to a critical angle 10^-10 away moved the peg 10^-4; since session 65 the
+    // search turns about Q itself, turn_free).
     Rational width = Rational(1) / Rational(mpz_class(1) << (10 + 2 * halvings));
     auto separated = [&](const Rational& lo, const Rational& hi) {
       for (std::size_t k = 0; k < critical.size(); ++k) {
@@ -809,8 +838,9 @@ struct SlicedSpace::Impl {
         // link's witnesses are the model's configurations q / frame. Ordinary pairs: the
         // model's slices (no frame).
         auto ls = frame_slice(nr.left), rs = frame_slice(nr.right);
-        const Rational& box = frame ? frame_bound : bound;
-        const Rational& nudge = frame ? frame_unit : unit;
+        // (a far pivot without a frame: the slices about Q, near_bound and near_unit)
+        const Rational& box = frame ? frame_bound : reference ? near_bound : bound;
+        const Rational& nudge = frame ? frame_unit : reference ? near_unit : unit;
         // each free cell's sample, and the same nudged off the contact lines through it
         std::vector<Point> samples;
         for (const auto* space : {ls.get(), rs.get()})
@@ -824,10 +854,10 @@ struct SlicedSpace::Impl {
         // own unit in four directions (only certified ones are used: free on the left, steady
         // across, free on the right). Ordinary pairs and frames (an ordinary pair: session 52)
         // keep their samples.
-        if (!frame && unit != 1) {
+        if (!frame && nudge != 1) {
           const std::size_t base_count = samples.size();
           for (std::size_t n = 0; n < base_count; n += 3)
-            for (const Rational& e : {Rational(unit / 256), Rational(unit / 64), Rational(unit / 16), Rational(unit / 4), unit})
+            for (const Rational& e : {Rational(nudge / 256), Rational(nudge / 64), Rational(nudge / 16), Rational(nudge / 4), nudge})
               for (const auto& [dx, dy] : {std::pair<int, int>{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
                 samples.push_back(Point{Rational(samples[n].x + dx * e), Rational(samples[n].y + dy * e * Rational(13, 10))});
         }
@@ -841,13 +871,28 @@ struct SlicedSpace::Impl {
           if (lc == no_index) lc = outer_cell_in(*ls, nudge);
           if (rc == no_index) rc = outer_cell_in(*rs, nudge);
           std::size_t a = match(crossing.left_interval, *ls, lc), b = match(crossing.right_interval, *rs, rc);
-          left_done.insert(a);
-          right_done.insert(b);
           Point w = q;   // the model's configuration
           if (frame) w = Point{Rational(q.x / *frame), Rational(q.y / *frame)};
+          // about Q (a far pivot): the published witnesses are the ends of the chord about P of the
+          // turn about Q over the range narrowed by the lever (inside the turn's certified range:
+          // the same cells), certified free; else (a clearance too small for the chord) the
+          // narrower ranges of the next rounds, and without one the sample is not used
+          Near witness_range = nr;
+          if (reference && !links.count(std::make_pair(a, b))) {
+            bool found = false;
+            for (const Rational* by : {&root_lever, &lever})
+              for (int more = 0; more < 2 && !found; ++more) {
+                witness_range = near(i, round + more, *by);
+                found = chord_free(w, witness_range.u_lo, witness_range.u_hi, witness_range.flip);
+              }
+            if (!found) continue;
+          }
+          left_done.insert(a);
+          right_done.insert(b);
           // about Q (a far pivot): the chord's two ends, the model's offsets about P
-          const Point wl = reference ? from_reference(w, nr.left) : w, wr = reference ? from_reference(w, nr.right) : w;
-          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, nr.left}, SlicedConfiguration{wr.x, wr.y, nr.right}, nr.flip};
+          const SlicedAngle &al = witness_range.left, &ar = witness_range.right;
+          const Point wl = reference ? from_reference(w, al) : w, wr = reference ? from_reference(w, ar) : w;
+          SlicedConnection link{a, b, SlicedConfiguration{wl.x, wl.y, al}, SlicedConfiguration{wr.x, wr.y, ar}, nr.flip};
           for (Rational* r : {&link.left_witness.x, &link.left_witness.y, &link.right_witness.x, &link.right_witness.y}) r->canonicalize();
           link.left_witness.angle.t.canonicalize();   // (dyadic refinement leaves fractions unreduced)
           link.right_witness.angle.t.canonicalize();
@@ -971,11 +1016,16 @@ SlicedSpace SlicedSpace::build(const Model& model, std::string_view fixed_part, 
   impl->unit = sliced::length_unit(a, b);
   impl->bound = reach(a, b.motion.pivot, impl->unit) + reach(b, b.motion.pivot, impl->unit) + 2 * impl->unit;
   impl->lever = pivot_lever(b, impl->unit);
+  impl->root_lever = Rational(mpz_class(1) << ((mpz_sizeinbase(impl->lever.get_num_mpz_t(), 2) - 1 + 1) / 2));
   if (impl->lever != 1) {
     impl->reference = part_centre(b);
     impl->near_free = b;
     impl->near_free->motion.pivot = *impl->reference;
-    impl->near_bound = reach(a, *impl->reference, impl->unit) + reach(b, *impl->reference, impl->unit) + 2 * impl->unit;
+    impl->near_unit = sliced::length_unit(a, *impl->near_free);
+    impl->near_bound = reach(a, *impl->reference, impl->near_unit) + reach(b, *impl->reference, impl->near_unit) + 2 * impl->near_unit;
+    impl->near_model = impl->model;
+    impl->near_model->parts[*free].motion.pivot = *impl->reference;
+    impl->near_motion.emplace(*impl->near_model, *fixed, *free);
   }
   impl->motion.emplace(impl->model, *fixed, *free);
   if (options.cell_structure) impl->build_structure();
