@@ -2008,8 +2008,9 @@ void PlanarSimulation::step(double t_limit) {
     if (!event) s.t = span == limit - s.t ? limit : s.t + span;
     if (!std::isfinite(energy())) {   // (session 65, sim65) a stop, not "energy null" and exit 0
       std::ostringstream parts;
-      parts << "part '" << s.model.parts[s.part].name << "' (" << s.model.parts[s.part].pointer << "/dynamics, moving at "
-            << std::hypot(s.k.vx, s.k.vy) * s.time_scale << " mm/" << s.time_unit << " and "
+      const Part& p = s.model.parts[s.part];
+      parts << "part '" << p.name << "' (" << p.pointer << "/dynamics, " << p.pointer << "/initial; at (" << s.k.x << ", "
+            << s.k.y << ") mm, moving at " << std::hypot(s.k.vx, s.k.vy) * s.time_scale << " mm/" << s.time_unit << " and "
             << s.k.omega * s.time_scale << " rad/" << s.time_unit << ")";
       throw NumericError(simulation::energy_overflow_message(s.where(s.t), parts.str()));
     }
@@ -3173,7 +3174,8 @@ void PlanarSystemSimulation::step(double t_limit) {
       const char* separator = "";
       for (std::size_t i = 0; i < s.bodies.size(); ++i) {
         const Part& p = s.model.parts[s.bodies[i].part];
-        parts << separator << "part '" << p.name << "' (" << p.pointer << "/dynamics, moving at "
+        parts << separator << "part '" << p.name << "' (" << p.pointer << "/dynamics, " << p.pointer << "/initial; at ("
+              << s.k[i].x << ", " << s.k[i].y << ") mm, moving at "
               << std::hypot(s.k[i].vx, s.k[i].vy) * s.time_scale << " mm/" << s.time_unit << " and "
               << s.k[i].omega * s.time_scale << " rad/" << s.time_unit << ")";
         separator = ", ";

@@ -356,8 +356,10 @@ struct Simulation::Impl {
     where << "simulation: at t = " << published_time(t) << " " << time_unit;
     const char* separator = "";
     for (std::size_t i : free_dofs) {
-      parts << separator << "part '" << model.parts[dofs[i].part].name << "' (" << model.parts[dofs[i].part].pointer
-            << "/dynamics, moving at " << v[i] * time_scale << (dofs[i].rotation ? " rad/" : " mm/") << time_unit << ")";
+      const Part& p = model.parts[dofs[i].part];
+      parts << separator << "part '" << p.name << "' (" << p.pointer << "/dynamics, " << p.pointer << "/initial; at "
+            << q[i] << (dofs[i].rotation ? " rad" : " mm") << ", moving at " << v[i] * time_scale
+            << (dofs[i].rotation ? " rad/" : " mm/") << time_unit << ")";
       separator = ", ";
     }
     throw NumericError(simulation::energy_overflow_message(where.str(), parts.str()) +

@@ -873,7 +873,7 @@ grep -q "x 464.129906071 mm, y 44.5604680031 mm" "$skim/along.out" || fail "skim
 # its energy beyond the doubles' range (gravity 1.79e308 mm/s^2 along the floor: ended with exit 0
 # and "energy": null after 9 s of chords): a stop naming the part, the quantity and the load
 refused energy-overflow "the run's energy is not finite" simulate "$skim/overflow.json" --t-end 0.02 --max-steps 2000 --no-pictures
-grep -qF "part 'ladder' (/parts/1/dynamics, moving at " "$work/refused-energy-overflow.err" \
+grep -qF "part 'ladder' (/parts/1/dynamics, /parts/1/initial; at (" "$work/refused-energy-overflow.err" \
   && grep -qF "the largest velocity or load given is /simulation/gravity/0" "$work/refused-energy-overflow.err" \
   || fail "energy-overflow: the message names no part or load: $(cat "$work/refused-energy-overflow.err")"
 # a planar part to --t-end 1e150 (session 34: the first integration step was the whole span,
