@@ -49,6 +49,7 @@
 #include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/motion_datum.hpp"
 #include "simulation/planar_bounds.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
@@ -87,39 +88,7 @@ Rational finite_exact(double value, const std::string& where, const char* what) 
   return Rational(value);
 }
 
-// The velocity or load given whose magnitude is the largest (velocities, drivers' speeds, gravity,
-// forces, torques, as the file gives them), named at its pointer: what a "not finite" stop of a
-// planar run adds to its message (session 61, hunt61: a block thrown at 1.8e308 mm/s, gravity
-// or a pusher's speed near the doubles' end stopped with exit 3 and no pointer).
-std::string largest_motion_datum(const Model& model) {
-  if (!model.simulation) return "";
-  const SimulationSpec& spec = *model.simulation;
-  double largest = -1;
-  std::string at;
-  auto consider = [&](const Rational& value, const std::string& pointer) {
-    const double v = std::abs(to_d(value));
-    if (v > largest) largest = v, at = pointer;
-  };
-  for (const auto& v : spec.velocities) consider(v.value, v.pointer);
-  for (const auto& d : spec.drivers) {
-    consider(d.speed, d.pointer);
-    for (const auto& point : d.profile) consider(point.second, d.pointer + "/profile");
-  }
-  consider(spec.gravity.x, spec.pointer + "/gravity/0");
-  consider(spec.gravity.y, spec.pointer + "/gravity/1");
-  for (const Part& part : model.parts) {
-    if (!part.dynamics) continue;
-    if (part.dynamics->force) {
-      consider(part.dynamics->force->x, part.pointer + "/dynamics/force/0");
-      consider(part.dynamics->force->y, part.pointer + "/dynamics/force/1");
-    }
-    if (part.dynamics->torque) consider(*part.dynamics->torque, part.pointer + "/dynamics/torque");
-  }
-  if (at.empty()) return "";
-  std::ostringstream out;
-  out << "; the largest velocity or load given is " << at << " (" << largest << ")";
-  return out.str();
-}
+using simulation::largest_motion_datum;
 
 // A "not finite" stop of a step, or one beyond the doubles' resolution, with the largest velocity or load named
 template <class Step>
@@ -674,6 +643,12 @@ double next_span(State& s, double t_limit, double& limit) {
 
 }  // namespace
 
+// One free-flight step's collision tests (certified advances and exact chords) are at most this
+// many (session 65, sim65); the most an ordinary step takes (every example model and every
+// simulation test, measured: docs/simulation.md, "Session 65 (sim65)") is the second figure.
+constexpr std::size_t max_step_collision_tests = 100000;
+constexpr std::size_t ordinary_step_collision_tests = 2865;
+
 struct PlanarSimulation::Impl {
   Model model;
   SimulationOptions options;
@@ -938,7 +913,25 @@ bool PlanarSimulation::Impl::advance(double span) {
   Kinematic node = start;
   const double slack = 64 * std::numeric_limits<double>::epsilon() * (std::abs(k.x) + std::abs(k.y) + reach + 1);
   double shorten = 1;   // < 1 after a chord met a contact the path leaves (see below)
+  bool straight_chords = true;   // false once a straight chord met a crossing (see below)
+  std::size_t tests = 0;         // this step's certified advances and exact chords
   while (sa < span) {
+    // One step's collision tests are bounded (session 65, sim65): a part skimming a surface
+    // took 23 819 chords in one step (hunt64's ladder pulled along the floor at 1.79e308 mm/s^2;
+    // see the straight chords below). The bound is far above any ordinary step's count
+    // (docs/simulation.md, "Session 65 (sim65)"), and independent of --max-steps.
+    if (++tests > max_step_collision_tests) {
+      std::ostringstream out;
+      out << where(t + sa) << ": one step of the run took more than " << max_step_collision_tests
+          << " collision tests (certified advances and exact chords; ordinary steps take at most "
+          << ordinary_step_collision_tests << ") between t = " << t / time_scale << " and "
+          << (t + sa) / time_scale << " " << time_unit << " of its step to " << (t + span) / time_scale << " "
+          << time_unit << ", moving at " << std::hypot(node.vx, node.vy) * time_scale << " mm/" << time_unit
+          << " (angular " << node.omega * time_scale << " rad/" << time_unit << ") within the chord deviation "
+          << delta << " mm of the fixed parts" << largest_motion_datum(model)
+          << "; a larger --accuracy (chord deviation) or a shorter --max-step lets it finish";
+      throw NumericError(out.str());
+    }
     double remaining = span - sa;
     // The horizon of the bounds: short enough that the speed at most about doubles over it (a
     // bound over a whole long step would be dominated by the speed gained at its end), at
@@ -985,6 +978,50 @@ bool PlanarSimulation::Impl::advance(double span) {
     double tau = std::min(horizon, tau_cap);
     if (bend > 0) tau = std::min(tau, std::sqrt(8 * std::max(delta - slack, 0.5 * delta) / bend));
     tau *= shorten;
+    bool straight = false;   // tau is a straight chord's, longer than the time-matched one
+    // A straight chord (session 65, sim65): a part that does not turn (omega = alpha = 0, so
+    // w is constant) moves on a straight line when its acceleration lies along its motion. The
+    // chord bound above takes the whole acceleration, so a part skimming a surface under a load
+    // along it took one chord per sqrt(8 delta / |a|) of time whatever the load: sqrt(L / delta)/2
+    // chords for L mm (23 819 for the ladder pulled 200 mm along the floor, at 9810 mm/s^2 as at
+    // 1.79e308 mm/s^2). The set swept by the path lies within delta of the chord's segment when
+    // (a) its progress along the chord's direction e never reverses (the velocity moves on a
+    // segment between its values at the ends, so e.v at both ends >= 0 suffices) and (b) its
+    // distance from the chord's line, d(s) = n.(X(s) - X(s_a)), zero at both ends, has
+    // |d''| = |n.X''| <= max over the ends of |n.(a - k v)|: |d| <= tau^2/8 max|n.X''|. The
+    // direction's rounding is covered by a term of |X''| times the ends' coordinates' ulps over
+    // the chord's length. Such a chord certifies freedom only: a crossing on it sends the step
+    // back to the time-matched chords above (its contact time and state exactly as before).
+    if (straight_chords && shorten == 1 && node.omega == 0 && alpha == 0 && tau < horizon) {
+      const double limit = std::max(delta - slack, 0.5 * delta);
+      double try_tau = horizon;
+      for (int round = 0; round < 2; ++round) {
+        const double sb_try = try_tau >= remaining ? span : sa + try_tau;
+        const Kinematic e = flight(start, sb_try);
+        const double dx = e.x - node.x, dy = e.y - node.y, length = std::hypot(dx, dy);
+        if (!(length > 0) || !std::isfinite(length)) break;
+        const double ux = dx / length, uy = dy / length;
+        if (ux * node.vx + uy * node.vy < 0 || ux * e.vx + uy * e.vy < 0) break;   // (a)
+        double normal = 0, whole = 0;
+        for (const Kinematic* s : std::array<const Kinematic*, 2>{&node, &e}) {
+          const double ax = accel[0] - damping_rate * s->vx, ay = accel[1] - damping_rate * s->vy;
+          normal = std::max(normal, std::abs(-uy * ax + ux * ay));
+          whole = std::max(whole, std::hypot(ax, ay));
+        }
+        const double ulps = 16 * std::numeric_limits<double>::epsilon() *
+                            (std::abs(node.x) + std::abs(node.y) + std::abs(e.x) + std::abs(e.y) + length);
+        normal += whole * ulps / length;
+        const double span_try = sb_try - sa;
+        if (!std::isfinite(normal)) break;
+        if (span_try * span_try / 8 * normal <= limit) {   // (b)
+          if (span_try > tau) tau = span_try, straight = true;
+          break;
+        }
+        if (!(normal > 0)) break;
+        try_tau = std::sqrt(8 * limit / normal) * (1 - 1e-9);   // the estimate's chord, checked again
+        if (!(try_tau > tau)) break;
+      }
+    }
     // A chord the doubles cannot take (session 63, hunt63): a part spun by an impact at a speed
     // near the doubles' end (a ladder or a peg thrown at 1e308 mm/s) bends its path by more than
     // the doubles hold (bend = inf, so tau = 0); the certified advances then shrank geometrically
@@ -1028,6 +1065,10 @@ bool PlanarSimulation::Impl::advance(double span) {
       node = next;
       node_q = next_q;
       shorten = 1;
+      continue;
+    }
+    if (straight) {   // a straight chord met a contact: the time-matched chords find it
+      straight_chords = false;
       continue;
     }
     std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
@@ -1915,8 +1956,16 @@ void PlanarSimulation::step(double t_limit) {
   bool event = false;
   naming_the_data(s.model, [&] {
     event = !s.resting && (s.held.empty() && !s.integrated ? s.advance(span) : s.held_advance(span));
+    if (!event) s.t = span == limit - s.t ? limit : s.t + span;
+    if (!std::isfinite(energy())) {   // (session 65, sim65) a stop, not "energy null" and exit 0
+      std::ostringstream parts;
+      const Part& p = s.model.parts[s.part];
+      parts << "part '" << p.name << "' (" << p.pointer << "/dynamics, " << p.pointer << "/initial; at (" << s.k.x << ", "
+            << s.k.y << ") mm, moving at " << std::hypot(s.k.vx, s.k.vy) * s.time_scale << " mm/" << s.time_unit << " and "
+            << s.k.omega * s.time_scale << " rad/" << s.time_unit << ")";
+      throw NumericError(simulation::energy_overflow_message(s.where(s.t), parts.str()));
+    }
   });
-  if (!event) s.t = span == limit - s.t ? limit : s.t + span;
   s.publish();
 }
 
@@ -3069,7 +3118,22 @@ void PlanarSystemSimulation::step(double t_limit) {
   if (!(span > 0)) return;
   double before = s.t;
   bool event = false;
-  naming_the_data(s.model, [&] { event = s.advance(span); });
+  naming_the_data(s.model, [&] {
+    event = s.advance(span);
+    if (!std::isfinite(energy())) {   // (session 65, sim65) a stop, not "energy null" and exit 0
+      std::ostringstream parts;
+      const char* separator = "";
+      for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+        const Part& p = s.model.parts[s.bodies[i].part];
+        parts << separator << "part '" << p.name << "' (" << p.pointer << "/dynamics, " << p.pointer << "/initial; at ("
+              << s.k[i].x << ", " << s.k[i].y << ") mm, moving at "
+              << std::hypot(s.k[i].vx, s.k[i].vy) * s.time_scale << " mm/" << s.time_unit << " and "
+              << s.k[i].omega * s.time_scale << " rad/" << s.time_unit << ")";
+        separator = ", ";
+      }
+      throw NumericError(simulation::energy_overflow_message(s.where(s.t), parts.str()));
+    }
+  });
   // the last step of a run ends at its limit exactly (the integrator's sum may differ by an ulp)
   if (!event && std::abs(s.t - limit) <= 1e-12 * std::max(std::abs(limit), 1e-300) && before + span >= limit) s.t = limit;
   s.publish();

@@ -30,6 +30,7 @@
 #include "simulation/friction_names.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/motion_datum.hpp"
 #include "simulation/normal_side.hpp"
 #include "simulation/nudge_check.hpp"
 #include "simulation/ordinate_filter.hpp"
@@ -344,6 +345,25 @@ struct Simulation::Impl {
       E += 0.5 * k.k * (L - k.rest) * (L - k.rest);
     }
     return E / force_scale;
+  }
+
+  // A step that left the run's energy beyond the doubles' range stops the run (session 65,
+  // sim65: it ended with exit 0 and `"energy": null`), naming the moving parts and the largest
+  // velocity or load given.
+  void check_energy() const {
+    if (std::isfinite(energy())) return;
+    std::ostringstream where, parts;
+    where << "simulation: at t = " << published_time(t) << " " << time_unit;
+    const char* separator = "";
+    for (std::size_t i : free_dofs) {
+      const Part& p = model.parts[dofs[i].part];
+      parts << separator << "part '" << p.name << "' (" << p.pointer << "/dynamics, " << p.pointer << "/initial; at "
+            << q[i] << (dofs[i].rotation ? " rad" : " mm") << ", moving at " << v[i] * time_scale
+            << (dofs[i].rotation ? " rad/" : " mm/") << time_unit << ")";
+      separator = ", ";
+    }
+    throw NumericError(simulation::energy_overflow_message(where.str(), parts.str()) +
+                       simulation::largest_motion_datum(model));
   }
 
   // the time a state at internal time `time` is published at (the model's time unit)
@@ -3239,6 +3259,7 @@ void Simulation::step() {
   impl_->wrap_turns();
   impl_->step_and_free(std::numeric_limits<double>::infinity());
   impl_->publish();
+  impl_->check_energy();
 }
 
 void Simulation::run_until(double t_end, const std::function<void(double)>& progress) {
@@ -3249,6 +3270,7 @@ void Simulation::run_until(double t_end, const std::function<void(double)>& prog
     if (!(impl_->t < internal)) break;
     impl_->step_and_free(internal);
     impl_->publish();
+    impl_->check_energy();
     // (after whole turns were taken out, the internal limit is t_end - t_offset rounded down:
     // a run that reached it is at t_end, and stops there — a wrap after it would leave the
     // rounding's remainder as a limit past t = 0)

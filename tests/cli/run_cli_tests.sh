@@ -850,6 +850,32 @@ grep -qE "at t = ([0-9]+\.[0-9]+) s of --t-end 1e\+300 s, and nothing was writte
   || fail "max-steps-used-up: the message does not say what lets the run finish: $(cat "$work/refused-max-steps-used-up.err")"
 refused max-steps-planar "the run used up its step budget (--max-steps 5)" \
   simulate "$source/examples/models/peg-drop.json" --t-end 1 --max-steps 5 --no-pictures
+# a part skimming a floor (session 65, sim65): the ladder 0.1 um above the floor, pulled along it
+# (gravity [9810, 0]), took one chord per sqrt(8 delta / |a|) of time, 23 819 exact chords in its
+# one step to 0.3 s (9 s CPU) at any load along the floor; its path is straight (it does not
+# turn, its acceleration lies along its motion), so a chord within the deviation of the path
+# needs only the acceleration's component normal to it: 12 chords
+skim="$work/skim"
+mkdir -p "$skim"
+python3 - "$source/examples/models/ladder.json" "$skim" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+m['simulation']['gravity'] = [9810, 0]
+json.dump(m, open(sys.argv[2] + '/along.json', 'w'))
+m['simulation']['gravity'] = [1.7976931348623157e308, -9810]
+json.dump(m, open(sys.argv[2] + '/overflow.json', 'w'))
+PY
+"$hipair" simulate "$skim/along.json" --t-end 0.3 --no-pictures --max-steps 2000 >"$skim/along.out" 2>&1 \
+  || fail "skim: the ladder pulled along the floor stops: $(tail -c 300 "$skim/along.out")"
+chords=$(sed -n 's/.* \([0-9]*\) exact chord tests.*/\1/p' "$skim/along.out")
+{ [ -n "$chords" ] && [ "$chords" -le 100 ]; } || fail "skim: the ladder pulled along the floor took ${chords:-no} chords (at most 100; 23819 before session 65)"
+grep -q "x 464.129906071 mm, y 44.5604680031 mm" "$skim/along.out" || fail "skim: not at x = x0 + 9810 t^2/2: $(grep ladder: "$skim/along.out")"
+# its energy beyond the doubles' range (gravity 1.79e308 mm/s^2 along the floor: ended with exit 0
+# and "energy": null after 9 s of chords): a stop naming the part, the quantity and the load
+refused energy-overflow "the run's energy is not finite" simulate "$skim/overflow.json" --t-end 0.02 --max-steps 2000 --no-pictures
+grep -qF "part 'ladder' (/parts/1/dynamics, /parts/1/initial; at (" "$work/refused-energy-overflow.err" \
+  && grep -qF "the largest velocity or load given is /simulation/gravity/0" "$work/refused-energy-overflow.err" \
+  || fail "energy-overflow: the message names no part or load: $(cat "$work/refused-energy-overflow.err")"
 # a planar part to --t-end 1e150 (session 34: the first integration step was the whole span,
 # "the simulated configuration of a planar part is not finite"; pusher-blocks died of SIGFPE)
 # (session 38: the block's spring now refuses it before any step, its own period against the budget)
