@@ -20,6 +20,7 @@
 #pragma once
 
 #include "simulation/exact_elimination.hpp"
+#include "simulation/exact_lp.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 
@@ -434,26 +435,47 @@ inline bool coulomb_satisfied(const FrictionalSolution& s, const std::vector<Fri
 /// or a friction reaches mu_s N; the latter is a slip candidate of the enumeration (at zero
 /// sliding acceleration), the former one of these sets. Regular rows (one solution) are decided
 /// by the test of all held contacts alone, as before.
-/// `full` (given): decided on the problem's full form (FullMass; held_verdict's).
+/// Session 65: every witness (the candidate's member, or a vertex) is also checked exactly for the
+/// contacts the candidate lets separate (their gaps not closing), for sliding contacts whose
+/// direction is not given (keeping it), and for negative forces on regular rows; a sticking
+/// contact the candidate lets separate is not verified here. False is not a verdict on the
+/// assignment: solve_frictional then decides it exactly (exact_assignment).
+/// `full` (given): decided on the problem's full form (FullMass; held_verdict's, frictional_rows').
 inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv, const Eigen::VectorXd& a0,
                               const Eigen::VectorXd& h, const std::vector<Friction>& friction_given,
                               const FrictionalSolution& s, const std::vector<std::size_t>& group,
-                              bool dependent_only = false, const FullMass* full = nullptr) {
+                              const FullMass* full = nullptr) {
   const Eigen::MatrixXd& G = full ? full->G : G_given;
   const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const auto m = static_cast<std::size_t>(G.rows());
   bool any = false;
   for (std::size_t k = 0; k < m; ++k) any = any || (friction[k].on && s.state[k] == stick);
   if (!any) return true;
-  std::vector<std::size_t> held;
+  std::vector<std::size_t> held, apart;   // apart: the contacts the candidate lets separate
   for (std::size_t k = 0; k < m; ++k) {
     const auto r = static_cast<Eigen::Index>(k);
-    if (s.lambda(r) <= 0 && s.w(r) > s.tolerance) continue;
-    held.push_back(k);
+    if (s.lambda(r) <= 0 && s.w(r) > s.tolerance) apart.push_back(k);
+    else held.push_back(k);
   }
-  // the rows `set` (their groups' first members by position in set), the rows `open` watched
-  auto verdict = [&](const std::vector<std::size_t>& set, const std::vector<std::size_t>& open,
-                     bool& dependent) {
+  // a sticking contact the candidate lets separate must carry no friction: not verified here
+  // (session 65: exact_assignment decides such an assignment)
+  for (std::size_t k : apart)
+    if (friction[k].on && s.state[k] == stick) return false;
+  // the conditions of a witness at held rows `set`, the rows `dropped` (held contacts taken
+  // without force) watched as open too: every force not negative, no sticking friction beyond
+  // mu_s N, no open gap closing (the separated contacts' and the dropped ones'), and (session 65)
+  // a sliding contact whose direction is not given keeping it — all exact on the same rows
+  std::vector<Eigen::VectorXd> slip_rows;
+  std::vector<double> slip_terms;
+  for (std::size_t k = 0; k < m; ++k) {
+    const Friction& c = friction[k];
+    const int st = s.state[k];
+    if (c.on && !c.decided && (st == slip_positive || st == slip_negative)) {
+      slip_rows.push_back(st * c.T);
+      slip_terms.push_back(st * c.bias);
+    }
+  }
+  auto witness = [&](const std::vector<std::size_t>& set, const std::vector<std::size_t>& dropped, HeldVerdict& v) {
     const auto n = static_cast<Eigen::Index>(set.size());
     Eigen::MatrixXd Gh(n, G.cols());
     Eigen::VectorXd hh(n);
@@ -475,39 +497,56 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
           }
       gh.push_back(first);
     }
-    const auto o = static_cast<Eigen::Index>(open.size());
+    const auto o = static_cast<Eigen::Index>(apart.size() + dropped.size() + slip_rows.size());
     Eigen::MatrixXd Go(o, G.cols());
     Eigen::VectorXd ho(o);
-    for (std::size_t i = 0; i < open.size(); ++i) {
-      Go.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(open[i]));
-      ho(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(open[i]));
+    Eigen::Index i = 0;
+    for (const std::vector<std::size_t>* list : {static_cast<const std::vector<std::size_t>*>(&apart), &dropped})
+      for (std::size_t k : *list) {
+        Go.row(i) = G.row(static_cast<Eigen::Index>(k));
+        ho(i++) = h(static_cast<Eigen::Index>(k));
+      }
+    for (std::size_t j = 0; j < slip_rows.size(); ++j) {
+      Go.row(i) = slip_rows[j].transpose();
+      ho(i++) = slip_terms[j];
     }
     std::optional<FullMass> sub;   // the rows `set` of the full form
     if (full) sub = FullMass{Gh, full->M, full->Q, fh};
-    const HeldVerdict v = held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, open.empty() ? nullptr : &Go,
-                                       open.empty() ? nullptr : &ho, sub ? &*sub : nullptr);
-    if (!open.empty() || dependent) return v;
-    // the rows' dependence, exactly (asked only where this test of all held contacts fails)
-    bool beyond = std::any_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
-    bool pulls = std::any_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; });
-    if (beyond || pulls) {
-      std::vector<std::size_t> sticking;
-      const HeldForceRows rows = frictional_rows(Gh, minv, a0, hh, fh, sh, sticking, gh, sub ? &*sub : nullptr);
-      auto [A, b] = held_force_detail::exact_delassus(rows, held_force_detail::all_rows(rows));
-      dependent = row_echelon(A, A.size()).size() < A.size();
-    }
-    return v;
+    v = held_verdict(Gh, minv, a0, hh, fh, sh, gh, nullptr, o > 0 ? &Go : nullptr, o > 0 ? &ho : nullptr,
+                     sub ? &*sub : nullptr);
+    return std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }) &&
+           std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; }) &&
+           std::none_of(v.open_sign.begin(), v.open_sign.end(), [](int sign) { return sign < 0; });
   };
-  bool dependent = false;
+  HeldVerdict v;
+  if (witness(held, {}, v)) return true;
+  // the rows' dependence, exactly (asked only where the test of all held contacts fails): regular
+  // rows have one solution, which failed
   {
-    const HeldVerdict v = verdict(held, {}, dependent);
-    const bool within = std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; });
-    // regular rows: their one solution decides the limits (a negative force there is the LCP's
-    // lift-off, as before); dependent rows: the chosen member only where it is consistent
-    if (!dependent) return within && !dependent_only;
-    if (within && !dependent_only &&
-        std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }))
-      return true;
+    std::vector<Friction> fh;
+    std::vector<int> sh;
+    std::vector<std::size_t> gh, sticking;
+    Eigen::MatrixXd Gh(static_cast<Eigen::Index>(held.size()), G.cols());
+    Eigen::VectorXd hh(static_cast<Eigen::Index>(held.size()));
+    for (std::size_t i = 0; i < held.size(); ++i) {
+      Gh.row(static_cast<Eigen::Index>(i)) = G.row(static_cast<Eigen::Index>(held[i]));
+      hh(static_cast<Eigen::Index>(i)) = h(static_cast<Eigen::Index>(held[i]));
+      fh.push_back(friction[held[i]]);
+      sh.push_back(s.state[held[i]]);
+      std::size_t first = i;
+      if (!group.empty())
+        for (std::size_t j = 0; j < i; ++j)
+          if (group[held[j]] == group[held[i]]) {
+            first = j;
+            break;
+          }
+      gh.push_back(first);
+    }
+    std::optional<FullMass> sub;   // the held rows of the full form
+    if (full) sub = FullMass{Gh, full->M, full->Q, fh};
+    const HeldForceRows rows = frictional_rows(Gh, minv, a0, hh, fh, sh, sticking, gh, sub ? &*sub : nullptr);
+    auto [A, b] = held_force_detail::exact_delassus(rows, held_force_detail::all_rows(rows));
+    if (row_echelon(A, A.size()).size() == A.size()) return false;
   }
   std::vector<std::size_t> free;   // held contacts without a sticking tangent row
   for (std::size_t k : held)
@@ -519,20 +558,182 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
     return __builtin_popcountll(x) < __builtin_popcountll(y);
   });
   for (std::size_t code : codes) {
-    std::vector<std::size_t> kept, open;
+    std::vector<std::size_t> kept, dropped;
     for (std::size_t k : held) {
       const auto at = std::find(free.begin(), free.end(), k);
-      const bool dropped = at != free.end() && ((code >> static_cast<std::size_t>(at - free.begin())) & 1);
-      (dropped ? open : kept).push_back(k);
+      const bool drop = at != free.end() && ((code >> static_cast<std::size_t>(at - free.begin())) & 1);
+      (drop ? dropped : kept).push_back(k);
     }
-    const HeldVerdict v = verdict(kept, open, dependent);
-    const bool consistent =
-        std::none_of(v.force_sign.begin(), v.force_sign.end(), [](int sign) { return sign < 0; }) &&
-        std::none_of(v.beyond_static.begin(), v.beyond_static.end(), [](bool b) { return b; }) &&
-        std::none_of(v.open_sign.begin(), v.open_sign.end(), [](int sign) { return sign < 0; });
-    if (consistent) return true;
+    if (witness(kept, dropped, v)) return true;
   }
   return false;
+}
+
+/// One stick/slip assignment's consistency decided exactly (session 65, stick65): whether SOME
+/// force of the contact problem at these states satisfies its conditions, on the rows as the
+/// doubles give them (every double the exact number it is). For a held set H (the others open:
+/// lambda_k = 0) the unknowns are the held normal multipliers lambda_H and the sticking contacts'
+/// friction forces f (one per collinear group: `group`, by contact; empty: each its own), the
+/// accelerations x = a0 + M^-1 (W_H^T lambda_H + T_S^T f) (W the force rows of frictional_rows),
+/// and the conditions are linear: G_H x + h_H = 0, G_O x + h_O >= 0 (an open gap does not close),
+/// T_S x + bias_S = 0 (a sticking contact keeps its tangential acceleration 0, as reduce()),
+/// lambda_H >= 0, |f_g| <= mu_s sum_{k in g, held} lambda_k / s_k (a sticking contact that is
+/// open carries no friction), and a sliding contact whose direction is not given keeps it,
+/// sign (T_k x + bias_k) >= 0 (coulomb_satisfied's conditions without their slack). For each held
+/// set — `first` (the doubles' LCP's, when given) first, then all, the largest first and
+/// lexicographic within a size — the linear system is decided by the exact linear program
+/// (exact_lp.hpp); the first feasible one gives the solution, its numbers rounded to the nearest
+/// doubles (x and w from the exact ones; a friction shared by a group split in proportion to its
+/// members' normal forces). None: the assignment has no consistent force, exactly.
+/// `tried` (optional) counts the linear programs solved.
+inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                                          const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
+                                                          const std::vector<Friction>& friction,
+                                                          const std::vector<int>& state,
+                                                          const std::vector<std::size_t>& group,
+                                                          const std::vector<bool>* first = nullptr,
+                                                          std::size_t* tried = nullptr) {
+  const auto m = static_cast<std::size_t>(G.rows()), n = static_cast<std::size_t>(G.cols());
+  if (m > 12) return std::nullopt;
+  std::vector<std::size_t> reps;   // the sticking rows (one per group)
+  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, reps, group);
+  auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
+  auto exact = [](double v) { return held_force_detail::exact_value(v); };
+  const std::size_t p = reps.size();
+  std::vector<Rational> a0q(n), minvq(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    a0q[i] = exact(a0(static_cast<Eigen::Index>(i)));
+    minvq[i] = exact(minv(static_cast<Eigen::Index>(i)));
+  }
+  // a row r over the coordinates as an affine function of the unknowns z = [lambda_H, f]:
+  // r . x + c = (r . a0 + c) + sum_v (r . D_v) z_v, D_v = M^-1 (force row of v)
+  auto affine = [&](const Eigen::VectorXd& r, double c, const std::vector<std::size_t>& held,
+                    std::vector<Rational>& coefficients, Rational& constant) {
+    std::vector<Rational> rm(n);
+    constant = exact(c);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Rational ri = exact(r(static_cast<Eigen::Index>(i)));
+      constant += ri * a0q[i];
+      rm[i] = ri * minvq[i];
+    }
+    coefficients.assign(held.size() + p, Rational(0));
+    for (std::size_t v = 0; v < held.size() + p; ++v) {
+      const auto row = static_cast<Eigen::Index>(v < held.size() ? held[v] : m + (v - held.size()));
+      Rational sum = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (sgn(rm[i]) != 0) sum += rm[i] * exact(rows.W(row, static_cast<Eigen::Index>(i)));
+      coefficients[v] = sum;
+    }
+  };
+  auto try_set = [&](const std::vector<bool>& is_held) -> std::optional<FrictionalSolution> {
+    std::vector<std::size_t> held;
+    for (std::size_t k = 0; k < m; ++k)
+      if (is_held[k]) held.push_back(k);
+    const std::size_t vars = held.size() + p;
+    ExactLinearSystem lp;
+    lp.variables = vars;
+    lp.nonnegative.assign(vars, false);
+    for (std::size_t v = 0; v < held.size(); ++v) lp.nonnegative[v] = true;
+    std::vector<Rational> coefficients;
+    Rational constant;
+    auto add = [&](bool equality, int sign) {   // sign (coefficients . z + constant) (= or >=) 0
+      for (Rational& c : coefficients) c *= sign;
+      lp.rows.push_back(coefficients);
+      lp.rhs.push_back(-sign * constant);
+      lp.equality.push_back(equality);
+    };
+    for (std::size_t k = 0; k < m; ++k) {
+      affine(G.row(static_cast<Eigen::Index>(k)).transpose(), h(static_cast<Eigen::Index>(k)), held, coefficients,
+             constant);
+      add(is_held[k], 1);
+    }
+    for (std::size_t j = 0; j < p; ++j) {
+      const Friction& c = friction[reps[j]];
+      affine(c.T, c.bias, held, coefficients, constant);
+      add(true, 1);
+      // mu_s sum lambda_k / s_k -+ f_j >= 0 over the group's held sticking members
+      for (int side : {1, -1}) {
+        std::vector<Rational> row(vars, Rational(0));
+        for (std::size_t v = 0; v < held.size(); ++v) {
+          const std::size_t k = held[v];
+          if (group_of(k) == group_of(reps[j]) && friction[k].on && state[k] == stick)
+            row[v] = exact(c.mu_static) / exact(friction[k].s);
+        }
+        row[held.size() + j] = -side;
+        lp.rows.push_back(std::move(row));
+        lp.rhs.push_back(Rational(0));
+        lp.equality.push_back(false);
+      }
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      const Friction& c = friction[k];
+      const int st = state[k];
+      if (!c.on || c.decided || (st != slip_positive && st != slip_negative)) continue;
+      affine(c.T, c.bias, held, coefficients, constant);
+      add(false, st);
+    }
+    if (tried) ++*tried;
+    const std::optional<std::vector<Rational>> z = exact_feasible_point(lp);
+    if (!z) return std::nullopt;
+    // the solution: exact multipliers and forces, accelerations and gap accelerations
+    std::vector<Rational> lambda(m, Rational(0)), force(m, Rational(0));
+    for (std::size_t v = 0; v < held.size(); ++v) lambda[held[v]] = (*z)[v];
+    std::vector<Rational> x(a0q);
+    for (std::size_t v = 0; v < vars; ++v) {
+      if (sgn((*z)[v]) == 0) continue;
+      const auto row = static_cast<Eigen::Index>(v < held.size() ? held[v] : m + (v - held.size()));
+      for (std::size_t i = 0; i < n; ++i) x[i] += minvq[i] * exact(rows.W(row, static_cast<Eigen::Index>(i))) * (*z)[v];
+    }
+    for (std::size_t j = 0; j < p; ++j) {
+      const Rational& fg = (*z)[held.size() + j];
+      Rational total = 0;
+      for (std::size_t k = 0; k < m; ++k)
+        if (group_of(k) == group_of(reps[j]) && friction[k].on && state[k] == stick)
+          total += lambda[k] / exact(friction[k].s);
+      for (std::size_t k = 0; k < m; ++k)
+        if (group_of(k) == group_of(reps[j]) && friction[k].on && state[k] == stick)
+          force[k] = sgn(total) > 0 ? Rational(fg * (lambda[k] / exact(friction[k].s)) / total)
+                                    : (k == reps[j] ? fg : Rational(0));
+    }
+    FrictionalSolution s;
+    s.solved = true;
+    s.state = state;
+    s.tolerance = 0;   // exact: an open contact with w > 0 lifts, one at w = 0 stays
+    s.lambda.resize(static_cast<Eigen::Index>(m));
+    s.f.resize(static_cast<Eigen::Index>(m));
+    s.w.resize(static_cast<Eigen::Index>(m));
+    s.x.resize(static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) s.x(static_cast<Eigen::Index>(i)) = to_double(x[i]);
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      const Friction& c = friction[k];
+      if (c.on && (state[k] == slip_positive || state[k] == slip_negative))
+        force[k] = -state[k] * exact(c.mu_kinetic) * lambda[k] / exact(c.s);
+      Rational wk = exact(h(r));
+      for (std::size_t i = 0; i < n; ++i) wk += exact(G(r, static_cast<Eigen::Index>(i))) * x[i];
+      s.lambda(r) = to_double(lambda[k]);
+      s.f(r) = to_double(force[k]);
+      // (an open contact's gap acceleration exactly 0 published as 0; a positive one stays positive)
+      s.w(r) = is_held[k] ? 0.0 : to_double(wk);
+    }
+    return s;
+  };
+  if (first) {
+    if (auto s = try_set(*first)) return s;
+  }
+  std::vector<std::size_t> codes(std::size_t{1} << m);
+  for (std::size_t c = 0; c < codes.size(); ++c) codes[c] = c;
+  // the largest held sets first (bit k set: contact k open), lexicographic within a size
+  std::stable_sort(codes.begin(), codes.end(), [](std::size_t a, std::size_t b) {
+    return __builtin_popcountll(a) < __builtin_popcountll(b);
+  });
+  for (std::size_t code : codes) {
+    std::vector<bool> is_held(m);
+    for (std::size_t k = 0; k < m; ++k) is_held[k] = !((code >> k) & 1);
+    if (first && is_held == *first) continue;
+    if (auto s = try_set(is_held)) return s;
+  }
+  return std::nullopt;
 }
 
 /// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
@@ -601,24 +802,45 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     // (every field coulomb_satisfied and adjust read is written below before it is read)
     s.solved = false;
     s.state = state;
+    bool sticks = false;   // some contact of this assignment sticks
+    for (std::size_t k = 0; k < m; ++k) sticks = sticks || (friction[k].on && state[k] == stick);
     if (lcp.solved) {
       s.lambda = lcp.lambda;
       s.tolerance = lcp.tolerance;
       complete(s, r, G, h, friction);
       if (adjust) adjust(s);
-      // (exact stick limits: the doubles' test |f| <= mu_s N (1 + 1e-9) is asked first, a stick it
-      // accepts verified exactly, exact_stick_holds; one it rejects is taken only where the rows are
-      // dependent and a member of their force family is exactly consistent; on independent rows a
-      // stick rejected beyond the 1e-9 slack is not re-decided exactly: not done, session 64,
-      // dropping the doubles' test changed the scotch yoke's slip reversal, cause not found)
-      if (exact_groups ? (coulomb_satisfied(s, friction)
-                              ? exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, false, full)
-                              : coulomb_satisfied(s, friction, false) &&
-                                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, true, full))
-                       : coulomb_satisfied(s, friction)) {
+      // (exact mode, an assignment with a sticking contact: the doubles' Coulomb test is a filter;
+      // a candidate it accepts is taken only where exact_stick_holds verifies a consistent member
+      // exactly, and every other case — the doubles' LCP failed, their test or the exact one
+      // rejected — is decided by exact_assignment below (session 65). Session 64's scotch yoke
+      // change, "dropping the doubles' test", was exact_stick_holds accepting a stick whose
+      // sticking contact the LCP let separate with a friction of 3e21 and no normal force: that
+      // contact was left out of its rows; exact_assignment finds no consistent stick there.)
+      if (exact_groups && sticks ? coulomb_satisfied(s, friction) &&
+                                       exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full)
+                                 : coulomb_satisfied(s, friction)) {
         s.solved = true;
         return s;
       }
+    }
+    // (session 65: where the doubles' candidate is not an exactly consistent stick — their LCP
+    // failed, their Coulomb test rejected it, or the exact limits did — whether SOME force of the
+    // assignment is consistent is decided exactly, exact_assignment; the doubles' held set first.
+    // With a full form given (the pin-slot part, FullMass) it is decided on the rows as given, the
+    // Cholesky coordinates' rounded ones: the full form there is not done, session 65)
+    if (exact_groups && sticks) {
+      std::vector<bool> held_first;
+      if (lcp.solved) {
+        held_first.resize(m);
+        for (std::size_t k = 0; k < m; ++k) {
+          const auto r = static_cast<Eigen::Index>(k);
+          held_first[k] = !(lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance);
+        }
+      }
+      if (std::optional<FrictionalSolution> e =
+              exact_assignment(G, minv, a0, h, friction, state, *exact_groups, lcp.solved ? &held_first : nullptr))
+        return *e;
+      continue;
     }
     // multipliers left open by the sticking rows: the frictionless ones, where they solve this
     // assignment's problem and satisfy its Coulomb conditions (undetermined(), above)
