@@ -688,7 +688,11 @@ bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box_in, cons
     return r;
   };
   dp.assign(n_, Interval(0));
-  for (std::size_t a = 0; a < k; ++a) dp[active[a]] = ratio(a) / Interval(unit_[active[a]]);   // per deviation
+  for (std::size_t a = 0; a < k; ++a) {
+    dp[active[a]] = ratio(a);
+    // per deviation (the interval quotient rounds outwards: only for a unit other than 1)
+    if (unit_[active[a]] != 1.0) dp[active[a]] = dp[active[a]] / Interval::point(unit_[active[a]]);
+  }
   dt = held ? ratio(k + 1) : Interval(0);
   for (const Interval& d : dp)
     if (!std::isfinite(d.lo) || !std::isfinite(d.hi)) return false;
