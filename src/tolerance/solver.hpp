@@ -227,8 +227,19 @@ class CurveSolver {
   };
   std::shared_ptr<InertMemo> inert_ = std::make_shared<InertMemo>();
 
+  /// The box in the jets' units: each deviation divided by unit_ (exactly).
+  Box in_units(const Box& box) const;
+  /// Parameter values at deviations given in the jets' units (each multiplied by unit_).
+  template <class T>
+  std::vector<T> values(std::vector<T> deviations_in_units) const;
+
   std::shared_ptr<const model_detail::ParametricModel> model_;
   std::size_t n_ = 0;
+  /// Per parameter, the unit of its jet variable (a power of two; 1 unless its tolerance range
+  /// lies outside 2^-100 .. 2^100): certified_range and root_partials work on deviations in
+  /// these units, so that partial derivatives stay within the doubles at every scale.
+  std::vector<double> unit_;
+  bool scaled_units_ = false;
   /// Nominal parameter values with their gradient over (p, v). A jet of doubles rather than
   /// Eigen's AutoDiffScalar: the kernels mix constants (no gradient) into nested expressions,
   /// which AutoDiffScalar's dynamic-size gradients do not reconcile.

@@ -4,6 +4,7 @@
 
 #include "core/model_scale.hpp"
 #include "model/parametric/parametric.hpp"
+#include "model/parametric/certified_positive.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
@@ -1236,6 +1237,79 @@ TEST(Templates, InvoluteGearShapeChecksAreTheSameAtEveryScale) {
   }
   std::cout << kept << " gears kept, " << refused << " refused (at every scale alike)\n";
   EXPECT_GE(kept, 3);
+}
+
+
+// A non-strict shape-check margin that does not evaluate over a sub-box (it throws there: the
+// integrator's session-64 fix in certified_positive) leaves that sub-box open, to be split; the
+// box holds only when every sub-box is decided. Generated margins of v over its range [lo, hi],
+// about a non-dyadic point z inside it (bisection never reaches z as a point):
+//  (a) undefined at z (throws over every sub-box holding z, as a division by v - z would): the
+//      check must not hold, strict or not (the model has no value at v = z);
+//  (b) |v - z|^2, throwing over sub-boxes wider than a share of the range (too wide to enclose),
+//      defined and >= 0 everywhere: a non-strict check holds, a strict one does not (0 at z);
+//  (c) -|v - z|^2 - e, throwing likewise: fails.
+// Until the fix (e0ff50ea) a sub-box that did not evaluate read as [0, 0], which a non-strict
+// check took as holding: every (a) case held.
+TEST(Templates, ShapeCheckMarginsThatDoNotEvaluateOverASubBoxAreNotHeld) {
+  using MI = model_detail::Interval;
+  const std::uint64_t seed = test::test_seed(65);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  std::mt19937_64 random(seed);
+  auto draw = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+  int undefined_open = 0, held = 0, failed = 0;
+  for (int round = 0; round < 12; ++round) {
+    const Rational lo(draw(1, 40), 1000), width(draw(5, 40), 1000), hi = lo + width;
+    const int den = 2 * draw(1, 20) + 1;   // z = lo + width * k / den, odd den > 1: never a bisection point
+    const Rational z = lo + width * Rational(draw(1, den - 1), den);
+    const ShapeCase face = shape_cases().at(0);   // escape_wheel face_angle >= 0: v itself
+    const std::string text = box_model(face.name, face.arguments(Rational((lo + hi) / 2), Rational(1)), face.key, "v",
+                                       Rational(1), lo, hi, face.length);
+    SCOPED_TRACE(text + "\nz = " + z.get_str());
+    const ParametricModel model = ParametricModel::read(text);
+    const Parameter& p = model.nominal().parameters.at(0);
+    const std::vector<Rational> dlo{Rational(p.range.lo - p.nominal)}, dhi{Rational(p.range.hi - p.nominal)};
+    const std::vector<bool> derived{model.derived(0)};
+    const MI zi(z);
+    // v - z over the sub-box; does it hold z?
+    auto offset = [&](const std::vector<MI>& q) { return MI(q.at(0) - zi); };
+    auto holds_z = [&](const MI& d) { return d.sign() == 0; };
+    auto too_wide = [&](const MI& v) { return !v.is_bounded() || Rational((v.upper() - v.lower()) * 8) > width; };
+    auto square = [&](const MI& d) {
+      MI a;
+      mpfi_abs(a.get(), d.get());
+      return MI(a * a);
+    };
+    const std::function<MI(const std::vector<MI>&)> undefined = [&](const std::vector<MI>& q) {
+      const MI d = offset(q);
+      if (holds_z(d)) throw NumericError("does not evaluate at v = z");
+      return square(d);
+    };
+    const std::function<MI(const std::vector<MI>&)> nonnegative = [&](const std::vector<MI>& q) {
+      if (too_wide(q.at(0))) throw NumericError("too wide to enclose");
+      return square(offset(q));
+    };
+    const Rational e(1, 1000000);
+    const std::function<MI(const std::vector<MI>&)> negative = [&](const std::vector<MI>& q) {
+      if (too_wide(q.at(0))) throw NumericError("too wide to enclose");
+      return MI(MI(Rational(0)) - square(offset(q)) - MI(e));
+    };
+    for (bool strict : {false, true}) {
+      SCOPED_TRACE(strict ? "strict" : "non-strict");
+      const BoxVerdict a = certified_positive(model, derived, dlo, dhi, {0}, undefined, strict);
+      EXPECT_NE(a, BoxVerdict::holds) << "a margin undefined at v = z held";
+      if (a != BoxVerdict::holds && !strict) ++undefined_open;
+      const BoxVerdict b = certified_positive(model, derived, dlo, dhi, {0}, nonnegative, strict);
+      if (strict) EXPECT_NE(b, BoxVerdict::holds) << "|v - z|^2 > 0 held, though it is 0 at z";
+      else EXPECT_EQ(b, BoxVerdict::holds) << "|v - z|^2 >= 0 not held";
+      if (b == BoxVerdict::holds) ++held;
+      const BoxVerdict c = certified_positive(model, derived, dlo, dhi, {0}, negative, strict);
+      EXPECT_EQ(c, BoxVerdict::fails) << "-|v - z|^2 - e >= 0 not refused";
+      if (c == BoxVerdict::fails) ++failed;
+    }
+  }
+  std::cout << undefined_open << " undefined margins not held (non-strict), " << held << " held, " << failed << " failed\n";
+  EXPECT_EQ(undefined_open, 12);
 }
 
 }  // namespace

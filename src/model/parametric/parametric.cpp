@@ -2,6 +2,7 @@
 // exact evaluation at a parameter vector (ExactEvaluator), which repeats the reader's steps on
 // the recorded slots. See parametric.hpp.
 #include "model/parametric/parametric.hpp"
+#include "model/parametric/certified_positive.hpp"
 #include "model/parametric/mpfi_arithmetic.hpp"
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/self_check.hpp"
@@ -569,41 +570,12 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
   return model;
 }
 
-namespace {
-
-// Whether `margin` is positive over the whole exact box [lo, hi] of parameter deviations
-// (session 62): MPFI enclosures over sub-boxes, bisected along the parameters in `read` (those
-// the margin reads that vary in the box; each split where its share of the box is widest), at
-// 160, 640 and 2560 bits. A sub-box whose enclosure is certainly negative (a corner of the box,
-// tried first, or any other) fails the box; a box left undecided when a stage's budget or its
-// precision is spent (or a corner's enclosure holds 0) goes to the next stage, and is undecided
-// after the last. Only margins vanishing on the box (a box ending exactly on a rule's bound:
-// every rule is strict) or closer to 0 than about 2^-2500 of their values stay undecided; the
-// caller refuses the box then, as the exact expansion refuses a zero margin.
-// Since session 63 (the shape checks of check_choices) also `strict` false: the margin must be
-// non-negative (a box ending exactly on 0 kept: an enclosure whose lower end is exactly 0
-// holds); and the parameters read as written (`derived` false) are enclosed from their exact
-// values nominal + deviation at the sub-box's ends, so a margin that is such a parameter (an
-// angle whose range ends on 0) is enclosed exactly there ([0, x], not [-e, x]). Strict: an
-// enclosure that is exactly the point 0 fails (the margin vanishes there).
-// Since session 64 (tol64), given `ties` (the margin as a jet and as an exact value): a sub-box
-// whose enclosure holds 0 is decided by the margin's monotony where every partial derivative keeps
-// one sign over it (the margin is then smallest at one of its corners) and the exact value
-// (rational + rational * pi) at that corner: a margin reaching its bound exactly there (a
-// non-strict check "a - 0.1" over a in [0.1, 0.2]) holds, one vanishing there fails a strict
-// check, a negative one fails. A corner of the box whose enclosure holds 0 is decided so too.
-enum class BoxVerdict { holds, fails, undecided };
-
-struct MarginTies {
-  std::function<MpfiJet(const std::vector<MpfiJet>&)> jet;
-  std::function<PiRational(const std::vector<PiRational>&)> exact;
-};
-
+// certified_positive.hpp says what it decides.
 BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bool>& derived,
                               const std::vector<Rational>& lo, const std::vector<Rational>& hi,
                               const std::vector<std::size_t>& read,
-                              const std::function<Interval(const std::vector<Interval>&)>& margin, bool strict = true,
-                              const MarginTies* ties = nullptr) {
+                              const std::function<Interval(const std::vector<Interval>&)>& margin, bool strict,
+                              const MarginTies* ties) {
   const std::size_t n = lo.size();
   const std::vector<Parameter>& parameters = model.nominal().parameters;
   // the margin's enclosure over [a, b] (the ends exact rationals: enclosed outward)
@@ -741,6 +713,8 @@ BoxVerdict certified_positive(const ParametricModel& model, const std::vector<bo
   }
   return BoxVerdict::undecided;
 }
+
+namespace {
 
 // The involute function inv(a) = tan a - a over an enclosure of a, by its values at a's ends
 // where a lies in [0, 1.5) (it increases there: derivative tan^2 a); tan a - a in interval
