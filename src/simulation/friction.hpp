@@ -826,9 +826,13 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     // (session 65: where the doubles' candidate is not an exactly consistent stick — their LCP
     // failed, their Coulomb test rejected it, or the exact limits did — whether SOME force of the
     // assignment is consistent is decided exactly, exact_assignment; the doubles' held set first.
-    // With a full form given (the pin-slot part, FullMass) it is decided on the rows as given, the
-    // Cholesky coordinates' rounded ones: the full form there is not done, session 65)
+    // With a full form given (the pin-slot part, FullMass) it is not asked: exact_assignment
+    // solves the rows as given, the Cholesky coordinates' rounded ones, and its solution's
+    // accelerations would be of those coordinates; there such an assignment is rejected, as
+    // before session 65 — a stick the doubles reject beyond their slack is missed, never one
+    // invented (FullMassFriction's planted ties). The full form there: not done, session 65)
     if (exact_groups && sticks) {
+      if (full) continue;
       std::vector<bool> held_first;
       if (lcp.solved) {
         held_first.resize(m);
