@@ -58,6 +58,31 @@ for g in 0 2; do
     fail "stop-gap $g: cspace --region operating: exit $?: $(tail -c 300 "$work/ok.out")"
 done
 
+# The oracle of a start: certify --claim interference at the initial configuration and
+# hipair-verify. An overlap proved must be refused by cspace --region operating (exit 3, one line
+# containing MESSAGE, no --json written); parts that do not overlap must build (exit 0, and
+# with WANT_JSON 1 the --json written).
+check_start() {   # WHAT MODEL MESSAGE WANT_JSON
+  local what=$1 model=$2 message=$3 want_json=$4 certified code
+  "$hipair" certify "$model" --claim interference --out "$work/i.json" >"$work/i.out" 2>&1
+  certified=$?
+  rm -f "$work/x.json"
+  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/x.json" >"$work/c.out" 2>"$work/c.err"
+  code=$?
+  if [ $certified -eq 0 ]; then
+    "$verify" "$work/i.json" "$model" >"$work/v.out" 2>&1 || { fail "$what: hipair-verify: $(cat "$work/v.out")"; return; }
+    [ $code -eq 3 ] || fail "$what: overlap verified, cspace --region operating: exit $code, want 3: $(head -c 300 "$work/c.err")"
+    grep -qF "$message" "$work/c.err" || fail "$what: message: $(head -c 300 "$work/c.err")"
+    [ "$(wc -l <"$work/c.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/c.err")"
+    [ -e "$work/x.json" ] && fail "$what: wrote --json"
+  elif [ $certified -eq 1 ]; then
+    [ $code -eq 0 ] || fail "$what: no overlap (certify: $(tail -c 100 "$work/i.out")), cspace --region operating: exit $code: $(head -c 300 "$work/c.err")"
+    [ "$want_json" = 1 ] && { [ -s "$work/x.json" ] || fail "$what: no overlap, and no --json written"; }
+  else
+    fail "$what: certify --claim interference: exit $certified: $(tail -c 300 "$work/i.out")"
+  fi
+}
+
 # Session 46 (hunt46): starts at other angles (a transcendental half-angle tangent) and 1-D
 # regions. The lever turned to its contact angle with the stop's corner (40, 6) plus a generated
 # delta (+-10^-k deg, k in 1..9, or a random fraction of a degree), the stop fixed (a 1-D pair) or
@@ -94,23 +119,7 @@ for round in 1 2 3 4 5 6; do
   what="lever at contact ${delta} deg, stop $kind at $stop deg"
   model=$work/angle-$round.json
   at_angle "$delta" "$stop" "$kind" "$model"
-  "$hipair" certify "$model" --claim interference --out "$work/i.json" >"$work/i.out" 2>&1
-  certified=$?
-  rm -f "$work/x.json"
-  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/x.json" >"$work/c.out" 2>"$work/c.err"
-  code=$?
-  if [ $certified -eq 0 ]; then
-    "$verify" "$work/i.json" "$model" >"$work/v.out" 2>&1 || { fail "$what: hipair-verify: $(cat "$work/v.out")"; continue; }
-    [ $code -eq 3 ] || fail "$what: overlap verified, cspace --region operating: exit $code, want 3: $(head -c 300 "$work/c.err")"
-    grep -qF "hipair: error: operating region of 'lever' and 'stop': the parts certainly overlap at the seed configuration" \
-      "$work/c.err" || fail "$what: message: $(head -c 300 "$work/c.err")"
-    [ "$(wc -l <"$work/c.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/c.err")"
-    [ -e "$work/x.json" ] && fail "$what: wrote --json"
-  elif [ $certified -eq 1 ]; then
-    [ $code -eq 0 ] || fail "$what: no overlap (certify: $(tail -c 100 "$work/i.out")), cspace --region operating: exit $code: $(head -c 300 "$work/c.err")"
-  else
-    fail "$what: certify --claim interference: exit $certified: $(tail -c 300 "$work/i.out")"
-  fi
+  check_start "$what" "$model" "hipair: error: operating region of 'lever' and 'stop': the parts certainly overlap at the seed configuration" 0
 done
 
 # Session 65 (perf65): spur gears at zero backlash (tests/fuzz/zero_backlash_gears.py), where the
@@ -130,24 +139,7 @@ for p in "19 40" "$z $((z * (RANDOM % 2 + 1)))" "17 17" "18 18"; do
   what="spur gears $1 x $2, zero backlash"
   model=$work/gears-$1-$2.json
   python3 "$source/tests/fuzz/zero_backlash_gears.py" "$source/examples/models/spur-gears.json" "$1" "$2" "$model"
-  "$hipair" certify "$model" --claim interference --out "$work/i.json" >"$work/i.out" 2>&1
-  certified=$?
-  rm -f "$work/x.json"
-  timeout 120 "$hipair" cspace "$model" --region operating --json "$work/x.json" >"$work/c.out" 2>"$work/c.err"
-  code=$?
-  if [ $certified -eq 0 ]; then
-    "$verify" "$work/i.json" "$model" >"$work/v.out" 2>&1 || { fail "$what: hipair-verify: $(cat "$work/v.out")"; continue; }
-    [ $code -eq 3 ] || fail "$what: overlap verified, cspace --region operating: exit $code, want 3: $(head -c 300 "$work/c.err")"
-    grep -qF "hipair: error: operating region of 'pinion' and 'gear': the parts certainly overlap at the seed configuration (their interiors meet at the initial configuration, by the exact overlap predicate" \
-      "$work/c.err" || fail "$what: message (refused before the build?): $(head -c 300 "$work/c.err")"
-    [ "$(wc -l <"$work/c.err")" -eq 1 ] || fail "$what: not one line: $(head -c 300 "$work/c.err")"
-    [ -e "$work/x.json" ] && fail "$what: wrote --json"
-  elif [ $certified -eq 1 ]; then
-    [ $code -eq 0 ] || fail "$what: no overlap (certify: $(tail -c 100 "$work/i.out")), cspace --region operating: exit $code: $(head -c 300 "$work/c.err")"
-    [ -s "$work/x.json" ] || fail "$what: no overlap, and no --json written"
-  else
-    fail "$what: certify --claim interference: exit $certified: $(tail -c 300 "$work/i.out")"
-  fi
+  check_start "$what" "$model" "hipair: error: operating region of 'pinion' and 'gear': the parts certainly overlap at the seed configuration (their interiors meet at the initial configuration, by the exact overlap predicate" 1
 done
 [ "$p" = "18 18" ] || fail "the gear cases did not all run"
 
