@@ -23,3 +23,11 @@ def crash_problems(rc, text):
         problems.append('signal/abort rc=%s' % rc)
     problems += ['text: ' + bad for bad in CRASH_TEXTS if bad in text]
     return problems
+
+
+def report_findings(findings):
+    """print one line per finding and their count; the hunt's exit code (1 with any finding)"""
+    for f in findings:
+        print('FINDING: ' + f)
+    print('%d findings' % len(findings))
+    return 1 if findings else 0

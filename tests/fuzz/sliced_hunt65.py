@@ -40,7 +40,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from exact_planar import locate, parts_apart_by  # noqa: E402
 from exact_oracle import claim_number, judged  # noqa: E402
-from hunt_common import run, crash_problems  # noqa: E402
+from hunt_common import run, crash_problems, report_findings  # noqa: E402
 from sliced_oracle_hunt import model_json, peg_in_hole, peg_in_slot, lit  # noqa: E402
 
 
@@ -414,10 +414,7 @@ def main():
     bad = hunt_bad_inputs(hipair, work, findings) + hunt_extreme_poses(hipair, verify, work, findings)
     print('%d builds, %d certificates with %d alterations, %d bad inputs' %
           (builds, counts['base'], sum(counts.values()) - counts['base'], bad))
-    for f in findings:
-        print('FINDING: ' + f)
-    print('%d findings' % len(findings))
-    return 1 if findings else 0
+    return report_findings(findings)
 
 
 if __name__ == '__main__':

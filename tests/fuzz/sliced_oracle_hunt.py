@@ -43,6 +43,7 @@ import sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hunt_common import report_findings  # noqa: E402
 from exact_planar import cross, sub, segments_meet  # noqa: E402
 from hunt_common import run, crash_problems  # noqa: E402
 
@@ -292,10 +293,7 @@ def main():
             findings.append('peg-in-hole x%s: %d components, %d critical angles (5 and %d at x1)' %
                             (factor, d['components'], len(crit), len(reference.get('peg-in-hole h=12', []))))
         print('%-48s components %d, critical angles %d' % ('peg-in-hole h=12 x' + factor, d['components'], len(crit)))
-    for f in findings:
-        print('FINDING: ' + f)
-    print('%d findings' % len(findings))
-    return 1 if findings else 0
+    return report_findings(findings)
 
 
 if __name__ == '__main__':

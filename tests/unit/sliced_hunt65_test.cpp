@@ -17,6 +17,7 @@
 #include <hipair/pin_slot.hpp>
 #include <hipair/sliced.hpp>
 
+#include "random_rationals.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -70,13 +71,7 @@ Rational power_of_two(int k) {   // 2^k, k of either sign
   return r;
 }
 
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational v = lo + Rational(p, q) * (hi - lo);
-  v.canonicalize();
-  return v;
-}
+using test_numbers::random_rational;
 
 struct Pair {
   std::string label;

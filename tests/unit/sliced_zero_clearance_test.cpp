@@ -18,6 +18,8 @@
 #include <hipair/overlap.hpp>
 #include <hipair/sliced.hpp>
 
+#include "random_rationals.hpp"
+
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -62,12 +64,9 @@ Model plate_and_peg(const std::vector<Point>& hole, const std::vector<Point>& pe
     { "name": "peg", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ )" + polygon(peg) + R"( ] } ] })");
 }
 
+// Random rationals of denominator up to 89 (random_rationals.hpp's draw).
 Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 89) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational v = lo + Rational(p, q) * (hi - lo);
-  v.canonicalize();
-  return v;
+  return test_numbers::random_rational(random, lo, hi, den);
 }
 
 bool apart(const Model& model, const SlicedConfiguration& q) {
