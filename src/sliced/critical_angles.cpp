@@ -500,6 +500,8 @@ class Certifier {
   void remember(bool on) { remember_ = on; }
   // Where probes rejected by the interval filter are counted.
   void count_filtered_into(std::size_t* counter) { filtered_ = counter; }
+  // Where witness searches are counted (CriticalStatistics::witness_searches and the two after).
+  void count_searches_into(CriticalStatistics* statistics) { searches_ = statistics; }
   // The event points carry a lever term (I - R) l with |l.x| + |l.y| up to `reach` (a pin-slot
   // window about a centre far from the pivot, CurveFinder): roots are refined to 2^-bits over
   // the least power of two at least `reach`, so that the points' boxes stay as narrow as
@@ -585,6 +587,7 @@ class Certifier {
       // the finer stage: the mid of a coarse box may lie far from the event (the crossing of two
       // nearly parallel contact lines, 10^12 mm from the pivot: 10^4 mm wide at 2^-20)
       if (apart_in_enclosure(um, rm, *pb, d) || (stage + 1 < stages && apart_in_last_stage(t, *pb, point_of, stages))) {
+        if (searches_) ++searches_->witness_searches_skipped;
         if (stage + 1 == stages) return false;
         continue;
       }
@@ -711,11 +714,19 @@ class Certifier {
   // events found by different curves at one root name the same mid configuration (a pure
   // function of (u, d): the same answer, the same witness).
   PartOverlap overlap_at(const Rational& u, const Rotation<Rational>& rm, const Point& d) const {
-    if (!remember_) return part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+    auto searched = [&] {
+      PartOverlap relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+      if (searches_ && relation.relation == PartRelation::overlapping) {
+        ++searches_->witness_searches;
+        if (!relation.witness) ++searches_->witness_searches_failed;
+      }
+      return relation;
+    };
+    if (!remember_) return searched();
     std::array<Rational, 3> key{u, d.x, d.y};
     auto found = mid_answers_.find(key);
     if (found != mid_answers_.end()) return found->second;
-    PartOverlap relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+    PartOverlap relation = searched();
     mid_answers_.emplace(std::move(key), relation);
     return relation;
   }
@@ -727,6 +738,7 @@ class Certifier {
   std::vector<std::pair<kernels::Interval, kernels::Interval>> probes_free_iv_, probes_fixed_iv_;
   std::vector<IntervalEdge> edges_fixed_, edges_free_;
   std::size_t* filtered_ = nullptr;
+  CriticalStatistics* searches_ = nullptr;
   mpz_class refine_scale_ = 1;   // see lever_reach
   bool levered_ = false;
   // exact oracle answers at rational configurations: (half turn?, u, x, y)
@@ -1352,6 +1364,7 @@ class CurveFinder {
   CurveFinder(const Part& fixed, const Part& free, CriticalStatistics& stats, const std::optional<Point>& centre = std::nullopt)
       : stats_(stats), cert_(fixed, free, centre ? *centre : free.motion.pivot) {
     cert_.count_filtered_into(&stats.probes_filtered);
+    cert_.count_searches_into(&stats);
     const Point& pivot = centre ? *centre : free.motion.pivot;
     lever_ = Vec<Rational>{Rational(free.motion.pivot.x - pivot.x), Rational(free.motion.pivot.y - pivot.y)};
     // the lever in the parts' length unit about the centre (1 mm for parts of ordinary size, as
