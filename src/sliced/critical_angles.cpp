@@ -500,6 +500,8 @@ class Certifier {
   void remember(bool on) { remember_ = on; }
   // Where probes rejected by the interval filter are counted.
   void count_filtered_into(std::size_t* counter) { filtered_ = counter; }
+  // Where witness searches are counted (CriticalStatistics::witness_searches and the two after).
+  void count_searches_into(CriticalStatistics* statistics) { searches_ = statistics; }
   // The event points carry a lever term (I - R) l with |l.x| + |l.y| up to `reach` (a pin-slot
   // window about a centre far from the pivot, CurveFinder): roots are refined to 2^-bits over
   // the least power of two at least `reach`, so that the points' boxes stay as narrow as
@@ -537,13 +539,8 @@ class Certifier {
     // sliver 10^-29 mm thick, where the second stage's boxes are 10^-29 mm wide)
     const int stages = levered_ ? 3 : 2;
     for (int stage = 0; stage < stages; ++stage) {
-      const int bits = stage == 0 ? 20 : 52;
-      const mpz_class scale = stage == 2 ? mpz_class(refine_scale_ * refine_scale_) : refine_scale_;
-      algebra::refine_dyadically(t, Rational(1) / Rational(scale * (mpz_class(1) << bits)));
+      const long extra = refine_for(t, stage);
       if (t.exact) return certainly_blocked(t, false, point_of);
-      // (the boxes' rounding as fine as the stage's refinement: 2^-64 relative of a sine turning
-      // a lever of 10^30 mm is 10^-20 mm)
-      const long extra = static_cast<long>(mpz_sizeinbase(scale.get_mpz_t(), 2)) - 1;
       Rotation<Box> rb = rotation_box(t.lower, t.upper, false, levered_, extra);
       std::optional<Vec<Box>> pb = point_of(rb);
       if (!pb) continue;
@@ -586,10 +583,15 @@ class Certifier {
       Rational um = simplest_inside(Box{t.lower, t.upper});
       Rotation<Rational> rm = exact_rotation(um);
       Point d{simplest_inside(pb->x), simplest_inside(pb->y)};
-      const PartOverlap relation = overlap_at(um, rm, d);
       // a configuration of the enclosure that is not overlapping: no certificate (kept) — after
       // the finer stage: the mid of a coarse box may lie far from the event (the crossing of two
       // nearly parallel contact lines, 10^12 mm from the pivot: 10^4 mm wide at 2^-20)
+      if (apart_in_enclosure(um, rm, *pb, d) || (stage + 1 < stages && apart_in_last_stage(t, *pb, point_of, stages))) {
+        if (searches_) ++searches_->witness_searches_skipped;
+        if (stage + 1 == stages) return false;
+        continue;
+      }
+      const PartOverlap relation = overlap_at(um, rm, d);
       if (relation.relation != PartRelation::overlapping) {
         if (stage + 1 == stages) return false;
         continue;
@@ -634,15 +636,97 @@ class Certifier {
       }
   }
 
+  // Is some configuration of the enclosure (the rotation rm of u, an offset in the box pb)
+  // certainly not overlapping? Then no witness passes box_inside over the enclosure: a witness
+  // w is strictly inside the fixed part (the oracle's), and its body boxes enclose its body
+  // point at every (c, s) of rb and d of pb, the rotation of u and such a configuration's offset
+  // among them, where w would then be strictly inside both parts. So the witness search (a
+  // failed one cost ~600 halvings of exact point locations: the claw 10^400 mm along its slot
+  // spent 90 % of its time there, on events whose mid configuration overlaps by a sliver of
+  // 10^-400 mm across a touching event) is skipped, with the same answer. Asked only with a
+  // lever (far pivots, `lever_reach`), where the sliver's depth lies below the search's reach,
+  // and with the filters (off: the plain exact path, the tests' oracle, as before);
+  // the mid configuration d first (the answer as before when it does not overlap), then the
+  // box's four corners' simplest rationals (the contact's free side of a touching event; a
+  // quarter of each side in from the corner).
+  bool apart_in_enclosure(const Rational& u, const Rotation<Rational>& rm, const Vec<Box>& pb, const Point& d) const {
+    if (!levered_ || !remember_) return false;
+    if (relation_at(u, rm, d) != PartRelation::overlapping) return true;
+    for (const Point& c : corners(pb))
+      if (relation_at(u, rm, c) != PartRelation::overlapping) return true;
+    return false;
+  }
+  // The same look-ahead from a coarser stage's enclosure (t, pb): the configurations that
+  // apart_in_enclosure tries in the last stage's enclosure (t refined), each used only when it
+  // lies in this enclosure too (its angle in t's interval, its offset in pb, exactly), where the
+  // same argument holds. (The claw at 10^400: four events whose coarser stages' corners all
+  // overlap, their witness searches failing, and the last stage's corners apart.)
+  template <class PointOf>
+  bool apart_in_last_stage(const Real& current, const Vec<Box>& pb, PointOf point_of, int stages) const {
+    if (!levered_ || !remember_) return false;
+    Real t = current;
+    const long extra = refine_for(t, stages - 1);
+    if (t.exact) return false;
+    const std::optional<Vec<Box>> fine = point_of(rotation_box(t.lower, t.upper, false, levered_, extra));
+    if (!fine) return false;
+    const Rational u = simplest_inside(Box{t.lower, t.upper});
+    if (u < current.lower || u > current.upper) return false;
+    const Rotation<Rational> rm = exact_rotation(u);
+    auto in = [](const Box& b, const Rational& x) { return b.lo <= x && x <= b.hi; };
+    std::vector<Point> tried{Point{simplest_inside(fine->x), simplest_inside(fine->y)}};
+    for (const Point& c : corners(*fine)) tried.push_back(c);
+    for (const Point& c : tried)
+      if (in(pb.x, c.x) && in(pb.y, c.y) && relation_at(u, rm, c) != PartRelation::overlapping) return true;
+    return false;
+  }
+  // The simplest rationals of the box's four corner quarters (a quarter of each side in from
+  // the corner).
+  static std::array<Point, 4> corners(const Vec<Box>& pb) {
+    auto near_end = [](const Box& b, bool high) {
+      const Rational quarter = (b.hi - b.lo) / 4;
+      return simplest_inside(high ? Box{Rational(b.hi - quarter), b.hi} : Box{b.lo, Rational(b.lo + quarter)});
+    };
+    std::array<Point, 4> out;
+    for (int corner = 0; corner < 4; ++corner) out[corner] = Point{near_end(pb.x, corner & 1), near_end(pb.y, corner & 2)};
+    return out;
+  }
+  // Refines t to the width of stage `stage` of certainly_blocked; returns the bits of rounding
+  // beyond 64 that its boxes take (as fine as the stage's refinement: 2^-64 relative of a sine
+  // turning a lever of 10^30 mm is 10^-20 mm).
+  long refine_for(Real& t, int stage) const {
+    const int bits = stage == 0 ? 20 : 52;
+    const mpz_class scale = stage == 2 ? mpz_class(refine_scale_ * refine_scale_) : refine_scale_;
+    algebra::refine_dyadically(t, Rational(1) / Rational(scale * (mpz_class(1) << bits)));
+    return static_cast<long>(mpz_sizeinbase(scale.get_mpz_t(), 2)) - 1;
+  }
+
+  // The exact relation (no witness) at the rotation rm of u and the offset d, remembered.
+  PartRelation relation_at(const Rational& u, const Rotation<Rational>& rm, const Point& d) const {
+    std::array<Rational, 3> key{u, d.x, d.y};
+    auto found = relations_.find(key);
+    if (found != relations_.end()) return found->second;
+    const PartRelation relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d)).relation;
+    relations_.emplace(std::move(key), relation);
+    return relation;
+  }
+
   // The exact oracle (with a witness) at the rotation rm of u and the offset d, remembered:
   // events found by different curves at one root name the same mid configuration (a pure
   // function of (u, d): the same answer, the same witness).
   PartOverlap overlap_at(const Rational& u, const Rotation<Rational>& rm, const Point& d) const {
-    if (!remember_) return part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+    auto searched = [&] {
+      PartOverlap relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+      if (searches_ && relation.relation == PartRelation::overlapping) {
+        ++searches_->witness_searches;
+        if (!relation.witness) ++searches_->witness_searches_failed;
+      }
+      return relation;
+    };
+    if (!remember_) return searched();
     std::array<Rational, 3> key{u, d.x, d.y};
     auto found = mid_answers_.find(key);
     if (found != mid_answers_.end()) return found->second;
-    PartOverlap relation = part_overlap(fixed_, Placement{}, free_, placement_about(pivot_, rm.c, rm.s, d), true);
+    PartOverlap relation = searched();
     mid_answers_.emplace(std::move(key), relation);
     return relation;
   }
@@ -654,12 +738,15 @@ class Certifier {
   std::vector<std::pair<kernels::Interval, kernels::Interval>> probes_free_iv_, probes_fixed_iv_;
   std::vector<IntervalEdge> edges_fixed_, edges_free_;
   std::size_t* filtered_ = nullptr;
+  CriticalStatistics* searches_ = nullptr;
   mpz_class refine_scale_ = 1;   // see lever_reach
   bool levered_ = false;
   // exact oracle answers at rational configurations: (half turn?, u, x, y)
   mutable std::map<std::array<Rational, 4>, bool> exact_answers_;
   // the oracle's answers at mid configurations: (u, x, y) (see overlap_at)
   mutable std::map<std::array<Rational, 3>, PartOverlap> mid_answers_;
+  // the exact relations at configurations of enclosures (see apart_in_enclosure)
+  mutable std::map<std::array<Rational, 3>, PartRelation> relations_;
   bool remember_ = true;
 };
 
@@ -1277,6 +1364,7 @@ class CurveFinder {
   CurveFinder(const Part& fixed, const Part& free, CriticalStatistics& stats, const std::optional<Point>& centre = std::nullopt)
       : stats_(stats), cert_(fixed, free, centre ? *centre : free.motion.pivot) {
     cert_.count_filtered_into(&stats.probes_filtered);
+    cert_.count_searches_into(&stats);
     const Point& pivot = centre ? *centre : free.motion.pivot;
     lever_ = Vec<Rational>{Rational(free.motion.pivot.x - pivot.x), Rational(free.motion.pivot.y - pivot.y)};
     // the lever in the parts' length unit about the centre (1 mm for parts of ordinary size, as

@@ -53,6 +53,13 @@ struct CriticalStatistics {
   /// Roots whose event conditions were decided without forming them as polynomials (in
   /// certified double intervals, or exactly at a rational root: CurveFinder::verdict_at).
   std::size_t verdicts = 0;
+  /// Witness searches of the exact overlap oracle at a root's enclosure (its mid configuration
+  /// overlapping), those that found no witness (a sliver below the search's 2^-600 of the
+  /// parts' size), and searches skipped because a configuration of the enclosure is exactly
+  /// not overlapping (no witness could be certified there: Certifier::apart_in_enclosure).
+  std::size_t witness_searches = 0;
+  std::size_t witness_searches_failed = 0;
+  std::size_t witness_searches_skipped = 0;
 };
 
 /// The critical angles, in counter-clockwise order from -pi (t ascending, the half turn last).

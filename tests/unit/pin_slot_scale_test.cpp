@@ -357,6 +357,9 @@ TEST(PinSlotScale, AClawFarAlongItsSlotJoinsTheSameCellsAtEveryDistance) {
   // (Y = 10^200, session 62: the certificate's exact overlap tests at an enclosure's simplest
   // rationals, not its middles; 3.6 s user, 23 s with the middles' bits)
   for (int exponent : {18, 30, 200}) expect_as_near(claw_pair(exponent), "Y = 10^" + std::to_string(exponent), true);
+  // (Y = 10^400, session 66: witness searches skipped where a configuration of the enclosure is
+  // exactly not overlapping; 27 s user before, 4.8 s now; its witnesses are not re-checked here)
+  expect_as_near(claw_pair(400), "Y = 10^400", false);
   const Model far = claw_pair(18);
   for (const auto& [factor, what] : {std::pair<Rational, std::string>{Rational(3, 4) * pin_slot_test::exact_power10(-300), "Y = 10^18 x 3/4 10^-300"},
                                      std::pair<Rational, std::string>{Rational(5, 8) * pin_slot_test::exact_power10(400), "Y = 10^18 x 5/8 10^400"}}) {

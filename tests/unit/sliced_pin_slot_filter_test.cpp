@@ -7,6 +7,7 @@
 #include <hipair/model.hpp>
 #include <hipair/rational.hpp>
 
+#include "pin_slot_test_support.hpp"
 #include "polygon_loop_json.hpp"
 #include "test_paths.hpp"
 
@@ -296,6 +297,43 @@ TEST(SlicedPinSlotFilter, TheFollowerFarAlongItsSlotHasAsManyCriticalValuesAtEve
   // as many values, at the same h (its terms in 1/Y are about 70 mm / Y of it)
   ASSERT_EQ(h[0].size(), h[1].size());
   for (std::size_t k = 0; k < h[0].size(); ++k) EXPECT_NEAR(h[0][k], h[1][k], 1e-4 * (1 + std::abs(h[1][k]))) << k;
+}
+
+// Session 66 (issue 13): the claw far along its slot (pin_slot_test::claw_far_along_slot, pivot
+// (0, Y)) has the same critical values at Y = 10^6, 10^30 and 10^400 (as many, at the same
+// h = 2 tau Y: the claw translating across the block), and at 10^400 no witness search of the
+// certificate is in vain. Before, the events whose enclosure's mid configuration overlapped by a
+// sliver of about 1/Y mm next to a touching configuration ran the exact oracle's witness search
+// (600 halvings of exact point locations on 2 700-bit numbers) and found nothing: 173 failed
+// searches, 27 s user of `cspace --pair block:claw`. Now a configuration of the enclosure exactly
+// not overlapping (the mid, its box's corner quarters, or the last stage's) skips the search: no
+// witness can be certified where the parts do not overlap. At 10^30 the plain exact path (no
+// filters, no skips) gives the same values.
+TEST(SlicedPinSlotFilter, TheClawFarAlongItsSlotHasTheSameCriticalValuesWithoutVainWitnessSearches) {
+  const Rational tau(1, 128);   // beyond the claw's angle limits of 1 degree (tan 0.5 deg)
+  std::vector<std::vector<double>> h;
+  for (int exponent : {6, 30, 400}) {
+    SCOPED_TRACE("the claw's pivot at (0, 10^" + std::to_string(exponent) + ")");
+    const Model model = pin_slot_test::claw_far_along_slot(exponent);
+    const Found found = find(model.parts[0], model.parts[1], true, true, -tau, tau);
+    const Rational y = pin_slot_test::exact_power10(exponent);
+    h.emplace_back();
+    for (const auto& c : found.critical) {   // (h to 2^-40 mm: the isolating interval refined to 2^-41 / Y)
+      cspace::algebra::Real t = c.t;
+      if (!t.exact) cspace::algebra::refine_dyadically(t, Rational(1) / Rational(y * (mpz_class(1) << 41)));
+      h.back().push_back(Rational(2 * t.lower * y).get_d());
+    }
+    if (exponent == 30) expect_same_values(found.critical, find(model.parts[0], model.parts[1], true, false, -tau, tau).critical);
+    if (exponent == 400) {
+      EXPECT_EQ(found.statistics.witness_searches_failed, 0u);
+      EXPECT_GT(found.statistics.witness_searches_skipped, 100u);
+    }
+  }
+  ASSERT_GE(h[0].size(), 10u);
+  for (std::size_t e = 1; e < h.size(); ++e) {
+    ASSERT_EQ(h[e].size(), h[0].size()) << e;
+    for (std::size_t k = 0; k < h[0].size(); ++k) EXPECT_NEAR(h[e][k], h[0][k], 1e-4 * (1 + std::abs(h[0][k]))) << e << " " << k;
+  }
 }
 }  // namespace
 }  // namespace hipair
