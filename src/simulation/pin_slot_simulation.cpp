@@ -48,6 +48,7 @@
 #include "simulation/held_extent.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/motion_datum.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
 
@@ -1052,6 +1053,30 @@ struct PinSlotSimulation::Impl {
     std::ostringstream out;
     out << "simulation: at t = " << time / time_scale << " " << time_unit;
     return out.str();
+  }
+  // A step that left the run's energy beyond the doubles' range stops the run (session 66, as
+  // the fixed-axis and planar simulators since session 65: it ended with exit 0 and "energy":
+  // null), naming the moving parts (the pin-slot part, a torque-driven part, the translating
+  // part) with their pointers and the largest velocity or load given (motion_datum.hpp).
+  void check_energy() const {
+    if (std::isfinite(energy_of(y))) return;
+    std::ostringstream parts;
+    const Part& pp = model.parts[part];
+    parts << "pin-slot part '" << pp.name << "' (" << pp.pointer << "/dynamics, " << pp.pointer << "/initial; at slide "
+          << y[0] << " mm, angle " << y[1] << " rad, moving at " << y[2] * time_scale << " mm/" << time_unit << " and "
+          << y[3] * time_scale << " rad/" << time_unit << ")";
+    if (free_driver != no_index) {
+      const Part& dp = model.parts[drivers[free_driver].part];
+      parts << ", part '" << dp.name << "' (" << dp.pointer << "/dynamics, " << dp.pointer << "/initial; at " << y[4]
+            << " rad, moving at " << y[5] * time_scale << " rad/" << time_unit << ")";
+    }
+    if (has_slider()) {
+      const Part& sp = model.parts[slider.part];
+      parts << ", part '" << sp.name << "' (" << sp.pointer << "/dynamics, " << sp.pointer << "/initial; at " << y[6]
+            << " mm, moving at " << y[7] * time_scale << " mm/" << time_unit << ")";
+    }
+    throw NumericError(simulation::energy_overflow_message(where(t), parts.str()) +
+                       simulation::largest_motion_datum(model));
   }
   // The largest deviation (mm) of the pair's relative path from its straight chord over
   // [t0, t0 + h]: twice the midpoint's deviation (exact for a quadratic path) in the shift plus
@@ -2594,6 +2619,7 @@ void PinSlotSimulation::step(double t_limit) {
         << ")";
     throw NumericError(out.str());
   }
+  s.check_energy();
   s.publish();
 }
 
