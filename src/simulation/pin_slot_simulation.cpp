@@ -1105,12 +1105,25 @@ struct PinSlotSimulation::Impl {
     };
     if (bend) *bend = 0;
     const double straight = error(0.5);
-    if (!bend || !(straight > delta / 2) || !(z[2] != a[2])) return straight;
-    const double um = std::clamp((m[2] - a[2]) / (z[2] - a[2]), 0.3, 0.7);
-    const double bent = error(um);
-    if (!(bent <= delta / 2)) return straight;
+    if (!bend || !(straight > delta / 2)) return straight;
+    // the error is convex in u_m: its least value on [0.3, 0.7] (the w-matched midpoint, then a
+    // ternary search: a part accelerating along a straight relative path is followed too)
+    double um = 0.5, best = straight;
+    if (z[2] != a[2]) {
+      const double uw = std::clamp((m[2] - a[2]) / (z[2] - a[2]), 0.3, 0.7);
+      if (const double e = error(uw); e < best) um = uw, best = e;
+    }
+    double lo = 0.3, hi = 0.7;
+    for (int k = 0; k < 60 && !(best <= delta / 2); ++k) {
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      const double e1 = error(m1), e2 = error(m2);
+      if (e1 < best) um = m1, best = e1;
+      if (e2 < best) um = m2, best = e2;
+      (e1 < e2 ? hi : lo) = e1 < e2 ? m2 : m1;
+    }
+    if (!(best <= delta / 2)) return straight;
     *bend = 2 - 4 * um;
-    return bent;
+    return best;
   }
   // The chord's parameter u at the step's fraction tau for a bend (chord_error), and back.
   static double chord_u(double bend, double tau) { return tau + bend * tau * (tau - 1); }
