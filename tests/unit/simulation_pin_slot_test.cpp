@@ -1535,7 +1535,7 @@ TEST(SimulationPinSlot, FrictionEventsDoNotDependOnTheStepSize) {
 // The film advance (tests/data/simulation/film-advance-dynamics.json: a torque-driven cam, the
 // claw on a pin-in-slot follower, the film) to the claw's strike on the film's perforation
 // and its held contact (0.1339 s), every accepted state's pair configurations exactly free by the overlap oracle
-// (every 16th state and the states of every event). Session 66: the cam pair's configurations
+// (every 32nd state and the states of every event). Session 66: the cam pair's configurations
 // about the cam's pivot and the chords' time map bent to the angle's w = tan(theta/2) — base66
 // took 5698 steps to 0.12 s (chord-limited at 3.4e-6 s after the right wall's lift-off at
 // 0.1077 s, the pin 40 mm from the cam's pivot); a budget of 3600 steps fails it there.
@@ -1550,7 +1550,7 @@ TEST(SimulationPinSlot, FilmAdvanceReachesTheClawsStrikeOnTheFilmWithinAStepBudg
   bool struck = false;
   while (!struck && sim.state().time < 0.14) {
     sim.step(0.14);
-    if (sim.events().size() != events || ++k % 16 == 0) expect_not_overlapping(sim, others);
+    if (sim.events().size() != events || ++k % 32 == 0) expect_not_overlapping(sim, others);
     for (; events < sim.events().size(); ++events) {
       const SimulationEvent& ev = sim.events()[events];
       for (const std::string& f : ev.features)
