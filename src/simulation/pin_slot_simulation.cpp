@@ -2455,17 +2455,21 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     s.y[7] = slider_rate ? *slider_rate / ts : 0.0;
   }
   s.check_limits(s.y, 0);
-  // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
-  double reach = 0;
-  for (const Loop& loop : fp.loops)
-    for (const Edge& edge : loop.edges) {
-      for (const Point* q : {&edge.source, &edge.target})
-        reach = std::max(reach, std::hypot(q->x.get_d() - s.P[0], q->y.get_d() - s.P[1]));
-      if (edge.is_arc())
-        reach = std::max(reach, std::hypot(edge.center.x.get_d() - s.P[0], edge.center.y.get_d() - s.P[1]) +
-                                    std::sqrt(edge.radius_squared.get_d()));
-    }
-  s.part_reach = std::max(reach, 1e-300);
+  // the part's reach from a point (its pivot: for the angle's share of a chord's deviation,
+  // reach_at; a pair's pivot: Pair::reach)
+  const auto reach_from = [&](double px, double py) {
+    double reach = 0;
+    for (const Loop& loop : fp.loops)
+      for (const Edge& edge : loop.edges) {
+        for (const Point* q : {&edge.source, &edge.target})
+          reach = std::max(reach, std::hypot(q->x.get_d() - px, q->y.get_d() - py));
+        if (edge.is_arc())
+          reach = std::max(reach, std::hypot(edge.center.x.get_d() - px, edge.center.y.get_d() - py) +
+                                      std::sqrt(edge.radius_squared.get_d()));
+      }
+    return std::max(reach, 1e-300);
+  };
+  s.part_reach = reach_from(s.P[0], s.P[1]);
   // the run's length scale: the part's reach at its initial slide (not its limits': see reach_at)
   const double size = s.reach_at({&s.y});
   s.size = size;
@@ -2560,20 +2564,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     p.restitution = spec_pair.restitution ? spec_pair.restitution->get_d() : 0.0;
     // the pair's pivot (session 66): the rotating part's against a rotating part, else the pin
     p.pivot = s.driver_of[p.other] != no_index ? model.parts[p.other].motion.pivot : fp.motion.pivot;
-    p.reach = s.part_reach;
-    if (s.driver_of[p.other] != no_index) {
-      double r = 0;
-      for (const Loop& loop : fp.loops)
-        for (const Edge& edge : loop.edges) {
-          for (const Point* q : {&edge.source, &edge.target})
-            r = std::max(r, std::hypot(Rational(q->x - p.pivot.x).get_d(), Rational(q->y - p.pivot.y).get_d()));
-          if (edge.is_arc())
-            r = std::max(r, std::hypot(Rational(edge.center.x - p.pivot.x).get_d(),
-                                       Rational(edge.center.y - p.pivot.y).get_d()) +
-                                std::sqrt(edge.radius_squared.get_d()));
-        }
-      p.reach = std::max(r, 1e-300);
-    }
+    p.reach = s.driver_of[p.other] != no_index ? reach_from(p.pivot.x.get_d(), p.pivot.y.get_d()) : s.part_reach;
     auto frame = std::make_shared<Model>(model);
     frame->parts[p.other].motion.kind = Motion::Kind::fixed;
     frame->parts[p.other].initial = PartConfiguration{};
