@@ -48,6 +48,7 @@
 #include "simulation/held_extent.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/motion_datum.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
 
@@ -93,6 +94,20 @@ Rational chart_w(const SlicedAngle& a, bool flip) {
   if (!flip) return a.t;
   if (a.half_turn) return Rational(0);
   return Rational(-1) / a.t;
+}
+
+// The same placement as configuration q about `from` (p -> from + R(theta)(p - from) + (x, y)),
+// as a configuration about `to`: the shift gains (I - R(theta))(from - to); exact.
+SlicedConfiguration repivot(const SlicedConfiguration& q, const Point& from, const Point& to) {
+  if (from == to) return q;
+  SlicedConfiguration r = q;
+  auto [c, s] = cos_sin(q.angle);
+  const Rational dx = from.x - to.x, dy = from.y - to.y;
+  r.x += dx - (c * dx - s * dy);
+  r.y += dy - (s * dx + c * dy);
+  r.x.canonicalize();
+  r.y.canonicalize();
+  return r;
 }
 
 // The point at u of the straight motion from -> to in (x, y, w), exactly.
@@ -377,6 +392,14 @@ struct PinSlotSimulation::Impl {
     SlicedConfiguration q;   // the state's exact configuration (free)
     std::vector<Box> other_boxes;   // the other part's edge boxes at its zero configuration
     std::vector<PlacedEdge> other_edges;   // and its edges
+    // The pin-slot part's planar pivot in this pair's C-space (session 66: `q` places its body
+    // point p at pivot + R(theta)(p - pivot) + (x, y)): the pin P, or against a rotating part the
+    // rotating part's pivot C, so that the rotating part's turning changes the chart angle alone
+    // (a straight chord follows it; about P the shift circled at radius |P - C| and every chord
+    // left the path by |P - C| dtheta^2 / 8: the film advance's 3.4e-6 s steps). `reach` is the
+    // part's largest distance from it (the angle's share of a chord's deviation).
+    Point pivot;
+    double reach = 0;
   };
   std::vector<Pair> pairs;
   // A held (sustained) contact: a feature pair of a pair kept at the hold gap, its force the
@@ -488,7 +511,13 @@ struct PinSlotSimulation::Impl {
     if (dr == no_index) return f;
     SlicedConfiguration a;
     a.angle = exact_angle(driver_angle(dr, s, time));
-    return relative_configuration(model.parts[p.other].motion.pivot, a, model.parts[part].motion.pivot, f);
+    return relative_configuration(model.parts[p.other].motion.pivot, a, p.pivot,
+                                  repivot(f, model.parts[part].motion.pivot, p.pivot));
+  }
+  // The pair's exact configuration `q` (about the pair's pivot) as the configuration about the
+  // pin P (PinSlotState::pair_configurations; the same placement, exactly).
+  SlicedConfiguration about_pin(const Pair& p, const SlicedConfiguration& q) const {
+    return repivot(q, p.pivot, model.parts[part].motion.pivot);
   }
   double relative_angle(const Pair& p, const State& s, double time) const {
     const std::size_t dr = driver_of[p.other];
@@ -1025,10 +1054,42 @@ struct PinSlotSimulation::Impl {
     out << "simulation: at t = " << time / time_scale << " " << time_unit;
     return out.str();
   }
+  // A step that left the run's energy beyond the doubles' range stops the run (session 66, as
+  // the fixed-axis and planar simulators since session 65: it ended with exit 0 and "energy":
+  // null), naming the moving parts (the pin-slot part, a torque-driven part, the translating
+  // part) with their pointers and the largest velocity or load given (motion_datum.hpp).
+  void check_energy() const {
+    if (std::isfinite(energy_of(y))) return;
+    std::ostringstream parts;
+    const Part& pp = model.parts[part];
+    parts << "pin-slot part '" << pp.name << "' (" << pp.pointer << "/dynamics, " << pp.pointer << "/initial; at slide "
+          << y[0] << " mm, angle " << y[1] << " rad, moving at " << y[2] * time_scale << " mm/" << time_unit << " and "
+          << y[3] * time_scale << " rad/" << time_unit << ")";
+    if (free_driver != no_index) {
+      const Part& dp = model.parts[drivers[free_driver].part];
+      parts << ", part '" << dp.name << "' (" << dp.pointer << "/dynamics, " << dp.pointer << "/initial; at " << y[4]
+            << " rad, moving at " << y[5] * time_scale << " rad/" << time_unit << ")";
+    }
+    if (has_slider()) {
+      const Part& sp = model.parts[slider.part];
+      parts << ", part '" << sp.name << "' (" << sp.pointer << "/dynamics, " << sp.pointer << "/initial; at " << y[6]
+            << " mm, moving at " << y[7] * time_scale << " mm/" << time_unit << ")";
+    }
+    throw NumericError(simulation::energy_overflow_message(where(t), parts.str()) +
+                       simulation::largest_motion_datum(model));
+  }
   // The largest deviation (mm) of the pair's relative path from its straight chord over
   // [t0, t0 + h]: twice the midpoint's deviation (exact for a quadratic path) in the shift plus
-  // the part's reach times the angle deviation (2 |dw| bounds the angle error).
-  double chord_error(const Pair& p, const State& s0, const State& sm, const State& s1, double h, bool flip) const {
+  // the part's reach times the angle deviation (2 |dw| bounds the angle error). The chord's point
+  // matched to the time t0 + tau h is the one at u = tau + bend tau (tau - 1) (session 66; |bend|
+  // < 1 keeps it increasing; bend 0: u = tau, the straight time-matched chord as before): at the
+  // midpoint u_m = 1/2 - bend/4. Where the chord at bend 0 does not fit, the bend whose midpoint
+  // matches the path's angle coordinate w is tried (u_m = (w_m - w_0)/(w_1 - w_0) within [0.3,
+  // 0.7]): a turn at a steady rate is linear in the angle, not in w = tan(theta/2), whose
+  // curvature alone kept a chord about the cam's pivot within 2.7e-5 rad of the cam's turn;
+  // `bend` is set to the one taken (0 when none fits).
+  double chord_error(const Pair& p, const State& s0, const State& sm, const State& s1, double h, bool flip,
+                     double* bend = nullptr) const {
     auto rel = [&](const State& s, double time) {
       const SlicedConfiguration c = relative(p, s, time);
       const double x = c.x.get_d(), yy = c.y.get_d();
@@ -1036,8 +1097,40 @@ struct PinSlotSimulation::Impl {
       return std::array<double, 3>{x, yy, w};
     };
     const auto a = rel(s0, t), m = rel(sm, t + h / 2), z = rel(s1, t + h);
-    const double dx = m[0] - (a[0] + z[0]) / 2, dy = m[1] - (a[1] + z[1]) / 2, dw = m[2] - (a[2] + z[2]) / 2;
-    return 2 * (std::hypot(dx, dy) + 2 * reach_at({&s0, &sm, &s1}) * std::abs(dw));
+    const double lever = 2 * (reach_at({&s0, &sm, &s1}) - part_reach + p.reach);
+    auto error = [&](double um) {
+      const double dx = m[0] - (a[0] + (z[0] - a[0]) * um), dy = m[1] - (a[1] + (z[1] - a[1]) * um);
+      const double dw = m[2] - (a[2] + (z[2] - a[2]) * um);
+      return 2 * (std::hypot(dx, dy) + lever * std::abs(dw));
+    };
+    if (bend) *bend = 0;
+    const double straight = error(0.5);
+    if (!bend || !(straight > delta / 2)) return straight;
+    // the error is convex in u_m: its least value on [0.3, 0.7] (the w-matched midpoint, then a
+    // ternary search: a part accelerating along a straight relative path is followed too)
+    double um = 0.5, best = straight;
+    if (z[2] != a[2]) {
+      const double uw = std::clamp((m[2] - a[2]) / (z[2] - a[2]), 0.3, 0.7);
+      if (const double e = error(uw); e < best) um = uw, best = e;
+    }
+    double lo = 0.3, hi = 0.7;
+    for (int k = 0; k < 60 && !(best <= delta / 2); ++k) {
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      const double e1 = error(m1), e2 = error(m2);
+      if (e1 < best) um = m1, best = e1;
+      if (e2 < best) um = m2, best = e2;
+      (e1 < e2 ? hi : lo) = e1 < e2 ? m2 : m1;
+    }
+    if (!(best <= delta / 2)) return straight;
+    *bend = 2 - 4 * um;
+    return best;
+  }
+  // The chord's parameter u at the step's fraction tau for a bend (chord_error), and back.
+  static double chord_u(double bend, double tau) { return tau + bend * tau * (tau - 1); }
+  static double chord_tau(double bend, double u) {
+    if (bend == 0) return u;
+    const double tau = 2 * u / ((1 - bend) + std::sqrt((1 - bend) * (1 - bend) + 4 * bend * u));
+    return std::clamp(tau, 0.0, 1.0);
   }
   void check_limits(const State& s, double time) const {
     const Part& pp = model.parts[part];
@@ -1080,7 +1173,7 @@ struct PinSlotSimulation::Impl {
       public_state.rate[slider.part] = y[7] * time_scale;
     }
     public_state.pair_configurations.clear();
-    for (const Pair& p : pairs) public_state.pair_configurations.push_back(p.q);
+    for (const Pair& p : pairs) public_state.pair_configurations.push_back(about_pin(p, p.q));
     public_state.contacts.clear();
     if (!held.empty() && any_friction()) {   // (session 64) the frictional held set's multipliers at its states
       simulation::FrictionalSolution sol;
@@ -1116,12 +1209,12 @@ struct PinSlotSimulation::Impl {
     for (const Loop& loop : f.loops)
       for (const Edge& e : loop.edges) {
         const std::size_t own = index++;
-        const Box fb = edge_box(e, f.motion.pivot, c, sn, q.x, q.y);
+        const Box fb = edge_box(e, p.pivot, c, sn, q.x, q.y);
         std::optional<PlacedEdge> fe;
         for (std::size_t k = 0; k < p.other_boxes.size(); ++k) {
           if (std::find(skip.begin(), skip.end(), std::pair{own, k}) != skip.end()) continue;
           if (boxes_apart(fb, p.other_boxes[k], d)) continue;
-          if (!fe) fe = placed_edge(e, f.motion.pivot, c, sn, q.x, q.y);
+          if (!fe) fe = placed_edge(e, p.pivot, c, sn, q.x, q.y);
           if (!edges_apart(*fe, p.other_edges[k], d)) return false;
         }
       }
@@ -1373,7 +1466,7 @@ bool PinSlotSimulation::Impl::held_valid(const Held& h, const State& s, double t
   auto [c, sn] = cos_sin(q.angle);
   follower.c = c;
   follower.s = sn;
-  const Point& pivot = model.parts[part].motion.pivot;
+  const Point& pivot = pairs[h.pair].pivot;   // the pair's configurations are about it
   follower.pivot = {pivot.x, pivot.y};
   follower.shift = {q.x, q.y};
   return simulation::contact_within_certified(other, h.fixed_exact, h.fixed_box, follower, h.free_exact, h.free_box,
@@ -2000,8 +2093,17 @@ bool PinSlotSimulation::Impl::advance(double span) {
     // the far test: a pair whose features are certainly farther apart than twice the step's
     // travel bound (plus delta) is free over the step without a chord
     std::vector<bool> far(pairs.size(), false), flips(pairs.size(), false);
+    std::vector<double> bends(pairs.size(), 0.0);   // each chord's bend (chord_error)
     std::vector<SlicedConfiguration> to(pairs.size());
     for (std::size_t i = 0; i < pairs.size(); ++i) to[i] = relative(pairs[i], end, t + h);
+    // the step's fraction at pair i's chord parameter u, and the parameter at a fraction (exact
+    // and the identity for a chord without a bend; a bent chord's in doubles, as its estimate)
+    auto time_of = [&](std::size_t i, const Rational& u) {
+      return bends[i] == 0 ? u : Rational(chord_tau(bends[i], u.get_d()));
+    };
+    auto u_at = [&](std::size_t i, const Rational& tau) {
+      return bends[i] == 0 ? tau : Rational(chord_u(bends[i], tau.get_d()));
+    };
     bool fits = true;
     for (std::size_t i = 0; i < pairs.size() && fits; ++i) {
       const double reach_i = travel(pairs[i], {{&y, t}, {&mid, t + h / 2}, {&end, t + h}}, h);
@@ -2022,7 +2124,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
       // the chart about the half turn excludes theta = 0 at either end, the chart about 0 the half turn
       if (fits && flips[i] && (std::abs(a0) < pi / 8 || std::abs(a1) < pi / 8)) fits = false;
       if (fits && !flips[i] && (std::abs(a0) > 7 * pi / 8 || std::abs(a1) > 7 * pi / 8)) fits = false;
-      if (fits && chord_error(pairs[i], y, mid, end, h, flips[i]) > delta / 2) fits = false;
+      if (fits && chord_error(pairs[i], y, mid, end, h, flips[i], &bends[i]) > delta / 2) fits = false;
     }
     if (!fits) {
       h /= 2;
@@ -2043,7 +2145,8 @@ bool PinSlotSimulation::Impl::advance(double span) {
             << model.parts[pairs[i].other].name << "' (its start was certified free: an internal error)";
         throw NumericError(out.str());
       }
-      if (c.status == CrossingStatus::crossing && (first == no_index || c.u_lower < earliest.u_lower)) {
+      if (c.status == CrossingStatus::crossing &&
+          (first == no_index || time_of(i, c.u_lower) < time_of(first, earliest.u_lower))) {
         first = i;
         earliest = c;
       }
@@ -2072,7 +2175,7 @@ bool PinSlotSimulation::Impl::advance(double span) {
     // the first contact: every pair's state is its chord's point at the crossing's free side
     std::vector<SlicedConfiguration> kept;
     for (const Pair& p : pairs) kept.push_back(p.q);
-    const Rational u = earliest.u_lower;
+    const Rational u = time_of(first, earliest.u_lower);   // the step's fraction at the first crossing
     const double hc = h * u.get_d();
     State at;
     try {
@@ -2094,12 +2197,17 @@ bool PinSlotSimulation::Impl::advance(double span) {
     // the pairs touching together: their crossings within the first one's bounds (several
     // contacts of one impact, e.g. a face landing on two supports at once)
     Touching touching;
+    const Rational u_upper = time_of(first, earliest.u_upper);
     for (std::size_t i = 0; i < pairs.size(); ++i)
-      if (crossings[i] && crossings[i]->u_lower <= earliest.u_upper) touching.emplace_back(i, crossings[i]->features);
+      if (crossings[i] && (i == first || time_of(i, crossings[i]->u_lower) <= u_upper ||
+                           u_at(i, u) >= crossings[i]->u_lower))
+        touching.emplace_back(i, crossings[i]->features);
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       if (!far[i]) {
-        pairs[i].q = crossings[i] && crossings[i]->u_lower == u ? crossings[i]->before
-                                                                 : chord_point(pairs[i].q, to[i], flips[i], u);
+        // (every pair's configuration on its chord at or before its first crossing: free)
+        const Rational ui = i == first ? earliest.u_lower : u_at(i, u);
+        pairs[i].q = crossings[i] && crossings[i]->u_lower <= ui ? crossings[i]->before
+                                                                  : chord_point(pairs[i].q, to[i], flips[i], ui);
         continue;
       }
       pairs[i].q = relative(pairs[i], at, t + hc);
@@ -2347,17 +2455,21 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     s.y[7] = slider_rate ? *slider_rate / ts : 0.0;
   }
   s.check_limits(s.y, 0);
-  // the part's reach from its pivot (for the angle's share of a chord's deviation, reach_at)
-  double reach = 0;
-  for (const Loop& loop : fp.loops)
-    for (const Edge& edge : loop.edges) {
-      for (const Point* q : {&edge.source, &edge.target})
-        reach = std::max(reach, std::hypot(q->x.get_d() - s.P[0], q->y.get_d() - s.P[1]));
-      if (edge.is_arc())
-        reach = std::max(reach, std::hypot(edge.center.x.get_d() - s.P[0], edge.center.y.get_d() - s.P[1]) +
-                                    std::sqrt(edge.radius_squared.get_d()));
-    }
-  s.part_reach = std::max(reach, 1e-300);
+  // the part's reach from a point (its pivot: for the angle's share of a chord's deviation,
+  // reach_at; a pair's pivot: Pair::reach)
+  const auto reach_from = [&](double px, double py) {
+    double reach = 0;
+    for (const Loop& loop : fp.loops)
+      for (const Edge& edge : loop.edges) {
+        for (const Point* q : {&edge.source, &edge.target})
+          reach = std::max(reach, std::hypot(q->x.get_d() - px, q->y.get_d() - py));
+        if (edge.is_arc())
+          reach = std::max(reach, std::hypot(edge.center.x.get_d() - px, edge.center.y.get_d() - py) +
+                                      std::sqrt(edge.radius_squared.get_d()));
+      }
+    return std::max(reach, 1e-300);
+  };
+  s.part_reach = reach_from(s.P[0], s.P[1]);
   // the run's length scale: the part's reach at its initial slide (not its limits': see reach_at)
   const double size = s.reach_at({&s.y});
   s.size = size;
@@ -2450,10 +2562,14 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
       p.mu_kinetic = spec_pair.kinetic_friction ? spec_pair.kinetic_friction->get_d() : p.mu_static;
     }
     p.restitution = spec_pair.restitution ? spec_pair.restitution->get_d() : 0.0;
+    // the pair's pivot (session 66): the rotating part's against a rotating part, else the pin
+    p.pivot = s.driver_of[p.other] != no_index ? model.parts[p.other].motion.pivot : fp.motion.pivot;
+    p.reach = s.driver_of[p.other] != no_index ? reach_from(p.pivot.x.get_d(), p.pivot.y.get_d()) : s.part_reach;
     auto frame = std::make_shared<Model>(model);
     frame->parts[p.other].motion.kind = Motion::Kind::fixed;
     frame->parts[p.other].initial = PartConfiguration{};
     frame->parts[found].motion.kind = Motion::Kind::planar;
+    frame->parts[found].motion.pivot = p.pivot;
     frame->parts[found].motion.angle_limits.reset();
     frame->parts[found].motion.translation_limits.reset();
     frame->parts[found].initial = PartConfiguration{};
@@ -2507,6 +2623,7 @@ void PinSlotSimulation::step(double t_limit) {
         << ")";
     throw NumericError(out.str());
   }
+  s.check_energy();
   s.publish();
 }
 

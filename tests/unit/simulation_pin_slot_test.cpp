@@ -15,11 +15,13 @@
 
 #include "simulation/held_extent.hpp"
 #include "simulation_planar_support.hpp"
+#include "test_paths.hpp"
 #include "test_seed.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <initializer_list>
 #include <numbers>
@@ -1530,5 +1532,49 @@ TEST(SimulationPinSlot, FrictionEventsDoNotDependOnTheStepSize) {
     expect_same_event_sequences(runs, delta, 0.0, 1e-6 * t_stop, "case " + std::to_string(c));
   }
 }
+// The film advance (tests/data/simulation/film-advance-dynamics.json: a torque-driven cam, the
+// claw on a pin-in-slot follower, the film) to the claw's strike on the film's perforation
+// and its held contact (0.1339 s), every accepted state's pair configurations exactly free by the overlap oracle
+// (every 32nd state and the states of every event). Session 66: the cam pair's configurations
+// about the cam's pivot and the chords' time map bent to the angle's w = tan(theta/2) — base66
+// took 5698 steps to 0.12 s (chord-limited at 3.4e-6 s after the right wall's lift-off at
+// 0.1077 s, the pin 40 mm from the cam's pivot); a budget of 3600 steps fails it there.
+TEST(SimulationPinSlot, FilmAdvanceReachesTheClawsStrikeOnTheFilmWithinAStepBudget) {
+  const Model model =
+      read_model_file(std::filesystem::path(HIPAIR_SOURCE_DIR) / "tests/data/simulation/film-advance-dynamics.json");
+  SimulationOptions o;
+  o.max_steps = 3600;
+  PinSlotSimulation sim = PinSlotSimulation::create(model, o);
+  const std::vector<std::size_t> others{0, 2, 3};   // cam, pin, film (the pairs' order)
+  std::size_t events = 0, k = 0;
+  bool struck = false;
+  while (!struck && sim.state().time < 0.14) {
+    sim.step(0.14);
+    if (sim.events().size() != events || ++k % 32 == 0) expect_not_overlapping(sim, others);
+    for (; events < sim.events().size(); ++events) {
+      const SimulationEvent& ev = sim.events()[events];
+      for (const std::string& f : ev.features)
+        if (ev.kind == SimulationEvent::Kind::impact && f.find("claw bottom") != std::string::npos) struck = true;
+    }
+  }
+  ASSERT_TRUE(struck) << "no strike of the claw on the film by t = " << sim.state().time;
+  // the run's events: the cam strikes and holds the window's right wall, then its bottom, leaves
+  // the right wall, then the claw strikes the film (base66's sequence and times)
+  const auto& ev = sim.events();
+  ASSERT_EQ(ev.size(), 7u);
+  const double times[7] = {0.0316293714, 0.0316293714, 0.0777176287, 0.0777176287,
+                           0.1076980883, 0.1339471821, 0.1339471821};
+  const char* features[7] = {"window right", "window right", "window bottom", "window bottom", "window right",
+                             "claw bottom", "claw bottom"};
+  // (times within 8 delta / v of base66's, v the approach speed, 1 mm/s for a contact change)
+  for (std::size_t i = 0; i < 7; ++i) {
+    EXPECT_NEAR(ev[i].time, times[i], 8 * sim.chord_deviation() / std::max(ev[i].normal_speed_before, 1.0))
+        << "event " << i;
+    ASSERT_FALSE(ev[i].features.empty());
+    EXPECT_NE(ev[i].features[0].find(features[i]), std::string::npos) << ev[i].features[0];
+  }
+  EXPECT_LE(sim.steps(), 3600u);
+}
+
 }  // namespace
 }  // namespace hipair
