@@ -4,6 +4,7 @@
 #include "cspace/builder_impl.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/proportional.hpp"
+#include "algebra/simplest_small.hpp"
 #include "algebra/small_integers.hpp"
 #include "cspace/angle_filter.hpp"
 #include "cspace/label_filter.hpp"
@@ -688,7 +689,10 @@ void label_edges(ChartData& chart, bool by_support) {
       // exactly in rationals. (The general path, without carried supports, takes the branch
       // below: the tests compare the two.)
       s.front_end = true;
-      data.sample_x = algebra::simplest_between(low.x.lower, high.x.lower);
+      // written into the default sample_x in place when its ends fit machine integers (the
+      // same canonical rational as simplest_between: its own first step), else assigned
+      if (!(low.x.lower < high.x.lower) || !algebra::simplest_between_small(low.x.lower, high.x.lower, data.sample_x))
+        data.sample_x = algebra::simplest_between(low.x.lower, high.x.lower);
       Rational y;   // -(a x + c) / b, its integers written in place
       const mpz_ptr y_num = mpq_numref(y.get_mpq_t()), y_den = mpq_denref(y.get_mpq_t());
       mpz_mul(y_num, a->get_mpz_t(), data.sample_x.get_num_mpz_t());

@@ -204,27 +204,28 @@ struct SweptFeature {
 
 enum class MotionKind { fixed, rotation, translation };
 
+// The pivot and the direction are the part's own (the part outlives every culler: no copy);
+// only a translation's normal is made (a fixed part's motion constructs no rational).
 struct PartMotion {
   MotionKind kind = MotionKind::fixed;
-  Point pivot;
-  Point direction;
-  Point normal;
-  Rational lo;   // chart box of a translation
-  Rational hi;
+  const Point* pivot_of = nullptr;       // a rotation's
+  const Point* direction_of = nullptr;   // a translation's
+  std::optional<Point> normal_of;        // a translation's: the direction turned by +90 degrees
+  const Point& pivot() const { return *pivot_of; }
+  const Point& direction() const { return *direction_of; }
+  const Point& normal() const { return *normal_of; }
 };
 
-PartMotion part_motion(const Part& part, bool moves, const ChartAxis& axis) {
+PartMotion part_motion(const Part& part, bool moves) {
   PartMotion motion;
   if (!moves) return motion;
   if (part.motion.kind == Motion::Kind::rotation) {
     motion.kind = MotionKind::rotation;
-    motion.pivot = part.motion.pivot;
+    motion.pivot_of = &part.motion.pivot;
   } else {
     motion.kind = MotionKind::translation;
-    motion.direction = part.motion.direction;
-    motion.normal = Point{Rational(-motion.direction.y), motion.direction.x};
-    motion.lo = axis.lo;
-    motion.hi = axis.hi;
+    motion.direction_of = &part.motion.direction;
+    motion.normal_of.emplace(Point{Rational(-part.motion.direction.y), part.motion.direction.x});
   }
   return motion;
 }
@@ -234,7 +235,7 @@ class Culler {
   // The two parts' motions (part_motion) built in place: no PartMotion (eight rationals) copied.
   Culler(const Part& first_part, bool first_moves, const ChartAxis& first_axis, const Part& second_part,
          bool second_moves, const ChartAxis& second_axis)
-      : motion_{part_motion(first_part, first_moves, first_axis), part_motion(second_part, second_moves, second_axis)} {
+      : motion_{part_motion(first_part, first_moves), part_motion(second_part, second_moves)} {
     const PartMotion& first = motion_[0];
     const PartMotion& second = motion_[1];
     travel_ = travel_over(first_axis, second_axis);
@@ -242,15 +243,15 @@ class Culler {
       return (sgn(u.y) == 0 && (u.x == 1 || u.x == -1)) || (sgn(u.x) == 0 && (u.y == 1 || u.y == -1));
     };
     axis_normals_ = first.kind != MotionKind::rotation && second.kind != MotionKind::rotation &&
-                    (first.kind != MotionKind::translation || on_axis(first.normal)) &&
-                    (second.kind != MotionKind::translation || on_axis(second.normal));
+                    (first.kind != MotionKind::translation || on_axis(first.normal())) &&
+                    (second.kind != MotionKind::translation || on_axis(second.normal()));
     if (first.kind == MotionKind::rotation && second.kind == MotionKind::rotation) {
-      Rational d2 = squared_length(difference(first.pivot, second.pivot));
+      Rational d2 = squared_length(difference(first.pivot(), second.pivot()));
       same_pivot_ = sgn(d2) == 0;
       pivot_distance_ = root_of(d2);
     }
     if (first.kind == MotionKind::translation && second.kind == MotionKind::translation)
-      parallel_ = sgn(cross(first.direction, second.direction)) == 0;
+      parallel_ = sgn(cross(first.direction(), second.direction())) == 0;
   }
 
   /// A translating part's travel over a chart box, the same for each of its features: side 0
@@ -266,10 +267,10 @@ class Culler {
       const PartMotion& own = motion_[side];
       if (own.kind != MotionKind::translation) continue;
       const ChartAxis& axis = side == 0 ? first_axis : second_axis;
-      mpq_mul(x1.get_mpq_t(), axis.lo.get_mpq_t(), own.direction.x.get_mpq_t());
-      mpq_mul(x2.get_mpq_t(), axis.hi.get_mpq_t(), own.direction.x.get_mpq_t());
-      mpq_mul(y1.get_mpq_t(), axis.lo.get_mpq_t(), own.direction.y.get_mpq_t());
-      mpq_mul(y2.get_mpq_t(), axis.hi.get_mpq_t(), own.direction.y.get_mpq_t());
+      mpq_mul(x1.get_mpq_t(), axis.lo.get_mpq_t(), own.direction().x.get_mpq_t());
+      mpq_mul(x2.get_mpq_t(), axis.hi.get_mpq_t(), own.direction().x.get_mpq_t());
+      mpq_mul(y1.get_mpq_t(), axis.lo.get_mpq_t(), own.direction().y.get_mpq_t());
+      mpq_mul(y2.get_mpq_t(), axis.hi.get_mpq_t(), own.direction().y.get_mpq_t());
       travel.x[side] = kernels::hull(algebra::enclose_kernel(x1), algebra::enclose_kernel(x2));
       travel.y[side] = kernels::hull(algebra::enclose_kernel(y1), algebra::enclose_kernel(y2));
     }
@@ -289,16 +290,16 @@ class Culler {
       // intervals as projection_range
       const AxisRanges ranges = axis_ranges(feature);
       for (int k = 0; k < 2; ++k)
-        if (motion_[k].kind == MotionKind::translation) swept.normal[k] = axis_projection(ranges, motion_[k].normal);
+        if (motion_[k].kind == MotionKind::translation) swept.normal[k] = axis_projection(ranges, motion_[k].normal());
       swept.box_x = ranges.x;
       swept.box_y = ranges.y;
       return swept;
     }
     for (int k = 0; k < 2; ++k) {
       if (motion_[k].kind == MotionKind::rotation)
-        swept.radial[k] = radial_range(feature, motion_[k].pivot);
+        swept.radial[k] = radial_range(feature, motion_[k].pivot());
       if (motion_[k].kind == MotionKind::translation)
-        swept.normal[k] = projection_range(feature, motion_[k].normal);
+        swept.normal[k] = projection_range(feature, motion_[k].normal());
     }
     swept.box_x = projection_range(feature, Point{Rational(1), Rational(0)});
     swept.box_y = projection_range(feature, Point{Rational(0), Rational(1)});
@@ -346,9 +347,9 @@ class Culler {
   // Rotating feature `r` (annulus about its pivot) against translating feature `t`.
   bool disk_misses_strip(const SweptFeature& r, int rotating, const SweptFeature& t,
                          int translating) const {
-    const Point& pivot = motion_[rotating].pivot;
+    const Point& pivot = motion_[rotating].pivot();
     double reach = r.radial[rotating].hi;
-    Interval centre = algebra::enclose_kernel(dot(motion_[translating].normal, pivot));
+    Interval centre = algebra::enclose_kernel(dot(motion_[translating].normal(), pivot));
     Interval disk = centre + Interval(-reach, reach);
     if (disjoint(disk, t.normal[translating])) return true;
     if (distance_to_box_lower(pivot, t.box_x, t.box_y) > reach) return true;
@@ -732,12 +733,12 @@ PoseBox pose_over(const PartMotion& motion, bool half_turn, const Interval& t) {
   PoseBox box;
   if (motion.kind == MotionKind::fixed) return box;
   if (motion.kind == MotionKind::translation) {
-    box.shift_x = t * algebra::enclose_kernel(motion.direction.x);
-    box.shift_y = t * algebra::enclose_kernel(motion.direction.y);
+    box.shift_x = t * algebra::enclose_kernel(motion.direction().x);
+    box.shift_y = t * algebra::enclose_kernel(motion.direction().y);
     return box;
   }
-  box.pivot_x = algebra::enclose_kernel(motion.pivot.x);
-  box.pivot_y = algebra::enclose_kernel(motion.pivot.y);
+  box.pivot_x = algebra::enclose_kernel(motion.pivot().x);
+  box.pivot_y = algebra::enclose_kernel(motion.pivot().y);
   std::tie(box.c, box.s) = rotation_enclosure(half_turn, t);
   return box;
 }
@@ -811,7 +812,7 @@ class BlockedSpaceCuller {
                      const ChartAxis& x, const ChartAxis& y, int dimension, const std::vector<BodyDisk>& disks_a,
                      const std::vector<BodyDisk>& disks_b, const std::vector<Core>& cores_a,
                      const std::vector<Core>& cores_b, BlockedCells* grid = nullptr)
-      : motion_{part_motion(first_part, first_moves, x), part_motion(second_part, second_moves, first_moves ? y : x)},
+      : motion_{part_motion(first_part, first_moves), part_motion(second_part, second_moves)},
         x_(x), y_(y), dimension_(dimension), disks_{&disks_a, &disks_b}, cores_{&cores_a, &cores_b}, grid_(grid) {}
 
   // needed[k] set for the candidate pairs that survive.
