@@ -222,7 +222,8 @@ class ToleranceEvaluator {
   /// neighbouring one continues, the follower's move between the two witness paths, keep the
   /// parts apart: apart at the region's centre (exact-rounded enclosures) and no first-contact
   /// event over it (free_path_check.cpp), the region bisected while undecided, at most
-  /// `piece_budget` times in all. Returns "" when proved, otherwise what was not proved.
+  /// `piece_budget` plus one per region times in all (session 66). Returns "" when proved,
+  /// otherwise what was not proved.
   std::string free_path_failure(std::size_t piece_budget = 48) const;
   /// Check 7's test over one leaf's whole box with the follower on its witness path (for the
   /// producer, to choose leaves whose paths check 7 proves): "" when proved.
