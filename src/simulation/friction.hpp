@@ -576,8 +576,9 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
 /// friction forces f (one per collinear group: `group`, by contact; empty: each its own), the
 /// accelerations x = a0 + M^-1 (W_H^T lambda_H + T_S^T f) (W the force rows of frictional_rows;
 /// since session 66 a sliding contact's row G_k - sign (mu_k / s_k) T_k formed in rationals, not
-/// the doubles' rounded one), and the conditions are linear: G_H x + h_H = 0, G_O x + h_O >= 0 (an open gap does not close),
-/// T_S x + bias_S = 0 (a sticking contact keeps its tangential acceleration 0, as reduce()),
+/// the doubles' rounded one), and the conditions are linear: G_H x + h_H = 0, G_O x + h_O >= 0
+/// (an open gap does not close), T_S x + bias_S = 0 (a sticking contact keeps its tangential
+/// acceleration 0, as reduce()),
 /// lambda_H >= 0, |f_g| <= mu_s sum_{k in g, held} lambda_k / s_k (a sticking contact that is
 /// open carries no friction), and a sliding contact whose direction is not given keeps it,
 /// sign (T_k x + bias_k) >= 0 (coulomb_satisfied's conditions without their slack). For each held
@@ -630,7 +631,8 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   std::vector<Rational> x0(n);
   held_force_detail::Matrix<Rational> D(force_rows, std::vector<Rational>(n));
   if (full) {
-    held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n)), rhs(n, std::vector<Rational>(force_rows + 1));
+    held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n));
+    held_force_detail::Matrix<Rational> rhs(n, std::vector<Rational>(force_rows + 1));
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
       for (std::size_t r = 0; r < force_rows; ++r) rhs[i][r] = W[r][i];

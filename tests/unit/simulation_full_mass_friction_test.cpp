@@ -235,8 +235,10 @@ TEST(FullMassFriction, StickWithANormalForceFarBelowTheLoadsIsDecidedOnTheFullMa
         const Eigen::VectorXd load = p.full.Q + p.full.G.row(0).transpose() * sol.lambda(0) + fr0.T * sol.f(0);
         const Eigen::VectorXd expected = p.full.M.ldlt().solve(load);
         const double condition = p.full.M.norm() * p.full.M.inverse().norm();
-        const double scale = (p.full.M.inverse().cwiseAbs() * (p.full.Q.cwiseAbs() + p.full.G.row(0).transpose().cwiseAbs() *
-                              std::abs(sol.lambda(0)) + fr0.T.cwiseAbs() * std::abs(sol.f(0)))).maxCoeff();
+        const Eigen::VectorXd loads = p.full.Q.cwiseAbs() +
+                                      p.full.G.row(0).transpose().cwiseAbs() * std::abs(sol.lambda(0)) +
+                                      fr0.T.cwiseAbs() * std::abs(sol.f(0));
+        const double scale = (p.full.M.inverse().cwiseAbs() * loads).maxCoeff();
         EXPECT_LE((a - expected).cwiseAbs().maxCoeff(), 256 * 0x1p-52 * condition * scale) << where;
         if (sol.state[0] == simulation::stick)   // the planted force, to the doubles' filter's 1e-9 slack at most
           EXPECT_LE(std::abs(sol.f(0)), sol.lambda(0) * mu * (1 + 1e-9) + 1e-300) << where;
