@@ -574,9 +574,11 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
 /// doubles give them (every double the exact number it is). For a held set H (the others open:
 /// lambda_k = 0) the unknowns are the held normal multipliers lambda_H and the sticking contacts'
 /// friction forces f (one per collinear group: `group`, by contact; empty: each its own), the
-/// accelerations x = a0 + M^-1 (W_H^T lambda_H + T_S^T f) (W the force rows of frictional_rows),
-/// and the conditions are linear: G_H x + h_H = 0, G_O x + h_O >= 0 (an open gap does not close),
-/// T_S x + bias_S = 0 (a sticking contact keeps its tangential acceleration 0, as reduce()),
+/// accelerations x = a0 + M^-1 (W_H^T lambda_H + T_S^T f) (W the force rows of frictional_rows;
+/// since session 66 a sliding contact's row G_k - sign (mu_k / s_k) T_k formed in rationals, not
+/// the doubles' rounded one), and the conditions are linear: G_H x + h_H = 0, G_O x + h_O >= 0
+/// (an open gap does not close), T_S x + bias_S = 0 (a sticking contact keeps its tangential
+/// acceleration 0, as reduce()),
 /// lambda_H >= 0, |f_g| <= mu_s sum_{k in g, held} lambda_k / s_k (a sticking contact that is
 /// open carries no friction), and a sliding contact whose direction is not given keeps it,
 /// sign (T_k x + bias_k) >= 0 (coulomb_satisfied's conditions without their slack). For each held
@@ -586,42 +588,86 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
 /// doubles (x and w from the exact ones; a friction shared by a group split in proportion to its
 /// members' normal forces). None: the assignment has no consistent force, exactly.
 /// `tried` (optional) counts the linear programs solved.
-inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+/// `full` (given; session 66, fullform66): decided on the problem's full form (FullMass: its rows
+/// G and Friction data, M and Q replace G, friction, minv and a0), x = M^-1 (Q + W_H^T lambda_H +
+/// T_S^T f) with M^-1 Q and M^-1 W^T solved exactly (held_force_detail::solve on the exact
+/// doubles of M); the published accelerations are then mapped to the coordinates of the rows as
+/// given, z = L^T q (L: Eigen's Cholesky factor of M in doubles, the pin-slot simulator's
+/// FrictionProblem), x_z = L^T x rounded — the coordinates the doubles' solutions are in; the
+/// multipliers, forces and gap accelerations are the full form's exact ones rounded once.
+inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv,
                                                           const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
-                                                          const std::vector<Friction>& friction,
+                                                          const std::vector<Friction>& friction_given,
                                                           const std::vector<int>& state,
                                                           const std::vector<std::size_t>& group,
                                                           const std::vector<bool>* first = nullptr,
-                                                          std::size_t* tried = nullptr) {
+                                                          std::size_t* tried = nullptr,
+                                                          const FullMass* full = nullptr) {
+  const Eigen::MatrixXd& G = full ? full->G : G_given;
+  const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const auto m = static_cast<std::size_t>(G.rows()), n = static_cast<std::size_t>(G.cols());
   if (m > 12) return std::nullopt;
   std::vector<std::size_t> reps;   // the sticking rows (one per group)
-  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, reps, group);
+  const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, reps, group, full);
   auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
   auto exact = [](double v) { return held_force_detail::exact_value(v); };
   const std::size_t p = reps.size();
-  std::vector<Rational> a0q(n), minvq(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    a0q[i] = exact(a0(static_cast<Eigen::Index>(i)));
-    minvq[i] = exact(minv(static_cast<Eigen::Index>(i)));
+  // the free accelerations x0 = M^-1 Q and each force row's response D_r = M^-1 W_r^T, exact
+  // (diagonal form: a0 and minv_i W_ri, as given)
+  const auto force_rows = static_cast<std::size_t>(rows.W.rows());   // m + p
+  // the force rows exactly: J's, a sliding contact's G_k - sign (mu_k / s_k) T_k in rationals
+  // (session 66; rows.W is that row in doubles)
+  held_force_detail::Matrix<Rational> W(force_rows, std::vector<Rational>(n));
+  for (std::size_t r = 0; r < force_rows; ++r) {
+    for (std::size_t i = 0; i < n; ++i) W[r][i] = exact(rows.J(Eigen::Index(r), Eigen::Index(i)));
+    if (r >= m) continue;
+    const Friction& c = friction[r];
+    const int st = state[r];
+    if (!c.on || (st != slip_positive && st != slip_negative)) continue;
+    const Rational k = exact(c.mu_kinetic) / exact(c.s);
+    for (std::size_t i = 0; i < n; ++i)
+      if (c.T(Eigen::Index(i)) != 0) W[r][i] -= st * k * exact(c.T(Eigen::Index(i)));
+  }
+  std::vector<Rational> x0(n);
+  held_force_detail::Matrix<Rational> D(force_rows, std::vector<Rational>(n));
+  if (full) {
+    held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n));
+    held_force_detail::Matrix<Rational> rhs(n, std::vector<Rational>(force_rows + 1));
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
+      for (std::size_t r = 0; r < force_rows; ++r) rhs[i][r] = W[r][i];
+      rhs[i][force_rows] = exact(full->Q(Eigen::Index(i)));
+    }
+    const auto solved = held_force_detail::solve(std::move(mass), std::move(rhs));
+    if (!solved) throw NumericError("a held contact's force problem: the mass matrix is singular");
+    for (std::size_t i = 0; i < n; ++i) {
+      x0[i] = (*solved)[i][force_rows];
+      for (std::size_t r = 0; r < force_rows; ++r) D[r][i] = (*solved)[i][r];
+    }
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      x0[i] = exact(a0(static_cast<Eigen::Index>(i)));
+      const Rational mi = exact(minv(static_cast<Eigen::Index>(i)));
+      for (std::size_t r = 0; r < force_rows; ++r)
+        if (sgn(W[r][i]) != 0) D[r][i] = mi * W[r][i];
+    }
   }
   // a row r over the coordinates as an affine function of the unknowns z = [lambda_H, f]:
-  // r . x + c = (r . a0 + c) + sum_v (r . D_v) z_v, D_v = M^-1 (force row of v)
+  // r . x + c = (r . x0 + c) + sum_v (r . D_v) z_v
   auto affine = [&](const Eigen::VectorXd& r, double c, const std::vector<std::size_t>& held,
                     std::vector<Rational>& coefficients, Rational& constant) {
-    std::vector<Rational> rm(n);
+    std::vector<Rational> rq(n);
     constant = exact(c);
     for (std::size_t i = 0; i < n; ++i) {
-      const Rational ri = exact(r(static_cast<Eigen::Index>(i)));
-      constant += ri * a0q[i];
-      rm[i] = ri * minvq[i];
+      rq[i] = exact(r(static_cast<Eigen::Index>(i)));
+      if (sgn(rq[i]) != 0) constant += rq[i] * x0[i];
     }
     coefficients.assign(held.size() + p, Rational(0));
     for (std::size_t v = 0; v < held.size() + p; ++v) {
-      const auto row = static_cast<Eigen::Index>(v < held.size() ? held[v] : m + (v - held.size()));
+      const std::size_t row = v < held.size() ? held[v] : m + (v - held.size());
       Rational sum = 0;
       for (std::size_t i = 0; i < n; ++i)
-        if (sgn(rm[i]) != 0) sum += rm[i] * exact(rows.W(row, static_cast<Eigen::Index>(i)));
+        if (sgn(rq[i]) != 0 && sgn(D[row][i]) != 0) sum += rq[i] * D[row][i];
       coefficients[v] = sum;
     }
   };
@@ -678,11 +724,12 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     // the solution: exact multipliers and forces, accelerations and gap accelerations
     std::vector<Rational> lambda(m, Rational(0)), force(m, Rational(0));
     for (std::size_t v = 0; v < held.size(); ++v) lambda[held[v]] = (*z)[v];
-    std::vector<Rational> x(a0q);
+    std::vector<Rational> x(x0);
     for (std::size_t v = 0; v < vars; ++v) {
       if (sgn((*z)[v]) == 0) continue;
-      const auto row = static_cast<Eigen::Index>(v < held.size() ? held[v] : m + (v - held.size()));
-      for (std::size_t i = 0; i < n; ++i) x[i] += minvq[i] * exact(rows.W(row, static_cast<Eigen::Index>(i))) * (*z)[v];
+      const std::size_t row = v < held.size() ? held[v] : m + (v - held.size());
+      for (std::size_t i = 0; i < n; ++i)
+        if (sgn(D[row][i]) != 0) x[i] += D[row][i] * (*z)[v];
     }
     for (std::size_t j = 0; j < p; ++j) {
       const Rational& fg = (*z)[held.size() + j];
@@ -704,6 +751,12 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     s.w.resize(static_cast<Eigen::Index>(m));
     s.x.resize(static_cast<Eigen::Index>(n));
     for (std::size_t i = 0; i < n; ++i) s.x(static_cast<Eigen::Index>(i)) = to_double(x[i]);
+    if (full) {   // to the coordinates of the rows as given, z = L^T q (M = L L^T)
+      const Eigen::LLT<Eigen::MatrixXd> llt(full->M);
+      if (llt.info() != Eigen::Success)
+        throw NumericError("a held contact's force problem: the mass matrix is not positive definite in doubles");
+      s.x = llt.matrixU() * s.x;
+    }
     for (std::size_t k = 0; k < m; ++k) {
       const auto r = static_cast<Eigen::Index>(k);
       const Friction& c = friction[k];
@@ -746,8 +799,11 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
 /// tried with the frictionless multipliers (undetermined(), above; the fixed-axis simulator's
 /// wedges, session 36). `exact_groups` (given: the collinear groups by contact, empty for none):
 /// an assignment's stick limits are also decided exactly (exact_stick_holds; session 63), a
-/// friction force beyond mu_s N by any amount rejects the sticking assignment. `full` (given,
-/// with exact_groups): those limits decided on the problem's full form (FullMass).
+/// friction force beyond mu_s N by any amount rejects the sticking assignment, and every
+/// assignment the doubles' filter does not accept (a stick not verified exactly; since session 66
+/// also one without a sticking contact whose LCP or slip-direction test failed) is decided by the
+/// exact LP (exact_assignment). `full` (given, with exact_groups): those decisions taken on the
+/// problem's full form (FullMass); an exact solution's x is then in the given rows' coordinates.
 inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                            const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
                                            const std::vector<Friction>& friction,
@@ -826,13 +882,13 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     // (session 65: where the doubles' candidate is not an exactly consistent stick — their LCP
     // failed, their Coulomb test rejected it, or the exact limits did — whether SOME force of the
     // assignment is consistent is decided exactly, exact_assignment; the doubles' held set first.
-    // With a full form given (the pin-slot part, FullMass) it is not asked: exact_assignment
-    // solves the rows as given, the Cholesky coordinates' rounded ones, and its solution's
-    // accelerations would be of those coordinates; there such an assignment is rejected, as
-    // before session 65 — a stick the doubles reject beyond their slack is missed, never one
-    // invented (FullMassFriction's planted ties). The full form there: not done, session 65)
-    if (exact_groups && sticks) {
-      if (full) continue;
+    // Session 66 (fullform66): with a full form given (the pin-slot part, FullMass) on that form
+    // (exact M^-1 Q and M^-1 W^T; until then not asked there: a stick the doubles rejected beyond
+    // their slack was missed), and an assignment without a sticking contact (every undecided
+    // contact sliding) the same way where the doubles' filter fails — their LCP failed or their
+    // slip-direction test with its 1e-9 slack rejected it: the LP with the sliding forces
+    // f = -sign mu_k N fixed (until then the doubles' "no" was the decision).)
+    if (exact_groups) {
       std::vector<bool> held_first;
       if (lcp.solved) {
         held_first.resize(m);
@@ -841,8 +897,8 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
           held_first[k] = !(lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance);
         }
       }
-      if (std::optional<FrictionalSolution> e =
-              exact_assignment(G, minv, a0, h, friction, state, *exact_groups, lcp.solved ? &held_first : nullptr))
+      if (std::optional<FrictionalSolution> e = exact_assignment(
+              G, minv, a0, h, friction, state, *exact_groups, lcp.solved ? &held_first : nullptr, nullptr, full))
         return *e;
       continue;
     }

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace hipair {
@@ -32,7 +33,8 @@ struct Tie {
   double mu = 0;
 };
 
-Tie planted_tie(Rng& rng, int n) {
+// `shift`: the normal force 2^-shift smaller (0: of the loads' size)
+Tie planted_tie(Rng& rng, int n, int shift = 0) {
   Tie out;
   const double unit = std::ldexp(1.0, rng.below(41) - 20);   // the masses' scale
   Eigen::MatrixXd A(n, n);
@@ -55,10 +57,9 @@ Tie planted_tie(Rng& rng, int n) {
       for (int j = i + 1; j < n; ++j) independent = independent || J(0, i) * T(j) - J(0, j) * T(i) != 0;
     if (independent) break;
   }
-  // (the normal force of the loads' size: where it is far below them the doubles' multipliers
-  // miss the tie by more than solve_frictional's 1e-9 stick slack, and the doubles decide it —
-  // solve_frictional re-decides a stick exactly only where its doubles accept it; left)
-  const double lambda = (1 + rng.below(8)) * unit * std::ldexp(1.0, rng.below(7) - 3);
+  // (shift 0: the normal force of the loads' size; where it is far below them the doubles'
+  // multipliers miss the tie by more than solve_frictional's 1e-9 stick slack: the test below)
+  const double lambda = (1 + rng.below(8)) * unit * std::ldexp(1.0, rng.below(7) - 3 - shift);
   out.mu = (2 + rng.below(14)) / 16.0;
   const double f = (rng.below(2) == 0 ? 1 : -1) * out.mu * lambda;
   out.full.G = J;
@@ -129,6 +130,129 @@ TEST(FullMassFriction, StickLimitsAtPlantedTiesAreDecidedOnTheFullMassRows) {
   }
   std::cout << "planted ties: " << cases << " decisions; the Cholesky form's held_verdict wrong in " << verdict_wrong
             << ", its enumeration's stick wrong in " << enumeration_wrong << "\n";
+}
+
+// Session 66 (fullform66): the normal force 2^-24 ... 2^-32 of the loads' size, where the doubles'
+// multipliers (in the Cholesky coordinates) miss the tie by far more than solve_frictional's 1e-9
+// slack and their filter rejects sticks that exist. mu_s at the planted mu, the next double below
+// it, and mu (1 +- 2^-k), k = 1..48. The oracle, exact rationals over the planted problem: held,
+// the force is the planted (lambda, f) (one solution: J and T independent, M positive definite), so
+// a stick exists iff mu_s >= mu (|f| = mu lambda); open (lambda = 0, f = 0) it needs T M^-1 Q +
+// bias = 0 and J M^-1 Q + kappa >= 0 (such cases skipped); a slip in direction sigma (f = -sigma
+// mu_k N) exists iff, held, lambda = -(J M^-1 Q + kappa) / (J M^-1 W^T) >= 0 (W = J - sigma mu_k T)
+// and sigma (T x + bias) >= 0 at x = M^-1 (Q + W^T lambda), or, open, J M^-1 Q + kappa >= 0 and
+// sigma (T M^-1 Q + bias) >= 0. Asserted on every case: solve_frictional (exact mode, the full
+// form) sticks iff the oracle has a stick, finds an assignment iff the oracle has one, and a stick
+// publishes accelerations x in the Cholesky coordinates (L^-T x = M^-1 (Q + J^T lambda + T^T f)
+// at its multipliers, to the factor's rounding). Until session 66 solve_frictional did not ask the exact
+// LP on a full form (`if (full) continue;`): the sticks the doubles rejected were missed.
+TEST(FullMassFriction, StickWithANormalForceFarBelowTheLoadsIsDecidedOnTheFullMassRows) {
+  using held_oracle::RMatrix;
+  Rng rng{test::test_seed(6601)};
+  const std::vector<std::size_t> own;
+  int cases = 0, sticks = 0, slips = 0, none = 0, skipped = 0, doubles_wrong = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 2 + trial % 3;
+    Tie p = planted_tie(rng, n, 24 + rng.below(9));
+    Transformed z = cholesky_form(p);
+    const simulation::Friction& fr0 = p.full.friction[0];
+    // exact data; Q as planted, checked exact
+    RMatrix M(n, std::vector<Rational>(n));
+    std::vector<Rational> Q(n), J(n), T(n), minus_Q(n);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) M[i][j] = Rational(p.full.M(i, j));
+      Q[i] = Rational(p.full.Q(i));
+      minus_Q[i] = -Q[i];
+      J[i] = Rational(p.full.G(0, i));
+      T[i] = Rational(fr0.T(i));
+    }
+    const std::vector<Rational> a0 = held_oracle::cramer(M, minus_Q);   // M a0 = Q
+    const Rational kappa(p.kappa(0)), bias(fr0.bias);
+    auto dot = [&](const std::vector<Rational>& u, const std::vector<Rational>& v) {
+      Rational out = 0;
+      for (int i = 0; i < n; ++i) out += u[i] * v[i];
+      return out;
+    };
+    const Rational Ja0 = dot(J, a0) + kappa, Ta0 = dot(T, a0) + bias;
+    if (sgn(Ta0) == 0 && sgn(Ja0) >= 0) {
+      ++skipped;
+      continue;
+    }
+    // the planted multipliers: M a = Q + J^T lambda + T^T f, J a + kappa = 0, T a + bias = 0
+    // (one solution): recovered exactly from a0 and the 2 x 2 Delassus system (cramer: A x = -b)
+    std::vector<Rational> minus_J(n), minus_T(n);
+    for (int i = 0; i < n; ++i) {
+      minus_J[i] = -J[i];
+      minus_T[i] = -T[i];
+    }
+    const std::vector<Rational> MJ = held_oracle::cramer(M, minus_J), MT = held_oracle::cramer(M, minus_T);
+    const RMatrix A{{dot(J, MJ), dot(J, MT)}, {dot(T, MJ), dot(T, MT)}};
+    const std::vector<Rational> planted = held_oracle::cramer(A, {Ja0, Ta0});   // (lambda, f)
+    ASSERT_GT(sgn(planted[0]), 0) << trial;
+    ASSERT_EQ(abs(planted[1]), Rational(p.mu) * planted[0]) << trial;   // the planting exact
+    for (int variant = 0; variant < 4; ++variant) {
+      const int k = 1 + rng.below(48);
+      double mu = p.mu;
+      if (variant == 1) mu = std::nextafter(p.mu, 0.0);
+      if (variant == 2) mu = to_double(Rational(p.mu) * (Rational(1) + Rational(std::ldexp(1.0, -k))));
+      if (variant == 3) mu = to_double(Rational(p.mu) * (Rational(1) - Rational(std::ldexp(1.0, -k))));
+      set_mu(p, z, mu);
+      ++cases;
+      const Rational muq(mu);
+      const bool stick_exists = muq * planted[0] >= abs(planted[1]);
+      bool slip_exists = false;
+      for (const int sigma : {1, -1}) {
+        std::vector<Rational> MW(n);   // M^-1 W^T
+        for (int i = 0; i < n; ++i) MW[i] = MJ[i] - sigma * muq * MT[i];
+        const Rational JMW = dot(J, MW);
+        if (sgn(JMW) != 0) {
+          const Rational lambda = -Ja0 / JMW;
+          if (sgn(lambda) >= 0) {
+            std::vector<Rational> x(a0);
+            for (int i = 0; i < n; ++i) x[i] += MW[i] * lambda;
+            slip_exists = slip_exists || sigma * (dot(T, x) + bias) >= 0;
+          }
+        }
+        slip_exists = slip_exists || (sgn(Ja0) >= 0 && sigma * Ta0 >= 0);
+      }
+      std::vector<simulation::Friction> undecided = z.friction;
+      undecided[0].decided = false;
+      const simulation::FrictionalSolution sol =
+          simulation::solve_frictional(z.G, z.minv, z.a0, p.kappa, undecided, {}, false, &own, &p.full);
+      const std::string where = "trial " + std::to_string(trial) + " variant " + std::to_string(variant) + " n " +
+                                std::to_string(n) + " mu " + std::to_string(p.mu);
+      ASSERT_EQ(sol.solved, stick_exists || slip_exists) << where;
+      if (!sol.solved) {
+        ++none;
+        continue;
+      }
+      EXPECT_EQ(sol.state[0] == simulation::stick, stick_exists) << where;
+      (sol.state[0] == simulation::stick ? sticks : slips) += 1;
+      {   // the accelerations x in the Cholesky coordinates: L^-T x = M^-1 (Q + J^T lambda + T^T f) at the
+          // published multipliers (the doubles' candidate or the exact LP's), to the factor's rounding
+        const Eigen::LLT<Eigen::MatrixXd> llt(p.full.M);
+        const Eigen::VectorXd a = llt.matrixU().solve(sol.x);
+        const Eigen::VectorXd load = p.full.Q + p.full.G.row(0).transpose() * sol.lambda(0) + fr0.T * sol.f(0);
+        const Eigen::VectorXd expected = p.full.M.ldlt().solve(load);
+        const double condition = p.full.M.norm() * p.full.M.inverse().norm();
+        const Eigen::VectorXd loads = p.full.Q.cwiseAbs() +
+                                      p.full.G.row(0).transpose().cwiseAbs() * std::abs(sol.lambda(0)) +
+                                      fr0.T.cwiseAbs() * std::abs(sol.f(0));
+        const double scale = (p.full.M.inverse().cwiseAbs() * loads).maxCoeff();
+        EXPECT_LE((a - expected).cwiseAbs().maxCoeff(), 256 * 0x1p-52 * condition * scale) << where;
+        if (sol.state[0] == simulation::stick)   // the planted force, to the doubles' filter's 1e-9 slack at most
+          EXPECT_LE(std::abs(sol.f(0)), sol.lambda(0) * mu * (1 + 1e-9) + 1e-300) << where;
+      }
+      const simulation::FrictionalSolution before =
+          simulation::solve_frictional(z.G, z.minv, z.a0, p.kappa, undecided, {}, false, &own);
+      doubles_wrong += !before.solved || (before.state[0] == simulation::stick) != stick_exists;
+    }
+  }
+  std::cout << "normal force far below the loads: " << cases << " decisions (" << skipped << " trials skipped), "
+            << sticks << " sticks, " << slips << " slips, " << none << " without a consistent assignment; the Cholesky "
+            << "form's decision wrong in " << doubles_wrong << "\n";
+  EXPECT_GT(sticks, cases / 4);
+  EXPECT_GT(slips, cases / 8);
 }
 
 // The full form with a diagonal mass matrix (exact inverses: powers of two) decides as the
