@@ -451,8 +451,8 @@ namespace {
 // than it saved (Geneva: 1.35 x the build's instructions with three levels, 0.97 x with none;
 // docs/performance.md "Session 25 (integrator)").
 // The interval forms of a curve (its polynomial, validity atoms and corner-entry atoms: what the
-// culling quadtree of prepare_chart reads), kept for the next charts of one build (session 66,
-// gear66). An operating region's tiles share their curves: a feature pair's exact curve depends
+// culling quadtree of prepare_chart reads), kept for the next tiles of one operating region
+// (session 66, gear66; a whole space's charts share no curve). The tiles share their curves: a feature pair's exact curve depends
 // on the chart only through its axes' half-turn kinds (the generator forms it once,
 // curves/formed_store.hpp) and reaches every tile its contacts may cross; on a 7 x 8 gear pair
 // 17 038 curves of 492 tiles are 3 580 distinct ones, and each tile made the ~6.5 interval
@@ -573,7 +573,7 @@ class CurveIntervalMemo {
 };
 
 std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int dimension, bool shortcuts,
-                                       int entry_depth, CurveIntervalMemo& memo) {
+                                       int entry_depth, CurveIntervalMemo* memo) {
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
@@ -593,16 +593,28 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     ContactCurve& curve = input.curves[k];
-    // (the curve's interval forms: remembered from an earlier chart of the build, or made)
+    // (the curve's interval forms: remembered from an earlier tile of the region, or made)
     const CurveIntervalMemo::Forms* forms = nullptr;
+    std::optional<algebra::IntervalPolynomial2> f;
+    if (!memo) f.emplace(curve.polynomial);
     std::vector<std::pair<Rational, Rational>> windows;
     std::vector<std::array<double, 4>> cells;
     if (dimension == 2) {
       // (a line with an exact valid point in the box is kept without the quadtree)
       std::vector<std::pair<double, double>> found;
       if (blocked_test || !shortcuts || !valid_point_in_box(curve, chart.box)) {
-        forms = &memo.of(curve, input.x.half_turn, input.y.half_turn);
-        found = culler().windows(forms->f, forms->clauses, forms->entry, cells);
+        if (memo) {
+          forms = &memo->of(curve, input.x.half_turn, input.y.half_turn);
+          found = culler().windows(forms->f, forms->clauses, forms->entry, cells);
+        } else {
+          std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+          for (const auto& clause : curve.validity) {
+            clauses.emplace_back();
+            for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+          }
+          std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
+          found = culler().windows(*f, clauses, entry, cells);
+        }
         if (found.empty()) continue;
       }
       if (blocked_test)
@@ -619,7 +631,8 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
     if (!blocked_test || windows.empty()) cells.clear();
     chart.windows.push_back(std::move(windows));
     chart.cells.push_back(std::move(cells));
-    if (forms) chart.interval_polynomials.push_back(forms->f);
+    if (f) chart.interval_polynomials.push_back(std::move(*f));
+    else if (forms) chart.interval_polynomials.push_back(forms->f);
     else chart.interval_polynomials.emplace_back(chart.polynomials.back());
   }
   static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
@@ -2064,7 +2077,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
                static_cast<int>(curve.type)};
   };
   std::map<Key, std::size_t> keys;
-  CurveIntervalMemo interval_memo;   // the curves' interval forms, for the next charts (prepare_chart)
+  // the curves' interval forms, for the next tiles of an operating region (prepare_chart; a
+  // whole space's few charts share no curve)
+  CurveIntervalMemo interval_memo;
 
   impl->charts.resize(chart_count);
   // Face classification runs once every chart's curves are known: whether it may propagate
@@ -2111,7 +2126,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     chart.y_index = chart_input.y_index;
     auto culling_start = Clock::now();
     std::vector<std::size_t> kept =
-        prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3, interval_memo);
+        prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3,
+                      input.complete ? nullptr : &interval_memo);
     // the culling's blocked test is done with: release what it keeps (posed disks per interval)
     chart_input.blocked_cells.reset();
     stats.seconds_culling += seconds_since(culling_start);
