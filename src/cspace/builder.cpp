@@ -2,6 +2,7 @@
 // with feature pairs, every face gets an exact rational sample point classified by the
 // overlap oracle, and charts are glued along seams into cells.
 #include "cspace/builder_impl.hpp"
+#include "algebra/interval_shift.hpp"
 #include "algebra/ordinate.hpp"
 #include "algebra/proportional.hpp"
 #include "algebra/simplest_small.hpp"
@@ -25,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -449,8 +451,130 @@ namespace {
 // spurious edges 20 268 -> 5 912), none for a whole space, where following them deeper cost more
 // than it saved (Geneva: 1.35 x the build's instructions with three levels, 0.97 x with none;
 // docs/performance.md "Session 25 (integrator)").
+// The interval forms of a curve (its polynomial, validity atoms and corner-entry atoms: what the
+// culling quadtree of prepare_chart reads), kept for the next tiles of one operating region
+// (session 66, gear66; a whole space's charts share no curve). The tiles share their curves: a feature pair's exact curve depends
+// on the chart only through its axes' half-turn kinds (the generator forms it once,
+// curves/formed_store.hpp) and reaches every tile its contacts may cross; on a 7 x 8 gear pair
+// 17 038 curves of 492 tiles are 3 580 distinct ones, and each tile made the ~6.5 interval
+// polynomials of each of its curves again (113 678 conversions, 2.1 % of the process). The
+// forms are a pure function of the exact polynomials (and of algebra::interval_scaling(), part
+// of the key): an entry is used only when the curve's polynomials are equal to the entry's,
+// coefficient for coefficient, so the quadtree reads the same intervals bit for bit, with or
+// without the memo. The features, type and chart kinds only choose the bucket. Bounded: two
+// generations of `capacity` entries (an entry used again moves to the current one), so the
+// memory is that of the last few thousand curves, not of the region (79 467 curves on 19 x 40).
+class CurveIntervalMemo {
+ public:
+  struct Forms {
+    IntegerPolynomial2 polynomial;
+    std::vector<ValidityClause> validity;
+    std::vector<IntegerPolynomial2> corner_entry;
+    bool scaled = false;   // algebra::interval_scaling() when made
+    algebra::IntervalPolynomial2 f;
+    std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+    std::vector<algebra::IntervalPolynomial2> entry;
+  };
+
+  const Forms& of(const ContactCurve& curve, bool x_half, bool y_half) {
+    const std::uint64_t key = bucket(curve, x_half, y_half);
+    const bool scaled = algebra::interval_scaling();
+    ++asked_;
+    if (Forms* found = find(current_, key, curve, scaled)) return *found;
+    std::unique_ptr<Forms> forms = take(previous_, key, curve, scaled);
+    if (!forms) {
+      forms = make(curve, scaled);
+      ++made_;
+    }
+    if (count_ >= capacity) {
+      previous_ = std::move(current_);
+      current_.clear();
+      count_ = 0;
+    }
+    ++count_;
+    std::vector<std::unique_ptr<Forms>>& list = current_[key];
+    list.push_back(std::move(forms));
+    return *list.back();
+  }
+
+ private:
+  static constexpr std::size_t capacity = 1024;
+  using Generation = std::unordered_map<std::uint64_t, std::vector<std::unique_ptr<Forms>>>;
+
+  static std::uint64_t bucket(const ContactCurve& curve, bool x_half, bool y_half) {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&](std::uint64_t v) { h = (h ^ v) * 1099511628211ull; };
+    for (const FeatureRef* ref : {&curve.first, &curve.second}) {
+      mix(ref->part);
+      mix(ref->loop);
+      mix(ref->edge);
+      mix(static_cast<std::uint64_t>(ref->kind));
+    }
+    mix(static_cast<std::uint64_t>(curve.type));
+    mix((x_half ? 2u : 0u) | (y_half ? 1u : 0u));
+    return h;
+  }
+
+  static bool same(const Forms& forms, const ContactCurve& curve, bool scaled) {
+    if (forms.scaled != scaled || forms.polynomial.coefficients != curve.polynomial.coefficients ||
+        forms.validity.size() != curve.validity.size() || forms.corner_entry.size() != curve.corner_entry.size())
+      return false;
+    for (std::size_t c = 0; c < curve.validity.size(); ++c) {
+      const auto &a = forms.validity[c].atoms, &b = curve.validity[c].atoms;
+      if (a.size() != b.size()) return false;
+      for (std::size_t k = 0; k < a.size(); ++k)
+        if (a[k].coefficients != b[k].coefficients) return false;
+    }
+    for (std::size_t k = 0; k < curve.corner_entry.size(); ++k)
+      if (forms.corner_entry[k].coefficients != curve.corner_entry[k].coefficients) return false;
+    return true;
+  }
+
+  static Forms* find(Generation& generation, std::uint64_t key, const ContactCurve& curve, bool scaled) {
+    auto it = generation.find(key);
+    if (it == generation.end()) return nullptr;
+    for (const std::unique_ptr<Forms>& forms : it->second)
+      if (same(*forms, curve, scaled)) return forms.get();
+    return nullptr;
+  }
+
+  static std::unique_ptr<Forms> take(Generation& generation, std::uint64_t key, const ContactCurve& curve, bool scaled) {
+    auto it = generation.find(key);
+    if (it == generation.end()) return nullptr;
+    for (std::unique_ptr<Forms>& forms : it->second)
+      if (same(*forms, curve, scaled)) {
+        std::unique_ptr<Forms> taken = std::move(forms);
+        forms = std::move(it->second.back());
+        it->second.pop_back();
+        return taken;
+      }
+    return nullptr;
+  }
+
+  static std::unique_ptr<Forms> make(const ContactCurve& curve, bool scaled) {
+    auto forms = std::make_unique<Forms>();
+    forms->polynomial = curve.polynomial;
+    forms->validity = curve.validity;
+    forms->corner_entry = curve.corner_entry;
+    forms->scaled = scaled;
+    forms->f = algebra::IntervalPolynomial2(curve.polynomial);
+    for (const auto& clause : curve.validity) {
+      forms->clauses.emplace_back();
+      for (const auto& atom : clause.atoms) forms->clauses.back().emplace_back(atom);
+    }
+    for (const IntegerPolynomial2& atom : curve.corner_entry) forms->entry.emplace_back(atom);
+    return forms;
+  }
+
+  Generation current_, previous_;
+  std::size_t count_ = 0;
+
+ public:
+  std::size_t asked_ = 0, made_ = 0;   // (HIPAIR_CSPACE_DEBUG)
+};
+
 std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int dimension, bool shortcuts,
-                                       int entry_depth) {
+                                       int entry_depth, CurveIntervalMemo* memo) {
   chart.x_axis = input.x;
   chart.y_axis = input.y;
   chart.box = raw::Box{input.x.lo, input.x.hi, input.y.lo, input.y.hi};
@@ -470,20 +594,28 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < input.curves.size(); ++k) {
     ContactCurve& curve = input.curves[k];
-    algebra::IntervalPolynomial2 f(curve.polynomial);
+    // (the curve's interval forms: remembered from an earlier tile of the region, or made)
+    const CurveIntervalMemo::Forms* forms = nullptr;
+    std::optional<algebra::IntervalPolynomial2> f;
+    if (!memo) f.emplace(curve.polynomial);
     std::vector<std::pair<Rational, Rational>> windows;
     std::vector<std::array<double, 4>> cells;
     if (dimension == 2) {
       // (a line with an exact valid point in the box is kept without the quadtree)
       std::vector<std::pair<double, double>> found;
       if (blocked_test || !shortcuts || !valid_point_in_box(curve, chart.box)) {
-        std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
-        for (const auto& clause : curve.validity) {
-          clauses.emplace_back();
-          for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+        if (memo) {
+          forms = &memo->of(curve, input.x.half_turn, input.y.half_turn);
+          found = culler().windows(forms->f, forms->clauses, forms->entry, cells);
+        } else {
+          std::vector<std::vector<algebra::IntervalPolynomial2>> clauses;
+          for (const auto& clause : curve.validity) {
+            clauses.emplace_back();
+            for (const auto& atom : clause.atoms) clauses.back().emplace_back(atom);
+          }
+          std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
+          found = culler().windows(*f, clauses, entry, cells);
         }
-        std::vector<algebra::IntervalPolynomial2> entry(curve.corner_entry.begin(), curve.corner_entry.end());
-        found = culler().windows(f, clauses, entry, cells);
         if (found.empty()) continue;
       }
       if (blocked_test)
@@ -500,7 +632,9 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
     if (!blocked_test || windows.empty()) cells.clear();
     chart.windows.push_back(std::move(windows));
     chart.cells.push_back(std::move(cells));
-    chart.interval_polynomials.push_back(std::move(f));
+    if (f) chart.interval_polynomials.push_back(std::move(*f));
+    else if (forms) chart.interval_polynomials.push_back(forms->f);
+    else chart.interval_polynomials.emplace_back(chart.polynomials.back());
   }
   static const bool debug = std::getenv("HIPAIR_CSPACE_DEBUG") != nullptr;
   if (debug && input.blocked_cells)
@@ -1947,6 +2081,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
                static_cast<int>(curve.type)};
   };
   std::map<Key, std::size_t> keys;
+  // the curves' interval forms, for the next tiles of an operating region (prepare_chart; a
+  // whole space's few charts share no curve)
+  CurveIntervalMemo interval_memo;
 
   impl->charts.resize(chart_count);
   // Face classification runs once every chart's curves are known: whether it may propagate
@@ -1993,7 +2130,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     chart.y_index = chart_input.y_index;
     auto culling_start = Clock::now();
     std::vector<std::size_t> kept =
-        prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3);
+        prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3,
+                      input.complete ? nullptr : &interval_memo);
     // the culling's blocked test is done with: release what it keeps (posed disks per interval)
     chart_input.blocked_cells.reset();
     stats.seconds_culling += seconds_since(culling_start);
@@ -2421,6 +2559,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
             {raw::double_bounds(v.x.lower).first, raw::double_bounds(v.x.upper).second, raw::double_bounds(v.y_upper).second});
     }
   stats.seconds_total = seconds_since(total_start) - seconds_streamed + stats.seconds_curves + stats.seconds_region;
+  if (std::getenv("HIPAIR_CSPACE_DEBUG"))
+    std::fprintf(stderr, "  curve interval forms: %zu asked, %zu made\n", interval_memo.asked_, interval_memo.made_);
   if (options.progress) progress_report(CSpaceBuildProgress::Stage::done, 0);
   return make_cspace(impl);
 }
