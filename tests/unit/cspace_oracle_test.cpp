@@ -11,8 +11,6 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
-
 #include <filesystem>
 #include <random>
 
@@ -237,12 +235,6 @@ TEST(CSpaceOracle, NearContactOfAZeroBacklashGearPair) {
   Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json", read);
   CSpaceBuildOptions options;
   options.operating_region = true;
-  // Seeded next to the start, not at it: the start itself overlaps (the arcs interfere at zero
-  // backlash) and a region seeded there is refused before its build since session 66 (the
-  // library's refusal, builder_model.cpp). The gear's angle 10^-12 rad lies in the start's own
-  // flood cell (cell side ~ 2 / 512 in the half-angle tangent), so the flood, and the region
-  // built, are the ones this test checked before.
-  options.region_seed = std::array<double, 2>{0.0, 1e-12};
   NearCounts n = check_near_contact(model, "pinion", "gear", options, 400, 719);
   EXPECT_GT(n.points, 1000);
   EXPECT_GT(n.blocked, 0);
