@@ -4,8 +4,6 @@
 #include <hipair/cspace.hpp>
 #include <hipair/cspace_region.hpp>
 #include <hipair/error.hpp>
-#include <hipair/overlap.hpp>
-#include <hipair/pin_slot.hpp>
 
 #include "cspace/builder_impl.hpp"
 #include "oracle/blocked_tester.hpp"
@@ -349,61 +347,8 @@ std::shared_ptr<const Model> model_copy(const Model& model) {
   return copy;
 }
 
-// An operating region is the channel of its seed. Seeded at the model's initial configuration
-// (no region_seed, or one equal to the initial coordinates' doubles, which flood_region reads
-// as the seed: the same seed cell, e.g. build_operating_region_along's path from the start),
-// the region is refused before its build where the start is decided at once (perf65, in the
-// CLI until session 66; every caller now: the C++ API, cspace, analyze, simulate, tolerance):
-// both parts' start coordinates exact (a rotation at angle 0, a translation offset, a fixed
-// part) and the exact overlap predicate (part_overlap) finds their interiors meeting there.
-// The region built around such a start would locate it in a blocked cell (the C-space is
-// exact), so only the build is saved: a 19 x 40 spur-gear pair at zero backlash (coprime tooth
-// counts: its channel is every tooth meeting every tooth, 8 058 tiles) built for 38 s to learn
-// that its start overlaps. Touching or apart (or an inexact coordinate): the build decides.
-// A mechanism drawn at an extreme scale is decided on its copy divided exactly by 10^E
-// (kinematic_decimal_exponent, as `analyze` runs it): the relation is the same (a similarity;
-// the start's half-angle tangents do not change, offsets are scaled with the lengths), and the
-// predicate's numbers are ordinary ones (at 10^400 mm the model's own took 0.65 s for a
-// 17 x 17 pair whose start is free, a quarter of its region build).
-bool seeded_at_start(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options) {
-  if (!options.region_seed) return true;
-  const cspace::PairAxes axes = cspace::pair_axes(model, first, second);
-  if (axes.dimension() != 2) return false;
-  auto start = [&](std::size_t index) {
-    const Part& part = model.parts[index];
-    return (part.motion.kind == Motion::Kind::rotation ? part.initial.angle : part.initial.offset).get_d();
-  };
-  return (*options.region_seed)[0] == start(axes.first) && (*options.region_seed)[1] == start(axes.second);
-}
-
-void refuse_overlapping_start(const Model& given, std::size_t first, std::size_t second) {
-  auto exact_start = [&](const Part& part) {
-    return part.motion.kind == Motion::Kind::fixed || part.motion.kind == Motion::Kind::translation ||
-           (part.motion.kind == Motion::Kind::rotation && sgn(part.initial.angle) == 0);
-  };
-  if (!exact_start(given.parts[first]) || !exact_start(given.parts[second])) return;
-  const long exponent = kinematic_decimal_exponent(given);
-  const Model scaled = exponent != 0 ? decimal_scaled_model(given, exponent) : Model();
-  const Model& model = exponent != 0 ? scaled : given;
-  auto placement = [&](std::size_t index) -> Placement {
-    const Part& part = model.parts[index];
-    if (part.motion.kind == Motion::Kind::fixed) return Placement{};
-    if (part.motion.kind == Motion::Kind::translation)
-      return part_placement(part, PartCoordinate{PartCoordinate::Kind::offset, part.initial.offset});
-    return part_placement(part, PartCoordinate{PartCoordinate::Kind::half_angle_tangent, Rational(0)});
-  };
-  if (part_overlap(model.parts[first], placement(first), model.parts[second], placement(second)).relation !=
-      PartRelation::overlapping)
-    return;
-  throw GeometryError("operating region of '" + model.parts[first].name + "' and '" + model.parts[second].name +
-                      "': the parts certainly overlap at the seed configuration (their interiors meet at the "
-                      "initial configuration, by the exact overlap predicate: there is no channel to build)");
-}
-
 CSpace build_pair(const Model& model, std::size_t first, std::size_t second, const CSpaceBuildOptions& options,
                   const RegionPath* path = nullptr) {
-  if (options.operating_region && seeded_at_start(model, first, second, options))
-    refuse_overlapping_start(model, first, second);
   // see core/model_scale.hpp: a rotation pair far outside the doubles' comfortable range is
   // built on an exactly rescaled copy (the same C-space)
   //

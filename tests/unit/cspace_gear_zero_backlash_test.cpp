@@ -14,8 +14,6 @@
 #include "test_seed.hpp"
 
 #include <hipair/cspace.hpp>
-#include <hipair/cspace_region.hpp>
-#include <hipair/error.hpp>
 #include <hipair/kernel_slice.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
@@ -23,9 +21,7 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <random>
 #include <string>
@@ -145,68 +141,6 @@ TEST(GearZeroBacklash, SlicesAtTheStartAgreeWithThePredicate) {
     EXPECT_EQ(counts.free > 0, c.start_free);
     EXPECT_GT(counts.checked, 30);
   }
-}
-
-// The operating region's refusal of an overlapping start before its build (perf65's, in the
-// CLI until session 66) is the library's: every entry that builds a region seeded at the
-// model's initial configuration (CSpace::build, build_all, build_pairs as simulate calls it,
-// build_operating_region_along from a path starting there, as analyze and the tolerance
-// analysis call it) refuses it with the same message, before building: 19 x 40 and generated
-// zero-backlash pairs whose start overlaps by the exact predicate. Until session 66 the library
-// built these regions (19 x 40: 38 s) and returned them. The control: 17 x 17 at zero backlash
-// (start free by the predicate) is built.
-TEST(GearZeroBacklash, EveryRegionEntryRefusesAnOverlappingStartBeforeItsBuild) {
-  std::mt19937_64 random(test::test_seed(66));
-  std::uniform_int_distribution<long> teeth(6, 16);
-  std::vector<std::array<long, 2>> pairs;
-  for (int k = 0; k < 3; ++k) {
-    const long z = teeth(random);
-    pairs.push_back({z, k % 2 == 0 ? z : 2 * z});
-  }
-  pairs.push_back({19, 40});   // last: a region built around it takes 38 s
-  int refused = 0;
-  for (const auto& [z1, z2] : pairs) {
-    SCOPED_TRACE(std::to_string(z1) + " x " + std::to_string(z2) + " at zero backlash");
-    Model model = gears(z1, z2, Rational(0));
-    if (relation_at(model, Rational(0), false) != PartRelation::overlapping) continue;
-    ++refused;
-    const std::string message =
-        "operating region of 'pinion' and 'gear': the parts certainly overlap at the seed configuration (their "
-        "interiors meet at the initial configuration, by the exact overlap predicate: there is no channel to build)";
-    CSpaceBuildOptions options;
-    options.operating_region = true;
-    auto expect_refused = [&](const std::string& entry, const std::function<void()>& call) {
-      SCOPED_TRACE(entry);
-      try {
-        call();
-        ADD_FAILURE() << "built a region around an overlapping start";
-      } catch (const GeometryError& e) {
-        EXPECT_EQ(std::string(e.what()), message);
-      }
-    };
-    expect_refused("CSpace::build", [&] { CSpace::build(model, "pinion", "gear", options); });
-    expect_refused("CSpace::build_all", [&] { CSpace::build_all(model, options); });
-    expect_refused("build_operating_region_along", [&] {
-      build_operating_region_along(model, "pinion", "gear", {{0.0, 0.0}, {0.01, -0.01}});
-    });
-    CSpaceBuildOptions seeded = options;
-    seeded.region_seed = std::array<double, 2>{0.0, 0.0};   // the start, given
-    expect_refused("CSpace::build, seed given", [&] { CSpace::build(model, "pinion", "gear", seeded); });
-    std::vector<PairBuild> builds = CSpace::build_pairs(model, options);
-    ASSERT_EQ(builds.size(), 1u);
-    EXPECT_EQ(builds[0].status, PairBuild::Status::failed);
-    EXPECT_EQ(builds[0].error, message);
-    if (HasFailure()) return;   // (a build around the start: the next pairs' would be as slow)
-  }
-  EXPECT_GE(refused, 1);
-  // the control: a free start (by the predicate) is built
-  Model clear = gears(17, 17, Rational(0));
-  ASSERT_NE(relation_at(clear, Rational(0), false), PartRelation::overlapping);
-  CSpaceBuildOptions options;
-  options.operating_region = true;
-  CSpace space = CSpace::build(clear, "pinion", "gear", options);
-  EXPECT_FALSE(space.complete());
-  EXPECT_GT(space.statistics().region_tiles, 0u);
 }
 
 }  // namespace
