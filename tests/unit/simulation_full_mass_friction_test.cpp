@@ -382,7 +382,7 @@ TEST(FullMassFriction, ASlipTheDoublesAcceptAtATieIsConfirmedExactly) {
     const std::string where = "trial " + std::to_string(trial) + " n " + std::to_string(n) + " sigma " +
                               std::to_string(sigma) + " t " + std::to_string(variant) + " k " + std::to_string(k) +
                               (diagonal ? " diagonal" : " full");
-    ASSERT_EQ(sol.solved, stick_exists || slip_exists[0] || slip_exists[1]) << where;
+    EXPECT_EQ(sol.solved, stick_exists || slip_exists[0] || slip_exists[1]) << where;
     auto consistent = [&](const simulation::FrictionalSolution& r) {
       if (!r.solved) return !(stick_exists || slip_exists[0] || slip_exists[1]);
       if (r.state[0] == simulation::stick) return stick_exists;
