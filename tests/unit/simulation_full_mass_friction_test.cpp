@@ -97,6 +97,31 @@ void set_mu(Tie& p, Transformed& z, double mu) {
   for (auto* f : {&p.full.friction[0], &z.friction[0]}) f->mu_static = f->mu_kinetic = mu;
 }
 
+// The exact slip oracle of one contact (rationals): whether sliding in direction sigma (f = -sigma mu_k
+// N) is consistent, held (lambda = -(J a0 + kappa) / (J M^-1 W^T) >= 0, W = J - sigma mu_k T, and
+// sigma (T x + bias) >= 0 at x = a0 + M^-1 W^T lambda) or open (J a0 + kappa >= 0, sigma (T a0 + bias)
+// >= 0). MJ, MT: M^-1 J^T and M^-1 T^T; Ja0, Ta0: J a0 + kappa and T a0 + bias.
+bool slip_consistent(int sigma, const Rational& mu_k, const std::vector<Rational>& a0, const std::vector<Rational>& J,
+                     const std::vector<Rational>& T, const std::vector<Rational>& MJ, const std::vector<Rational>& MT,
+                     const Rational& bias, const Rational& Ja0, const Rational& Ta0) {
+  const std::size_t n = a0.size();
+  auto dot = [&](const std::vector<Rational>& u, const std::vector<Rational>& v) {
+    Rational out = 0;
+    for (std::size_t i = 0; i < n; ++i) out += u[i] * v[i];
+    return out;
+  };
+  if (sgn(Ja0) >= 0 && sigma * Ta0 >= 0) return true;
+  std::vector<Rational> MW(n);   // M^-1 W^T
+  for (std::size_t i = 0; i < n; ++i) MW[i] = MJ[i] - sigma * mu_k * MT[i];
+  const Rational JMW = dot(J, MW);
+  if (sgn(JMW) == 0) return false;
+  const Rational lambda = -Ja0 / JMW;
+  if (sgn(lambda) < 0) return false;
+  std::vector<Rational> x(a0);
+  for (std::size_t i = 0; i < n; ++i) x[i] += MW[i] * lambda;
+  return sigma * (dot(T, x) + bias) >= 0;
+}
+
 TEST(FullMassFriction, StickLimitsAtPlantedTiesAreDecidedOnTheFullMassRows) {
   Rng rng{test::test_seed(6501)};
   int cases = 0, verdict_wrong = 0, enumeration_wrong = 0;
@@ -201,21 +226,8 @@ TEST(FullMassFriction, StickWithANormalForceFarBelowTheLoadsIsDecidedOnTheFullMa
       ++cases;
       const Rational muq(mu);
       const bool stick_exists = muq * planted[0] >= abs(planted[1]);
-      bool slip_exists = false;
-      for (const int sigma : {1, -1}) {
-        std::vector<Rational> MW(n);   // M^-1 W^T
-        for (int i = 0; i < n; ++i) MW[i] = MJ[i] - sigma * muq * MT[i];
-        const Rational JMW = dot(J, MW);
-        if (sgn(JMW) != 0) {
-          const Rational lambda = -Ja0 / JMW;
-          if (sgn(lambda) >= 0) {
-            std::vector<Rational> x(a0);
-            for (int i = 0; i < n; ++i) x[i] += MW[i] * lambda;
-            slip_exists = slip_exists || sigma * (dot(T, x) + bias) >= 0;
-          }
-        }
-        slip_exists = slip_exists || (sgn(Ja0) >= 0 && sigma * Ta0 >= 0);
-      }
+      const bool slip_exists = slip_consistent(1, muq, a0, J, T, MJ, MT, bias, Ja0, Ta0) ||
+                               slip_consistent(-1, muq, a0, J, T, MJ, MT, bias, Ja0, Ta0);
       std::vector<simulation::Friction> undecided = z.friction;
       undecided[0].decided = false;
       const simulation::FrictionalSolution sol =
@@ -343,22 +355,9 @@ TEST(FullMassFriction, ASlipTheDoublesAcceptAtATieIsConfirmedExactly) {
     const bool stick_exists =
         (sgn(held_stick[0]) >= 0 && abs(held_stick[1]) <= Rational(fr.mu_static) * held_stick[0]) ||
         (sgn(Ja0) >= 0 && sgn(Ta0) == 0);
-    bool slip_exists[2] = {false, false};   // [0]: +1, [1]: -1
-    for (const int s : {1, -1}) {
-      bool& exists = slip_exists[s == 1 ? 0 : 1];
-      std::vector<Rational> MW(n);
-      for (int i = 0; i < n; ++i) MW[i] = MJ[i] - s * Rational(mu_k) * MT[i];
-      const Rational JMW = dot(J, MW);
-      if (sgn(JMW) != 0) {
-        const Rational lambda = -Ja0 / JMW;
-        if (sgn(lambda) >= 0) {
-          std::vector<Rational> x(a0);
-          for (int i = 0; i < n; ++i) x[i] += MW[i] * lambda;
-          exists = exists || s * (dot(T, x) + bias) >= 0;
-        }
-      }
-      exists = exists || (sgn(Ja0) >= 0 && s * Ta0 >= 0);
-    }
+    const bool slip_exists[2] = {   // [0]: +1, [1]: -1
+        slip_consistent(1, Rational(mu_k), a0, J, T, MJ, MT, bias, Ja0, Ta0),
+        slip_consistent(-1, Rational(mu_k), a0, J, T, MJ, MT, bias, Ja0, Ta0)};
     // the solver: the diagonal form, or the Cholesky form with the full form given
     std::vector<simulation::Friction> friction{fr};
     Eigen::MatrixXd G = Jm;
