@@ -587,7 +587,9 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
 /// (exact_lp.hpp); the first feasible one gives the solution, its numbers rounded to the nearest
 /// doubles (x and w from the exact ones; a friction shared by a group split in proportion to its
 /// members' normal forces). None: the assignment has no consistent force, exactly.
-/// `tried` (optional) counts the linear programs solved.
+/// `tried` (optional) counts the linear programs solved. `first_only` (with `first` given; session
+/// 66, slip66): only the held set `first` is decided (any number of contacts): a candidate's
+/// confirmation, not the assignment's verdict.
 /// `full` (given; session 66, fullform66): decided on the problem's full form (FullMass: its rows
 /// G and Friction data, M and Q replace G, friction, minv and a0), x = M^-1 (Q + W_H^T lambda_H +
 /// T_S^T f) with M^-1 Q and M^-1 W^T solved exactly (held_force_detail::solve on the exact
@@ -602,11 +604,13 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
                                                           const std::vector<std::size_t>& group,
                                                           const std::vector<bool>* first = nullptr,
                                                           std::size_t* tried = nullptr,
-                                                          const FullMass* full = nullptr) {
+                                                          const FullMass* full = nullptr,
+                                                          bool first_only = false) {
   const Eigen::MatrixXd& G = full ? full->G : G_given;
   const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const auto m = static_cast<std::size_t>(G.rows()), n = static_cast<std::size_t>(G.cols());
-  if (m > 12) return std::nullopt;
+  first_only = first_only && first;
+  if (m > 12 && !first_only) return std::nullopt;
   std::vector<std::size_t> reps;   // the sticking rows (one per group)
   const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, reps, group, full);
   auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
@@ -773,6 +777,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   };
   if (first) {
     if (auto s = try_set(*first)) return s;
+    if (first_only) return std::nullopt;
   }
   std::vector<std::size_t> codes(std::size_t{1} << m);
   for (std::size_t c = 0; c < codes.size(); ++c) codes[c] = c;
@@ -859,7 +864,21 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     s.solved = false;
     s.state = state;
     bool sticks = false;   // some contact of this assignment sticks
-    for (std::size_t k = 0; k < m; ++k) sticks = sticks || (friction[k].on && state[k] == stick);
+    bool slides = false;   // some undecided contact of this assignment slides
+    for (std::size_t k = 0; k < m; ++k) {
+      sticks = sticks || (friction[k].on && state[k] == stick);
+      slides = slides || (friction[k].on && !friction[k].decided &&
+                          (state[k] == slip_positive || state[k] == slip_negative));
+    }
+    // the doubles' held set (all but the contacts their LCP lets separate), exact mode
+    std::vector<bool> held_first;
+    if (exact_groups && lcp.solved) {
+      held_first.resize(m);
+      for (std::size_t k = 0; k < m; ++k) {
+        const auto r = static_cast<Eigen::Index>(k);
+        held_first[k] = !(lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance);
+      }
+    }
     if (lcp.solved) {
       s.lambda = lcp.lambda;
       s.tolerance = lcp.tolerance;
@@ -872,9 +891,17 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       // change, "dropping the doubles' test", was exact_stick_holds accepting a stick whose
       // sticking contact the LCP let separate with a friction of 3e21 and no normal force: that
       // contact was left out of its rows; exact_assignment finds no consistent stick there.)
-      if (exact_groups && sticks ? coulomb_satisfied(s, friction) &&
-                                       exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full)
-                                 : coulomb_satisfied(s, friction)) {
+      // (session 66, slip66: an assignment without a sticking contact whose undecided sliding
+      // contacts the doubles accept — their slip-direction test has a 1e-9 slack — is taken only
+      // where the exact LP on the candidate's held set confirms it; otherwise decided below as
+      // a rejected candidate.)
+      if (exact_groups && sticks
+              ? coulomb_satisfied(s, friction) &&
+                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full)
+              : coulomb_satisfied(s, friction) &&
+                    (!exact_groups || !slides ||
+                     exact_assignment(G, minv, a0, h, friction, state, *exact_groups, &held_first, nullptr, full,
+                                      true))) {
         s.solved = true;
         return s;
       }
@@ -889,14 +916,6 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     // slip-direction test with its 1e-9 slack rejected it: the LP with the sliding forces
     // f = -sign mu_k N fixed (until then the doubles' "no" was the decision).)
     if (exact_groups) {
-      std::vector<bool> held_first;
-      if (lcp.solved) {
-        held_first.resize(m);
-        for (std::size_t k = 0; k < m; ++k) {
-          const auto r = static_cast<Eigen::Index>(k);
-          held_first[k] = !(lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance);
-        }
-      }
       if (std::optional<FrictionalSolution> e = exact_assignment(
               G, minv, a0, h, friction, state, *exact_groups, lcp.solved ? &held_first : nullptr, nullptr, full))
         return *e;

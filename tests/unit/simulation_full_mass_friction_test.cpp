@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,31 @@ Transformed cholesky_form(const Tie& p) {
 
 void set_mu(Tie& p, Transformed& z, double mu) {
   for (auto* f : {&p.full.friction[0], &z.friction[0]}) f->mu_static = f->mu_kinetic = mu;
+}
+
+// The exact slip oracle of one contact (rationals): whether sliding in direction sigma (f = -sigma mu_k
+// N) is consistent, held (lambda = -(J a0 + kappa) / (J M^-1 W^T) >= 0, W = J - sigma mu_k T, and
+// sigma (T x + bias) >= 0 at x = a0 + M^-1 W^T lambda) or open (J a0 + kappa >= 0, sigma (T a0 + bias)
+// >= 0). MJ, MT: M^-1 J^T and M^-1 T^T; Ja0, Ta0: J a0 + kappa and T a0 + bias.
+bool slip_consistent(int sigma, const Rational& mu_k, const std::vector<Rational>& a0, const std::vector<Rational>& J,
+                     const std::vector<Rational>& T, const std::vector<Rational>& MJ, const std::vector<Rational>& MT,
+                     const Rational& bias, const Rational& Ja0, const Rational& Ta0) {
+  const std::size_t n = a0.size();
+  auto dot = [&](const std::vector<Rational>& u, const std::vector<Rational>& v) {
+    Rational out = 0;
+    for (std::size_t i = 0; i < n; ++i) out += u[i] * v[i];
+    return out;
+  };
+  if (sgn(Ja0) >= 0 && sigma * Ta0 >= 0) return true;
+  std::vector<Rational> MW(n);   // M^-1 W^T
+  for (std::size_t i = 0; i < n; ++i) MW[i] = MJ[i] - sigma * mu_k * MT[i];
+  const Rational JMW = dot(J, MW);
+  if (sgn(JMW) == 0) return false;
+  const Rational lambda = -Ja0 / JMW;
+  if (sgn(lambda) < 0) return false;
+  std::vector<Rational> x(a0);
+  for (std::size_t i = 0; i < n; ++i) x[i] += MW[i] * lambda;
+  return sigma * (dot(T, x) + bias) >= 0;
 }
 
 TEST(FullMassFriction, StickLimitsAtPlantedTiesAreDecidedOnTheFullMassRows) {
@@ -200,21 +226,8 @@ TEST(FullMassFriction, StickWithANormalForceFarBelowTheLoadsIsDecidedOnTheFullMa
       ++cases;
       const Rational muq(mu);
       const bool stick_exists = muq * planted[0] >= abs(planted[1]);
-      bool slip_exists = false;
-      for (const int sigma : {1, -1}) {
-        std::vector<Rational> MW(n);   // M^-1 W^T
-        for (int i = 0; i < n; ++i) MW[i] = MJ[i] - sigma * muq * MT[i];
-        const Rational JMW = dot(J, MW);
-        if (sgn(JMW) != 0) {
-          const Rational lambda = -Ja0 / JMW;
-          if (sgn(lambda) >= 0) {
-            std::vector<Rational> x(a0);
-            for (int i = 0; i < n; ++i) x[i] += MW[i] * lambda;
-            slip_exists = slip_exists || sigma * (dot(T, x) + bias) >= 0;
-          }
-        }
-        slip_exists = slip_exists || (sgn(Ja0) >= 0 && sigma * Ta0 >= 0);
-      }
+      const bool slip_exists = slip_consistent(1, muq, a0, J, T, MJ, MT, bias, Ja0, Ta0) ||
+                               slip_consistent(-1, muq, a0, J, T, MJ, MT, bias, Ja0, Ta0);
       std::vector<simulation::Friction> undecided = z.friction;
       undecided[0].decided = false;
       const simulation::FrictionalSolution sol =
@@ -253,6 +266,137 @@ TEST(FullMassFriction, StickWithANormalForceFarBelowTheLoadsIsDecidedOnTheFullMa
             << "form's decision wrong in " << doubles_wrong << "\n";
   EXPECT_GT(sticks, cases / 4);
   EXPECT_GT(slips, cases / 8);
+}
+
+// Session 66 (slip66): ties at the slip direction. One held contact planted sliding in direction
+// sigma: J a + kappa = 0, the friction f = -sigma mu_k lambda, and the tangential acceleration
+// T a + bias = t planted exactly 0, +sigma delta (sliding on) or -sigma delta (the planted slip
+// inconsistent by delta), delta = 2^-k (k = 31..48) of the loads' size |T| |a| — inside the 1e-9
+// slack of the doubles' slip-direction test. mu_s = mu_k or mu_k / 2 (the stick then mostly
+// excluded). Odd trials: a diagonal M (powers of two) solved in the diagonal form (the planar
+// simulators'); even trials: a coupled M in the Cholesky coordinates with the full form given (the
+// pin-slot simulator's). The oracle, exact rationals: a stick held ((lambda, f) of the 2 x 2
+// system, lambda >= 0, |f| <= mu_s lambda) or open (J M^-1 Q + kappa >= 0, T M^-1 Q + bias = 0);
+// a slip sigma held (lambda = -(J M^-1 Q + kappa) / (J M^-1 W^T) >= 0, W = J - sigma mu_k T,
+// sigma (T x + bias) >= 0) or open. Asserted: solve_frictional (exact mode) finds an assignment
+// iff the oracle has one, sticks iff the oracle has a stick, and a slip it publishes is one the
+// oracle has. Until session 66 a slip the doubles accepted within their slack was taken unchecked.
+TEST(FullMassFriction, ASlipTheDoublesAcceptAtATieIsConfirmedExactly) {
+  using held_oracle::RMatrix;
+  Rng rng{test::test_seed(6611)};
+  const std::vector<std::size_t> own;
+  int cases = 0, sticks = 0, slips = 0, none = 0, doubles_wrong = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 2 + trial % 3;
+    const bool diagonal = trial % 2 == 1;
+    const double unit = std::ldexp(1.0, rng.below(21) - 10);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+    if (diagonal) {
+      for (int i = 0; i < n; ++i) M(i, i) = std::ldexp(1.0, rng.below(7) - 3);
+    } else {
+      Eigen::MatrixXd A(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) A(i, j) = rng.below(5) - 2;
+      M = A * A.transpose();
+      for (int i = 0; i < n; ++i) M(i, i) += 1 + rng.below(4);
+    }
+    M *= unit;
+    Eigen::MatrixXd Jm(1, n);
+    Eigen::VectorXd Tv(n), a(n);
+    for (;;) {
+      double size = 0;
+      for (int i = 0; i < n; ++i) {
+        Jm(0, i) = rng.below(7) - 3;
+        Tv(i) = rng.below(7) - 3;
+        a(i) = rng.below(9) - 4;
+      }
+      bool independent = false;
+      for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j) independent = independent || Jm(0, i) * Tv(j) - Jm(0, j) * Tv(i) != 0;
+      size = Tv.cwiseAbs().dot(a.cwiseAbs());
+      if (independent && size > 0) break;
+    }
+    const int sigma = rng.below(2) == 0 ? 1 : -1;
+    const double mu_k = (2 + rng.below(14)) / 16.0;
+    const double lambda0 = (1 + rng.below(8)) * unit * std::ldexp(1.0, rng.below(7) - 3);
+    const double size = std::exp2(std::ceil(std::log2(Tv.cwiseAbs().dot(a.cwiseAbs()))));
+    const int variant = trial % 3, k = 31 + rng.below(18);
+    const double t = variant == 0 ? 0.0 : (variant == 1 ? sigma : -sigma) * std::ldexp(size, -k);
+    const Eigen::VectorXd Q = M * a - Jm.row(0).transpose() * lambda0 + Tv * (sigma * mu_k * lambda0);   // exact
+    const Eigen::VectorXd kappa = Eigen::VectorXd::Constant(1, -Jm.row(0).dot(a));
+    simulation::Friction fr;
+    fr.on = true;
+    fr.T = Tv;
+    fr.mu_kinetic = mu_k;
+    fr.mu_static = rng.below(2) == 0 ? mu_k : mu_k / 2;
+    fr.bias = t - Tv.dot(a);
+    ASSERT_EQ(Rational(fr.bias), Rational(t) - Rational(Tv.dot(a))) << trial;   // the planting exact
+    // the oracle, exact
+    RMatrix Mq(n, std::vector<Rational>(n));
+    std::vector<Rational> minus_Q(n), J(n), T(n), minus_J(n), minus_T(n);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) Mq[i][j] = Rational(M(i, j));
+      minus_Q[i] = -Rational(Q(i));
+      J[i] = Rational(Jm(0, i));
+      T[i] = Rational(Tv(i));
+      minus_J[i] = -J[i];
+      minus_T[i] = -T[i];
+    }
+    auto dot = [&](const std::vector<Rational>& u, const std::vector<Rational>& v) {
+      Rational out = 0;
+      for (int i = 0; i < n; ++i) out += u[i] * v[i];
+      return out;
+    };
+    const std::vector<Rational> a0 = held_oracle::cramer(Mq, minus_Q);   // M a0 = Q
+    const std::vector<Rational> MJ = held_oracle::cramer(Mq, minus_J), MT = held_oracle::cramer(Mq, minus_T);
+    const Rational bias(fr.bias), Ja0 = dot(J, a0) + Rational(kappa(0)), Ta0 = dot(T, a0) + bias;
+    const RMatrix D{{dot(J, MJ), dot(J, MT)}, {dot(T, MJ), dot(T, MT)}};
+    const std::vector<Rational> held_stick = held_oracle::cramer(D, {Ja0, Ta0});   // (lambda, f)
+    const bool stick_exists =
+        (sgn(held_stick[0]) >= 0 && abs(held_stick[1]) <= Rational(fr.mu_static) * held_stick[0]) ||
+        (sgn(Ja0) >= 0 && sgn(Ta0) == 0);
+    const bool slip_exists[2] = {   // [0]: +1, [1]: -1
+        slip_consistent(1, Rational(mu_k), a0, J, T, MJ, MT, bias, Ja0, Ta0),
+        slip_consistent(-1, Rational(mu_k), a0, J, T, MJ, MT, bias, Ja0, Ta0)};
+    // the solver: the diagonal form, or the Cholesky form with the full form given
+    std::vector<simulation::Friction> friction{fr};
+    Eigen::MatrixXd G = Jm;
+    Eigen::VectorXd minv = Eigen::VectorXd::Ones(n), a0d(n);
+    std::optional<simulation::FullMass> full;
+    if (diagonal) {
+      for (int i = 0; i < n; ++i) {
+        minv(i) = 1 / M(i, i);
+        a0d(i) = Q(i) * minv(i);   // exact: powers of two
+      }
+    } else {
+      full = simulation::FullMass{Jm, M, Q, {fr}};
+      const Eigen::LLT<Eigen::MatrixXd> llt(M);
+      G = llt.matrixL().solve(Jm.transpose()).transpose();
+      a0d = llt.matrixL().solve(Q);
+      friction[0].T = llt.matrixL().solve(Tv);
+    }
+    ++cases;
+    const simulation::FrictionalSolution sol =
+        simulation::solve_frictional(G, minv, a0d, kappa, friction, {}, false, &own, full ? &*full : nullptr);
+    const std::string where = "trial " + std::to_string(trial) + " n " + std::to_string(n) + " sigma " +
+                              std::to_string(sigma) + " t " + std::to_string(variant) + " k " + std::to_string(k) +
+                              (diagonal ? " diagonal" : " full");
+    EXPECT_EQ(sol.solved, stick_exists || slip_exists[0] || slip_exists[1]) << where;
+    auto consistent = [&](const simulation::FrictionalSolution& r) {
+      if (!r.solved) return !(stick_exists || slip_exists[0] || slip_exists[1]);
+      if (r.state[0] == simulation::stick) return stick_exists;
+      return !stick_exists && slip_exists[r.state[0] == simulation::slip_positive ? 0 : 1];
+    };
+    if (!sol.solved) ++none;
+    else (sol.state[0] == simulation::stick ? sticks : slips) += 1;
+    EXPECT_TRUE(consistent(sol)) << where << " state " << (sol.solved ? sol.state[0] : 9);
+    const simulation::FrictionalSolution before = simulation::solve_frictional(G, minv, a0d, kappa, friction);
+    doubles_wrong += !consistent(before);
+  }
+  std::cout << "slip-direction ties: " << cases << " decisions, " << sticks << " sticks, " << slips << " slips, "
+            << none << " without a consistent assignment; the doubles-only enumeration wrong in " << doubles_wrong
+            << "\n";
+  EXPECT_GT(slips, cases / 4);
 }
 
 // The full form with a diagonal mass matrix (exact inverses: powers of two) decides as the
