@@ -787,35 +787,34 @@ Point unit_vector(const Quantity& angle, const std::string& pointer, const std::
     Rational reduced = angle.pi_multiple - 2 * Rational(turns);
     return exact_unit_vector_pi(reduced, pointer, expression, roundings);
   }
+  // rational + pi_multiple pi (Session 67, issue 14): take the whole half turns n out exactly
+  // (pi_multiple = n + f, f in (-1/2, 1/2]), round the reduced angle rational + f pi once and
+  // negate its direction for odd n. Features a half turn apart (k pi/2 + pi +- span/2 and
+  // (k + 2) pi/2 + pi +- span/2) so get exactly negated directions, and the angle used,
+  // rounded + n pi, is within the rounding bound of the exact one as before. Until session 66
+  // each whole angle was rounded on its own (Geneva's lock arcs 1.8e-11 mm off their half turns).
+  // n = 0 (|pi_multiple| <= 1/2) is the path below, as before.
+  mpz_class turns;
   if (angle.exact && !angle.is_rational()) {
-    // rational + pi_multiple pi (Session 67, issue 14): take the whole half turns n out exactly
-    // (pi_multiple = n + f, f in [-1/2, 1/2)), round the reduced angle rational + f pi once and
-    // negate its direction for odd n. Features a half turn apart (k pi/2 + pi +- span/2 and
-    // (k + 2) pi/2 + pi +- span/2) so get exactly negated directions, and the angle used,
-    // rounded + n pi, is within the rounding bound of the exact one as before. Until session 66
-    // each whole angle was rounded on its own (Geneva's lock arcs 1.8e-11 mm off their half turns).
+    Rational shifted = angle.pi_multiple - Rational(1, 2);
+    shifted.canonicalize();
+    mpz_cdiv_q(turns.get_mpz_t(), shifted.get_num_mpz_t(), shifted.get_den_mpz_t());
+  }
+  if (sgn(turns) != 0) {
     const Interval whole = angle.to_interval();
     if (whole.is_bounded() && (whole.lower() > max_angle || whole.upper() < -max_angle))
       throw ModelError(pointer, "the angle " + quoted_expression(expression) + " is larger than " +
                                     std::to_string(max_angle) + " rad in magnitude");
-    mpz_class turns;
-    Rational shifted = angle.pi_multiple + Rational(1, 2);
-    shifted.canonicalize();
-    mpz_fdiv_q(turns.get_mpz_t(), shifted.get_num_mpz_t(), shifted.get_den_mpz_t());
     Quantity reduced = angle;
     reduced.pi_multiple = angle.pi_multiple - Rational(turns);
     reduced.pi_multiple.canonicalize();
-    Point unit;
-    if (turns == 0) {
-      unit = exact_unit_vector(to_rational(reduced, pointer, expression, roundings), pointer, expression, roundings);
-    } else {
-      const std::string reduced_text = "(" + expression + ") - " + turns.get_str() + "*pi";
-      const Rational value = reduced.is_rational() ? reduced.rational : to_rational(reduced, pointer, reduced_text, roundings);
-      unit = exact_unit_vector(value, pointer, reduced_text, roundings);
-      if (mpz_odd_p(turns.get_mpz_t())) {
-        unit.x = -unit.x;
-        unit.y = -unit.y;
-      }
+    // the text as written, and what the recorded value is: the angle less its n half turns
+    const std::string reduced_text = expression + " (reduced by " + turns.get_str() + "*pi)";
+    const Rational value = reduced.is_rational() ? reduced.rational : to_rational(reduced, pointer, reduced_text, roundings);
+    Point unit = exact_unit_vector(value, pointer, reduced_text, roundings);
+    if (mpz_odd_p(turns.get_mpz_t())) {
+      unit.x = -unit.x;
+      unit.y = -unit.y;
     }
     return unit;
   }

@@ -540,3 +540,61 @@ TEST(ModelRounding, LargeValuesAreRoundedAtTheirDecimalScaleAsTheOrdinaryValueIs
     EXPECT_EQ(edge.radius_squared, Rational(rounding.value * rounding.value)) << radius;
   }
 }
+
+// Session 67 (issue 14): an angle r + p pi is reduced by its whole half turns n (p = n + f,
+// f in (-1/2, 1/2]) before its one rounding, and its direction negated for odd n: two angles a
+// half turn apart get exactly negated directions (a wheel's features k pi/2 + pi +- s/2 and
+// (k + 2) pi/2 + pi +- s/2 keep the part's half-turn symmetry), each within the bounds of its
+// roundings of the exact direction. (Before session 67 each whole angle was rounded on its own:
+// the negation failed for most of these angles.)
+TEST(ModelRounding, AnglesAHalfTurnApartGetExactlyNegatedDirections) {
+  using namespace hipair::model_detail;
+  std::mt19937 random(20261206);
+  for (int exponent : {12, 9}) {
+    Rational bound = power_of_ten(-exponent);
+    RoundingBoundScope scope(bound);
+    for (int trial = 0; trial < 120; ++trial) {
+      Rational r(static_cast<long>(random() % 4001) - 2000, 577);  // (-3.5, 3.5) rad
+      r.canonicalize();
+      const long q = std::vector<long>{1, 2, 3, 4, 6, 12}[random() % 6];
+      Rational p(static_cast<long>(random() % static_cast<unsigned>(6 * q + 1)) - 3 * q, q);  // [-3, 3]
+      p.canonicalize();
+      if (r == 0) continue;
+      hipair::Point units[2];
+      for (int side = 0; side < 2; ++side) {
+        Quantity angle = Quantity::of(r, true);
+        angle.pi_multiple = side == 0 ? p : Rational(p + 1);
+        angle.pi_multiple.canonicalize();
+        std::vector<hipair::Rounding> roundings;
+        const hipair::Point unit = unit_vector(angle, "/test", "angle", roundings);
+        units[side] = unit;
+        EXPECT_EQ(unit.x * unit.x + unit.y * unit.y, Rational(1));
+        ASSERT_LE(roundings.size(), 2u);
+        Rational total(0);
+        for (const hipair::Rounding& rounding : roundings) total += rounding.bound;
+        // |u - (cos a, sin a)| <= |a_used - a| <= the sum of the recorded bounds (256-bit MPFI)
+        mpfi_t a, pi, c, s, dx, dy;
+        for (mpfi_ptr v : {a, pi, c, s, dx, dy}) mpfi_init2(v, 256);
+        mpfi_const_pi(pi);
+        mpfi_mul_q(a, pi, angle.pi_multiple.get_mpq_t());
+        mpfi_add_q(a, a, r.get_mpq_t());
+        mpfi_cos(c, a);
+        mpfi_sin(s, a);
+        mpfi_q_sub(dx, unit.x.get_mpq_t(), c);
+        mpfi_q_sub(dy, unit.y.get_mpq_t(), s);
+        mpfi_sqr(dx, dx);
+        mpfi_sqr(dy, dy);
+        mpfi_add(dx, dx, dy);
+        mpfr_t upper;
+        mpfr_init2(upper, 256);
+        mpfi_get_right(upper, dx);
+        const Rational total2 = total * total;
+        EXPECT_LE(mpfr_cmp_q(upper, total2.get_mpq_t()), 0) << r << " + pi " << angle.pi_multiple << " 1e-" << exponent;
+        mpfr_clear(upper);
+        for (mpfi_ptr v : {a, pi, c, s, dx, dy}) mpfi_clear(v);
+      }
+      EXPECT_EQ(units[1].x, Rational(-units[0].x)) << r << " + pi " << p << " and + pi " << Rational(p + 1);
+      EXPECT_EQ(units[1].y, Rational(-units[0].y)) << r << " + pi " << p << " and + pi " << Rational(p + 1);
+    }
+  }
+}
