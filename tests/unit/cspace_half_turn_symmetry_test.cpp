@@ -249,7 +249,9 @@ Agreement twins_agree(const CSpace& space, std::size_t wheel, const std::vector<
     if (as_set(ta.contacts) != as_set(tb.contacts)) agreement.contacts = false;
     if (sorted(ta.skeleton) != sorted(tb.skeleton)) agreement.skeleton = false;
     if (ta.skeleton != tb.skeleton) agreement.skeleton_in_order = false;
-    if (std::getenv("HT_DEBUG")) {
+    // HIPAIR_HALF_TURN_DEBUG=1: print what differs between the twin charts (the evidence of
+    // docs/performance.md "Session 67 (geneva67)")
+    if (std::getenv("HIPAIR_HALF_TURN_DEBUG")) {
       auto show = [](const char* what, std::vector<std::string> x, std::vector<std::string> y) {
         x = sorted(x); y = sorted(y);
         std::vector<std::string> only_x, only_y;

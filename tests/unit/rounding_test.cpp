@@ -10,6 +10,7 @@
 
 #include "model/exact_trig.hpp"
 #include "model/expression.hpp"
+#include "test_seed.hpp"
 
 #include <gtest/gtest.h>
 
@@ -30,6 +31,30 @@ Rational power_of_ten(int exponent) {
   mpz_class p;
   mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
   return exponent < 0 ? Rational(mpz_class(1), p) : Rational(p);
+}
+
+// |unit - (cos a, sin a)| <= bound for a = phase + multiple pi, certified with 256-bit MPFI.
+bool within_of_angle(const hipair::Point& unit, const Rational& phase, const Rational& multiple, const Rational& bound) {
+  mpfi_t angle, pi, c, s, dx, dy;
+  for (mpfi_ptr v : {angle, pi, c, s, dx, dy}) mpfi_init2(v, 256);
+  mpfi_const_pi(pi);
+  mpfi_mul_q(angle, pi, multiple.get_mpq_t());
+  mpfi_add_q(angle, angle, phase.get_mpq_t());
+  mpfi_cos(c, angle);
+  mpfi_sin(s, angle);
+  mpfi_q_sub(dx, unit.x.get_mpq_t(), c);
+  mpfi_q_sub(dy, unit.y.get_mpq_t(), s);
+  mpfi_sqr(dx, dx);
+  mpfi_sqr(dy, dy);
+  mpfi_add(dx, dx, dy);
+  mpfr_t upper;
+  mpfr_init2(upper, 256);
+  mpfi_get_right(upper, dx);
+  const Rational bound2 = bound * bound;
+  const bool within = mpfr_cmp_q(upper, bound2.get_mpq_t()) <= 0;
+  mpfr_clear(upper);
+  for (mpfi_ptr v : {angle, pi, c, s, dx, dy}) mpfi_clear(v);
+  return within;
 }
 
 // The Farey parents of r = p/q (q > 0) in the Stern–Brocot tree: left < r < right, with
@@ -384,25 +409,7 @@ TEST(ModelRounding, PhasePlusPiMultipleIsOneRoundingWithinTheBound) {
       if (phase == 0) continue;
       ASSERT_EQ(roundings.size(), 1u) << phase << " + pi " << multiple;
       EXPECT_EQ(roundings[0].bound, bound);
-      mpfi_t angle, pi, c, s, dx, dy;
-      for (mpfi_ptr v : {angle, pi, c, s, dx, dy}) mpfi_init2(v, 256);
-      mpfi_const_pi(pi);
-      mpfi_mul_q(angle, pi, multiple.get_mpq_t());
-      mpfi_add_q(angle, angle, phase.get_mpq_t());
-      mpfi_cos(c, angle);
-      mpfi_sin(s, angle);
-      mpfi_q_sub(dx, unit.x.get_mpq_t(), c);
-      mpfi_q_sub(dy, unit.y.get_mpq_t(), s);
-      mpfi_sqr(dx, dx);
-      mpfi_sqr(dy, dy);
-      mpfi_add(dx, dx, dy);
-      mpfr_t upper;
-      mpfr_init2(upper, 256);
-      mpfi_get_right(upper, dx);
-      Rational bound2 = bound * bound;
-      EXPECT_LE(mpfr_cmp_q(upper, bound2.get_mpq_t()), 0) << phase << " + pi " << multiple << " 1e-" << exponent;
-      mpfr_clear(upper);
-      for (mpfi_ptr v : {angle, pi, c, s, dx, dy}) mpfi_clear(v);
+      EXPECT_TRUE(within_of_angle(unit, phase, multiple, bound)) << phase << " + pi " << multiple << " 1e-" << exponent;
       // the former two-rounding product, for the size comparison
       std::vector<hipair::Rounding> former;
       hipair::Point turn = exact_unit_vector_pi(multiple, "/test", "turn", former);
@@ -549,7 +556,7 @@ TEST(ModelRounding, LargeValuesAreRoundedAtTheirDecimalScaleAsTheOrdinaryValueIs
 // the negation failed for most of these angles.)
 TEST(ModelRounding, AnglesAHalfTurnApartGetExactlyNegatedDirections) {
   using namespace hipair::model_detail;
-  std::mt19937 random(20261206);
+  std::mt19937 random(static_cast<std::mt19937::result_type>(hipair::test::test_seed(20261206)));
   for (int exponent : {12, 9}) {
     Rational bound = power_of_ten(-exponent);
     RoundingBoundScope scope(bound);
@@ -572,26 +579,8 @@ TEST(ModelRounding, AnglesAHalfTurnApartGetExactlyNegatedDirections) {
         ASSERT_LE(roundings.size(), 2u);
         Rational total(0);
         for (const hipair::Rounding& rounding : roundings) total += rounding.bound;
-        // |u - (cos a, sin a)| <= |a_used - a| <= the sum of the recorded bounds (256-bit MPFI)
-        mpfi_t a, pi, c, s, dx, dy;
-        for (mpfi_ptr v : {a, pi, c, s, dx, dy}) mpfi_init2(v, 256);
-        mpfi_const_pi(pi);
-        mpfi_mul_q(a, pi, angle.pi_multiple.get_mpq_t());
-        mpfi_add_q(a, a, r.get_mpq_t());
-        mpfi_cos(c, a);
-        mpfi_sin(s, a);
-        mpfi_q_sub(dx, unit.x.get_mpq_t(), c);
-        mpfi_q_sub(dy, unit.y.get_mpq_t(), s);
-        mpfi_sqr(dx, dx);
-        mpfi_sqr(dy, dy);
-        mpfi_add(dx, dx, dy);
-        mpfr_t upper;
-        mpfr_init2(upper, 256);
-        mpfi_get_right(upper, dx);
-        const Rational total2 = total * total;
-        EXPECT_LE(mpfr_cmp_q(upper, total2.get_mpq_t()), 0) << r << " + pi " << angle.pi_multiple << " 1e-" << exponent;
-        mpfr_clear(upper);
-        for (mpfi_ptr v : {a, pi, c, s, dx, dy}) mpfi_clear(v);
+        // |u - (cos a, sin a)| <= |a_used - a| <= the sum of the recorded bounds
+        EXPECT_TRUE(within_of_angle(unit, r, angle.pi_multiple, total)) << r << " + pi " << angle.pi_multiple << " 1e-" << exponent;
       }
       EXPECT_EQ(units[1].x, Rational(-units[0].x)) << r << " + pi " << p << " and + pi " << Rational(p + 1);
       EXPECT_EQ(units[1].y, Rational(-units[0].y)) << r << " + pi " << p << " and + pi " << Rational(p + 1);
