@@ -21,6 +21,8 @@
 //   period is 2 pi / 15), the box at 1/2 or 3/4 x the tolerances, with --certify-free-path: every leaf
 //   has a witness and the verifier's code (re-checking the written text) says `valid`. (base67's
 //   producer, at the seed's three cases: a leaf without a witness in each, `unproven`.)
+// - Generated (test_seed(6767)): escapements with the anchor's lift or lock moved by +-1/4 or
+//   +-1/2 deg, across the drop of tooth 0: the same (base67: a leaf without a witness in each).
 #include <hipair/certificate.hpp>
 #include <hipair/tolerance.hpp>
 
@@ -163,6 +165,38 @@ TEST(CertifyWitnessSplit, GeneratedRangesAcrossTheDropsGetAWitnessOnEveryLeaf) {
     EXPECT_FALSE(c.unproven) << c.reason;   // the verifier's code on the written text
     std::cout << "[ witness split ] driver " << from.get_d() << " .. " << to.get_d() << ", scale " << scale.get_d() << ": "
               << c.leaves << " leaves, " << c.attempts << " boxes\n";
+  }
+}
+
+// The same across the drop of tooth 0 (driver 0.33-0.43 rad) of generated escapements: the anchor's
+// lift or lock angle moved by -1/2, -1/4, +1/4 or +1/2 deg from its nominal (6 and 2 deg), the box
+// at 1/2 x the tolerances, --certify-free-path. base67's producer leaves the leaf over the drop
+// without a witness at each of these eight geometries (`unproven`, "leaf 1 has no witness path").
+TEST(CertifyWitnessSplit, GeneratedEscapementGeometriesGetAWitnessOnEveryLeaf) {
+  std::mt19937_64 random(test::test_seed(6767));
+  const std::string text = read_text(escapement());
+  const char* offsets[] = {"-0.5", "-0.25", "+0.25", "+0.5"};
+  for (int trial = 0; trial < 3; ++trial) {
+    bool lift = std::uniform_int_distribution<int>(0, 1)(random) == 1;
+    std::string offset = offsets[std::uniform_int_distribution<int>(0, 3)(random)];
+    std::string key = lift ? "\"lift\": { \"nominal\": 6," : "\"lock\": { \"nominal\": 2,";
+    std::string value = std::string(lift ? "6" : "2") + " " + offset.substr(0, 1) + " " + offset.substr(1);
+    std::string replacement = std::string(lift ? "\"lift\"" : "\"lock\"") + ": { \"nominal\": \"" + value + "\",";
+    std::string model = text;
+    std::size_t at = model.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    model.replace(at, key.size(), replacement);
+    SCOPED_TRACE("trial " + std::to_string(trial) + ": " + replacement);
+    ToleranceOptions options = certify_over(Rational(33, 100), Rational(43, 100));
+    options.certify_scale = Rational(1, 2);
+    options.certify_free_path = true;
+    ToleranceResult result = analyze_tolerances_text(model, options);
+    ASSERT_TRUE(result.certification);
+    const ToleranceCertification& c = *result.certification;
+    ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+    EXPECT_EQ(leaves_without_witness(c), "");
+    EXPECT_FALSE(c.unproven) << c.reason;
+    std::cout << "[ witness split ] " << replacement << ": " << c.leaves << " leaves, " << c.attempts << " boxes\n";
   }
 }
 
