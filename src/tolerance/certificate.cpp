@@ -649,7 +649,8 @@ class Producer {
     return std::make_pair(middle, a);
   }
 
-  Status solve(const std::vector<RationalInterval>& region, const Piece& piece, int depth) {
+  // `refused`: how many leaves on the branch above held without a witness path and were split.
+  Status solve(const std::vector<RationalInterval>& region, const Piece& piece, int depth, std::size_t refused = 0) {
     if (attempts_ >= 4 * request_.max_leaves || claim_.leaves.size() >= request_.max_leaves) {
       undecided_reason_ = "the branch-and-bound gave up after " + std::to_string(attempts_) + " boxes (" +
                           std::to_string(claim_.leaves.size()) + " leaves certified)";
@@ -734,6 +735,7 @@ class Producer {
     // function of the parameters and the driver, so that what moves both sides alike cancels),
     // then with the play enclosed from the sides' slopes.
     bool free_path_failed = false;   // the last candidate passed checks 1-6, check 7 did not prove it
+    bool held_without_witness = false;   // a pair of sides passed checks 1-6 here without a witness
     auto accept = [&](ToleranceLeaf candidate) {
       free_path_failed = false;
       try {
@@ -811,6 +813,18 @@ class Producer {
       ToleranceLeaf p = leaf;
       p.lower = LeafSide{lp, gl.bracket, gl.centre};
       p.upper = LeafSide{up, gu.bracket, gu.centre};
+      if (refused < request_.witness_splits) {
+        // Without a witness path check 7 cannot start (the certificate would be unproven at this
+        // leaf): split it instead, at most witness_splits times along a branch (session 67).
+        if (!held_without_witness) {
+          try {
+            evaluator_->check_leaf(p, claim_.leaves.size(), over, point);
+            held_without_witness = true;
+          } catch (const verify::Rejection&) {
+          }
+        }
+        return false;
+      }
       return accept(std::move(p));
     };
     std::vector<double> score(k + 1, 1.0);
@@ -893,6 +907,14 @@ class Producer {
       score.assign(k + 1, 0.0);
       score[*free_path_split_] = 1.0;
     }
+    // A leaf that held without a witness path (refused above): split the driver, unless check 7
+    // chose a dimension. Where no witness passes, the binding side usually switches along the
+    // driver inside the leaf (the escapement's drop: the tooth leaves the impulse face and the
+    // lower side falls from it to the wheel's root circle), which no parameter split removes.
+    if (held_without_witness && !free_path_split_) {
+      score.assign(k + 1, 0.0);
+      score[k] = 1.0;
+    }
     if (depth > 400) {
       undecided_reason_ = "the branch-and-bound reached depth 400 without certifying a box near driver " + std::to_string(dd);
       return Status::undecided;
@@ -907,9 +929,10 @@ class Producer {
     std::vector<RationalInterval> low = region, high = region;
     low[best].hi = cut;
     high[best].lo = cut;
-    Status s = solve(low, piece, depth + 1);
+    if (held_without_witness) ++refused;
+    Status s = solve(low, piece, depth + 1, refused);
     if (s != Status::ok) return s;
-    return solve(high, piece, depth + 1);
+    return solve(high, piece, depth + 1, refused);
   }
 
   struct Best {   // the narrowest corner channel met by corner_jams

@@ -42,6 +42,10 @@ struct CertifyRequest {
   /// free over the leaf's box (at most `free_path_budget` bisections per leaf); else split it.
   bool free_path_leaves = false;
   std::size_t free_path_budget = 8;
+  /// A leaf whose sides checks 1-6 prove apart from their slopes alone (no witness path: check 7
+  /// cannot start there, so the certificate would be unproven) is split instead, up to this many
+  /// times along a branch; beyond, it is accepted and the certificate's check names it (session 67).
+  std::size_t witness_splits = 6;
   /// Progress of certify_no_jam (the corner search by driver position its first tenth, then the
   /// share of the region box x range the certified leaves cover, to 0.95) and of
   /// bracket_threshold (the bisection's width against the width asked for); empty: none.
