@@ -2128,7 +2128,9 @@ bool PinSlotSimulation::Impl::advance(double span) {
       if (std::abs(wrap(a1 - a0)) > pi / 4 || std::abs(wrap(am - a0)) > pi / 4) fits = false;
       // and unwrapped (session 67): the wrapped differences alias whole turns — a cam at constant
       // speed whose step's half spans exactly one turn has the same relative angle at the step's
-      // start, middle and end, and its chord (of zero length) tunnelled through the follower
+      // start, middle and end, and its chord (of zero length) tunnelled through the follower (a
+      // step-size rule in doubles, as the wrapped one: what certifies the step is the exact test of
+      // the chord, which must follow the motion — not a verdict of its own)
       if (fits && (std::abs(turned(pairs[i], end, t + h) - turned(pairs[i], y, t)) > pi / 4 ||
                    std::abs(turned(pairs[i], mid, t + h / 2) - turned(pairs[i], y, t)) > pi / 4))
         fits = false;
