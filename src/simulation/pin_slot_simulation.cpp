@@ -523,6 +523,12 @@ struct PinSlotSimulation::Impl {
     const std::size_t dr = driver_of[p.other];
     return wrap(s[1] - (dr == no_index ? 0.0 : driver_angle(dr, s, time)));
   }
+  // The same not wrapped (the part's psi and a driver's angle as integrated or prescribed): its
+  // change over a step counts whole turns, which relative_angle's differences cannot see.
+  double turned(const Pair& p, const State& s, double time) const {
+    const std::size_t dr = driver_of[p.other];
+    return s[1] - (dr == no_index ? 0.0 : driver_angle(dr, s, time));
+  }
   // mass matrix and the right-hand side of Lagrange's equations
   void dynamics(const State& s, double M[2][2], double Q[2]) const {
     const double c = std::cos(s[1]), sn = std::sin(s[1]);
@@ -2120,6 +2126,14 @@ bool PinSlotSimulation::Impl::advance(double span) {
       const double a0 = relative_angle(pairs[i], y, t), a1 = relative_angle(pairs[i], end, t + h);
       const double am = relative_angle(pairs[i], mid, t + h / 2);
       if (std::abs(wrap(a1 - a0)) > pi / 4 || std::abs(wrap(am - a0)) > pi / 4) fits = false;
+      // and unwrapped (session 67): the wrapped differences alias whole turns — a cam at constant
+      // speed whose step's half spans exactly one turn has the same relative angle at the step's
+      // start, middle and end, and its chord (of zero length) tunnelled through the follower (a
+      // step-size rule in doubles, as the wrapped one: what certifies the step is the exact test of
+      // the chord, which must follow the motion — not a verdict of its own)
+      if (fits && (std::abs(turned(pairs[i], end, t + h) - turned(pairs[i], y, t)) > pi / 4 ||
+                   std::abs(turned(pairs[i], mid, t + h / 2) - turned(pairs[i], y, t)) > pi / 4))
+        fits = false;
       flips[i] = std::abs(am) > pi / 2;
       // the chart about the half turn excludes theta = 0 at either end, the chart about 0 the half turn
       if (fits && flips[i] && (std::abs(a0) < pi / 8 || std::abs(a1) < pi / 8)) fits = false;
