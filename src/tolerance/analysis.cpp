@@ -4,8 +4,10 @@
 // the follower and the two sides of its free channel; each is then solved over the parametric
 // model (solver.hpp).
 #include <hipair/tolerance.hpp>
+#include <hipair/tolerance_scale.hpp>
 
 #include "core/model_scale.hpp"
+#include "model/parametric/dimensions.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
@@ -2037,6 +2039,20 @@ StageAnalysis analyze_stage(std::string_view text, std::shared_ptr<const model_d
 }
 
 }  // namespace tolerance_detail
+
+std::vector<long> tolerance_parameter_exponents_text(std::string_view json_text, const ToleranceOptions& options) {
+  const auto form = tolerance_detail::analysed_form(
+      model_detail::ParametricModel::read(json_text, "<string>", tolerance_detail::design_read_options(options)), options);
+  return model_detail::parameter_scale_exponents(*form);
+}
+
+std::vector<long> tolerance_parameter_exponents(const std::filesystem::path& model_file, const ToleranceOptions& options) {
+  std::ifstream file(model_file, std::ios::binary);
+  if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
+  std::ostringstream content;
+  content << file.rdbuf();
+  return tolerance_parameter_exponents_text(content.str(), options);
+}
 
 ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
   if (options.chain) return tolerance_detail::analyze_chain(json_text, options);

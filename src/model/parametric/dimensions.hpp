@@ -17,4 +17,9 @@ namespace hipair::model_detail {
 /// with its parameters as read).
 std::vector<long> parameter_scale_exponents(const ParametricModel& model);
 
+/// Multiplies each parameter's values (nominal, range, sigma) by 10^(-exponents[i]) exactly: the
+/// copy's parameters from the file's with parameter_scale_exponents, the file's from the copy's
+/// with the exponents negated.
+void scale_parameter_values(std::vector<Parameter>& parameters, const std::vector<long>& exponents);
+
 }  // namespace hipair::model_detail

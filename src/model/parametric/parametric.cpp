@@ -320,7 +320,6 @@ class RecipeBuilder {
   static std::vector<long> length_dimensions(const ParametricModel& model);
   static ParametricModel rescaled_by_dimension(const ParametricModel& model, long exponent);
   static std::vector<long> scale_exponents(const ParametricModel& model);
-  static void scale_parameters(std::vector<Parameter>& parameters, const std::vector<long>& exponents);
 
   // Whether a template occurrence has the generic form: circle and pin; the toothed templates
   // with a tooth (slot) count that is not toleranced; spur_gear with flank_radius when its
@@ -545,7 +544,7 @@ Model ParametricModel::exact_model(const std::vector<Rational>& deviations) cons
     for (std::size_t i = 0; i < at_file_scale.size() && i < exponents.size(); ++i)
       if (exponents[i] != 0) at_file_scale[i] *= power_of_ten_rational(exponents[i]);
     Model model = decimal_scaled_model(unscaled_->exact_model(at_file_scale), length_exponent_);
-    RecipeBuilder::scale_parameters(model.parameters, exponents);
+    scale_parameter_values(model.parameters, exponents);
     return model;
   }
   if (deviations.size() != parameter_count())
@@ -1609,11 +1608,11 @@ ParametricModel RecipeBuilder::rescaled_by_dimension(const ParametricModel& mode
   return scaled;
 }
 
-void RecipeBuilder::scale_parameters(std::vector<Parameter>& parameters, const std::vector<long>& exponents) {
-  model_detail::scale_parameters(parameters, exponents);
-}
-
 std::vector<long> parameter_scale_exponents(const ParametricModel& model) { return RecipeBuilder::scale_exponents(model); }
+
+void scale_parameter_values(std::vector<Parameter>& parameters, const std::vector<long>& exponents) {
+  scale_parameters(parameters, exponents);
+}
 
 namespace {
 
