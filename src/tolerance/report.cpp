@@ -82,6 +82,16 @@ std::string parameter_unit(const ToleranceResult& r, const std::vector<long>& k,
   const long d = e / r.length_exponent;
   return "1e" + std::to_string(e) + " mm" + (d == 1 ? std::string() : "^" + std::to_string(d));
 }
+// A sensitivity per unit of a parameter in units of 10^k its file's, at the file's scale: its
+// decimal's exponent moved by -k (and by E for a translating follower, as shown()).
+std::string sensitivity_text(const ToleranceResult& r, double value, long k) {
+  if (k == 0) return shown(r, value, r.follower_rotates, 4);
+  const long by = (r.follower_rotates ? 0 : r.length_exponent) - k;
+  std::string text = moved(number(value * unit_factor(r.follower_rotates), 4), by);
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, "e0") == 0) text.erase(text.size() - 2);
+  return text;
+}
+
 // An exact parameter value of the analysis at the file's scale: "(v)e400", exact.
 std::string file_scale_value(const Rational& value, long k) {
   if (k == 0 || sgn(value) == 0) return to_exact_string(value);
@@ -284,7 +294,7 @@ std::string text_report(const ToleranceResult& r, const std::vector<long>& expon
       const ParameterContribution& c = region.ranked[k];
       if (c.contribution <= 0) break;
       out << "      " << c.parameter << ": " << number(100 * c.share, 3) << " %  ("
-          << moved(fv(c.sensitivity, 4), -exponent_of(r, exponents, c.parameter)) << " " << u << " per unit)\n";
+          << sensitivity_text(r, c.sensitivity, exponent_of(r, exponents, c.parameter)) << " " << u << " per unit)\n";
     }
   }
   if (r.monte_carlo) {

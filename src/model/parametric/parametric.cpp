@@ -319,6 +319,7 @@ class RecipeBuilder {
   // "Length dimensions of the parameters").
   static std::vector<long> length_dimensions(const ParametricModel& model);
   static ParametricModel rescaled_by_dimension(const ParametricModel& model, long exponent);
+  static ParametricModel rescaled_lengths(const ParametricModel& model, long exponent);
   static std::vector<long> scale_exponents(const ParametricModel& model);
 
   // Whether a template occurrence has the generic form: circle and pin; the toothed templates
@@ -1274,7 +1275,7 @@ class DimensionSolver {
   explicit DimensionSolver(const std::vector<Parameter>& parameters)
       : parameters_(parameters), dims_(parameters.size()), where_(parameters.size()) {
     for (std::size_t i = 0; i < parameters.size(); ++i)
-      if (parameters[i].is_angle) set(i, 0, parameters[i].pointer + " (declared as an angle)");
+      if (parameters[i].is_angle) set(i, 0, "declared as an angle");
   }
 
   Dimension infer(const Formula& f) const {
@@ -1450,8 +1451,8 @@ FormulaPtr dimension_scaled(const FormulaPtr& formula, long d, const Rational& u
   return formula;
 }
 
-// Whether a parameter's value (nominal, range, sigma) is no normal double far from its limits:
-// beyond 1e300 or below 1e-300 in magnitude (and not 0).
+// Whether a parameter's value (nominal, range and its width, sigma) is no normal double far from
+// its limits: beyond 1e300 or below 1e-300 in magnitude (and not 0).
 bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
   static const Rational huge = power_of_ten_rational(300), tiny = power_of_ten_rational(-300);
   auto beyond = [&](const Rational& v) {
@@ -1459,7 +1460,9 @@ bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
     return sgn(a) != 0 && (a > huge || a < tiny);
   };
   for (const Parameter& p : parameters)
-    if (beyond(p.nominal) || beyond(p.range.lo) || beyond(p.range.hi) || (p.sigma && beyond(*p.sigma))) return true;
+    if (beyond(p.nominal) || beyond(p.range.lo) || beyond(p.range.hi) || beyond(Rational(p.range.hi - p.range.lo)) ||
+        (p.sigma && beyond(*p.sigma)))
+      return true;
   return false;
 }
 
@@ -1670,10 +1673,32 @@ ParametricModel ParametricModel::rescaled(long exponent) const {
                                    unit + " (they lie outside about 1e-9 .. 1e9 mm), and a profile tolerance's offset "
                                    "parameter is a length in mm that is not rescaled; give the tolerance as a parameter "
                                    "of the points instead");
-  ParametricModel scaled = *this;
-  scaled.unscaled_ = std::make_shared<const ParametricModel>(*this);
+  // Session 67: parameters whose values lie beyond about 1e-300 .. 1e300 (a raw `module` of
+  // 2e400 mm, a tolerance of 2e-302 mm) are rescaled by their length dimensions, so that the copy
+  // is exactly the model divided by 10^E, parameters included (RecipeBuilder::rescaled_by_dimension).
+  // Where their dimensions are inconsistent, the lengths alone are divided as before if that
+  // evaluates, else the inconsistency is the refusal.
+  if (parameters_beyond_doubles(nominal_->parameters)) {
+    try {
+      return RecipeBuilder::rescaled_by_dimension(*this, exponent);
+    } catch (const ModelError&) {
+      try {
+        return RecipeBuilder::rescaled_lengths(*this, exponent);
+      } catch (const ModelError&) {
+      }
+      throw;
+    }
+  }
+  return RecipeBuilder::rescaled_lengths(*this, exponent);
+}
+
+// The lengths' slots divided by 10^E (formula_scaled), the parameters kept as read (session 54).
+ParametricModel RecipeBuilder::rescaled_lengths(const ParametricModel& model, long exponent) {
+  const std::string unit = "1e" + std::to_string(exponent) + " mm";
+  ParametricModel scaled = model;
+  scaled.unscaled_ = std::make_shared<const ParametricModel>(model);
   scaled.length_exponent_ = exponent;
-  scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*nominal_, exponent));
+  scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*model.nominal_, exponent));
   RecipeScaler scaler{power_of_ten_rational(-exponent), {}};
   for (PartRecipe& part : scaled.parts_) scaler.part(part);
   // The templates' generic forms evaluated in doubles at the file's scale (a spur gear's flank
@@ -1692,14 +1717,10 @@ ParametricModel ParametricModel::rescaled(long exponent) const {
   // Each length at the nominal vector, in doubles: finite and normal (or 0) once divided. A
   // formula that keeps the scale (a parameter of about 1e400 mm used as a length) cannot be
   // evaluated so: refused at its slot.
-  std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(parameter_count(), 0.0));
+  std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(model.parameter_count(), 0.0));
   for (const Slot* slot : scaler.checked) {
     double v = parametric_detail::slot_value(*slot, values);
     if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;
-    // Session 67: a parameter of about 1e400 mm used as a length: the parameters rescaled by
-    // their length dimensions instead (RecipeBuilder::rescaled_by_dimension; refused there only
-    // where a parameter's dimension is inconsistent or a length still leaves the doubles).
-    if (parameters_beyond_doubles(nominal_->parameters)) return RecipeBuilder::rescaled_by_dimension(*this, exponent);
     char shown[40];
     std::snprintf(shown, sizeof shown, "%.3g", v);
     throw ModelError(slot->pointer, "'" + slot->text + "': the tolerance analysis of this model runs in units of " + unit +
