@@ -424,7 +424,7 @@ ToleranceEvaluator::ToleranceEvaluator(std::shared_ptr<const model_detail::Param
     for (std::size_t i = 0; i < varied_.size(); ++i) {
       lo[varied_[i]] = std::nextafter(claim.box[i].lo.get_d(), -HUGE_VAL);
       hi[varied_[i]] = std::nextafter(claim.box[i].hi.get_d(), HUGE_VAL);
-      in_doubles = in_doubles && std::isfinite(lo[varied_[i]]) && std::isfinite(hi[varied_[i]]);
+      in_doubles = in_doubles && std::fabs(lo[varied_[i]]) <= 1e300 && std::fabs(hi[varied_[i]]) <= 1e300;
     }
     try {
       if (in_doubles) {

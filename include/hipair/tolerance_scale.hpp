@@ -19,15 +19,16 @@
 
 namespace hipair {
 
-/// k_i per parameter (Model::parameters order) of the analysis analyze_tolerances(_text) runs
-/// for this model and options: 0 unless the parameters are rescaled by their length dimensions.
-/// \throws as analyze_tolerances when the model is refused.
-std::vector<long> tolerance_parameter_exponents_text(std::string_view json_text, const ToleranceOptions& options = {});
-std::vector<long> tolerance_parameter_exponents(const std::filesystem::path& model_file,
-                                                const ToleranceOptions& options = {});
+/// analyze_tolerances(_text), and in `parameter_exponents` the k_i of its analysis per parameter
+/// (Model::parameters order): all 0 unless the parameters were rescaled by their length
+/// dimensions; empty for an assembly chain (ToleranceOptions::chain). The model is read once.
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options,
+                                        std::vector<long>& parameter_exponents);
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options,
+                                   std::vector<long>& parameter_exponents);
 
-/// The reports of tolerance.hpp with the parameters' units `parameter_exponents` (from
-/// tolerance_parameter_exponents; empty: all 0, the same reports): the text report's
+/// The reports of tolerance.hpp with the parameters' units `parameter_exponents` (from the
+/// analysis above; empty: all 0, the same reports): the text report's
 /// sensitivities and witness values at the file's scale (decimal exponents moved by -k_i and k_i,
 /// exactly), tolerance.json's parameters with their "unit", sensitivity.csv with a
 /// parameter_unit column (when some k_i is not 0).

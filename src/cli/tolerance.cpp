@@ -384,12 +384,10 @@ int run(const ToleranceCliOptions& options) {
                 << static_cast<int>(fraction * 100) << "% " << std::flush;
     };
   refuse_overwriting_model(options);   // before the (long) analysis
-  ToleranceResult result = analyze_tolerances(options.model, analysis);
-  if (terminal) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
   // a model whose parameters lie beyond the doubles (session 67): their units, for the reports
-  const std::vector<long> exponents =
-      result.length_exponent != 0 && result.chain.empty() ? tolerance_parameter_exponents(options.model, analysis)
-                                                          : std::vector<long>();
+  std::vector<long> exponents;
+  ToleranceResult result = analyze_tolerances(options.model, analysis, exponents);
+  if (terminal) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
   std::string report = tolerance_text_report(result, exponents);
   std::cout << report;
   if (options.out.empty()) {

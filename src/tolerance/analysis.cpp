@@ -417,6 +417,9 @@ class Analysis {
     kernel_confirmations_ = large_pair_ || !tolerance_detail::whole_space_confirmations_switch();
   }
 
+  /// The parametric form the analysis runs on (analysed_form).
+  const model_detail::ParametricModel& model() const { return *model_; }
+
   ToleranceResult run() {
     bar_.begin(0);
     auto t0 = std::chrono::steady_clock::now();
@@ -2040,26 +2043,10 @@ StageAnalysis analyze_stage(std::string_view text, std::shared_ptr<const model_d
 
 }  // namespace tolerance_detail
 
-std::vector<long> tolerance_parameter_exponents_text(std::string_view json_text, const ToleranceOptions& options) {
-  const auto form = tolerance_detail::analysed_form(
-      model_detail::ParametricModel::read(json_text, "<string>", tolerance_detail::design_read_options(options)), options);
-  return model_detail::parameter_scale_exponents(*form);
-}
+namespace {
 
-std::vector<long> tolerance_parameter_exponents(const std::filesystem::path& model_file, const ToleranceOptions& options) {
-  std::ifstream file(model_file, std::ios::binary);
-  if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
-  std::ostringstream content;
-  content << file.rdbuf();
-  return tolerance_parameter_exponents_text(content.str(), options);
-}
-
-ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
-  if (options.chain) return tolerance_detail::analyze_chain(json_text, options);
-  return Analysis(json_text, options).run();
-}
-
-ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options) {
+// The model file's text, read once.
+std::string model_file_text(const std::filesystem::path& model_file) {
   std::error_code error;
   if (std::filesystem::is_directory(model_file, error))
     throw IoError("cannot read model file '" + model_file.string() + "': it is a directory");
@@ -2067,8 +2054,39 @@ ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, cons
   if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
   std::ostringstream content;
   content << file.rdbuf();
-  if (options.chain) return tolerance_detail::analyze_chain(content.str(), options);
-  return Analysis(content.str(), options, model_file.filename().string()).run();
+  return content.str();
+}
+
+// The single-pair analysis, and with `exponents` its parameters' scale exponents (session 67:
+// model_detail::parameter_scale_exponents of the form it ran on; an assembly chain's: none).
+ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, std::string source_name,
+                        std::vector<long>* exponents) {
+  if (exponents) exponents->clear();
+  if (options.chain) return tolerance_detail::analyze_chain(text, options);
+  Analysis analysis(text, options, std::move(source_name));
+  ToleranceResult result = analysis.run();
+  if (exponents) *exponents = model_detail::parameter_scale_exponents(analysis.model());
+  return result;
+}
+
+}  // namespace
+
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
+  return analyze(json_text, options, "<string>", nullptr);
+}
+
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options) {
+  return analyze(model_file_text(model_file), options, model_file.filename().string(), nullptr);
+}
+
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options,
+                                        std::vector<long>& parameter_exponents) {
+  return analyze(json_text, options, "<string>", &parameter_exponents);
+}
+
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options,
+                                   std::vector<long>& parameter_exponents) {
+  return analyze(model_file_text(model_file), options, model_file.filename().string(), &parameter_exponents);
 }
 
 }  // namespace hipair

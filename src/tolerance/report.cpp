@@ -66,7 +66,7 @@ std::string shown(const ToleranceResult& r, double value, bool rotates, int digi
 
 // Session 67 (scale67): a model whose parameters lie beyond the doubles is analysed with each
 // parameter in units of 10^k_i its file's (k_i = E times its length dimension;
-// tolerance_parameter_exponents): `k` those exponents (empty: all 0). The text report shows the
+// analyze_tolerances(..., parameter_exponents)): `k` those exponents (empty: all 0). The text report shows the
 // parameters' numbers at the file's scale; tolerance.json and sensitivity.csv hold the analysis'
 // numbers and name each parameter's unit.
 long exponent_of(const std::vector<long>& k, std::size_t i) { return i < k.size() ? k[i] : 0; }
@@ -442,8 +442,13 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
   for (const ContactRegion& region : r.regions) {
     ordered_json ranked = ordered_json::array();
     for (const ParameterContribution& c : region.ranked)
-      if (c.contribution > 0)
+      if (c.contribution > 0) {
         ranked.push_back({{"parameter", c.parameter}, {"sensitivity", c.sensitivity}, {"contribution", c.contribution}, {"share", c.share}});
+        // a rescaled parameter (session 67): its sensitivity per its unit in the analysis
+        std::size_t p = 0;
+        while (p < r.parameters.size() && r.parameters[p].name != c.parameter) ++p;
+        if (exponent_of(k, p) != 0) ranked.back()["parameter_unit"] = parameter_unit(r, k, p);
+      }
     regions.push_back({{"contact", region.contact},
                        {"driver_start", region.driver_start},
                        {"driver_end", region.driver_end},
