@@ -21,7 +21,7 @@ namespace hipair {
 
 /// analyze_tolerances(_text), and in `parameter_exponents` the k_i of its analysis per parameter
 /// (Model::parameters order): all 0 unless the parameters were rescaled by their length
-/// dimensions; empty for an assembly chain (ToleranceOptions::chain). The model is read once.
+/// dimensions. The model is read once (an assembly chain at an extreme scale: twice).
 ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options,
                                         std::vector<long>& parameter_exponents);
 ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options,

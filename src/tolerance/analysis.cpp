@@ -2057,12 +2057,20 @@ std::string model_file_text(const std::filesystem::path& model_file) {
   return content.str();
 }
 
-// The single-pair analysis, and with `exponents` its parameters' scale exponents (session 67:
-// model_detail::parameter_scale_exponents of the form it ran on; an assembly chain's: none).
+// The analysis, and with `exponents` its parameters' scale exponents (session 67:
+// model_detail::parameter_scale_exponents of the form it ran on).
 ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, std::string source_name,
                         std::vector<long>* exponents) {
   if (exponents) exponents->clear();
-  if (options.chain) return tolerance_detail::analyze_chain(text, options);
+  if (options.chain) {
+    ToleranceResult result = tolerance_detail::analyze_chain(text, options);
+    // the chain's pairs run on analysed_form of the model (chain.cpp): the same form again,
+    // read only for a chain at an extreme scale
+    if (exponents && result.length_exponent != 0)
+      *exponents = model_detail::parameter_scale_exponents(*tolerance_detail::analysed_form(
+          model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options)), options));
+    return result;
+  }
   Analysis analysis(text, options, std::move(source_name));
   ToleranceResult result = analysis.run();
   if (exponents) *exponents = model_detail::parameter_scale_exponents(analysis.model());
