@@ -420,12 +420,24 @@ ToleranceEvaluator::ToleranceEvaluator(std::shared_ptr<const model_detail::Param
     // A template's generic form follows its nominal shape: a box that may change it is refused
     // (the box's ends rounded outwards to doubles).
     std::vector<double> lo(m.parameters.size(), 0.0), hi(m.parameters.size(), 0.0);
+    bool in_doubles = true;
     for (std::size_t i = 0; i < varied_.size(); ++i) {
       lo[varied_[i]] = std::nextafter(claim.box[i].lo.get_d(), -HUGE_VAL);
       hi[varied_[i]] = std::nextafter(claim.box[i].hi.get_d(), HUGE_VAL);
+      in_doubles = in_doubles && std::fabs(lo[varied_[i]]) <= 1e300 && std::fabs(hi[varied_[i]]) <= 1e300;
     }
     try {
-      model_->check_choices(lo, hi);
+      if (in_doubles) {
+        model_->check_choices(lo, hi);
+      } else {
+        // deviations beyond the doubles (a raw parameter of 2e400 mm, session 67): the exact box
+        std::vector<Rational> exact_lo(m.parameters.size(), Rational(0)), exact_hi(m.parameters.size(), Rational(0));
+        for (std::size_t i = 0; i < varied_.size(); ++i) {
+          exact_lo[varied_[i]] = claim.box[i].lo;
+          exact_hi[varied_[i]] = claim.box[i].hi;
+        }
+        model_->check_choices(exact_lo, exact_hi);
+      }
     } catch (const ModelError& error) {
       reject(error.what());
     }

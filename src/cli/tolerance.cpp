@@ -15,6 +15,7 @@
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/tolerance.hpp>
+#include <hipair/tolerance_scale.hpp>
 
 #include <unistd.h>
 
@@ -383,9 +384,11 @@ int run(const ToleranceCliOptions& options) {
                 << static_cast<int>(fraction * 100) << "% " << std::flush;
     };
   refuse_overwriting_model(options);   // before the (long) analysis
-  ToleranceResult result = analyze_tolerances(options.model, analysis);
+  // a model whose parameters lie beyond the doubles (session 67): their units, for the reports
+  std::vector<long> exponents;
+  ToleranceResult result = analyze_tolerances(options.model, analysis, exponents);
   if (terminal) std::cerr << "\r" << std::string(50, ' ') << "\r" << std::flush;
-  std::string report = tolerance_text_report(result);
+  std::string report = tolerance_text_report(result, exponents);
   std::cout << report;
   if (options.out.empty()) {
     std::cout << "\n(use --out DIR to write tolerance.json, the CSV tables and the pictures)\n";
@@ -393,9 +396,9 @@ int run(const ToleranceCliOptions& options) {
   }
   std::filesystem::path directory(options.out);
   std::vector<io::RunFile> files{{"report.txt", report},
-                                 {"tolerance.json", tolerance_json_report(result)},
+                                 {"tolerance.json", tolerance_json_report(result, exponents)},
                                  {"variation.csv", tolerance_csv(result)},
-                                 {"sensitivity.csv", tolerance_sensitivity_csv(result)},
+                                 {"sensitivity.csv", tolerance_sensitivity_csv(result, exponents)},
                                  {"variation.svg", tolerance_band_svg(result)},
                                  {"contact-zone.svg", tolerance_zone_svg(result)}};
   if (result.certification && result.certification->certificate)

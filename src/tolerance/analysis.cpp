@@ -4,8 +4,10 @@
 // the follower and the two sides of its free channel; each is then solved over the parametric
 // model (solver.hpp).
 #include <hipair/tolerance.hpp>
+#include <hipair/tolerance_scale.hpp>
 
 #include "core/model_scale.hpp"
+#include "model/parametric/dimensions.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/certificate.hpp"
 #include "tolerance/exact_order.hpp"
@@ -414,6 +416,9 @@ class Analysis {
     driver_is_x_ = space_->x_part() == result_.driver;
     kernel_confirmations_ = large_pair_ || !tolerance_detail::whole_space_confirmations_switch();
   }
+
+  /// The parametric form the analysis runs on (analysed_form).
+  const model_detail::ParametricModel& model() const { return *model_; }
 
   ToleranceResult run() {
     bar_.begin(0);
@@ -2038,12 +2043,10 @@ StageAnalysis analyze_stage(std::string_view text, std::shared_ptr<const model_d
 
 }  // namespace tolerance_detail
 
-ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
-  if (options.chain) return tolerance_detail::analyze_chain(json_text, options);
-  return Analysis(json_text, options).run();
-}
+namespace {
 
-ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options) {
+// The model file's text, read once.
+std::string model_file_text(const std::filesystem::path& model_file) {
   std::error_code error;
   if (std::filesystem::is_directory(model_file, error))
     throw IoError("cannot read model file '" + model_file.string() + "': it is a directory");
@@ -2051,8 +2054,47 @@ ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, cons
   if (!file) throw IoError("cannot open model file '" + model_file.string() + "'");
   std::ostringstream content;
   content << file.rdbuf();
-  if (options.chain) return tolerance_detail::analyze_chain(content.str(), options);
-  return Analysis(content.str(), options, model_file.filename().string()).run();
+  return content.str();
+}
+
+// The analysis, and with `exponents` its parameters' scale exponents (session 67:
+// model_detail::parameter_scale_exponents of the form it ran on).
+ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, std::string source_name,
+                        std::vector<long>* exponents) {
+  if (exponents) exponents->clear();
+  if (options.chain) {
+    ToleranceResult result = tolerance_detail::analyze_chain(text, options);
+    // the chain's pairs run on analysed_form of the model (chain.cpp): the same form again,
+    // read only for a chain at an extreme scale
+    if (exponents && result.length_exponent != 0)
+      *exponents = model_detail::parameter_scale_exponents(*tolerance_detail::analysed_form(
+          model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options)), options));
+    return result;
+  }
+  Analysis analysis(text, options, std::move(source_name));
+  ToleranceResult result = analysis.run();
+  if (exponents) *exponents = model_detail::parameter_scale_exponents(analysis.model());
+  return result;
+}
+
+}  // namespace
+
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options) {
+  return analyze(json_text, options, "<string>", nullptr);
+}
+
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options) {
+  return analyze(model_file_text(model_file), options, model_file.filename().string(), nullptr);
+}
+
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options,
+                                        std::vector<long>& parameter_exponents) {
+  return analyze(json_text, options, "<string>", &parameter_exponents);
+}
+
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options,
+                                   std::vector<long>& parameter_exponents) {
+  return analyze(model_file_text(model_file), options, model_file.filename().string(), &parameter_exponents);
 }
 
 }  // namespace hipair

@@ -6,6 +6,7 @@
 
 #include "certify/tolerance_check.hpp"
 #include "core/model_scale.hpp"
+#include "model/parametric/dimensions.hpp"
 
 #include <hipair/error.hpp>
 
@@ -182,7 +183,20 @@ class Producer {
     const Model& m = request_.model->nominal();
     ToleranceClaim claim = claim_;
     file_scale_margins(m, claim);
-    CheckedCertificate checked = checked_tolerance_certificate(m, claim, request_.model_text, request_.model_file);
+    // a copy whose parameters are rescaled by their length dimensions (session 67): the claim's
+    // deviations and the parameters' values at the file's scale
+    const std::vector<long> exponents = model_detail::parameter_scale_exponents(*request_.model);
+    const bool rescaled = std::any_of(exponents.begin(), exponents.end(), [](long k) { return k != 0; });
+    std::optional<Model> at_file_scale;
+    if (rescaled) {
+      file_scale_deviations(m, exponents, claim);
+      at_file_scale = m;
+      std::vector<long> back(exponents.size());
+      for (std::size_t i = 0; i < back.size(); ++i) back[i] = -exponents[i];
+      model_detail::scale_parameter_values(at_file_scale->parameters, back);
+    }
+    CheckedCertificate checked = checked_tolerance_certificate(at_file_scale ? *at_file_scale : m, claim,
+                                                               request_.model_text, request_.model_file);
     const VerificationResult& check = checked.check;
     result.seconds_verify = checked.seconds_verify;
     // A no_jam certificate whose evidence passes checks 1-6 is "valid" when the verifier's check 7
@@ -220,6 +234,35 @@ class Producer {
         const bool fourth = !side.driver.vertex && !side.follower.vertex && arc(side.driver) != arc(side.follower);
         leaf.witness_margins[s] *= power_of_ten_rational((fourth ? 4 : 2) * exponent);
       }
+  }
+
+  // Session 67 (scale67): on a copy whose parameters are rescaled by their length dimensions
+  // (ParametricModel::rescaled of a model whose parameters lie beyond the doubles), a varied
+  // parameter's deviations are the file's times 10^-k (model_detail::parameter_scale_exponents):
+  // the box, the leaves' parameter intervals and the tree's splits along it are multiplied by
+  // 10^k exactly, the witnesses' slopes per unit of it by 10^-k; the margins (contact functions,
+  // homogeneous in lengths) are file_scale_margins'.
+  static void file_scale_deviations(const Model& m, const std::vector<long>& exponents, ToleranceClaim& claim) {
+    for (std::size_t j = 0; j < claim.varied.size(); ++j) {
+      const Parameter* p = m.find_parameter(claim.varied[j]);
+      if (!p) continue;
+      const long k = exponents.at(static_cast<std::size_t>(p - m.parameters.data()));
+      if (k == 0) continue;
+      const Rational up = power_of_ten_rational(k), down = power_of_ten_rational(-k);
+      if (j < claim.box.size()) {
+        claim.box[j].lo *= up;
+        claim.box[j].hi *= up;
+      }
+      for (ToleranceLeaf& leaf : claim.leaves) {
+        if (j < leaf.parameters.size()) {
+          leaf.parameters[j].lo *= up;
+          leaf.parameters[j].hi *= up;
+        }
+        if (leaf.witness && j < leaf.witness_slopes.size()) leaf.witness_slopes[j] *= down;
+      }
+      for (ToleranceTreeNode& node : claim.tree)
+        if (!node.leaf && node.dimension == claim.varied[j]) node.value *= up;
+    }
   }
 
   enum class Status { ok, jams, undecided };

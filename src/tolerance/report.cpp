@@ -5,6 +5,7 @@
 
 #include <hipair/error.hpp>
 #include <hipair/tolerance.hpp>
+#include <hipair/tolerance_scale.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -43,17 +44,58 @@ std::string axis_unit(const ToleranceResult& r, bool rotates) { return rotates ?
 // ratio), and for a translating one (a length held in units of 10^E mm) in mm: the decimal
 // number() prints with its exponent moved by E ("0.5" -> "0.5e400", "1.2e-05" -> "1.2e395"),
 // exactly. E = 0: number(value, digits).
-std::string shown(const ToleranceResult& r, double value, bool rotates, int digits) {
-  if (rotates) return number(value * unit_factor(true), digits);
-  std::string text = number(value, digits);
-  if (r.length_exponent == 0 || !std::isfinite(value) || value == 0) return text;
+// A decimal text of number() with its exponent moved by `by` ("0.5" -> "0.5e400"): the value
+// times 10^by, exactly as printed. Unchanged for by = 0, 0, inf and nan.
+std::string moved(std::string text, long by) {
+  if (by == 0 || text == "0" || text == "-0" || text.find_first_of("ni") != std::string::npos) return text;
   long exponent = 0;
   std::size_t e = text.find('e');
   if (e != std::string::npos) {
     exponent = std::stol(text.substr(e + 1));
     text.erase(e);
   }
-  return text + "e" + std::to_string(exponent + r.length_exponent);
+  return text + "e" + std::to_string(exponent + by);
+}
+
+std::string shown(const ToleranceResult& r, double value, bool rotates, int digits) {
+  if (rotates) return number(value * unit_factor(true), digits);
+  std::string text = number(value, digits);
+  if (r.length_exponent == 0 || !std::isfinite(value) || value == 0) return text;
+  return moved(text, r.length_exponent);
+}
+
+// Session 67 (scale67): a model whose parameters lie beyond the doubles is analysed with each
+// parameter in units of 10^k_i its file's (k_i = E times its length dimension;
+// analyze_tolerances(..., parameter_exponents)): `k` those exponents (empty: all 0). The text report shows the
+// parameters' numbers at the file's scale; tolerance.json and sensitivity.csv hold the analysis'
+// numbers and name each parameter's unit.
+long exponent_of(const std::vector<long>& k, std::size_t i) { return i < k.size() ? k[i] : 0; }
+long exponent_of(const ToleranceResult& r, const std::vector<long>& k, const std::string& name) {
+  for (std::size_t i = 0; i < r.parameters.size(); ++i)
+    if (r.parameters[i].name == name) return exponent_of(k, i);
+  return 0;
+}
+// The unit of parameter i's numbers in the analysis: "1e400 mm", "1e800 mm^2"; "" as written.
+std::string parameter_unit(const ToleranceResult& r, const std::vector<long>& k, std::size_t i) {
+  const long e = exponent_of(k, i);
+  if (e == 0 || r.length_exponent == 0) return "";
+  const long d = e / r.length_exponent;
+  return "1e" + std::to_string(e) + " mm" + (d == 1 ? std::string() : "^" + std::to_string(d));
+}
+// A sensitivity per unit of a parameter in units of 10^k its file's, at the file's scale: its
+// decimal's exponent moved by -k (and by E for a translating follower, as shown()).
+std::string sensitivity_text(const ToleranceResult& r, double value, long k) {
+  if (k == 0) return shown(r, value, r.follower_rotates, 4);
+  const long by = (r.follower_rotates ? 0 : r.length_exponent) - k;
+  std::string text = moved(number(value * unit_factor(r.follower_rotates), 4), by);
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, "e0") == 0) text.erase(text.size() - 2);
+  return text;
+}
+
+// An exact parameter value of the analysis at the file's scale: "(v)e400", exact.
+std::string file_scale_value(const Rational& value, long k) {
+  if (k == 0 || sgn(value) == 0) return to_exact_string(value);
+  return "(" + to_exact_string(value) + ")e" + std::to_string(k);
 }
 
 // A CSV column holding a translating part's coordinates: `name`, or "name_1e400mm" when they are
@@ -184,7 +226,21 @@ std::optional<Rational> certified_lower_end(const ToleranceResult& r) {
 
 }  // namespace
 
-std::string tolerance_text_report(const ToleranceResult& r) {
+namespace {
+std::string text_report(const ToleranceResult& r, const std::vector<long>& k);
+std::string json_report(const ToleranceResult& r, const std::vector<long>& k);
+std::string sensitivity_csv(const ToleranceResult& r, const std::vector<long>& k);
+}  // namespace
+
+std::string tolerance_text_report(const ToleranceResult& r) { return text_report(r, {}); }
+std::string tolerance_text_report(const ToleranceResult& r, const std::vector<long>& k) { return text_report(r, k); }
+std::string tolerance_json_report(const ToleranceResult& r) { return json_report(r, {}); }
+std::string tolerance_json_report(const ToleranceResult& r, const std::vector<long>& k) { return json_report(r, k); }
+std::string tolerance_sensitivity_csv(const ToleranceResult& r) { return sensitivity_csv(r, {}); }
+std::string tolerance_sensitivity_csv(const ToleranceResult& r, const std::vector<long>& k) { return sensitivity_csv(r, k); }
+
+namespace {
+std::string text_report(const ToleranceResult& r, const std::vector<long>& exponents) {
   std::ostringstream out;
   const char* u = unit_name(r.follower_rotates);
   // follower values and driver positions, in deg or mm (a length held in 10^E mm shown in mm)
@@ -199,7 +255,17 @@ std::string tolerance_text_report(const ToleranceResult& r) {
   std::size_t toleranced = 0;
   for (const Parameter& p : r.parameters) toleranced += p.range.lo != p.range.hi;
   out << toleranced << " toleranced parameters of " << r.parameters.size() << "; follower positions in " << u
-      << ", driver in " << driver_unit(r.driver_rotates) << ".\n\n";
+      << ", driver in " << driver_unit(r.driver_rotates) << ".\n";
+  {
+    std::string rescaled;
+    for (std::size_t i = 0; i < r.parameters.size(); ++i)
+      if (exponent_of(exponents, i) != 0) rescaled += (rescaled.empty() ? "" : ", ") + r.parameters[i].name + " (" + parameter_unit(r, exponents, i) + ")";
+    if (!rescaled.empty())
+      out << "Parameters beyond the doubles, analysed in the units named (sensitivities and values shown here at the "
+             "model's scale): "
+          << rescaled << ".\n";
+  }
+  out << "\n";
   std::size_t contact = 0;
   double widest_linear = 0, widest_rss = 0, widest_certified = 0, at = 0;
   for (const VariationSample& s : r.samples) {
@@ -227,8 +293,8 @@ std::string tolerance_text_report(const ToleranceResult& r) {
     for (std::size_t k = 0; k < region.ranked.size() && k < 5; ++k) {
       const ParameterContribution& c = region.ranked[k];
       if (c.contribution <= 0) break;
-      out << "      " << c.parameter << ": " << number(100 * c.share, 3) << " %  (" << fv(c.sensitivity, 4)
-          << " " << u << " per unit)\n";
+      out << "      " << c.parameter << ": " << number(100 * c.share, 3) << " %  ("
+          << sensitivity_text(r, c.sensitivity, exponent_of(r, exponents, c.parameter)) << " " << u << " per unit)\n";
     }
   }
   if (r.monte_carlo) {
@@ -298,7 +364,8 @@ std::string tolerance_text_report(const ToleranceResult& r) {
           << " positions); at driver " << dv(change.driver, 5) << " by " << fv(change.overshoot, 4) << " " << u
           << " (linearised" << (change.certified_at_witness ? "; reversed order certified at the witness" : "") << ")\n";
       out << "    witness:";
-      for (const auto& [name, value] : change.witness) out << " " << name << "=" << to_exact_string(value);
+      for (const auto& [name, value] : change.witness)
+        out << " " << name << "=" << file_scale_value(value, exponent_of(r, exponents, name));
       // (an exact slice at every position showing the channel bounded by other contacts: refuted)
       const bool refuted = change.evidence.rfind("refuted: ", 0) == 0;
       out << "\n    exact check: " << (change.confirmed ? "CONFIRMED — " : refuted ? "REFUTED — " : "not confirmed — ")
@@ -336,7 +403,10 @@ std::string tolerance_text_report(const ToleranceResult& r) {
   return out.str();
 }
 
-std::string tolerance_json_report(const ToleranceResult& r) {
+}  // namespace
+
+namespace {
+std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
   using nlohmann::ordered_json;
   ordered_json j;
   j["model"] = r.model_name;
@@ -364,14 +434,21 @@ std::string tolerance_json_report(const ToleranceResult& r) {
                           {"distribution", distribution_text(r, i)},
                           {"sigma", r.sigma[i]},
                           {"mean_deviation", r.mean_shift[i]}});
+    // its numbers (here and in the regions, the threshold, the witnesses) in the analysis' unit
+    if (exponent_of(k, i) != 0) parameters.back()["unit"] = parameter_unit(r, k, i);
   }
   j["parameters"] = parameters;
   ordered_json regions = ordered_json::array();
   for (const ContactRegion& region : r.regions) {
     ordered_json ranked = ordered_json::array();
     for (const ParameterContribution& c : region.ranked)
-      if (c.contribution > 0)
+      if (c.contribution > 0) {
         ranked.push_back({{"parameter", c.parameter}, {"sensitivity", c.sensitivity}, {"contribution", c.contribution}, {"share", c.share}});
+        // a rescaled parameter (session 67): its sensitivity per its unit in the analysis
+        std::size_t p = 0;
+        while (p < r.parameters.size() && r.parameters[p].name != c.parameter) ++p;
+        if (exponent_of(k, p) != 0) ranked.back()["parameter_unit"] = parameter_unit(r, k, p);
+      }
     regions.push_back({{"contact", region.contact},
                        {"driver_start", region.driver_start},
                        {"driver_end", region.driver_end},
@@ -483,6 +560,8 @@ std::string tolerance_json_report(const ToleranceResult& r) {
   return j.dump(1) + "\n";
 }
 
+}  // namespace
+
 std::string tolerance_csv(const ToleranceResult& r) {
   std::ostringstream out;
   out << column(r, "driver", r.driver_rotates) << ",contact";
@@ -501,22 +580,31 @@ std::string tolerance_csv(const ToleranceResult& r) {
   return out.str();
 }
 
-std::string tolerance_sensitivity_csv(const ToleranceResult& r) {
+namespace {
+std::string sensitivity_csv(const ToleranceResult& r, const std::vector<long>& exponents) {
   std::ostringstream out;
+  const bool units = std::any_of(exponents.begin(), exponents.end(), [](long e) { return e != 0; });
   out << "region,contact," << column(r, "driver_start", r.driver_rotates) << "," << column(r, "driver_end", r.driver_rotates)
       << ",rank,parameter," << column(r, "sensitivity", r.follower_rotates) << ","
-      << column(r, "contribution", r.follower_rotates) << ",share\n";
+      << column(r, "contribution", r.follower_rotates) << ",share" << (units ? ",parameter_unit" : "") << "\n";
   for (std::size_t k = 0; k < r.regions.size(); ++k) {
     const ContactRegion& region = r.regions[k];
     for (std::size_t i = 0; i < region.ranked.size(); ++i) {
       const ParameterContribution& c = region.ranked[i];
       out << k << ",\"" << region.contact << "\"," << number(region.driver_start, 10) << ","
           << number(region.driver_end, 10) << "," << i + 1 << "," << c.parameter << "," << number(c.sensitivity, 10)
-          << "," << number(c.contribution, 10) << "," << number(c.share, 6) << "\n";
+          << "," << number(c.contribution, 10) << "," << number(c.share, 6);
+      if (units) {
+        std::size_t p = 0;
+        while (p < r.parameters.size() && r.parameters[p].name != c.parameter) ++p;
+        out << "," << parameter_unit(r, exponents, p);
+      }
+      out << "\n";
     }
   }
   return out.str();
 }
+}  // namespace
 
 std::string tolerance_band_svg(const ToleranceResult& r) {
   double uf = unit_factor(r.follower_rotates), ud = unit_factor(r.driver_rotates);

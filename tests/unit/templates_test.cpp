@@ -880,9 +880,11 @@ TEST(Templates, BoxChecksOfTheRulesAreExactAtEveryScale) {
             continue;
           }
           const ParametricModel& form = *read;
-          const Parameter& p = form.nominal().parameters.at(0);
-          const std::vector<Rational> box_lo{Rational(p.range.lo - p.nominal)}, box_hi{Rational(p.range.hi - p.nominal)};
           auto check = [&](const ParametricModel& checked) -> std::optional<bool> {   // refused by the rule; none: aside
+            // the box of `checked`'s own parameters: a copy rescaled by the parameters' length
+            // dimensions (session 67: v beyond 1e-300 mm) holds them in its units
+            const Parameter& p = checked.nominal().parameters.at(0);
+            const std::vector<Rational> box_lo{Rational(p.range.lo - p.nominal)}, box_hi{Rational(p.range.hi - p.nominal)};
             try {
               checked.check_choices(box_lo, box_hi);
               return false;

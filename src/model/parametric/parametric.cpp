@@ -3,6 +3,7 @@
 // the recorded slots. See parametric.hpp.
 #include "model/parametric/parametric.hpp"
 #include "model/parametric/certified_positive.hpp"
+#include "model/parametric/dimensions.hpp"
 #include "model/parametric/mpfi_arithmetic.hpp"
 #include "model/parametric/number_traits.hpp"
 #include "model/parametric/self_check.hpp"
@@ -313,6 +314,14 @@ class RecipeBuilder {
     return std::isfinite(flank.tip.x) && std::isfinite(flank.root.x);
   }
 
+  // Session 67 (scale67): the rescaling of a model whose parameters themselves lie beyond the
+  // doubles (a raw `module` of 2e400 mm), by each parameter's length dimension (see below,
+  // "Length dimensions of the parameters").
+  static std::vector<long> length_dimensions(const ParametricModel& model);
+  static ParametricModel rescaled_by_dimension(const ParametricModel& model, long exponent);
+  static ParametricModel rescaled_lengths(const ParametricModel& model, long exponent);
+  static std::vector<long> scale_exponents(const ParametricModel& model);
+
   // Whether a template occurrence has the generic form: circle and pin; the toothed templates
   // with a tooth (slot) count that is not toleranced; spur_gear with flank_radius when its
   // crossings evaluate at nominal; the others once their nominal structure is recorded.
@@ -526,7 +535,19 @@ ParametricModel ParametricModel::read_file(const std::filesystem::path& path) {
 }
 
 Model ParametricModel::exact_model(const std::vector<Rational>& deviations) const {
-  if (unscaled_) return decimal_scaled_model(unscaled_->exact_model(deviations), length_exponent_);
+  if (unscaled_) {
+    // rescaled by dimension (session 67): the deviations at the file's scale, the parameters of
+    // the model divided so
+    const std::vector<long> exponents = RecipeBuilder::scale_exponents(*this);
+    if (std::all_of(exponents.begin(), exponents.end(), [](long k) { return k == 0; }))
+      return decimal_scaled_model(unscaled_->exact_model(deviations), length_exponent_);
+    std::vector<Rational> at_file_scale = deviations;
+    for (std::size_t i = 0; i < at_file_scale.size() && i < exponents.size(); ++i)
+      if (exponents[i] != 0) at_file_scale[i] *= power_of_ten_rational(exponents[i]);
+    Model model = decimal_scaled_model(unscaled_->exact_model(at_file_scale), length_exponent_);
+    scale_parameter_values(model.parameters, exponents);
+    return model;
+  }
   if (deviations.size() != parameter_count())
     throw ModelError("/parameters", "expected " + std::to_string(parameter_count()) +
                                         " parameter deviations, got " + std::to_string(deviations.size()));
@@ -1150,6 +1171,452 @@ void ParametricModel::check_choices(const std::vector<Rational>& lo_exact, const
     }
 }
 
+// ---------------------------------------------------------------- length dimensions (session 67)
+//
+// A model whose parameters themselves lie beyond the doubles (a raw `module` of 2e400 mm) cannot
+// be analysed by dividing its length slots alone (formula_scaled: the parameter's double is
+// already infinite). rescaled() then rescales the parameters themselves: each parameter's length
+// dimension d is inferred from its uses (a length slot has dimension 1, an angle, a count and a
+// direction word 0; a sum's terms, min, max, abs and atan2's arguments share one dimension; a
+// product adds its factors', a quotient subtracts, a power multiplies, sqrt halves; sin, cos and
+// tan take and give 0; a parameter declared as an angle is 0; a derived parameter has its
+// formula's). Constants and pi take the dimension their place asks (a constant added to a length
+// is a length; a constant factor is a pure number). A parameter no use constrains is
+// dimensionless. Each parameter's values (nominal, tolerance range, sigma) are then multiplied
+// by 10^(-E d) exactly, each constant standing for a length^d by 10^(-E d), and every formula
+// evaluates, for every number type, to its value at the file's scale times 10^(-E d): exactly
+// the model divided by 10^E, with its parameters in units of (10^E mm)^d.
+namespace {
+
+struct Dimension {
+  enum Kind { unknown, free, known } kind = unknown;
+  long d = 0;
+  long value() const { return kind == known ? d : 0; }
+};
+
+std::string dimension_text(long d) {
+  if (d == 0) return "a dimensionless value (an angle, a count or a ratio)";
+  if (d == 1) return "a length";
+  if (d == 2) return "an area (a length squared)";
+  return "a length to the power " + std::to_string(d);
+}
+
+// Where a slot's formula is used: a length (1), a dimensionless value (0), or a direction's
+// component (-1: both components share one dimension, which the slot's own formula gives).
+struct DimensionUse {
+  FormulaPtr formula;
+  int kind = 1;
+  std::string pointer, text;
+};
+
+void collect_point(const PointRecipe& p, std::vector<DimensionUse>& uses);
+void collect_slot(const Slot& s, int kind, std::vector<DimensionUse>& uses) {
+  if (s.formula) uses.push_back({s.formula, kind, s.pointer, s.text});
+}
+void collect_point(const PointRecipe& p, std::vector<DimensionUse>& uses) {
+  if (!p.polar) {
+    collect_slot(p.x, 1, uses);
+    collect_slot(p.y, 1, uses);
+    return;
+  }
+  collect_point(*p.center, uses);
+  collect_slot(p.radius, 1, uses);
+  collect_slot(p.angle, 0, uses);
+}
+
+// Every slot of a part's recipe with its use (the slots RecipeScaler divides are the length ones).
+template <class Visit>
+void visit_slots(PartRecipe& part, Visit&& visit) {
+  std::function<void(PointRecipe&)> point = [&](PointRecipe& p) {
+    if (!p.polar) {
+      visit(p.x, 1);
+      visit(p.y, 1);
+      return;
+    }
+    auto center = std::make_shared<PointRecipe>(*p.center);
+    point(*center);
+    p.center = center;
+    visit(p.radius, 1);
+    visit(p.angle, 0);
+  };
+  for (LoopRecipe& loop : part.loops) {
+    if (loop.circle) {
+      point(loop.center);
+      visit(loop.radius, 1);
+      continue;
+    }
+    point(loop.start);
+    for (EdgeRecipe& edge : loop.edges) {
+      point(edge.target);
+      if (edge.arc) point(edge.center);
+    }
+  }
+  for (FeatureRecipe& feature : part.features)
+    for (auto& [key, argument] : feature.arguments) switch (argument.kind) {
+        case ArgumentKind::length: visit(argument.number, 1); break;
+        case ArgumentKind::angle:
+        case ArgumentKind::count: visit(argument.number, 0); break;
+        case ArgumentKind::point: point(argument.point); break;
+        case ArgumentKind::direction_word: break;
+      }
+  if (part.motion.has_pivot) point(part.motion.pivot);
+  if (part.motion.has_direction) {
+    if (part.motion.direction_is_angle) {
+      visit(part.motion.direction_angle, 0);
+    } else {
+      visit(part.motion.direction_x, -1);
+      visit(part.motion.direction_y, -1);
+    }
+  }
+}
+
+class DimensionSolver {
+ public:
+  explicit DimensionSolver(const std::vector<Parameter>& parameters)
+      : parameters_(parameters), dims_(parameters.size()), where_(parameters.size()) {
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      if (parameters[i].is_angle) set(i, 0, "declared as an angle");
+  }
+
+  Dimension infer(const Formula& f) const {
+    using Op = Formula::Op;
+    auto arg = [&](std::size_t k) { return infer(*f.arguments[k]); };
+    switch (f.op) {
+      case Op::constant:
+      case Op::pi: return {Dimension::free, 0};
+      case Op::parameter:
+        return dims_[f.parameter] ? Dimension{Dimension::known, *dims_[f.parameter]} : Dimension{};
+      case Op::add:
+      case Op::subtract:
+      case Op::min:
+      case Op::max:
+      case Op::abs:
+      case Op::negate: {
+        bool unknown = false;
+        for (std::size_t k = 0; k < f.arguments.size(); ++k) {
+          Dimension a = arg(k);
+          if (a.kind == Dimension::known) return a;
+          unknown = unknown || a.kind == Dimension::unknown;
+        }
+        return unknown ? Dimension{} : Dimension{Dimension::free, 0};
+      }
+      case Op::multiply:
+      case Op::divide: {
+        Dimension a = arg(0), b = arg(1);
+        if (a.kind == Dimension::unknown || b.kind == Dimension::unknown) return {};
+        if (a.kind == Dimension::free && b.kind == Dimension::free) return {Dimension::free, 0};
+        return {Dimension::known, f.op == Op::multiply ? a.value() + b.value() : a.value() - b.value()};
+      }
+      case Op::power: {
+        Dimension a = arg(0);
+        if (a.kind != Dimension::known) return a;
+        return {Dimension::known, a.d * f.exponent};
+      }
+      case Op::sqrt: {
+        Dimension a = arg(0);
+        if (a.kind != Dimension::known) return a;
+        if (a.d % 2 != 0) return {};
+        return {Dimension::known, a.d / 2};
+      }
+      case Op::sin:
+      case Op::cos:
+      case Op::tan:
+      case Op::atan2: return {Dimension::known, 0};
+    }
+    return {};
+  }
+
+  // Pushes "f has dimension d" into its parameters.
+  void require(const Formula& f, long d) {
+    using Op = Formula::Op;
+    switch (f.op) {
+      case Op::constant:
+      case Op::pi: return;
+      case Op::parameter: set(f.parameter, d, where_now_); return;
+      case Op::add:
+      case Op::subtract:
+      case Op::min:
+      case Op::max:
+      case Op::abs:
+      case Op::negate:
+        for (const FormulaPtr& a : f.arguments) require(*a, d);
+        return;
+      case Op::multiply:
+      case Op::divide: {
+        Dimension a = infer(*f.arguments[0]), b = infer(*f.arguments[1]);
+        const bool product = f.op == Op::multiply;
+        if (a.kind != Dimension::unknown)
+          require(*f.arguments[1], product ? d - a.value() : a.value() - d);
+        else if (b.kind != Dimension::unknown)
+          require(*f.arguments[0], product ? d - b.value() : d + b.value());
+        return;
+      }
+      case Op::power:
+        if (f.exponent != 0 && d % f.exponent == 0) require(*f.arguments[0], d / f.exponent);
+        return;
+      case Op::sqrt: require(*f.arguments[0], 2 * d); return;
+      case Op::sin:
+      case Op::cos:
+      case Op::tan: require(*f.arguments[0], 0); return;
+      case Op::atan2: {
+        Dimension a = infer(*f.arguments[0]), b = infer(*f.arguments[1]);
+        if (a.kind == Dimension::known) require(*f.arguments[1], a.d);
+        if (b.kind == Dimension::known) require(*f.arguments[0], b.d);
+        return;
+      }
+    }
+  }
+
+  void at(const std::string& pointer) { where_now_ = pointer; }
+  bool changed() {
+    bool c = changed_;
+    changed_ = false;
+    return c;
+  }
+  const std::optional<long>& dim(std::size_t i) const { return dims_[i]; }
+  void set(std::size_t i, long d, const std::string& where) {
+    if (!dims_[i]) {
+      dims_[i] = d;
+      where_[i] = where;
+      changed_ = true;
+      return;
+    }
+    if (*dims_[i] == d) return;
+    const Parameter& p = parameters_[i];
+    throw ModelError(p.pointer, "parameter '" + p.name + "' is used as " + dimension_text(*dims_[i]) + " (" + where_[i] +
+                                    ") and as " + dimension_text(d) + " (" + where + "): its length dimension is "
+                                    "inconsistent, so its values cannot be rescaled to the unit the tolerance analysis "
+                                    "of this model runs in (its parameters lie beyond the doubles)");
+  }
+
+ private:
+  const std::vector<Parameter>& parameters_;
+  std::vector<std::optional<long>> dims_;
+  std::vector<std::string> where_;
+  std::string where_now_;
+  bool changed_ = false;
+};
+
+// The formula with each constant (and pi) standing for a length^d multiplied by 10^(-E d)
+// (`unit` = 10^-E), given the parameters' dimensions (`solver`, all known): at parameters
+// rescaled by their dimensions it evaluates to the formula's value times 10^(-E d).
+FormulaPtr dimension_scaled(const FormulaPtr& formula, long d, const Rational& unit, const DimensionSolver& solver) {
+  using Op = Formula::Op;
+  const Formula& f = *formula;
+  auto power = [&](long k) {
+    Rational r(1);
+    for (long j = 0; j < std::labs(k); ++j) r *= unit;
+    return k >= 0 ? r : Rational(1 / r);
+  };
+  auto with = [&](std::vector<long> dims) {
+    std::vector<FormulaPtr> arguments;
+    bool same = true;
+    for (std::size_t k = 0; k < f.arguments.size(); ++k) {
+      arguments.push_back(dimension_scaled(f.arguments[k], dims[std::min(k, dims.size() - 1)], unit, solver));
+      same = same && arguments.back() == f.arguments[k];
+    }
+    if (same) return formula;
+    auto node = std::make_shared<Formula>(f);
+    node->arguments = std::move(arguments);
+    return FormulaPtr(node);
+  };
+  switch (f.op) {
+    case Op::constant: return d == 0 ? formula : formula_constant(Rational(f.value * power(d)));
+    case Op::pi: return d == 0 ? formula : formula_node(Op::multiply, {formula, formula_constant(power(d))});
+    case Op::parameter: return formula;
+    case Op::add:
+    case Op::subtract:
+    case Op::min:
+    case Op::max:
+    case Op::abs:
+    case Op::negate: return with({d});
+    case Op::multiply:
+    case Op::divide: {
+      Dimension a = solver.infer(*f.arguments[0]), b = solver.infer(*f.arguments[1]);
+      const bool product = f.op == Op::multiply;
+      if (a.kind == Dimension::known) return with({a.d, product ? d - a.d : a.d - d});
+      if (b.kind == Dimension::known) return with({product ? d - b.d : d + b.d, b.d});
+      return with({d, 0});
+    }
+    case Op::power: return f.exponent == 0 ? formula : with({d / f.exponent});
+    case Op::sqrt: return with({2 * d});
+    case Op::sin:
+    case Op::cos:
+    case Op::tan: return with({0});
+    case Op::atan2: {
+      Dimension a = solver.infer(*f.arguments[0]), b = solver.infer(*f.arguments[1]);
+      return with({a.kind == Dimension::known ? a.d : b.value()});
+    }
+  }
+  return formula;
+}
+
+// Whether a parameter's value (nominal, range and its width, sigma) is no normal double far from
+// its limits: beyond 1e300 or below 1e-300 in magnitude (and not 0).
+bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
+  static const Rational huge = power_of_ten_rational(300), tiny = power_of_ten_rational(-300);
+  auto beyond = [&](const Rational& v) {
+    const Rational a = abs(v);
+    return sgn(a) != 0 && (a > huge || a < tiny);
+  };
+  for (const Parameter& p : parameters)
+    if (beyond(p.nominal) || beyond(p.range.lo) || beyond(p.range.hi) || beyond(Rational(p.range.hi - p.range.lo)) ||
+        (p.sigma && beyond(*p.sigma)))
+      return true;
+  return false;
+}
+
+// Multiplies each parameter's values by 10^(-exponents[i]) exactly.
+void scale_parameters(std::vector<Parameter>& parameters, const std::vector<long>& exponents) {
+  for (std::size_t i = 0; i < parameters.size() && i < exponents.size(); ++i) {
+    if (exponents[i] == 0) continue;
+    const Rational factor = power_of_ten_rational(-exponents[i]);
+    Parameter& p = parameters[i];
+    p.nominal *= factor;
+    p.range.lo *= factor;
+    p.range.hi *= factor;
+    if (p.sigma) *p.sigma *= factor;
+  }
+}
+
+// Fills the solver from the model's uses; \throws ModelError at an inconsistent parameter or slot.
+void solve_dimensions(DimensionSolver& solver, const std::vector<Parameter>& parameters,
+                      const std::vector<Slot>& parameter_nominals, const std::vector<bool>& derived,
+                      const std::vector<PartRecipe>& parts) {
+  std::vector<DimensionUse> uses;
+  for (PartRecipe part : parts)
+    visit_slots(part, [&](Slot& s, int kind) { collect_slot(s, kind, uses); });
+  const std::size_t n = parameters.size();
+  for (;;) {
+    do {
+      for (const DimensionUse& use : uses) {
+        solver.at(use.pointer + " '" + use.text + "'");
+        long d = use.kind;
+        if (use.kind < 0) {
+          Dimension own = solver.infer(*use.formula);
+          if (own.kind != Dimension::known) continue;
+          d = own.d;
+        }
+        solver.require(*use.formula, d);
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!derived[i]) continue;
+        solver.at(parameters[i].pointer + " (the expression defining it)");
+        if (solver.dim(i)) {
+          solver.require(*parameter_nominals[i].formula, *solver.dim(i));
+        } else {
+          Dimension own = solver.infer(*parameter_nominals[i].formula);
+          if (own.kind == Dimension::known) solver.set(i, own.d, parameters[i].pointer + " (the expression defining it)");
+        }
+      }
+    } while (solver.changed());
+    // a parameter no use constrains: dimensionless, and the rest propagated again
+    std::size_t i = 0;
+    while (i < n && solver.dim(i)) ++i;
+    if (i == n) break;
+    solver.set(i, 0, parameters[i].pointer + " (no use fixes its dimension)");
+  }
+  // every use consistent: a slot whose formula mixes dimensions no parameter carries
+  for (const DimensionUse& use : uses) {
+    Dimension own = solver.infer(*use.formula);
+    if (own.kind == Dimension::unknown || (use.kind >= 0 && own.kind == Dimension::known && own.d != use.kind))
+      throw ModelError(use.pointer, "'" + use.text + "': this value should be " + dimension_text(std::max(use.kind, 0)) +
+                                        " but its formula mixes parameters of other length dimensions, so the model "
+                                        "cannot be rescaled to the unit its tolerance analysis runs in (its parameters "
+                                        "lie beyond the doubles)");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!derived[i]) continue;
+    Dimension own = solver.infer(*parameter_nominals[i].formula);
+    if (own.kind == Dimension::unknown || (own.kind == Dimension::known && own.d != *solver.dim(i)))
+      throw ModelError(parameters[i].pointer, "the expression defining parameter '" + parameters[i].name +
+                                                  "' mixes parameters of other length dimensions, so its values cannot "
+                                                  "be rescaled to the unit the tolerance analysis runs in");
+  }
+}
+
+}  // namespace
+
+std::vector<long> RecipeBuilder::length_dimensions(const ParametricModel& model) {
+  const std::vector<Parameter>& parameters = model.nominal_->parameters;
+  DimensionSolver solver(parameters);
+  solve_dimensions(solver, parameters, model.parameter_nominals_, model.derived_, model.parts_);
+  std::vector<long> dims;
+  for (std::size_t i = 0; i < parameters.size(); ++i) dims.push_back(*solver.dim(i));
+  return dims;
+}
+
+std::vector<long> RecipeBuilder::scale_exponents(const ParametricModel& model) {
+  std::vector<long> exponents(model.parameter_count(), 0);
+  if (!model.unscaled_) return exponents;
+  // the copy of rescaled() by dimension rescales the parameters (the other keeps them as read)
+  const std::vector<Parameter>&mine = model.nominal_->parameters, &read = model.unscaled_->nominal_->parameters;
+  bool rescaled = false;
+  for (std::size_t i = 0; i < mine.size(); ++i)
+    rescaled = rescaled || mine[i].nominal != read[i].nominal || mine[i].range.lo != read[i].range.lo ||
+               mine[i].range.hi != read[i].range.hi;
+  if (!rescaled) return exponents;
+  const std::vector<long> dims = length_dimensions(*model.unscaled_);
+  for (std::size_t i = 0; i < dims.size(); ++i) exponents[i] = dims[i] * model.length_exponent_;
+  return exponents;
+}
+
+ParametricModel RecipeBuilder::rescaled_by_dimension(const ParametricModel& model, long exponent) {
+  const std::vector<Parameter>& parameters = model.nominal_->parameters;
+  DimensionSolver solver(parameters);
+  solve_dimensions(solver, parameters, model.parameter_nominals_, model.derived_, model.parts_);
+  const std::size_t n = parameters.size();
+  std::vector<long> exponents(n);
+  for (std::size_t i = 0; i < n; ++i) exponents[i] = *solver.dim(i) * exponent;
+  const Rational unit = power_of_ten_rational(-exponent);
+  ParametricModel scaled = model;
+  scaled.unscaled_ = std::make_shared<const ParametricModel>(model);
+  scaled.length_exponent_ = exponent;
+  Model nominal = decimal_scaled_model(*model.nominal_, exponent);
+  scale_parameters(nominal.parameters, exponents);
+  scaled.nominal_ = std::make_shared<const Model>(std::move(nominal));
+  for (std::size_t i = 0; i < n; ++i)
+    if (scaled.derived_[i])
+      scaled.parameter_nominals_[i].formula =
+          dimension_scaled(scaled.parameter_nominals_[i].formula, *solver.dim(i), unit, solver);
+  std::vector<const Slot*> lengths;
+  for (PartRecipe& part : scaled.parts_)
+    visit_slots(part, [&](Slot& s, int kind) {
+      if (!s.formula) return;
+      long d = kind;
+      if (kind < 0) d = solver.infer(*s.formula).value();
+      s.formula = dimension_scaled(s.formula, d, unit, solver);
+      if (kind == 1) lengths.push_back(&s);
+    });
+  // the templates judged again on the copy, as rescaled() does
+  scaled.generic_ = true;
+  scaled.exact_only_feature_.clear();
+  for (PartRecipe& part : scaled.parts_)
+    for (FeatureRecipe& feature : part.features) {
+      const bool generic = RecipeBuilder::has_generic_form(scaled, feature);
+      if (!generic && scaled.generic_) {
+        scaled.generic_ = false;
+        scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
+      }
+    }
+  const std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(n, 0.0));
+  for (const Slot* slot : lengths) {
+    const double v = parametric_detail::slot_value(*slot, values);
+    if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;
+    throw ModelError(slot->pointer, "'" + slot->text + "': the tolerance analysis of this model runs in units of 1e" +
+                                        std::to_string(exponent) + " mm, its parameters rescaled by their length "
+                                        "dimensions, and this length does not evaluate there in doubles (its value "
+                                        "lies more than 1e300 times from the model's size)");
+  }
+  return scaled;
+}
+
+std::vector<long> parameter_scale_exponents(const ParametricModel& model) { return RecipeBuilder::scale_exponents(model); }
+
+void scale_parameter_values(std::vector<Parameter>& parameters, const std::vector<long>& exponents) {
+  scale_parameters(parameters, exponents);
+}
+
 namespace {
 
 // Divides the length slots of a part's recipe (formula_scaled); `slots` collects each slot
@@ -1206,10 +1673,32 @@ ParametricModel ParametricModel::rescaled(long exponent) const {
                                    unit + " (they lie outside about 1e-9 .. 1e9 mm), and a profile tolerance's offset "
                                    "parameter is a length in mm that is not rescaled; give the tolerance as a parameter "
                                    "of the points instead");
-  ParametricModel scaled = *this;
-  scaled.unscaled_ = std::make_shared<const ParametricModel>(*this);
+  // Session 67: parameters whose values lie beyond about 1e-300 .. 1e300 (a raw `module` of
+  // 2e400 mm, a tolerance of 2e-302 mm) are rescaled by their length dimensions, so that the copy
+  // is exactly the model divided by 10^E, parameters included (RecipeBuilder::rescaled_by_dimension).
+  // Where their dimensions are inconsistent, the lengths alone are divided as before if that
+  // evaluates, else the inconsistency is the refusal.
+  if (parameters_beyond_doubles(nominal_->parameters)) {
+    try {
+      return RecipeBuilder::rescaled_by_dimension(*this, exponent);
+    } catch (const ModelError&) {
+      try {
+        return RecipeBuilder::rescaled_lengths(*this, exponent);
+      } catch (const ModelError&) {
+      }
+      throw;
+    }
+  }
+  return RecipeBuilder::rescaled_lengths(*this, exponent);
+}
+
+// The lengths' slots divided by 10^E (formula_scaled), the parameters kept as read (session 54).
+ParametricModel RecipeBuilder::rescaled_lengths(const ParametricModel& model, long exponent) {
+  const std::string unit = "1e" + std::to_string(exponent) + " mm";
+  ParametricModel scaled = model;
+  scaled.unscaled_ = std::make_shared<const ParametricModel>(model);
   scaled.length_exponent_ = exponent;
-  scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*nominal_, exponent));
+  scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*model.nominal_, exponent));
   RecipeScaler scaler{power_of_ten_rational(-exponent), {}};
   for (PartRecipe& part : scaled.parts_) scaler.part(part);
   // The templates' generic forms evaluated in doubles at the file's scale (a spur gear's flank
@@ -1228,7 +1717,7 @@ ParametricModel ParametricModel::rescaled(long exponent) const {
   // Each length at the nominal vector, in doubles: finite and normal (or 0) once divided. A
   // formula that keeps the scale (a parameter of about 1e400 mm used as a length) cannot be
   // evaluated so: refused at its slot.
-  std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(parameter_count(), 0.0));
+  std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(model.parameter_count(), 0.0));
   for (const Slot* slot : scaler.checked) {
     double v = parametric_detail::slot_value(*slot, values);
     if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;

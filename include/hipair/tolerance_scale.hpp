@@ -1,0 +1,39 @@
+// Tolerance analysis of a model whose parameters themselves lie beyond the doubles (session 67,
+// issue 12; docs/tolerance.md "Parameters beyond the doubles"): a raw `module` of 2e400 mm. The
+// analysis runs on the model divided exactly by 10^E (ToleranceResult::length_exponent) with each
+// parameter in units of 10^k_i its file's, k_i = E times the parameter's length dimension,
+// inferred from its uses (a length 1, an angle, a count or a ratio 0, a product the sum of its
+// factors'; a parameter used both as a length and as an angle is refused, naming it). The
+// result's per-parameter numbers (Parameter values, sigma, mean deviation, sensitivities per
+// unit, witnesses' values) are then in those units; the reports below show them at the file's
+// scale (text) or name the unit (JSON, CSV). Tolerance certificates are written at the file's
+// scale (hipair-verify checks them against the file). For every other model k_i = 0.
+#pragma once
+
+#include <hipair/tolerance.hpp>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hipair {
+
+/// analyze_tolerances(_text), and in `parameter_exponents` the k_i of its analysis per parameter
+/// (Model::parameters order): all 0 unless the parameters were rescaled by their length
+/// dimensions. The model is read once (an assembly chain at an extreme scale: twice).
+ToleranceResult analyze_tolerances_text(std::string_view json_text, const ToleranceOptions& options,
+                                        std::vector<long>& parameter_exponents);
+ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, const ToleranceOptions& options,
+                                   std::vector<long>& parameter_exponents);
+
+/// The reports of tolerance.hpp with the parameters' units `parameter_exponents` (from the
+/// analysis above; empty: all 0, the same reports): the text report's
+/// sensitivities and witness values at the file's scale (decimal exponents moved by -k_i and k_i,
+/// exactly), tolerance.json's parameters with their "unit", sensitivity.csv with a
+/// parameter_unit column (when some k_i is not 0).
+std::string tolerance_text_report(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
+std::string tolerance_json_report(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
+std::string tolerance_sensitivity_csv(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
+
+}  // namespace hipair
