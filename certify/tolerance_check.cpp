@@ -930,7 +930,6 @@ namespace {
 
 using IV = kernels::Vector<Interval>;
 
-bool positive(const Interval& x) { return x.sign() > 0; }
 Interval sq(const Interval& x) { return x * x; }
 Interval cross_iv(const IV& u, const IV& v) { return u.x * v.y - u.y * v.x; }
 IV minus_iv(const IV& u, const IV& v) { return {u.x - v.x, u.y - v.y}; }
@@ -942,7 +941,7 @@ struct Posed {
   bool arc = false, ccw = false;
   IV s, t, c;
   Interval r2, r;
-  Interval bx, by;   // enclosure of the edge's points (bounding box)
+  EdgeBox box;   // enclosure of the edge's points (bounding box)
 };
 
 // The side of the arc's chord on which the arc lies (strictly, except its ends): a
@@ -955,13 +954,8 @@ int chord_side(const Posed& e, const IV& p) {
   return side == 0 ? 0 : (side == arc_side(e) ? 1 : -1);
 }
 
-void bound(Posed& e) {
-  EdgeBox b = edge_box(e, false);   // a full circle (s = t) keeps all four extreme points
-  e.bx = std::move(b.x);
-  e.by = std::move(b.y);
-}
+void bound(Posed& e) { e.box = edge_box(e, false); }   // a full circle (s = t) keeps all four extreme points
 
-bool less(const Interval& a, const Interval& b) { return positive(b - a); }   // every a < every b
 
 
 // The points where the supports of an arc and another edge meet (two circles, or a circle and a
@@ -1015,7 +1009,7 @@ bool meets_outside(const Posed& a, const Posed& b) {
 
 // Certainly no common point of the two closed edges (plain enclosures).
 bool apart(const Posed& a, const Posed& b) {
-  if (less(a.bx, b.bx) || less(b.bx, a.bx) || less(a.by, b.by) || less(b.by, a.by)) return true;   // boxes
+  if (boxes_apart(a.box, b.box)) return true;   // boxes (exact comparisons of their ends, as b - a > 0 was)
   auto edge = [](const Posed& p) {
     EdgeT<Interval> e;
     e.arc = p.arc;
