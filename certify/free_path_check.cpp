@@ -665,7 +665,7 @@ class ToleranceEvaluator::FreePath {
     auto it = centre_geometry_.find(key);
     if (it == centre_geometry_.end()) {
       if (centre_geometry_.size() >= cache_limit) centre_geometry_.clear();
-      it = centre_geometry_.emplace(std::move(key), ToleranceGeometry{}).first;
+      it = centre_geometry_.emplace(std::move(key), std::nullopt).first;
     }
     std::string f = ev_.apart_failure(point, &it->second);
     return f.empty() ? f : "the parts are not certainly apart at its centre: " + f;
@@ -953,7 +953,7 @@ class ToleranceEvaluator::FreePath {
   mutable LocalCache<Jet> plain_cache_, over_cache_, at_cache_;
   mutable LocalCache<Jet2> second_cache_;
   /// The geometry at a centre's parameters for apart_failure (its parametric edges kept).
-  std::map<std::vector<RationalInterval>, ToleranceGeometry, BoxLess> centre_geometry_;
+  std::map<std::vector<RationalInterval>, std::optional<ToleranceGeometry>, BoxLess> centre_geometry_;
   std::size_t budget_;
   std::size_t splits_ = 0;
 

@@ -1080,7 +1080,7 @@ int crossings(const IV& p, const std::vector<Posed>& edges, int direction) {
 
 std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const { return apart_failure(leaf, nullptr); }
 
-std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf, ToleranceGeometry* at_point) const {
+std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf, std::optional<ToleranceGeometry>* at_point) const {
   std::size_t k = varied_.size();
   if (leaf.parameters.size() != k) return "wrong number of parameter intervals";
   if (!leaf.follower) return "no follower interval";
@@ -1145,8 +1145,9 @@ std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf, Toleran
       centre.push_back(enclose(middle(p)));
     }
     std::optional<ToleranceGeometry> own;
-    if (!at_point || at_point->parameters.empty()) (at_point ? *at_point : own.emplace()) = geometry(box, false);
-    ToleranceGeometry& g = at_point ? *at_point : *own;
+    std::optional<ToleranceGeometry>& kept = at_point ? *at_point : own;
+    if (!kept) kept = geometry(box, false);
+    ToleranceGeometry& g = *kept;
     point_loops.first = pose_part(g, driver_, Jet(enclose(leaf.driver)));
     point_loops.second = pose_part(g, follower_, Jet(enclose(*leaf.follower)));
     std::vector<Posed> a = flat(point_loops.first);
