@@ -47,6 +47,8 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <memory>
+#include <tuple>
 #include <optional>
 #include <utility>
 
@@ -478,17 +480,74 @@ class ToleranceEvaluator::FreePath {
     return "";
   }
 
-  // The parametric geometry over the dimensions x (T = Jet: plain without gradient, or with it;
-  // T = Jet2: second order).
+  // The parametric edges (unposed) and the parts' pivots over one box of the varied parameters,
+  // for one number type (T = Jet: plain without gradient, or with it; T = Jet2: second order):
+  // evaluated once per box and shared by every piece, region and move posed over that box (a
+  // certificate's leaves mostly share the whole parameter box: all 85 of the spur gears'; until
+  // session 67 every piece evaluated every edge's involute again, most of check 7's time).
   template <class T>
-  GeometryOf<T> geometry(const std::vector<T>& x) const {
+  struct Local {
+    GeometryOf<T> g;
+    std::map<std::tuple<std::size_t, std::size_t, std::size_t>, std::pair<model_detail::EdgeValue<T>, T>> edges;   ///< value, radius
+  };
+  struct BoxLess {
+    bool operator()(const std::vector<RationalInterval>& a, const std::vector<RationalInterval>& b) const {
+      for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+        if (a[i].lo != b[i].lo) return a[i].lo < b[i].lo;
+        if (a[i].hi != b[i].hi) return a[i].hi < b[i].hi;
+      }
+      return a.size() < b.size();
+    }
+  };
+  template <class T>
+  using LocalCache = std::map<std::vector<RationalInterval>, std::shared_ptr<Local<T>>, BoxLess>;
+  /// The caches' keys: the parameter box's intervals (at a centre, its point intervals).
+  static constexpr std::size_t cache_limit = 64;
+
+  // The parametric geometry over the dimensions x (their first k, the varied parameters, whose
+  // ranges are `key`), from `cache`.
+  template <class T>
+  std::shared_ptr<Local<T>> geometry(LocalCache<T>& cache, std::vector<RationalInterval> key, const std::vector<T>& x) const {
+    key.resize(k_);
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+    auto local = std::make_shared<Local<T>>();
     std::vector<T> all(ev_.model_->parameter_count(), T(0));
     for (std::size_t i = 0; i < k_; ++i) all[ev_.varied_[i]] = x[i];
-    GeometryOf<T> g;
-    g.parameters = ev_.model_->parameter_values(all);
-    ev_.pose_pivots(g);
-    return g;
+    local->g.parameters = ev_.model_->parameter_values(all);
+    ev_.pose_pivots(local->g);
+    if (cache.size() >= cache_limit) cache.clear();   // the pointers handed out stay alive
+    cache.emplace(std::move(key), local);
+    return local;
   }
+  // The point intervals of a box's centre (a cache key).
+  static std::vector<RationalInterval> centre_key(const std::vector<RationalInterval>& box) {
+    std::vector<RationalInterval> key;
+    for (const RationalInterval& r : box) key.push_back({middle(r), middle(r)});
+    return key;
+  }
+
+  // Both parts placed over a piece: the geometry and each part's coordinate with its cosine and
+  // sine (computed once per part, not per point).
+  template <class T>
+  struct Placement {
+    std::shared_ptr<Local<T>> local;
+    T coordinate[2], cos[2], sin[2];
+  };
+  template <class T>
+  Placement<T> placement(std::shared_ptr<Local<T>> local, std::pair<T, T> coordinates) const {
+    Placement<T> p;
+    p.local = std::move(local);
+    p.coordinate[0] = std::move(coordinates.first);
+    p.coordinate[1] = std::move(coordinates.second);
+    for (int i = 0; i < 2; ++i)
+      if (i == 0 ? ev_.driver_rotates_ : ev_.follower_rotates_) {
+        p.cos[i] = model_detail::Arithmetic<T>::cos(p.coordinate[i]);
+        p.sin[i] = model_detail::Arithmetic<T>::sin(p.coordinate[i]);
+      }
+    return p;
+  }
+
   template <class T>
   struct PosedEdge {
     kernels::Vector<T> s, t, c;
@@ -496,18 +555,34 @@ class ToleranceEvaluator::FreePath {
     bool arc = false, ccw = true;
   };
   template <class T>
-  PosedEdge<T> pose(GeometryOf<T>& g, const EdgeRef& ref, const T& coordinate) const {
-    model_detail::EdgeValue<T> v = ev_.model_->edge_value(ref.part, ref.loop, ref.edge, g.parameters);
+  PosedEdge<T> pose(Placement<T>& placement, const EdgeRef& ref) const {
+    Local<T>& local = *placement.local;
+    auto key = std::make_tuple(ref.part, ref.loop, ref.edge);
+    auto it = local.edges.find(key);
+    if (it == local.edges.end()) {
+      model_detail::EdgeValue<T> v = ev_.model_->edge_value(ref.part, ref.loop, ref.edge, local.g.parameters);
+      T r = v.arc ? model_detail::Arithmetic<T>::sqrt(v.radius_squared) : T(0);
+      it = local.edges.emplace(key, std::make_pair(std::move(v), std::move(r))).first;
+    }
+    const auto& [v, r] = it->second;
     bool is_driver = ref.part == ev_.driver_;
+    int i = is_driver ? 0 : 1;
+    bool rotates = is_driver ? ev_.driver_rotates_ : ev_.follower_rotates_;
+    const GeometryOf<T>& g = local.g;
+    const kernels::Vector<T>& pivot = is_driver ? g.driver_pivot : g.follower_pivot;
+    const kernels::Vector<T>& direction = is_driver ? g.driver_direction : g.follower_direction;
+    auto place = [&](const kernels::Vector<T>& q) {
+      return placed(q, rotates, pivot, direction, placement.coordinate[i], placement.cos[i], placement.sin[i]);
+    };
     PosedEdge<T> p;
     p.arc = v.arc;
     p.ccw = v.ccw;
-    p.s = ev_.posed(g, is_driver, v.source, coordinate);
-    p.t = ev_.posed(g, is_driver, v.target, coordinate);
+    p.s = place(v.source);
+    p.t = place(v.target);
     if (v.arc) {
-      p.c = ev_.posed(g, is_driver, v.center, coordinate);
+      p.c = place(v.center);
       p.r2 = v.radius_squared;
-      p.r = model_detail::Arithmetic<T>::sqrt(v.radius_squared);
+      p.r = r;
     }
     return p;
   }
@@ -576,7 +651,7 @@ class ToleranceEvaluator::FreePath {
     return "";
   }
 
-  std::string apart_at_centre(const Path& path, const std::vector<RationalInterval>& box) const {
+  std::string apart_at_centre(const Path& path, const std::vector<RationalInterval>& box) {
     std::vector<Rational> c;
     for (const RationalInterval& r : box) c.push_back(middle(r));
     ToleranceLeaf point;
@@ -586,7 +661,13 @@ class ToleranceEvaluator::FreePath {
     if (path.move) y += c[k_] * (witness_at(path.second, c, d) - y);
     point.driver = {d, d};
     point.follower = RationalInterval{y, y};
-    std::string f = ev_.apart_failure(point);
+    std::vector<RationalInterval> key(point.parameters);
+    auto it = centre_geometry_.find(key);
+    if (it == centre_geometry_.end()) {
+      if (centre_geometry_.size() >= cache_limit) centre_geometry_.clear();
+      it = centre_geometry_.emplace(std::move(key), std::nullopt).first;
+    }
+    std::string f = ev_.apart_failure(point, &it->second);
     return f.empty() ? f : "the parts are not certainly apart at its centre: " + f;
   }
 
@@ -598,12 +679,11 @@ class ToleranceEvaluator::FreePath {
     // Plain enclosures.
     std::vector<Jet> plain_x;
     for (const RationalInterval& r : box) plain_x.push_back(Jet(enclose(r)));
-    GeometryOf<Jet> plain_g = geometry(plain_x);
-    std::pair<Jet, Jet> plain_c = coordinates(path, plain_x);
+    Placement<Jet> plain_p = placement(geometry(plain_cache_, box, plain_x), coordinates(path, plain_x));
     Level<Interval> plain;
     plain.make = [&](bool driver, std::size_t index) {
       const EdgeRef& ref = edge_ref(driver, index);
-      PosedEdge<Jet> p = pose(plain_g, ref, driver ? plain_c.first : plain_c.second);
+      PosedEdge<Jet> p = pose(plain_p, ref);
       Feature<Interval> f;
       f.full = ref.full;
       f.e.arc = p.arc;
@@ -618,9 +698,16 @@ class ToleranceEvaluator::FreePath {
       return f;
     };
     auto plain_sign = [](const Interval& v) { return v.sign(); };
+    // The broad phase: an edge pair whose boxes (every point of each edge over the piece) are
+    // certainly disjoint shares no point over the piece, so it has no event (tolerance_support.hpp).
+    std::vector<EdgeBox> driver_boxes, follower_boxes;
+    for (std::size_t a = 0; a < driver_edges_.size(); ++a) driver_boxes.push_back(edge_box(plain.get(true, a).e, driver_edges_[a].full));
+    for (std::size_t b = 0; b < follower_edges_.size(); ++b)
+      follower_boxes.push_back(edge_box(plain.get(false, b).e, follower_edges_[b].full));
     std::vector<Pending> pending;
     for (std::size_t a = 0; a < driver_edges_.size(); ++a)
       for (std::size_t b = 0; b < follower_edges_.size(); ++b) {
+        if (boxes_apart(driver_boxes[a], follower_boxes[b])) continue;
         const Feature<Interval>& fa = plain.get(true, a);
         const Feature<Interval>& fb = plain.get(false, b);
         if (separated(fa.e, fb.e, plain_sign)) continue;
@@ -638,8 +725,8 @@ class ToleranceEvaluator::FreePath {
       over_x.push_back(Jet::variable(enclose(box[i]), i, n));
       at_x.push_back(Jet::variable(enclose(middle(box[i])), i, n));
     }
-    GeometryOf<Jet> over_g = geometry(over_x), at_g = geometry(at_x);
-    std::pair<Jet, Jet> over_c = coordinates(path, over_x), at_c = coordinates(path, at_x);
+    Placement<Jet> over_p = placement(geometry(over_cache_, box, over_x), coordinates(path, over_x));
+    Placement<Jet> at_p = placement(geometry(at_cache_, centre_key(box), at_x), coordinates(path, at_x));
     std::map<std::pair<bool, std::size_t>, std::pair<PosedEdge<Jet>, PosedEdge<Jet>>> first_order;
     auto first = [&](bool driver, std::size_t index) -> const std::pair<PosedEdge<Jet>, PosedEdge<Jet>>& {
       auto key = std::make_pair(driver, index);
@@ -647,8 +734,7 @@ class ToleranceEvaluator::FreePath {
       if (it != first_order.end()) return it->second;
       const EdgeRef& ref = edge_ref(driver, index);
       return first_order
-          .emplace(key, std::make_pair(pose(over_g, ref, driver ? over_c.first : over_c.second),
-                                       pose(at_g, ref, driver ? at_c.first : at_c.second)))
+          .emplace(key, std::make_pair(pose(over_p, ref), pose(at_p, ref)))
           .first->second;
     };
     Level<MeanValue> mean;
@@ -669,12 +755,11 @@ class ToleranceEvaluator::FreePath {
     // Second-order Taylor form.
     std::vector<Jet2> second_x;
     for (std::size_t i = 0; i < n; ++i) second_x.push_back(Jet2::variable(enclose(box[i]), i));
-    GeometryOf<Jet2> second_g = geometry(second_x);
-    std::pair<Jet2, Jet2> second_c = coordinates(path, second_x);
+    Placement<Jet2> second_p = placement(geometry(second_cache_, box, second_x), coordinates(path, second_x));
     Level<Taylor> taylor;
     taylor.make = [&](bool driver, std::size_t index) {
       const EdgeRef& ref = edge_ref(driver, index);
-      PosedEdge<Jet2> o = pose(second_g, ref, driver ? second_c.first : second_c.second);
+      PosedEdge<Jet2> o = pose(second_p, ref);
       return combined<Taylor>(o, first(driver, index).second, ref.full,
                               [&](const Jet2& over, const Jet& at) { return make(over, at, &offsets); });
     };
@@ -708,14 +793,12 @@ class ToleranceEvaluator::FreePath {
       at_x.push_back(Jet::variable(enclose(middle(box[i])), i, n));
       over_x.push_back(Jet2::variable(enclose(box[i]), i));
     }
-    GeometryOf<Jet> at_g = geometry(at_x);
-    GeometryOf<Jet2> over_g = geometry(over_x);
-    std::pair<Jet, Jet> at_c = coordinates(path, at_x);
-    std::pair<Jet2, Jet2> over_c = coordinates(path, over_x);
+    Placement<Jet> at_p = placement(geometry(at_cache_, centre_key(box), at_x), coordinates(path, at_x));
+    Placement<Jet2> over_p = placement(geometry(second_cache_, box, over_x), coordinates(path, over_x));
     auto feature = [&](bool driver, std::size_t index) {
       const EdgeRef& ref = edge_ref(driver, index);
-      PosedEdge<Jet2> o = pose(over_g, ref, driver ? over_c.first : over_c.second);
-      PosedEdge<Jet> a = pose(at_g, ref, driver ? at_c.first : at_c.second);
+      PosedEdge<Jet2> o = pose(over_p, ref);
+      PosedEdge<Jet> a = pose(at_p, ref);
       return combined<Taylor>(o, a, ref.full, [&](const Jet2& over, const Jet& at) { return make(over, at, &offsets); });
     };
     return {feature(true, e.a), feature(false, e.b)};
@@ -867,6 +950,10 @@ class ToleranceEvaluator::FreePath {
   const ToleranceEvaluator& ev_;
   const ToleranceClaim& claim_;
   std::size_t k_;
+  mutable LocalCache<Jet> plain_cache_, over_cache_, at_cache_;
+  mutable LocalCache<Jet2> second_cache_;
+  /// The geometry at a centre's parameters for apart_failure (its parametric edges kept).
+  std::map<std::vector<RationalInterval>, std::optional<ToleranceGeometry>, BoxLess> centre_geometry_;
   std::size_t budget_;
   std::size_t splits_ = 0;
 

@@ -506,11 +506,9 @@ kernels::Vector<T> ToleranceEvaluator::posed(const GeometryOf<T>& g, bool driver
   bool rotates = driver_part ? driver_rotates_ : follower_rotates_;
   const kernels::Vector<T>& pivot = driver_part ? g.driver_pivot : g.follower_pivot;
   const kernels::Vector<T>& direction = driver_part ? g.driver_direction : g.follower_direction;
-  if (!rotates) return {point.x + coordinate * direction.x, point.y + coordinate * direction.y};
+  if (!rotates) return placed(point, false, pivot, direction, coordinate, coordinate, coordinate);
   using A = model_detail::Arithmetic<T>;
-  T c = A::cos(coordinate), s = A::sin(coordinate);
-  T dx = point.x - pivot.x, dy = point.y - pivot.y;
-  return {pivot.x + (c * dx - s * dy), pivot.y + (s * dx + c * dy)};
+  return placed(point, true, pivot, direction, coordinate, A::cos(coordinate), A::sin(coordinate));
 }
 
 // free_path_check.cpp poses parts with first- and second-order jets.
@@ -944,7 +942,6 @@ namespace {
 
 using IV = kernels::Vector<Interval>;
 
-bool positive(const Interval& x) { return x.sign() > 0; }
 Interval sq(const Interval& x) { return x * x; }
 Interval cross_iv(const IV& u, const IV& v) { return u.x * v.y - u.y * v.x; }
 IV minus_iv(const IV& u, const IV& v) { return {u.x - v.x, u.y - v.y}; }
@@ -956,7 +953,7 @@ struct Posed {
   bool arc = false, ccw = false;
   IV s, t, c;
   Interval r2, r;
-  Interval bx, by;   // enclosure of the edge's points (bounding box)
+  EdgeBox box;   // enclosure of the edge's points (bounding box)
 };
 
 // The side of the arc's chord on which the arc lies (strictly, except its ends): a
@@ -969,25 +966,8 @@ int chord_side(const Posed& e, const IV& p) {
   return side == 0 ? 0 : (side == arc_side(e) ? 1 : -1);
 }
 
-void bound(Posed& e) {
-  e.bx = hull2(e.s.x, e.t.x);
-  e.by = hull2(e.s.y, e.t.y);
-  if (!e.arc) return;
-  // The circle's four axis-extreme points, unless certainly off the arc.
-  Interval zero_iv = zero();
-  for (int k = 0; k < 4; ++k) {
-    IV p = e.c;
-    if (k == 0) p.x = e.c.x + e.r;
-    if (k == 1) p.x = e.c.x - e.r;
-    if (k == 2) p.y = e.c.y + e.r;
-    if (k == 3) p.y = e.c.y - e.r;
-    if (chord_side(e, p) < 0) continue;
-    e.bx = hull2(e.bx, p.x);
-    e.by = hull2(e.by, p.y);
-  }
-}
+void bound(Posed& e) { e.box = edge_box(e, false); }   // a full circle (s = t) keeps all four extreme points
 
-bool less(const Interval& a, const Interval& b) { return positive(b - a); }   // every a < every b
 
 
 // The points where the supports of an arc and another edge meet (two circles, or a circle and a
@@ -1041,7 +1021,7 @@ bool meets_outside(const Posed& a, const Posed& b) {
 
 // Certainly no common point of the two closed edges (plain enclosures).
 bool apart(const Posed& a, const Posed& b) {
-  if (less(a.bx, b.bx) || less(b.bx, a.bx) || less(a.by, b.by) || less(b.by, a.by)) return true;   // boxes
+  if (boxes_apart(a.box, b.box)) return true;   // boxes (exact comparisons of their ends, as b - a > 0 was)
   auto edge = [](const Posed& p) {
     EdgeT<Interval> e;
     e.arc = p.arc;
@@ -1110,27 +1090,41 @@ int crossings(const IV& p, const std::vector<Posed>& edges, int direction) {
 
 }  // namespace
 
-std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const {
+std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const { return apart_failure(leaf, nullptr); }
+
+std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf, std::optional<ToleranceGeometry>* at_point) const {
   std::size_t k = varied_.size();
   if (leaf.parameters.size() != k) return "wrong number of parameter intervals";
   if (!leaf.follower) return "no follower interval";
+  auto is_point = [](const RationalInterval& r) { return r.lo == r.hi; };
+  bool point = is_point(leaf.driver) && is_point(*leaf.follower) &&
+               std::all_of(leaf.parameters.begin(), leaf.parameters.end(), is_point);
+  if (!point) at_point = nullptr;
   const Model& m = model_->nominal();
   auto pose_part = [&](ToleranceGeometry& g, std::size_t part, const Jet& coordinate) {
     std::vector<std::vector<Posed>> loops;
     bool is_driver = part == driver_;
+    bool rotates = is_driver ? driver_rotates_ : follower_rotates_;
+    Jet c = rotates ? model_detail::Arithmetic<Jet>::cos(coordinate) : coordinate;
+    Jet s = rotates ? model_detail::Arithmetic<Jet>::sin(coordinate) : coordinate;
+    const kernels::Vector<Jet>& pivot = is_driver ? g.driver_pivot : g.follower_pivot;
+    const kernels::Vector<Jet>& direction = is_driver ? g.driver_direction : g.follower_direction;
     const Part& p = m.parts[part];
     for (std::size_t l = 0; l < p.loops.size(); ++l) {
       std::vector<Posed> loop;
       for (std::size_t e = 0; e < p.loops[l].edges.size(); ++e) {
-        model_detail::EdgeValue<Jet> v = model_->edge_value(part, l, e, g.parameters);
+        auto key = std::make_tuple(part, l, e);
+        auto it = g.edges.find(key);
+        if (it == g.edges.end()) it = g.edges.emplace(key, model_->edge_value(part, l, e, g.parameters)).first;
+        const model_detail::EdgeValue<Jet>& v = it->second;
         Posed q;
         q.name = "'" + p.loops[l].edges[e].label + "' (loop " + std::to_string(l) + " edge " + std::to_string(e) + ")";
         q.loop = l;
         q.edge = e;
         q.arc = v.arc;
         q.ccw = v.ccw;
-        auto pose = [&](const kernels::Vector<Jet>& point) {
-          kernels::Vector<Jet> w = posed(g, is_driver, point, coordinate);
+        auto pose = [&](const kernels::Vector<Jet>& at) {
+          kernels::Vector<Jet> w = placed(at, rotates, pivot, direction, coordinate, c, s);   // as posed()
           return IV{w.x.value, w.y.value};
         };
         q.s = pose(v.source);
@@ -1152,6 +1146,7 @@ std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const {
     for (const auto& l : loops) all.insert(all.end(), l.begin(), l.end());
     return all;
   };
+  std::pair<std::vector<std::vector<Posed>>, std::vector<std::vector<Posed>>> point_loops;
   // 1. Over the whole leaf: no edge of one part meets an edge of the other. The boundaries are
   //    then apart for every point of the (connected) leaf, so each loop of a part stays on one
   //    side of the other part throughout.
@@ -1161,9 +1156,14 @@ std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const {
       box.push_back(enclose(p));
       centre.push_back(enclose(middle(p)));
     }
-    ToleranceGeometry g = geometry(box, false);
-    std::vector<Posed> a = flat(pose_part(g, driver_, Jet(enclose(leaf.driver))));
-    std::vector<Posed> b = flat(pose_part(g, follower_, Jet(enclose(*leaf.follower))));
+    std::optional<ToleranceGeometry> own;
+    std::optional<ToleranceGeometry>& kept = at_point ? *at_point : own;
+    if (!kept) kept = geometry(box, false);
+    ToleranceGeometry& g = *kept;
+    point_loops.first = pose_part(g, driver_, Jet(enclose(leaf.driver)));
+    point_loops.second = pose_part(g, follower_, Jet(enclose(*leaf.follower)));
+    std::vector<Posed> a = flat(point_loops.first);
+    std::vector<Posed> b = flat(point_loops.second);
     // Pairs the plain enclosures do not separate are tried again in mean-value form (the
     // geometry with its gradient over the leaf, evaluated once and only when needed).
     std::optional<ToleranceGeometry> over, at;
@@ -1221,11 +1221,16 @@ std::string ToleranceEvaluator::apart_failure(const ToleranceLeaf& leaf) const {
   // 2. At the leaf's centre: one vertex of every loop of each part certainly outside the other
   //    part (ray crossings of certain parity). With 1., the parts' boundaries never meet and no
   //    boundary point lies in the other part, so the closed parts are disjoint over the leaf.
-  std::vector<Interval> centre;
-  for (const RationalInterval& p : leaf.parameters) centre.push_back(enclose(middle(p)));
-  ToleranceGeometry g = geometry(centre, false);
-  auto la = pose_part(g, driver_, Jet(enclose(middle(leaf.driver))));
-  auto lb = pose_part(g, follower_, Jet(enclose(middle(*leaf.follower))));
+  //    A point leaf is its own centre: the parts as posed in 1. (the same enclosures).
+  if (!point) {
+    std::vector<Interval> centre;
+    for (const RationalInterval& p : leaf.parameters) centre.push_back(enclose(middle(p)));
+    ToleranceGeometry g = geometry(centre, false);
+    point_loops.first = pose_part(g, driver_, Jet(enclose(middle(leaf.driver))));
+    point_loops.second = pose_part(g, follower_, Jet(enclose(middle(*leaf.follower))));
+  }
+  const auto& la = point_loops.first;
+  const auto& lb = point_loops.second;
   for (int side = 0; side < 2; ++side) {
     const auto& loops = side == 0 ? la : lb;
     std::vector<Posed> other = flat(side == 0 ? lb : la);

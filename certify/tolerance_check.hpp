@@ -259,6 +259,11 @@ class ToleranceEvaluator {
   T contact_of(GeometryOf<T>& g, std::size_t pair, const T& driver, const T& follower) const;
   template <class T>
   void pose_pivots(GeometryOf<T>& g) const;
+  // apart_failure; for a leaf that is a point (check 7's centres), `at_point` (when given) holds
+  // the geometry at its varied parameters: evaluated on first use (when empty), its parametric
+  // edges kept in it for the next call at the same parameters (free_path_check.cpp: every
+  // region's and move's centre of a certificate whose leaves share one parameter box).
+  std::string apart_failure(const ToleranceLeaf& leaf, std::optional<ToleranceGeometry>* at_point) const;
   // free_path_check.cpp
   class FreePath;
   friend class FreePath;

@@ -84,6 +84,70 @@ bool separated(const EdgeT<N>& a, const EdgeT<N>& b, const Sign& sign) {
   return false;
 }
 
+// A part's point placed at its coordinate: turned about `pivot` by the angle whose cosine and
+// sine are c and s (a rotating part), or moved by coordinate times `direction` (a sliding one;
+// c and s unused). ToleranceEvaluator::posed and check 7's posing (which computes c and s once
+// per part and piece) share it, so that both give the same enclosures.
+template <class T>
+kernels::Vector<T> placed(const kernels::Vector<T>& point, bool rotates, const kernels::Vector<T>& pivot,
+                          const kernels::Vector<T>& direction, const T& coordinate, const T& c, const T& s) {
+  if (!rotates) return {point.x + coordinate * direction.x, point.y + coordinate * direction.y};
+  T dx = point.x - pivot.x, dy = point.y - pivot.y;
+  return {pivot.x + (c * dx - s * dy), pivot.y + (s * dx + c * dy)};
+}
+
+// The broad phase of the edge-pair tests (check 7, free_path_check.cpp; no_interference's
+// apart()): an axis-aligned box enclosing every point of a closed edge for every point of the
+// box of parameters it was posed over. A segment: the hull of its ends' enclosures (its points
+// are convex combinations of the ends). An arc: that hull and each of its circle's four
+// axis-extreme points c +- r e_k unless certainly beyond the arc's chord (the chord's line cuts
+// the circle into the arc, on its side, and the rest): the extreme coordinates of an arc are
+// those of its ends or of the axis-extreme points it contains. A full circle: c +- r on both
+// axes. Every component is an MPFI enclosure, so the box holds the edge at every parameter
+// vector the enclosures were taken over.
+struct EdgeBox {
+  Interval x, y;
+};
+
+template <class E>
+EdgeBox edge_box(const E& e, bool full) {
+  using V = kernels::Vector<Interval>;
+  EdgeBox b;
+  if (full) {
+    b.x = e.c.x;
+    b.y = e.c.y;
+  } else {
+    b.x = hull2(e.s.x, e.t.x);
+    b.y = hull2(e.s.y, e.t.y);
+    if (!e.arc) return b;
+  }
+  V ch{e.t.x - e.s.x, e.t.y - e.s.y};
+  int arc_side = e.ccw ? -1 : 1;   // a ccw arc lies to the right of its directed chord
+  for (int k = 0; k < 4; ++k) {
+    V p = e.c;
+    if (k == 0) p.x = e.c.x + e.r;
+    if (k == 1) p.x = e.c.x - e.r;
+    if (k == 2) p.y = e.c.y + e.r;
+    if (k == 3) p.y = e.c.y - e.r;
+    if (!full) {
+      int side = (ch.x * (p.y - e.s.y) - ch.y * (p.x - e.s.x)).sign();
+      if (side != 0 && side != arc_side) continue;   // certainly beyond the chord: not on the arc
+    }
+    b.x = hull2(b.x, p.x);
+    b.y = hull2(b.y, p.y);
+  }
+  return b;
+}
+
+/// The two boxes certainly disjoint: an upper end of one strictly below the lower end of the
+/// other on an axis, compared exactly (MPFR numbers are exact binary fractions; a NaN or an
+/// unbounded end never compares less). Then the two edges share no point over the box they
+/// were posed over: no contact and no first-contact event between them.
+inline bool boxes_apart(const EdgeBox& a, const EdgeBox& b) {
+  auto below = [](const Interval& u, const Interval& v) { return mpfr_less_p(&u.get()->right, &v.get()->left) != 0; };
+  return below(a.x, b.x) || below(b.x, a.x) || below(a.y, b.y) || below(b.y, a.y);
+}
+
 // A quantity over a leaf in mean-value form: `over` its jet over the whole leaf (gradient with
 // respect to the varied parameters, the driver and the follower), `at` its value at the
 // leaf's centre. Its certain sign is that of at + sum over_i' (X_i - c_i), met with over.
