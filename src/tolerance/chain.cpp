@@ -963,7 +963,9 @@ class ChainAnalysis {
   // independence loss), split where that loss times the sub-box's width is largest.
   // ChainBandMemo's keys: the run (band_run: the text, the options and switches a band depends on,
   // each pair's tolerance box and solver switches) and a position's inputs (band_key: every value
-  // certified() and the compositions read at position i, bit for bit).
+  // certified() and the compositions read at position i, bit for bit). An option or switch that
+  // changes a band, added later, must be added to band_run (else a memo would replay a band of
+  // another setting; tests only: ChainPaths::band_memo).
   static void put(std::string& out, double value) {
     auto bits = std::bit_cast<std::uint64_t>(value);
     out.append(reinterpret_cast<const char*>(&bits), sizeof bits);

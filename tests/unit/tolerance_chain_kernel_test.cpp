@@ -159,15 +159,17 @@ TEST_P(ToleranceChainKernel, KernelChainEqualsCSpaceChainOnGeneratedGearTrains) 
     EXPECT_EQ(kernel.monte_carlo->evaluations, 30 * held);
 
     // Oracle 1: the C-space lookup at the same nominal motion, bit for bit.
+    // (train 0, the cheapest: the lookup computes its own bands, so that the C-space lookup's band
+    // computation is compared with the kernel path's, not replayed)
     ChainPaths lookup;
     lookup.cspace_lookup = true;
-    lookup.band_memo = memo;
+    if (GetParam() != 0) lookup.band_memo = memo;
     ToleranceResult oracle = tolerance_detail::analyze_chain(text, options, lookup);
     std::vector<std::string> found = differences(kernel, oracle);
     EXPECT_TRUE(found.empty()) << found.size() << " differences, first: " << found.front();
     // every held position's band replayed: the lookup's inputs to it (each pair's contact curve,
     // chart values, sensitivities and slopes) are the kernel path's, bit for bit
-    EXPECT_EQ(memo->replayed, held);
+    EXPECT_EQ(memo->replayed, GetParam() != 0 ? held : 0u);
     // The mutated lookups on the first generated train (the first held one before session 66:
     // every train is now required to be held, so it is the same train).
     if (GetParam() == 0) {
