@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -545,20 +546,36 @@ class ChainAnalysis {
     int side = 0;
     double end = 0;   // chart units
   };
+  // compose_once's state at the widened pair, just before its widening is applied (session 67):
+  // the case split's two cases compute pairs 0 .. `stage` exactly as the composition before them
+  // did (the same box, driver ranges, forms and envelopes: compose_once is a pure function of its
+  // arguments, the memos it reads hold pure functions of their keys), so they resume from here.
+  // A case differs from the composition only from that pair's override on.
+  struct Prefix {
+    std::size_t stage = std::numeric_limits<std::size_t>::max();
+    bool mean_value = false;
+    Interval xc, r;
+    std::vector<Interval> d, charts, drivers;   // charts and drivers of pairs 0 .. stage
+    std::vector<std::size_t> boxes;             // what pairs 0 .. stage added to each pair's sub-box count
+    HandoverEnvelope envelope;                  // the widened pair's
+  };
   bool compose_over(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
                     bool* mean_value_through = nullptr, HandoverNote* handover = nullptr,
                     std::size_t* failed = nullptr) const {
     Widened widened;
-    bool composed = compose_once(i, box, charts, out, boxes, mean_value_through, handover, failed, nullptr, &widened);
+    Prefix prefix;
+    bool composed =
+        compose_once(i, box, charts, out, boxes, mean_value_through, handover, failed, nullptr, &widened, &prefix);
     if (chain_case_split() == 0 || widened.stage >= stages_.size() || widened.side == 0) return composed;
+    const Prefix* resume = prefix.stage == widened.stage && chain_case_resume() != 0 ? &prefix : nullptr;
     const std::size_t l = stages_.size() - 1;
     std::vector<Interval> lower(stages_.size()), upper(stages_.size()), between, slopes;
     Interval unused;
     HandoverEnvelope bridge;
     CaseOverride holder{widened.stage, 1, 0.0, std::vector<Interval>(stages_.size())};
     CaseOverride end{widened.stage, 2, widened.end, std::vector<Interval>(stages_.size())};
-    if (!compose_once(i, box, lower, unused, boxes, nullptr, nullptr, nullptr, &holder, nullptr) ||
-        !compose_once(i, box, upper, unused, boxes, nullptr, nullptr, nullptr, &end, nullptr) ||
+    if (!compose_once(i, box, lower, unused, boxes, nullptr, nullptr, nullptr, &holder, nullptr, nullptr, resume) ||
+        !compose_once(i, box, upper, unused, boxes, nullptr, nullptr, nullptr, &end, nullptr, nullptr, resume) ||
         !monotone_between(i, box, widened.stage, holder.drivers, end.drivers, boxes, between, slopes, bridge))
       return composed;
     // The last pair's holder lies between the cases' (chart units) when every later pair is
@@ -586,10 +603,15 @@ class ChainAnalysis {
   }
 
   // One composition (compose_over without the case split); `override`: one of the case
-  // split's cases; `widened` (when given) receives the last widened pair before the last one.
+  // split's cases; `widened` (when given) receives the last widened pair before the last one,
+  // and `record` (when given) the state there (Prefix). `resume` (a case, with the state its
+  // composition recorded at the case's pair): pairs 0 .. resume->stage replayed from it, their
+  // sub-box counts added to `boxes`, instead of computed again.
   bool compose_once(std::size_t i, const Box& box, std::vector<Interval>& charts, Interval& out, std::size_t* boxes,
                     bool* mean_value_through, HandoverNote* handover, std::size_t* failed,
-                    const CaseOverride* override, Widened* widened) const {
+                    const CaseOverride* override, Widened* widened, Prefix* record = nullptr,
+                    const Prefix* resume = nullptr) const {
+    if (resume && (!override || override->stage != resume->stage)) resume = nullptr;
     bool mean_value = options_.mean_value_chain;
     std::vector<double> center;
     std::vector<Interval> offsets, d;   // B - c; D of the last pair
@@ -601,10 +623,32 @@ class ChainAnalysis {
     }
     Interval x;    // the previous pair's output over the box, part units
     Interval xc;   // the same at the box's centre
-    for (std::size_t s = 0; s < stages_.size(); ++s) {
+    std::vector<std::size_t> boxes_before;   // (record) the sub-box counts on entry
+    std::vector<Interval> drivers_seen;      // (record) each pair's driver range
+    if (record) {
+      boxes_before.assign(boxes, boxes + stages_.size());
+      drivers_seen.assign(stages_.size(), Interval());
+    }
+    for (std::size_t s = resume ? resume->stage : 0; s < stages_.size(); ++s) {
       if (failed) *failed = s;
       const StageAnalysis& stage = stages_[s];
       const StageContact& c = stage.contacts[i];
+      const bool last = s + 1 == stages_.size();
+      HandoverEnvelope envelope;
+      if (resume && s == resume->stage) {
+        // pairs 0 .. s as the composition computed them (Prefix)
+        mean_value = resume->mean_value;
+        xc = resume->xc;
+        r = resume->r;
+        d = resume->d;
+        for (std::size_t k = 0; k <= s; ++k) {
+          charts[k] = resume->charts[k];
+          boxes[k] += resume->boxes[k];
+          if (k > 0) override->drivers[k] = resume->drivers[k];
+        }
+        envelope = resume->envelope;
+        chain_cases_resumed().fetch_add(1, std::memory_order_relaxed);
+      } else {
       const PositionStage& ps = per_[i][s];
       CurveSlice curve = c.curve;
       double previous_nominal = s > 0 ? stages_[s - 1].result.samples[i].nominal : 0.0;
@@ -614,6 +658,7 @@ class ChainAnalysis {
         curve.fixed_range = t;
         curve.fixed_spread = std::fabs(ps.fixed_slope) * t.width();
         if (override) override->drivers[s] = t;
+        if (record) drivers_seen[s] = t;
       }
       int proven_side = 0;   // the holder's free side as the enclosure's certification proves it
       try {
@@ -651,7 +696,6 @@ class ChainAnalysis {
       // remainder R (above).
       // (the case split's cases: no envelope after the widened pair, whose followers are their
       // holders' roots over the regions monotone_between certifies)
-      HandoverEnvelope envelope;
       if (override && s > override->stage) {
         envelope.bounded = true;
       } else {
@@ -663,7 +707,19 @@ class ChainAnalysis {
         if (handover) handover->why = "pair " + stage.result.driver + ":" + stage.result.follower + ": " + envelope.why;
         return false;
       }
-      const bool last = s + 1 == stages_.size();
+      if (record && !override && envelope.extended && !last) {   // a widened pair: where a case may resume
+        record->stage = s;
+        record->mean_value = mean_value;
+        record->xc = xc;
+        record->r = r;
+        record->d = d;
+        record->charts.assign(charts.begin(), charts.begin() + static_cast<std::ptrdiff_t>(s + 1));
+        record->drivers.assign(drivers_seen.begin(), drivers_seen.begin() + static_cast<std::ptrdiff_t>(s + 1));
+        record->boxes.assign(s + 1, 0);
+        for (std::size_t k = 0; k <= s; ++k) record->boxes[k] = boxes[k] - boxes_before[k];
+        record->envelope = envelope;
+      }
+      }
       if (override && override->stage == s) {
         // the case split's cases (above): pair s's follower at its holder's root (its widening
         // ignored), or at the widened envelope's far end, a point
@@ -905,6 +961,102 @@ class ChainAnalysis {
   // those on which at least two pairs' outputs depend at the position (their share of the
   // composed sensitivity, |d out / dp| summed over the pairs, exceeds |total d out / dp|: the
   // independence loss), split where that loss times the sub-box's width is largest.
+  // ChainBandMemo's keys: the run (band_run: the text, the options and switches a band depends on,
+  // each pair's tolerance box and solver switches) and a position's inputs (band_key: every value
+  // certified() and the compositions read at position i, bit for bit). An option or switch that
+  // changes a band, added later, must be added to band_run (else a memo would replay a band of
+  // another setting; tests only: ChainPaths::band_memo).
+  static void put(std::string& out, double value) {
+    auto bits = std::bit_cast<std::uint64_t>(value);
+    out.append(reinterpret_cast<const char*>(&bits), sizeof bits);
+  }
+  static void put(std::string& out, std::size_t value) {
+    auto bits = static_cast<std::uint64_t>(value);
+    out.append(reinterpret_cast<const char*>(&bits), sizeof bits);
+  }
+  static void put(std::string& out, const std::string& text) {
+    put(out, text.size());
+    out += text;
+  }
+  static void put(std::string& out, const Rational& value) { put(out, value.get_str()); }
+  static void put(std::string& out, const std::vector<double>& values) {
+    put(out, values.size());
+    for (double v : values) put(out, v);
+  }
+  static void put(std::string& out, const FeatureIdentity& f) {
+    put(out, f.part);
+    put(out, f.loop);
+    put(out, f.edge);
+    put(out, static_cast<std::size_t>(f.kind));
+  }
+  std::string band_run() const {
+    std::string out;
+    put(out, std::string(text_));
+    put(out, options_.parameter_values.size());
+    for (const auto& [name, value] : options_.parameter_values) {
+      put(out, name);
+      put(out, value);
+    }
+    put(out, options_.driver);
+    put(out, options_.follower);
+    put(out, static_cast<std::size_t>(options_.range.has_value()));
+    if (options_.range) {
+      put(out, options_.range->first);
+      put(out, options_.range->second);
+    }
+    for (std::size_t v : {options_.positions, std::size_t(options_.allow_out_of_tolerance), std::size_t(options_.fast_paths),
+                          std::size_t(options_.taylor_partials), std::size_t(options_.mean_value_chain),
+                          std::size_t(options_.chain_assume_nominal_holder)})
+      put(out, v);
+    put(out, options_.relative_accuracy);
+    put(out, options_.absolute_accuracy);
+    put(out, static_cast<std::size_t>(length_exponent_));
+    for (int v : {chain_case_split(), chain_widened_split(), handover_monotone_driver(), handover_sub_box_anchor(),
+                  handover_taylor_partials(), handover_far_windows(), handover_driver_pieces(), handover_widened_pieces(),
+                  handover_far_reuse()})
+      put(out, static_cast<std::size_t>(static_cast<unsigned>(v)));
+    put(out, stages_.size());
+    for (const StageAnalysis& stage : stages_) {
+      put(out, stage.box.lo);
+      put(out, stage.box.hi);
+      put(out, static_cast<std::size_t>(stage.solver->switches()));
+      put(out, static_cast<std::size_t>(stage.result.driver_rotates) * 2 + static_cast<std::size_t>(stage.result.follower_rotates));
+    }
+    return out;
+  }
+  std::string band_key(std::size_t i) const {
+    std::string out;
+    put(out, i);
+    const VariationSample& sample = result_.samples[i];
+    put(out, sample.driver);
+    put(out, sample.nominal);
+    put(out, sample.sensitivities);
+    for (std::size_t s = 0; s < stages_.size(); ++s) {
+      const StageContact& c = stages_[s].contacts[i];
+      put(out, static_cast<std::size_t>(c.contact) * 2 + static_cast<std::size_t>(c.follower_half));
+      put(out, c.curve.first);
+      put(out, c.curve.second);
+      put(out, c.curve.fixed_part);
+      put(out, c.curve.free_part);
+      put(out, static_cast<std::size_t>(c.curve.fixed_half_turn) * 2 + static_cast<std::size_t>(c.curve.free_half_turn));
+      put(out, c.curve.fixed_value);
+      put(out, static_cast<std::size_t>(c.curve.fixed_range.has_value()));
+      if (c.curve.fixed_range) {
+        put(out, c.curve.fixed_range->lo);
+        put(out, c.curve.fixed_range->hi);
+      }
+      put(out, c.curve.fixed_spread);
+      put(out, c.v);
+      put(out, c.s_chart);
+      put(out, stages_[s].result.samples[i].nominal);
+      const PositionStage& ps = per_[i][s];
+      put(out, ps.fixed_slope);
+      put(out, ps.driver_factor);
+      put(out, ps.s_part);
+    }
+    return out;
+  }
+
   void certified() {
     std::vector<std::size_t> boxes(positions() * stages_.size(), 0);
     std::vector<std::size_t> shared_boxes(positions(), 0);
@@ -912,8 +1064,40 @@ class ChainAnalysis {
     std::vector<char> ok(positions(), 0);
     std::vector<HandoverNote> handover(positions());
     std::size_t n = result_.parameters.size();
+    // ChainPaths::band_memo (tests only): positions whose inputs another analysis of the same run
+    // met, replayed
+    ChainBandMemo* memo = paths_.band_memo.get();
+    if (memo) {
+      std::string run = band_run();
+      std::lock_guard<std::mutex> lock(memo->mutex);
+      if (memo->run != run) {
+        memo->run = std::move(run);
+        memo->positions.clear();
+      }
+    }
     parallel_for(options_.threads, positions(), [&](std::size_t i) {
       if (!result_.samples[i].contact) return;
+      std::string key;
+      if (memo) {
+        key = band_key(i);
+        std::lock_guard<std::mutex> lock(memo->mutex);
+        auto it = memo->positions.find(key);
+        if (it != memo->positions.end()) {
+          const ChainBandMemo::Position& kept = it->second;
+          ok[i] = kept.ok ? 1 : 0;
+          if (kept.ok) {
+            result_.samples[i].certified = CertifiedRange{kept.lower, kept.upper};
+            for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = kept.charts[s];
+          }
+          for (std::size_t s = 0; s < stages_.size(); ++s) boxes[i * stages_.size() + s] = kept.boxes[s];
+          shared_boxes[i] = kept.shared_boxes;
+          failure_boxes[i] = kept.failure_boxes;
+          handover[i].extended = kept.extended;
+          handover[i].why = kept.why;
+          ++memo->replayed;
+          return;
+        }
+      }
       const std::vector<double>& total = result_.samples[i].sensitivities;
       // each pair's share of d out / dp (output units): its own s_part times the later pairs' driver factors
       std::vector<double> spread(n, 0.0);
@@ -1128,6 +1312,22 @@ class ChainAnalysis {
       };
       if (!position_band(0) && handover_far_windows() > 1 && !position_band(1) && handover_driver_pieces() > 1)
         position_band(2);
+      if (memo) {
+        ChainBandMemo::Position kept;
+        kept.ok = ok[i] != 0;
+        if (kept.ok) {
+          kept.lower = result_.samples[i].certified.lower;
+          kept.upper = result_.samples[i].certified.upper;
+          for (std::size_t s = 0; s < stages_.size(); ++s) kept.charts.push_back(per_[i][s].certified_chart);
+        }
+        for (std::size_t s = 0; s < stages_.size(); ++s) kept.boxes.push_back(boxes[i * stages_.size() + s]);
+        kept.shared_boxes = shared_boxes[i];
+        kept.failure_boxes = failure_boxes[i];
+        kept.extended = handover[i].extended;
+        kept.why = handover[i].why;
+        std::lock_guard<std::mutex> lock(memo->mutex);
+        memo->positions.insert_or_assign(std::move(key), std::move(kept));
+      }
     }, [&](std::size_t done) { bar_.units(done, positions()); });
     std::size_t uncertified = 0, split_positions = 0, most = 0;
     for (std::size_t i = 0; i < positions(); ++i) {
@@ -1531,6 +1731,16 @@ int& chain_widened_split() {
 int& chain_plain_reuse() {
   static int on = 1;
   return on;
+}
+
+int& chain_case_resume() {
+  static int on = 1;
+  return on;
+}
+
+std::atomic<std::size_t>& chain_cases_resumed() {
+  static std::atomic<std::size_t> resumed{0};
+  return resumed;
 }
 
 std::atomic<std::size_t>& chain_compositions_made() {

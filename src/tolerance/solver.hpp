@@ -119,6 +119,11 @@ class CurveSolver {
   /// Taylor models (TaylorJet), intersected with the interval jets' (default: no; assembly
   /// chains turn it on: docs/performance.md, session 21).
   void set_taylor_partials(bool taylor) { taylor_ = taylor; }
+  /// The switches above, in the order compact jets, reused y jets, second order, Taylor partials
+  /// (bit 0 .. 3): what a result of the solver depends on besides its arguments and model.
+  unsigned switches() const {
+    return (compact_jets_ ? 1u : 0u) | (reuse_y_jets_ ? 2u : 0u) | (second_order_ ? 4u : 0u) | (taylor_ ? 8u : 0u);
+  }
 
   /// Certified enclosure of {v(p) : p in box} (the root near the nominal `free_value`, unique
   /// in a neighbourhood certified along the way), subdividing the box until the enclosure is

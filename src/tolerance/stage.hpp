@@ -13,7 +13,9 @@
 
 #include <atomic>
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -119,6 +121,31 @@ void parallel_for(unsigned threads, std::size_t count, const std::function<void(
 void parallel_for(unsigned threads, std::size_t count, const std::function<void(std::size_t)>& task,
                   const std::function<void(std::size_t)>& done);
 
+/// Tests only (session 67): the certified band's per-position results of a chain analysis, kept
+/// for a later analysis of the same model text with the same options and switches in the same
+/// process (ChainPaths::band_memo): the kernel path and its C-space lookup, compared bit for bit
+/// (tolerance_chain_kernel_test.cpp), compute the same bands from the same inputs. A position is
+/// replayed only where every input of its band is the same bit for bit (chain.cpp certified():
+/// each pair's contact curve, chart values, sensitivities and slopes there, the output's
+/// sensitivities, each pair's tolerance box and solver switches); an analysis of another text,
+/// other options or switches clears it first. Positions are computed and stored under `mutex`.
+struct ChainBandMemo {
+  /// What certified() computed at one position.
+  struct Position {
+    bool ok = false;                          ///< bounded
+    double lower = 0, upper = 0;              ///< the band (when ok)
+    std::vector<kernels::Interval> charts;    ///< each pair's certified chart enclosure (when ok)
+    std::vector<std::size_t> boxes;           ///< each pair's sub-box count at the position
+    std::size_t shared_boxes = 0, failure_boxes = 0;
+    bool extended = false;                    ///< a hand-over envelope widened
+    std::string why;                          ///< why an envelope was not bounded
+  };
+  std::string run;   ///< the text, options and switches the positions belong to
+  std::map<std::string, Position> positions;   ///< by the position's inputs, bit for bit
+  std::size_t replayed = 0;                    ///< positions replayed (tests: not vacuous)
+  std::mutex mutex;
+};
+
 /// How a chain finds each pair's nominal motion and touching feature pairs (chain.cpp).
 struct ChainPaths {
   /// Chains whose parts all rotate without angle limits (gear trains): the whole model's
@@ -143,6 +170,9 @@ struct ChainPaths {
   /// fields not computed), for a test that compares only the nominal motion, the contacts, the
   /// sensitivities, the linearised bands and the regions, which are computed before them.
   bool certified_band = true;
+  /// Tests only: the certified band's positions kept and replayed across analyses
+  /// (ChainBandMemo); null: none.
+  std::shared_ptr<ChainBandMemo> band_memo;
 };
 
 /// Entries of each chain pair's box-geometry and Taylor-model edge memos (CurveSolver::limit_memos;
@@ -166,6 +196,15 @@ int& chain_widened_split();
 /// first step per sub-box is the same plain composition: 1 (on) unless changed; 0 composes them
 /// again (tests compare the two: the same bands, notes and sub-box counts).
 int& chain_plain_reuse();
+
+/// The case split's two cases resume from the state the composition recorded at the widened pair
+/// (chain.cpp compose_once, Prefix; session 67) instead of computing pairs 0 .. that pair again,
+/// exactly as the composition did: 1 (on) unless changed; 0 computes them again (tests compare
+/// the two: the same bands, notes and sub-box counts).
+int& chain_case_resume();
+/// Tests only: the case split's cases resumed so (chain_case_resume), summed over every chain
+/// analysis since the program started.
+std::atomic<std::size_t>& chain_cases_resumed();
 
 /// Tests only: compose_over calls the certified band's passes have made (the plain ones not
 /// replayed, and the far walk's), summed over every chain analysis since the program started.

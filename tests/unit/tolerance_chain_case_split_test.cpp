@@ -181,5 +181,68 @@ TEST(ChainCaseSplit, FirstMeshHandOverFarEndHoldsTheExactTrain) {
   EXPECT_EQ(c.checked, c.trains * c.held);
 }
 
+// Session 67 (chain67): the case split's two cases resume from the state the composition recorded
+// at the widened pair (chain.cpp compose_once, Prefix; tolerance_detail::chain_case_resume())
+// instead of computing the pairs up to it again, and a chain's certified band is replayed by a
+// later analysis of the same run from ChainBandMemo. On gear-train-3 across its first mesh's
+// hand-over (0.166..0.173 rad at 2000 per turn, where A:B widens: FirstMeshHandOverFarEnd...
+// above), with and without the resume: every band bit for bit, the notes and every pair's
+// sub-box count equal, cases resumed only with it. The same analysis again with the memo the
+// resumed run filled: every held position replayed and the same result; with another switch (the
+// widened whole box's split off) nothing replayed. Mutants (temporary, built, run, removed): listed in
+// docs/performance.md "Session 67 (chain67)".
+std::size_t expect_same_bands(const ToleranceResult& a, const ToleranceResult& b) {
+  std::size_t held = 0;
+  EXPECT_EQ(a.samples.size(), b.samples.size());
+  for (std::size_t i = 0; i < std::min(a.samples.size(), b.samples.size()); ++i) {
+    const VariationSample &x = a.samples[i], &y = b.samples[i];
+    EXPECT_EQ(x.contact, y.contact);
+    held += y.contact;
+    EXPECT_EQ(x.certified.lower, y.certified.lower) << x.driver;
+    EXPECT_EQ(x.certified.upper, y.certified.upper) << x.driver;
+  }
+  EXPECT_EQ(a.notes, b.notes);
+  EXPECT_EQ(a.certified_boxes, b.certified_boxes);
+  EXPECT_EQ(a.chain.size(), b.chain.size());
+  for (std::size_t s = 0; s < std::min(a.chain.size(), b.chain.size()); ++s)
+    EXPECT_EQ(a.chain[s].certified_boxes, b.chain[s].certified_boxes) << "pair " << s;
+  return held;
+}
+
+TEST(ChainCaseResume, CasesResumedAndBandsReplayedGiveTheSameBandsNotesAndCounts) {
+  const std::string text = test_gears::gear_train(3);
+  ToleranceOptions options = test_gears::chain_options(Rational(7, 40), 0, 67);
+  options.range = std::make_pair(Rational(83, 500), Rational(173, 1000));
+  options.positions = 2000;
+  // the run with the resume keeps its bands in the memo
+  auto memo = std::make_shared<tolerance_detail::ChainBandMemo>();
+  tolerance_detail::ChainPaths paths;
+  paths.band_memo = memo;
+  ToleranceResult r[2];
+  std::size_t resumed[2];
+  for (int on : {0, 1}) {
+    test_band::ScopedSwitch resume(tolerance_detail::chain_case_resume(), on);
+    const std::size_t before = tolerance_detail::chain_cases_resumed().load();
+    r[on] = on ? tolerance_detail::analyze_chain(text, options, paths) : tolerance_detail::analyze_chain(text, options);
+    resumed[on] = tolerance_detail::chain_cases_resumed().load() - before;
+  }
+  const std::size_t held = expect_same_bands(r[0], r[1]);
+  EXPECT_EQ(held, 4u);
+  EXPECT_EQ(resumed[0], 0u);
+  EXPECT_GT(resumed[1], 0u);   // not vacuous: the case split ran, its cases resumed
+
+  EXPECT_EQ(memo->replayed, 0u);
+  ToleranceResult again = tolerance_detail::analyze_chain(text, options, paths);
+  EXPECT_EQ(memo->replayed, held);
+  expect_same_bands(r[1], again);
+  {
+    // another run (a switch of the band changed): the memo cleared, nothing replayed
+    test_band::ScopedSwitch widened(tolerance_detail::chain_widened_split(), 0);
+    tolerance_detail::analyze_chain(text, options, paths);
+    EXPECT_EQ(memo->replayed, held);
+  }
+  std::printf("%zu held positions, %zu cases resumed, %zu sub-boxes\n", held, resumed[1], r[1].certified_boxes);
+}
+
 }  // namespace
 }  // namespace hipair

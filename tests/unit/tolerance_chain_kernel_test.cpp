@@ -137,7 +137,14 @@ TEST_P(ToleranceChainKernel, KernelChainEqualsCSpaceChainOnGeneratedGearTrains) 
     ToleranceOptions options = options_for(from, 0.4, 0);
     ToleranceOptions with_mc = options;
     with_mc.monte_carlo = 30;
-    ToleranceResult kernel = tolerance_detail::analyze_chain(text, with_mc);
+    // The certified band of a position is a function of its inputs (session 67): the lookup below
+    // replays the kernel run's band where its inputs are the kernel path's bit for bit
+    // (ChainBandMemo), instead of computing it a second time (the 4-gear train's hand-over
+    // position: 127 sub-boxes of the tolerance box).
+    auto memo = std::make_shared<tolerance_detail::ChainBandMemo>();
+    ChainPaths kernel_path;
+    kernel_path.band_memo = memo;
+    ToleranceResult kernel = tolerance_detail::analyze_chain(text, with_mc, kernel_path);
     for (const std::string& note : kernel.notes)
       EXPECT_EQ(note.find("not unique"), std::string::npos) << "the kernel path fell back: " << note;
     std::size_t held = 0;
@@ -152,11 +159,17 @@ TEST_P(ToleranceChainKernel, KernelChainEqualsCSpaceChainOnGeneratedGearTrains) 
     EXPECT_EQ(kernel.monte_carlo->evaluations, 30 * held);
 
     // Oracle 1: the C-space lookup at the same nominal motion, bit for bit.
+    // (train 0, the cheapest: the lookup computes its own bands, so that the C-space lookup's band
+    // computation is compared with the kernel path's, not replayed)
     ChainPaths lookup;
     lookup.cspace_lookup = true;
+    if (GetParam() != 0) lookup.band_memo = memo;
     ToleranceResult oracle = tolerance_detail::analyze_chain(text, options, lookup);
     std::vector<std::string> found = differences(kernel, oracle);
     EXPECT_TRUE(found.empty()) << found.size() << " differences, first: " << found.front();
+    // every held position's band replayed: the lookup's inputs to it (each pair's contact curve,
+    // chart values, sensitivities and slopes) are the kernel path's, bit for bit
+    EXPECT_EQ(memo->replayed, GetParam() != 0 ? held : 0u);
     // The mutated lookups on the first generated train (the first held one before session 66:
     // every train is now required to be held, so it is the same train).
     if (GetParam() == 0) {
