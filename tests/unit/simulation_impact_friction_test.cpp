@@ -170,5 +170,59 @@ TEST(ImpactFriction, CoulombImpulsesAtPlantedTiesAreTheExactLawsOnTheDoubles) {
   EXPECT_GT(slips, cases / 10);
 }
 
+// Session 67: a sliding contact's force row W = G - sign (mu / s) T formed exactly in the held
+// decisions (HeldForceRows::slip), not from its rounded doubles. Planted where the rounding decides:
+// G = (g, 0), T = sigma (t, 1) with the double mu = fl(p / q) and t such that fl(mu t) = g while
+// mu t != g exactly (mu is not p / q): the rounded row's first entry is exactly 0, the Delassus
+// number G M^-1 W^T of the rounded rows 0 (singular: the minimum-norm multiplier 0, "held without
+// force"), the exact one g (g - mu t) / m_0 of about 10^-17 — the multiplier -b / A is of b's sign
+// times A's: a lift-off or a hold the rounded rows cannot see. Oracle: rationals on the same doubles.
+// Asserted: held_verdict's force sign is the oracle's in every case; the rounded rows' (the slip
+// fields cleared: held_verdict before session 67) are counted.
+TEST(HeldSlipRow, ASlidingContactsForceRowIsFormedExactlyInTheHeldVerdict) {
+  Rng rng{test::test_seed(6702)};
+  int cases = 0, rounded_wrong = 0;
+  for (int trial = 0; trial < 400 && cases < 200; ++trial) {
+    const int q = 3 + rng.below(20), p = 1 + rng.below(q - 1);
+    const double mu = static_cast<double>(p) / q;
+    const int g = 1 + rng.below(6);
+    if ((g * q) % p != 0) continue;
+    const double t = static_cast<double>(g * q / p);
+    if (mu * t != g || Rational(mu) * Rational(t) == Rational(g)) continue;   // the rounding must decide
+    const int sigma = rng.below(2) == 0 ? 1 : -1;
+    const double m0 = std::ldexp(1.0, rng.below(9) - 4), m1 = std::ldexp(1.0, rng.below(9) - 4);
+    Eigen::MatrixXd G(1, 2);
+    G << g, 0;
+    Eigen::VectorXd minv(2), a0(2), h(1);
+    minv << 1 / m0, 1 / m1;
+    a0 << rng.below(9) - 4, rng.below(9) - 4;
+    h << std::ldexp(static_cast<double>(rng.below(9) - 4), -rng.below(40));
+    simulation::Friction fr;
+    fr.on = true;
+    fr.T = Eigen::Vector2d(sigma * t, sigma * 1.0);
+    fr.mu_static = fr.mu_kinetic = mu;
+    fr.state = sigma;
+    fr.decided = true;
+    // the oracle: lambda = -(G a0 + h) / (G M^-1 W^T), W = G - sigma mu T, exact
+    const Rational b = Rational(g) * Rational(a0(0)) + Rational(h(0));
+    const Rational W0 = Rational(g) - Rational(sigma) * Rational(mu) * Rational(sigma * t);
+    const Rational A = Rational(g) * Rational(minv(0)) * W0;   // (G's second entry 0)
+    ASSERT_NE(sgn(A), 0);
+    const int oracle = sgn(b) == 0 ? 0 : -sgn(b) * sgn(A);
+    ++cases;
+    const simulation::HeldVerdict v = simulation::held_verdict(G, minv, a0, h, {fr}, {sigma});
+    EXPECT_EQ(v.force_sign[0], oracle) << "trial " << trial << " mu " << p << "/" << q << " g " << g << " t " << t
+                                       << " sigma " << sigma;
+    // the rounded rows (before session 67)
+    std::vector<std::size_t> sticking;
+    simulation::HeldForceRows rows = simulation::frictional_rows(G, minv, a0, h, {fr}, {sigma}, sticking);
+    rows.slip.clear();
+    rounded_wrong += simulation::held_force_signs(rows)[0] != oracle;
+  }
+  std::cout << "sliding rows at the rounding's tie: " << cases << " cases; the rounded rows' force sign wrong in "
+            << rounded_wrong << "\n";
+  EXPECT_GE(cases, 50);
+}
+
 }  // namespace
 }  // namespace hipair
