@@ -88,6 +88,17 @@ inline FrictionalSolution frictional_impulses(const Eigen::MatrixXd& G, const Ei
                                               const std::vector<Friction>& friction,
                                               const std::vector<std::size_t>& group,
                                               const std::function<void(FrictionalSolution&)>& adjust = {}) {
+  // Force rows beyond the doubles (friction 1e308: G - mu T overflows; session 64, hunt64) are
+  // refused as before: the doubles' candidates are not finite and fail, and the caller names the
+  // pair; the exact enumeration on such numbers would not end in useful time (simulate_mutations).
+  for (std::size_t k = 0; k < friction.size(); ++k) {
+    const Friction& c = friction[k];
+    if (!c.on) continue;
+    const double ratio = std::max(c.mu_static, c.mu_kinetic) / c.s;
+    if (!std::isfinite(ratio) ||
+        !(G.row(static_cast<Eigen::Index>(k)).cwiseAbs().transpose() + ratio * c.T.cwiseAbs()).allFinite())
+      return solve_frictional(G, minv, v, h, friction, adjust);
+  }
   return solve_frictional(G, minv, v, h, friction, adjust, false, &group);
 }
 
