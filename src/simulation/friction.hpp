@@ -262,10 +262,22 @@ inline HeldForceRows frictional_rows(const Eigen::MatrixXd& G_given, const Eigen
     p.kappa(m + static_cast<Eigen::Index>(j)) = c.bias;
   }
   p.W = p.J;
+  // (session 67, impact67: the exact decisions form a sliding contact's row from mu, s and T in
+  // their own arithmetic — HeldForceRows::slip — not from W's rounded doubles)
+  p.slip.assign(static_cast<std::size_t>(m), 0);
+  p.slip_mu = Eigen::VectorXd::Zero(m);
+  p.slip_s = Eigen::VectorXd::Ones(m);
+  p.tangent = Eigen::MatrixXd::Zero(m, n);
   for (Eigen::Index k = 0; k < m; ++k) {
     const Friction& c = friction[static_cast<std::size_t>(k)];
     const int st = state[static_cast<std::size_t>(k)];
-    if (c.on && (st == slip_positive || st == slip_negative)) p.W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
+    if (c.on && (st == slip_positive || st == slip_negative)) {
+      p.W.row(k) -= st * (c.mu_kinetic / c.s) * c.T.transpose();
+      p.slip[static_cast<std::size_t>(k)] = st;
+      p.slip_mu(k) = c.mu_kinetic;
+      p.slip_s(k) = c.s;
+      p.tangent.row(k) = c.T.transpose();
+    }
   }
   if (full) {
     p.M = full->M;
@@ -355,7 +367,7 @@ inline HeldVerdict held_verdict(const Eigen::MatrixXd& G_given, const Eigen::Vec
           for (std::size_t i = 0; i < n; ++i) {
             T sum = T(0);
             for (std::size_t r = 0; r < x.size(); ++r)
-              sum = sum + value(rows.W(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i))) * x[r];
+              sum = sum + held_force_detail::force_entry<T>(rows, r, i, value) * x[r];
             if (full) {   // M x = Q + W^T (lambda; f), solved below
               load[i][0] = value(full->Q(static_cast<Eigen::Index>(i))) + sum;
               for (std::size_t j = 0; j < n; ++j)
@@ -569,6 +581,40 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
   return false;
 }
 
+/// exact_feasible_point where the system's equalities are as many as its unknowns and regular
+/// (session 67, impact67): then the feasible set is at most their one solution — solved exactly
+/// (held_force_detail::solve, Gauss–Jordan in rationals) and every inequality and sign checked
+/// exactly; the same answer as the linear program's, without it (an impact's held set with its
+/// sticking rows is square: the linear program was 87 % of the escapement's impacts; no unknowns
+/// at all — an open set without sticking rows — is the rows' signs). Other systems (fewer
+/// equalities, or dependent ones): exact_feasible_point.
+inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLinearSystem& lp) {
+  const std::size_t vars = lp.variables;
+  std::size_t equalities = 0;
+  for (bool e : lp.equality) equalities += e;
+  if (equalities != vars) return exact_feasible_point(lp);
+  held_force_detail::Matrix<Rational> A, b;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i)
+    if (lp.equality[i]) {
+      A.push_back(lp.rows[i]);
+      b.push_back({lp.rhs[i]});
+    }
+  const std::optional<held_force_detail::Matrix<Rational>> solved = held_force_detail::solve(std::move(A), std::move(b));
+  if (!solved) return exact_feasible_point(lp);
+  std::vector<Rational> z(vars);
+  for (std::size_t j = 0; j < vars; ++j) z[j] = (*solved)[j][0];
+  for (std::size_t j = 0; j < vars; ++j)
+    if (lp.nonnegative[j] && sgn(z[j]) < 0) return std::nullopt;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i) {
+    if (lp.equality[i]) continue;
+    Rational sum = 0;
+    for (std::size_t j = 0; j < vars; ++j)
+      if (sgn(lp.rows[i][j]) != 0) sum += lp.rows[i][j] * z[j];
+    if (sum < lp.rhs[i]) return std::nullopt;
+  }
+  return z;
+}
+
 /// One stick/slip assignment's consistency decided exactly (session 65, stick65): whether SOME
 /// force of the contact problem at these states satisfies its conditions, on the rows as the
 /// doubles give them (every double the exact number it is). For a held set H (the others open:
@@ -723,7 +769,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       add(false, st);
     }
     if (tried) ++*tried;
-    const std::optional<std::vector<Rational>> z = exact_feasible_point(lp);
+    const std::optional<std::vector<Rational>> z = square_feasible_point(lp);
     if (!z) return std::nullopt;
     // the solution: exact multipliers and forces, accelerations and gap accelerations
     std::vector<Rational> lambda(m, Rational(0)), force(m, Rational(0));

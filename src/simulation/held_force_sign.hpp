@@ -46,6 +46,12 @@ struct HeldForceRows {
   Eigen::MatrixXd J, M;
   Eigen::VectorXd Q, kappa;
   Eigen::MatrixXd W;           ///< force rows (empty: W = J)
+  /// A sliding contact's force row formed exactly (session 67, impact67; empty: W's doubles):
+  /// per force row r < slip.size() with slip[r] != 0, W_r = J_r - slip[r] (mu[r] / s[r]) T_r in
+  /// the decision's arithmetic (rationals; intervals enclosing it), T_r the row r of `tangent`.
+  std::vector<int> slip;
+  Eigen::VectorXd slip_mu, slip_s;
+  Eigen::MatrixXd tangent;
   Eigen::VectorXd minv, a0;    ///< the diagonal form (empty: M and Q)
   std::size_t equalities = 0;  ///< the last rows: sticking tangent rows (solve_with_equalities)
 };
@@ -97,19 +103,31 @@ inline Rational exact_value(double v) {
 }
 inline kernels::Interval point_interval(double v) { return kernels::Interval::point(v); }
 
+/// The force row r's entry i in T: W's double, or a sliding contact's row formed in T from its
+/// doubles (HeldForceRows::slip): J_ri - sign (mu / s) T_ri, exact in rationals, enclosed in intervals.
+template <typename T, typename Convert>
+T force_entry(const HeldForceRows& p, std::size_t r, std::size_t i, Convert convert) {
+  const auto ri = Eigen::Index(r), ii = Eigen::Index(i);
+  if (r < p.slip.size() && p.slip[r] != 0) {
+    if (p.tangent(ri, ii) == 0) return convert(p.J(ri, ii));
+    return convert(p.J(ri, ii)) -
+           convert(static_cast<double>(p.slip[r])) * (convert(p.slip_mu(ri)) / convert(p.slip_s(ri))) * convert(p.tangent(ri, ii));
+  }
+  return convert(p.W.size() > 0 ? p.W(ri, ii) : p.J(ri, ii));
+}
+
 /// A = J M^-1 W^T and b = J M^-1 Q + kappa over the rows `set`, in T (none: M's elimination undecided).
 template <typename T, typename Convert>
 std::optional<std::pair<Matrix<T>, std::vector<T>>> delassus(const HeldForceRows& p, const std::vector<std::size_t>& set,
                                                             Convert convert) {
   const bool diagonal = p.minv.size() > 0;
-  const Eigen::MatrixXd& W = p.W.size() > 0 ? p.W : p.J;
   const auto n = static_cast<std::size_t>(p.J.cols());
   const std::size_t k = set.size();
   Matrix<T> M(n, std::vector<T>(n)), rhs(n, std::vector<T>(k + 1));
   for (std::size_t i = 0; i < n; ++i) {
     if (!diagonal)
       for (std::size_t j = 0; j < n; ++j) M[i][j] = convert(p.M(Eigen::Index(i), Eigen::Index(j)));
-    for (std::size_t r = 0; r < k; ++r) rhs[i][r] = convert(W(Eigen::Index(set[r]), Eigen::Index(i)));
+    for (std::size_t r = 0; r < k; ++r) rhs[i][r] = force_entry<T>(p, set[r], i, convert);
     rhs[i][k] = convert(diagonal ? p.a0(Eigen::Index(i)) : p.Q(Eigen::Index(i)));
   }
   std::optional<Matrix<T>> X;   // M^-1 [W^T Q]

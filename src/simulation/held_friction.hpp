@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -61,6 +62,44 @@ inline std::vector<bool> lift_offs(const FrictionalSolution& solution, const Hel
     lifts[c] = (solution.lambda(r) <= 0 && solution.w(r) > 0) || verdict.force_sign[c] < 0;
   }
   return lifts;
+}
+
+/// Whether a contact row g approaches at velocities v (g . v < 0), decided exactly on the doubles
+/// (exact_dot_sign; session 67: which rows of an impact are restituted, e g . v, was the rounded
+/// sum's sign — a row separating or at rest by less than the sum's round-off could be restituted).
+inline bool approaches(const Eigen::VectorXd& g, const Eigen::VectorXd& v) { return exact_dot_sign(g, v) < 0; }
+
+/// The impulses of a frictional impact (session 67, impact67; the fixed-axis, planar and pin-slot
+/// simulators' impacts): Newton's restitution with Coulomb-limited tangential impulses at velocity
+/// level — x = v + M^-1 (W^T Lambda + T_S^T F) the velocities after (v before, `minv` the diagonal
+/// inverse masses, 0 for a driver), w = G x + h >= 0 with h the restitution terms (e G v- for an
+/// approaching row), Lambda >= 0, Lambda w = 0; a sticking contact stops sliding (T x = 0) with
+/// |F| <= mu_s N, a sliding one takes F = -sign mu_k N and keeps its direction (sign T x >= 0).
+/// Decided exactly on these doubles (friction.hpp's solve_frictional in exact mode: the doubles'
+/// candidate is taken only where its Coulomb conditions hold exactly — a stick verified by
+/// exact_stick_holds, a slip confirmed by exact_assignment on its held set — and every assignment
+/// the doubles' filter rejects is decided by the exact LP). Until session 66 the impacts called
+/// solve_frictional without exact mode: the doubles' 1e-9 slack decided (a sticking impulse up to
+/// 1e-9 beyond mu_s N accepted, a slip whose velocity after reverses by 1e-9 of its scale
+/// accepted, and a stick their LCP missed not found). `group`: the collinear groups by contact
+/// (empty: each its own); `adjust`: as solve_frictional's (the planar simulators' friction split).
+inline FrictionalSolution frictional_impulses(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                              const Eigen::VectorXd& v, const Eigen::VectorXd& h,
+                                              const std::vector<Friction>& friction,
+                                              const std::vector<std::size_t>& group,
+                                              const std::function<void(FrictionalSolution&)>& adjust = {}) {
+  // Force rows beyond the doubles (friction 1e308: G - mu T overflows; session 64, hunt64) are
+  // refused as before: the doubles' candidates are not finite and fail, and the caller names the
+  // pair; the exact enumeration on such numbers would not end in useful time (simulate_mutations).
+  for (std::size_t k = 0; k < friction.size(); ++k) {
+    const Friction& c = friction[k];
+    if (!c.on) continue;
+    const double ratio = std::max(c.mu_static, c.mu_kinetic) / c.s;
+    if (!std::isfinite(ratio) ||
+        !(G.row(static_cast<Eigen::Index>(k)).cwiseAbs().transpose() + ratio * c.T.cwiseAbs()).allFinite())
+      return solve_frictional(G, minv, v, h, friction, adjust);
+  }
+  return solve_frictional(G, minv, v, h, friction, adjust, false, &group);
 }
 
 /// Newton's restitution with Coulomb friction can create energy where the normal and tangential

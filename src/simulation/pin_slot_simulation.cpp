@@ -1891,8 +1891,13 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
       restitution_part(ii) = hv(ii) - offsets(ii);
       driven = driven || rows[i].v_other != 0 || (friction[i].on && friction[i].bias != 0);
     }
+    // (session 67, impact67: the impulses' Coulomb conditions decided exactly on these rows,
+    // each contact its own group — held_friction.hpp's frictional_impulses; the rows are the
+    // Cholesky coordinates' doubles)
+    const std::vector<std::size_t> own_groups;
     auto solve = [&](double scale) {
-      return simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part, friction);
+      return simulation::frictional_impulses(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part,
+                                             friction, own_groups);
     };
     bool limited = false;
     simulation::FrictionalSolution sol =

@@ -431,12 +431,21 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
                                                  const std::vector<simulation::Friction>& friction,
                                                  const std::vector<std::size_t>& group, const std::string& where,
                                                  const std::string& named, bool& limited) {
+  // (session 67, impact67: the impulses' Coulomb conditions decided exactly, the collinear
+  // groups given — held_friction.hpp's frictional_impulses)
+  // A plastic impact (h = 0) is one problem at every scale of the restitution: solved once (the
+  // restitution limit's bisection asks it some 30 times where a driver adds energy).
+  std::optional<simulation::FrictionalSolution> plastic;
+  const bool no_restitution = h.isZero(0.0);
   auto solve = [&](double scale) {
-    simulation::FrictionalSolution sol = simulation::solve_frictional(
-        J, minv, v, scale * h, friction, [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
+    if (no_restitution && plastic) return *plastic;
+    simulation::FrictionalSolution sol = simulation::frictional_impulses(
+        J, minv, v, scale * h, friction, group,
+        [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
     if (!sol.solved)
       throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
                                  "inconsistency of Coulomb friction, or more than 8 contacts)" + named);
+    if (no_restitution) plastic = sol;
     return sol;
   };
   auto kinetic = [&](const Eigen::VectorXd& u) {

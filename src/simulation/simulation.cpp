@@ -28,6 +28,7 @@
 #include "simulation/frame_rate.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/friction_names.hpp"
+#include "simulation/held_friction.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/motion_datum.hpp"
@@ -1715,6 +1716,7 @@ struct Simulation::Impl {
   // e G v- it could be struck into an approaching speed -e G v- (the escapement at -1200 N.mm,
   // t = 0.3314 s: anchor/banking left at -0.83 mm/s after separating at +2.76 mm/s).
   // Approaching rows (G v- < 0, every crossing) are unchanged.
+  static bool approaching(const Eigen::VectorXd& g, const Eigen::VectorXd& v) { return simulation::approaches(g, v); }
   Vec solve_impacts(const std::vector<ContactRow>& rows, Vec* tangential = nullptr) {
     std::size_t m = rows.size(), n = dofs.size();
     if (tangential) tangential->assign(m, 0.0);
@@ -1732,9 +1734,18 @@ struct Simulation::Impl {
         for (std::size_t i = 0; i < n; ++i) G(k, i) = rows[k].g[i];
       Eigen::VectorXd vm = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
       Eigen::VectorXd gv = G * vm, h(m);
-      for (std::size_t k = 0; k < m; ++k) h(k) = rows[k].restitution * std::min(gv(k), 0.0);
-      // velocity level: v+ = v- + M^-1 (W^T Lambda + T_S^T F_S), w = G v+ + e G v- (Newton)
-      simulation::FrictionalSolution solution = simulation::solve_frictional(G, inverse_masses(), vm, h, friction);
+      // (session 67, impact67: whether a row approaches, G v- < 0, is decided exactly on the
+      // doubles G and v- (exact_dot_sign); its restitution term e G v- is the double as before)
+      for (std::size_t k = 0; k < m; ++k)
+        h(k) = approaching(G.row(static_cast<Eigen::Index>(k)).transpose(), vm)
+                   ? rows[k].restitution * std::min(gv(k), 0.0)
+                   : 0.0;
+      // velocity level: v+ = v- + M^-1 (W^T Lambda + T_S^T F_S), w = G v+ + e G v- (Newton).
+      // Session 67 (impact67): the impulses' Coulomb conditions decided exactly, as the held
+      // contacts' at a step's start (held_friction.hpp's frictional_impulses)
+      static const std::vector<std::size_t> no_groups;
+      simulation::FrictionalSolution solution =
+          simulation::frictional_impulses(G, inverse_masses(), vm, h, friction, no_groups);
       // No assignment consistent: a plastic impact into a cusp of the free space (a gear pair
       // whose channel closes, the held contact of the gear's tip on the pinion's radial flank
       // meeting the back flanks' contact, rows nearly opposite: 6 x 10 teeth without backlash at
@@ -1770,7 +1781,9 @@ struct Simulation::Impl {
     Eigen::MatrixXd A = G * MinvGt;
     Eigen::VectorXd vm = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
     Eigen::VectorXd gv = G * vm, b(m);
-    for (std::size_t k = 0; k < m; ++k) b(k) = gv(k) < 0 ? (1 + rows[k].restitution) * gv(k) : gv(k);
+    for (std::size_t k = 0; k < m; ++k)
+      b(k) = approaching(G.row(static_cast<Eigen::Index>(k)).transpose(), vm) ? (1 + rows[k].restitution) * gv(k)
+                                                                              : gv(k);
     simulation::LcpSolution solution = simulation::solve_lcp(A, b);
     if (!solution.solved) {
       std::ostringstream out;

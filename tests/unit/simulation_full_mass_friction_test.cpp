@@ -97,30 +97,7 @@ void set_mu(Tie& p, Transformed& z, double mu) {
   for (auto* f : {&p.full.friction[0], &z.friction[0]}) f->mu_static = f->mu_kinetic = mu;
 }
 
-// The exact slip oracle of one contact (rationals): whether sliding in direction sigma (f = -sigma mu_k
-// N) is consistent, held (lambda = -(J a0 + kappa) / (J M^-1 W^T) >= 0, W = J - sigma mu_k T, and
-// sigma (T x + bias) >= 0 at x = a0 + M^-1 W^T lambda) or open (J a0 + kappa >= 0, sigma (T a0 + bias)
-// >= 0). MJ, MT: M^-1 J^T and M^-1 T^T; Ja0, Ta0: J a0 + kappa and T a0 + bias.
-bool slip_consistent(int sigma, const Rational& mu_k, const std::vector<Rational>& a0, const std::vector<Rational>& J,
-                     const std::vector<Rational>& T, const std::vector<Rational>& MJ, const std::vector<Rational>& MT,
-                     const Rational& bias, const Rational& Ja0, const Rational& Ta0) {
-  const std::size_t n = a0.size();
-  auto dot = [&](const std::vector<Rational>& u, const std::vector<Rational>& v) {
-    Rational out = 0;
-    for (std::size_t i = 0; i < n; ++i) out += u[i] * v[i];
-    return out;
-  };
-  if (sgn(Ja0) >= 0 && sigma * Ta0 >= 0) return true;
-  std::vector<Rational> MW(n);   // M^-1 W^T
-  for (std::size_t i = 0; i < n; ++i) MW[i] = MJ[i] - sigma * mu_k * MT[i];
-  const Rational JMW = dot(J, MW);
-  if (sgn(JMW) == 0) return false;
-  const Rational lambda = -Ja0 / JMW;
-  if (sgn(lambda) < 0) return false;
-  std::vector<Rational> x(a0);
-  for (std::size_t i = 0; i < n; ++i) x[i] += MW[i] * lambda;
-  return sigma * (dot(T, x) + bias) >= 0;
-}
+using held_oracle::slip_consistent;
 
 TEST(FullMassFriction, StickLimitsAtPlantedTiesAreDecidedOnTheFullMassRows) {
   Rng rng{test::test_seed(6501)};

@@ -40,24 +40,33 @@ struct Problem {
 };
 
 // The oracle's augmented system: constraint rows [G; T_S], force rows [G - sign mu_k / s T (slip); T_S],
-// A = J diag(minv) W^T, b = J a0 + [h; bias], exactly on the doubles (the force rows' doubles as
-// the simulators form them).
+// A = J diag(minv) W^T, b = J a0 + [h; bias], exactly on the doubles (since session 67 a sliding
+// contact's force row formed exactly from its doubles G, mu_k, s and T, as held_verdict forms it;
+// until then the rounded double row the simulators' solve forms).
 void oracle_system(const Problem& p, const std::vector<Eigen::VectorXd>& stick_rows, const std::vector<double>& bias,
                    RMatrix& A, std::vector<Rational>& b) {
   const auto m = static_cast<std::size_t>(p.G.rows()), n = static_cast<std::size_t>(p.G.cols());
-  std::vector<Eigen::VectorXd> J, W;
+  std::vector<Eigen::VectorXd> J;
+  std::vector<std::vector<Rational>> W;
   std::vector<double> kappa;
+  auto exact_row = [&](const Eigen::VectorXd& r) {
+    std::vector<Rational> out(n);
+    for (std::size_t c = 0; c < n; ++c) out[c] = Rational(r(Eigen::Index(c)));
+    return out;
+  };
   for (std::size_t k = 0; k < m; ++k) {
     J.push_back(p.G.row(Eigen::Index(k)).transpose());
-    Eigen::VectorXd w = J.back();
+    std::vector<Rational> w = exact_row(J.back());
     const simulation::Friction& c = p.friction[k];
-    if (c.on && (p.state[k] == 1 || p.state[k] == -1)) w -= p.state[k] * (c.mu_kinetic / c.s) * c.T;
+    if (c.on && (p.state[k] == 1 || p.state[k] == -1))
+      for (std::size_t i = 0; i < n; ++i)
+        w[i] -= p.state[k] * (Rational(c.mu_kinetic) / Rational(c.s)) * Rational(c.T(Eigen::Index(i)));
     W.push_back(w);
     kappa.push_back(p.h(Eigen::Index(k)));
   }
   for (std::size_t j = 0; j < stick_rows.size(); ++j) {
     J.push_back(stick_rows[j]);
-    W.push_back(stick_rows[j]);
+    W.push_back(exact_row(stick_rows[j]));
     kappa.push_back(bias[j]);
   }
   const std::size_t r = J.size();
@@ -69,7 +78,7 @@ void oracle_system(const Problem& p, const std::vector<Eigen::VectorXd>& stick_r
       const Rational jic(J[i](Eigen::Index(c)));
       b[i] += jic * Rational(p.a0(Eigen::Index(c)));
       for (std::size_t j = 0; j < r; ++j)
-        A[i][j] += jic * Rational(p.minv(Eigen::Index(c))) * Rational(W[j](Eigen::Index(c)));
+        A[i][j] += jic * Rational(p.minv(Eigen::Index(c))) * W[j][c];
     }
   }
 }
