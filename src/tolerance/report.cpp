@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -96,6 +97,28 @@ std::string sensitivity_text(const ToleranceResult& r, double value, long k) {
 std::string file_scale_value(const Rational& value, long k) {
   if (k == 0 || sgn(value) == 0) return to_exact_string(value);
   return "(" + to_exact_string(value) + ")e" + std::to_string(k);
+}
+
+// Session 67 (scalejson67): tolerance.json and sensitivity.csv of a model whose parameters were
+// rescaled by their length dimensions (some k_i not 0) are written at the file's scale: a number
+// held in units of 10^by is written as a string, the decimal of the double (JSON: its shortest
+// round-trip digits; CSV: `digits` significant digits) with its exponent moved by `by` — the
+// decimal times 10^by, exactly ("0.5" -> "0.5e400") — and an exact value as "(p/q)e400"
+// (file_scale_value, as report.txt). by = 0: the number as before.
+bool at_files_scale(const std::vector<long>& k) {
+  return std::any_of(k.begin(), k.end(), [](long e) { return e != 0; });
+}
+std::string shortest(double value) {
+  char buffer[64];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return error == std::errc() ? std::string(buffer, end) : number(value, 17);
+}
+nlohmann::ordered_json json_at(double value, long by) {
+  if (by == 0 || !std::isfinite(value)) return value;
+  return moved(shortest(value), by);
+}
+nlohmann::ordered_json json_exact_at(const Rational& value, long by) {
+  return by == 0 ? value.get_str() : file_scale_value(value, by);
 }
 
 // A CSV column holding a translating part's coordinates: `name`, or "name_1e400mm" when they are
@@ -412,9 +435,14 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
   j["model"] = r.model_name;
   j["driver"] = r.driver;
   j["follower"] = r.follower;
-  j["follower_unit"] = r.follower_rotates ? "rad" : length_unit(r);
+  // parameters rescaled by their dimensions (session 67): every number at the file's scale, a
+  // translating follower's (driver's) lengths moved by E = ef (ed), parameter i's by k_i
+  const bool file = at_files_scale(k);
+  const long ef = file && !r.follower_rotates ? r.length_exponent : 0;
+  const long ed = file && !r.driver_rotates ? r.length_exponent : 0;
+  j["follower_unit"] = r.follower_rotates ? "rad" : file ? std::string("mm") : length_unit(r);
   // a result in units of 10^E mm: every length of the report (a translating part's coordinates)
-  if (r.length_exponent != 0) j["length_unit"] = length_unit(r);
+  if (r.length_exponent != 0 && !file) j["length_unit"] = length_unit(r);
   if (!r.chain.empty()) {
     ordered_json chain = ordered_json::array();
     for (const ChainStage& stage : r.chain)
@@ -427,15 +455,14 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
   ordered_json parameters = ordered_json::array();
   for (std::size_t i = 0; i < r.parameters.size(); ++i) {
     const Parameter& p = r.parameters[i];
+    const long e = exponent_of(k, i);
     parameters.push_back({{"name", p.name},
-                          {"nominal", p.nominal.get_d()},
-                          {"lower", p.range.lo.get_d()},
-                          {"upper", p.range.hi.get_d()},
+                          {"nominal", json_at(p.nominal.get_d(), e)},
+                          {"lower", json_at(p.range.lo.get_d(), e)},
+                          {"upper", json_at(p.range.hi.get_d(), e)},
                           {"distribution", distribution_text(r, i)},
-                          {"sigma", r.sigma[i]},
-                          {"mean_deviation", r.mean_shift[i]}});
-    // its numbers (here and in the regions, the threshold, the witnesses) in the analysis' unit
-    if (exponent_of(k, i) != 0) parameters.back()["unit"] = parameter_unit(r, k, i);
+                          {"sigma", json_at(r.sigma[i], e)},
+                          {"mean_deviation", json_at(r.mean_shift[i], e)}});
   }
   j["parameters"] = parameters;
   ordered_json regions = ordered_json::array();
@@ -443,20 +470,19 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
     ordered_json ranked = ordered_json::array();
     for (const ParameterContribution& c : region.ranked)
       if (c.contribution > 0) {
-        ranked.push_back({{"parameter", c.parameter}, {"sensitivity", c.sensitivity}, {"contribution", c.contribution}, {"share", c.share}});
-        // a rescaled parameter (session 67): its sensitivity per its unit in the analysis
-        std::size_t p = 0;
-        while (p < r.parameters.size() && r.parameters[p].name != c.parameter) ++p;
-        if (exponent_of(k, p) != 0) ranked.back()["parameter_unit"] = parameter_unit(r, k, p);
+        ranked.push_back({{"parameter", c.parameter},
+                          {"sensitivity", json_at(c.sensitivity, ef - exponent_of(r, k, c.parameter))},
+                          {"contribution", json_at(c.contribution, ef)},
+                          {"share", c.share}});
       }
     regions.push_back({{"contact", region.contact},
-                       {"driver_start", region.driver_start},
-                       {"driver_end", region.driver_end},
-                       {"linear_half_width", region.linear_half_width},
+                       {"driver_start", json_at(region.driver_start, ed)},
+                       {"driver_end", json_at(region.driver_end, ed)},
+                       {"linear_half_width", json_at(region.linear_half_width, ef)},
                        {"ranked", ranked}});
   }
   j["regions"] = regions;
-  j["certified"] = {{"boxes", r.certified_boxes}, {"largest_excess_over_linearised", r.certified_excess}};
+  j["certified"] = {{"boxes", r.certified_boxes}, {"largest_excess_over_linearised", json_at(r.certified_excess, ef)}};
   if (r.monte_carlo) {
     const MonteCarloSummary& mc = *r.monte_carlo;
     j["monte_carlo"] = {{"samples", mc.samples},
@@ -466,20 +492,20 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
                         {"not_certified", mc.not_certified},
                         {"undecided_certified", mc.undecided_certified},
                         {"outside_linear", mc.outside_linear},
-                        {"linearisation_error", mc.linearisation_error},
+                        {"linearisation_error", json_at(mc.linearisation_error, ef)},
                         {"seconds", mc.seconds},
                         {"cpu_seconds", mc.cpu_seconds}};
   }
   if (r.threshold) {
     const JammingThreshold& t = *r.threshold;
     ordered_json worst = ordered_json::object();
-    for (const auto& [name, value] : t.worst_values) worst[name] = value.get_str();
+    for (const auto& [name, value] : t.worst_values) worst[name] = json_exact_at(value, exponent_of(r, k, name));
     j["threshold"] = {{"found", t.found},
                       {"scale", t.scale},
-                      {"driver", t.driver},
+                      {"driver", json_at(t.driver, ed)},
                       {"lower_contact", t.lower_contact},
                       {"upper_contact", t.upper_contact},
-                      {"nominal_play", t.nominal_play},
+                      {"nominal_play", json_at(t.nominal_play, ef)},
                       {"certified_open_scale", t.certified_open_scale},
                       {"confirmed", t.confirmed},
                       {"confirmed_scale", t.confirmed_scale},
@@ -487,15 +513,15 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
                       {"evidence", t.evidence}};
     if (t.bracketed || !t.bracket_evidence.empty()) {
       ordered_json values = ordered_json::object();
-      for (const auto& [name, value] : t.bracket_values) values[name] = value.get_str();
-      auto interval = [](const RationalInterval& x) { return ordered_json::array({x.lo.get_str(), x.hi.get_str()}); };
+      for (const auto& [name, value] : t.bracket_values) values[name] = json_exact_at(value, exponent_of(r, k, name));
+      auto interval = [&](const RationalInterval& x) { return ordered_json::array({json_exact_at(x.lo, ef), json_exact_at(x.hi, ef)}); };
       j["threshold"]["bracket"] = {{"found", t.bracketed},
                                    {"steps", t.bracket_steps},
                                    {"below", t.bracket_below.get_str()},
                                    {"above", t.bracket_above.get_str()},
                                    {"relative_width", t.bracketed ? Rational((t.bracket_above - t.bracket_below) / t.bracket_above).get_d() : 0.0},
-                                   {"play_below", t.bracket_play_below},
-                                   {"driver", t.bracket_driver.get_str()},
+                                   {"play_below", json_at(t.bracket_play_below, ef)},
+                                   {"driver", json_exact_at(t.bracket_driver, ed)},
                                    {"witness_values", values},
                                    {"witness_lower", interval(t.bracket_lower)},
                                    {"witness_upper", interval(t.bracket_upper)},
@@ -525,16 +551,16 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
     ordered_json changes = ordered_json::array();
     for (const ContactChange& change : c.changes) {
       ordered_json witness = ordered_json::object();
-      for (const auto& [name, value] : change.witness) witness[name] = value.get_str();
+      for (const auto& [name, value] : change.witness) witness[name] = json_exact_at(value, exponent_of(r, k, name));
       changes.push_back({{"kind", change.kind == ContactChange::Kind::appears ? "appears" : "disappears"},
                          {"contact", change.contact},
                          {"other", change.other},
                          {"side", change.lower_side ? "lower" : "upper"},
-                         {"driver_first", change.driver_first},
-                         {"driver_last", change.driver_last},
+                         {"driver_first", json_at(change.driver_first, ed)},
+                         {"driver_last", json_at(change.driver_last, ed)},
                          {"positions", change.positions},
-                         {"driver", change.driver},
-                         {"overshoot", change.overshoot},
+                         {"driver", json_at(change.driver, ed)},
+                         {"overshoot", json_at(change.overshoot, ef)},
                          {"certified_at_witness", change.certified_at_witness},
                          {"witness", witness},
                          {"confirmed", change.confirmed},
@@ -583,23 +609,23 @@ std::string tolerance_csv(const ToleranceResult& r) {
 namespace {
 std::string sensitivity_csv(const ToleranceResult& r, const std::vector<long>& exponents) {
   std::ostringstream out;
-  const bool units = std::any_of(exponents.begin(), exponents.end(), [](long e) { return e != 0; });
-  out << "region,contact," << column(r, "driver_start", r.driver_rotates) << "," << column(r, "driver_end", r.driver_rotates)
-      << ",rank,parameter," << column(r, "sensitivity", r.follower_rotates) << ","
-      << column(r, "contribution", r.follower_rotates) << ",share" << (units ? ",parameter_unit" : "") << "\n";
+  // parameters rescaled by their dimensions (session 67): every number at the file's scale (see
+  // json_at), columns named as at 1 mm
+  const bool file = at_files_scale(exponents);
+  const long ef = file && !r.follower_rotates ? r.length_exponent : 0;
+  const long ed = file && !r.driver_rotates ? r.length_exponent : 0;
+  auto col = [&](const char* name, bool rotates) { return file ? std::string(name) : column(r, name, rotates); };
+  auto at = [](double value, long by) { return std::isfinite(value) ? moved(number(value, 10), by) : number(value, 10); };
+  out << "region,contact," << col("driver_start", r.driver_rotates) << "," << col("driver_end", r.driver_rotates)
+      << ",rank,parameter," << col("sensitivity", r.follower_rotates) << "," << col("contribution", r.follower_rotates)
+      << ",share\n";
   for (std::size_t k = 0; k < r.regions.size(); ++k) {
     const ContactRegion& region = r.regions[k];
     for (std::size_t i = 0; i < region.ranked.size(); ++i) {
       const ParameterContribution& c = region.ranked[i];
-      out << k << ",\"" << region.contact << "\"," << number(region.driver_start, 10) << ","
-          << number(region.driver_end, 10) << "," << i + 1 << "," << c.parameter << "," << number(c.sensitivity, 10)
-          << "," << number(c.contribution, 10) << "," << number(c.share, 6);
-      if (units) {
-        std::size_t p = 0;
-        while (p < r.parameters.size() && r.parameters[p].name != c.parameter) ++p;
-        out << "," << parameter_unit(r, exponents, p);
-      }
-      out << "\n";
+      out << k << ",\"" << region.contact << "\"," << at(region.driver_start, ed) << "," << at(region.driver_end, ed)
+          << "," << i + 1 << "," << c.parameter << "," << at(c.sensitivity, ef - exponent_of(r, exponents, c.parameter))
+          << "," << at(c.contribution, ef) << "," << number(c.share, 6) << "\n";
     }
   }
   return out.str();

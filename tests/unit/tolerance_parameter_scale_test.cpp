@@ -30,6 +30,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hipair {
@@ -238,6 +239,170 @@ TEST(ToleranceParameterScale, RawGenevaBeyondTheDoublesGivesTheUnscaledResultsAn
   for (const auto& [name, parameter] : model["parameters"].items())
     dims.push_back(std::find(lengths.begin(), lengths.end(), name) != lengths.end() ? 1 : 0);
   expect_the_unscaled_results({"geneva", [](int x) { return geneva(x); }, o, dims});
+}
+
+// Session 67 (scalejson67): tolerance.json and sensitivity.csv of a raw model are at the file's
+// scale. Oracle: the x 1 run's files, every number of a parameter of dimension d times 10^(x d)
+// exactly (sigma, mean deviation, nominal, range; worst and witness values), a sensitivity per
+// unit times 10^(xf - x d), a follower's length (band, contribution, play) times 10^xf (xf = x
+// for a translating follower, 0 for a rotating one), shares and angles unchanged; each number
+// read exactly as a rational (a JSON number by its decimal text, a string "2e400" or "(p/q)e400"
+// likewise). Until then both files held the analysis copy's numbers (nominal 2 for a module of
+// 2e400 mm, named by "unit": "1e400 mm"): the x 1 numbers, and this test failed there.
+Rational ten_to(long e) {
+  Rational ten(1);
+  for (long n = 0; n < std::labs(e); ++n) ten *= 10;
+  return e >= 0 ? ten : Rational(1 / ten);
+}
+// A number of the JSON or CSV, exactly: "0.25", "-1.5e-05", "2e400", "(1/3)e-300", "1/3".
+Rational exact(const std::string& text) {
+  if (!text.empty() && text[0] == '(') {
+    const std::size_t close = text.find(')');
+    EXPECT_NE(close, std::string::npos) << text;
+    Rational v = parse_rational(text.substr(1, close - 1));
+    if (close + 1 < text.size()) {
+      EXPECT_EQ(text[close + 1], 'e') << text;
+      v *= ten_to(std::stol(text.substr(close + 2)));
+    }
+    return v;
+  }
+  return parse_rational(text);
+}
+Rational exact(const nlohmann::ordered_json& value) {
+  return value.is_string() ? exact(value.get<std::string>()) : exact(value.dump());
+}
+// `scaled` is `one` times 10^by exactly; a JSON number unless moved (by != 0).
+void expect_times(const nlohmann::ordered_json& scaled, const nlohmann::ordered_json& one, long by, const std::string& what) {
+  SCOPED_TRACE(what + ": " + scaled.dump() + " against x 1's " + one.dump() + " x 1e" + std::to_string(by));
+  if (one.is_null()) {
+    EXPECT_TRUE(scaled.is_null());
+    return;
+  }
+  if (by == 0) EXPECT_EQ(scaled.is_string(), one.is_string());
+  EXPECT_EQ(exact(scaled), exact(one) * ten_to(by));
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      else if (c == ',' && !quoted) cells.push_back(std::exchange(cell, {}));
+      else cell += c;
+    }
+    cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+void expect_files_at_the_files_scale(const Family& family) {
+  SCOPED_TRACE(family.name);
+  const ToleranceResult one = analyze_tolerances_text(family.text(0), family.options);
+  const auto json1 = nlohmann::ordered_json::parse(tolerance_json_report(one));
+  const auto csv1 = csv_rows(tolerance_sensitivity_csv(one));
+  ASSERT_GT(csv1.size(), 1u);
+  for (int x : {400, -300}) {
+    SCOPED_TRACE("raw at 1e" + std::to_string(x) + " mm");
+    std::vector<long> k;
+    const ToleranceResult r = analyze_tolerances_text(family.text(x), family.options, k);
+    const std::string json_text = tolerance_json_report(r, k);
+    EXPECT_EQ(json_text.find("unit\": \"1e"), std::string::npos) << "a unit other than the file's named";
+    const auto json = nlohmann::ordered_json::parse(json_text);
+    const long xf = one.follower_rotates ? 0 : x, xd = one.driver_rotates ? 0 : x;
+    EXPECT_EQ(json["follower_unit"], json1["follower_unit"]);
+    EXPECT_FALSE(json.contains("length_unit"));
+    std::map<std::string, long> dim;
+    ASSERT_EQ(json["parameters"].size(), family.dimensions.size());
+    for (std::size_t i = 0; i < family.dimensions.size(); ++i) {
+      const auto &p = json["parameters"][i], &p1 = json1["parameters"][i];
+      const long e = x * family.dimensions[i];
+      dim[p1["name"].get<std::string>()] = e;
+      EXPECT_EQ(p["name"], p1["name"]);
+      EXPECT_FALSE(p.contains("unit"));
+      for (const char* field : {"nominal", "lower", "upper", "sigma", "mean_deviation"})
+        expect_times(p[field], p1[field], e, p1["name"].get<std::string>() + " " + field);
+    }
+    ASSERT_EQ(json["regions"].size(), json1["regions"].size());
+    std::size_t ranked = 0;
+    for (std::size_t g = 0; g < json1["regions"].size(); ++g) {
+      const auto &a = json["regions"][g], &a1 = json1["regions"][g];
+      expect_times(a["driver_start"], a1["driver_start"], xd, "driver_start");
+      expect_times(a["driver_end"], a1["driver_end"], xd, "driver_end");
+      expect_times(a["linear_half_width"], a1["linear_half_width"], xf, "linear_half_width");
+      ASSERT_EQ(a["ranked"].size(), a1["ranked"].size());
+      for (std::size_t c = 0; c < a1["ranked"].size(); ++c, ++ranked) {
+        const auto &b = a["ranked"][c], &b1 = a1["ranked"][c];
+        const std::string name = b1["parameter"].get<std::string>();
+        EXPECT_EQ(b["parameter"], b1["parameter"]);
+        EXPECT_FALSE(b.contains("parameter_unit"));
+        expect_times(b["sensitivity"], b1["sensitivity"], xf - dim[name], name + " sensitivity");
+        expect_times(b["contribution"], b1["contribution"], xf, name + " contribution");
+        expect_times(b["share"], b1["share"], 0, name + " share");
+      }
+    }
+    EXPECT_GT(ranked, 0u);
+    expect_times(json["certified"]["largest_excess_over_linearised"], json1["certified"]["largest_excess_over_linearised"], xf, "excess");
+    if (json1.contains("monte_carlo"))
+      expect_times(json["monte_carlo"]["linearisation_error"], json1["monte_carlo"]["linearisation_error"], xf, "linearisation error");
+    if (json1.contains("threshold")) {
+      const auto &t = json["threshold"], &t1 = json1["threshold"];
+      expect_times(t["scale"], t1["scale"], 0, "threshold scale");
+      expect_times(t["driver"], t1["driver"], xd, "threshold driver");
+      expect_times(t["nominal_play"], t1["nominal_play"], xf, "nominal play");
+      ASSERT_EQ(t["worst_values"].size(), t1["worst_values"].size());
+      EXPECT_FALSE(t1["worst_values"].empty());
+      for (const auto& [name, value] : t1["worst_values"].items())
+        expect_times(t["worst_values"][name], value, dim[name], "worst value of " + name);
+    }
+    const auto csv = csv_rows(tolerance_sensitivity_csv(r, k));
+    ASSERT_EQ(csv.size(), csv1.size());
+    EXPECT_EQ(csv[0], csv1[0]);   // the columns named as at 1 mm
+    for (std::size_t row = 1; row < csv1.size(); ++row) {
+      ASSERT_EQ(csv[row].size(), 9u);
+      ASSERT_EQ(csv1[row].size(), 9u);
+      for (std::size_t c : {0, 1, 4, 5}) EXPECT_EQ(csv[row][c], csv1[row][c]);
+      const std::string name = csv1[row][5];
+      SCOPED_TRACE("sensitivity.csv row " + std::to_string(row) + " (" + name + ")");
+      EXPECT_EQ(exact(csv[row][2]), exact(csv1[row][2]) * ten_to(xd));
+      EXPECT_EQ(exact(csv[row][3]), exact(csv1[row][3]) * ten_to(xd));
+      EXPECT_EQ(exact(csv[row][6]), exact(csv1[row][6]) * ten_to(xf - dim[name]));
+      EXPECT_EQ(exact(csv[row][7]), exact(csv1[row][7]) * ten_to(xf));
+      EXPECT_EQ(csv[row][8], csv1[row][8]);
+    }
+  }
+}
+
+TEST(ToleranceParameterScale, JsonAndSensitivityCsvOfRawModelsAreAtTheFilesScale) {
+  ToleranceOptions spur;
+  spur.range = std::make_pair(Rational(0), Rational(1, 10));
+  spur.positions = 180;
+  spur.monte_carlo = 4;
+  spur.seed = 5;
+  spur.threads = 1;
+  expect_files_at_the_files_scale({"spur gears", spur_pair, spur, {1, 0, 0, 0, 1, 1}, false});
+  ToleranceOptions cam;
+  cam.positions = 36;
+  cam.monte_carlo = 6;
+  cam.seed = 7;
+  cam.threads = 1;
+  expect_files_at_the_files_scale({"cam (translating follower)", cam_pair, cam, {1, 1, 1}});
+  ToleranceOptions o;
+  o.positions = 72;
+  o.monte_carlo = 8;
+  o.seed = 3;
+  o.threads = 1;
+  o.threshold = true;
+  std::vector<std::string> lengths;
+  const nlohmann::ordered_json model = nlohmann::ordered_json::parse(geneva(0, &lengths));
+  std::vector<long> dims;
+  for (const auto& [name, parameter] : model["parameters"].items())
+    dims.push_back(std::find(lengths.begin(), lengths.end(), name) != lengths.end() ? 1 : 0);
+  expect_files_at_the_files_scale({"geneva", [](int x) { return geneva(x); }, o, dims});
 }
 
 // The Geneva pair's no-jam certificate (tests/cli/run_cli_tests.sh's: 2.2 .. 2.3 rad, x 2) of the
