@@ -103,8 +103,9 @@ std::string file_scale_value(const Rational& value, long k) {
 // rescaled by their length dimensions (some k_i not 0) are written at the file's scale: a number
 // held in units of 10^by is written as a string, the decimal of the double (JSON: its shortest
 // round-trip digits; CSV: `digits` significant digits) with its exponent moved by `by` — the
-// decimal times 10^by, exactly ("0.5" -> "0.5e400") — and an exact value as "(p/q)e400"
-// (file_scale_value, as report.txt). by = 0: the number as before.
+// decimal times 10^by, exactly ("0.5" -> "0.5e400") — and an exact value (a parameter's nominal
+// and range ends, worst and witness values) exactly: its terminating decimal with the exponent
+// ("4.48e400"), else "(p/q)e400" (file_scale_value, as report.txt). by = 0: as before.
 bool at_files_scale(const std::vector<long>& k) {
   return std::any_of(k.begin(), k.end(), [](long e) { return e != 0; });
 }
@@ -117,8 +118,31 @@ nlohmann::ordered_json json_at(double value, long by) {
   if (by == 0 || !std::isfinite(value)) return value;
   return moved(shortest(value), by);
 }
+// An exact value times 10^by as a string: its decimal when it terminates ("4.48e400", "-2e-300"),
+// else "(p/q)e400" (report.txt's form).
+std::string exact_decimal_at(const Rational& value, long by) {
+  Rational v = value;
+  v.canonicalize();
+  mpz_class den = v.get_den();
+  const unsigned long twos = mpz_remove(den.get_mpz_t(), den.get_mpz_t(), mpz_class(2).get_mpz_t());
+  const unsigned long fives = mpz_remove(den.get_mpz_t(), den.get_mpz_t(), mpz_class(5).get_mpz_t());
+  if (den != 1) return file_scale_value(v, by);
+  if (sgn(v) == 0) return "0";
+  const unsigned long places = std::max(twos, fives);
+  mpz_class scaled;
+  mpz_ui_pow_ui(scaled.get_mpz_t(), 10, places);
+  scaled = scaled * v.get_num() / v.get_den();   // exact: the denominator divides 10^places
+  std::string digits = mpz_class(abs(scaled)).get_str();
+  if (places > 0) {
+    if (digits.size() <= places) digits.insert(0, places + 1 - digits.size(), '0');
+    digits.insert(digits.size() - places, ".");
+    while (digits.back() == '0') digits.pop_back();
+    if (digits.back() == '.') digits.pop_back();
+  }
+  return (sgn(v) < 0 ? "-" : "") + digits + (by == 0 ? std::string() : "e" + std::to_string(by));
+}
 nlohmann::ordered_json json_exact_at(const Rational& value, long by) {
-  return by == 0 ? value.get_str() : file_scale_value(value, by);
+  return by == 0 ? value.get_str() : exact_decimal_at(value, by);
 }
 
 // A CSV column holding a translating part's coordinates: `name`, or "name_1e400mm" when they are
@@ -457,9 +481,9 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
     const Parameter& p = r.parameters[i];
     const long e = exponent_of(k, i);
     parameters.push_back({{"name", p.name},
-                          {"nominal", json_at(p.nominal.get_d(), e)},
-                          {"lower", json_at(p.range.lo.get_d(), e)},
-                          {"upper", json_at(p.range.hi.get_d(), e)},
+                          {"nominal", e == 0 ? ordered_json(p.nominal.get_d()) : ordered_json(exact_decimal_at(p.nominal, e))},
+                          {"lower", e == 0 ? ordered_json(p.range.lo.get_d()) : ordered_json(exact_decimal_at(p.range.lo, e))},
+                          {"upper", e == 0 ? ordered_json(p.range.hi.get_d()) : ordered_json(exact_decimal_at(p.range.hi, e))},
                           {"distribution", distribution_text(r, i)},
                           {"sigma", json_at(r.sigma[i], e)},
                           {"mean_deviation", json_at(r.mean_shift[i], e)}});

@@ -243,7 +243,8 @@ TEST(ToleranceParameterScale, RawGenevaBeyondTheDoublesGivesTheUnscaledResultsAn
 
 // Session 67 (scalejson67): tolerance.json and sensitivity.csv of a raw model are at the file's
 // scale. Oracle: the x 1 run's files, every number of a parameter of dimension d times 10^(x d)
-// exactly (sigma, mean deviation, nominal, range; worst and witness values), a sensitivity per
+// exactly (sigma, mean deviation; worst and witness values; its nominal and range ends: the x 1
+// run's exact values, not their doubles), a sensitivity per
 // unit times 10^(xf - x d), a follower's length (band, contribution, play) times 10^xf (xf = x
 // for a translating follower, 0 for a rotating one), shares and angles unchanged; each number
 // read exactly as a rational (a JSON number by its decimal text, a string "2e400" or "(p/q)e400"
@@ -324,8 +325,15 @@ void expect_files_at_the_files_scale(const Family& family) {
       dim[p1["name"].get<std::string>()] = e;
       EXPECT_EQ(p["name"], p1["name"]);
       EXPECT_FALSE(p.contains("unit"));
-      for (const char* field : {"nominal", "lower", "upper", "sigma", "mean_deviation"})
+      for (const char* field : {"sigma", "mean_deviation"})
         expect_times(p[field], p1[field], e, p1["name"].get<std::string>() + " " + field);
+      // the nominal and range ends: the exact values at the file's scale (x 1's JSON has doubles)
+      const Parameter& q = one.parameters[i];
+      for (const auto& [field, value] : {std::pair<const char*, Rational>{"nominal", q.nominal}, {"lower", q.range.lo}, {"upper", q.range.hi}}) {
+        SCOPED_TRACE(p1["name"].get<std::string>() + " " + field + " " + p[field].dump());
+        if (e == 0) EXPECT_EQ(p[field], p1[field]);
+        else EXPECT_EQ(exact(p[field]), value * ten_to(e));
+      }
     }
     ASSERT_EQ(json["regions"].size(), json1["regions"].size());
     std::size_t ranked = 0;
