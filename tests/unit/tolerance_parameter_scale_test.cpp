@@ -207,26 +207,28 @@ void expect_the_unscaled_results(const Family& family) {
   }
 }
 
-TEST(ToleranceParameterScale, RawSpurGearsBeyondTheDoublesGiveTheUnscaledResults) {
+// The three families: the spur pair, the cam pair (a translating follower), the Geneva pair
+// with its jamming threshold.
+Family spur_family() {
   ToleranceOptions o;
   o.range = std::make_pair(Rational(0), Rational(1, 10));
   o.positions = 180;
   o.monte_carlo = 4;
   o.seed = 5;
   o.threads = 1;
-  expect_the_unscaled_results({"spur gears", spur_pair, o, {1, 0, 0, 0, 1, 1}, false});
+  return {"spur gears", spur_pair, o, {1, 0, 0, 0, 1, 1}, false};
 }
 
-TEST(ToleranceParameterScale, RawCamPairBeyondTheDoublesGivesTheUnscaledResults) {
+Family cam_family() {
   ToleranceOptions o;
   o.positions = 36;
   o.monte_carlo = 6;
   o.seed = 7;
   o.threads = 1;
-  expect_the_unscaled_results({"cam", cam_pair, o, {1, 1, 1}});
+  return {"cam", cam_pair, o, {1, 1, 1}};
 }
 
-TEST(ToleranceParameterScale, RawGenevaBeyondTheDoublesGivesTheUnscaledResultsAndThreshold) {
+Family geneva_family() {
   ToleranceOptions o;
   o.positions = 72;
   o.monte_carlo = 8;
@@ -238,7 +240,19 @@ TEST(ToleranceParameterScale, RawGenevaBeyondTheDoublesGivesTheUnscaledResultsAn
   std::vector<long> dims;
   for (const auto& [name, parameter] : model["parameters"].items())
     dims.push_back(std::find(lengths.begin(), lengths.end(), name) != lengths.end() ? 1 : 0);
-  expect_the_unscaled_results({"geneva", [](int x) { return geneva(x); }, o, dims});
+  return {"geneva", [](int x) { return geneva(x); }, o, dims};
+}
+
+TEST(ToleranceParameterScale, RawSpurGearsBeyondTheDoublesGiveTheUnscaledResults) {
+  expect_the_unscaled_results(spur_family());
+}
+
+TEST(ToleranceParameterScale, RawCamPairBeyondTheDoublesGivesTheUnscaledResults) {
+  expect_the_unscaled_results(cam_family());
+}
+
+TEST(ToleranceParameterScale, RawGenevaBeyondTheDoublesGivesTheUnscaledResultsAndThreshold) {
+  expect_the_unscaled_results(geneva_family());
 }
 
 // Session 67 (scalejson67): tolerance.json and sensitivity.csv of a raw model are at the file's
@@ -386,31 +400,9 @@ void expect_files_at_the_files_scale(const Family& family) {
 }
 
 TEST(ToleranceParameterScale, JsonAndSensitivityCsvOfRawModelsAreAtTheFilesScale) {
-  ToleranceOptions spur;
-  spur.range = std::make_pair(Rational(0), Rational(1, 10));
-  spur.positions = 180;
-  spur.monte_carlo = 4;
-  spur.seed = 5;
-  spur.threads = 1;
-  expect_files_at_the_files_scale({"spur gears", spur_pair, spur, {1, 0, 0, 0, 1, 1}, false});
-  ToleranceOptions cam;
-  cam.positions = 36;
-  cam.monte_carlo = 6;
-  cam.seed = 7;
-  cam.threads = 1;
-  expect_files_at_the_files_scale({"cam (translating follower)", cam_pair, cam, {1, 1, 1}});
-  ToleranceOptions o;
-  o.positions = 72;
-  o.monte_carlo = 8;
-  o.seed = 3;
-  o.threads = 1;
-  o.threshold = true;
-  std::vector<std::string> lengths;
-  const nlohmann::ordered_json model = nlohmann::ordered_json::parse(geneva(0, &lengths));
-  std::vector<long> dims;
-  for (const auto& [name, parameter] : model["parameters"].items())
-    dims.push_back(std::find(lengths.begin(), lengths.end(), name) != lengths.end() ? 1 : 0);
-  expect_files_at_the_files_scale({"geneva", [](int x) { return geneva(x); }, o, dims});
+  expect_files_at_the_files_scale(spur_family());
+  expect_files_at_the_files_scale(cam_family());   // a translating follower
+  expect_files_at_the_files_scale(geneva_family());
 }
 
 // The Geneva pair's no-jam certificate (tests/cli/run_cli_tests.sh's: 2.2 .. 2.3 rad, x 2) of the
