@@ -6,7 +6,7 @@
 // factors'; a parameter used both as a length and as an angle is refused, naming it). The
 // result's per-parameter numbers (Parameter values, sigma, mean deviation, sensitivities per
 // unit, witnesses' values) are then in those units; the reports below show them at the file's
-// scale (text) or name the unit (JSON, CSV). Tolerance certificates are written at the file's
+// scale (text; JSON and CSV since scalejson67, as strings). Tolerance certificates are written at the file's
 // scale (hipair-verify checks them against the file). For every other model k_i = 0.
 #pragma once
 
@@ -28,10 +28,10 @@ ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, cons
                                    std::vector<long>& parameter_exponents);
 
 /// The reports of tolerance.hpp with the parameters' units `parameter_exponents` (from the
-/// analysis above; empty: all 0, the same reports): the text report's
-/// sensitivities and witness values at the file's scale (decimal exponents moved by -k_i and k_i,
-/// exactly), tolerance.json's parameters with their "unit", sensitivity.csv with a
-/// parameter_unit column (when some k_i is not 0).
+/// analysis above; empty or all 0: the same reports): when some k_i is not 0, every number at the
+/// file's scale — the text report's sensitivities and witness values (decimal exponents moved by
+/// -k_i and k_i, exactly); tolerance.json's and sensitivity.csv's numbers that the scaling moves
+/// as strings, exact decimals with the exponent (docs/cli.md "Session 67 (scalejson67)").
 std::string tolerance_text_report(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
 std::string tolerance_json_report(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
 std::string tolerance_sensitivity_csv(const ToleranceResult& result, const std::vector<long>& parameter_exponents);

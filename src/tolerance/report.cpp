@@ -68,8 +68,8 @@ std::string shown(const ToleranceResult& r, double value, bool rotates, int digi
 // Session 67 (scale67): a model whose parameters lie beyond the doubles is analysed with each
 // parameter in units of 10^k_i its file's (k_i = E times its length dimension;
 // analyze_tolerances(..., parameter_exponents)): `k` those exponents (empty: all 0). The text report shows the
-// parameters' numbers at the file's scale; tolerance.json and sensitivity.csv hold the analysis'
-// numbers and name each parameter's unit.
+// parameters' numbers at the file's scale; so do tolerance.json and sensitivity.csv (scalejson67:
+// json_at, json_exact_at below).
 long exponent_of(const std::vector<long>& k, std::size_t i) { return i < k.size() ? k[i] : 0; }
 long exponent_of(const ToleranceResult& r, const std::vector<long>& k, const std::string& name) {
   for (std::size_t i = 0; i < r.parameters.size(); ++i)
