@@ -315,16 +315,18 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
   return rows;
 }
 
-void expect_files_at_the_files_scale(const Family& family) {
+// `options_at(x)`: the options at 10^x mm (a translating driver's range is in the file's mm).
+void expect_files_at_the_files_scale(const Family& family, ToleranceOptions (*options_at)(int) = nullptr) {
+  auto options = [&](int x) { return options_at ? options_at(x) : family.options; };
   SCOPED_TRACE(family.name);
-  const ToleranceResult one = analyze_tolerances_text(family.text(0), family.options);
+  const ToleranceResult one = analyze_tolerances_text(family.text(0), options(0));
   const auto json1 = nlohmann::ordered_json::parse(tolerance_json_report(one));
   const auto csv1 = csv_rows(tolerance_sensitivity_csv(one));
   ASSERT_GT(csv1.size(), 1u);
   for (int x : {400, -300}) {
     SCOPED_TRACE("raw at 1e" + std::to_string(x) + " mm");
     std::vector<long> k;
-    const ToleranceResult r = analyze_tolerances_text(family.text(x), family.options, k);
+    const ToleranceResult r = analyze_tolerances_text(family.text(x), options(x), k);
     const std::string json_text = tolerance_json_report(r, k);
     EXPECT_EQ(json_text.find("unit\": \"1e"), std::string::npos) << "a unit other than the file's named";
     const auto json = nlohmann::ordered_json::parse(json_text);
@@ -381,6 +383,17 @@ void expect_files_at_the_files_scale(const Family& family) {
       for (const auto& [name, value] : t1["worst_values"].items())
         expect_times(t["worst_values"][name], value, dim[name], "worst value of " + name);
     }
+    if (json1.contains("contact_changes")) {
+      const auto &c = json["contact_changes"]["changes"], &c1 = json1["contact_changes"]["changes"];
+      ASSERT_EQ(c.size(), c1.size());
+      EXPECT_FALSE(c1.empty());
+      for (std::size_t n = 0; n < c1.size(); ++n) {
+        for (const char* field : {"driver_first", "driver_last", "driver"}) expect_times(c[n][field], c1[n][field], xd, field);
+        expect_times(c[n]["overshoot"], c1[n]["overshoot"], xf, "overshoot");
+        for (const auto& [name, value] : c1[n]["witness"].items())
+          expect_times(c[n]["witness"][name], value, dim[name], "witness value of " + name);
+      }
+    }
     const auto csv = csv_rows(tolerance_sensitivity_csv(r, k));
     ASSERT_EQ(csv.size(), csv1.size());
     EXPECT_EQ(csv[0], csv1[0]);   // the columns named as at 1 mm
@@ -399,10 +412,37 @@ void expect_files_at_the_files_scale(const Family& family) {
   }
 }
 
+// tests/unit/tolerance_contact_change_test.cpp's two-pin wedge (pin B appears within rB's
+// tolerance) with its lengths raw at 10^x mm, its literal lengths parameters: a translating
+// driver and follower, and a contact change with its witness.
+std::string wedge_pair(int x) {
+  auto q = [&](const char* v) { return quoted(v, x); };
+  return std::string(R"({ "hipair": 1, "name": "two-pin-wedge", "units": {"length": "mm", "angle": "rad"}, "parameters": {)") +
+         R"("rA": {"nominal": )" + q("2") + R"(, "tolerance": )" + q("0.004") + R"(}, "rB": {"nominal": )" + q("2") +
+         R"(, "tolerance": )" + q("0.02") + R"(}, "gap": {"nominal": )" + q("1/100") + R"(}, "w": {"nominal": )" + q("80") +
+         R"(}, "h": {"nominal": )" + q("60") + R"(}, "bx": {"nominal": )" + q("20") + R"(}, "by": {"nominal": )" + q("15") +
+         R"(} }, "parts": [ {"name": "wedge", "motion": {"translation": {"direction": [1, 0], "limits": [)" + q("-40") + ", " +
+         q("10") + R"(]}}, "initial": {"offset": )" + q("-20") + R"(}, "loops": [{"start": [0, 0], "edges": [)" +
+         R"({"line_to": ["w", "h"], "label": "ramp"}, {"line_to": ["w", 0]}, {"line_to": [0, 0]}]}]},)" +
+         R"({"name": "plunger", "motion": {"translation": {"direction": [0, 1], "limits": [)" + q("-40") + ", " + q("60") +
+         R"(]}}, "initial": {"offset": )" + q("17.5") + R"(}, "loops": [{"circle": {"center": [0, 0], "radius": "rA"}},)" +
+         R"( {"circle": {"center": ["bx", "by + gap"], "radius": "rB"}}]}], "pairs": [{"parts": ["wedge", "plunger"]}] })";
+}
+ToleranceOptions wedge_options(int x) {
+  ToleranceOptions o;
+  o.driver = "wedge";
+  o.range = std::make_pair(Rational(-20) * ten_to(x), Rational(-5) * ten_to(x));
+  o.positions = 24;
+  o.contact_changes = true;
+  o.threads = 1;
+  return o;
+}
+
 TEST(ToleranceParameterScale, JsonAndSensitivityCsvOfRawModelsAreAtTheFilesScale) {
   expect_files_at_the_files_scale(spur_family());
   expect_files_at_the_files_scale(cam_family());   // a translating follower
   expect_files_at_the_files_scale(geneva_family());
+  expect_files_at_the_files_scale({"two-pin wedge", wedge_pair, {}, {1, 1, 1, 1, 1, 1, 1}}, wedge_options);
 }
 
 // The Geneva pair's no-jam certificate (tests/cli/run_cli_tests.sh's: 2.2 .. 2.3 rad, x 2) of the
