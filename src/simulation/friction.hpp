@@ -19,6 +19,7 @@
 // active-set search on stick/slip states; no iteration with a stopping rule).
 #pragma once
 
+#include "kernels/interval.hpp"
 #include "simulation/exact_elimination.hpp"
 #include "simulation/exact_lp.hpp"
 #include "simulation/held_force_sign.hpp"
@@ -581,18 +582,123 @@ inline bool exact_stick_holds(const Eigen::MatrixXd& G_given, const Eigen::Vecto
   return false;
 }
 
+/// The feasibility of an exact linear system decided by exact elimination where its equalities
+/// leave at most one unknown free (session 67, impactfast67): the equalities reduced to row
+/// echelon form (row_echelon, rationals) — inconsistent: no solution; their solution set
+/// z = z_p + t d (d = 0 when none is free) — and every inequality and sign c0 + t c1 >= 0 bounds
+/// t exactly; the bounds crossing: no solution, the same answer as the linear program's. Where
+/// the set is one point that point is the answer (the linear program's only feasible point);
+/// where it is a segment or more, or two or more unknowns are free, the linear program decides
+/// (exact_feasible_point: its point, as before). An impact's singular held sets (two contacts of
+/// one pair with their tangent rows over two coordinates) are square with dependent equalities:
+/// the linear program was asked for every one of them, most without a solution.
+inline std::optional<std::vector<Rational>> reduced_feasible_point(const ExactLinearSystem& lp) {
+  const std::size_t vars = lp.variables;
+  std::vector<std::vector<Rational>> E;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i)
+    if (lp.equality[i]) {
+      E.push_back(lp.rows[i]);
+      E.back().push_back(lp.rhs[i]);
+    }
+  const std::vector<std::size_t> pivots = row_echelon(E, vars);
+  const std::size_t rank = pivots.size();
+  for (std::size_t r = rank; r < E.size(); ++r)
+    if (sgn(E[r][vars]) != 0) return std::nullopt;   // 0 = nonzero: the equalities are inconsistent
+  if (vars - rank > 1) return exact_feasible_point(lp);
+  std::size_t free_var = vars;   // the free unknown, if any
+  for (std::size_t j = 0, r = 0; j < vars && free_var == vars; ++j) {
+    if (r < rank && pivots[r] == j) ++r;
+    else free_var = j;
+  }
+  std::vector<Rational> zp(vars, Rational(0)), d(vars, Rational(0));
+  if (free_var < vars) d[free_var] = 1;
+  for (std::size_t r = rank; r-- > 0;) {
+    const std::size_t c = pivots[r];
+    Rational sp = E[r][vars], sd = 0;
+    for (std::size_t j = c + 1; j < vars; ++j)
+      if (sgn(E[r][j]) != 0) {
+        sp -= E[r][j] * zp[j];
+        sd -= E[r][j] * d[j];
+      }
+    zp[c] = sp / E[r][c];
+    d[c] = sd / E[r][c];
+  }
+  std::optional<Rational> lo, hi;   // the bounds on t
+  auto bound = [&](const Rational& c0, const Rational& c1) {   // c0 + t c1 >= 0; false: never
+    if (sgn(c1) == 0) return sgn(c0) >= 0;
+    const Rational t = -c0 / c1;
+    if (sgn(c1) > 0) {
+      if (!lo || t > *lo) lo = t;
+    } else if (!hi || t < *hi) {
+      hi = t;
+    }
+    return true;
+  };
+  for (std::size_t j = 0; j < vars; ++j)
+    if (lp.nonnegative[j] && !bound(zp[j], d[j])) return std::nullopt;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i) {
+    if (lp.equality[i]) continue;
+    Rational c0 = -lp.rhs[i], c1 = 0;
+    for (std::size_t j = 0; j < vars; ++j)
+      if (sgn(lp.rows[i][j]) != 0) {
+        c0 += lp.rows[i][j] * zp[j];
+        if (sgn(d[j]) != 0) c1 += lp.rows[i][j] * d[j];
+      }
+    if (!bound(c0, c1)) return std::nullopt;
+  }
+  if (lo && hi && *lo > *hi) return std::nullopt;
+  if (free_var == vars) return zp;
+  return exact_feasible_point(lp);
+}
+
 /// exact_feasible_point where the system's equalities are as many as its unknowns and regular
 /// (session 67, impact67): then the feasible set is at most their one solution — solved exactly
 /// (held_force_detail::solve, Gauss–Jordan in rationals) and every inequality and sign checked
 /// exactly; the same answer as the linear program's, without it (an impact's held set with its
 /// sticking rows is square: the linear program was 87 % of the escapement's impacts; no unknowns
 /// at all — an open set without sticking rows — is the rows' signs). Other systems (fewer
-/// equalities, or dependent ones): exact_feasible_point.
+/// equalities, or dependent ones): reduced_feasible_point (session 67, impactfast67; until then
+/// the linear program for every one). Since session 67 (impactfast67) a square system the interval
+/// filter (square_certainly_infeasible) finds certainly without a solution is answered there.
+/// A certified filter in front of the exact solve of a square system (session 67, impactfast67):
+/// the equalities solved in intervals (every entry kernels::Interval::enclose of the exact one,
+/// held_force_detail::solve: each pivot certainly nonzero, so the system is regular and its one
+/// solution lies in the enclosure); true when that solution certainly breaks a sign (an unknown
+/// required >= 0 whose enclosure is below 0) or an inequality (its row's enclosure at the
+/// solution's below the right-hand side's) — no solution, exactly. False: undecided (a pivot's
+/// enclosure holding 0, or every condition's enclosure reaching it): the exact solve decides.
+inline bool square_certainly_infeasible(const ExactLinearSystem& lp) {
+  using kernels::Interval;
+  const std::size_t vars = lp.variables;
+  held_force_detail::Matrix<Interval> A, b;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i)
+    if (lp.equality[i]) {
+      std::vector<Interval> row(vars);
+      for (std::size_t j = 0; j < vars; ++j) row[j] = Interval::enclose(lp.rows[i][j]);
+      A.push_back(std::move(row));
+      b.push_back({Interval::enclose(lp.rhs[i])});
+    }
+  if (A.size() != vars) return false;
+  const std::optional<held_force_detail::Matrix<Interval>> z = held_force_detail::solve(std::move(A), std::move(b));
+  if (!z) return false;
+  for (std::size_t j = 0; j < vars; ++j)
+    if (lp.nonnegative[j] && (*z)[j][0].hi < 0) return true;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i) {
+    if (lp.equality[i]) continue;
+    Interval sum(0);
+    for (std::size_t j = 0; j < vars; ++j)
+      if (sgn(lp.rows[i][j]) != 0) sum = sum + Interval::enclose(lp.rows[i][j]) * (*z)[j][0];
+    if (sum.hi < Interval::enclose(lp.rhs[i]).lo) return true;
+  }
+  return false;
+}
+
 inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLinearSystem& lp) {
   const std::size_t vars = lp.variables;
   std::size_t equalities = 0;
   for (bool e : lp.equality) equalities += e;
-  if (equalities != vars) return exact_feasible_point(lp);
+  if (equalities != vars) return reduced_feasible_point(lp);
+  if (square_certainly_infeasible(lp)) return std::nullopt;
   held_force_detail::Matrix<Rational> A, b;
   for (std::size_t i = 0; i < lp.rows.size(); ++i)
     if (lp.equality[i]) {
@@ -600,7 +706,7 @@ inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLin
       b.push_back({lp.rhs[i]});
     }
   const std::optional<held_force_detail::Matrix<Rational>> solved = held_force_detail::solve(std::move(A), std::move(b));
-  if (!solved) return exact_feasible_point(lp);
+  if (!solved) return reduced_feasible_point(lp);
   std::vector<Rational> z(vars);
   for (std::size_t j = 0; j < vars; ++j) z[j] = (*solved)[j][0];
   for (std::size_t j = 0; j < vars; ++j)
@@ -703,23 +809,41 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     }
   }
   // a row r over the coordinates as an affine function of the unknowns z = [lambda_H, f]:
-  // r . x + c = (r . x0 + c) + sum_v (r . D_v) z_v
-  auto affine = [&](const Eigen::VectorXd& r, double c, const std::vector<std::size_t>& held,
+  // r . x + c = (r . x0 + c) + sum_v (r . D_v) z_v. Its constant and its coefficient on every
+  // force row (r . D_row) do not depend on the held set: formed once per row (contact k's gap
+  // row, `tangent` false, or its tangent row) and selected per held set (session 67,
+  // impactfast67: until then formed again for each of the up to 2^m held sets; the same rationals)
+  struct AffineRow {
+    bool formed = false;
+    Rational constant;
+    std::vector<Rational> on;   // by force row (m + p)
+  };
+  std::vector<AffineRow> affine_rows(2 * m);
+  auto affine = [&](std::size_t k, bool tangent, const std::vector<std::size_t>& held,
                     std::vector<Rational>& coefficients, Rational& constant) {
-    std::vector<Rational> rq(n);
-    constant = exact(c);
-    for (std::size_t i = 0; i < n; ++i) {
-      rq[i] = exact(r(static_cast<Eigen::Index>(i)));
-      if (sgn(rq[i]) != 0) constant += rq[i] * x0[i];
+    AffineRow& a = affine_rows[2 * k + (tangent ? 1 : 0)];
+    if (!a.formed) {
+      const Eigen::VectorXd r = tangent ? friction[k].T : Eigen::VectorXd(G.row(static_cast<Eigen::Index>(k)).transpose());
+      const double c = tangent ? friction[k].bias : h(static_cast<Eigen::Index>(k));
+      std::vector<Rational> rq(n);
+      a.constant = exact(c);
+      for (std::size_t i = 0; i < n; ++i) {
+        rq[i] = exact(r(static_cast<Eigen::Index>(i)));
+        if (sgn(rq[i]) != 0) a.constant += rq[i] * x0[i];
+      }
+      a.on.assign(force_rows, Rational(0));
+      for (std::size_t row = 0; row < force_rows; ++row) {
+        Rational sum = 0;
+        for (std::size_t i = 0; i < n; ++i)
+          if (sgn(rq[i]) != 0 && sgn(D[row][i]) != 0) sum += rq[i] * D[row][i];
+        a.on[row] = sum;
+      }
+      a.formed = true;
     }
-    coefficients.assign(held.size() + p, Rational(0));
-    for (std::size_t v = 0; v < held.size() + p; ++v) {
-      const std::size_t row = v < held.size() ? held[v] : m + (v - held.size());
-      Rational sum = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        if (sgn(rq[i]) != 0 && sgn(D[row][i]) != 0) sum += rq[i] * D[row][i];
-      coefficients[v] = sum;
-    }
+    constant = a.constant;
+    coefficients.resize(held.size() + p);
+    for (std::size_t v = 0; v < held.size() + p; ++v)
+      coefficients[v] = a.on[v < held.size() ? held[v] : m + (v - held.size())];
   };
   auto try_set = [&](const std::vector<bool>& is_held) -> std::optional<FrictionalSolution> {
     std::vector<std::size_t> held;
@@ -739,13 +863,12 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       lp.equality.push_back(equality);
     };
     for (std::size_t k = 0; k < m; ++k) {
-      affine(G.row(static_cast<Eigen::Index>(k)).transpose(), h(static_cast<Eigen::Index>(k)), held, coefficients,
-             constant);
+      affine(k, false, held, coefficients, constant);
       add(is_held[k], 1);
     }
     for (std::size_t j = 0; j < p; ++j) {
       const Friction& c = friction[reps[j]];
-      affine(c.T, c.bias, held, coefficients, constant);
+      affine(reps[j], true, held, coefficients, constant);
       add(true, 1);
       // mu_s sum lambda_k / s_k -+ f_j >= 0 over the group's held sticking members
       for (int side : {1, -1}) {
@@ -765,7 +888,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       const Friction& c = friction[k];
       const int st = state[k];
       if (!c.on || c.decided || (st != slip_positive && st != slip_negative)) continue;
-      affine(c.T, c.bias, held, coefficients, constant);
+      affine(k, true, held, coefficients, constant);
       add(false, st);
     }
     if (tried) ++*tried;

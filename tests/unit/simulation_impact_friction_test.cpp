@@ -26,8 +26,11 @@
 #include "held_oracle_support.hpp"
 #include "test_seed.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -39,6 +42,12 @@ using held_oracle::RMatrix;
 using held_oracle::slip_consistent;
 
 double rounded(const Rational& r) { return to_double(r); }   // (nearest)
+
+Rational frac(int p, int q) {   // p / q in canonical form (GMP's arithmetic requires it)
+  Rational r(p, q);
+  r.canonicalize();
+  return r;
+}
 
 TEST(ImpactFriction, CoulombImpulsesAtPlantedTiesAreTheExactLawsOnTheDoubles) {
   Rng rng{test::test_seed(6701)};
@@ -222,6 +231,210 @@ TEST(HeldSlipRow, ASlidingContactsForceRowIsFormedExactlyInTheHeldVerdict) {
   std::cout << "sliding rows at the rounding's tie: " << cases << " cases; the rounded rows' force sign wrong in "
             << rounded_wrong << "\n";
   EXPECT_GE(cases, 50);
+}
+
+// reduced_feasible_point (session 67, impactfast67): the feasibility of an exact linear system
+// whose equalities are dependent — decided by exact elimination where they leave at most one
+// unknown free — against CGAL's exact linear program (exact_feasible_point) on the same system.
+// Generated: n = 2..5 unknowns, equalities of rank n - 2 .. n built as integer combinations of
+// independent integer rows through a rational point z0 (consistent), a dependent row's right-hand
+// side moved by +-2^-k (k = 1..60: inconsistent by 2^-k); inequalities through z0 (ties), moved by
+// +-2^-k or by integers, and pairs a z >= a z0, a z <= a z0 + delta with delta in {0, +-2^-k} (the
+// segment's bounds meeting at one point, crossing by 2^-k, or leaving 2^-k); signs required on
+// random unknowns. Asserted: a point iff the linear program has one, every point returned
+// satisfying the system exactly and the linear program's own (where the equalities fix it, its only one).
+TEST(ExactFeasibility, DependentEqualitiesReducedExactlyAgreeWithTheLinearProgram) {
+  std::mt19937_64 rng(test::test_seed(6767));
+  auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  auto tiny = [&] { return Rational(std::ldexp(1.0, -uniform(1, 60))); };
+  auto satisfies = [](const simulation::ExactLinearSystem& lp, const std::vector<Rational>& z) {
+    for (std::size_t j = 0; j < lp.variables; ++j)
+      if (lp.nonnegative[j] && sgn(z[j]) < 0) return false;
+    for (std::size_t i = 0; i < lp.rows.size(); ++i) {
+      Rational sum = 0;
+      for (std::size_t j = 0; j < lp.variables; ++j) sum += lp.rows[i][j] * z[j];
+      if (lp.equality[i] ? sum != lp.rhs[i] : sum < lp.rhs[i]) return false;
+    }
+    return true;
+  };
+  int feasible = 0, infeasible = 0, inconsistent = 0, pinned = 0, crossing = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const std::size_t n = static_cast<std::size_t>(uniform(2, 5));
+    const std::size_t rank = n - static_cast<std::size_t>(uniform(0, n > 2 ? 2 : 1));
+    std::vector<Rational> z0(n);
+    for (auto& v : z0) v = frac(uniform(-8, 8), 4);
+    std::vector<std::vector<Rational>> basis(rank, std::vector<Rational>(n));
+    for (auto& row : basis)
+      for (auto& v : row) v = uniform(-3, 3);
+    simulation::ExactLinearSystem lp;
+    lp.variables = n;
+    lp.nonnegative.resize(n);
+    for (std::size_t j = 0; j < n; ++j) lp.nonnegative[j] = uniform(0, 2) == 0;
+    auto dot = [&](const std::vector<Rational>& a) {
+      Rational s = 0;
+      for (std::size_t j = 0; j < n; ++j) s += a[j] * z0[j];
+      return s;
+    };
+    auto add = [&](std::vector<Rational> row, Rational rhs, bool equality) {
+      lp.rows.push_back(std::move(row));
+      lp.rhs.push_back(std::move(rhs));
+      lp.equality.push_back(equality);
+    };
+    const std::size_t equalities = rank + static_cast<std::size_t>(uniform(0, 2));
+    const bool move = uniform(0, 3) == 0;
+    for (std::size_t e = 0; e < equalities; ++e) {
+      std::vector<Rational> row(n, Rational(0));
+      if (e < rank) {
+        row = basis[e];
+      } else {
+        for (const auto& b : basis) {
+          const int c = uniform(-2, 2);
+          for (std::size_t j = 0; j < n; ++j) row[j] += c * b[j];
+        }
+      }
+      Rational rhs = dot(row);
+      if (move && e == equalities - 1 && e >= rank) {
+        rhs += uniform(0, 1) ? tiny() : Rational(-tiny());
+        inconsistent += std::any_of(row.begin(), row.end(), [](const Rational& v) { return sgn(v) != 0; });
+      }
+      add(std::move(row), std::move(rhs), true);
+    }
+    for (int q = uniform(0, 4); q > 0; --q) {
+      std::vector<Rational> row(n);
+      for (auto& v : row) v = uniform(-3, 3);
+      Rational rhs = dot(row);
+      switch (uniform(0, 3)) {
+        case 0: break;   // tight at z0
+        case 1: rhs += tiny(); break;
+        case 2: rhs -= tiny(); break;
+        default: rhs += uniform(-4, 4);
+      }
+      add(std::move(row), std::move(rhs), false);
+    }
+    if (uniform(0, 2) == 0) {   // a z >= a z0 and a z <= a z0 + delta
+      std::vector<Rational> row(n), minus(n);
+      for (auto& v : row) v = uniform(-3, 3);
+      for (std::size_t j = 0; j < n; ++j) minus[j] = -row[j];
+      const int kind = uniform(0, 2);
+      const Rational delta = kind == 0 ? Rational(0) : kind == 1 ? tiny() : Rational(-tiny());
+      pinned += kind == 0;
+      crossing += kind == 2;
+      const Rational at = dot(row);
+      add(std::move(row), at, false);
+      add(std::move(minus), -(at + delta), false);
+    }
+    const std::optional<std::vector<Rational>> lp_point = simulation::exact_feasible_point(lp);
+    const std::optional<std::vector<Rational>> reduced = simulation::reduced_feasible_point(lp);
+    ASSERT_EQ(reduced.has_value(), lp_point.has_value()) << "trial " << trial << " n " << n << " rank " << rank;
+    if (!reduced) {
+      ++infeasible;
+      continue;
+    }
+    ++feasible;
+    EXPECT_TRUE(satisfies(lp, *reduced)) << "trial " << trial;
+    // the point: where the equalities fix it the linear program's only one, else the linear program's
+    EXPECT_EQ(*reduced, *lp_point) << "trial " << trial;
+    // square_feasible_point (the held sets' entry) answers the same
+    const std::optional<std::vector<Rational>> square = simulation::square_feasible_point(lp);
+    ASSERT_TRUE(square.has_value()) << "trial " << trial;
+    EXPECT_TRUE(satisfies(lp, *square)) << "trial " << trial;
+  }
+  std::cout << "dependent systems: " << feasible << " feasible, " << infeasible << " not (" << inconsistent
+            << " with moved equalities, " << crossing << " with crossing bounds; " << pinned
+            << " bounds meeting at a point)\n";
+  EXPECT_GE(feasible, 200);
+  EXPECT_GE(infeasible, 200);
+  EXPECT_GE(inconsistent, 100);
+  EXPECT_GE(pinned, 100);
+}
+
+// square_certainly_infeasible (session 67, impactfast67), the interval filter in front of the
+// exact solve of a square held set's system: sound (it never calls a system with a solution
+// infeasible) and deferring at ties. Generated: n = 2..5 unknowns, regular equalities with
+// entries p/q (q in 1..7: most not doubles, their enclosures of positive width) through a rational
+// point z0 (q in {1, 3, 7}; some entries exactly 0 against a required sign: a tie at the sign);
+// inequalities through z0 moved by 0 (a tie), +-2^-k (k = 20..60) or +-1. The oracle: CGAL's
+// exact linear program on the same system. Asserted: the filter's "no solution" only where the
+// linear program has none; every tie with a solution deferred; square_feasible_point's answer the
+// linear program's (the one solution); the filter deciding most cases moved by -1. A filter with
+// its bounds shrunk (the enclosures' midpoints) calls ties at 2^-k infeasible: caught.
+TEST(ExactFeasibility, SquareIntervalFilterIsSoundAndDefersAtTies) {
+  std::mt19937_64 rng(test::test_seed(6768));
+  auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  int decided = 0, deferred_ties = 0, clear = 0, clear_decided = 0, feasible = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const std::size_t n = static_cast<std::size_t>(uniform(2, 5));
+    simulation::ExactLinearSystem lp;
+    lp.variables = n;
+    lp.nonnegative.resize(n);
+    std::vector<Rational> z0(n);
+    bool sign_tie = false;
+    for (std::size_t j = 0; j < n; ++j) {
+      static constexpr int denominators[3] = {1, 3, 7};
+      z0[j] = uniform(0, 4) == 0 ? Rational(0) : frac(uniform(-9, 9), denominators[uniform(0, 2)]);
+      lp.nonnegative[j] = uniform(0, 1) == 0;
+      sign_tie = sign_tie || (lp.nonnegative[j] && sgn(z0[j]) == 0);
+    }
+    std::vector<std::vector<Rational>> A(n, std::vector<Rational>(n));
+    for (auto& row : A)
+      for (auto& v : row) v = frac(uniform(-6, 6), uniform(1, 7));
+    {
+      std::vector<std::vector<Rational>> E = A;
+      if (simulation::row_echelon(E, n).size() != n) continue;   // regular systems only
+    }
+    auto dot = [&](const std::vector<Rational>& a) {
+      Rational s = 0;
+      for (std::size_t j = 0; j < n; ++j) s += a[j] * z0[j];
+      return s;
+    };
+    for (const auto& row : A) {
+      lp.rows.push_back(row);
+      lp.rhs.push_back(dot(row));
+      lp.equality.push_back(true);
+    }
+    bool tie = sign_tie, moved_clear = false;
+    for (int q = uniform(1, 3); q > 0; --q) {
+      std::vector<Rational> row(n);
+      for (auto& v : row) v = frac(uniform(-6, 6), uniform(1, 7));
+      Rational rhs = dot(row);
+      const int kind = uniform(0, 4);
+      if (kind == 0) tie = true;
+      else if (kind <= 2) rhs += (kind == 1 ? 1 : -1) * Rational(std::ldexp(1.0, -uniform(20, 60)));
+      else if (kind == 3) rhs -= 1;
+      else {
+        rhs += 1;
+        moved_clear = true;
+      }
+      lp.rows.push_back(std::move(row));
+      lp.rhs.push_back(std::move(rhs));
+      lp.equality.push_back(false);
+    }
+    const std::optional<std::vector<Rational>> oracle = simulation::exact_feasible_point(lp);
+    const bool filtered = simulation::square_certainly_infeasible(lp);
+    if (filtered) {
+      ++decided;
+      ASSERT_FALSE(oracle.has_value()) << "trial " << trial << ": the filter called a system with a solution infeasible";
+    }
+    if (oracle) {
+      ++feasible;
+      deferred_ties += tie;
+    }
+    // a system broken only by an inequality moved by +1 (every other condition met at z0)
+    if (moved_clear && !oracle && !sign_tie) {
+      ++clear;
+      clear_decided += filtered;
+    }
+    const std::optional<std::vector<Rational>> square = simulation::square_feasible_point(lp);
+    ASSERT_EQ(square.has_value(), oracle.has_value()) << "trial " << trial;
+    if (square) EXPECT_EQ(*square, *oracle) << "trial " << trial;
+  }
+  std::cout << "square systems: filter decided " << decided << " without a solution; " << feasible
+            << " with one (" << deferred_ties << " at a tie, deferred); broken by 1: " << clear_decided << " of "
+            << clear << " decided by the filter\n";
+  EXPECT_GE(decided, 300);
+  EXPECT_GE(deferred_ties, 100);
+  EXPECT_GE(clear, 50);
+  EXPECT_GE(clear_decided * 10, clear * 9);
 }
 
 }  // namespace
