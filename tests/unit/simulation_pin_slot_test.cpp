@@ -1786,18 +1786,19 @@ TEST(SimulationPinSlot, FilmAdvancesOnePitchPerCamTurnOverTwoWholeTurns) {
   int releases = 0;
   std::size_t events = 0, n = 0;
   double after_first = std::numeric_limits<double>::quiet_NaN();
-  for (const double t_end : {turn, 2 * turn}) {
-    while (sim.state().time < t_end) {
-      sim.step(t_end);
-      if (sim.events().size() != events || ++n % 16 == 0) expect_not_overlapping(sim, others);
-      for (; events < sim.events().size(); ++events) {
-        const SimulationEvent& ev = sim.events()[events];
-        if (ev.kind == SimulationEvent::Kind::edge_end && !ev.features.empty() &&
-            ev.features[0].find("claw bottom") != std::string::npos)
-          ++releases;
-      }
+  // (steps towards 1.2 s first — `hipair simulate --t-end 1.2` of these data stalled on integ
+  // e35cca54 at 0.8589 s; a step's length depends on the target — then to the second turn's end;
+  // the film at rest after the first turn's pull and coast, read at the first state past the turn)
+  while (sim.state().time < 2 * turn) {
+    sim.step(sim.state().time < 1.2 ? 1.2 : 2 * turn);
+    if (sim.events().size() != events || ++n % 16 == 0) expect_not_overlapping(sim, others);
+    for (; events < sim.events().size(); ++events) {
+      const SimulationEvent& ev = sim.events()[events];
+      if (ev.kind == SimulationEvent::Kind::edge_end && !ev.features.empty() &&
+          ev.features[0].find("claw bottom") != std::string::npos)
+        ++releases;
     }
-    if (t_end == turn) after_first = sim.state().position[3];
+    if (std::isnan(after_first) && sim.state().time >= turn) after_first = sim.state().position[3];
   }
   EXPECT_EQ(releases, 2);
   for (int k = 0; k < 2; ++k) {
