@@ -1387,8 +1387,10 @@ struct PinSlotSimulation::Impl {
   std::vector<Row> contact_rows(std::size_t pi, const std::vector<SlicedFeaturePair>& features) const;
   // Newton impacts of the touching feature pairs at the current state (sequential impulses),
   // the held contacts plastic rows among them; the pairs left slower than the rest speed are held.
+  // `hold_met`: the fresh contacts are held whatever their speed (advance: a contact met again at
+  // the chord's start with nothing else changed, session 67)
   using Touching = std::vector<std::pair<std::size_t, std::vector<SlicedFeaturePair>>>;   // (pair, feature pairs)
-  void impact(const Touching& touching, int limit = 0);
+  void impact(const Touching& touching, int limit = 0, bool hold_met = false);
   bool is_held(std::size_t pi, const SlicedFeaturePair& f) const {
     for (const Held& h : held)
       if (h.pair == pi && h.features.fixed == f.fixed && h.features.free == f.free) return true;
@@ -1779,7 +1781,7 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
   return rows;
 }
 
-void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
+void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool hold_met) {
   // (an impact's rows and exact speeds turn the state's doubles into rationals: a state made
   // infinite by a violent load stops here, with one message, not in GMP's mpq_set_d(inf))
   if (!finite(y)) throw NumericError(where(t) + ": the simulated state is not finite at an impact (a load too violent for the doubles)");
@@ -1984,7 +1986,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit) {
   // the new contacts left slower than the rest speed are held (sustained contact)
   bool added = false;
   for (std::size_t i = 0; i < fresh_rows; ++i) {
-    if (separating(rows[i])) continue;
+    if (separating(rows[i]) && !hold_met) continue;
     if (rows[i].limit) {
       Held h;
       h.pair = no_index;
@@ -2254,10 +2256,25 @@ bool PinSlotSimulation::Impl::advance(double span) {
       h /= 4;
       continue;
     }
+    // A contact met at the chord's very start (hc = 0: the state and the time as they were) that
+    // no row approaches and that separates by the exact test, with no contact held: the impact
+    // below would change nothing (no impulse, nothing held, no settling) and every later step
+    // would meet it again, at every step length. Seen in session 67 (filmstall67) on a two-turn
+    // film advance (the cam at constant speed, no loads: the rest speed is 0): the cam's plastic
+    // impact on the window's top left the normal speed at +1.6e-14 mm/s (the doubles' rounding),
+    // "separating", so nothing was held, while the cam kept pushing the window (the path's
+    // configuration inside the cam's C-obstacle, the chord's exact one at its boundary); 10000
+    // steps stayed at t = 0.856661 s. Such a contact is held (plastic: settle() projects onto its
+    // hold gap along an exactly tested chord; the next step decides its force's sign exactly and
+    // lifts it off if negative).
+    bool hold_met = held.empty() && hc == 0;
+    for (const auto& [pi, features] : touching)
+      for (const Row& r : contact_rows(pi, features))
+        hold_met = hold_met && separating(r);
     step_guess = std::max(h, 1e-12);
     forced_step = 0;
     pending_limit = 0;
-    impact(touching);
+    impact(touching, 0, hold_met);
     return true;
   }
 }
