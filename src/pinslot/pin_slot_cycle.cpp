@@ -12,6 +12,7 @@
 
 #include "algebra/nearest_double.hpp"
 #include "core/angle_limits.hpp"
+#include "pinslot/moved_part.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -42,13 +43,7 @@ Rational near_rational(double value, long den = 4096) {
 }
 
 Part placed_fixed(const Part& part, const Placement& placement) {
-  Part out = part;
-  for (auto& loop : out.loops)
-    for (auto& e : loop.edges) {
-      e.source = placement.apply(e.source);
-      e.target = placement.apply(e.target);
-      if (e.is_arc()) e.center = placement.apply(e.center);
-    }
+  Part out = pinslot_detail::moved_part(part, placement);
   out.motion = Motion{};
   out.motion.kind = Motion::Kind::fixed;
   out.initial = PartConfiguration{};

@@ -12,6 +12,7 @@
 #include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
 #include "core/angle_limits.hpp"
+#include "pinslot/moved_part.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -47,17 +48,7 @@ Point rotate(const Point& v, const Rotation& r) {
   return Point{Rational(r.c * v.x - r.s * v.y), Rational(r.s * v.x + r.c * v.y)};
 }
 
-// The part with every point moved by `placement` (a rigid map keeps radii and orientation).
-Part moved(const Part& part, const Placement& placement) {
-  Part out = part;
-  for (auto& loop : out.loops)
-    for (auto& e : loop.edges) {
-      e.source = placement.apply(e.source);
-      e.target = placement.apply(e.target);
-      if (e.is_arc()) e.center = placement.apply(e.center);
-    }
-  return out;
-}
+using pinslot_detail::moved_part;
 
 std::string kind_text(Motion::Kind kind) {
   switch (kind) {
@@ -262,7 +253,7 @@ struct PinSlotSpace::Impl {
     derived.angle_unit = "rad";
     derived.source = "<pin-slot slice>";
     derived.parts.push_back(other());
-    Part turned = moved(pin(), placement_about(pin().motion.pivot, r.c, r.s, Point{}));
+    Part turned = moved_part(pin(), placement_about(pin().motion.pivot, r.c, r.s, Point{}));
     turned.motion.kind = Motion::Kind::translation;
     turned.motion.pivot = Point{};   // unused by a translation (a far pin-slot pivot would be refused as a length)
     turned.motion.direction = rotate(pin().motion.direction, r);
@@ -386,7 +377,7 @@ struct PinSlotSpace::Impl {
     // strictly free (a free cell's sample), so boundaries that certainly stay apart over [a, b]
     // mean the segment is free throughout, the exact answer below.
     if (witness_filter && !wrap) {
-      Part placed = moved(other(), part_placement(other(), other_at));
+      Part placed = moved_part(other(), part_placement(other(), other_at));
       Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
       if (pinslot::boundaries_certainly_apart(placed, pin(), pin().motion.pivot, shift, a, b)) {
         std::lock_guard<std::mutex> lock(mutex);
@@ -399,16 +390,16 @@ struct PinSlotSpace::Impl {
     derived.name = "pin-slot witness";
     derived.angle_unit = "rad";
     derived.source = "<pin-slot witness>";
-    Part fixed = moved(other(), part_placement(other(), other_at));
+    Part fixed = moved_part(other(), part_placement(other(), other_at));
     fixed.motion = Motion{};
     fixed.motion.kind = Motion::Kind::fixed;
     fixed.dynamics.reset();
     Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
     // across the half turn the part is pre-turned by pi: psi = pi + psi', tan(psi'/2) = -1/tau
     Rational cos_pre = wrap ? -1 : 1;
-    Part turning = moved(pin(), placement_about(pin().motion.pivot, cos_pre, Rational(0), Point{}));
+    Part turning = moved_part(pin(), placement_about(pin().motion.pivot, cos_pre, Rational(0), Point{}));
     if (wrap) shift = Point{Rational(-shift.x), Rational(-shift.y)};
-    turning = moved(turning, placement_about(Point{}, Rational(1), Rational(0), shift));
+    turning = moved_part(turning, placement_about(Point{}, Rational(1), Rational(0), shift));
     turning.motion.kind = Motion::Kind::rotation;
     turning.motion.angle_limits.reset();
     turning.motion.translation_limits.reset();
@@ -464,7 +455,7 @@ struct PinSlotSpace::Impl {
       Part moving = other();
       moving.dynamics.reset();
       Point shift{Rational(pin().motion.direction.x * slide), Rational(pin().motion.direction.y * slide)};
-      Part turning = moved(pin(), placement_about(Point{}, Rational(1), Rational(0), shift));
+      Part turning = moved_part(pin(), placement_about(Point{}, Rational(1), Rational(0), shift));
       turning.motion.kind = Motion::Kind::rotation;
       turning.motion.angle_limits.reset();
       turning.motion.translation_limits.reset();
@@ -855,7 +846,7 @@ PinSlotSpace PinSlotSpace::build(const Model& model, std::string_view other_part
     std::vector<cspace::algebra::Real> gap;
     if (in_class && impl->whole_turn) {
       try {
-        Part turned = moved(impl->pin(), placement_about(impl->pin().motion.pivot, Rational(-1), Rational(0), Point{}));
+        Part turned = moved_part(impl->pin(), placement_about(impl->pin().motion.pivot, Rational(-1), Rational(0), Point{}));
         turned.motion.direction = Point{Rational(-impl->pin().motion.direction.x), Rational(-impl->pin().motion.direction.y)};
         Rational u_lo = Rational(-1) / impl->tau_hi, u_hi = Rational(-1) / impl->tau_lo;
         u_lo.canonicalize();

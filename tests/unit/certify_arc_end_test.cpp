@@ -22,6 +22,8 @@
 #include <hipair/overlap.hpp>
 
 #include "model/parametric/parametric.hpp"
+#include "certificate_test_support.hpp"
+#include "free_path_claim.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -110,35 +112,14 @@ TEST(CertifyArcEnd, AVertexPastAnArcsEndAtTwoToTheMinusKIsDecidedAsTheExactOverl
     for (int i = 0; i < c.k; ++i) eps /= 2;
     // The arm turns by 64 eps / R (the tip 64 eps to the left); mirrored it turns the other way.
     Rational turn = 64 * eps / c.R;
-    ToleranceClaim t;
-    t.property = "no_jam";
-    t.driver = "arm";
-    t.follower = "block";
-    t.range = c.mirrored ? RationalInterval{-turn, Rational(0)} : RationalInterval{Rational(0), turn};
-    t.scale = 1;
-    t.varied = {"gap"};
-    t.box = {{-eps / 4, eps / 4}};
     // A named side (checks 1-6 are not run here: check 7 never trusts it).
     ContactSidePair side;
     side.driver = FeatureReference{EdgeReference{"arm", 0, 0, "tip side"}, true};
     side.follower = FeatureReference{EdgeReference{"block", 0, 1, "tip arc"}, false};
-    t.sides = {side};
-    ToleranceLeaf leaf;
-    leaf.parameters = t.box;
-    leaf.driver = t.range;
-    leaf.witness = Rational(0);
-    leaf.witness_slopes.assign(2, Rational(0));
-    t.leaves.push_back(leaf);
-    ToleranceTreeNode node;
-    node.leaf = true;
-    t.tree.push_back(node);
-    std::string failure;
-    try {
-      verify::ToleranceEvaluator evaluator(model, t);
-      failure = evaluator.free_path_failure(2);
-    } catch (const verify::Rejection& rejection) {
-      FAIL() << "the claim is refused: " << rejection.reason;
-    }
+    const ToleranceClaim t = test::one_leaf_no_jam_claim(
+        "arm", "block", c.mirrored ? RationalInterval{-turn, Rational(0)} : RationalInterval{Rational(0), turn}, {"gap"},
+        {{-eps / 4, eps / 4}}, side);
+    const std::string failure = test::free_path_failure(model, t, 2);
     bool ok = failure.empty();
     proved += ok;
     // The oracle along the range: the arm at rational half-angle tangents from 0 to turn / 2
@@ -177,46 +158,20 @@ TEST(CertifyArcEnd, AVertexPastAnArcsEndAtTwoToTheMinusKIsDecidedAsTheExactOverl
 // now. Mutations are rejected: a leaf's driver interval halved (coverage gap), the box widened
 // and the scale raised (wrong parameter box), the witness moved by a tooth's play (0.1 rad: the
 // gear's teeth meet the pinion's).
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream t;
-  t << in.rdbuf();
-  return t.str();
-}
 
 TEST(CertifyArcEnd, TheSpurGearsNoJamCertificateIsValidAndItsMutationsAreNot) {
   std::filesystem::path model = std::filesystem::path(HIPAIR_EXAMPLES) / "spur-gears.json";
   std::filesystem::path fixture =
       std::filesystem::path(HIPAIR_TEST_DATA) / "certificates" / "spur-gears-tolerance-no-jam-0-0.25.json";
-  const std::string model_text = read_text(model);
+  const std::string model_text = test::slurp(model.string());
   VerificationResult v = verify_certificate_file(fixture, model);
   EXPECT_TRUE(v.valid) << v.summary << v.reason;
   EXPECT_FALSE(v.unproven) << v.summary;
-  const Certificate base = read_certificate(read_text(fixture));
+  const Certificate base = read_certificate(test::slurp(fixture.string()));
   ASSERT_TRUE(base.tolerance);
   ASSERT_EQ(base.tolerance->leaves.size(), 4u);
   auto check = [&](const Certificate& c) { return check_certificate_text(c, model_text, "spur-gears.json"); };
-  {
-    Certificate c = base;
-    RationalInterval& d = c.tolerance->leaves[1].driver;
-    d.hi = (d.lo + d.hi) / 2;
-    VerificationResult r = check(c);
-    EXPECT_FALSE(r.valid || r.unproven);
-    EXPECT_NE(r.reason.find("coverage gap"), std::string::npos) << r.reason;
-  }
-  {
-    Certificate c = base;
-    c.tolerance->box[0].hi += Rational(1, 1000);
-    VerificationResult r = check(c);
-    EXPECT_FALSE(r.valid || r.unproven);
-    EXPECT_NE(r.reason.find("wrong parameter box"), std::string::npos) << r.reason;
-  }
-  {
-    Certificate c = base;
-    c.tolerance->scale = Rational(2);
-    VerificationResult r = check(c);
-    EXPECT_FALSE(r.valid || r.unproven) << r.summary;
-  }
+  test::expect_box_and_coverage_mutations_rejected(base, 1, check);
   {
     Certificate c = base;
     *c.tolerance->leaves[0].witness += Rational(1, 10);

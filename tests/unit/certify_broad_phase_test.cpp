@@ -20,6 +20,7 @@
 #include <hipair/overlap.hpp>
 
 #include "model/parametric/parametric.hpp"
+#include "free_path_claim.hpp"
 #include "test_seed.hpp"
 
 #include <gtest/gtest.h>
@@ -344,34 +345,12 @@ TEST(CertifyBroadPhase, CornersMeetingWhereOnlyTheirBoxesCornersTouchAreDecidedA
       SCOPED_TRACE("trial " + std::to_string(trial) + ", gap " + to_exact_string(gap) + "\n" + json);
       std::shared_ptr<const model_detail::ParametricModel> model;
       ASSERT_NO_THROW(model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(json)));
-      ToleranceClaim t;
-      t.property = "no_jam";
-      t.driver = "arm";
-      t.follower = "block";
-      t.range = {Rational(0), Rational(1)};
-      t.scale = 1;
-      t.varied = {"size"};
-      t.box = {{Rational(-1, 8), Rational(1, 8)}};
       ContactSidePair side;   // named only: check 7 never trusts it here (checks 1-6 not run)
       side.driver = FeatureReference{EdgeReference{"arm", 0, 0, "arm side"}, true};
       side.follower = FeatureReference{EdgeReference{"block", 0, 0, "block side"}, false};
-      t.sides = {side};
-      ToleranceLeaf leaf;
-      leaf.parameters = t.box;
-      leaf.driver = t.range;
-      leaf.witness = Rational(0);
-      leaf.witness_slopes.assign(2, Rational(0));
-      t.leaves.push_back(leaf);
-      ToleranceTreeNode node;
-      node.leaf = true;
-      t.tree.push_back(node);
-      std::string failure;
-      try {
-        verify::ToleranceEvaluator evaluator(model, t);
-        failure = evaluator.free_path_failure(8);
-      } catch (const verify::Rejection& rejection) {
-        FAIL() << "the claim is refused: " << rejection.reason;
-      }
+      const ToleranceClaim t = test::one_leaf_no_jam_claim("arm", "block", {Rational(0), Rational(1)}, {"size"},
+                                                           {{Rational(-1, 8), Rational(1, 8)}}, side);
+      const std::string failure = test::free_path_failure(model, t, 8);
       bool ok = failure.empty();
       ++cases;
       proved += ok;

@@ -11,6 +11,7 @@
 // and faces as sets, and in order (the numbering every output uses) - mostly they do not
 // (docs/performance.md "Session 66 (geneva66)"), which is why no chart is built by the map.
 #include "cspace/half_turn_symmetry.hpp"
+#include "model/exact_trig.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -43,13 +44,6 @@ std::size_t part_index(const Model& model, const std::string& name) {
   return no_index;
 }
 
-Point unit_of(const Rational& t) {
-  Rational w = 1 + t * t;
-  Point u{Rational((1 - t * t) / w), Rational(2 * t / w)};
-  u.x.canonicalize();
-  u.y.canonicalize();
-  return u;
-}
 
 Point at(const Point& u, const Rational& along, const Rational& across) {
   // along u, across its left normal (-u.y, u.x)
@@ -78,7 +72,7 @@ Loop star_wheel(std::mt19937_64& random, int arms, bool symmetric) {
     const double phi = 2 * std::numbers::pi * k / arms - std::numbers::pi + std::numbers::pi / arms + turn;
     Rational t(static_cast<long>(std::llround(std::tan(phi / 2) * 1048576.0)), 1048576);
     t.canonicalize();
-    units[k] = unit_of(t);
+    units[k] = model_detail::unit_from_half_tangent(t);
   }
   std::vector<Point> corners;
   for (const Point& u : units)

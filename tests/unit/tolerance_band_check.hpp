@@ -6,17 +6,47 @@
 // tolerance_detail's test switches set for a scope, restored after).
 #pragma once
 
+#include <hipair/kinematics.hpp>
 #include <hipair/tolerance.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
 #include <type_traits>
+#include <vector>
 
 namespace hipair::test_band {
 
 inline bool bounded(const VariationSample& s) {
   return s.contact && std::isfinite(s.certified.upper - s.certified.lower);
+}
+
+// The exact train `exact`'s position of part `output` at each bounded sample of `samples` (the
+// analysis' samples; each one's driver must be a sample of `exact` too: a missing one is a test
+// failure): visit(i, value, ulp) for samples[i], where ulp is the allowance of the exact engine's
+// position, the exact root rounded to a double (within an ulp; 4 eps relative, absolute below 1).
+template <class Visit>
+void visit_exact_values(const KinematicsResult& exact, const std::string& output,
+                        const std::vector<VariationSample>& samples, Visit&& visit) {
+  const std::size_t index = static_cast<std::size_t>(
+      std::find(exact.followers.begin(), exact.followers.end(), output) - exact.followers.begin());
+  EXPECT_LT(index, exact.followers.size()) << output;
+  if (index >= exact.followers.size()) return;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const VariationSample& sample = samples[i];
+    if (!bounded(sample)) continue;
+    auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
+                           [&](const KinematicSample& s) { return s.driver == sample.driver; });
+    EXPECT_NE(at, exact.samples.end()) << "driver " << sample.driver;
+    if (at == exact.samples.end()) continue;
+    const double value = at->positions.at(index);
+    EXPECT_TRUE(std::isfinite(value));
+    visit(i, value, 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value)));
+  }
 }
 
 // `ScopedSwitch on(tolerance_detail::chain_case_split(), 0);` sets the switch until `on` ends.

@@ -90,20 +90,9 @@ TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain)
     k.reversal = false;
     k.method = SliceMethod::kernels;
     KinematicsResult exact = analyze_kinematics(model->exact_model(d), k);
-    std::size_t output = static_cast<std::size_t>(std::find(exact.followers.begin(), exact.followers.end(), "gear-I") -
-                                                  exact.followers.begin());
-    ASSERT_LT(output, exact.followers.size());
-    for (const VariationSample& sample : r.samples) {
-      if (!bounded(sample)) continue;
-      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
-                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
-      EXPECT_NE(at, exact.samples.end()) << "driver " << sample.driver;
-      if (at == exact.samples.end()) continue;
-      double value = at->positions.at(output);
-      EXPECT_TRUE(std::isfinite(value));
+    test_band::visit_exact_values(exact, "gear-I", r.samples, [&](std::size_t i, double value, double ulp) {
+      const VariationSample& sample = r.samples[i];
       ++checked;
-      // (the exact engine's position is the exact root rounded to a double: within an ulp)
-      double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
       EXPECT_GE(value, sample.certified.lower - ulp) << "driver " << sample.driver;
       EXPECT_LE(value, sample.certified.upper + ulp) << "driver " << sample.driver;
       if (&sample == &last) {
@@ -111,7 +100,7 @@ TEST(ChainMonotoneDriver, LateMeshBandBoundedThroughTheDriverHoldsTheExactTrain)
         upper_gap = std::min(upper_gap, (sample.certified.upper - value) / width);
         lower_gap = std::min(lower_gap, (value - sample.certified.lower) / width);
       }
-    }
+    });
   }
   EXPECT_EQ(checked, distinct.size() * held);
   std::printf("driver %.4f: band [%.5f, %.5f] (linearised [%.5f, %.5f]); exact values within %.4f / %.4f of the band's "
