@@ -320,6 +320,20 @@ class RecipeBuilder {
   static ParametricModel rescaled_by_dimension(const ParametricModel& model, long exponent);
   static ParametricModel rescaled_lengths(const ParametricModel& model, long exponent);
   static std::vector<long> scale_exponents(const ParametricModel& model);
+  // Every template of a rescaled copy judged again by the reader's rule (has_generic_form): its
+  // generic form evaluated in doubles at the file's scale may not have (session 56, scale56).
+  static void judge_templates_again(ParametricModel& scaled) {
+    scaled.generic_ = true;
+    scaled.exact_only_feature_.clear();
+    for (PartRecipe& part : scaled.parts_)
+      for (FeatureRecipe& feature : part.features) {
+        const bool generic = has_generic_form(scaled, feature);
+        if (!generic && scaled.generic_) {
+          scaled.generic_ = false;
+          scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
+        }
+      }
+  }
 
   // Whether a template occurrence has the generic form: circle and pin; the toothed templates
   // with a tooth (slot) count that is not toleranced; spur_gear with flank_radius when its
@@ -1447,12 +1461,12 @@ FormulaPtr dimension_scaled(const FormulaPtr& formula, long d, const Rational& u
 
 // Whether a parameter's value (nominal, range and its width, sigma) is no normal double far from
 // its limits: beyond 1e300 or below 1e-300 in magnitude (and not 0).
-bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
+bool beyond(const Rational& v) {
   static const Rational huge = power_of_ten_rational(300), tiny = power_of_ten_rational(-300);
-  auto beyond = [&](const Rational& v) {
-    const Rational a = abs(v);
-    return sgn(a) != 0 && (a > huge || a < tiny);
-  };
+  const Rational a = abs(v);
+  return sgn(a) != 0 && (a > huge || a < tiny);
+}
+bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
   for (const Parameter& p : parameters)
     if (beyond(p.nominal) || beyond(p.range.lo) || beyond(p.range.hi) || beyond(Rational(p.range.hi - p.range.lo)) ||
         (p.sigma && beyond(*p.sigma)))
@@ -1587,24 +1601,27 @@ ParametricModel RecipeBuilder::rescaled_by_dimension(const ParametricModel& mode
       if (kind == 1) lengths.push_back(&s);
     });
   // the templates judged again on the copy, as rescaled() does
-  scaled.generic_ = true;
-  scaled.exact_only_feature_.clear();
-  for (PartRecipe& part : scaled.parts_)
-    for (FeatureRecipe& feature : part.features) {
-      const bool generic = RecipeBuilder::has_generic_form(scaled, feature);
-      if (!generic && scaled.generic_) {
-        scaled.generic_ = false;
-        scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
-      }
-    }
+  judge_templates_again(scaled);
   const std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(n, 0.0));
   for (const Slot* slot : lengths) {
     const double v = parametric_detail::slot_value(*slot, values);
     if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;
+    // a literal left beyond the doubles (session 68): taken as a pure number, its dimension not
+    // determined by the uses (it multiplies a parameter no other use fixes)
+    std::function<bool(const Formula&)> literal_beyond = [&](const Formula& f) {
+      if (f.op == Formula::Op::constant) return beyond(f.value);
+      return std::any_of(f.arguments.begin(), f.arguments.end(), [&](const FormulaPtr& a) { return literal_beyond(*a); });
+    };
     throw ModelError(slot->pointer, "'" + slot->text + "': the tolerance analysis of this model runs in units of 1e" +
                                         std::to_string(exponent) + " mm, its parameters rescaled by their length "
                                         "dimensions, and this length does not evaluate there in doubles (its value "
-                                        "lies more than 1e300 times from the model's size)");
+                                        "lies more than 1e300 times from the model's size)" +
+                                        (literal_beyond(*slot->formula)
+                                             ? std::string("; a literal in it is beyond the doubles there: its length "
+                                                           "dimension is not determined by its uses (it multiplies a "
+                                                           "parameter that no other use fixes), write it as a factor "
+                                                           "of a length parameter")
+                                             : std::string()));
   }
   return scaled;
 }
@@ -1662,16 +1679,7 @@ ParametricModel RecipeBuilder::rescaled_lengths(const ParametricModel& model, lo
   // The templates' generic forms evaluated in doubles at the file's scale (a spur gear's flank
   // crossings at 1e-300 mm underflow: "exact form only"), so every template is judged again on
   // the copy, by the reader's rule (session 56, scale56).
-  scaled.generic_ = true;
-  scaled.exact_only_feature_.clear();
-  for (PartRecipe& part : scaled.parts_)
-    for (FeatureRecipe& feature : part.features) {
-      const bool generic = RecipeBuilder::has_generic_form(scaled, feature);
-      if (!generic && scaled.generic_) {
-        scaled.generic_ = false;
-        scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
-      }
-    }
+  judge_templates_again(scaled);
   // Each length at the nominal vector, in doubles: finite and normal (or 0) once divided. A
   // formula that keeps the scale (a parameter of about 1e400 mm used as a length) cannot be
   // evaluated so: refused at its slot.
