@@ -653,7 +653,7 @@ TEST(ToleranceParameterScale, VariationCsvAndPicturesOfRawModelsAreAtTheFilesSca
   expect_variation_files_at_the_files_scale(rotating);
 }
 
-// examples/models/gear-train-3.json (3 gears, 2 meshes, 44 parameters) with every length
+// examples/models/gear-train-3.json (3 gears, 2 meshes, 37 parameters) with every length
 // parameter raw at 10^x mm, analysed as an assembly chain (--chain): the x 1 chain's bands,
 // sensitivities and ranking bit for bit, each length parameter's exponent x.
 std::string gear_train(int x, std::vector<long>* dims = nullptr) {
