@@ -6,7 +6,8 @@
 // factors'; a parameter used both as a length and as an angle is refused, naming it). The
 // result's per-parameter numbers (Parameter values, sigma, mean deviation, sensitivities per
 // unit, witnesses' values) are then in those units; the reports below show them at the file's
-// scale (text; JSON and CSV since scalejson67, as strings). Tolerance certificates are written at the file's
+// scale (text; JSON and CSV since scalejson67, as strings; variation.csv and the pictures since
+// session 68). Tolerance certificates are written at the file's
 // scale (hipair-verify checks them against the file). For every other model k_i = 0.
 #pragma once
 
@@ -35,5 +36,11 @@ ToleranceResult analyze_tolerances(const std::filesystem::path& model_file, cons
 std::string tolerance_text_report(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
 std::string tolerance_json_report(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
 std::string tolerance_sensitivity_csv(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
+/// variation.csv and the pictures (variation.svg, contact-zone.svg) likewise (session 68): a
+/// translating driver's and follower's coordinates at the file's scale — the CSV's decimals with
+/// their exponents moved by E exactly, the pictures' tick labels so and their axes in mm.
+std::string tolerance_csv(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
+std::string tolerance_band_svg(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
+std::string tolerance_zone_svg(const ToleranceResult& result, const std::vector<long>& parameter_exponents);
 
 }  // namespace hipair

@@ -397,10 +397,10 @@ int run(const ToleranceCliOptions& options) {
   std::filesystem::path directory(options.out);
   std::vector<io::RunFile> files{{"report.txt", report},
                                  {"tolerance.json", tolerance_json_report(result, exponents)},
-                                 {"variation.csv", tolerance_csv(result)},
+                                 {"variation.csv", tolerance_csv(result, exponents)},
                                  {"sensitivity.csv", tolerance_sensitivity_csv(result, exponents)},
-                                 {"variation.svg", tolerance_band_svg(result)},
-                                 {"contact-zone.svg", tolerance_zone_svg(result)}};
+                                 {"variation.svg", tolerance_band_svg(result, exponents)},
+                                 {"contact-zone.svg", tolerance_zone_svg(result, exponents)}};
   if (result.certification && result.certification->certificate)
     files.push_back({"tolerance-certificate.json", write_certificate(*result.certification->certificate)});
   io::publish_directory(directory, files, earlier_output, {options.model});

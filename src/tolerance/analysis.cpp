@@ -2069,6 +2069,8 @@ ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, 
     if (exponents && result.length_exponent != 0)
       *exponents = model_detail::parameter_scale_exponents(*tolerance_detail::analysed_form(
           model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options)), options));
+    else if (exponents)
+      exponents->assign(result.parameters.size(), 0);   // all 0, as for a pair (session 68)
     return result;
   }
   Analysis analysis(text, options, std::move(source_name));

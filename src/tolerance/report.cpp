@@ -38,8 +38,11 @@ const char* driver_unit(bool rotates) { return rotates ? "deg" : "mm"; }
 std::string length_unit(const ToleranceResult& r) {
   return r.length_exponent == 0 ? std::string("mm") : "1e" + std::to_string(r.length_exponent) + " mm";
 }
-// The picture's axis unit of a part: "deg", "mm" or "1e400 mm" (its numbers as held).
-std::string axis_unit(const ToleranceResult& r, bool rotates) { return rotates ? "deg" : length_unit(r); }
+// The picture's axis unit of a part: "deg", "mm" or "1e400 mm" (its numbers as held; "mm" for a
+// picture at the file's scale, session 68).
+std::string axis_unit(const ToleranceResult& r, bool rotates, bool file = false) {
+  return rotates ? "deg" : file ? std::string("mm") : length_unit(r);
+}
 
 // A number of the result shown as number(value * factor, digits) for a rotating part (deg, or a
 // ratio), and for a translating one (a length held in units of 10^E mm) in mm: the decimal
@@ -48,7 +51,9 @@ std::string axis_unit(const ToleranceResult& r, bool rotates) { return rotates ?
 // A decimal text of number() with its exponent moved by `by` ("0.5" -> "0.5e400"): the value
 // times 10^by, exactly as printed. Unchanged for by = 0, 0, inf and nan.
 std::string moved(std::string text, long by) {
-  if (by == 0 || text == "0" || text == "-0" || text.find_first_of("ni") != std::string::npos) return text;
+  if (by == 0 || text.find_first_of("ni") != std::string::npos ||
+      text.substr(0, text.find('e')).find_first_of("123456789") == std::string::npos)   // 0, -0, 0.00 (a tick)
+    return text;
   long exponent = 0;
   std::size_t e = text.find('e');
   if (e != std::string::npos) {
@@ -612,16 +617,25 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
 
 }  // namespace
 
-std::string tolerance_csv(const ToleranceResult& r) {
+namespace {
+std::string variation_csv(const ToleranceResult& r, const std::vector<long>& exponents) {
   std::ostringstream out;
-  out << column(r, "driver", r.driver_rotates) << ",contact";
+  // parameters rescaled by their dimensions (session 68): a translating driver's and follower's
+  // coordinates at the file's scale, each decimal's exponent moved by E exactly (as
+  // sensitivity.csv), columns named as at 1 mm
+  const bool file = at_files_scale(exponents);
+  const long ef = file && !r.follower_rotates ? r.length_exponent : 0;
+  const long ed = file && !r.driver_rotates ? r.length_exponent : 0;
+  auto col = [&](const char* name, bool rotates) { return file ? std::string(name) : column(r, name, rotates); };
+  out << col("driver", r.driver_rotates) << ",contact";
   for (const char* name : {"nominal", "linear_lower", "linear_upper", "rss_lower", "rss_upper", "certified_lower",
                            "certified_upper", "monte_carlo_min", "monte_carlo_max", "play"})
-    out << "," << column(r, name, r.follower_rotates);
+    out << "," << col(name, r.follower_rotates);
   out << "\n";
-  auto f = [](double v) { return number(v, 12); };
+  auto f = [&](double v) { return moved(number(v, 12), ef); };
   for (const VariationSample& s : r.samples) {
-    out << f(s.driver) << "," << (s.contact ? (s.region < r.regions.size() ? "\"" + r.regions[s.region].contact + "\"" : "1") : "") << ","
+    out << moved(number(s.driver, 12), ed) << ","
+        << (s.contact ? (s.region < r.regions.size() ? "\"" + r.regions[s.region].contact + "\"" : "1") : "") << ","
         << f(s.nominal) << "," << f(s.linear_lower) << "," << f(s.linear_upper) << "," << f(s.rss_lower) << ","
         << f(s.rss_upper) << "," << f(s.certified.lower) << "," << f(s.certified.upper) << ","
         << (s.has_monte_carlo ? f(s.monte_carlo_min) : "") << "," << (s.has_monte_carlo ? f(s.monte_carlo_max) : "")
@@ -629,6 +643,10 @@ std::string tolerance_csv(const ToleranceResult& r) {
   }
   return out.str();
 }
+}  // namespace
+
+std::string tolerance_csv(const ToleranceResult& r) { return variation_csv(r, {}); }
+std::string tolerance_csv(const ToleranceResult& r, const std::vector<long>& k) { return variation_csv(r, k); }
 
 namespace {
 std::string sensitivity_csv(const ToleranceResult& r, const std::vector<long>& exponents) {
@@ -656,7 +674,23 @@ std::string sensitivity_csv(const ToleranceResult& r, const std::vector<long>& e
 }
 }  // namespace
 
-std::string tolerance_band_svg(const ToleranceResult& r) {
+namespace {
+// A picture's axis of a translating part at the file's scale (session 68; by = E, else 0): its
+// tick labels and base label, decimals held in units of 10^E mm, with their exponents moved by E
+// ("0.5" -> "0.5e400", "+5e-07" -> "+5e393", "79 +" -> "79e400 +"), the unit "mm".
+void moved_axis(PlotAxis& axis, long by) {
+  if (by == 0) return;
+  for (std::string& label : axis.labels) label = moved(label, by);
+  if (axis.base_label.empty()) return;
+  const std::string plus = " +";
+  std::string& base = axis.base_label;
+  const bool with_plus = base.size() > plus.size() && base.compare(base.size() - plus.size(), plus.size(), plus) == 0;
+  if (with_plus) base.erase(base.size() - plus.size());
+  base = moved(base, by) + (with_plus ? plus : std::string());
+}
+
+std::string band_svg(const ToleranceResult& r, const std::vector<long>& exponents) {
+  const bool file = at_files_scale(exponents);
   double uf = unit_factor(r.follower_rotates), ud = unit_factor(r.driver_rotates);
   std::vector<double> x, linear_lo, linear_hi, cert_lo, cert_hi, rss_lo, rss_hi, mc_lo, mc_hi;
   double lo = 0, hi = 0;
@@ -684,11 +718,13 @@ std::string tolerance_band_svg(const ToleranceResult& r) {
   }
   if (x.empty()) x = {0, 1};
   Frame f = frame_of(x.front(), x.back(), lo, hi, 0.08);
+  moved_axis(f.x, file && !r.driver_rotates ? r.length_exponent : 0);
+  moved_axis(f.y, file && !r.follower_rotates ? r.length_exponent : 0);
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"960\" height=\"460\" viewBox=\"0 0 960 460\">\n";
   out << axes(f, "Variation of " + r.follower + " about its nominal motion (" + r.model_name + ")",
-              r.driver + " (" + axis_unit(r, r.driver_rotates) + ")",
-              std::string("deviation of ") + r.follower + " (" + axis_unit(r, r.follower_rotates) + ")");
+              r.driver + " (" + axis_unit(r, r.driver_rotates, file) + ")",
+              std::string("deviation of ") + r.follower + " (" + axis_unit(r, r.follower_rotates, file) + ")");
   out << polyline(f, x, std::vector<double>(x.size(), 0.0), "stroke=\"#000\" stroke-width=\"1\"");
   out << polyline(f, x, cert_lo, "stroke=\"#c00\" stroke-width=\"1.6\"");
   out << polyline(f, x, cert_hi, "stroke=\"#c00\" stroke-width=\"1.6\"");
@@ -713,7 +749,8 @@ std::string tolerance_band_svg(const ToleranceResult& r) {
   return out.str();
 }
 
-std::string tolerance_zone_svg(const ToleranceResult& r) {
+std::string zone_svg(const ToleranceResult& r, const std::vector<long>& exponents) {
+  const bool file = at_files_scale(exponents);
   // The zone with the widest certified band.
   const ContactZone* zone = nullptr;
   double widest = -1;
@@ -743,9 +780,11 @@ std::string tolerance_zone_svg(const ToleranceResult& r) {
     hi = std::max({hi, cu.back(), lu.back()});
   }
   Frame f = frame_of(x.front(), x.back(), lo, hi, 0.1);
+  moved_axis(f.x, file && !zone->x_rotates ? r.length_exponent : 0);
+  moved_axis(f.y, file && !zone->y_rotates ? r.length_exponent : 0);
   out << axes(f, "Contact zone (Figure 5 detail): " + zone->contact,
-              std::string("x part coordinate (") + axis_unit(r, zone->x_rotates) + ")",
-              std::string("zone boundary - nominal curve (") + axis_unit(r, zone->y_rotates) + ")");
+              std::string("x part coordinate (") + axis_unit(r, zone->x_rotates, file) + ")",
+              std::string("zone boundary - nominal curve (") + axis_unit(r, zone->y_rotates, file) + ")");
   out << polyline(f, x, zero, "stroke=\"#000\" stroke-width=\"1.2\"");
   out << polyline(f, x, cl, "stroke=\"#c00\" stroke-width=\"1.6\"");
   out << polyline(f, x, cu, "stroke=\"#c00\" stroke-width=\"1.6\"");
@@ -757,5 +796,12 @@ std::string tolerance_zone_svg(const ToleranceResult& r) {
   out << "</svg>\n";
   return out.str();
 }
+
+}  // namespace
+
+std::string tolerance_band_svg(const ToleranceResult& r) { return band_svg(r, {}); }
+std::string tolerance_band_svg(const ToleranceResult& r, const std::vector<long>& k) { return band_svg(r, k); }
+std::string tolerance_zone_svg(const ToleranceResult& r) { return zone_svg(r, {}); }
+std::string tolerance_zone_svg(const ToleranceResult& r, const std::vector<long>& k) { return zone_svg(r, k); }
 
 }  // namespace hipair

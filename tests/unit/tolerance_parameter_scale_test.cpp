@@ -520,5 +520,218 @@ TEST(ToleranceParameterScale, AParameterUsedAsALengthAndAsAnAngleIsRefusedBeyond
   }
 }
 
+// ---------------------------------------------------------------- session 68 (rawscale68)
+
+// The cam pair with the follower's loop written in literal lengths "(20)*(1eX)" (not parameters)
+// beside its raw parameters. Until session 68 the dimension rescaling scaled the literal's first
+// factor (20e-400 * 1e400: inf in doubles) and the model was refused at the loop's first point.
+std::string cam_literal_pair(int x) {
+  auto q = [&](const char* v) { return quoted(v, x); };
+  return std::string(R"({ "hipair": 1, "name": "cam", "units": {"length": "mm", "angle": "deg"}, "parameters": {)") +
+         R"("cam-radius": {"nominal": )" + q("25") + R"(, "tolerance": )" + q("1/50") + R"(},)" +
+         R"("eccentricity": {"nominal": )" + q("8") + R"(, "tolerance": )" + q("3/100") + R"(} }, "parts": [)" +
+         R"({"name": "cam", "motion": {"rotation": {"pivot": [0, 0]}}, "initial": {"angle": 0},)" +
+         R"( "features": [{"circle": {"center": ["eccentricity", 0], "radius": "cam-radius"}}]},)" +
+         R"({"name": "follower", "motion": {"translation": {"direction": [0, 1], "limits": [)" + q("-12") + ", " + q("12") +
+         R"(]}}, "initial": {"offset": )" + q("1/2") + R"(}, "loops": [{"start": [)" + q("-20") + R"(, "cam-radius"],)" +
+         R"( "edges": [{"line_to": [)" + q("20") + R"(, "cam-radius"]}, {"line_to": [)" + q("20") + R"(, "cam-radius + )" +
+         at("10", x) + R"("]}, {"line_to": [)" + q("-20") + R"(, "cam-radius + )" + at("10", x) + R"("]},)" +
+         R"( {"line_to": [)" + q("-20") + R"(, "cam-radius"]}]}]}], "pairs": [{"parts": ["cam", "follower"]}] })";
+}
+
+TEST(ToleranceParameterScale, LiteralLengthsOfRawModelsAreRescaledWithTheirParameters) {
+  Family family = cam_family();
+  family.name = "cam, literal lengths";
+  family.text = cam_literal_pair;
+  family.dimensions = {1, 1};
+  expect_the_unscaled_results(family);
+  // a literal whose factor's dimension no use fixes (k, used only there, takes the length and
+  // the literal 1e400 stays a pure number: beyond the doubles in the analysis' unit): refused at
+  // the slot, naming it; at 1 mm analysed
+  auto undetermined = [](int x) {
+    return std::regex_replace(cam_literal_pair(x), std::regex(R"(\"start\": \[([^,]*),)"), "\"start\": [\"" + at("-20", x) +
+                                                                                              " * k\",") ;
+  };
+  auto with_k = [&](int x) {
+    std::string text = undetermined(x);
+    return text.replace(text.find("\"parameters\": {") + 15, 0, R"("k": {"nominal": 1}, )");
+  };
+  ToleranceOptions o = family.options;
+  EXPECT_NO_THROW(analyze_tolerances_text(with_k(0), o));
+  for (int x : {400, -1000}) {
+    SCOPED_TRACE(with_k(x));
+    try {
+      analyze_tolerances_text(with_k(x), o);
+      ADD_FAILURE() << "1e" << x << ": not refused";
+    } catch (const ModelError& error) {
+      EXPECT_EQ(error.pointer(), "/parts/1/loops/0/start/0") << error.what();
+      EXPECT_NE(std::string(error.what()).find("does not evaluate there in doubles"), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("its length dimension is not determined"), std::string::npos) << error.what();
+    }
+  }
+}
+
+// variation.csv and the pictures of a raw model at the file's scale (session 68; until then in
+// units of 10^x mm, "_1e400mm" columns and "1e400 mm" axes). Oracle: the x 1 files — the same
+// columns; every CSV number a translating driver's (follower's) coordinate times 10^x exactly,
+// the others the x 1 text; the pictures the x 1 pictures but for tick labels (times 10^x exactly
+// on a translating part's axis) and the axes' unit "mm".
+std::vector<std::string> svg_texts(const std::string& svg, std::string* rest) {
+  std::vector<std::string> texts;
+  std::regex text(R"(>([^<]*)</text>)");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator(); ++it)
+    texts.push_back((*it)[1].str());
+  *rest = std::regex_replace(svg, text, "></text>");
+  return texts;
+}
+// A tick label exactly: "+5e393" -> 5e393, "79e400 +" (a base label) -> 79e400.
+Rational label_value(std::string label) {
+  if (label.size() > 2 && label.compare(label.size() - 2, 2, " +") == 0) label.erase(label.size() - 2);
+  if (!label.empty() && label[0] == '+') label.erase(0, 1);
+  return exact(label);
+}
+
+void expect_variation_files_at_the_files_scale(const Family& family, ToleranceOptions (*options_at)(int) = nullptr) {
+  auto options = [&](int x) { return options_at ? options_at(x) : family.options; };
+  SCOPED_TRACE(family.name);
+  const ToleranceResult one = analyze_tolerances_text(family.text(0), options(0));
+  const auto csv1 = csv_rows(tolerance_csv(one));
+  ASSERT_GT(csv1.size(), 2u);
+  for (int x : {400, -300}) {
+    SCOPED_TRACE("raw at 1e" + std::to_string(x) + " mm");
+    std::vector<long> k;
+    const ToleranceResult r = analyze_tolerances_text(family.text(x), options(x), k);
+    const long xf = one.follower_rotates ? 0 : x, xd = one.driver_rotates ? 0 : x;
+    const std::string csv_text = tolerance_csv(r, k);
+    const auto csv = csv_rows(csv_text);
+    ASSERT_EQ(csv.size(), csv1.size());
+    EXPECT_EQ(csv[0], csv1[0]);   // the columns named as at 1 mm
+    std::size_t moved = 0;
+    for (std::size_t row = 1; row < csv1.size(); ++row) {
+      ASSERT_EQ(csv[row].size(), csv1[row].size());
+      for (std::size_t c = 0; c < csv1[row].size(); ++c) {
+        SCOPED_TRACE("variation.csv row " + std::to_string(row) + " " + csv1[0][c] + ": " + csv[row][c] + " against " +
+                     csv1[row][c]);
+        const long by = c == 0 ? xd : c == 1 ? 0 : xf;
+        if (by == 0 || csv1[row][c].empty() || csv1[row][c].find_first_of("ni") != std::string::npos) {
+          EXPECT_EQ(csv[row][c], csv1[row][c]);
+          continue;
+        }
+        EXPECT_EQ(exact(csv[row][c]), exact(csv1[row][c]) * ten_to(by));
+        moved += csv[row][c] != csv1[row][c];
+      }
+    }
+    EXPECT_EQ(moved > 0, xf != 0 || xd != 0);
+    for (int picture = 0; picture < 2; ++picture) {
+      SCOPED_TRACE(picture == 0 ? "variation.svg" : "contact-zone.svg");
+      const std::string svg1 = picture == 0 ? tolerance_band_svg(one) : tolerance_zone_svg(one);
+      const std::string svg = picture == 0 ? tolerance_band_svg(r, k) : tolerance_zone_svg(r, k);
+      EXPECT_EQ(svg.find(" mm)"), svg1.find(" mm)")) << "an axis not in the file's unit";
+      std::string rest1, rest;
+      const std::vector<std::string> texts1 = svg_texts(svg1, &rest1), texts = svg_texts(svg, &rest);
+      EXPECT_EQ(rest, rest1);   // the curves, ticks and frame: the x 1 picture
+      ASSERT_EQ(texts.size(), texts1.size());
+      std::size_t labels = 0;
+      for (std::size_t t = 0; t < texts1.size(); ++t) {
+        if (texts[t] == texts1[t]) continue;
+        SCOPED_TRACE(texts[t] + " against " + texts1[t]);
+        ASSERT_TRUE(xf != 0 || xd != 0);
+        EXPECT_EQ(label_value(texts[t]), label_value(texts1[t]) * ten_to(x));
+        ++labels;
+      }
+      if (picture == 0) EXPECT_EQ(labels > 0, xf != 0 || xd != 0);
+    }
+  }
+}
+
+TEST(ToleranceParameterScale, VariationCsvAndPicturesOfRawModelsAreAtTheFilesScale) {
+  expect_variation_files_at_the_files_scale(cam_family());   // a translating follower
+  expect_variation_files_at_the_files_scale({"two-pin wedge", wedge_pair, {}, {1, 1, 1, 1, 1, 1, 1}}, wedge_options);
+  Family rotating = geneva_family();   // rotating parts: the x 1 files
+  rotating.options.threshold = false;
+  rotating.options.positions = 36;
+  expect_variation_files_at_the_files_scale(rotating);
+}
+
+// examples/models/gear-train-3.json (3 gears, 2 meshes, 37 parameters) with every length
+// parameter raw at 10^x mm, analysed as an assembly chain (--chain): the x 1 chain's bands,
+// sensitivities and ranking bit for bit, each length parameter's exponent x.
+std::string gear_train(int x, std::vector<long>* dims = nullptr) {
+  nlohmann::ordered_json model =
+      nlohmann::ordered_json::parse(read(std::filesystem::path(HIPAIR_EXAMPLES) / "gear-train-3.json"));
+  for (auto& [name, parameter] : model["parameters"].items()) {
+    const bool length = !parameter.value("angle", false) && name.find("teeth") == std::string::npos;
+    if (dims) dims->push_back(length ? 1 : 0);
+    if (!length || x == 0) continue;
+    for (const char* key : {"nominal", "tolerance"})
+      if (parameter.contains(key) && parameter[key].is_number()) parameter[key] = at(parameter[key].dump(), x);
+  }
+  return model.dump(1);
+}
+
+TEST(ToleranceParameterScale, ChainsOfRawGearTrainsGiveTheUnscaledResults) {
+  ToleranceOptions o;
+  o.driver = "gear-A";
+  o.chain = true;
+  o.range = std::make_pair(Rational(0), Rational(3, 10));
+  o.positions = 120;
+  o.monte_carlo = 4;
+  o.seed = 11;
+  o.threads = 1;
+  std::vector<long> dims;
+  gear_train(0, &dims);
+  const ToleranceResult one = analyze_tolerances_text(gear_train(0), o);
+  ASSERT_EQ(one.chain.size(), 2u);
+  expect_the_unscaled_results({"gear train (chain)", [](int x) { return gear_train(x); }, o, dims, false});
+  for (int x : {400, -300}) {
+    std::vector<long> k;
+    const ToleranceResult r = analyze_tolerances_text(gear_train(x), o, k);
+    ASSERT_EQ(r.chain.size(), one.chain.size());
+    EXPECT_EQ(r.follower, one.follower);
+    EXPECT_EQ(r.notes, one.notes);
+  }
+}
+
+// The Geneva's never-interferes certificate (tests/cli/run_certify_cli_tests.sh's: driver 1 ..
+// 2.4 rad, the wheel held at 0) of the raw model at 10^x mm: the x 1 search (its leaves), the box
+// and every leaf's parameter intervals the x 1 ones times 10^k exactly, `valid` against the raw
+// file.
+TEST(ToleranceParameterScale, InterferenceCertificatesOfRawModelsAreAtTheFilesScale) {
+  InterferenceCertifyOptions o;
+  o.driver = "driver";
+  o.follower = "wheel";
+  o.driver_range = RationalInterval{Rational(1), Rational(12, 5)};
+  o.follower_range = RationalInterval{Rational(0), Rational(0)};
+  const ToleranceCertification one = certify_no_interference_text(geneva(0), o);
+  ASSERT_EQ(one.outcome, ToleranceCertification::Outcome::certified);
+  ASSERT_TRUE(one.certificate);
+  const ToleranceClaim& claim1 = *one.certificate->tolerance;
+  std::vector<std::string> lengths;
+  geneva(0, &lengths);
+  for (int x : {400, -300}) {
+    SCOPED_TRACE("raw at 1e" + std::to_string(x) + " mm");
+    const std::string text = geneva(x);
+    const ToleranceCertification r = certify_no_interference_text(text, o, "geneva.json");
+    ASSERT_EQ(r.outcome, ToleranceCertification::Outcome::certified);
+    ASSERT_TRUE(r.certificate);
+    const ToleranceClaim& claim = *r.certificate->tolerance;
+    ASSERT_EQ(claim.varied, claim1.varied);
+    ASSERT_EQ(claim.leaves.size(), claim1.leaves.size());
+    for (std::size_t j = 0; j < claim.box.size(); ++j) {
+      const bool length = std::find(lengths.begin(), lengths.end(), claim.varied[j]) != lengths.end();
+      const Rational up = ten_to(length ? x : 0);
+      EXPECT_EQ(claim.box[j].lo, claim1.box[j].lo * up) << claim.varied[j];
+      EXPECT_EQ(claim.box[j].hi, claim1.box[j].hi * up) << claim.varied[j];
+      for (std::size_t l = 0; l < claim.leaves.size(); ++l) {
+        EXPECT_EQ(claim.leaves[l].parameters[j].lo, claim1.leaves[l].parameters[j].lo * up) << claim.varied[j];
+        EXPECT_EQ(claim.leaves[l].parameters[j].hi, claim1.leaves[l].parameters[j].hi * up) << claim.varied[j];
+      }
+    }
+    const VerificationResult v = check_certificate_text(read_certificate(write_certificate(*r.certificate)), text, "geneva.json");
+    EXPECT_TRUE(v.valid) << v.reason;
+    EXPECT_FALSE(v.unproven);
+  }
+}
+
 }  // namespace
 }  // namespace hipair

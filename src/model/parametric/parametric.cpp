@@ -317,10 +317,23 @@ class RecipeBuilder {
   // Session 67 (scale67): the rescaling of a model whose parameters themselves lie beyond the
   // doubles (a raw `module` of 2e400 mm), by each parameter's length dimension (see below,
   // "Length dimensions of the parameters").
-  static std::vector<long> length_dimensions(const ParametricModel& model);
   static ParametricModel rescaled_by_dimension(const ParametricModel& model, long exponent);
   static ParametricModel rescaled_lengths(const ParametricModel& model, long exponent);
   static std::vector<long> scale_exponents(const ParametricModel& model);
+  // Every template of a rescaled copy judged again by the reader's rule (has_generic_form): its
+  // generic form evaluated in doubles at the file's scale may not have (session 56, scale56).
+  static void judge_templates_again(ParametricModel& scaled) {
+    scaled.generic_ = true;
+    scaled.exact_only_feature_.clear();
+    for (PartRecipe& part : scaled.parts_)
+      for (FeatureRecipe& feature : part.features) {
+        const bool generic = has_generic_form(scaled, feature);
+        if (!generic && scaled.generic_) {
+          scaled.generic_ = false;
+          scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
+        }
+      }
+  }
 
   // Whether a template occurrence has the generic form: circle and pin; the toothed templates
   // with a tooth (slot) count that is not toleranced; spur_gear with flank_radius when its
@@ -1209,22 +1222,9 @@ struct DimensionUse {
   std::string pointer, text;
 };
 
-void collect_point(const PointRecipe& p, std::vector<DimensionUse>& uses);
-void collect_slot(const Slot& s, int kind, std::vector<DimensionUse>& uses) {
-  if (s.formula) uses.push_back({s.formula, kind, s.pointer, s.text});
-}
-void collect_point(const PointRecipe& p, std::vector<DimensionUse>& uses) {
-  if (!p.polar) {
-    collect_slot(p.x, 1, uses);
-    collect_slot(p.y, 1, uses);
-    return;
-  }
-  collect_point(*p.center, uses);
-  collect_slot(p.radius, 1, uses);
-  collect_slot(p.angle, 0, uses);
-}
-
-// Every slot of a part's recipe with its use (the slots RecipeScaler divides are the length ones).
+// Every slot of a part's recipe with its use (1 a length, 0 dimensionless, -1 a direction's
+// component): the one walk of the slots for the dimension inference, rescaled_by_dimension and
+// rescaled_lengths (which divides the length ones, kind 1).
 template <class Visit>
 void visit_slots(PartRecipe& part, Visit&& visit) {
   std::function<void(PointRecipe&)> point = [&](PointRecipe& p) {
@@ -1420,9 +1420,17 @@ FormulaPtr dimension_scaled(const FormulaPtr& formula, long d, const Rational& u
     node->arguments = std::move(arguments);
     return FormulaPtr(node);
   };
+  // A literal standing for a length^d, d != 0 (a constant, pi, "(80)*(1e400)" in a loop's
+  // point; session 68): multiplied by 10^(-E d) as the session-54 path divides a length
+  // (formula_scaled: of a product of literals the factor whose value times the scale is nearest
+  // 1, so "(80)*(1e400)" becomes 80 * 1, not 80e-400 * 1e400, which overflows the doubles).
+  if (d != 0 && !mentions_parameters(formula)) {
+    bool unused = false;
+    return formula_scaled(formula, power(d), unused);
+  }
   switch (f.op) {
-    case Op::constant: return d == 0 ? formula : formula_constant(Rational(f.value * power(d)));
-    case Op::pi: return d == 0 ? formula : formula_node(Op::multiply, {formula, formula_constant(power(d))});
+    case Op::constant:
+    case Op::pi: return formula;
     case Op::parameter: return formula;
     case Op::add:
     case Op::subtract:
@@ -1453,12 +1461,12 @@ FormulaPtr dimension_scaled(const FormulaPtr& formula, long d, const Rational& u
 
 // Whether a parameter's value (nominal, range and its width, sigma) is no normal double far from
 // its limits: beyond 1e300 or below 1e-300 in magnitude (and not 0).
-bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
+bool beyond(const Rational& v) {
   static const Rational huge = power_of_ten_rational(300), tiny = power_of_ten_rational(-300);
-  auto beyond = [&](const Rational& v) {
-    const Rational a = abs(v);
-    return sgn(a) != 0 && (a > huge || a < tiny);
-  };
+  const Rational a = abs(v);
+  return sgn(a) != 0 && (a > huge || a < tiny);
+}
+bool parameters_beyond_doubles(const std::vector<Parameter>& parameters) {
   for (const Parameter& p : parameters)
     if (beyond(p.nominal) || beyond(p.range.lo) || beyond(p.range.hi) || beyond(Rational(p.range.hi - p.range.lo)) ||
         (p.sigma && beyond(*p.sigma)))
@@ -1485,7 +1493,9 @@ void solve_dimensions(DimensionSolver& solver, const std::vector<Parameter>& par
                       const std::vector<PartRecipe>& parts) {
   std::vector<DimensionUse> uses;
   for (PartRecipe part : parts)
-    visit_slots(part, [&](Slot& s, int kind) { collect_slot(s, kind, uses); });
+    visit_slots(part, [&](Slot& s, int kind) {
+      if (s.formula) uses.push_back({s.formula, kind, s.pointer, s.text});
+    });
   const std::size_t n = parameters.size();
   for (;;) {
     do {
@@ -1537,28 +1547,22 @@ void solve_dimensions(DimensionSolver& solver, const std::vector<Parameter>& par
 
 }  // namespace
 
-std::vector<long> RecipeBuilder::length_dimensions(const ParametricModel& model) {
-  const std::vector<Parameter>& parameters = model.nominal_->parameters;
-  DimensionSolver solver(parameters);
-  solve_dimensions(solver, parameters, model.parameter_nominals_, model.derived_, model.parts_);
-  std::vector<long> dims;
-  for (std::size_t i = 0; i < parameters.size(); ++i) dims.push_back(*solver.dim(i));
-  return dims;
-}
+namespace {
+
+// The exponents k_i of a copy rescaled by dimension, solved once by rescaled_by_dimension and
+// kept with the copy: the deleter of its `unscaled_` pointer holds them (std::get_deleter finds
+// them on every copy of the copy; a copy of rescaled_lengths has none: all k_i 0). Held there
+// rather than in a member so that parametric.hpp, included by most of the tree, is unchanged.
+struct DimensionScaled {
+  std::vector<long> exponents;
+  void operator()(const ParametricModel* model) const { delete model; }
+};
+
+}  // namespace
 
 std::vector<long> RecipeBuilder::scale_exponents(const ParametricModel& model) {
-  std::vector<long> exponents(model.parameter_count(), 0);
-  if (!model.unscaled_) return exponents;
-  // the copy of rescaled() by dimension rescales the parameters (the other keeps them as read)
-  const std::vector<Parameter>&mine = model.nominal_->parameters, &read = model.unscaled_->nominal_->parameters;
-  bool rescaled = false;
-  for (std::size_t i = 0; i < mine.size(); ++i)
-    rescaled = rescaled || mine[i].nominal != read[i].nominal || mine[i].range.lo != read[i].range.lo ||
-               mine[i].range.hi != read[i].range.hi;
-  if (!rescaled) return exponents;
-  const std::vector<long> dims = length_dimensions(*model.unscaled_);
-  for (std::size_t i = 0; i < dims.size(); ++i) exponents[i] = dims[i] * model.length_exponent_;
-  return exponents;
+  if (const DimensionScaled* scaled = std::get_deleter<DimensionScaled>(model.unscaled_)) return scaled->exponents;
+  return std::vector<long>(model.parameter_count(), 0);
 }
 
 ParametricModel RecipeBuilder::rescaled_by_dimension(const ParametricModel& model, long exponent) {
@@ -1570,10 +1574,18 @@ ParametricModel RecipeBuilder::rescaled_by_dimension(const ParametricModel& mode
   for (std::size_t i = 0; i < n; ++i) exponents[i] = *solver.dim(i) * exponent;
   const Rational unit = power_of_ten_rational(-exponent);
   ParametricModel scaled = model;
-  scaled.unscaled_ = std::make_shared<const ParametricModel>(model);
   scaled.length_exponent_ = exponent;
   Model nominal = decimal_scaled_model(*model.nominal_, exponent);
   scale_parameters(nominal.parameters, exponents);
+  // the exponents the copy's parameters are in: all 0 when no parameter value moved (every
+  // length parameter 0), as session 67's scale_exponents compared them
+  bool moved = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Parameter &mine = nominal.parameters[i], &read = parameters[i];
+    moved = moved || mine.nominal != read.nominal || mine.range.lo != read.range.lo || mine.range.hi != read.range.hi;
+  }
+  if (!moved) std::fill(exponents.begin(), exponents.end(), 0);
+  scaled.unscaled_ = std::shared_ptr<const ParametricModel>(new ParametricModel(model), DimensionScaled{exponents});
   scaled.nominal_ = std::make_shared<const Model>(std::move(nominal));
   for (std::size_t i = 0; i < n; ++i)
     if (scaled.derived_[i])
@@ -1589,24 +1601,27 @@ ParametricModel RecipeBuilder::rescaled_by_dimension(const ParametricModel& mode
       if (kind == 1) lengths.push_back(&s);
     });
   // the templates judged again on the copy, as rescaled() does
-  scaled.generic_ = true;
-  scaled.exact_only_feature_.clear();
-  for (PartRecipe& part : scaled.parts_)
-    for (FeatureRecipe& feature : part.features) {
-      const bool generic = RecipeBuilder::has_generic_form(scaled, feature);
-      if (!generic && scaled.generic_) {
-        scaled.generic_ = false;
-        scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
-      }
-    }
+  judge_templates_again(scaled);
   const std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(n, 0.0));
   for (const Slot* slot : lengths) {
     const double v = parametric_detail::slot_value(*slot, values);
     if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;
+    // a literal left beyond the doubles (session 68): taken as a pure number, its dimension not
+    // determined by the uses (it multiplies a parameter no other use fixes)
+    std::function<bool(const Formula&)> literal_beyond = [&](const Formula& f) {
+      if (f.op == Formula::Op::constant) return beyond(f.value);
+      return std::any_of(f.arguments.begin(), f.arguments.end(), [&](const FormulaPtr& a) { return literal_beyond(*a); });
+    };
     throw ModelError(slot->pointer, "'" + slot->text + "': the tolerance analysis of this model runs in units of 1e" +
                                         std::to_string(exponent) + " mm, its parameters rescaled by their length "
                                         "dimensions, and this length does not evaluate there in doubles (its value "
-                                        "lies more than 1e300 times from the model's size)");
+                                        "lies more than 1e300 times from the model's size)" +
+                                        (literal_beyond(*slot->formula)
+                                             ? std::string("; a literal in it is beyond the doubles there: its length "
+                                                           "dimension is not determined by its uses (it multiplies a "
+                                                           "parameter that no other use fixes), write it as a factor "
+                                                           "of a length parameter")
+                                             : std::string()));
   }
   return scaled;
 }
@@ -1616,54 +1631,6 @@ std::vector<long> parameter_scale_exponents(const ParametricModel& model) { retu
 void scale_parameter_values(std::vector<Parameter>& parameters, const std::vector<long>& exponents) {
   scale_parameters(parameters, exponents);
 }
-
-namespace {
-
-// Divides the length slots of a part's recipe (formula_scaled); `slots` collects each slot
-// rewritten with a parameter multiplied by the factor, for the range check of rescaled().
-struct RecipeScaler {
-  Rational factor;
-  std::vector<const Slot*> checked;
-
-  void slot(Slot& s) {
-    bool parameter = false;
-    s.formula = formula_scaled(s.formula, factor, parameter);
-    checked.push_back(&s);
-  }
-  void point(PointRecipe& p) {
-    if (!p.polar) {
-      slot(p.x);
-      slot(p.y);
-      return;
-    }
-    auto center = std::make_shared<PointRecipe>(*p.center);
-    point(*center);
-    p.center = center;
-    slot(p.radius);
-  }
-  void part(PartRecipe& part) {
-    for (LoopRecipe& loop : part.loops) {
-      if (loop.circle) {
-        point(loop.center);
-        slot(loop.radius);
-        continue;
-      }
-      point(loop.start);
-      for (EdgeRecipe& edge : loop.edges) {
-        point(edge.target);
-        if (edge.arc) point(edge.center);
-      }
-    }
-    for (FeatureRecipe& feature : part.features)
-      for (auto& [key, argument] : feature.arguments) {
-        if (argument.kind == ArgumentKind::length) slot(argument.number);
-        if (argument.kind == ArgumentKind::point) point(argument.point);
-      }
-    if (part.motion.has_pivot) point(part.motion.pivot);
-  }
-};
-
-}  // namespace
 
 ParametricModel ParametricModel::rescaled(long exponent) const {
   if (exponent == 0 || unscaled_) return *this;
@@ -1699,26 +1666,25 @@ ParametricModel RecipeBuilder::rescaled_lengths(const ParametricModel& model, lo
   scaled.unscaled_ = std::make_shared<const ParametricModel>(model);
   scaled.length_exponent_ = exponent;
   scaled.nominal_ = std::make_shared<const Model>(decimal_scaled_model(*model.nominal_, exponent));
-  RecipeScaler scaler{power_of_ten_rational(-exponent), {}};
-  for (PartRecipe& part : scaled.parts_) scaler.part(part);
+  // the length slots (visit_slots' kind 1, as the dimension inference walks them) divided
+  const Rational factor = power_of_ten_rational(-exponent);
+  std::vector<const Slot*> checked;
+  for (PartRecipe& part : scaled.parts_)
+    visit_slots(part, [&](Slot& s, int kind) {
+      if (kind != 1) return;
+      bool parameter = false;
+      s.formula = formula_scaled(s.formula, factor, parameter);
+      checked.push_back(&s);
+    });
   // The templates' generic forms evaluated in doubles at the file's scale (a spur gear's flank
   // crossings at 1e-300 mm underflow: "exact form only"), so every template is judged again on
   // the copy, by the reader's rule (session 56, scale56).
-  scaled.generic_ = true;
-  scaled.exact_only_feature_.clear();
-  for (PartRecipe& part : scaled.parts_)
-    for (FeatureRecipe& feature : part.features) {
-      const bool generic = RecipeBuilder::has_generic_form(scaled, feature);
-      if (!generic && scaled.generic_) {
-        scaled.generic_ = false;
-        scaled.exact_only_feature_ = feature.name + " (" + feature.pointer + ")";
-      }
-    }
+  judge_templates_again(scaled);
   // Each length at the nominal vector, in doubles: finite and normal (or 0) once divided. A
   // formula that keeps the scale (a parameter of about 1e400 mm used as a length) cannot be
   // evaluated so: refused at its slot.
   std::vector<double> values = scaled.parameter_values<double>(std::vector<double>(model.parameter_count(), 0.0));
-  for (const Slot* slot : scaler.checked) {
+  for (const Slot* slot : checked) {
     double v = parametric_detail::slot_value(*slot, values);
     if (std::isfinite(v) && (v == 0 || std::abs(v) >= 2.2250738585072014e-308) && std::abs(v) <= 1e300) continue;
     char shown[40];
