@@ -1401,6 +1401,9 @@ struct PinSlotSimulation::Impl {
   // locked part and those contacts (a limit by its label and pointer); returns where there is no
   // such combination (or a row has no exact normal). The state published before it throws is
   // the jam's (state(): the time and configuration where the contacts locked, their approach).
+  // Exact on the simulated state (the rows at its pairs' exact configurations and the drivers'
+  // exact angles, its rates' doubles); tried only where the doubles' problem fails (a jam they
+  // solve within solve_lcp's tolerance is not looked for).
   void refuse_jam(const std::vector<Row>& rows);
   bool is_held(std::size_t pi, const SlicedFeaturePair& f) const {
     for (const Held& h : held)
@@ -1817,16 +1820,25 @@ void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
   lp.equality.push_back(true);
   const std::optional<std::vector<Rational>> y = simulation::exact_feasible_point(lp);
   if (!y) return;
-  std::string driver, contacts;
+  std::vector<std::string> drivers_closing;   // every driver whose surface speed closes the combination
+  std::string contacts;
   std::size_t n = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (sgn((*y)[i]) <= 0) continue;
     const Row& r = rows[i];
-    if (driver.empty() && !r.limit && sgn(r.exact.v_other) != 0) driver = model.parts[pairs[r.pair].other].name;
+    if (!r.limit && sgn(r.exact.v_other) != 0) {
+      const std::string& name = model.parts[pairs[r.pair].other].name;
+      if (std::find(drivers_closing.begin(), drivers_closing.end(), name) == drivers_closing.end())
+        drivers_closing.push_back(name);
+    }
     contacts += (n++ ? "; " : "") + r.label;
   }
+  std::string driver;
+  for (std::size_t i = 0; i < drivers_closing.size(); ++i)
+    driver += (i ? (i + 1 == drivers_closing.size() ? "' and '" : "', '") : "") + drivers_closing[i];
   std::ostringstream out;
-  out << where(t) << ": the constant-speed driver '" << driver << "' jams '" << model.parts[part].name
+  out << where(t) << ": the constant-speed driver" << (drivers_closing.size() > 1 ? "s '" : " '") << driver
+      << (drivers_closing.size() > 1 ? "' jam '" : "' jams '") << model.parts[part].name
       << "' (a jam): no motion of the free parts keeps its " << n << " contacts [" << contacts << "]"
       << " (decided exactly: a nonnegative combination of their normals vanishes on every free coordinate "
       << "and the driver closes it), and a driver at constant speed cannot give way";
