@@ -43,6 +43,7 @@
 
 #include "core/angle_limits.hpp"
 #include "simulation/frame_rate.hpp"
+#include "simulation/exact_lp.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/held_friction.hpp"
 #include "simulation/held_extent.hpp"
@@ -1391,6 +1392,19 @@ struct PinSlotSimulation::Impl {
   // the chord's start with nothing else changed, session 67)
   using Touching = std::vector<std::pair<std::size_t, std::vector<SlicedFeaturePair>>>;   // (pair, feature pairs)
   void impact(const Touching& touching, int limit = 0, bool hold_met = false);
+  // (session 68, film68) An impact whose complementarity problem has no solution: is it a jam of
+  // a constant-speed driver? Decided exactly on the rows' exact normals (Farkas): no velocity of
+  // the free coordinates (s', psi', a torque-driven part's phi', the translating part's x') keeps
+  // every row's normal speed a . rates - v_other >= 0 exactly when some y >= 0 has
+  // sum y_i a_i = 0 and sum y_i v_other_i > 0 — the contacts of that combination lock the free
+  // parts and the driver closes them. Throws the jam's NumericError naming the driver, the
+  // locked part and those contacts (a limit by its label and pointer); returns where there is no
+  // such combination (or a row has no exact normal). The state published before it throws is
+  // the jam's (state(): the time and configuration where the contacts locked, their approach).
+  // Exact on the simulated state (the rows at its pairs' exact configurations and the drivers'
+  // exact angles, its rates' doubles); tried only where the doubles' problem fails (a jam they
+  // solve within solve_lcp's tolerance is not looked for).
+  void refuse_jam(const std::vector<Row>& rows);
   bool is_held(std::size_t pi, const SlicedFeaturePair& f) const {
     for (const Held& h : held)
       if (h.pair == pi && h.features.fixed == f.fixed && h.features.free == f.free) return true;
@@ -1781,6 +1795,57 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
   return rows;
 }
 
+void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
+  simulation::ExactLinearSystem lp;
+  lp.variables = rows.size();
+  lp.nonnegative.assign(rows.size(), true);
+  for (const Row& r : rows)
+    if (!r.exact.defined) return;
+  for (std::size_t k = 0; k < 4; ++k) {   // sum y_i a_ik = 0 on every coordinate
+    std::vector<Rational> row;
+    bool any = false;
+    for (const Row& r : rows) {
+      row.push_back(r.exact.a[k]);
+      any = any || sgn(r.exact.a[k]) != 0;
+    }
+    if (!any) continue;
+    lp.rows.push_back(std::move(row));
+    lp.rhs.emplace_back(0);
+    lp.equality.push_back(true);
+  }
+  std::vector<Rational> closing;   // sum y_i v_other_i = 1 (> 0, scaled)
+  for (const Row& r : rows) closing.push_back(r.exact.v_other);
+  lp.rows.push_back(std::move(closing));
+  lp.rhs.emplace_back(1);
+  lp.equality.push_back(true);
+  const std::optional<std::vector<Rational>> y = simulation::exact_feasible_point(lp);
+  if (!y) return;
+  std::vector<std::string> drivers_closing;   // every driver whose surface speed closes the combination
+  std::string contacts;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (sgn((*y)[i]) <= 0) continue;
+    const Row& r = rows[i];
+    if (!r.limit && sgn(r.exact.v_other) != 0) {
+      const std::string& name = model.parts[pairs[r.pair].other].name;
+      if (std::find(drivers_closing.begin(), drivers_closing.end(), name) == drivers_closing.end())
+        drivers_closing.push_back(name);
+    }
+    contacts += (n++ ? "; " : "") + r.label;
+  }
+  std::string driver;
+  for (std::size_t i = 0; i < drivers_closing.size(); ++i)
+    driver += (i ? (i + 1 == drivers_closing.size() ? "' and '" : "', '") : "") + drivers_closing[i];
+  std::ostringstream out;
+  out << where(t) << ": the constant-speed driver" << (drivers_closing.size() > 1 ? "s '" : " '") << driver
+      << (drivers_closing.size() > 1 ? "' jam '" : "' jams '") << model.parts[part].name
+      << "' (a jam): no motion of the free parts keeps its " << n << " contacts [" << contacts << "]"
+      << " (decided exactly: a nonnegative combination of their normals vanishes on every free coordinate "
+      << "and the driver closes it), and a driver at constant speed cannot give way";
+  publish();
+  throw NumericError(out.str());
+}
+
 void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool hold_met) {
   // (an impact's rows and exact speeds turn the state's doubles into rationals: a state made
   // infinite by a violent load stops here, with one message, not in GMP's mpq_set_d(inf))
@@ -1907,6 +1972,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
                : simulation::restitution_limited(
                      solve, [](const Eigen::VectorXd& x) { return x.squaredNorm(); }, vz.squaredNorm(), limited);
     if (!sol.solved) {
+      refuse_jam(rows);
       std::ostringstream out;
       out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
           << " contacts has no consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more than 8 "
@@ -1940,6 +2006,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     }
     const simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
     if (!lcp.solved) {
+      refuse_jam(rows);
       std::ostringstream out;
       out << where(t) << ": the impact of '" << model.parts[part].name << "' on " << rows.size()
           << " contacts has no solution of its complementarity problem (" << rows.front().label << ")";

@@ -1684,6 +1684,24 @@ struct PullDown {
     const double v = dy * -w;   // the claw's (and the film's) rate at the release, mm/s (< 0: down)
     return y - g_film + 9.2 - perforation * pitch + v * m_over_c;
   }
+  // The film's offset while the claw pulls the lower edge of `perforation`, at cam angle phi.
+  double film_at(double phi, double pitch, int perforation, double g_left = 0, double g_bottom = 0,
+                 double g_film = 0) const {
+    return claw_at(phi, g_left, g_bottom)[0] - g_film + 9.2 - perforation * pitch;
+  }
+  // The cam angle (in (release, 0.6) rad) where that pull brings the film to `offset` (its lower
+  // travel limit: the jam of session 68), by bisection on the monotone pull.
+  double reaching(double offset, double pitch, int perforation, double g_left = 0, double g_bottom = 0,
+                  double g_film = 0) const {
+    double lo = release(g_left, g_bottom), hi = 0.6;   // the film below `offset` at lo, above at hi
+    EXPECT_LT(film_at(lo, pitch, perforation, g_left, g_bottom, g_film), offset);
+    EXPECT_GT(film_at(hi, pitch, perforation, g_left, g_bottom, g_film), offset);
+    for (int k = 0; k < 200; ++k) {
+      const double m = (lo + hi) / 2;
+      (film_at(m, pitch, perforation, g_left, g_bottom, g_film) < offset ? lo : hi) = m;
+    }
+    return hi;
+  }
 };
 
 // The film's advance per cam turn against the pull-down's closed form (PullDown above), over
@@ -1812,6 +1830,130 @@ TEST(SimulationPinSlot, FilmAdvancesOnePitchPerCamTurnOverTwoWholeTurns) {
               << (at - expected) / delta << " delta (tolerance " << tol / delta << " delta), " << sim.steps()
               << " steps\n";
   }
+}
+
+// ---- The film's lower travel limit (session 68, film68).
+//
+// The claw entering perforation k (the film's initial offset x0 - k pitch) pulls perforation k in
+// the first turn, k + 1 in the second; from k = 1 the second turn's pull (from k = 2 the first's)
+// brings the film to its lower offset limit, -20 mm, before the claw releases it. There the film
+// stops, the claw on its edge stops the follower, and the follower's window is held on the cam by
+// its bottom and its left wall: the four contacts' normals combine (non-negatively: the pull's
+// forces) to zero on the free coordinates (s, psi, the film's offset) while the cam, at constant
+// speed, closes them — a jam: no velocity keeps the four contacts. Until session 68 the run stopped
+// with "the impact of 'follower' on 4 contacts has no solution of its complementarity problem";
+// now the jam is decided exactly and named. A torque-driven cam gives way: it stalls against the
+// jam and the run goes on.
+//
+// Closed form: the jam's cam angle is where the pull brings the film to -20 (PullDown::reaching:
+// the film rides on the claw, the window held on the cam's bottom and left wall), so its time is
+// (pi/2 - phi) / w plus a whole turn when it is the second turn's pull. Tolerance as
+// FilmAdvancesByThePullDownsClosedFormPerCamTurn's, carried to the cam angle: each held contact's
+// gap in [0, delta] moves the angle by at most its closed-form sensitivity (reaching at gap delta
+// less at gap 0), plus the integration's relative accuracy on the 8 mm stroke over the pull's rate
+// d(film)/d(phi) there; the limit's impact is located to 2^-30 of its step. The film at the jam
+// within the located step of -20 (delta), every event's state and every 16th state exactly free by
+// the overlap oracle (the jam's state too: state() after the error), the run's error naming the
+// driver, the jammed part and the four contacts.
+struct JamRun {
+  double time = 0, film = 0;
+  std::string error;
+  std::size_t steps = 0;
+};
+JamRun run_to_the_jam(PinSlotSimulation& sim, double t_end) {
+  JamRun out;
+  const std::vector<std::size_t> others{0, 2, 3};
+  std::size_t events = 0, n = 0;
+  try {
+    while (sim.state().time < t_end) {
+      sim.step(t_end);
+      if (sim.events().size() != events || ++n % 16 == 0) expect_not_overlapping(sim, others);
+      events = sim.events().size();
+    }
+  } catch (const NumericError& e) {
+    out.error = e.what();
+    expect_not_overlapping(sim, others);   // the jam's state
+  }
+  out.time = sim.state().time;
+  out.film = sim.state().position[3];
+  out.steps = sim.steps();
+  return out;
+}
+
+void expect_film_jam(const JamRun& run, double w, double pitch, int perforation, int turn, double delta,
+                     double accuracy) {
+  const PullDown pull;
+  const double phi = pull.reaching(-20, pitch, perforation);
+  const double expected = (std::numbers::pi / 2 - phi + 2 * std::numbers::pi * (turn - 1)) / w;
+  const double rate = std::abs((pull.film_at(phi + 1e-6, pitch, perforation) -
+                                pull.film_at(phi - 1e-6, pitch, perforation)) / 2e-6);   // mm/rad
+  const double tol_phi = std::abs(pull.reaching(-20, pitch, perforation, delta) - phi) +
+                         std::abs(pull.reaching(-20, pitch, perforation, 0, delta) - phi) +
+                         std::abs(pull.reaching(-20, pitch, perforation, 0, 0, delta) - phi) + accuracy * 8 / rate;
+  ASSERT_FALSE(run.error.empty()) << "no jam: the run reached t = " << run.time << " s, the film at " << run.film;
+  for (const char* named : {"constant-speed driver 'cam' jams 'follower'", "4 contacts", "film offset limit (lower end)",
+                            "(window bottom)", "(window left)", "(claw bottom)", "decided exactly"})
+    EXPECT_NE(run.error.find(named), std::string::npos) << named << " in: " << run.error;
+  EXPECT_NEAR(run.time, expected, tol_phi / w) << run.error;
+  EXPECT_NEAR(run.film, -20, delta);
+  std::cout << "film jam: w " << w << " rad/s, pitch " << pitch << ", perforation " << perforation << " in turn "
+            << turn << ": t " << run.time << " s, closed form " << expected << " s, error "
+            << (run.time - expected) * w / tol_phi << " of the tolerance " << tol_phi / w << " s; film " << run.film
+            << " mm, " << run.steps << " steps\n";
+}
+
+// The reproducer: the cam at one turn a second, pitch 7.8 mm, the claw entering perforation 1
+// (offset 0.2 - 7.8), accuracy 1e-5: integ (634aa13c) stopped at 1.34245 s on the complementarity
+// problem.
+TEST(SimulationPinSlot, FilmDrivenToItsTravelLimitJamsTheConstantSpeedCamAtTheClosedFormTime) {
+  const double accuracy = 1e-5, pitch = 7.8, w = 2 * std::numbers::pi;
+  const Model model = film_advance_at(-360, pitch, 0.2 - pitch, 0.004, accuracy);
+  PinSlotSimulation sim = PinSlotSimulation::create(model, SimulationOptions{});
+  const JamRun run = run_to_the_jam(sim, 2.0);
+  expect_film_jam(run, w, pitch, 2, 2, sim.chord_deviation(), accuracy);
+}
+
+// Generated: cam speeds 1.5 pi .. 2.5 pi rad/s, pitches 7.6 .. 8.0 mm, x0 in 0.1 .. 0.3 mm, the
+// claw entering perforation 2 (the first turn's pull jams) or 1 (the second's), alternating; then
+// the same film driven by the example's torque-driven cam (5 N mm, 50 kg mm^2) from perforation
+// 2: the cam stalls at the limit's impact (it can give way: no jam) and the run reaches its end,
+// the film held at -20.
+TEST(SimulationPinSlot, FilmAtItsTravelLimitJamsEveryConstantSpeedCamAndStallsATorqueDrivenOne) {
+  const std::uint64_t seed = test::test_seed(6801);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  const double accuracy = 1e-5;
+  for (int trial = 0; trial < 3; ++trial) {
+    const double w = rng.uniform(1.5, 2.5) * std::numbers::pi;
+    const double pitch = rng.uniform(7.6, 8.0), x0 = rng.uniform(0.1, 0.3);
+    const int k = trial % 2 ? 1 : 2;
+    SCOPED_TRACE("w " + num(w) + " rad/s, pitch " + num(pitch) + " mm, x0 " + num(x0) + " mm, perforation " +
+                 std::to_string(k));
+    const Model model = film_advance_at(-w * 180 / std::numbers::pi, pitch, x0 - k * pitch, 0.004, accuracy);
+    PinSlotSimulation sim = PinSlotSimulation::create(model, SimulationOptions{});
+    const JamRun run = run_to_the_jam(sim, (3 - k) * 2 * std::numbers::pi / w);
+    expect_film_jam(run, w, pitch, 2, 3 - k, sim.chord_deviation(), accuracy);
+  }
+  // the torque-driven cam
+  std::ifstream in(std::filesystem::path(HIPAIR_SOURCE_DIR) / "tests/data/simulation/film-advance-dynamics.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  const double pitch = rng.uniform(7.6, 8.0), x0 = rng.uniform(0.1, 0.3);
+  j["parameters"]["pitch"]["nominal"] = pitch;
+  j["parts"][3]["initial"]["offset"] = x0 - 2 * pitch;
+  j["parts"][3]["dynamics"]["damping"] = 0.004;
+  j["simulation"]["accuracy"] = accuracy;
+  SCOPED_TRACE("torque-driven: pitch " + num(pitch) + " mm, x0 " + num(x0) + " mm");
+  PinSlotSimulation sim = PinSlotSimulation::create(read_model(j.dump(), "film advance, torque-driven"), {});
+  const JamRun run = run_to_the_jam(sim, 0.4);
+  EXPECT_TRUE(run.error.empty()) << run.error;
+  EXPECT_EQ(run.time, 0.4);
+  EXPECT_NEAR(run.film, -20, sim.chord_deviation());
+  bool held = false;
+  for (const SimulationEvent& ev : sim.events())
+    if (ev.kind == SimulationEvent::Kind::contact && !ev.features.empty() &&
+        ev.features[0].find("film offset limit (lower end)") != std::string::npos)
+      held = true;
+  EXPECT_TRUE(held) << "the film's limit not held";
 }
 
 }  // namespace
