@@ -56,4 +56,12 @@ struct SlicedConnectedResult {
 SlicedConnectedResult certify_sliced_connected(const Model& model, const std::string& fixed, const PlanarPose& from,
                                                const PlanarPose& to, const CertifyContext& context = {});
 
+/// The same for a path of the sliced C-space (SlicedSpace::path, status found: straight motions in
+/// (x, y, w), w the half-angle tangent of the motion's chart), which may have diagonal motions;
+/// the claim is its first and last waypoint. A caller's path is taken as a proposal: nothing in
+/// it is trusted (each staircase move is proved free by the verifier's check).
+struct SlicedPath;
+SlicedConnectedResult certify_sliced_path(const Model& model, const std::string& fixed, const std::string& planar,
+                                          const SlicedPath& path, const CertifyContext& context = {});
+
 }  // namespace hipair

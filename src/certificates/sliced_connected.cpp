@@ -101,20 +101,65 @@ class Staircase {
 
 }  // namespace
 
+namespace {
+
+// The parts of a connected claim: `fixed` fixed, `planar` free in the plane without limits.
+std::pair<const Part*, const Part*> connected_parts(const Model& model, const std::string& fixed, const std::string& planar) {
+  const Part& fixed_part = part_of(model, fixed);
+  const Part& planar_part = part_of(model, planar);
+  if (fixed_part.motion.kind != Motion::Kind::fixed) throw GeometryError("sliced_connected: part '" + fixed + "' must be fixed");
+  if (planar_part.motion.kind != Motion::Kind::planar)
+    throw GeometryError("sliced_connected: part '" + planar + "' must be free in the plane (motion \"planar\")");
+  if (planar_part.motion.angle_limits || planar_part.motion.translation_limits)
+    throw GeometryError("sliced_connected: part '" + planar + "' has motion limits");
+  return {&fixed_part, &planar_part};
+}
+
+}  // namespace
+
+SlicedConnectedResult certify_sliced_path(const Model& model, const std::string& fixed, const std::string& planar,
+                                          const SlicedPath& sliced, const CertifyContext& context) {
+  auto [fixed_part, planar_part] = connected_parts(model, fixed, planar);
+  SlicedConnectedResult result;
+  result.sliced_waypoints = sliced.waypoints.size();
+  if (sliced.status != SlicedPath::Status::found || sliced.waypoints.empty() ||
+      sliced.through_half_turn.size() + 1 != sliced.waypoints.size())
+    throw GeometryError("sliced_connected: a path needs status found and one chart flag per motion");
+  auto pose_of = [&](const SlicedConfiguration& q, bool chart) {
+    return PlanarPose{planar, q.x, q.y, chart_tangent(q.angle, chart), chart, std::nullopt};
+  };
+  const SlicedConfiguration &first = sliced.waypoints.front(), &last = sliced.waypoints.back();
+  const bool first_chart = sliced.through_half_turn.empty() ? first.angle.half_turn : bool(sliced.through_half_turn.front());
+  SlicedConnectedCertificate c;
+  c.envelope = start_certificate(model, context, ClaimKind::planar_clearance, fixed, planar);
+  c.from = pose_of(first, first.angle.half_turn);
+  c.to = pose_of(last, last.angle.half_turn);
+  c.path.push_back(pose_of(first, first_chart));
+  Staircase staircase(*fixed_part, *planar_part, c.path);
+  for (std::size_t k = 0; k + 1 < sliced.waypoints.size(); ++k) {
+    const bool chart = sliced.through_half_turn[k];
+    staircase.rechart(chart);
+    if (!staircase.reach(pose_of(sliced.waypoints[k + 1], chart))) {
+      result.failure = "motion " + std::to_string(k) + " of the sliced path: no staircase of pure translations and rotations "
+                       "was proved free near it (" + staircase.failure + ")";
+      return result;
+    }
+  }
+  staircase.rechart(c.to.half_turn);
+  c.envelope.statement = sliced_connected_statement(c);
+  VerificationResult check = check_sliced_connected(c, model);
+  if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
+  result.certificate = std::move(c);
+  return result;
+}
+
 SlicedConnectedResult certify_sliced_connected(const Model& model, const std::string& fixed, const PlanarPose& from,
                                                const PlanarPose& to, const CertifyContext& context) {
-  const Part& fixed_part = part_of(model, fixed);
-  const Part& planar = part_of(model, from.part);
   if (to.part != from.part) throw ModelError("", "sliced_connected: both poses must be of one part");
-  if (fixed_part.motion.kind != Motion::Kind::fixed) throw GeometryError("sliced_connected: part '" + fixed + "' must be fixed");
-  if (planar.motion.kind != Motion::Kind::planar)
-    throw GeometryError("sliced_connected: part '" + planar.name + "' must be free in the plane (motion \"planar\")");
-  if (planar.motion.angle_limits || planar.motion.translation_limits)
-    throw GeometryError("sliced_connected: part '" + planar.name + "' has motion limits");
+  connected_parts(model, fixed, from.part);
+  SlicedSpace space = SlicedSpace::build(model, fixed, from.part);
+  SlicedPath sliced = space.path(SlicedConfiguration{from.x, from.y, sliced_angle(from)}, SlicedConfiguration{to.x, to.y, sliced_angle(to)});
   SlicedConnectedResult result;
-  SlicedSpace space = SlicedSpace::build(model, fixed, planar.name);
-  const SlicedConfiguration a{from.x, from.y, sliced_angle(from)}, b{to.x, to.y, sliced_angle(to)};
-  SlicedPath sliced = space.path(a, b);
   result.sliced_waypoints = sliced.waypoints.size();
   switch (sliced.status) {
     case SlicedPath::Status::found: break;
@@ -129,29 +174,18 @@ SlicedConnectedResult certify_sliced_connected(const Model& model, const std::st
       result.failure = "the sliced C-space found no path between the ends (they are connected)";
       return result;
   }
-  SlicedConnectedCertificate c;
-  c.envelope = start_certificate(model, context, ClaimKind::planar_clearance, fixed, planar.name);
-  c.from = from;
-  c.to = to;
-  c.path.push_back(from);
-  Staircase staircase(fixed_part, planar, c.path);
-  for (std::size_t k = 0; k + 1 < sliced.waypoints.size(); ++k) {
-    const bool chart = sliced.through_half_turn[k];
-    staircase.rechart(chart);
-    const SlicedConfiguration& q = sliced.waypoints[k + 1];
-    PlanarPose next{planar.name, q.x, q.y, chart_tangent(q.angle, chart), chart, std::nullopt};
-    if (!staircase.reach(next)) {
-      result.failure = "motion " + std::to_string(k) + " of the sliced path: no staircase of pure translations and rotations "
-                       "was proved free near it (" + staircase.failure + ")";
-      return result;
-    }
+  result = certify_sliced_path(model, fixed, from.part, sliced, context);
+  if (result.certificate) {
+    // the claim in the representation asked for (the same poses)
+    SlicedConnectedCertificate& c = *result.certificate;
+    c.from = from;
+    c.to = to;
+    if (c.path.front().half_turn != from.half_turn) c.path.insert(c.path.begin(), from);
+    if (c.path.back().half_turn != to.half_turn) c.path.push_back(to);
+    c.envelope.statement = sliced_connected_statement(c);
+    VerificationResult check = check_sliced_connected(c, model);
+    if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
   }
-  // end in the representation asked for (the same pose)
-  staircase.rechart(to.half_turn);
-  c.envelope.statement = sliced_connected_statement(c);
-  VerificationResult check = check_sliced_connected(c, model);
-  if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
-  result.certificate = std::move(c);
   return result;
 }
 
