@@ -15,6 +15,7 @@
 
 #include <mpfr.h>
 
+#include <functional>
 #include <utility>
 
 namespace hipair::verify {
@@ -764,14 +765,27 @@ bool read_certified_model(const Certificate& certificate, std::string_view text,
   return true;
 }
 
+VerificationResult verdict_of(const std::function<std::string()>& check) {
+  VerificationResult result;
+  try {
+    result.summary = check();
+    result.valid = true;
+  } catch (const Rejection& rejection) {
+    result.reason = rejection.reason;
+  } catch (const Error& error) {
+    result.reason = error.what();
+  }
+  return result;
+}
+
 }  // namespace hipair::verify
 
 namespace hipair {
 
 VerificationResult check_certificate(const Certificate& certificate, const Model& model) {
   using namespace verify;
-  VerificationResult result;
-  try {
+  return verdict_of([&] {
+    std::string summary;
     check_model(certificate, model);
     if (certificate.first == certificate.second) reject("a pair needs two different parts");
     // A pair far from the origin for its size (a 10 mm ratchet at 10^100 mm) is checked moved to
@@ -785,29 +799,23 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
       moved = pair_moved_to_origin(model, certificate.first, certificate.second);
     const Model& posed = moved ? *moved : model;
     switch (certificate.claim) {
-      case ClaimKind::interference: result.summary = check_interference(certificate, model); break;
-      case ClaimKind::clearance: result.summary = check_clearance(certificate, posed); break;
+      case ClaimKind::interference: summary = check_interference(certificate, model); break;
+      case ClaimKind::clearance: summary = check_clearance(certificate, posed); break;
       case ClaimKind::jam: {
         Point by{Rational(0), Rational(0)};
         if (moved) by = *pair_translation(model, certificate.first, certificate.second);
-        result.summary = check_jam(certificate, posed, by);
+        summary = check_jam(certificate, posed, by);
         break;
       }
-      case ClaimKind::free_passage: result.summary = check_free_passage(certificate, posed); break;
-      case ClaimKind::planar_interference: result.summary = check_planar(certificate, model); break;
-      case ClaimKind::planar_clearance: result.summary = check_planar(certificate, posed); break;
+      case ClaimKind::free_passage: summary = check_free_passage(certificate, posed); break;
+      case ClaimKind::planar_interference: summary = check_planar(certificate, model); break;
+      case ClaimKind::planar_clearance: summary = check_planar(certificate, posed); break;
       case ClaimKind::tolerance:
         reject("a tolerance certificate is checked against the model file's text (check_certificate_text, hipair-verify)");
     }
     check_statement(certificate, model);
-    result.summary = to_string(certificate.claim) + ": " + result.summary;
-    result.valid = true;
-  } catch (const Rejection& rejection) {
-    result.reason = rejection.reason;
-  } catch (const Error& error) {
-    result.reason = error.what();
-  }
-  return result;
+    return to_string(certificate.claim) + ": " + summary;
+  });
 }
 
 VerificationResult check_certificate_text(const Certificate& certificate, std::string_view text,

@@ -9,6 +9,7 @@
 #include "certify/exact_geometry.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,8 @@ ExactMap planar_pose_map(const Part& part, const PlanarPose& pose);
 /// The certificate names the model and its parameter values and roundings (check_model).
 void check_certificate_model(const Certificate& c, const Model& model);
 void check_nesting(const PlacedPart& a, const PlacedPart& b, const std::string& where);
+/// The verdict of a check that returns its summary or throws a Rejection (or an Error).
+VerificationResult verdict_of(const std::function<std::string()>& check);
 bool read_certified_model(const Certificate& certificate, std::string_view text, const std::string& source_name,
                           Model& model, std::string& reason);
 

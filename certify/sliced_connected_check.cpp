@@ -193,8 +193,7 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
 
 VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, const Model& model) {
   using namespace verify;
-  VerificationResult result;
-  try {
+  return verdict_of([&] {
     check_certificate_model(c.envelope, model);
     const std::string &first = c.envelope.first, &second = c.envelope.second;
     if (first == second) reject("a pair needs two different parts");
@@ -233,24 +232,20 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     if (c.envelope.statement != expected)
       reject("the statement does not say what the claim's data prove: it reads '" + c.envelope.statement.substr(0, 400) +
              "', the claim's data give '" + expected + "'");
-    result.summary = std::string(claim_name) + ": part '" + name + "' moves from " + pose_words(c.from) + " to " +
-                     pose_words(c.to) + " without touching '" + fixed_name + "' (" + std::to_string(c.path.size() - 1) +
-                     " moves, each proved free over " + std::to_string(total) + " interval pieces in all)";
-    result.valid = true;
-  } catch (const Rejection& rejection) {
-    result.reason = rejection.reason;
-  } catch (const Error& error) {
-    result.reason = error.what();
-  }
-  return result;
+    return std::string(claim_name) + ": part '" + name + "' moves from " + pose_words(c.from) + " to " + pose_words(c.to) +
+           " without touching '" + fixed_name + "' (" + std::to_string(c.path.size() - 1) + " moves, each proved free over " +
+           std::to_string(total) + " interval pieces in all)";
+  });
 }
 
 VerificationResult check_sliced_connected_text(const SlicedConnectedCertificate& c, std::string_view text,
                                                const std::string& source_name) {
-  VerificationResult result;
   Model model;
-  if (!verify::read_certified_model(c.envelope, text, source_name, model, result.reason)) return result;
-  return check_sliced_connected(c, model);
+  std::string reason;
+  if (verify::read_certified_model(c.envelope, text, source_name, model, reason)) return check_sliced_connected(c, model);
+  VerificationResult refused;
+  refused.reason = reason;
+  return refused;
 }
 
 }  // namespace hipair

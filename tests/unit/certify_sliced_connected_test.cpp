@@ -18,6 +18,7 @@
 #include <random>
 #include <string>
 
+#include "random_rationals.hpp"
 #include "sliced_peg_in_hole.hpp"
 #include "test_seed.hpp"
 
@@ -26,15 +27,7 @@ namespace {
 
 using Random = std::mt19937_64;
 
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 61) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
+using test_numbers::random_rational;
 
 // The exact relation of the parts (model.parts[0] fixed, [1] planar about its pivot) at a pose.
 PartRelation relation(const Model& model, const PlanarPose& pose) {
