@@ -20,6 +20,8 @@ namespace verify {
 
 /// The work budget of one move: interval pieces evaluated before the move is refused.
 constexpr std::size_t sliced_move_budget = 40000;
+/// The work budget of a whole certificate (every move's pieces together).
+constexpr std::size_t sliced_total_budget = 400000;
 
 /// Why the move from pose `a` to pose `b` of the planar part against the fixed part is not
 /// certainly free ("" when it is proved free): not a pure translation, rotation or chart change,

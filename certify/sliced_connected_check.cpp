@@ -11,6 +11,7 @@
 
 #include <hipair/error.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -214,14 +215,19 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     if (c.path.empty()) reject("the path has no vertex");
     if (!same_pose(planar, c.path.front(), c.from)) reject("the path starts at " + pose_words(c.path.front()) + ", not at the claim's start " + pose_words(c.from));
     if (!same_pose(planar, c.path.back(), c.to)) reject("the path ends at " + pose_words(c.path.back()) + ", not at the claim's end " + pose_words(c.to));
+    // each move within its budget, and all of them within the certificate's (a forged path of
+    // many grazing moves is refused in bounded time)
     std::size_t pieces = 0, total = 0;
+    auto budget = [&] { return std::min(sliced_move_budget, sliced_total_budget - total); };
     if (c.path.size() == 1) {
-      std::string failure = sliced_move_failure(fixed, planar, c.path[0], c.path[0], sliced_move_budget, &pieces);
+      std::string failure = sliced_move_failure(fixed, planar, c.path[0], c.path[0], budget(), &pieces);
       if (!failure.empty()) reject("at the start: " + failure);
       total += pieces;
     }
     for (std::size_t i = 0; i + 1 < c.path.size(); ++i) {
-      std::string failure = sliced_move_failure(fixed, planar, c.path[i], c.path[i + 1], sliced_move_budget, &pieces);
+      if (total >= sliced_total_budget)
+        reject("the path's moves need more than " + std::to_string(sliced_total_budget) + " interval pieces in all");
+      std::string failure = sliced_move_failure(fixed, planar, c.path[i], c.path[i + 1], budget(), &pieces);
       if (!failure.empty())
         reject("move " + std::to_string(i) + " (" + pose_words(c.path[i]) + " to " + pose_words(c.path[i + 1]) + "): " + failure);
       total += pieces;
