@@ -4,6 +4,7 @@
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 
+#include "certify/certificate_json.hpp"
 #include "core/exact_literal.hpp"
 #include "model/json_document.hpp"
 
@@ -233,26 +234,9 @@ PlanarPose pose_of(const JsonValue& value) {
 
 }  // namespace
 
-Certificate read_certificate(std::string_view json_text) {
-  JsonValue root = model_detail::parse_json(json_text);
-  Certificate c;
-  check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", "interference", "clearance", "jam",
-                    "free_passage", "tolerance", "planar_interference", "planar_clearance"});
-  const JsonValue& version = require(root, "hipair_certificate");
-  // version 2 (session 57): jam pieces may carry a 'point' witness; every version-1 certificate
-  // reads the same as version 2
-  if (!version.is_number() || (version.text != "1" && version.text != "2"))
-    fail(version, "unsupported certificate version (expected 1 or 2)");
-  int format = version.text == "2" ? 2 : 1;
-  std::string claim = text(require(root, "claim"));
-  if (claim == "interference") c.claim = ClaimKind::interference;
-  else if (claim == "clearance") c.claim = ClaimKind::clearance;
-  else if (claim == "jam") c.claim = ClaimKind::jam;
-  else if (claim == "free_passage") c.claim = ClaimKind::free_passage;
-  else if (claim == "tolerance") c.claim = ClaimKind::tolerance;
-  else if (claim == "planar_interference") c.claim = ClaimKind::planar_interference;
-  else if (claim == "planar_clearance") c.claim = ClaimKind::planar_clearance;
-  else fail(require(root, "claim"), "unknown claim '" + claim + "'");
+namespace certificate_json {
+
+void read_envelope(const JsonValue& root, Certificate& c) {
   if (const JsonValue* statement = root.find("statement")) c.statement = text(*statement);
 
   const JsonValue& model = require(root, "model");
@@ -280,6 +264,39 @@ Certificate read_certificate(std::string_view json_text) {
   const JsonValue& pair = array(require(root, "pair"), 2);
   c.first = text(pair.items[0]);
   c.second = text(pair.items[1]);
+}
+
+void keys(const JsonValue& object, std::initializer_list<const char*> allowed) { check_keys(object, allowed); }
+const JsonValue& member(const JsonValue& object, const char* key) { return require(object, key); }
+std::string read_text(const JsonValue& value) { return text(value); }
+Rational read_rational(const JsonValue& value) { return rational(value); }
+const JsonValue& read_array(const JsonValue& value) { return array(value); }
+PlanarPose read_pose(const JsonValue& value) { return pose_of(value); }
+[[noreturn]] void refuse(const JsonValue& at, const std::string& reason) { fail(at, reason); }
+
+}  // namespace certificate_json
+
+Certificate read_certificate(std::string_view json_text) {
+  JsonValue root = model_detail::parse_json(json_text);
+  Certificate c;
+  check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", "interference", "clearance", "jam",
+                    "free_passage", "tolerance", "planar_interference", "planar_clearance"});
+  const JsonValue& version = require(root, "hipair_certificate");
+  // version 2 (session 57): jam pieces may carry a 'point' witness; every version-1 certificate
+  // reads the same as version 2
+  if (!version.is_number() || (version.text != "1" && version.text != "2"))
+    fail(version, "unsupported certificate version (expected 1 or 2)");
+  int format = version.text == "2" ? 2 : 1;
+  std::string claim = text(require(root, "claim"));
+  if (claim == "interference") c.claim = ClaimKind::interference;
+  else if (claim == "clearance") c.claim = ClaimKind::clearance;
+  else if (claim == "jam") c.claim = ClaimKind::jam;
+  else if (claim == "free_passage") c.claim = ClaimKind::free_passage;
+  else if (claim == "tolerance") c.claim = ClaimKind::tolerance;
+  else if (claim == "planar_interference") c.claim = ClaimKind::planar_interference;
+  else if (claim == "planar_clearance") c.claim = ClaimKind::planar_clearance;
+  else fail(require(root, "claim"), "unknown claim '" + claim + "'");
+  certificate_json::read_envelope(root, c);
 
   for (const char* other : {"interference", "clearance", "jam", "free_passage", "tolerance", "planar_interference",
                             "planar_clearance"})

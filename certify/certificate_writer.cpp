@@ -2,6 +2,9 @@
 // producer in the hipair library; the verifier only reads (certificate_reader.cpp).
 #include <hipair/certificate.hpp>
 
+#include "certify/certificate_json.hpp"
+#include "certify/sliced_connected.hpp"
+
 #include <cstdio>
 #include <sstream>
 
@@ -123,14 +126,23 @@ std::string tolerance(const ToleranceClaim& t) {
 
 }  // namespace
 
-std::string write_certificate(const Certificate& c) {
+namespace certificate_json {
+
+std::string quoted_text(const std::string& text) { return quoted(text); }
+
+std::string pose(const PlanarPose& p, bool with_part) {
+  std::string out = "{";
+  if (with_part) out += "\"part\": " + quoted(p.part) + ", ";
+  if (p.slide)
+    out += "\"slide\": " + number(*p.slide);
+  else
+    out += "\"x\": " + number(p.x) + ", \"y\": " + number(p.y);
+  return out + ", \"tangent\": " + number(p.tangent) + (p.half_turn ? ", \"centre\": \"pi\"" : "") + "}";
+}
+
+std::string envelope(const Certificate& c, int version, const std::string& claim) {
   std::ostringstream out;
-  // version 2 only when a jam piece has a point witness: every other certificate is written as
-  // before (and reads with a version-1 verifier)
-  bool point_pieces = false;
-  for (const auto* list : {&c.cut, &c.lower_wall, &c.upper_wall})
-    for (const BlockedPiece& piece : *list) point_pieces = point_pieces || bool(piece.point);
-  out << "{\n  \"hipair_certificate\": " << (point_pieces ? 2 : 1) << ",\n  \"claim\": " << quoted(to_string(c.claim)) << ",\n";
+  out << "{\n  \"hipair_certificate\": " << version << ",\n  \"claim\": " << quoted(claim) << ",\n";
   out << "  \"statement\": " << quoted(c.statement) << ",\n";
   // no "file" for a model read from text (the reader refuses an empty file name)
   out << "  \"model\": {\n    \"name\": " << quoted(c.model_name) << ",\n";
@@ -147,6 +159,19 @@ std::string write_certificate(const Certificate& c) {
         << ", \"bound\": " << number(c.roundings[i].bound) << "}";
   out << (c.roundings.empty() ? "]\n  },\n" : "\n    ]\n  },\n");
   out << "  \"pair\": [" << quoted(c.first) << ", " << quoted(c.second) << "],\n";
+  return out.str();
+}
+
+}  // namespace certificate_json
+
+std::string write_certificate(const Certificate& c) {
+  std::ostringstream out;
+  // version 2 only when a jam piece has a point witness: every other certificate is written as
+  // before (and reads with a version-1 verifier)
+  bool point_pieces = false;
+  for (const auto* list : {&c.cut, &c.lower_wall, &c.upper_wall})
+    for (const BlockedPiece& piece : *list) point_pieces = point_pieces || bool(piece.point);
+  out << certificate_json::envelope(c, point_pieces ? 2 : 1, to_string(c.claim));
   out << "  " << quoted(to_string(c.claim)) << ": {\n";
   switch (c.claim) {
     case ClaimKind::interference:
@@ -180,12 +205,7 @@ std::string write_certificate(const Certificate& c) {
     case ClaimKind::planar_interference:
     case ClaimKind::planar_clearance:
       if (c.pose) {
-        out << "    \"pose\": {\"part\": " << quoted(c.pose->part);
-        if (c.pose->slide)
-          out << ", \"slide\": " << number(*c.pose->slide);
-        else
-          out << ", \"x\": " << number(c.pose->x) << ", \"y\": " << number(c.pose->y);
-        out << ", \"tangent\": " << number(c.pose->tangent) << (c.pose->half_turn ? ", \"centre\": \"pi\"" : "") << "}";
+        out << "    \"pose\": " << certificate_json::pose(*c.pose, true);
       }
       if (!c.configuration.empty()) out << ",\n    \"configuration\": " << configuration(c.configuration);
       if (c.claim == ClaimKind::planar_clearance) out << ",\n    \"distance\": " << number(c.distance);
@@ -211,6 +231,21 @@ std::string write_certificate(const Certificate& c) {
   }
   out << "\n  }\n}\n";
   return out.str();
+}
+
+// the sliced_connected claim (certify/sliced_connected.hpp), over the shared envelope
+std::string write_sliced_connected_certificate(const SlicedConnectedCertificate& c) {
+  std::string out = certificate_json::envelope(c.envelope, 1, "sliced_connected");
+  out += "  \"sliced_connected\": {\n    \"from\": " + certificate_json::pose(c.from, true) +
+         ",\n    \"to\": " + certificate_json::pose(c.to, true) + ",\n    \"path\": [";
+  for (std::size_t i = 0; i < c.path.size(); ++i) {
+    const PlanarPose& p = c.path[i];
+    out += std::string(i ? "," : "") + "\n      [" + certificate_json::quoted_text(to_exact_string(p.x)) + ", " +
+           certificate_json::quoted_text(to_exact_string(p.y)) + ", " + certificate_json::quoted_text(to_exact_string(p.tangent)) +
+           (p.half_turn ? ", \"pi\"]" : "]");
+  }
+  out += c.path.empty() ? "]" : "\n    ]";
+  return out + "\n  }\n}\n";
 }
 
 }  // namespace hipair

@@ -6,6 +6,7 @@
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
 #include "certify/planar_check.hpp"
+#include "certify/sliced_connected.hpp"
 #include "certify/tolerance_check.hpp"
 #include "certify/tolerance_support.hpp"
 #include "core/model_scale.hpp"
@@ -14,6 +15,7 @@
 
 #include <mpfr.h>
 
+#include <functional>
 #include <utility>
 
 namespace hipair::verify {
@@ -175,6 +177,8 @@ void check_crossing_parts(const Certificate& c, const CrossingWitness& w) {
 
 }  // namespace
 
+void check_certificate_model(const Certificate& c, const Model& model) { check_model(c, model); }
+
 // Two different values, exactly when both have a short exact form, else rounded to as many
 // significant digits as it takes to show that they differ (the exact fractions beyond 800).
 std::pair<std::string, std::string> show_apart(const Rational& a, const Rational& b) {
@@ -314,8 +318,6 @@ ExactMap exact_map(const Part& part, const std::map<std::string, ExactPosition>&
   return map;
 }
 
-namespace {
-
 void check_nesting(const PlacedPart& a, const PlacedPart& b, const std::string& where) {
   for (int side = 0; side < 2; ++side) {
     const PlacedPart& inner = side ? b : a;
@@ -326,6 +328,8 @@ void check_nesting(const PlacedPart& a, const PlacedPart& b, const std::string& 
                "' (the parts overlap)");
   }
 }
+
+namespace {
 
 std::string configuration_text(const Certificate& c) {
   std::string text;
@@ -740,14 +744,48 @@ std::string jam_start_failure(const Part& driver, const Part& other, const Confi
   return start_failure(driver, other, trap, start);
 }
 
+bool read_certified_model(const Certificate& certificate, std::string_view text, const std::string& source_name,
+                          Model& model, std::string& reason) {
+  std::string hash = detail::sha256_hex(text);
+  if (hash != certificate.content_hash) {
+    reason = "model hash mismatch: the certificate is for sha256 " + certificate.content_hash + ", the file has " + hash;
+    return false;
+  }
+  ReadOptions options;
+  for (const ParameterValue& value : certificate.parameters)
+    if (value.overridden) options.parameter_values[value.name] = value.value;
+  try {
+    model = read_model(text, source_name, options);
+  } catch (const Error& error) {
+    std::string message = error.what();
+    bool tolerance = message.find("outside its tolerance") != std::string::npos;
+    reason = (tolerance ? "parameter outside its tolerance: " : "the model does not read: ") + message;
+    return false;
+  }
+  return true;
+}
+
+VerificationResult verdict_of(const std::function<std::string()>& check) {
+  VerificationResult result;
+  try {
+    result.summary = check();
+    result.valid = true;
+  } catch (const Rejection& rejection) {
+    result.reason = rejection.reason;
+  } catch (const Error& error) {
+    result.reason = error.what();
+  }
+  return result;
+}
+
 }  // namespace hipair::verify
 
 namespace hipair {
 
 VerificationResult check_certificate(const Certificate& certificate, const Model& model) {
   using namespace verify;
-  VerificationResult result;
-  try {
+  return verdict_of([&] {
+    std::string summary;
     check_model(certificate, model);
     if (certificate.first == certificate.second) reject("a pair needs two different parts");
     // A pair far from the origin for its size (a 10 mm ratchet at 10^100 mm) is checked moved to
@@ -761,51 +799,30 @@ VerificationResult check_certificate(const Certificate& certificate, const Model
       moved = pair_moved_to_origin(model, certificate.first, certificate.second);
     const Model& posed = moved ? *moved : model;
     switch (certificate.claim) {
-      case ClaimKind::interference: result.summary = check_interference(certificate, model); break;
-      case ClaimKind::clearance: result.summary = check_clearance(certificate, posed); break;
+      case ClaimKind::interference: summary = check_interference(certificate, model); break;
+      case ClaimKind::clearance: summary = check_clearance(certificate, posed); break;
       case ClaimKind::jam: {
         Point by{Rational(0), Rational(0)};
         if (moved) by = *pair_translation(model, certificate.first, certificate.second);
-        result.summary = check_jam(certificate, posed, by);
+        summary = check_jam(certificate, posed, by);
         break;
       }
-      case ClaimKind::free_passage: result.summary = check_free_passage(certificate, posed); break;
-      case ClaimKind::planar_interference: result.summary = check_planar(certificate, model); break;
-      case ClaimKind::planar_clearance: result.summary = check_planar(certificate, posed); break;
+      case ClaimKind::free_passage: summary = check_free_passage(certificate, posed); break;
+      case ClaimKind::planar_interference: summary = check_planar(certificate, model); break;
+      case ClaimKind::planar_clearance: summary = check_planar(certificate, posed); break;
       case ClaimKind::tolerance:
         reject("a tolerance certificate is checked against the model file's text (check_certificate_text, hipair-verify)");
     }
     check_statement(certificate, model);
-    result.summary = to_string(certificate.claim) + ": " + result.summary;
-    result.valid = true;
-  } catch (const Rejection& rejection) {
-    result.reason = rejection.reason;
-  } catch (const Error& error) {
-    result.reason = error.what();
-  }
-  return result;
+    return to_string(certificate.claim) + ": " + summary;
+  });
 }
 
 VerificationResult check_certificate_text(const Certificate& certificate, std::string_view text,
                                           const std::string& source_name) {
   VerificationResult result;
-  std::string hash = detail::sha256_hex(text);
-  if (hash != certificate.content_hash) {
-    result.reason = "model hash mismatch: the certificate is for sha256 " + certificate.content_hash + ", the file has " + hash;
-    return result;
-  }
-  ReadOptions options;
-  for (const ParameterValue& value : certificate.parameters)
-    if (value.overridden) options.parameter_values[value.name] = value.value;
   Model model;
-  try {
-    model = read_model(text, source_name, options);
-  } catch (const Error& error) {
-    std::string message = error.what();
-    bool tolerance = message.find("outside its tolerance") != std::string::npos;
-    result.reason = (tolerance ? "parameter outside its tolerance: " : "the model does not read: ") + message;
-    return result;
-  }
+  if (!verify::read_certified_model(certificate, text, source_name, model, result.reason)) return result;
   if (certificate.claim != ClaimKind::tolerance) return check_certificate(certificate, model);
   try {
     verify::check_model(certificate, model);
@@ -838,8 +855,13 @@ VerificationResult verify_certificate_file(const std::filesystem::path& certific
                                            const std::filesystem::path& model_path) {
   VerificationResult result;
   Certificate certificate;
+  std::optional<SlicedConnectedCertificate> connected;   // a claim outside Certificate (sliced_connected.hpp)
   try {
-    certificate = read_certificate(io::read_file(certificate_path));
+    const std::string certificate_text = io::read_file(certificate_path);
+    if (is_sliced_connected_certificate(certificate_text))
+      connected = read_sliced_connected_certificate(certificate_text);
+    else
+      certificate = read_certificate(certificate_text);
   } catch (const Error& error) {
     result.reason = "malformed certificate: " + std::string(error.what());
     return result;
@@ -851,6 +873,7 @@ VerificationResult verify_certificate_file(const std::filesystem::path& certific
     result.reason = error.what();
     return result;
   }
+  if (connected) return check_sliced_connected_text(*connected, text, model_path.filename().string());
   return check_certificate_text(certificate, text, model_path.filename().string());
 }
 

@@ -1,5 +1,6 @@
 // Planar claims (see planar_check.hpp).
 #include "certify/planar_check.hpp"
+#include "certify/sliced_connected.hpp"
 
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
@@ -23,22 +24,6 @@ std::string text(const Rational& r) { return fraction_or_rounded(r); }
 // p -> pivot + R (p - pivot) + (x, y) as a rotation about the origin: R p + (pivot - R pivot + (x, y))
 // (the interval posing rotates a planar part's shape about the origin, see pose_pivot); a
 // pin-slot part's shift is slide R d.
-ExactMap pose_map(const Part& part, const PlanarPose& pose) {
-  Rational w = 1 + pose.tangent * pose.tangent;
-  int sign = pose.half_turn ? -1 : 1;
-  ExactMap map;
-  map.c = sign * (1 - pose.tangent * pose.tangent) / w;
-  map.s = sign * 2 * pose.tangent / w;
-  const Point& p = part.motion.pivot;
-  Point turned = map.rotate(p);
-  Point shift{pose.x, pose.y};
-  if (pose.slide) {
-    Point d = map.rotate(part.motion.direction);
-    shift = Point{Rational(*pose.slide * d.x), Rational(*pose.slide * d.y)};
-  }
-  map.shift = Point{Rational(p.x - turned.x + shift.x), Rational(p.y - turned.y + shift.y)};
-  return map;
-}
 
 std::string pose_text(const PlanarPose& pose) {
   return "'" + pose.part + "' at " + (pose.slide ? "s=" + text(*pose.slide) : "x=" + text(pose.x) + ", y=" + text(pose.y)) +
@@ -56,6 +41,23 @@ const Edge& edge_of(const Part& part, const EdgeReference& reference) {
 }
 
 }  // namespace
+
+ExactMap planar_pose_map(const Part& part, const PlanarPose& pose) {
+  Rational w = 1 + pose.tangent * pose.tangent;
+  int sign = pose.half_turn ? -1 : 1;
+  ExactMap map;
+  map.c = sign * (1 - pose.tangent * pose.tangent) / w;
+  map.s = sign * 2 * pose.tangent / w;
+  const Point& p = part.motion.pivot;
+  Point turned = map.rotate(p);
+  Point shift{pose.x, pose.y};
+  if (pose.slide) {
+    Point d = map.rotate(part.motion.direction);
+    shift = Point{Rational(*pose.slide * d.x), Rational(*pose.slide * d.y)};
+  }
+  map.shift = Point{Rational(p.x - turned.x + shift.x), Rational(p.y - turned.y + shift.y)};
+  return map;
+}
 
 std::string check_planar(const Certificate& c, const Model& model) {
   if (!c.pose) reject("a planar claim needs the free part's pose");
@@ -86,7 +88,7 @@ std::string check_planar(const Certificate& c, const Model& model) {
       reject("part '" + free.name + "' has motion limits (planar claims cover parts without limits)");
     if (!c.configuration.empty()) reject("a planar claim against a fixed part has no configuration");
   }
-  const ExactMap map = pose_map(free, pose);
+  const ExactMap map = planar_pose_map(free, pose);
   const PlacedPart placed_fixed = place(fixed, fixed_map), placed_free = place(free, map);
   const std::string where = pose_text(pose);
   if (c.claim == ClaimKind::planar_interference) {

@@ -12,6 +12,7 @@
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
+#include <hipair/sliced_certificate.hpp>
 
 #include <cmath>
 #include <iostream>
@@ -36,11 +37,11 @@ struct CertifyArguments {
 // `--trap` were taken and ignored).
 void refuse_options_of_other_claims(const CertifyArguments& arguments) {
   static const std::vector<std::pair<const char*, std::set<std::string>>> claims_of = {
-      {"--at", {"interference", "clearance"}},
+      {"--at", {"interference", "clearance", "connected"}},
       {"--distance", {"clearance", "free"}},
       {"--driver", {"jam", "free"}},
       {"--from", {"free"}},
-      {"--to", {"free"}},
+      {"--to", {"free", "connected"}},
       {"--follower-at", {"free"}},
       {"--ratio", {"free"}},
       {"--direction", {"jam"}},
@@ -81,9 +82,9 @@ Rational coordinate(const Part& part) { return rotates(part) ? part.initial.angl
 
 // An --at angle (rad, or exact at whole quarter turns in deg); an angle in degrees that had to
 // be rounded adds how it was taken to `notes` (printed with the result).
-ExactPosition angle_at(const std::string& text, std::vector<std::string>& notes) {
-  ExactPosition position = exact_position_from_text(text, "--at");
-  if (std::string label = angle_label(text, position); !label.empty()) notes.push_back("--at: " + label);
+ExactPosition angle_at(const std::string& text, std::vector<std::string>& notes, const std::string& option = "--at") {
+  ExactPosition position = exact_position_from_text(text, option);
+  if (std::string label = angle_label(text, position); !label.empty()) notes.push_back(option + ": " + label);
   return position;
 }
 
@@ -131,6 +132,26 @@ RationalInterval range_of(const std::string& text, bool angle, const std::string
   return range;
 }
 
+// The pose of a planar part: the model's initial pose, or OPTION PART=X,Y,ANGLE (the angle in rad
+// or NNdeg, rounded to an exact half-angle tangent; exact at whole quarter turns in degrees).
+PlanarPose planar_pose(const Part& planar, const std::vector<std::string>& assignments, const std::string& option,
+                       std::vector<std::string>& notes) {
+  Rational x = planar.initial.x, y = planar.initial.y;
+  ExactPosition rotation = exact_position_from_angle(planar.initial.angle);
+  for (const std::string& assignment : assignments) {
+    auto equals = assignment.find('=');
+    if (equals == std::string::npos || assignment.substr(0, equals) != planar.name)
+      throw ModelError("", option + " expects " + planar.name + "=X,Y,ANGLE for the planar part, got '" + assignment + "'");
+    std::string rest = assignment.substr(equals + 1);
+    auto c1 = rest.find(','), c2 = c1 == std::string::npos ? c1 : rest.find(',', c1 + 1);
+    if (c2 == std::string::npos) throw ModelError("", option + " expects " + planar.name + "=X,Y,ANGLE, got '" + assignment + "'");
+    x = value_of(rest.substr(0, c1), false, option);
+    y = value_of(rest.substr(c1 + 1, c2 - c1 - 1), false, option);
+    rotation = angle_at(rest.substr(c2 + 1), notes, option);
+  }
+  return PlanarPose{planar.name, x, y, rotation.value, rotation.half_turn, std::nullopt};
+}
+
 int run(const CertifyArguments& arguments) {
   // a certificate holds for parameter values within their tolerances only: hipair-verify checks
   // each value against its range (docs/certify.md); the option every other command reading --set
@@ -140,7 +161,7 @@ int run(const CertifyArguments& arguments) {
                          "ranges only (hipair-verify rejects a value outside its range): write the value into the model "
                          "(as its nominal, with its tolerance) and certify that model");
   if (arguments.claim == "interference" || arguments.claim == "clearance" || arguments.claim == "jam" ||
-      arguments.claim == "free")
+      arguments.claim == "free" || arguments.claim == "connected")
     refuse_options_of_other_claims(arguments);
   refuse_repeated_names(arguments.overrides, "--set", "parameter");
   refuse_repeated_names(arguments.at, "--at", "part");
@@ -167,24 +188,36 @@ int run(const CertifyArguments& arguments) {
   std::vector<std::string> notes;   // how angles in degrees were taken
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
   const Part* pin_slot = a.motion.kind == Motion::Kind::pin_slot ? &a : b.motion.kind == Motion::Kind::pin_slot ? &b : nullptr;
+  if (arguments.claim == "connected") {
+    // a planar part's two poses connected through free space (sliced C-space path, staircase
+    // certificate: <hipair/sliced_certificate.hpp>); the certificate is its own kind
+    const Part& fixed = planar == &a ? b : a;
+    if (!planar || fixed.motion.kind != Motion::Kind::fixed)
+      throw ModelError("", "--claim connected: the pair " + a.name + ":" + b.name +
+                               " must be a fixed part and a part free in the plane (motion \"planar\")");
+    if (planar->motion.angle_limits || planar->motion.translation_limits)
+      throw ModelError("", "--claim connected: part '" + planar->name + "' has motion limits (connected claims cover parts without limits)");
+    if (arguments.to.empty()) throw ModelError("", "--claim connected needs --to " + planar->name + "=X,Y,ANGLE (the end pose)");
+    PlanarPose from = planar_pose(*planar, arguments.at, "--at", notes);
+    PlanarPose to = planar_pose(*planar, {arguments.to}, "--to", notes);
+    for (const std::string& note : notes) std::cout << note << "\n";
+    SlicedConnectedResult found = certify_sliced_connected(model, fixed.name, from, to, context);
+    if (!found.certificate) {
+      std::cerr << "hipair: cannot certify: " << found.failure << "\n";
+      return 1;
+    }
+    io::write_file_atomically(arguments.out, write_sliced_connected_certificate(*found.certificate));
+    std::cout << "certified sliced_connected: " << found.certificate->envelope.statement << " (" << found.certificate->path.size() - 1
+              << " moves)\n"
+              << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
+              << ")\n";
+    return 0;
+  }
   if (planar && (arguments.claim == "interference" || arguments.claim == "clearance")) {
     // a part free in the plane: its pose (x, y, angle) from the model's initial configuration
     // or --at PART=X,Y,ANGLE; the angle is rounded to an exact half-angle tangent (exact at
     // whole quarter turns in degrees)
-    Rational x = planar->initial.x, y = planar->initial.y;
-    ExactPosition rotation = exact_position_from_angle(planar->initial.angle);
-    for (const std::string& assignment : arguments.at) {
-      auto equals = assignment.find('=');
-      if (equals == std::string::npos || assignment.substr(0, equals) != planar->name)
-        throw ModelError("", "--at expects " + planar->name + "=X,Y,ANGLE for the planar part, got '" + assignment + "'");
-      std::string rest = assignment.substr(equals + 1);
-      auto c1 = rest.find(','), c2 = c1 == std::string::npos ? c1 : rest.find(',', c1 + 1);
-      if (c2 == std::string::npos) throw ModelError("", "--at expects " + planar->name + "=X,Y,ANGLE, got '" + assignment + "'");
-      x = value_of(rest.substr(0, c1), false, "--at");
-      y = value_of(rest.substr(c1 + 1, c2 - c1 - 1), false, "--at");
-      rotation = angle_at(rest.substr(c2 + 1), notes);
-    }
-    PlanarPose pose{planar->name, x, y, rotation.value, rotation.half_turn, std::nullopt};
+    PlanarPose pose = planar_pose(*planar, arguments.at, "--at", notes);
     const std::string& fixed = planar == &a ? b.name : a.name;
     if (arguments.claim == "interference") {
       certificate = certify_planar_interference(model, fixed, pose, context);
@@ -378,7 +411,7 @@ int run(const CertifyArguments& arguments) {
       failure = "some configuration of the trap's cut or walls is not certainly blocked, or no configuration tried in the trap is certainly free";
     }
   } else {
-    throw ModelError("", "--claim must be interference, clearance, jam or free");
+    throw ModelError("", "--claim must be interference, clearance, jam, free or connected");
   }
   for (const std::string& note : notes) std::cout << note << "\n";
   if (!certificate) {
@@ -398,17 +431,17 @@ void register_certify(CLI::App& app, Action& action) {
   auto arguments = std::make_shared<CertifyArguments>();
   CLI::App* command = app.add_subcommand("certify", "Produce a certificate of interference, clearance, jam or free passage");
   command->add_option("model", arguments->path, "model file")->required();
-  command->add_option("--claim", arguments->claim, "interference | clearance | jam | free")->required();
+  command->add_option("--claim", arguments->claim, "interference | clearance | jam | free | connected")->required();
   command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required()->check(output_path());
   command->add_option("--pair", arguments->pair, "A:B (default: the model's first pair)");
   command->add_option("--set", arguments->overrides, "override a parameter: NAME=VALUE (repeatable)");
-  command->add_option("--at", arguments->at, "interference/clearance: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE; "
+  command->add_option("--at", arguments->at, "interference/clearance/connected: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE; "
                                              "a pin-slot part: PART=SLIDE,ANGLE) "
                                              "(default: the initial configuration)");
   command->add_option("--distance", arguments->distance, "clearance/free: the clearance to certify (mm; default: found)");
   command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");
   command->add_option("--from", arguments->from, "free: start of the driver range (default: its initial position)");
-  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn)");
+  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn); connected: the end pose PART=X,Y,ANGLE");
   command->add_option("--follower-at", arguments->follower_at, "free: follower position at the start (default: initial)");
   command->add_option("--ratio", arguments->ratio, "free: follower moves by RATIO x driver motion (default 0: it stays)");
   command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1; + and - are synonyms");

@@ -1,0 +1,35 @@
+// The certificate JSON's shared pieces (internal to certify/): the envelope every claim carries
+// (format version, claim, statement, model identity, pair) and the reader's strict accessors,
+// for claims kept outside the Certificate struct (the sliced `connected` claim,
+// sliced_connected.hpp). Errors are ModelError at a JSON pointer, as in read_certificate.
+#pragma once
+
+#include <hipair/certificate.hpp>
+
+#include "model/json_document.hpp"
+
+#include <initializer_list>
+#include <string>
+
+namespace hipair::certificate_json {
+
+using model_detail::JsonValue;
+
+/// Writes "{", version, claim, statement, model, pair (through the line of "pair").
+std::string envelope(const Certificate& c, int version, const std::string& claim);
+/// A pose object: {"part"?, "x", "y" | "slide", "tangent", "centre"?} as planar claims write it.
+std::string pose(const PlanarPose& p, bool with_part);
+std::string quoted_text(const std::string& text);
+
+/// Reads the statement, model identity and pair of `root` into c (not the version or claim).
+void read_envelope(const JsonValue& root, Certificate& c);
+void keys(const JsonValue& object, std::initializer_list<const char*> allowed);
+const JsonValue& member(const JsonValue& object, const char* key);
+std::string read_text(const JsonValue& value);
+Rational read_rational(const JsonValue& value);
+const JsonValue& read_array(const JsonValue& value);
+/// A pose as planar claims read it ({"part", "x", "y", "tangent", "centre"?}).
+PlanarPose read_pose(const JsonValue& value);
+[[noreturn]] void refuse(const JsonValue& at, const std::string& reason);
+
+}  // namespace hipair::certificate_json

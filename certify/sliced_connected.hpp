@@ -1,0 +1,46 @@
+// The verifier's internals of the sliced_connected certificate (<hipair/sliced_certificate.hpp>):
+// the move check the producer also uses, and what it shares with check.cpp. Internal.
+#pragma once
+
+#include <hipair/certificate.hpp>
+#include <hipair/model.hpp>
+#include <hipair/sliced_certificate.hpp>
+
+#include "certify/exact_geometry.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hipair {
+
+namespace verify {
+
+/// The work budget of one move: interval pieces evaluated before the move is refused.
+constexpr std::size_t sliced_move_budget = 40000;
+/// The work budget of a whole certificate (every move's pieces together): a forged path of
+/// grazing moves costs hipair-verify about a minute at most (about 0.5 ms a piece on a 10 mm peg).
+constexpr std::size_t sliced_total_budget = 100000;
+
+/// Why the move from pose `a` to pose `b` of the planar part against the fixed part is not
+/// certainly free ("" when it is proved free): not a pure translation, rotation or chart change,
+/// the parts overlapping at an exact pose of the move, or a piece not proved apart within
+/// `budget` evaluations. `pieces` (optional) receives the number of pieces evaluated.
+std::string sliced_move_failure(const Part& fixed, const Part& planar, const PlanarPose& a, const PlanarPose& b,
+                                std::size_t budget = sliced_move_budget, std::size_t* pieces = nullptr);
+/// The exact map of a planar part at a pose (planar_check.cpp).
+ExactMap planar_pose_map(const Part& part, const PlanarPose& pose);
+
+// Shared from check.cpp.
+/// The certificate names the model and its parameter values and roundings (check_model).
+void check_certificate_model(const Certificate& c, const Model& model);
+void check_nesting(const PlacedPart& a, const PlacedPart& b, const std::string& where);
+/// The verdict of a check that returns its summary or throws a Rejection (or an Error).
+VerificationResult verdict_of(const std::function<std::string()>& check);
+bool read_certified_model(const Certificate& certificate, std::string_view text, const std::string& source_name,
+                          Model& model, std::string& reason);
+
+}  // namespace verify
+}  // namespace hipair

@@ -1,0 +1,257 @@
+// The sliced_connected certificate: reader, writer, statement and the verifier's check
+// (sliced_connected.hpp, docs/certify.md "Connected poses of a planar pair"). The check uses only
+// the verifier's own exact and interval geometry.
+#include "certify/sliced_connected.hpp"
+
+#include "certify/certificate_json.hpp"
+#include "certify/interval_geometry.hpp"
+#include "certify/planar_check.hpp"
+#include "certify/tolerance_support.hpp"
+#include "core/model_scale.hpp"
+
+#include <hipair/error.hpp>
+
+#include <algorithm>
+#include <optional>
+#include <tuple>
+#include <utility>
+
+namespace hipair {
+namespace {
+
+using certificate_json::JsonValue;
+const char* const claim_name = "sliced_connected";
+
+[[noreturn]] void reject(const std::string& reason) { throw verify::Rejection{reason}; }
+
+std::string text(const Rational& r) { return verify::fraction_or_rounded(r); }
+
+std::string pose_words(const PlanarPose& p) {
+  return "x=" + text(p.x) + ", y=" + text(p.y) + (p.half_turn ? ", t(pi)=" : ", t=") + text(p.tangent);
+}
+
+// A path vertex: ["x", "y", "tangent"] or ["x", "y", "tangent", "pi"] (the chart centred at the
+// half turn: tangent = tan((theta - pi)/2)).
+PlanarPose vertex_of(const JsonValue& value, const std::string& part) {
+  const JsonValue& items = certificate_json::read_array(value);
+  if (items.items.size() != 3 && items.items.size() != 4)
+    certificate_json::refuse(value, "a path vertex is [\"x\", \"y\", \"tangent\"] or [\"x\", \"y\", \"tangent\", \"pi\"]");
+  PlanarPose pose;
+  pose.part = part;
+  pose.x = certificate_json::read_rational(items.items[0]);
+  pose.y = certificate_json::read_rational(items.items[1]);
+  pose.tangent = certificate_json::read_rational(items.items[2]);
+  if (items.items.size() == 4) {
+    std::string centre = certificate_json::read_text(items.items[3]);
+    if (centre != "pi" && centre != "0") certificate_json::refuse(items.items[3], "centre is \"0\" or \"pi\"");
+    pose.half_turn = centre == "pi";
+  }
+  return pose;
+}
+
+bool same_pose(const Part& part, const PlanarPose& a, const PlanarPose& b) {
+  verify::ExactMap p = verify::planar_pose_map(part, a), q = verify::planar_pose_map(part, b);
+  return p.c == q.c && p.s == q.s && p.shift.x == q.shift.x && p.shift.y == q.shift.y;
+}
+
+const Part& part_named(const Model& model, const std::string& name) {
+  auto index = model.find_part(name);
+  if (!index) reject("the model has no part '" + name + "'");
+  return model.parts[*index];
+}
+
+}  // namespace
+
+bool is_sliced_connected_certificate(std::string_view json_text) {
+  try {
+    JsonValue root = model_detail::parse_json(json_text);
+    const JsonValue* claim = root.is_object() ? root.find("claim") : nullptr;
+    return claim && claim->is_string() && claim->text == claim_name;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+SlicedConnectedCertificate read_sliced_connected_certificate(std::string_view json_text) {
+  JsonValue root = model_detail::parse_json(json_text);
+  certificate_json::keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", claim_name});
+  const JsonValue& version = certificate_json::member(root, "hipair_certificate");
+  if (!version.is_number() || version.text != "1") certificate_json::refuse(version, "unsupported certificate version (expected 1)");
+  const JsonValue& claim = certificate_json::member(root, "claim");
+  if (certificate_json::read_text(claim) != claim_name) certificate_json::refuse(claim, std::string("expected the claim '") + claim_name + "'");
+  SlicedConnectedCertificate c;
+  certificate_json::read_envelope(root, c.envelope);
+  const JsonValue& body = certificate_json::member(root, claim_name);
+  certificate_json::keys(body, {"from", "to", "path"});
+  c.from = certificate_json::read_pose(certificate_json::member(body, "from"));
+  c.to = certificate_json::read_pose(certificate_json::member(body, "to"));
+  for (const PlanarPose* end : {&c.from, &c.to})
+    if (end->slide) certificate_json::refuse(body, "a connected claim poses a planar part by x, y and tangent, not a slide");
+  for (const JsonValue& vertex : certificate_json::read_array(certificate_json::member(body, "path")).items)
+    c.path.push_back(vertex_of(vertex, c.from.part));
+  if (c.path.empty()) certificate_json::refuse(certificate_json::member(body, "path"), "the path has no vertex");
+  return c;
+}
+
+std::string sliced_connected_statement(const SlicedConnectedCertificate& c) {
+  const std::string& fixed = c.envelope.first == c.from.part ? c.envelope.second : c.envelope.first;
+  return "Part '" + c.from.part + "' moves from " + pose_words(c.from) + " to " + pose_words(c.to) +
+         " without touching part '" + fixed + "'.";
+}
+
+namespace verify {
+
+std::string sliced_move_failure(const Part& fixed, const Part& planar, const PlanarPose& a, const PlanarPose& b,
+                                std::size_t budget, std::size_t* pieces) {
+  if (a.slide || b.slide) return "a pose with a slide (a connected claim poses x, y and tangent)";
+  enum class Kind { stay, translation, rotation } kind;
+  const bool same_xy = a.x == b.x && a.y == b.y, same_chart = a.half_turn == b.half_turn, same_t = a.tangent == b.tangent;
+  if (same_xy && same_chart && same_t) kind = Kind::stay;
+  else if (same_xy && !same_chart) {
+    if (!same_pose(planar, a, b)) return "it changes the chart (centre) and the angle at once";
+    kind = Kind::stay;
+  } else if (same_xy) kind = Kind::rotation;
+  else if (same_chart && same_t) kind = Kind::translation;
+  else return "it changes both the offset and the rotation (each move is a pure translation or a pure rotation)";
+
+  const IntervalPart shape_fixed = shape_of(fixed), shape_free = shape_of(planar);
+  const IntervalMap identity;
+  Rational enough = reach(shape_free) / Rational(mpz_class(1) << 32);
+  if (sgn(enough) <= 0) enough = 1;
+  const Point& pivot = planar.motion.pivot;
+  auto pose_at = [&](const Rational& u) {
+    PlanarPose p = a;
+    if (kind == Kind::translation) {
+      p.x = a.x + u * (b.x - a.x);
+      p.y = a.y + u * (b.y - a.y);
+    } else if (kind == Kind::rotation) {
+      p.tangent = a.tangent + u * (b.tangent - a.tangent);
+    }
+    return p;
+  };
+  // every pose of the move with u in [u0, u1], enclosed
+  auto map_over = [&](const Rational& u0, const Rational& u1) {
+    if (kind == Kind::stay) return to_interval_map(planar_pose_map(planar, a));
+    if (kind == Kind::translation) {
+      IntervalMap m = to_interval_map(planar_pose_map(planar, a));
+      const Interval u = hull2(Interval(u0), Interval(u1));
+      m.shift.x = m.shift.x + Interval(Rational(b.x - a.x)) * u;
+      m.shift.y = m.shift.y + Interval(Rational(b.y - a.y)) * u;
+      return m;
+    }
+    // the tangent is monotone in u, so the angles of the piece lie between those of its ends
+    const Interval angle = hull2(angle_of_tangent(pose_at(u0).tangent, a.half_turn), angle_of_tangent(pose_at(u1).tangent, a.half_turn));
+    IntervalMap m;
+    m.c = cos_of(angle);
+    m.s = sin_of(angle);
+    const Interval px(pivot.x), py(pivot.y);
+    m.shift.x = px - (m.c * px - m.s * py) + Interval(a.x);
+    m.shift.y = py - (m.s * px + m.c * py) + Interval(a.y);
+    return m;
+  };
+  const PlacedPart placed_fixed = place(fixed, ExactMap{});
+  auto overlap_at = [&](const Rational& u) -> std::string {
+    const PlanarPose p = pose_at(u);
+    std::string evidence = overlap_evidence(placed_fixed, place(planar, planar_pose_map(planar, p)));
+    return evidence.empty() ? std::string() : "the parts overlap at u = " + text(u) + " (" + pose_words(p) + "): " + evidence;
+  };
+  struct Piece {
+    Rational u0, u1;
+    int depth;
+  };
+  std::vector<Piece> stack{{Rational(0), Rational(1), 0}};
+  std::size_t count = 0;
+  while (!stack.empty()) {
+    Piece piece = stack.back();
+    stack.pop_back();
+    if (++count > budget) {
+      if (pieces) *pieces = count - 1;
+      return "not proved free within " + std::to_string(budget) + " interval pieces (stuck near u in [" + text(piece.u0) + ", " +
+             text(piece.u1) + "]: the parts come too close, or touch)";
+    }
+    Rational bound = boundary_distance_lower_bound(shape_fixed, identity, shape_free, map_over(piece.u0, piece.u1), enough);
+    if (sgn(bound) > 0) continue;
+    const Rational middle = (piece.u0 + piece.u1) / 2;
+    if (kind == Kind::stay || piece.depth % 6 == 0) {
+      std::string overlap = overlap_at(middle);
+      if (!overlap.empty()) {
+        if (pieces) *pieces = count;
+        return overlap;
+      }
+      if (kind == Kind::stay) {
+        if (pieces) *pieces = count;
+        return "the parts are not certainly apart at " + pose_words(a);
+      }
+    }
+    stack.push_back({middle, piece.u1, piece.depth + 1});
+    stack.push_back({piece.u0, middle, piece.depth + 1});
+  }
+  if (pieces) *pieces = count;
+  return "";
+}
+
+}  // namespace verify
+
+VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, const Model& model) {
+  using namespace verify;
+  return verdict_of([&] {
+    check_certificate_model(c.envelope, model);
+    const std::string &first = c.envelope.first, &second = c.envelope.second;
+    if (first == second) reject("a pair needs two different parts");
+    const std::string& name = c.from.part;
+    if (c.to.part != name) reject("the claim poses '" + name + "' at the start and '" + c.to.part + "' at the end");
+    if (name != first && name != second) reject("the posed part '" + name + "' is not a part of the pair");
+    const std::string& fixed_name = name == first ? second : first;
+    // a pair far from the origin for its size is checked moved to it (its poses are relative:
+    // moving both parts moves the pivot with them), as planar clearance claims are
+    std::optional<Model> moved = pair_moved_to_origin(model, first, second);
+    const Model& posed = moved ? *moved : model;
+    const Part& planar = part_named(posed, name);
+    const Part& fixed = part_named(posed, fixed_name);
+    if (planar.motion.kind != Motion::Kind::planar) reject("part '" + name + "' is not free in the plane (motion \"planar\")");
+    if (fixed.motion.kind != Motion::Kind::fixed) reject("part '" + fixed_name + "' is not fixed");
+    if (planar.motion.angle_limits || planar.motion.translation_limits)
+      reject("part '" + name + "' has motion limits (connected claims cover parts without limits)");
+    if (c.path.empty()) reject("the path has no vertex");
+    if (!same_pose(planar, c.path.front(), c.from)) reject("the path starts at " + pose_words(c.path.front()) + ", not at the claim's start " + pose_words(c.from));
+    if (!same_pose(planar, c.path.back(), c.to)) reject("the path ends at " + pose_words(c.path.back()) + ", not at the claim's end " + pose_words(c.to));
+    // each move within its budget, and all of them within the certificate's (a forged path of
+    // many grazing moves is refused in bounded time)
+    std::size_t pieces = 0, total = 0;
+    auto budget = [&] { return std::min(sliced_move_budget, sliced_total_budget - total); };
+    if (c.path.size() == 1) {
+      std::string failure = sliced_move_failure(fixed, planar, c.path[0], c.path[0], budget(), &pieces);
+      if (!failure.empty()) reject("at the start: " + failure);
+      total += pieces;
+    }
+    for (std::size_t i = 0; i + 1 < c.path.size(); ++i) {
+      if (total >= sliced_total_budget)
+        reject("the path's moves need more than " + std::to_string(sliced_total_budget) + " interval pieces in all");
+      std::string failure = sliced_move_failure(fixed, planar, c.path[i], c.path[i + 1], budget(), &pieces);
+      if (!failure.empty())
+        reject("move " + std::to_string(i) + " (" + pose_words(c.path[i]) + " to " + pose_words(c.path[i + 1]) + "): " + failure);
+      total += pieces;
+    }
+    // the boundaries never meet along the path, so the parts' nesting is that of the start
+    check_nesting(place(fixed, ExactMap{}), place(planar, planar_pose_map(planar, c.path.front())), "at the start");
+    const std::string expected = sliced_connected_statement(c);
+    if (c.envelope.statement != expected)
+      reject("the statement does not say what the claim's data prove: it reads '" + c.envelope.statement.substr(0, 400) +
+             "', the claim's data give '" + expected + "'");
+    return std::string(claim_name) + ": part '" + name + "' moves from " + pose_words(c.from) + " to " + pose_words(c.to) +
+           " without touching '" + fixed_name + "' (" + std::to_string(c.path.size() - 1) + " moves, each proved free over " +
+           std::to_string(total) + " interval pieces in all)";
+  });
+}
+
+VerificationResult check_sliced_connected_text(const SlicedConnectedCertificate& c, std::string_view text,
+                                               const std::string& source_name) {
+  Model model;
+  std::string reason;
+  if (verify::read_certified_model(c.envelope, text, source_name, model, reason)) return check_sliced_connected(c, model);
+  VerificationResult refused;
+  refused.reason = reason;
+  return refused;
+}
+
+}  // namespace hipair
