@@ -779,6 +779,9 @@ class Producer {
     // then with the play enclosed from the sides' slopes.
     bool free_path_failed = false;   // the last candidate passed checks 1-6, check 7 did not prove it
     bool held_without_witness = false;   // a pair of sides passed checks 1-6 here without a witness
+    // Check 7 over a candidate leaf before it is accepted: always with free_path_leaves; in the
+    // plain search once the piece's own sides have given no leaf (session 68, below).
+    bool free_path = request_.free_path_leaves;
     auto accept = [&](ToleranceLeaf candidate) {
       free_path_failed = false;
       try {
@@ -786,7 +789,7 @@ class Producer {
       } catch (const verify::Rejection&) {
         return false;
       }
-      if (request_.free_path_leaves && candidate.witness) {
+      if (free_path && candidate.witness) {
         // Check 7 over the leaf's box, with the candidate in place (the evaluator reads claim_).
         claim_.leaves.push_back(candidate);
         std::optional<std::size_t> split;
@@ -895,13 +898,24 @@ class Producer {
       }
       score[k] = Rational((region[k].hi - region[k].lo) / (claim_.range.hi - claim_.range.lo)).get_d();
     }
+    // Past this point a leaf may name a neighbouring piece's sides (or, with free_path_leaves,
+    // the envelope's), which need not be the ones binding over the whole leaf: over a drop (the
+    // escapement: the tooth leaves the exit impulse face and the lower side falls to the wheel's
+    // root circle) the next piece's sides pass checks 1-6 with a witness midway between the root
+    // circle and the upper side, which runs through the tooth before the drop, and check 7 then
+    // leaves the whole certificate unproven. So the plain search too accepts such a leaf only
+    // when check 7 proves its witness path over the leaf (as free_path_leaves does for every
+    // leaf), else splits it where check 7 would (session 68). A leaf on its own piece's sides
+    // is accepted as before: a certificate the plain search wrote with own sides only is
+    // unchanged.
+    free_path = true;
     // Near a switch of sides (session 20): the witness between the envelopes of all the
     // candidates — above every lower one and below every upper one by their linearisations over
     // the leaf — so that the path stays in the channel whichever side binds at a corner of the
     // box; the leaf then names the pair of sides nearest to it at the centre (checks 3-6 prove
     // them, check 7 the others).
     bool envelope_feasible = false;
-    for (int round = 0; round < 3 && request_.free_path_leaves && lower.slope.size() == k + 1 &&
+    for (int round = 0; round < 3 && free_path && lower.slope.size() == k + 1 &&
                         upper.slope.size() == k + 1;
          ++round) {
       std::size_t known = learned_.size();
