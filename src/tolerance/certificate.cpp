@@ -94,6 +94,7 @@ class Producer {
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       if (k > 0) pieces[k].previous = &pieces[k - 1];
       if (k + 1 < pieces.size()) pieces[k].next = &pieces[k + 1];
+      if (k + 1 < pieces.size() && drop_between(pieces[k], pieces[k + 1])) pieces[k].drop = pieces[k + 1].drop = true;
     }
     try {
       evaluator_ = std::make_unique<verify::ToleranceEvaluator>(request_.model, claim_);
@@ -271,7 +272,46 @@ class Producer {
     std::vector<const ChannelSample*> samples;
     const Piece* previous = nullptr;
     const Piece* next = nullptr;
+    bool drop = false;   ///< a side jumps at one of its ends (drop_between)
   };
+
+  // Whether a side of the channel jumps between the last sample of `a` and the first of the
+  // next piece `b` (a *drop*: the escapement's tooth leaves the impulse face and the anchor's
+  // lower side falls to the wheel's root circle), rather than passing continuously from one
+  // feature pair to another (Geneva's lock/drive switch, a kink): the nominal side value moves
+  // across the boundary by more than the channel is wide there (the smaller play of the two
+  // samples) and by more than 4 times what the side's own slopes next to it (from each piece's
+  // two samples nearest the boundary) would move it over that step. Approximate: it only
+  // chooses where the producer spends check 7's work (Producer::solve), never a verdict.
+  static bool drop_between(const Piece& a, const Piece& b) {
+    const ChannelSample& last = *a.samples.back();
+    const ChannelSample& first = *b.samples.front();
+    const double step = first.driver - last.driver;
+    if (!(step > 0)) return false;
+    for (bool upper : {false, true}) {
+      auto value = [&](const ChannelSample& s) { return upper ? s.upper : s.lower; };
+      double slope = 0;
+      bool known = false;
+      if (a.samples.size() >= 2) {
+        const ChannelSample& before = *a.samples[a.samples.size() - 2];
+        if (last.driver > before.driver) {
+          slope = std::max(slope, std::fabs(value(last) - value(before)) / (last.driver - before.driver));
+          known = true;
+        }
+      }
+      if (b.samples.size() >= 2) {
+        const ChannelSample& after = *b.samples[1];
+        if (after.driver > first.driver) {
+          slope = std::max(slope, std::fabs(value(after) - value(first)) / (after.driver - first.driver));
+          known = true;
+        }
+      }
+      const double jump = std::fabs(value(first) - value(last));
+      const double play = std::min(last.upper - last.lower, first.upper - first.lower);
+      if (known && jump > 4 * slope * step && jump > play) return true;
+    }
+    return false;
+  }
 
   // Progress: a certified leaf's share of the whole region (box x range) added to the share
   // covered (the leaves do not overlap: they are the tree's), shown as 0.1 ... 0.95.
@@ -779,9 +819,19 @@ class Producer {
     // then with the play enclosed from the sides' slopes.
     bool free_path_failed = false;   // the last candidate passed checks 1-6, check 7 did not prove it
     bool held_without_witness = false;   // a pair of sides passed checks 1-6 here without a witness
-    // Check 7 over a candidate leaf before it is accepted: always with free_path_leaves; in the
-    // plain search once the piece's own sides have given no leaf (session 68, below).
-    bool free_path = request_.free_path_leaves;
+    // Check 7 over a candidate leaf before it is accepted: always with free_path_leaves, and in
+    // the plain search on a piece next to a drop (session 68). Over a drop the sides that pass
+    // checks 1-6 need not be the ones binding over the whole leaf: on the escapement the next
+    // piece's sides (the wheel's root circle below) pass them with a witness midway between the
+    // root circle and the upper side, which runs through the tooth before the drop, and check 7
+    // then left the whole certificate unproven; with 14 teeth the piece after the drop takes its
+    // own sides with a witness that check 7 cannot prove past the tooth's tip on the locking
+    // face. There every candidate leaf is accepted only when check 7 proves its witness path
+    // over the leaf, else it is split where check 7 would, as free_path_leaves does everywhere
+    // (its envelope witnesses included). Elsewhere the plain search is unchanged: near Geneva's
+    // continuous lock/drive switch check 7 on every leaf multiplies its leaves, and its
+    // certificates there stay unproven rightly (docs/certify.md, session 17).
+    const bool free_path = request_.free_path_leaves || piece.drop;
     auto accept = [&](ToleranceLeaf candidate) {
       free_path_failed = false;
       try {
@@ -898,17 +948,6 @@ class Producer {
       }
       score[k] = Rational((region[k].hi - region[k].lo) / (claim_.range.hi - claim_.range.lo)).get_d();
     }
-    // Past this point a leaf may name a neighbouring piece's sides (or, with free_path_leaves,
-    // the envelope's), which need not be the ones binding over the whole leaf: over a drop (the
-    // escapement: the tooth leaves the exit impulse face and the lower side falls to the wheel's
-    // root circle) the next piece's sides pass checks 1-6 with a witness midway between the root
-    // circle and the upper side, which runs through the tooth before the drop, and check 7 then
-    // leaves the whole certificate unproven. So the plain search too accepts such a leaf only
-    // when check 7 proves its witness path over the leaf (as free_path_leaves does for every
-    // leaf), else splits it where check 7 would (session 68). A leaf on its own piece's sides
-    // is accepted as before: a certificate the plain search wrote with own sides only is
-    // unchanged.
-    free_path = true;
     // Near a switch of sides (session 20): the witness between the envelopes of all the
     // candidates — above every lower one and below every upper one by their linearisations over
     // the leaf — so that the path stays in the channel whichever side binds at a corner of the
