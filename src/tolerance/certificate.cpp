@@ -94,7 +94,7 @@ class Producer {
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       if (k > 0) pieces[k].previous = &pieces[k - 1];
       if (k + 1 < pieces.size()) pieces[k].next = &pieces[k + 1];
-      if (k + 1 < pieces.size() && drop_between(pieces[k], pieces[k + 1])) pieces[k].drop = pieces[k + 1].drop = true;
+      if (k + 1 < pieces.size() && drop_between(pieces[k], pieces[k + 1])) drops_ = true;
     }
     try {
       evaluator_ = std::make_unique<verify::ToleranceEvaluator>(request_.model, claim_);
@@ -272,7 +272,6 @@ class Producer {
     std::vector<const ChannelSample*> samples;
     const Piece* previous = nullptr;
     const Piece* next = nullptr;
-    bool drop = false;   ///< a side jumps at one of its ends (drop_between)
   };
 
   // Whether a side of the channel jumps between the last sample of `a` and the first of the
@@ -820,18 +819,20 @@ class Producer {
     bool free_path_failed = false;   // the last candidate passed checks 1-6, check 7 did not prove it
     bool held_without_witness = false;   // a pair of sides passed checks 1-6 here without a witness
     // Check 7 over a candidate leaf before it is accepted: always with free_path_leaves, and in
-    // the plain search on a piece next to a drop (session 68). Over a drop the sides that pass
-    // checks 1-6 need not be the ones binding over the whole leaf: on the escapement the next
-    // piece's sides (the wheel's root circle below) pass them with a witness midway between the
-    // root circle and the upper side, which runs through the tooth before the drop, and check 7
-    // then left the whole certificate unproven; with 14 teeth the piece after the drop takes its
-    // own sides with a witness that check 7 cannot prove past the tooth's tip on the locking
-    // face. There every candidate leaf is accepted only when check 7 proves its witness path
-    // over the leaf, else it is split where check 7 would, as free_path_leaves does everywhere
-    // (its envelope witnesses included). Elsewhere the plain search is unchanged: near Geneva's
-    // continuous lock/drive switch check 7 on every leaf multiplies its leaves, and its
-    // certificates there stay unproven rightly (docs/certify.md, session 17).
-    const bool free_path = request_.free_path_leaves || piece.drop;
+    // the plain search on a channel with a drop somewhere along the range (session 68). There the
+    // sides that pass checks 1-6 need not be the ones binding over the whole leaf: on the
+    // escapement the plain search named, over a leaf before the drop, the next piece's sides
+    // (the wheel's root circle below) with a witness midway between the root circle and the
+    // upper side, which runs through the tooth, and check 7 then left the whole certificate
+    // unproven; gating only the leaves next to a drop was not enough (at the whole turn's end the
+    // root circle's own side took a witness that check 7 could not prove past the rising tooth
+    // back). So every candidate leaf is accepted only when check 7 proves its witness path over
+    // the leaf, else it is split where check 7 would, as free_path_leaves does (its envelope
+    // witnesses included). Without a drop (Geneva's continuous lock/drive switch, the spur
+    // gears) the plain search is unchanged: near Geneva's threshold check 7 on every leaf
+    // multiplies its leaves, and its certificates there stay unproven rightly (docs/certify.md,
+    // session 17).
+    const bool free_path = request_.free_path_leaves || drops_;
     auto accept = [&](ToleranceLeaf candidate) {
       free_path_failed = false;
       try {
@@ -1049,6 +1050,7 @@ class Producer {
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
   std::size_t second_order_leaves_ = 0;
+  bool drops_ = false;   ///< a side drops somewhere along the range (drop_between): check 7 gates every leaf
   std::vector<std::size_t> learned_;   ///< sides named by check 7's undecided events (learn)   ///< leaves whose witness lies between all candidates' envelopes
   std::optional<std::size_t> free_path_split_;   ///< check 7's split choice for the current region
   std::vector<double> witness_score_;
