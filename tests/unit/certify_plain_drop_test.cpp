@@ -21,7 +21,8 @@
 // - Generated (test_seed(68)) ranges across the drop of a random tooth at 1/2, 3/4 or 1 x the
 //   tolerances, and (test_seed(6868)) escapements of 14 or 15 teeth (the anchor's distance
 //   20 mm / cos(450 deg / N), its pallets 2.5 pitches apart) with the lift or lock moved: plain
-//   `valid`, every leaf witnessed. base68's plain producer: `unproven` at each generated case.
+//   `valid`, every leaf witnessed. (base68's plain producer, run through its hipair CLI on the
+//   same ranges, scales and models: `unproven` at each of the six cases; not asserted here.)
 #include <hipair/certificate.hpp>
 #include <hipair/overlap.hpp>
 #include <hipair/tolerance.hpp>
@@ -69,7 +70,9 @@ std::size_t unwitnessed(const ToleranceClaim& t) {
   return n;
 }
 
-// The tangent of half of `angle`, rounded to 1e-12: a rotation by a rational cosine and sine.
+// The tangent of half of `angle`, rounded to 1e-12: a rotation by a rational cosine and sine, so
+// the exact predicate is evaluated within about 1e-12 rad of the witness pose, not on it (enough
+// for `apart` away from contact and for the old witness's `overlapping` deep in the tooth).
 Rational half_tangent(const Rational& angle) {
   const double t = std::tan(0.5 * angle.get_d());
   Rational q(mpz_class(static_cast<long>(std::llround(t * 1e12))), mpz_class("1000000000000"));
