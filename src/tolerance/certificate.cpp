@@ -94,6 +94,7 @@ class Producer {
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       if (k > 0) pieces[k].previous = &pieces[k - 1];
       if (k + 1 < pieces.size()) pieces[k].next = &pieces[k + 1];
+      if (k + 1 < pieces.size() && drop_between(pieces[k], pieces[k + 1])) drops_ = true;
     }
     try {
       evaluator_ = std::make_unique<verify::ToleranceEvaluator>(request_.model, claim_);
@@ -272,6 +273,44 @@ class Producer {
     const Piece* previous = nullptr;
     const Piece* next = nullptr;
   };
+
+  // Whether a side of the channel jumps between the last sample of `a` and the first of the
+  // next piece `b` (a *drop*: the escapement's tooth leaves the impulse face and the anchor's
+  // lower side falls to the wheel's root circle), rather than passing continuously from one
+  // feature pair to another (Geneva's lock/drive switch, a kink): the nominal side value moves
+  // across the boundary by more than the channel is wide there (the smaller play of the two
+  // samples) and by more than 4 times what the side's own slopes next to it (from each piece's
+  // two samples nearest the boundary) would move it over that step. Approximate: it only
+  // chooses where the producer spends check 7's work (Producer::solve), never a verdict.
+  static bool drop_between(const Piece& a, const Piece& b) {
+    const ChannelSample& last = *a.samples.back();
+    const ChannelSample& first = *b.samples.front();
+    const double step = first.driver - last.driver;
+    if (!(step > 0)) return false;
+    for (bool upper : {false, true}) {
+      auto value = [&](const ChannelSample& s) { return upper ? s.upper : s.lower; };
+      double slope = 0;
+      bool known = false;
+      if (a.samples.size() >= 2) {
+        const ChannelSample& before = *a.samples[a.samples.size() - 2];
+        if (last.driver > before.driver) {
+          slope = std::max(slope, std::fabs(value(last) - value(before)) / (last.driver - before.driver));
+          known = true;
+        }
+      }
+      if (b.samples.size() >= 2) {
+        const ChannelSample& after = *b.samples[1];
+        if (after.driver > first.driver) {
+          slope = std::max(slope, std::fabs(value(after) - value(first)) / (after.driver - first.driver));
+          known = true;
+        }
+      }
+      const double jump = std::fabs(value(first) - value(last));
+      const double play = std::min(last.upper - last.lower, first.upper - first.lower);
+      if (known && jump > 4 * slope * step && jump > play) return true;
+    }
+    return false;
+  }
 
   // Progress: a certified leaf's share of the whole region (box x range) added to the share
   // covered (the leaves do not overlap: they are the tree's), shown as 0.1 ... 0.95.
@@ -779,6 +818,21 @@ class Producer {
     // then with the play enclosed from the sides' slopes.
     bool free_path_failed = false;   // the last candidate passed checks 1-6, check 7 did not prove it
     bool held_without_witness = false;   // a pair of sides passed checks 1-6 here without a witness
+    // Check 7 over a candidate leaf before it is accepted: always with free_path_leaves, and in
+    // the plain search on a channel with a drop somewhere along the range (session 68). There the
+    // sides that pass checks 1-6 need not be the ones binding over the whole leaf: on the
+    // escapement the plain search named, over a leaf before the drop, the next piece's sides
+    // (the wheel's root circle below) with a witness midway between the root circle and the
+    // upper side, which runs through the tooth, and check 7 then left the whole certificate
+    // unproven; gating only the leaves next to a drop was not enough (at the whole turn's end the
+    // root circle's own side took a witness that check 7 could not prove past the rising tooth
+    // back). So every candidate leaf is accepted only when check 7 proves its witness path over
+    // the leaf, else it is split where check 7 would, as free_path_leaves does (its envelope
+    // witnesses included). Without a drop (Geneva's continuous lock/drive switch, the spur
+    // gears) the plain search is unchanged: near Geneva's threshold check 7 on every leaf
+    // multiplies its leaves, and its certificates there stay unproven rightly (docs/certify.md,
+    // session 17).
+    const bool free_path = request_.free_path_leaves || drops_;
     auto accept = [&](ToleranceLeaf candidate) {
       free_path_failed = false;
       try {
@@ -786,7 +840,7 @@ class Producer {
       } catch (const verify::Rejection&) {
         return false;
       }
-      if (request_.free_path_leaves && candidate.witness) {
+      if (free_path && candidate.witness) {
         // Check 7 over the leaf's box, with the candidate in place (the evaluator reads claim_).
         claim_.leaves.push_back(candidate);
         std::optional<std::size_t> split;
@@ -901,7 +955,7 @@ class Producer {
     // box; the leaf then names the pair of sides nearest to it at the centre (checks 3-6 prove
     // them, check 7 the others).
     bool envelope_feasible = false;
-    for (int round = 0; round < 3 && request_.free_path_leaves && lower.slope.size() == k + 1 &&
+    for (int round = 0; round < 3 && free_path && lower.slope.size() == k + 1 &&
                         upper.slope.size() == k + 1;
          ++round) {
       std::size_t known = learned_.size();
@@ -996,6 +1050,7 @@ class Producer {
   std::unique_ptr<verify::ToleranceEvaluator> evaluator_;
   std::size_t attempts_ = 0;
   std::size_t second_order_leaves_ = 0;
+  bool drops_ = false;   ///< a side drops somewhere along the range (drop_between): check 7 gates every leaf
   std::vector<std::size_t> learned_;   ///< sides named by check 7's undecided events (learn)   ///< leaves whose witness lies between all candidates' envelopes
   std::optional<std::size_t> free_path_split_;   ///< check 7's split choice for the current region
   std::vector<double> witness_score_;
