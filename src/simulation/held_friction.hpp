@@ -90,6 +90,23 @@ inline std::vector<Rational> exact_restitution_terms(const Eigen::MatrixXd& G, c
   return h;
 }
 
+/// Whether an impact is slower than `rest` (the planar simulators' `plastic` threshold: the largest
+/// approach max(0, -min_r J_r v) below the rest speed), decided exactly on the doubles J, v and rest
+/// (session 68, impact68; until then on the rounded J v): every row's J_r v + rest > 0.
+inline bool slower_than(const Eigen::MatrixXd& J, const Eigen::VectorXd& v, double rest) {
+  if (!(rest > 0)) return false;
+  const Eigen::Index n = J.cols();
+  Eigen::VectorXd row(n + 1), at(n + 1);
+  at.head(n) = v;
+  at(n) = 1;
+  for (Eigen::Index r = 0; r < J.rows(); ++r) {
+    row.head(n) = J.row(r).transpose();
+    row(n) = rest;
+    if (exact_dot_sign(row, at) <= 0) return false;
+  }
+  return true;
+}
+
 /// A frictionless impact's LCP decided exactly (session 68, impact68; the fixed-axis and planar
 /// simulators' frictionless impacts): lambda >= 0, w = G x + h >= 0, lambda w = 0 with
 /// x = v + M^-1 G^T lambda (`minv` diagonal, 0 for a driver) and h the exact restitution terms
