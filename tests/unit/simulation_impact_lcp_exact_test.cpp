@@ -164,7 +164,7 @@ TEST(ImpactLcpExact, FrictionlessImpulsesAtPlantedTiesAreTheExactLawOnTheExactRe
     const double scale = v.cwiseAbs().maxCoeff() + x.cwiseAbs().maxCoeff();
     for (int i = 0; i < n; ++i) {
       const Rational xi = q(v(i)) + q(minv(i)) * (q(G(0, i)) * o.lambda[0] + q(G(1, i)) * o.lambda[1]);
-      EXPECT_LE(std::abs(x(i) - to_double(xi)), 1e-12 * scale) << where << " coordinate " << i;
+      EXPECT_LE(std::abs(x(i) - to_double(xi)), 1e-12 * scale) << where << " coordinate " << i << (exact ? " (exact)" : " (doubles)");
     }
     old_wrong += !old_ok;
     impulses2 += sgn(o.lambda[1]) > 0;
