@@ -105,7 +105,9 @@ void impact_ties(std::uint64_t seed, bool exact_terms) {
     const std::vector<Rational> stick = held_oracle::cramer(D, {a, tv});   // (Lambda, F)
     // mu by family
     const int k = 20 + rng.below(41);
-    const int variant = rng.below(5);
+    // (exact_terms: a sixth variant, between the edges — a double strictly between the exact term's
+    // cone-edge ratio and the rounded term's, where one exists: the two laws decide it differently)
+    const int variant = rng.below(exact_terms ? 6 : 5);
     auto put = [&](const Rational& mu) -> double {
       const double r = rounded(mu);
       switch (variant) {
@@ -113,7 +115,15 @@ void impact_ties(std::uint64_t seed, bool exact_terms) {
         case 1: return std::nextafter(r, 0.0);
         case 2: return std::nextafter(r, 2 * r);
         case 3: return rounded(mu * (1 - Rational(std::ldexp(1.0, -k))));
-        default: return rounded(mu * (1 + Rational(std::ldexp(1.0, -k))));
+        case 4: return rounded(mu * (1 + Rational(std::ldexp(1.0, -k))));
+        default: {
+          const std::vector<Rational> r_stick = held_oracle::cramer(D, {dot(J, vq) + Rational(h(0)), tv});
+          const Rational other = sgn(r_stick[0]) > 0 ? Rational(abs(r_stick[1]) / r_stick[0]) : mu;
+          const double near = rounded(mu);
+          for (double c : {near, std::nextafter(near, 0.0), std::nextafter(near, 2 * near)})
+            if (sgn((Rational(c) - mu) * (Rational(c) - other)) < 0) return c;
+          return near;
+        }
       }
     };
     double mu_s = (1 + rng.below(15)) / 16.0, mu_k = mu_s;

@@ -13,7 +13,8 @@
 // separating; a quarter generic. The oracle: the LCP's four held sets in rationals on the same
 // doubles, h = e G v exactly (A = G M^-1 G^T is positive definite here: one solution). Asserted on
 // every impact: a contact gets an impulse iff the oracle's does, separates iff the oracle's
-// separates, and the velocities after are the oracle's to 1e-12 of their scale. The call the
+// separates, and the velocities after are the oracle's to 2^-40 of the impulses' reach (the
+// doubles kept where they agree to that) and a few ulps. The call the
 // simulators made before session 68 (the doubles' LCP alone) is counted where it disagrees.
 #include <gtest/gtest.h>
 
@@ -22,6 +23,7 @@
 #include "held_oracle_support.hpp"
 #include "test_seed.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -161,10 +163,16 @@ TEST(ImpactLcpExact, FrictionlessImpulsesAtPlantedTiesAreTheExactLawOnTheExactRe
                (lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance) == (sgn(o.w[r]) > 0);
     }
     // the velocities after: the oracle's x = v + M^-1 G^T lambda
-    const double scale = v.cwiseAbs().maxCoeff() + x.cwiseAbs().maxCoeff();
+    // (the tolerance from the quantity: kept doubles' impulses agree with the exact ones to 2^-40 of
+    // the largest, exact_impact_lcp, carried to x through M^-1 G^T; then the rounding of the doubles'
+    // x = v + M^-1 G^T lambda, a few ulps of its terms)
+    const double lmax = std::max(std::abs(to_double(o.lambda[0])), std::abs(to_double(o.lambda[1])));
+    const double reach = (minv.asDiagonal() * G.transpose()).cwiseAbs().rowwise().sum().maxCoeff();
+    const double scale = v.cwiseAbs().maxCoeff() + x.cwiseAbs().maxCoeff() + reach * lmax;
+    const double tolerance = 0x1p-40 * reach * lmax + 8 * 0x1p-52 * scale;
     for (int i = 0; i < n; ++i) {
       const Rational xi = q(v(i)) + q(minv(i)) * (q(G(0, i)) * o.lambda[0] + q(G(1, i)) * o.lambda[1]);
-      EXPECT_LE(std::abs(x(i) - to_double(xi)), 1e-12 * scale) << where << " coordinate " << i << (exact ? " (exact)" : " (doubles)");
+      EXPECT_LE(std::abs(x(i) - to_double(xi)), tolerance) << where << " coordinate " << i << (exact ? " (exact)" : " (doubles)");
     }
     old_wrong += !old_ok;
     impulses2 += sgn(o.lambda[1]) > 0;
