@@ -749,6 +749,9 @@ inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLin
 /// given, z = L^T q (L: Eigen's Cholesky factor of M in doubles, the pin-slot simulator's
 /// FrictionProblem), x_z = L^T x rounded — the coordinates the doubles' solutions are in; the
 /// multipliers, forces and gap accelerations are the full form's exact ones rounded once.
+/// `h_exact` (given; session 68, impact68): the velocity terms of the normal rows as exact
+/// rationals in place of h's doubles (an impact's restitution terms e G v-, exact on G, v and e:
+/// exact_restitution_terms in held_friction.hpp; h's doubles are their rounding).
 inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv,
                                                           const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
                                                           const std::vector<Friction>& friction_given,
@@ -757,7 +760,8 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
                                                           const std::vector<bool>* first = nullptr,
                                                           std::size_t* tried = nullptr,
                                                           const FullMass* full = nullptr,
-                                                          bool first_only = false) {
+                                                          bool first_only = false,
+                                                          const std::vector<Rational>* h_exact = nullptr) {
   const Eigen::MatrixXd& G = full ? full->G : G_given;
   const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const auto m = static_cast<std::size_t>(G.rows()), n = static_cast<std::size_t>(G.cols());
@@ -826,7 +830,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       const Eigen::VectorXd r = tangent ? friction[k].T : Eigen::VectorXd(G.row(static_cast<Eigen::Index>(k)).transpose());
       const double c = tangent ? friction[k].bias : h(static_cast<Eigen::Index>(k));
       std::vector<Rational> rq(n);
-      a.constant = exact(c);
+      a.constant = !tangent && h_exact ? (*h_exact)[k] : exact(c);
       for (std::size_t i = 0; i < n; ++i) {
         rq[i] = exact(r(static_cast<Eigen::Index>(i)));
         if (sgn(rq[i]) != 0) a.constant += rq[i] * x0[i];
@@ -935,7 +939,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       const Friction& c = friction[k];
       if (c.on && (state[k] == slip_positive || state[k] == slip_negative))
         force[k] = -state[k] * exact(c.mu_kinetic) * lambda[k] / exact(c.s);
-      Rational wk = exact(h(r));
+      Rational wk = h_exact ? (*h_exact)[k] : exact(h(r));
       for (std::size_t i = 0; i < n; ++i) wk += exact(G(r, static_cast<Eigen::Index>(i))) * x[i];
       s.lambda(r) = to_double(lambda[k]);
       s.f(r) = to_double(force[k]);
@@ -984,8 +988,18 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
                                            const std::function<void(FrictionalSolution&)>& adjust = {},
                                            bool undetermined_plain = false,
                                            const std::vector<std::size_t>* exact_groups = nullptr,
-                                           const FullMass* full = nullptr) {
+                                           const FullMass* full = nullptr,
+                                           const std::vector<Rational>* h_exact = nullptr) {
   const std::size_t m = friction.size();
+  // (session 68, impact68: h_exact, with exact_groups, the velocity terms as exact rationals — an
+  // impact's restitution terms e G v-. Where every double of h is its exact term the decisions
+  // below are exact on them as before; where some is rounded (e = 0.3), a candidate the doubles'
+  // filters accept is kept only where its held set is also exactly consistent on the exact terms
+  // (exact_assignment, first_only), and every exact decision is taken on the exact terms.)
+  const std::vector<Rational>* rounded = nullptr;
+  if (exact_groups && h_exact)
+    for (std::size_t k = 0; k < m && !rounded; ++k)
+      if ((*h_exact)[k] != held_force_detail::exact_value(h(static_cast<Eigen::Index>(k)))) rounded = h_exact;
   std::vector<std::size_t> open;
   std::vector<int> state(m, frictionless);
   for (std::size_t k = 0; k < m; ++k) {
@@ -1066,11 +1080,13 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       // a rejected candidate.)
       if (exact_groups && sticks
               ? coulomb_satisfied(s, friction) &&
-                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full)
+                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full) &&
+                    (!rounded || exact_assignment(G, minv, a0, h, friction, state, *exact_groups, &held_first,
+                                                  nullptr, full, true, rounded))
               : coulomb_satisfied(s, friction) &&
-                    (!exact_groups || !slides ||
+                    (!exact_groups || (!slides && !rounded) ||
                      exact_assignment(G, minv, a0, h, friction, state, *exact_groups, &held_first, nullptr, full,
-                                      true))) {
+                                      true, rounded))) {
         s.solved = true;
         return s;
       }
@@ -1085,8 +1101,9 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     // slip-direction test with its 1e-9 slack rejected it: the LP with the sliding forces
     // f = -sign mu_k N fixed (until then the doubles' "no" was the decision).)
     if (exact_groups) {
-      if (std::optional<FrictionalSolution> e = exact_assignment(
-              G, minv, a0, h, friction, state, *exact_groups, lcp.solved ? &held_first : nullptr, nullptr, full))
+      if (std::optional<FrictionalSolution> e =
+              exact_assignment(G, minv, a0, h, friction, state, *exact_groups, lcp.solved ? &held_first : nullptr,
+                               nullptr, full, false, rounded))
         return *e;
       continue;
     }

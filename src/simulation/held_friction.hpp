@@ -69,6 +69,99 @@ inline std::vector<bool> lift_offs(const FrictionalSolution& solution, const Hel
 /// sum's sign — a row separating or at rest by less than the sum's round-off could be restituted).
 inline bool approaches(const Eigen::VectorXd& g, const Eigen::VectorXd& v) { return exact_dot_sign(g, v) < 0; }
 
+/// An impact's restitution terms exactly (session 68, impact68): h_k = e_k (G_k . v) in rationals
+/// on the doubles G, v and e (until then the rounded double e_k * (G v)_k: a decision at a tie
+/// was taken on its rounding — e = 0.3 is not a dyadic number, so the term is rounded at almost
+/// every impact). `approaching_only`: a row that does not approach exactly (approaches()) has
+/// none (the fixed-axis and pin-slot impacts); false: every row its term (the planar impacts,
+/// b = (1 + e) J v on every row).
+inline std::vector<Rational> exact_restitution_terms(const Eigen::MatrixXd& G, const Eigen::VectorXd& v,
+                                                     const Eigen::VectorXd& e, bool approaching_only = true) {
+  const auto m = static_cast<std::size_t>(G.rows());
+  std::vector<Rational> h(m, Rational(0));
+  for (std::size_t k = 0; k < m; ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    if (e(r) == 0 || (approaching_only && !approaches(G.row(r).transpose(), v))) continue;
+    Rational dot = 0;
+    for (Eigen::Index i = 0; i < G.cols(); ++i)
+      if (G(r, i) != 0 && v(i) != 0) dot += held_force_detail::exact_value(G(r, i)) * held_force_detail::exact_value(v(i));
+    h[k] = held_force_detail::exact_value(e(r)) * dot;
+  }
+  return h;
+}
+
+/// Whether an impact is slower than `rest` (the planar simulators' `plastic` threshold: the largest
+/// approach max(0, -min_r J_r v) below the rest speed), decided exactly on the doubles J, v and rest
+/// (session 68, impact68; until then on the rounded J v): every row's J_r v + rest > 0.
+inline bool slower_than(const Eigen::MatrixXd& J, const Eigen::VectorXd& v, double rest) {
+  if (!(rest > 0)) return false;
+  const Eigen::Index n = J.cols();
+  Eigen::VectorXd row(n + 1), at(n + 1);
+  at.head(n) = v;
+  at(n) = 1;
+  for (Eigen::Index r = 0; r < J.rows(); ++r) {
+    row.head(n) = J.row(r).transpose();
+    row(n) = rest;
+    if (exact_dot_sign(row, at) <= 0) return false;
+  }
+  return true;
+}
+
+/// A frictionless impact's LCP decided exactly (session 68, impact68; the fixed-axis and planar
+/// simulators' frictionless impacts): lambda >= 0, w = G x + h >= 0, lambda w = 0 with
+/// x = v + M^-1 G^T lambda (`minv` diagonal, 0 for a driver) and h the exact restitution terms
+/// (exact_restitution_terms). The doubles' solution `lcp` (solve_lcp on A = G M^-1 G^T and
+/// b = G v + h rounded, with its 1e-10 tolerance) is the filter: its held set (every contact but
+/// those it lets separate, lambda 0 and w beyond its tolerance) is decided exactly
+/// (exact_assignment, first_only, on the exact terms); where that set is exactly consistent and
+/// its exact solution gives an impulse to the same contacts as the doubles (lambda > 0), lets
+/// the same ones separate (w > 0) and its impulses agree with the doubles' to 2^-40 of the largest,
+/// the doubles' solution is kept: nullopt. Otherwise the exact
+/// solution is returned (the held set's, or the exact enumeration's over every held set, the
+/// largest first: exact_assignment), its numbers the exact ones rounded; `solved` false when none
+/// is consistent (m > 12: not decided, nullopt). Until session 68 the doubles' tolerance decided:
+/// a contact closing or separating within 1e-10 of the problem's scale could be given an impulse
+/// (or none) against the exact law.
+inline std::optional<FrictionalSolution> exact_impact_lcp(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                                          const Eigen::VectorXd& v, const std::vector<Rational>& h,
+                                                          const LcpSolution& lcp) {
+  const auto m = static_cast<std::size_t>(G.rows());
+  if (m == 0 || m > 12) return std::nullopt;
+  const std::vector<Friction> friction(m);
+  const std::vector<int> state(m, frictionless);
+  static const std::vector<std::size_t> no_groups;
+  const Eigen::VectorXd h_unused = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m));
+  if (lcp.solved) {
+    std::vector<bool> held(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      held[k] = !(lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance);
+    }
+    if (std::optional<FrictionalSolution> e =
+            exact_assignment(G, minv, v, h_unused, friction, state, no_groups, &held, nullptr, nullptr, true, &h)) {
+      // (the doubles' impulses also agree with the exact ones to 2^-40 of their largest: an
+      // accepted active set whose multiplier within the tolerance was clipped to 0 — a contact
+      // separating by 2^-24 of the scale taken as held — leaves the others' impulses off by that
+      // much; a published number, not a decision, but the exact one is at hand)
+      const double scale = e->lambda.cwiseAbs().maxCoeff();
+      bool same = true;
+      for (std::size_t k = 0; k < m && same; ++k) {
+        const auto r = static_cast<Eigen::Index>(k);
+        same = (lcp.lambda(r) > 0) == (e->lambda(r) > 0) && (held[k] || e->w(r) > 0) &&
+               std::abs(lcp.lambda(r) - e->lambda(r)) <= 0x1p-40 * scale;
+      }
+      if (same) return std::nullopt;
+      return e;
+    }
+  }
+  if (std::optional<FrictionalSolution> e =
+          exact_assignment(G, minv, v, h_unused, friction, state, no_groups, nullptr, nullptr, nullptr, false, &h))
+    return e;
+  FrictionalSolution none;
+  none.solved = false;
+  return none;
+}
+
 /// The impulses of a frictional impact (session 67, impact67; the fixed-axis, planar and pin-slot
 /// simulators' impacts): Newton's restitution with Coulomb-limited tangential impulses at velocity
 /// level — x = v + M^-1 (W^T Lambda + T_S^T F) the velocities after (v before, `minv` the diagonal
@@ -83,11 +176,14 @@ inline bool approaches(const Eigen::VectorXd& g, const Eigen::VectorXd& v) { ret
 /// 1e-9 beyond mu_s N accepted, a slip whose velocity after reverses by 1e-9 of its scale
 /// accepted, and a stick their LCP missed not found). `group`: the collinear groups by contact
 /// (empty: each its own); `adjust`: as solve_frictional's (the planar simulators' friction split).
+/// `h_exact` (given; session 68, impact68): the restitution terms exactly (exact_restitution_terms;
+/// h their doubles): the decisions are then exact on (G, v, e), not on the rounded h.
 inline FrictionalSolution frictional_impulses(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                               const Eigen::VectorXd& v, const Eigen::VectorXd& h,
                                               const std::vector<Friction>& friction,
                                               const std::vector<std::size_t>& group,
-                                              const std::function<void(FrictionalSolution&)>& adjust = {}) {
+                                              const std::function<void(FrictionalSolution&)>& adjust = {},
+                                              const std::vector<Rational>* h_exact = nullptr) {
   // Force rows beyond the doubles (friction 1e308: G - mu T overflows; session 64, hunt64) are
   // refused as before: the doubles' candidates are not finite and fail, and the caller names the
   // pair; the exact enumeration on such numbers would not end in useful time (simulate_mutations).
@@ -99,7 +195,7 @@ inline FrictionalSolution frictional_impulses(const Eigen::MatrixXd& G, const Ei
         !(G.row(static_cast<Eigen::Index>(k)).cwiseAbs().transpose() + ratio * c.T.cwiseAbs()).allFinite())
       return solve_frictional(G, minv, v, h, friction, adjust);
   }
-  return solve_frictional(G, minv, v, h, friction, adjust, false, &group);
+  return solve_frictional(G, minv, v, h, friction, adjust, false, &group, nullptr, h_exact);
 }
 
 /// Newton's restitution with Coulomb friction can create energy where the normal and tangential

@@ -1910,6 +1910,16 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
   const double energy_before = energy_of(y);
   std::vector<double> before(rows.size()), total(rows.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) before[i] = speed(rows[i]);
+  // whether a row approaches (its restitution applies), decided exactly on its doubles (session 68,
+  // impact68: was the rounded speed's sign, before[i] < 0 — held_friction.hpp's approaches)
+  std::vector<bool> approach(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    Eigen::VectorXd g(5), u(5);
+    g << r.J[0], r.J[1], r.free ? r.J[2] : 0.0, r.slider ? r.J[3] : 0.0, r.v_other;
+    u << y[2], y[3], r.free ? y[5] : 0.0, r.slider ? y[7] : 0.0, -1.0;
+    approach[i] = simulation::approaches(g, u);
+  }
   // (session 64) a pair with friction: Coulomb impacts
   std::vector<double> tangential(rows.size(), 0.0);
   bool coulomb = false;
@@ -1937,7 +1947,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       G(ii, 1) = r.J[1];
       if (free) G(ii, 2) = r.free ? r.J[2] : 0.0;
       if (has_slider()) G(ii, x_column()) = r.slider ? r.J[3] : 0.0;
-      hv(ii) = -r.v_other + (before[i] < 0 ? r.restitution * before[i] : 0.0);
+      hv(ii) = -r.v_other + (approach[i] ? r.restitution * before[i] : 0.0);
       if (r.limit || !(pairs[r.pair].mu_static > 0)) continue;
       const Tangent tangent = r.held ? held_tangent(held[i - fresh_rows], y, t) : tangent_at(r.pair, r.point, r.normal, y);
       friction[i] = friction_of(llt, G.row(ii).transpose(), tangent, pairs[r.pair]);
@@ -2002,7 +2012,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
         if (has_slider()) A(i, j) += rj.J[3] * ri.J[3] * inverse_slider_mass;
       }
       const double v = before[static_cast<std::size_t>(i)];
-      bv(i) = v < 0 ? (1 + ri.restitution) * v : v;
+      bv(i) = approach[static_cast<std::size_t>(i)] ? (1 + ri.restitution) * v : v;
     }
     const simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
     if (!lcp.solved) {

@@ -430,7 +430,8 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
                                                  const Eigen::VectorXd& v, const Eigen::VectorXd& h,
                                                  const std::vector<simulation::Friction>& friction,
                                                  const std::vector<std::size_t>& group, const std::string& where,
-                                                 const std::string& named, bool& limited) {
+                                                 const std::string& named, bool& limited,
+                                                 const std::vector<Rational>* h_exact = nullptr) {
   // (session 67, impact67: the impulses' Coulomb conditions decided exactly, the collinear
   // groups given — held_friction.hpp's frictional_impulses)
   // A plastic impact (h = 0) is one problem at every scale of the restitution: solved once (the
@@ -439,9 +440,16 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
   const bool no_restitution = h.isZero(0.0);
   auto solve = [&](double scale) {
     if (no_restitution && plastic) return *plastic;
+    // (session 68, impact68: the exact restitution terms, scaled exactly — the scale is dyadic)
+    std::vector<Rational> scaled;
+    if (h_exact) {
+      scaled = *h_exact;
+      if (scale != 1)
+        for (Rational& x : scaled) x *= simulation::held_force_detail::exact_value(scale);
+    }
     simulation::FrictionalSolution sol = simulation::frictional_impulses(
         J, minv, v, scale * h, friction, group,
-        [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); });
+        [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); }, h_exact ? &scaled : nullptr);
     if (!sol.solved)
       throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
                                  "inconsistency of Coulomb friction, or more than 8 contacts)" + named);
@@ -1181,14 +1189,18 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
   Eigen::Vector3d minv(1 / mass, 1 / mass, 1 / inertia);
   Eigen::Vector3d v(at.vx, at.vy, at.omega);
   Eigen::VectorXd before = J * v;
-  double approach = std::max(0.0, -before.minCoeff());
-  bool plastic = approach < rest_speed;
+  // (session 68, impact68: slower than the rest speed decided exactly on J, v — was the rounded J v)
+  bool plastic = simulation::slower_than(J, v, rest_speed);
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
-  Eigen::VectorXd b(m);
+  Eigen::VectorXd b(m), restitution(m);
   for (std::size_t r = 0; r < m; ++r) {
     double e = plastic ? 0.0 : pairs[rows_pair[r]].restitution;
+    restitution(static_cast<Eigen::Index>(r)) = e;
     b(r) = (1 + e) * before(r);
   }
+  // the restitution terms e J v- exactly (every row, as b)
+  const std::vector<Rational> h_exact =
+      simulation::exact_restitution_terms(J, Eigen::VectorXd(v), restitution, false);
   bool frictional = false;
   for (std::size_t r = 0; r < m; ++r) frictional = frictional || pairs[rows_pair[r]].mu_static > 0;
   simulation::LcpSolution lcp;
@@ -1196,8 +1208,17 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
   Eigen::Vector3d after_v;
   if (!frictional) {
     lcp = simulation::solve_lcp(A, b);
+    // (session 68, impact68: which rows get an impulse decided exactly — exact_impact_lcp)
+    const std::optional<simulation::FrictionalSolution> exact =
+        simulation::exact_impact_lcp(J, Eigen::VectorXd(minv), Eigen::VectorXd(v), h_exact, lcp);
+    if (exact) lcp.solved = exact->solved;
     if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
-    after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+    if (exact) {
+      lcp.lambda = exact->lambda;
+      after_v = exact->x;
+    } else {
+      after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+    }
   } else {
     // Newton restitution with Coulomb-limited tangential impulses: the fixed-axis simulator's
     // frictional impulse problem (src/simulation/friction.hpp) over (x, y, theta)
@@ -1217,7 +1238,7 @@ void PlanarSimulation::Impl::impact(double time, const Rows& contact) {
     bool limited = false;
     simulation::FrictionalSolution sol = frictional_impact(J, Eigen::VectorXd(minv), v, h, friction,
                                                            collinear_groups(friction, rows_pair), where(time),
-                                                           named_pairs(rows_pair), limited);
+                                                           named_pairs(rows_pair), limited, &h_exact);
     if (limited) ++stats.restitution_limited;
     lcp.lambda = sol.lambda;
     lcp.solved = true;
@@ -2659,13 +2680,17 @@ void PlanarSystemSimulation::Impl::impact(double time,
   const Eigen::VectorXd minv = inverse_mass(), v = velocity(k);
   Eigen::VectorXd before = J * v;
   // an impact slower than the rest speed is plastic, and so are the held contacts' rows
-  const bool plastic = std::max(0.0, -before.minCoeff()) < rest_speed;
-  Eigen::VectorXd b(m);
+  // (session 68, impact68: decided exactly on J, v — was the rounded J v; slower_than)
+  const bool plastic = simulation::slower_than(J, v, rest_speed);
+  Eigen::VectorXd b(m), restitution(m);
   for (Eigen::Index r = 0; r < m; ++r) {
     const auto row = static_cast<std::size_t>(r);
     const double e = plastic || is_held(row_pair[row], contact.feature[row]) ? 0.0 : pairs[row_pair[row]].restitution;
+    restitution(r) = e;
     b(r) = (1 + e) * before(r);
   }
+  // the restitution terms e J v- exactly (every row, as b)
+  const std::vector<Rational> h_exact = simulation::exact_restitution_terms(J, v, restitution, false);
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
   for (Eigen::Index r = 0; r < m; ++r)
     if (before(r) < 0 && !(A(r, r) > 0)) {   // a driver against a fixed part or another driver
@@ -2678,9 +2703,12 @@ void PlanarSystemSimulation::Impl::impact(double time,
   Eigen::VectorXd lambda, after_v, tangential = Eigen::VectorXd::Zero(m);
   if (!frictional) {
     simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
+    // (session 68, impact68: which rows get an impulse decided exactly — exact_impact_lcp)
+    const std::optional<simulation::FrictionalSolution> exact = simulation::exact_impact_lcp(J, minv, v, h_exact, lcp);
+    if (exact) lcp.solved = exact->solved;
     if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
-    lambda = lcp.lambda;
-    after_v = v + minv.asDiagonal() * (J.transpose() * lcp.lambda);
+    lambda = exact ? exact->lambda : lcp.lambda;
+    after_v = exact ? exact->x : Eigen::VectorXd(v + minv.asDiagonal() * (J.transpose() * lcp.lambda));
   } else {   // Coulomb-limited tangential impulses, as the single planar part's impacts
     std::vector<simulation::Friction> friction(static_cast<std::size_t>(m));
     for (std::size_t r = 0; r < friction.size(); ++r) {
@@ -2693,7 +2721,7 @@ void PlanarSystemSimulation::Impl::impact(double time,
     bool limited = false;
     simulation::FrictionalSolution sol = frictional_impact(J, minv, v, b - before, friction,
                                                            collinear_groups(friction, row_pair), where(time),
-                                                           named_pairs(row_pair), limited);
+                                                           named_pairs(row_pair), limited, &h_exact);
     if (limited) ++stats.restitution_limited;
     lambda = sol.lambda;
     tangential = sol.f;

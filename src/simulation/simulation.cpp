@@ -1717,6 +1717,11 @@ struct Simulation::Impl {
   // t = 0.3314 s: anchor/banking left at -0.83 mm/s after separating at +2.76 mm/s).
   // Approaching rows (G v- < 0, every crossing) are unchanged.
   static bool approaching(const Eigen::VectorXd& g, const Eigen::VectorXd& v) { return simulation::approaches(g, v); }
+  static Eigen::VectorXd restitutions(const std::vector<ContactRow>& rows) {
+    Eigen::VectorXd e(static_cast<Eigen::Index>(rows.size()));
+    for (std::size_t k = 0; k < rows.size(); ++k) e(static_cast<Eigen::Index>(k)) = rows[k].restitution;
+    return e;
+  }
   Vec solve_impacts(const std::vector<ContactRow>& rows, Vec* tangential = nullptr) {
     std::size_t m = rows.size(), n = dofs.size();
     if (tangential) tangential->assign(m, 0.0);
@@ -1744,8 +1749,11 @@ struct Simulation::Impl {
       // Session 67 (impact67): the impulses' Coulomb conditions decided exactly, as the held
       // contacts' at a step's start (held_friction.hpp's frictional_impulses)
       static const std::vector<std::size_t> no_groups;
+      // (session 68, impact68: the decisions on the exact restitution terms e G v-, not on their
+      // rounded doubles h)
+      const std::vector<Rational> h_exact = simulation::exact_restitution_terms(G, vm, restitutions(rows));
       simulation::FrictionalSolution solution =
-          simulation::frictional_impulses(G, inverse_masses(), vm, h, friction, no_groups);
+          simulation::frictional_impulses(G, inverse_masses(), vm, h, friction, no_groups, {}, &h_exact);
       // No assignment consistent: a plastic impact into a cusp of the free space (a gear pair
       // whose channel closes, the held contact of the gear's tip on the pinion's radial flank
       // meeting the back flanks' contact, rows nearly opposite: 6 x 10 teeth without backlash at
@@ -1785,6 +1793,18 @@ struct Simulation::Impl {
       b(k) = approaching(G.row(static_cast<Eigen::Index>(k)).transpose(), vm) ? (1 + rows[k].restitution) * gv(k)
                                                                               : gv(k);
     simulation::LcpSolution solution = simulation::solve_lcp(A, b);
+    // (session 68, impact68: which contacts get an impulse and which separate decided exactly on
+    // G, v and e — the doubles' LCP, with its tolerance, is the filter: exact_impact_lcp)
+    const Eigen::VectorXd minv = inverse_masses();
+    if (const std::optional<simulation::FrictionalSolution> exact = simulation::exact_impact_lcp(
+            G, minv, vm, simulation::exact_restitution_terms(G, vm, restitutions(rows)), solution)) {
+      solution.solved = exact->solved;
+      if (exact->solved) {
+        for (std::size_t i = 0; i < n; ++i)
+          if (!dofs[i].driven) v[i] = exact->x(static_cast<Eigen::Index>(i));
+        return Vec(exact->lambda.data(), exact->lambda.data() + m);
+      }
+    }
     if (!solution.solved) {
       std::ostringstream out;
       out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
