@@ -1,0 +1,372 @@
+// Session 68 (geneva68): a chart built by mapping its half-turn twin (TwinChart,
+// cspace/builder_impl.hpp). Where a rotating part maps onto itself under the half turn about its
+// pivot exactly (half_turn_symmetry), the chart with its axis at pi is the chart at 0 with the
+// part's features read through the half turn; the build copies the chart at 0 instead of
+// generating, culling, inserting and classifying the twin's curves. The mapped space must be the
+// direct build's exact C-space: the same feature pairs (as identities), charts, statistics, cells
+// and faces (kinds, boundary sizes), the same real edges (exact polynomial, role, feature pairs,
+// exact end abscissae and the exact ordinate at a rational point inside) and the same vertices'
+// exact abscissae, only written through the twin's vertices and numbered otherwise. Checked on
+// Geneva and on generated exactly symmetric star wheels against the direct build
+// (mapped_twin_charts() off); near-symmetric wheels (a corner moved by 2^-k) are built directly:
+// byte-identical `cspace --json` with and without the switch.
+#include "cspace/builder_impl.hpp"
+#include "cspace/half_turn_symmetry.hpp"
+#include "cli/cspace_json.hpp"
+#include "algebra/exact_real.hpp"
+#include "test_paths.hpp"
+#include "test_seed.hpp"
+
+#include <hipair/cspace.hpp>
+#include <hipair/model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <numbers>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace hipair {
+namespace {
+
+Model geneva() { return read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"); }
+
+std::size_t part_index(const Model& model, const std::string& name) {
+  for (std::size_t i = 0; i < model.parts.size(); ++i)
+    if (model.parts[i].name == name) return i;
+  return no_index;
+}
+
+Point unit_of(const Rational& t) {
+  Rational w = 1 + t * t;
+  Point u{Rational((1 - t * t) / w), Rational(2 * t / w)};
+  u.x.canonicalize();
+  u.y.canonicalize();
+  return u;
+}
+
+Point at(const Point& u, const Rational& along, const Rational& across) {
+  Point p{Rational(along * u.x - across * u.y), Rational(along * u.y + across * u.x)};
+  p.x.canonicalize();
+  p.y.canonicalize();
+  return p;
+}
+
+// A star wheel of `arms` rectangular arms about the origin (Geneva's wheel pivot), one loop of
+// segments; with an even count arm k + arms/2 is arm k's exact negation (a half-turn symmetric
+// wheel).
+Loop star_wheel(std::mt19937_64& random, int arms) {
+  const double turn = std::uniform_real_distribution<double>(-0.2, 0.2)(random);
+  const Rational inner(std::uniform_int_distribution<long>(36, 44)(random), 2);
+  const Rational outer(std::uniform_int_distribution<long>(110, 124)(random), 2);
+  const Rational half_width(std::uniform_int_distribution<long>(8, 12)(random), 2);
+  std::vector<Point> units(arms);
+  for (int k = 0; k < arms; ++k) {
+    if (k >= arms / 2) {
+      const Point& u = units[k - arms / 2];
+      units[k] = Point{Rational(-u.x), Rational(-u.y)};
+      continue;
+    }
+    const double phi = 2 * std::numbers::pi * k / arms - std::numbers::pi + std::numbers::pi / arms + turn;
+    Rational t(static_cast<long>(std::llround(std::tan(phi / 2) * 1048576.0)), 1048576);
+    t.canonicalize();
+    units[k] = unit_of(t);
+  }
+  std::vector<Point> corners;
+  const Rational minus_half_width(-half_width);
+  for (const Point& u : units) {
+    const std::pair<Rational, Rational> ends[4] = {
+        {inner, minus_half_width}, {outer, minus_half_width}, {outer, half_width}, {inner, half_width}};
+    for (const auto& [along, across] : ends) corners.push_back(at(u, along, across));
+  }
+  Loop loop;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    Edge e;
+    e.kind = Edge::Kind::segment;
+    e.source = corners[i];
+    e.target = corners[(i + 1) % corners.size()];
+    loop.edges.push_back(e);
+  }
+  return loop;
+}
+
+Model with_wheel(const Loop& wheel) {
+  Model model = geneva();
+  Part& part = model.parts[part_index(model, "wheel")];
+  part.loops = {wheel};
+  part.features.clear();
+  return model;
+}
+
+CSpace build(const Model& model, bool mapped) {
+  auto& switch_ = cspace::mapped_twin_charts();
+  const bool before = switch_.load();
+  switch_.store(mapped);
+  CSpace space = CSpace::build(model, "driver", "wheel");
+  switch_.store(before);
+  return space;
+}
+
+std::string json_of(const CSpace& space) {
+  std::ostringstream out;
+  cli::write_space_json(out, space, false);
+  return out.str();
+}
+
+algebra::Real real_of(const AlgebraicNumber& n) {
+  algebra::Real r;
+  r.polynomial = n.polynomial;
+  r.lower = n.lower;
+  r.upper = n.upper;
+  r.exact = n.exact;
+  return r;
+}
+
+std::string pair_text(const FeaturePair& p) {
+  auto f = [](const FeatureIdentity& i) {
+    return std::to_string(i.part) + ":" + std::to_string(i.loop) + ":" + std::to_string(i.edge) + ":" +
+           std::to_string(static_cast<int>(i.kind));
+  };
+  return f(p.first) + "/" + f(p.second) + " " + std::to_string(static_cast<int>(p.kind)) + " " + p.label + " " +
+         p.first_feature + " " + p.second_feature + " " + std::to_string(p.blocked_sign);
+}
+
+// An edge's structure without its vertices or numbers: exact polynomial, role, realness,
+// verticality and its feature pairs as identities.
+std::string edge_key(const CSpace& space, std::size_t e) {
+  const CSpaceEdge& edge = space.edges()[e];
+  std::string text;
+  cli::append_polynomial_text(text, space.edge_polynomial_coefficients(e));
+  text += " role " + std::to_string(static_cast<int>(edge.role)) + " real " + std::to_string(edge.real) + " vertical " +
+          std::to_string(edge.vertical) + " chart " + std::to_string(edge.chart);
+  std::vector<std::string> pairs;
+  for (std::size_t p : edge.curves) pairs.push_back(pair_text(space.feature_pairs()[p]));
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& p : pairs) text += " | " + p;
+  return text;
+}
+
+// Is edge a of space A exactly edge b of space B? The same structure, the same exact end
+// abscissae, and (non-vertical) the same exact ordinate at a rational abscissa inside; vertical
+// edges: the same abscissa and ends' ordinate enclosures that meet.
+bool same_edge(const CSpace& A, std::size_t a, const CSpace& B, std::size_t b) {
+  const CSpaceEdge& ea = A.edges()[a];
+  const CSpaceEdge& eb = B.edges()[b];
+  const CSpaceVertex& sa = A.vertices()[ea.source];
+  const CSpaceVertex& ta = A.vertices()[ea.target];
+  const CSpaceVertex& sb = B.vertices()[eb.source];
+  const CSpaceVertex& tb = B.vertices()[eb.target];
+  if (!algebra::equal(real_of(sa.x), real_of(sb.x)) || !algebra::equal(real_of(ta.x), real_of(tb.x))) return false;
+  if (ea.vertical) {
+    auto meet = [](const CSpaceVertex& u, const CSpaceVertex& v) {
+      const Rational ul = u.y_exact ? u.y.lower : u.y_lower, uh = u.y_exact ? u.y.upper : u.y_upper;
+      const Rational vl = v.y_exact ? v.y.lower : v.y_lower, vh = v.y_exact ? v.y.upper : v.y_upper;
+      return !(uh < vl) && !(vh < ul);
+    };
+    return meet(sa, sb) && meet(ta, tb);
+  }
+  const Rational inside = algebra::rational_between(real_of(sa.x), real_of(ta.x));
+  return algebra::equal(real_of(A.evaluate_exact(a, inside)), real_of(B.evaluate_exact(b, inside)));
+}
+
+struct Comparison {
+  bool equal = true;
+  std::string first_difference;
+  std::size_t edges_matched = 0;
+  void fail(const std::string& why) {
+    if (equal) first_difference = why;
+    equal = false;
+  }
+};
+
+// The mapped space against the direct build: the same exact C-space (see the file's comment).
+// Spurious edges: compared too when `spurious` (they bound nothing; the culling's windows of
+// twin charts need not be symmetric, so a mapped chart may list other spurious pieces).
+Comparison compare_spaces(const CSpace& A, const CSpace& B, bool spurious) {
+  Comparison result;
+  // feature pairs as identities (the mapped build registers a twin's new pairs in its source's order)
+  {
+    std::vector<std::string> pa, pb;
+    for (const auto& p : A.feature_pairs()) pa.push_back(pair_text(p));
+    for (const auto& p : B.feature_pairs()) pb.push_back(pair_text(p));
+    std::sort(pa.begin(), pa.end());
+    std::sort(pb.begin(), pb.end());
+    if (spurious && pa != pb) result.fail("feature pairs");
+  }
+  if (A.charts().size() != B.charts().size()) {
+    result.fail("chart count");
+    return result;
+  }
+  for (std::size_t c = 0; c < A.charts().size(); ++c) {
+    const CSpaceChart &ca = A.charts()[c], &cb = B.charts()[c];
+    if (ca.x_lo != cb.x_lo || ca.x_hi != cb.x_hi || ca.y_lo != cb.y_lo || ca.y_hi != cb.y_hi ||
+        ca.x_half_turn != cb.x_half_turn || ca.y_half_turn != cb.y_half_turn)
+      result.fail("chart " + std::to_string(c));
+  }
+  const CSpaceStatistics &sa = A.statistics(), &sb = B.statistics();
+  if (spurious && (sa.vertices != sb.vertices || sa.edges != sb.edges || sa.faces != sb.faces || sa.curves != sb.curves ||
+                   sa.pieces_inserted != sb.pieces_inserted || sa.feature_pairs_considered != sb.feature_pairs_considered ||
+                   sa.feature_pairs_culled != sb.feature_pairs_culled))
+    result.fail("statistics (all pieces)");
+  if (sa.cells != sb.cells || sa.contact_edges != sb.contact_edges || sa.touching_edges != sb.touching_edges ||
+      sa.touching_vertices != sb.touching_vertices || sa.touching_undecided != sb.touching_undecided ||
+      sa.charts != sb.charts || sa.quadratic_charts != sb.quadratic_charts ||
+      sa.circle_segment_charts != sb.circle_segment_charts)
+    result.fail("statistics (cells and contacts)");
+  // cells: kind, wrapping, faces, real boundary edges, neighbours, as a multiset
+  {
+    auto cells = [](const CSpace& s) {
+      std::vector<std::string> out;
+      for (const CSpaceCell& cell : s.cells())
+        out.push_back(std::to_string(static_cast<int>(cell.kind)) + " " + std::to_string(cell.wraps_x) +
+                      std::to_string(cell.wraps_y) + " faces " + std::to_string(cell.faces) + " boundary " +
+                      std::to_string(cell.boundary.size()) + " neighbours " + std::to_string(cell.neighbours.size()));
+      std::sort(out.begin(), out.end());
+      return out;
+    };
+    if (cells(A) != cells(B)) result.fail("cells");
+  }
+  for (std::size_t c = 0; c < A.charts().size(); ++c) {
+    // faces: kind and boundary cycle sizes (only where every piece is compared: a spurious
+    // edge splits a face)
+    auto faces = [&](const CSpace& s) {
+      std::vector<std::string> out;
+      for (const CSpaceFace& face : s.faces(c)) {
+        std::vector<std::size_t> cycles;
+        for (const auto& cycle : face.boundary) cycles.push_back(cycle.size());
+        std::sort(cycles.begin(), cycles.end());
+        std::string text = std::to_string(static_cast<int>(face.kind));
+        for (std::size_t n : cycles) text += " " + std::to_string(n);
+        out.push_back(text);
+      }
+      std::sort(out.begin(), out.end());
+      return out;
+    };
+    if (spurious && faces(A) != faces(B)) result.fail("faces of chart " + std::to_string(c));
+    // vertices' exact abscissae, as a multiset
+    if (spurious) {
+      std::vector<algebra::Real> xa, xb;
+      for (const CSpaceVertex& v : A.vertices())
+        if (v.chart == c) xa.push_back(real_of(v.x));
+      for (const CSpaceVertex& v : B.vertices())
+        if (v.chart == c) xb.push_back(real_of(v.x));
+      auto less = [](const algebra::Real& p, const algebra::Real& q) { return algebra::compare(p, q) < 0; };
+      std::sort(xa.begin(), xa.end(), less);
+      std::sort(xb.begin(), xb.end(), less);
+      bool same = xa.size() == xb.size();
+      for (std::size_t i = 0; same && i < xa.size(); ++i) same = algebra::equal(xa[i], xb[i]);
+      if (!same) result.fail("vertex abscissae of chart " + std::to_string(c));
+    }
+    // edges: every (real, or every when `spurious`) edge of A matched one to one in B
+    std::multimap<std::string, std::size_t> in_b;
+    std::size_t count_a = 0;
+    for (std::size_t e = 0; e < B.edges().size(); ++e)
+      if (B.edges()[e].chart == c && (spurious || B.edges()[e].real)) in_b.emplace(edge_key(B, e), e);
+    for (std::size_t e = 0; e < A.edges().size(); ++e) {
+      if (A.edges()[e].chart != c || !(spurious || A.edges()[e].real)) continue;
+      ++count_a;
+      auto [lo, hi] = in_b.equal_range(edge_key(A, e));
+      bool found = false;
+      for (auto it = lo; it != hi; ++it)
+        if (same_edge(A, e, B, it->second)) {
+          in_b.erase(it);
+          found = true;
+          break;
+        }
+      if (found) {
+        ++result.edges_matched;
+      } else {
+        result.fail("chart " + std::to_string(c) + " edge " + std::to_string(e) + ": " + edge_key(A, e).substr(0, 300));
+      }
+    }
+    if (!in_b.empty()) result.fail("chart " + std::to_string(c) + ": " + std::to_string(in_b.size()) + " edges only in the direct build");
+  }
+  return result;
+}
+
+// The twin charts of `space` (the wheel, its y axis, at 0 and at pi) written with the same vertex
+// text in the same order: what a mapped chart gives (geneva67: the direct build writes six
+// vertices per pair otherwise).
+bool twins_written_alike(const CSpace& space) {
+  const auto& charts = space.charts();
+  bool any = false;
+  for (std::size_t a = 0; a < charts.size(); ++a)
+    for (std::size_t b = a + 1; b < charts.size(); ++b) {
+      if (charts[a].x_half_turn != charts[b].x_half_turn || charts[a].y_half_turn == charts[b].y_half_turn) continue;
+      any = true;
+      std::vector<std::string> va, vb;
+      for (const CSpaceVertex& v : space.vertices()) {
+        std::string text = v.x.to_string("x") + " " + (v.y_exact ? v.y.to_string("y") : v.y_lower.get_str() + " " + v.y_upper.get_str());
+        if (v.chart == a) va.push_back(text);
+        if (v.chart == b) vb.push_back(text);
+      }
+      if (va != vb) return false;
+    }
+  return any;
+}
+
+TEST(CSpaceTwinChart, GenevaMappedTwinsAreTheDirectBuildsExactCSpace) {
+  const Model model = geneva();
+  ASSERT_TRUE(cspace::half_turn_symmetry(model.parts[part_index(model, "wheel")]));
+  const CSpace mapped = build(model, true);
+  const CSpace direct = build(model, false);
+  // the mapped build was taken (its twins are written alike), the direct one was not
+  EXPECT_TRUE(twins_written_alike(mapped));
+  EXPECT_FALSE(twins_written_alike(direct));
+  // the same exact C-space, every piece included (Geneva's twin charts have the same spurious
+  // edges too: docs/cspace.md "Session 67 (geneva67)")
+  const Comparison all = compare_spaces(mapped, direct, true);
+  EXPECT_TRUE(all.equal) << all.first_difference;
+  EXPECT_EQ(all.edges_matched, direct.edges().size());
+  // a wrong map is caught: the mapped space compared with itself read through the identity
+  // would not be the direct build if the twins' feature pairs were left unmapped (their
+  // feature pairs' identities differ from the direct build's)
+  std::set<std::string> mapped_pairs, direct_pairs;
+  for (const auto& p : mapped.feature_pairs()) mapped_pairs.insert(pair_text(p));
+  for (const auto& p : direct.feature_pairs()) direct_pairs.insert(pair_text(p));
+  EXPECT_EQ(mapped_pairs, direct_pairs);
+}
+
+TEST(CSpaceTwinChart, GeneratedSymmetricWheelsMappedEqualDirectNearSymmetricBuiltDirectly) {
+  const std::uint64_t seed = test::test_seed(68);
+  std::mt19937_64 random(seed);
+  int all_pieces_equal = 0, wheels = 0;
+  for (int arms : {4, 6, 8}) {
+    const Loop wheel = star_wheel(random, arms);
+    const Model model = with_wheel(wheel);
+    ASSERT_TRUE(cspace::half_turn_symmetry(model.parts[part_index(model, "wheel")])) << "seed " << seed << " arms " << arms;
+    const CSpace mapped = build(model, true);
+    const CSpace direct = build(model, false);
+    ++wheels;
+    EXPECT_TRUE(twins_written_alike(mapped)) << "seed " << seed << " arms " << arms;
+    // the exact C-space: real edges, cells, contacts (the spurious pieces may differ)
+    const Comparison real = compare_spaces(mapped, direct, false);
+    EXPECT_TRUE(real.equal) << "seed " << seed << " arms " << arms << ": " << real.first_difference;
+    EXPECT_GT(real.edges_matched, 0u);
+    all_pieces_equal += compare_spaces(mapped, direct, true).equal ? 1 : 0;
+    // near-symmetric: one corner moved by 2^-k: no half turn, built directly whatever the switch
+    Model near = model;
+    Loop& loop = near.parts[part_index(near, "wheel")].loops[0];
+    const std::size_t corner = random() % loop.edges.size();
+    const int k = std::uniform_int_distribution<int>(8, 60)(random);
+    Point& p = loop.edges[corner].source;
+    (random() % 2 ? p.x : p.y) += Rational(mpz_class(1), mpz_class(1) << k);
+    loop.edges[(corner + loop.edges.size() - 1) % loop.edges.size()].target = p;
+    ASSERT_FALSE(cspace::half_turn_symmetry(near.parts[part_index(near, "wheel")]));
+    EXPECT_EQ(json_of(build(near, true)), json_of(build(near, false)))
+        << "seed " << seed << " arms " << arms << " corner " << corner << " moved by 2^-" << k;
+  }
+  std::cout << "seed " << seed << ": " << all_pieces_equal << " of " << wheels
+            << " mapped spaces equal to the direct build in every piece (spurious ones included)\n";
+}
+
+}  // namespace
+}  // namespace hipair
