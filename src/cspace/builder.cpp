@@ -2161,7 +2161,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       chart.box = source.box;
       chart.curve_global.reserve(source.curve_global.size());
       for (std::size_t g : source.curve_global) {
-        const Key& key = pair_keys[g];
+        const Key key = pair_keys[g];   // (a copy: pair_keys grows below)
         const FeatureRef first = twin_feature(*twin, FeatureRef{std::get<0>(key), std::get<1>(key), std::get<2>(key),
                                                                 static_cast<FeatureRef::Kind>(std::get<3>(key))});
         const FeatureRef second = twin_feature(*twin, FeatureRef{std::get<4>(key), std::get<5>(key), std::get<6>(key),

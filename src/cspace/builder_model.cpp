@@ -464,7 +464,8 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   }
   // the charts mapped from their half-turn twin (TwinChart): whole 2-D spaces, a part whose half
   // turn about its pivot maps it onto itself exactly, the chart with its axis at pi mapped from
-  // the one at 0 (or the reverse: the first built) with every other axis and the box the same
+  // the one at 0 (or the reverse: the first built) with every other axis and the box the same;
+  // a mapped chart may be mapped again across the other part's half turn (both parts symmetric)
   if (input.dimension == 2 && input.complete && !options.keep_arrangements &&
       cspace::mapped_twin_charts().load(std::memory_order_relaxed)) {
     const std::size_t axis_part[2] = {axes.first, axes.second};
@@ -482,7 +483,6 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       };
       for (std::size_t c = 0; c < boxes.size(); ++c)
         for (std::size_t s = 0; s < c && input.twins[c].source == no_index; ++s) {
-          if (input.twins[s].source != no_index) continue;   // map only charts built directly
           for (int a = 0; a < 2 && input.twins[c].source == no_index; ++a) {
             const bool x = a == 0;
             if (!image[a] || !(x ? twin(boxes[s].x, boxes[c].x) && same(boxes[s].y, boxes[c].y)
