@@ -17,6 +17,7 @@
 #include "cli/cspace_json.hpp"
 #include "algebra/exact_real.hpp"
 #include "test_paths.hpp"
+#include "star_wheel_support.hpp"
 #include "test_seed.hpp"
 
 #include <hipair/cspace.hpp>
@@ -41,74 +42,9 @@ namespace {
 
 namespace algebra = cspace::algebra;
 
-Model geneva() { return read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"); }
-
-std::size_t part_index(const Model& model, const std::string& name) {
-  for (std::size_t i = 0; i < model.parts.size(); ++i)
-    if (model.parts[i].name == name) return i;
-  return no_index;
-}
-
-Point unit_of(const Rational& t) {
-  Rational w = 1 + t * t;
-  Point u{Rational((1 - t * t) / w), Rational(2 * t / w)};
-  u.x.canonicalize();
-  u.y.canonicalize();
-  return u;
-}
-
-Point at(const Point& u, const Rational& along, const Rational& across) {
-  Point p{Rational(along * u.x - across * u.y), Rational(along * u.y + across * u.x)};
-  p.x.canonicalize();
-  p.y.canonicalize();
-  return p;
-}
-
-// A star wheel of `arms` rectangular arms about the origin (Geneva's wheel pivot), one loop of
-// segments; with an even count arm k + arms/2 is arm k's exact negation (a half-turn symmetric
-// wheel).
-Loop star_wheel(std::mt19937_64& random, int arms) {
-  const double turn = std::uniform_real_distribution<double>(-0.2, 0.2)(random);
-  const Rational inner(std::uniform_int_distribution<long>(36, 44)(random), 2);
-  const Rational outer(std::uniform_int_distribution<long>(110, 124)(random), 2);
-  const Rational half_width(std::uniform_int_distribution<long>(8, 12)(random), 2);
-  std::vector<Point> units(arms);
-  for (int k = 0; k < arms; ++k) {
-    if (k >= arms / 2) {
-      const Point& u = units[k - arms / 2];
-      units[k] = Point{Rational(-u.x), Rational(-u.y)};
-      continue;
-    }
-    const double phi = 2 * std::numbers::pi * k / arms - std::numbers::pi + std::numbers::pi / arms + turn;
-    Rational t(static_cast<long>(std::llround(std::tan(phi / 2) * 1048576.0)), 1048576);
-    t.canonicalize();
-    units[k] = unit_of(t);
-  }
-  std::vector<Point> corners;
-  const Rational minus_half_width(-half_width);
-  for (const Point& u : units) {
-    const std::pair<Rational, Rational> ends[4] = {
-        {inner, minus_half_width}, {outer, minus_half_width}, {outer, half_width}, {inner, half_width}};
-    for (const auto& [along, across] : ends) corners.push_back(at(u, along, across));
-  }
-  Loop loop;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    Edge e;
-    e.kind = Edge::Kind::segment;
-    e.source = corners[i];
-    e.target = corners[(i + 1) % corners.size()];
-    loop.edges.push_back(e);
-  }
-  return loop;
-}
-
-Model with_wheel(const Loop& wheel) {
-  Model model = geneva();
-  Part& part = model.parts[part_index(model, "wheel")];
-  part.loops = {wheel};
-  part.features.clear();
-  return model;
-}
+using test::geneva;
+using test::part_index;
+using test::with_wheel;
 
 CSpace build(const Model& model, bool mapped) {
   auto& switch_ = cspace::mapped_twin_charts();
@@ -364,7 +300,7 @@ TEST(CSpaceTwinChart, GeneratedSymmetricWheelsMappedEqualDirectNearSymmetricBuil
   std::mt19937_64 random(seed);
   int all_pieces_equal = 0, wheels = 0;
   for (int arms : {4, 6, 8}) {
-    const Loop wheel = star_wheel(random, arms);
+    const Loop wheel = test::star_wheel(random, arms, true);
     const Model model = with_wheel(wheel);
     ASSERT_TRUE(cspace::half_turn_symmetry(model.parts[part_index(model, "wheel")])) << "seed " << seed << " arms " << arms;
     const CSpace mapped = build(model, true);
