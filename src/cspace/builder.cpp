@@ -2088,8 +2088,8 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
   };
   std::map<Key, std::size_t> keys;
   std::vector<Key> pair_keys;   // per feature pair: its key (a twin chart's pairs are its source's mapped)
-  // the counts a chart adds to the statistics (a twin chart adds its source's: the same numbers
-  // as its direct build would add)
+  // the counts a chart adds to the statistics (a twin chart adds its source's; its direct build's
+  // may differ in the spurious pieces: other culling windows)
   struct ChartCounts {
     std::size_t curves = 0, circle_segment_charts = 0, quadratic_charts = 0, pieces_inserted = 0;
     std::size_t touching_edges = 0, touching_vertices = 0, touching_undecided = 0;
@@ -2344,7 +2344,11 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
         mapped.y_axis = std::move(chart.y_axis);
         mapped.curve_global = std::move(chart.curve_global);
         chart = std::move(mapped);
-        const ChartCounts& counts = chart_counts[twin->source];
+        ChartCounts& counts = chart_counts[c];   // (the build stage copied the source's, before its classification)
+        const ChartCounts& source_counts = chart_counts[twin->source];
+        counts.touching_edges = source_counts.touching_edges;
+        counts.touching_vertices = source_counts.touching_vertices;
+        counts.touching_undecided = source_counts.touching_undecided;
         stats.touching_edges += counts.touching_edges;
         stats.touching_vertices += counts.touching_vertices;
         stats.touching_undecided += counts.touching_undecided;

@@ -335,5 +335,51 @@ TEST(CSpaceTwinChart, GeneratedSymmetricWheelsMappedEqualDirectNearSymmetricBuil
             << " mapped spaces equal to the direct build in every piece (spurious ones included)\n";
 }
 
+
+// Both parts symmetric (a chart mapped from a mapped chart, as in the gear trains): Geneva's
+// driver replaced by a bar centred on its pivot (corners (80 -+ L, -+ h): its half turn about
+// (80, 0) is itself), the wheel by a symmetric star wheel. Three of the four charts are mapped (the
+// last through the driver's half turn from the chart mapped through the wheel's); the mapped space
+// is the direct build's exact C-space, touching counts included.
+TEST(CSpaceTwinChart, BothPartsSymmetricTwinsOfTwinsAreTheDirectBuildsExactCSpace) {
+  const std::uint64_t seed = test::test_seed(68);
+  std::mt19937_64 random(seed + 1);
+  for (int arms : {4, 6}) {
+    Model model = with_wheel(test::star_wheel(random, arms, true));
+    const Rational length(std::uniform_int_distribution<long>(70, 90)(random), 2);   // 35..45
+    const Rational half_width(std::uniform_int_distribution<long>(4, 10)(random), 2); // 2..5
+    const Point corners[4] = {{Rational(80 - length), Rational(-half_width)},
+                              {Rational(80 + length), Rational(-half_width)},
+                              {Rational(80 + length), Rational(half_width)},
+                              {Rational(80 - length), Rational(half_width)}};
+    Loop bar;
+    for (int i = 0; i < 4; ++i) {
+      Edge e;
+      e.kind = Edge::Kind::segment;
+      e.source = corners[i];
+      e.target = corners[(i + 1) % 4];
+      bar.edges.push_back(e);
+    }
+    Part& driver = model.parts[part_index(model, "driver")];
+    driver.loops = {bar};
+    driver.features.clear();
+    ASSERT_TRUE(cspace::half_turn_symmetry(driver)) << "seed " << seed;
+    ASSERT_TRUE(cspace::half_turn_symmetry(model.parts[part_index(model, "wheel")])) << "seed " << seed;
+    const CSpace mapped = build(model, true);
+    const CSpace direct = build(model, false);
+    ASSERT_EQ(mapped.charts().size(), 4u);
+    EXPECT_TRUE(twins_written_alike(mapped)) << "seed " << seed << " arms " << arms;
+    const Comparison real = compare_spaces(mapped, direct, false);
+    EXPECT_TRUE(real.equal) << "seed " << seed << " arms " << arms << ": " << real.first_difference;
+    EXPECT_GT(real.edges_matched, 0u) << "seed " << seed << " arms " << arms;
+    // every chart of the mapped space is its chart at (0, 0) written again
+    std::vector<std::size_t> per_chart(4, 0);
+    for (const CSpaceEdge& edge : mapped.edges()) ++per_chart[edge.chart];
+    EXPECT_EQ(per_chart[1], per_chart[0]);
+    EXPECT_EQ(per_chart[2], per_chart[0]);
+    EXPECT_EQ(per_chart[3], per_chart[0]);
+  }
+}
+
 }  // namespace
 }  // namespace hipair
