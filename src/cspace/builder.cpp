@@ -13,6 +13,7 @@
 #include "cspace/valid_point.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
+#include "curves/pose.hpp"
 #include "oracle/blocked_tester.hpp"
 
 #include <hipair/error.hpp>
@@ -286,6 +287,11 @@ std::atomic<bool>& culling_row_cache() {
 }
 
 std::atomic<bool>& culling_known_blocked() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+
+std::atomic<bool>& mapped_twin_charts() {
   static std::atomic<bool> on{true};
   return on;
 }
@@ -2081,6 +2087,30 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
                static_cast<int>(curve.type)};
   };
   std::map<Key, std::size_t> keys;
+  std::vector<Key> pair_keys;   // per feature pair: its key (a twin chart's pairs are its source's mapped)
+  // the counts a chart adds to the statistics (a twin chart adds its source's; its direct build's
+  // may differ in the spurious pieces: other culling windows)
+  struct ChartCounts {
+    std::size_t curves = 0, circle_segment_charts = 0, quadratic_charts = 0, pieces_inserted = 0;
+    std::size_t touching_edges = 0, touching_vertices = 0, touching_undecided = 0;
+    CurveStatistics generated;
+  };
+  std::vector<ChartCounts> chart_counts(chart_count);
+  auto twin_of = [&](std::size_t c) -> const TwinChart* {
+    return input.dimension == 2 && input.model && input.complete && c < input.twins.size() &&
+                   input.twins[c].source < c
+               ? &input.twins[c]
+               : nullptr;
+  };
+  // a feature read through a twin's half turn (features of other parts unchanged)
+  auto twin_feature = [](const TwinChart& twin, FeatureRef f) {
+    if (f.part == twin.part) {
+      const HalfTurnImage to = twin.image.at(f.loop).at(f.edge);
+      f.loop = to.loop;
+      f.edge = to.edge;
+    }
+    return f;
+  };
   // the curves' interval forms, for the next tiles of an operating region (prepare_chart; a
   // whole space's few charts share no curve)
   CurveIntervalMemo interval_memo;
@@ -2118,6 +2148,69 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       report.chart = c + 1;
       progress_report(CSpaceBuildProgress::Stage::chart, 0);
     }
+    if (const TwinChart* twin = twin_of(c)) {
+      // the source chart's curves read through the half turn (TwinChart): its feature pairs
+      // mapped, new ones registered as the direct build registers them; the arrangement, faces
+      // and contacts are the source's, copied once the source is classified (below)
+      ChartData& chart = impl->charts[c];
+      const ChartData& source = impl->charts[twin->source];
+      chart.x_index = twin->x_index;
+      chart.y_index = twin->y_index;
+      chart.x_axis = twin->x;
+      chart.y_axis = twin->y;
+      chart.box = source.box;
+      chart.curve_global.reserve(source.curve_global.size());
+      for (std::size_t g : source.curve_global) {
+        const Key key = pair_keys[g];   // (a copy: pair_keys grows below)
+        const FeatureRef first = twin_feature(*twin, FeatureRef{std::get<0>(key), std::get<1>(key), std::get<2>(key),
+                                                                static_cast<FeatureRef::Kind>(std::get<3>(key))});
+        const FeatureRef second = twin_feature(*twin, FeatureRef{std::get<4>(key), std::get<5>(key), std::get<6>(key),
+                                                                 static_cast<FeatureRef::Kind>(std::get<7>(key))});
+        const Key mapped{first.part,  first.loop,  first.edge,  static_cast<int>(first.kind),
+                         second.part, second.loop, second.edge, static_cast<int>(second.kind), std::get<8>(key)};
+        auto [found, inserted] = keys.try_emplace(mapped, impl->feature_pairs.size());
+        if (inserted) {
+          pair_keys.push_back(mapped);
+          const FeaturePair& from = impl->feature_pairs[g];
+          const auto type = static_cast<ContactType>(std::get<8>(key));
+          FeaturePair pair;
+          pair.first_part = from.first_part;
+          pair.second_part = from.second_part;
+          pair.first_feature = feature_name(first);
+          pair.second_feature = feature_name(second);
+          pair.kind = from.kind;
+          pair.label = curve_label(*input.model, first, second, type);
+          pair.first = FeatureIdentity{first.part, first.loop, first.edge, first.kind};
+          pair.second = FeatureIdentity{second.part, second.loop, second.edge, second.kind};
+          pair.blocked_sign = from.blocked_sign;
+          impl->feature_pairs.push_back(std::move(pair));
+        }
+        chart.curve_global.push_back(found->second);
+      }
+      const ChartCounts& counts = chart_counts[twin->source];
+      chart_counts[c] = counts;
+      stats.curves += counts.curves;
+      stats.circle_segment_charts += counts.circle_segment_charts;
+      stats.quadratic_charts += counts.quadratic_charts;
+      stats.pieces_inserted += counts.pieces_inserted;
+      input.curve_statistics.feature_pairs_considered += counts.generated.feature_pairs_considered;
+      input.curve_statistics.feature_pairs_culled += counts.generated.feature_pairs_culled;
+      input.curve_statistics.curves += counts.generated.curves;
+      input.curve_statistics.identically_zero += counts.generated.identically_zero;
+      input.curve_statistics.reflex_vertices_skipped += counts.generated.reflex_vertices_skipped;
+      input.curve_statistics.feature_pairs_in_blocked_space += counts.generated.feature_pairs_in_blocked_space;
+      CSpaceChart public_chart = impl->public_charts[twin->source];
+      public_chart.x_kind = chart.x_axis.kind;
+      public_chart.y_kind = chart.y_axis.kind;
+      public_chart.x_half_turn = chart.x_axis.half_turn;
+      public_chart.y_half_turn = chart.y_axis.half_turn;
+      impl->public_charts.push_back(std::move(public_chart));
+      ++progress_done;
+      continue;
+    }
+    const CurveStatistics generated_before = input.curve_statistics;
+    const std::size_t curves_before = stats.curves, circle_segment_before = stats.circle_segment_charts,
+                      quadratic_before = stats.quadratic_charts, pieces_before = stats.pieces_inserted;
     ChartInput streamed_input;
     if (streamed) {
       auto start = Clock::now();
@@ -2141,6 +2234,7 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       auto [found, inserted] = keys.try_emplace(key_of(curve), impl->feature_pairs.size());
       const std::size_t index = found->second;
       if (inserted) {
+        pair_keys.push_back(found->first);
         FeaturePair pair;
         pair.first_part = part_name(curve.first.part);
         pair.second_part = part_name(curve.second.part);
@@ -2213,6 +2307,19 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     // the chart's input curves are done with (its arrangement, polynomials and labels are
     // kept): free them now rather than at the end, so a region's peak holds one copy
     std::vector<ContactCurve>().swap(chart_input.curves);
+    ChartCounts& counts = chart_counts[c];
+    counts.curves = stats.curves - curves_before;
+    counts.circle_segment_charts = stats.circle_segment_charts - circle_segment_before;
+    counts.quadratic_charts = stats.quadratic_charts - quadratic_before;
+    counts.pieces_inserted = stats.pieces_inserted - pieces_before;
+    const CurveStatistics& now = input.curve_statistics;
+    counts.generated.feature_pairs_considered = now.feature_pairs_considered - generated_before.feature_pairs_considered;
+    counts.generated.feature_pairs_culled = now.feature_pairs_culled - generated_before.feature_pairs_culled;
+    counts.generated.curves = now.curves - generated_before.curves;
+    counts.generated.identically_zero = now.identically_zero - generated_before.identically_zero;
+    counts.generated.reflex_vertices_skipped = now.reflex_vertices_skipped - generated_before.reflex_vertices_skipped;
+    counts.generated.feature_pairs_in_blocked_space =
+        now.feature_pairs_in_blocked_space - generated_before.feature_pairs_in_blocked_space;
     ++progress_done;
   }
   stats.charts = impl->charts.size();
@@ -2228,6 +2335,28 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     // terminal's line names it as the reason over 300 bits; the examples stay under 200).
     for (std::size_t c = 0; c < chart_count; ++c) {
       ChartData& chart = impl->charts[c];
+      if (const TwinChart* twin = twin_of(c)) {
+        // the source chart as classified, with this chart's axes and feature pairs (TwinChart)
+        ChartData mapped = impl->charts[twin->source];
+        mapped.x_index = chart.x_index;
+        mapped.y_index = chart.y_index;
+        mapped.x_axis = std::move(chart.x_axis);
+        mapped.y_axis = std::move(chart.y_axis);
+        mapped.curve_global = std::move(chart.curve_global);
+        chart = std::move(mapped);
+        ChartCounts& counts = chart_counts[c];   // (the build stage copied the source's, before its classification)
+        const ChartCounts& source_counts = chart_counts[twin->source];
+        counts.touching_edges = source_counts.touching_edges;
+        counts.touching_vertices = source_counts.touching_vertices;
+        counts.touching_undecided = source_counts.touching_undecided;
+        stats.touching_edges += counts.touching_edges;
+        stats.touching_vertices += counts.touching_vertices;
+        stats.touching_undecided += counts.touching_undecided;
+        ++progress_done;
+        continue;
+      }
+      const std::size_t touching_edges_before = stats.touching_edges, touching_vertices_before = stats.touching_vertices,
+                        touching_undecided_before = stats.touching_undecided;
       std::function<void(std::size_t, std::size_t)> tick;
       if (options.progress) {
         std::size_t bits = 0;
@@ -2252,6 +2381,9 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       find_touching(chart, deferred[c].classify, deferred[c].classify_algebraic, deferred[c].classify_ordinate,
                     deferred[c].certainly_overlapping, sides ? &*sides : nullptr, options.check_face_classification, stats, tick);
       deferred[c] = Deferred{};
+      chart_counts[c].touching_edges = stats.touching_edges - touching_edges_before;
+      chart_counts[c].touching_vertices = stats.touching_vertices - touching_vertices_before;
+      chart_counts[c].touching_undecided = stats.touching_undecided - touching_undecided_before;
       ++progress_done;
     }
     stats.seconds_classification += seconds_since(start);

@@ -5,6 +5,7 @@
 #include <hipair/cspace.hpp>
 
 #include "cspace/cspace_access.hpp"
+#include "cspace/half_turn_symmetry.hpp"
 
 #include "algebra/exact_real.hpp"
 #include "arrangement/arrangement.hpp"
@@ -62,6 +63,24 @@ struct ChartInput {
   int cull_depth = 0;
 };
 
+/// A chart built by mapping an earlier chart of the same build (session 68, geneva68): the two
+/// charts' boxes and axes are the same except one rotation axis, centred at 0 in `source` and
+/// at pi in this chart (or the reverse), and that axis's part maps onto itself under the half
+/// turn about its pivot exactly (half_turn_symmetry: `image`). The part placed at theta + pi is
+/// then the part placed at theta as a set, its feature f lying where feature image(f) lies at
+/// theta; at the same chart coordinates the two charts carry the same contact curves (the
+/// same exact polynomials and validity), the curve of (g, f) here being source's curve of
+/// (g, image(f)) (image is an involution), and the same overlap relation. The chart is the
+/// source chart's arrangement, faces and contacts, its feature pairs read through the image:
+/// no curves generated, culled, inserted or classified.
+struct TwinChart {
+  std::size_t source = no_index;   ///< the chart mapped (built before this one); no_index: built directly
+  std::size_t part = 0;            ///< the symmetric part (model index: FeatureRef::part)
+  std::vector<std::vector<HalfTurnImage>> image;   ///< per loop, per edge of `part`
+  std::size_t x_index = 0, y_index = 0;   ///< this chart's layout indices and axes
+  ChartAxis x, y;
+};
+
 /// Input of a pair's build (model-free, so that tests can feed synthetic curves).
 struct PairInput {
   std::string first_part, second_part;   ///< names
@@ -84,6 +103,9 @@ struct PairInput {
   PairAxes axes;
   std::size_t region_cells = 0;
   double seconds_region = 0;
+  /// Per chart (empty, or one entry per chart): the charts built by mapping an earlier one
+  /// (TwinChart; source no_index: built directly). Whole 2-D spaces with a model only.
+  std::vector<TwinChart> twins;
 };
 
 /// What the oracle says of a face: outside the chart box (not classified), or the kind of
@@ -299,6 +321,11 @@ std::atomic<bool>& shared_chart_poses();
 /// a tested ancestor test those pairs instead of sweeping every disk (BlockedCells::enclose;
 /// the same answers). On by default; tests turn it off to compare with the sweeps.
 std::atomic<bool>& region_tile_lists();
+/// A whole 2-D space's chart whose twin (the same chart with a half-turn-symmetric part's axis
+/// centred at pi instead of 0) was built first is built by mapping it (TwinChart): the same
+/// exact C-space, written through the twin's vertices and order. On by default; tests turn it
+/// off to compare with the direct build.
+std::atomic<bool>& mapped_twin_charts();
 /// Queries (builder_locate.cpp).
 Location locate_point(const CSpace::Impl& impl, const hipair::ChartPoint& q);
 CertifiedValue evaluate_edge(const CSpace::Impl& impl, std::size_t edge, double x);

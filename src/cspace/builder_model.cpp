@@ -462,6 +462,44 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
       for (std::size_t iy = 0; iy < y_charts.size(); ++iy)
         boxes.push_back({ix, iy, layout.x_charts[ix], y_charts[iy], {}});
   }
+  // the charts mapped from their half-turn twin (TwinChart): whole 2-D spaces, a part whose half
+  // turn about its pivot maps it onto itself exactly, the chart with its axis at pi mapped from
+  // the one at 0 (or the reverse: the first built) with every other axis and the box the same;
+  // a mapped chart may be mapped again across the other part's half turn (both parts symmetric)
+  if (input.dimension == 2 && input.complete && !options.keep_arrangements &&
+      cspace::mapped_twin_charts().load(std::memory_order_relaxed)) {
+    const std::size_t axis_part[2] = {axes.first, axes.second};
+    std::optional<std::vector<std::vector<HalfTurnImage>>> image[2];
+    for (int a = 0; a < 2; ++a)
+      if (model.parts[axis_part[a]].motion.kind == Motion::Kind::rotation) image[a] = half_turn_symmetry(model.parts[axis_part[a]]);
+    if (image[0] || image[1]) {
+      input.twins.resize(boxes.size());
+      auto same = [](const ChartAxis& p, const ChartAxis& q) {
+        return p.kind == q.kind && p.half_turn == q.half_turn && p.lo == q.lo && p.hi == q.hi;
+      };
+      auto twin = [](const ChartAxis& p, const ChartAxis& q) {
+        return p.kind == ChartAxis::Kind::rotation && q.kind == p.kind && p.half_turn != q.half_turn && p.lo == q.lo &&
+               p.hi == q.hi;
+      };
+      for (std::size_t c = 0; c < boxes.size(); ++c)
+        for (std::size_t s = 0; s < c && input.twins[c].source == no_index; ++s) {
+          for (int a = 0; a < 2 && input.twins[c].source == no_index; ++a) {
+            const bool x = a == 0;
+            if (!image[a] || !(x ? twin(boxes[s].x, boxes[c].x) && same(boxes[s].y, boxes[c].y)
+                                 : twin(boxes[s].y, boxes[c].y) && same(boxes[s].x, boxes[c].x)))
+              continue;
+            TwinChart& t = input.twins[c];
+            t.source = s;
+            t.part = axis_part[a];
+            t.image = *image[a];
+            t.x_index = boxes[c].x_index;
+            t.y_index = boxes[c].y_index;
+            t.x = boxes[c].x;
+            t.y = boxes[c].y;
+          }
+        }
+    }
+  }
   auto generator_start = Clock::now();
   CurveOptions curve_options;
   curve_options.cull_blocked_space = !polygon_translation && options.cull_blocked_space;

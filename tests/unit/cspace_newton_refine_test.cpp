@@ -148,8 +148,10 @@ TEST(CSpaceNewtonRefine, AnchorSkipsTakeFewerSteps) {
 
 TEST(CSpaceNestedTaylor, AnswersAreThoseWithoutIt) {
   test::SwitchCounts counts;
+  // (130 motions per space: the motions start near real edges drawn by number, and session 68's
+  // mapped twin charts renumbered geneva-drive's edges; at 120 the draw had 39 crossings, base68's 41)
   test::switch_answers_equal_on_examples<&cspace::nested_taylor, &cspace::nested_taylor_exclusions>(
-      120, test::test_seed(6303), counts);
+      130, test::test_seed(6303), counts);
   ASSERT_FALSE(HasFatalFailure());
   std::printf("motions %d: crossing %d, none %d, other %d; nested-form exclusions %zu\n", counts.motions,
               counts.crossing, counts.none, counts.other, counts.hits);
