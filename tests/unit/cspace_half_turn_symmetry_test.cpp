@@ -12,6 +12,7 @@
 // (docs/performance.md "Session 66 (geneva66)"), which is why no chart is built by the map.
 #include "cspace/half_turn_symmetry.hpp"
 #include "model/exact_trig.hpp"
+#include "star_wheel_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -36,71 +37,10 @@
 namespace hipair {
 namespace {
 
-Model geneva() { return read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"); }
-
-std::size_t part_index(const Model& model, const std::string& name) {
-  for (std::size_t i = 0; i < model.parts.size(); ++i)
-    if (model.parts[i].name == name) return i;
-  return no_index;
-}
-
-
-Point at(const Point& u, const Rational& along, const Rational& across) {
-  // along u, across its left normal (-u.y, u.x)
-  Point p{Rational(along * u.x - across * u.y), Rational(along * u.y + across * u.x)};
-  p.x.canonicalize();
-  p.y.canonicalize();
-  return p;
-}
-
-// A star wheel of `arms` rectangular arms about the origin (Geneva's wheel pivot), one loop of
-// segments, counter-clockwise. Arm k points along phi_k = 2 pi k / arms - pi + pi / arms (+ a
-// random turn), its direction an exact rational unit vector from a dyadic half-angle tangent;
-// with an even count and `symmetric`, arm k + arms/2 is arm k's exact negation.
-Loop star_wheel(std::mt19937_64& random, int arms, bool symmetric) {
-  const double turn = std::uniform_real_distribution<double>(-0.2, 0.2)(random);
-  const Rational inner(std::uniform_int_distribution<long>(36, 44)(random), 2);   // 18..22
-  const Rational outer(std::uniform_int_distribution<long>(110, 124)(random), 2); // 55..62
-  const Rational half_width(std::uniform_int_distribution<long>(8, 12)(random), 2);
-  std::vector<Point> units(arms);
-  for (int k = 0; k < arms; ++k) {
-    if (symmetric && arms % 2 == 0 && k >= arms / 2) {
-      const Point& u = units[k - arms / 2];
-      units[k] = Point{Rational(-u.x), Rational(-u.y)};
-      continue;
-    }
-    const double phi = 2 * std::numbers::pi * k / arms - std::numbers::pi + std::numbers::pi / arms + turn;
-    Rational t(static_cast<long>(std::llround(std::tan(phi / 2) * 1048576.0)), 1048576);
-    t.canonicalize();
-    units[k] = model_detail::unit_from_half_tangent(t);
-  }
-  std::vector<Point> corners;
-  for (const Point& u : units)
-  {
-    const Rational minus_half_width(-half_width);
-    const std::pair<Rational, Rational> ends[4] = {
-        {inner, minus_half_width}, {outer, minus_half_width}, {outer, half_width}, {inner, half_width}};
-    for (const auto& [along, across] : ends) corners.push_back(at(u, along, across));
-  }
-  Loop loop;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    Edge e;
-    e.kind = Edge::Kind::segment;
-    e.source = corners[i];
-    e.target = corners[(i + 1) % corners.size()];
-    loop.edges.push_back(e);
-  }
-  return loop;
-}
-
-// Geneva with its wheel replaced by `wheel`.
-Model with_wheel(const Loop& wheel) {
-  Model model = geneva();
-  Part& part = model.parts[part_index(model, "wheel")];
-  part.loops = {wheel};
-  part.features.clear();
-  return model;
-}
+using test::geneva;
+using test::part_index;
+using test::star_wheel;
+using test::with_wheel;
 
 std::string feature_text(const FeatureIdentity& f) {
   return std::to_string(f.part) + ":" + std::to_string(f.loop) + ":" + std::to_string(f.edge) + ":" +

@@ -1,8 +1,8 @@
-// Geneva with generated star wheels, shared by the half-turn tests (session 68: the helpers of
-// cspace_half_turn_symmetry_test.cpp, same signatures, for cspace_twin_chart_test.cpp; that file
-// keeps its own copy until the integrator's clean-up of it adopts this header).
+// Geneva with generated star wheels, shared by the half-turn tests (cspace_half_turn_symmetry_test.cpp,
+// cspace_twin_chart_test.cpp).
 #pragma once
 
+#include "model/exact_trig.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -24,15 +24,6 @@ inline std::size_t part_index(const Model& model, const std::string& name) {
   for (std::size_t i = 0; i < model.parts.size(); ++i)
     if (model.parts[i].name == name) return i;
   return no_index;
-}
-
-/// The exact rational unit vector of half-angle tangent t.
-inline Point unit_of(const Rational& t) {
-  Rational w = 1 + t * t;
-  Point u{Rational((1 - t * t) / w), Rational(2 * t / w)};
-  u.x.canonicalize();
-  u.y.canonicalize();
-  return u;
 }
 
 /// `along` u plus `across` its left normal (-u.y, u.x).
@@ -62,7 +53,7 @@ inline Loop star_wheel(std::mt19937_64& random, int arms, bool symmetric) {
     const double phi = 2 * std::numbers::pi * k / arms - std::numbers::pi + std::numbers::pi / arms + turn;
     Rational t(static_cast<long>(std::llround(std::tan(phi / 2) * 1048576.0)), 1048576);
     t.canonicalize();
-    units[k] = unit_of(t);
+    units[k] = model_detail::unit_from_half_tangent(t);
   }
   std::vector<Point> corners;
   const Rational minus_half_width(-half_width);
