@@ -1196,10 +1196,43 @@ class CellPlanner {
     std::vector<PinSlotConfiguration> nodes{from, to};
     const PinSlotCell& c = impl_.slices[k].free_cells[cell];
     nodes.push_back(PinSlotConfiguration{c.sample_other, c.sample_slide, tau});
+    const std::size_t max_nodes = 240;
+    // vertical lines through the strips between the abscissae of the cell's boundary vertices
+    // (at 1/8, 1/2 and 7/8 of each strip: each free interval of a strip's line lies in one
+    // trapezoid of the cell's vertical decomposition, the lines near a strip's ends reach
+    // across its passages), and the cell's points on them
+    std::map<std::size_t, std::set<double>> abscissae;   // by chart
+    for (std::size_t e : space->cells()[slice_cell].boundary) {
+      const CSpaceEdge& edge = space->edges()[e];
+      for (std::size_t v : {edge.source, edge.target})
+        if (v != no_index) abscissae[space->vertices()[v].chart].insert(to_double(space->vertices()[v].x.lower));
+    }
+    for (auto& [chart, xs] : abscissae) {
+      const CSpaceChart& box = space->charts()[chart];
+      if (box.x_half_turn) continue;
+      xs.insert(to_double(box.x_lo));
+      xs.insert(to_double(box.x_hi));
+      std::vector<double> sorted(xs.begin(), xs.end());
+      for (std::size_t i = 0; i + 1 < sorted.size() && nodes.size() < max_nodes; ++i) {
+        const double p = std::max(sorted[i], to_double(box.x_lo)), q = std::min(sorted[i + 1], to_double(box.x_hi));
+        if (!(q > p)) continue;
+        for (double f : {0.125, 0.5, 0.875}) {
+          Rational x(p + (q - p) * f);
+          x.canonicalize();
+          if (!(box.x_lo < x && x < box.x_hi)) continue;
+          for (const Slice& line : space->slice(SliceAxis::x, x)) {
+            if (line.chart != chart) continue;
+            for (const Rational& y : interval_points(line, slice_cell)) {
+              PartCoordinate other = impl_.coordinates(*space, chart, x, y).first;
+              if (other.kind != PartCoordinate::Kind::half_turn) nodes.push_back(PinSlotConfiguration{other, y, tau});
+            }
+          }
+        }
+      }
+    }
     std::set<Rational> xs_done, ys_done;
     std::map<std::pair<std::size_t, std::size_t>, bool> known;   // certified motions (true free)
-    const std::size_t max_nodes = 96;
-    for (int round = 0; round < 4; ++round) {
+    for (int round = 0; round < 6; ++round) {
       // points of the cell on the lines through the nodes
       std::vector<PinSlotConfiguration> added;
       for (const auto& n : nodes) {
@@ -1207,17 +1240,14 @@ class CellPlanner {
         if (xs_done.insert(n.other.value).second)
           for (const Slice& line : space->slice(SliceAxis::x, n.other.value)) {
             if (space->charts()[line.chart].x_half_turn) continue;
-            for (const Slice::Interval& in : line.intervals)
-              if (in.cell.valid() && in.cell.index() == slice_cell && in.kind == CellKind::free)
-                added.push_back(PinSlotConfiguration{n.other, in.sample, tau});
+            for (const Rational& y : interval_points(line, slice_cell)) added.push_back(PinSlotConfiguration{n.other, y, tau});
           }
         if (ys_done.insert(n.slide).second)
           for (const Slice& line : space->slice(SliceAxis::y, n.slide))
-            for (const Slice::Interval& in : line.intervals)
-              if (in.cell.valid() && in.cell.index() == slice_cell && in.kind == CellKind::free) {
-                PartCoordinate other = impl_.coordinates(*space, line.chart, in.sample, n.slide).first;
-                if (other.kind != PartCoordinate::Kind::half_turn) added.push_back(PinSlotConfiguration{other, n.slide, tau});
-              }
+            for (const Rational& x : interval_points(line, slice_cell)) {
+              PartCoordinate other = impl_.coordinates(*space, line.chart, x, n.slide).first;
+              if (other.kind != PartCoordinate::Kind::half_turn) added.push_back(PinSlotConfiguration{other, n.slide, tau});
+            }
       }
       for (auto& q : added) {
         if (nodes.size() >= max_nodes) break;
@@ -1234,6 +1264,28 @@ class CellPlanner {
   }
 
  private:
+  // Points of the free intervals of `cell` on a line: each interval's sample and the simplest
+  // rational of its middle half (its ends bounded by their exact isolating intervals): a sample
+  // can lie near an end, a thin channel's middle is where motions along it stay inside.
+  static std::vector<Rational> interval_points(const Slice& line, std::size_t cell) {
+    std::vector<Rational> out;
+    auto above = [](const AlgebraicNumber& a) { return a.exact ? a.lower : a.upper; };
+    for (std::size_t k = 0; k < line.intervals.size(); ++k) {
+      const Slice::Interval& in = line.intervals[k];
+      if (!in.cell.valid() || in.cell.index() != cell || in.kind != CellKind::free) continue;
+      out.push_back(in.sample);
+      Rational lo = k == 0 ? line.lower : above(line.points[k - 1].at);
+      Rational hi = k + 1 == line.intervals.size() ? line.upper : line.points[k].at.lower;
+      if (!(lo < hi)) continue;
+      Rational quarter = (hi - lo) / 4;
+      Rational from = lo + quarter, to = hi - quarter;
+      from.canonicalize();
+      to.canonicalize();
+      Rational middle = cspace::algebra::simplest_between(from, to);
+      if (middle != in.sample) out.push_back(middle);
+    }
+    return out;
+  }
   static double coordinate(const PartCoordinate& c) {
     return c.kind == PartCoordinate::Kind::half_turn ? std::numeric_limits<double>::infinity() : to_double(c.value);
   }
@@ -1246,7 +1298,33 @@ class CellPlanner {
       return std::hypot(coordinate(nodes[i].other) - coordinate(nodes[j].other),
                         to_double(nodes[i].slide) - to_double(nodes[j].slide));
     };
-    for (int attempt = 0; attempt < 200; ++attempt) {
+    // the k nearest of each node (and the goal from the start), both ways
+    const std::size_t k_nearest = 14;
+    std::vector<std::set<std::size_t>> neighbours(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::size_t> order;
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i) order.push_back(j);
+      std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return length(i, p) < length(i, q); });
+      for (std::size_t j = 0; j < order.size() && j < k_nearest; ++j) {
+        neighbours[i].insert(order[j]);
+        neighbours[order[j]].insert(i);
+      }
+    }
+    // and the nearest on the same line (the lines' points of one interval see each other)
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::size_t> line;
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i && (same_coordinate(nodes[i].other, nodes[j].other) || nodes[i].slide == nodes[j].slide))
+          line.push_back(j);
+      std::sort(line.begin(), line.end(), [&](std::size_t p, std::size_t q) { return length(i, p) < length(i, q); });
+      for (std::size_t j = 0; j < line.size() && j < 4; ++j) {
+        neighbours[i].insert(line[j]);
+        neighbours[line[j]].insert(i);
+      }
+    }
+    if (n > 1) neighbours[0].insert(1), neighbours[1].insert(0);
+    for (int attempt = 0; attempt < 400; ++attempt) {
       std::vector<double> dist(n, std::numeric_limits<double>::infinity());
       std::vector<std::size_t> previous(n, no_index);
       std::vector<bool> done(n, false);
@@ -1257,7 +1335,7 @@ class CellPlanner {
           if (!done[i] && std::isfinite(dist[i]) && (u == no_index || dist[i] < dist[u])) u = i;
         if (u == no_index || u == 1) break;
         done[u] = true;
-        for (std::size_t v = 0; v < n; ++v) {
+        for (std::size_t v : neighbours[u]) {
           if (done[v]) continue;
           auto it = known.find({std::min(u, v), std::max(u, v)});
           if (it != known.end() && !it->second) continue;
