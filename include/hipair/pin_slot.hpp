@@ -109,6 +109,28 @@ struct PinSlotCritical {
   bool half_turn = false;
 };
 
+/// A path through the free space of a pin-in-slot pair (PinSlotSpace::path): straight motions
+/// between consecutive waypoints, each straight in (the other part's coordinate value: half-angle
+/// tangent or offset, s, tau) -- or, `through_half_turn`, in (other, s, -1/tau), the short way
+/// across psi = pi of a whole-turn stack -- and each certified free throughout by an exact
+/// C-space of the pair (PinSlotSpace::motion_free). Motions are of three kinds only: at constant
+/// tau (in a slice), at constant (other, s) (a turn of the pin-slot part: a witness segment),
+/// or at constant s (a plane witness).
+struct PinSlotPath {
+  enum class Status {
+    found,                ///< waypoints from the first configuration to the second
+    not_free,             ///< an end is not a free configuration (or is outside the limits)
+    not_shown_connected,  ///< the stack does not show the ends connected (different groups, or an
+                          ///< end joined to no slice's cell): NOT a proof that they are apart
+    not_found             ///< in one group, but the planner found no certified path (its budget)
+  };
+  Status status = Status::not_free;
+  std::vector<PinSlotConfiguration> waypoints;
+  std::vector<bool> through_half_turn;   ///< per motion (waypoints.size() - 1)
+  std::size_t motions_checked = 0;       ///< motions certified or refused while planning
+};
+std::string_view to_string(PinSlotPath::Status status);
+
 /// Options of a pin-in-slot build.
 struct PinSlotBuildOptions {
   /// Slices across the angle limits (0: automatic, 16). At least 2.
@@ -218,6 +240,20 @@ class PinSlotSpace {
   bool certainly_connected(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const;
 
   const PinSlotStatistics& statistics() const;
+
+  /// Is the straight motion from `a` to `b` (see PinSlotPath) certainly free throughout, ends
+  /// included? Exact; decided for motions at constant tau, at constant (other, s), or (the other
+  /// part moving) at constant s; false for any other motion (not certified), and for an end
+  /// that is not free.
+  bool motion_free(const PinSlotConfiguration& a, const PinSlotConfiguration& b, bool through_half_turn = false) const;
+
+  /// A path through free space from `a` to `b` when certainly_connected(a, b) (the same
+  /// witnessed connections and groups): the vertical segment from each end to the slice its
+  /// group was found through, moves inside slice cells (a lazy roadmap on the cells' exact
+  /// slices), and the connections' witness segments. Every motion is certified by
+  /// motion_free before it is taken; "not found" is a status, never an uncertified path.
+  PinSlotPath path(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const;
+
 
  private:
   std::shared_ptr<Impl> impl_;

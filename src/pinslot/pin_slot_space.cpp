@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <cmath>
@@ -1053,8 +1054,11 @@ bool PinSlotSpace::critical_values_exact() const { return impl_->critical_exact;
 const std::vector<PinSlotCritical>& PinSlotSpace::critical_values() const { return impl_->critical; }
 const PinSlotStatistics& PinSlotSpace::statistics() const { return impl_->stats; }
 
-PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {
-  const Impl& impl = *impl_;
+namespace {
+
+using Impl = PinSlotSpace::Impl;
+
+PinSlotLocation locate_in_stack(const Impl& impl, const PinSlotConfiguration& q) {
   Rational tau = q.tau;
   tau.canonicalize();
   // outside the angle limits (modulo whole turns; the limits themselves are inside): psi =
@@ -1077,33 +1081,389 @@ PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const {
   return out;
 }
 
-bool PinSlotSpace::certainly_connected(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const {
-  const Impl& impl = *impl_;
-  // the group of a free configuration: through a witnessed segment to the nearest slice below
-  // or above, or within its own slice when tau is a slice's
-  auto group = [&](const PinSlotConfiguration& q) -> std::size_t {
-    PinSlotLocation at = locate(q);
-    if (at.kind != PinSlotLocation::Kind::free) return no_index;
-    if (at.cell != no_index) return impl.slices[at.slice].free_cells[at.cell].group;
-    Rational tau = q.tau;
-    tau.canonicalize();
-    std::size_t above = 0;
-    while (above < impl.slices.size() && impl.slices[above].tau < tau) ++above;
-    for (std::size_t k : {above, above - 1}) {
-      if (k >= impl.slices.size()) continue;
-      const PinSlotSlice& s = impl.slices[k];
-      PinSlotLocation there = locate(PinSlotConfiguration{q.other, q.slide, s.tau});
-      if (there.cell == no_index) continue;
-      bool ok = k == above ? impl.segment_free(q.other, q.slide, tau, s.tau, false)
-                           : impl.segment_free(q.other, q.slide, s.tau, tau, false);
-      if (ok) return s.free_cells[there.cell].group;
+// The stack cell (slice, free cell) a free configuration is joined to: its own when tau is a
+// slice's, else through a witnessed segment (constant other and s) to the nearest slice below
+// or above. nullopt when the configuration is not free or no such segment is certified.
+std::optional<std::pair<std::size_t, std::size_t>> attach(const Impl& impl, const PinSlotConfiguration& q) {
+  PinSlotLocation at = locate_in_stack(impl, q);
+  if (at.kind != PinSlotLocation::Kind::free) return std::nullopt;
+  if (at.cell != no_index) return std::make_pair(at.slice, at.cell);
+  Rational tau = q.tau;
+  tau.canonicalize();
+  std::size_t above = 0;
+  while (above < impl.slices.size() && impl.slices[above].tau < tau) ++above;
+  for (std::size_t k : {above, above - 1}) {
+    if (k >= impl.slices.size()) continue;
+    const PinSlotSlice& s = impl.slices[k];
+    PinSlotLocation there = locate_in_stack(impl, PinSlotConfiguration{q.other, q.slide, s.tau});
+    if (there.cell == no_index) continue;
+    bool ok = k == above ? impl.segment_free(q.other, q.slide, tau, s.tau, false)
+                         : impl.segment_free(q.other, q.slide, s.tau, tau, false);
+    if (ok) return std::make_pair(k, there.cell);
+  }
+  return std::nullopt;
+}
+
+bool same_coordinate(const PartCoordinate& a, const PartCoordinate& b) {
+  if (a.kind != b.kind) return false;
+  return a.kind == PartCoordinate::Kind::half_turn || a.value == b.value;
+}
+
+bool same_configuration(const PinSlotConfiguration& a, const PinSlotConfiguration& b) {
+  return same_coordinate(a.other, b.other) && a.slide == b.slide && a.tau == b.tau;
+}
+
+PinSlotConfiguration canonical(PinSlotConfiguration q) {
+  q.other.value.canonicalize();
+  q.slide.canonicalize();
+  q.tau.canonicalize();
+  return q;
+}
+
+// The motion certificate (PinSlotSpace::motion_free); errors of the exact spaces built for it
+// (a motion leaving a built box) leave the motion uncertified.
+bool certify_motion(const Impl& impl, const PinSlotConfiguration& a0, const PinSlotConfiguration& b0, bool wrap) {
+  const PinSlotConfiguration a = canonical(a0), b = canonical(b0);
+  if (impl.other_kind == Motion::Kind::fixed) {
+    if (!same_coordinate(a.other, b.other)) return false;
+  }
+  try {
+    if (locate_in_stack(impl, a).kind != PinSlotLocation::Kind::free ||
+        locate_in_stack(impl, b).kind != PinSlotLocation::Kind::free)
+      return false;
+    if (wrap) {   // across psi = pi: tau from a > 0 up through infinity to b < 0 (or back)
+      if (!impl.whole_turn || !same_coordinate(a.other, b.other) || a.slide != b.slide) return false;
+      if (sgn(a.tau) > 0 && sgn(b.tau) < 0) return impl.segment_free(a.other, a.slide, a.tau, b.tau, true);
+      if (sgn(a.tau) < 0 && sgn(b.tau) > 0) return impl.segment_free(a.other, a.slide, b.tau, a.tau, true);
+      return false;
     }
-    return no_index;
-  };
-  std::size_t ga = group(a), gb = group(b);
-  if (ga == no_index || gb == no_index) return false;
-  if (ga == gb) return true;
+    if (same_configuration(a, b)) return true;
+    if (same_coordinate(a.other, b.other) && a.slide == b.slide) {   // a turn of the pin-slot part
+      return a.tau < b.tau ? impl.segment_free(a.other, a.slide, a.tau, b.tau, false)
+                           : impl.segment_free(a.other, a.slide, b.tau, a.tau, false);
+    }
+    if (a.tau == b.tau) {   // in the slice
+      if (a.other.kind == PartCoordinate::Kind::half_turn || b.other.kind == PartCoordinate::Kind::half_turn)
+        return false;
+      auto space = impl.slice(a.tau);
+      MotionPath path;
+      if (space->dimension() == 1) {
+        path.x.kind = AxisPath::Kind::offset;
+        path.x.coefficients = {a.slide, Rational(b.slide - a.slide)};
+      } else {
+        path.x.kind = impl.other_kind == Motion::Kind::translation ? AxisPath::Kind::offset : AxisPath::Kind::half_tangent;
+        path.x.coefficients = {a.other.value, Rational(b.other.value - a.other.value)};
+        path.y.kind = AxisPath::Kind::offset;
+        path.y.coefficients = {a.slide, Rational(b.slide - a.slide)};
+      }
+      return space->first_crossing(path).status == CrossingStatus::none;
+    }
+    if (a.slide == b.slide && impl.other_kind != Motion::Kind::fixed)   // a plane witness's motion
+      return impl.plane_free(a.other, b.other, a.slide, a.tau, b.tau);
+  } catch (const Error&) {
+    return false;
+  }
   return false;
+}
+
+// Moves inside free cell `cell` of slice `k` (located exactly: both ends lie in it) from `from`
+// to `to`, appended to `out` (without `from`): a straight motion, else a lazy shortest path over
+// points of the cell on the exact 1-D slices through the points found so far (axis-parallel
+// lines; a few rounds). The doubles only rank candidate motions; each is certified.
+class CellPlanner {
+ public:
+  CellPlanner(const Impl& impl, PinSlotPath& out) : impl_(impl), out_(out) {}
+
+  bool motion(const PinSlotConfiguration& a, const PinSlotConfiguration& b, bool wrap = false) {
+    ++out_.motions_checked;
+    return certify_motion(impl_, a, b, wrap);
+  }
+  void append(const PinSlotConfiguration& q, bool wrap = false) {
+    out_.waypoints.push_back(q);
+    out_.through_half_turn.push_back(wrap);
+  }
+
+  bool within(std::size_t k, std::size_t cell, const PinSlotConfiguration& from, const PinSlotConfiguration& to) {
+    if (same_configuration(from, to)) return true;
+    if (motion(from, to)) {
+      append(to);
+      return true;
+    }
+    auto space = impl_.slice(impl_.slices[k].tau);
+    if (space->dimension() == 1) return false;   // an interval is convex: the straight motion is the path
+    const std::size_t slice_cell = impl_.slices[k].free_cells[cell].slice_cell;
+    const Rational& tau = impl_.slices[k].tau;
+    std::vector<PinSlotConfiguration> nodes{from, to};
+    const PinSlotCell& c = impl_.slices[k].free_cells[cell];
+    nodes.push_back(PinSlotConfiguration{c.sample_other, c.sample_slide, tau});
+    const std::size_t max_nodes = 240;
+    // vertical lines through the strips between the abscissae of the cell's boundary vertices
+    // (at 1/8, 1/2 and 7/8 of each strip: each free interval of a strip's line lies in one
+    // trapezoid of the cell's vertical decomposition, the lines near a strip's ends reach
+    // across its passages), and the cell's points on them
+    std::map<std::size_t, std::set<double>> abscissae;   // by chart
+    for (std::size_t e : space->cells()[slice_cell].boundary) {
+      const CSpaceEdge& edge = space->edges()[e];
+      for (std::size_t v : {edge.source, edge.target})
+        if (v != no_index) abscissae[space->vertices()[v].chart].insert(to_double(space->vertices()[v].x.lower));
+    }
+    for (auto& [chart, xs] : abscissae) {
+      const CSpaceChart& box = space->charts()[chart];
+      if (box.x_half_turn) continue;
+      xs.insert(to_double(box.x_lo));
+      xs.insert(to_double(box.x_hi));
+      std::vector<double> sorted(xs.begin(), xs.end());
+      for (std::size_t i = 0; i + 1 < sorted.size() && nodes.size() < max_nodes; ++i) {
+        const double p = std::max(sorted[i], to_double(box.x_lo)), q = std::min(sorted[i + 1], to_double(box.x_hi));
+        if (!(q > p)) continue;
+        for (double f : {0.125, 0.5, 0.875}) {
+          Rational x(p + (q - p) * f);
+          x.canonicalize();
+          if (!(box.x_lo < x && x < box.x_hi)) continue;
+          for (const Slice& line : space->slice(SliceAxis::x, x)) {
+            if (line.chart != chart) continue;
+            for (const Rational& y : interval_points(line, slice_cell)) {
+              PartCoordinate other = impl_.coordinates(*space, chart, x, y).first;
+              if (other.kind != PartCoordinate::Kind::half_turn) nodes.push_back(PinSlotConfiguration{other, y, tau});
+            }
+          }
+        }
+      }
+    }
+    std::set<Rational> xs_done, ys_done;
+    std::map<std::pair<std::size_t, std::size_t>, bool> known;   // certified motions (true free)
+    for (int round = 0; round < 6; ++round) {
+      // points of the cell on the lines through the nodes
+      std::vector<PinSlotConfiguration> added;
+      for (const auto& n : nodes) {
+        if (n.other.kind == PartCoordinate::Kind::half_turn) continue;
+        if (xs_done.insert(n.other.value).second)
+          for (const Slice& line : space->slice(SliceAxis::x, n.other.value)) {
+            if (space->charts()[line.chart].x_half_turn) continue;
+            for (const Rational& y : interval_points(line, slice_cell)) added.push_back(PinSlotConfiguration{n.other, y, tau});
+          }
+        if (ys_done.insert(n.slide).second)
+          for (const Slice& line : space->slice(SliceAxis::y, n.slide))
+            for (const Rational& x : interval_points(line, slice_cell)) {
+              PartCoordinate other = impl_.coordinates(*space, line.chart, x, n.slide).first;
+              if (other.kind != PartCoordinate::Kind::half_turn) added.push_back(PinSlotConfiguration{other, n.slide, tau});
+            }
+      }
+      for (auto& q : added) {
+        if (nodes.size() >= max_nodes) break;
+        bool seen = false;
+        for (const auto& n : nodes) seen = seen || same_configuration(n, q);
+        if (!seen) nodes.push_back(q);
+      }
+      if (auto route = shortest(nodes, known)) {
+        for (std::size_t i = 1; i < route->size(); ++i) append(nodes[(*route)[i]]);
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  // Points of the free intervals of `cell` on a line: each interval's sample and the simplest
+  // rational of its middle half (its ends bounded by their exact isolating intervals): a sample
+  // can lie near an end, a thin channel's middle is where motions along it stay inside.
+  static std::vector<Rational> interval_points(const Slice& line, std::size_t cell) {
+    std::vector<Rational> out;
+    auto above = [](const AlgebraicNumber& a) { return a.exact ? a.lower : a.upper; };
+    for (std::size_t k = 0; k < line.intervals.size(); ++k) {
+      const Slice::Interval& in = line.intervals[k];
+      if (!in.cell.valid() || in.cell.index() != cell || in.kind != CellKind::free) continue;
+      out.push_back(in.sample);
+      Rational lo = k == 0 ? line.lower : above(line.points[k - 1].at);
+      Rational hi = k + 1 == line.intervals.size() ? line.upper : line.points[k].at.lower;
+      if (!(lo < hi)) continue;
+      Rational quarter = (hi - lo) / 4;
+      Rational from = lo + quarter, to = hi - quarter;
+      from.canonicalize();
+      to.canonicalize();
+      Rational middle = cspace::algebra::simplest_between(from, to);
+      if (middle != in.sample) out.push_back(middle);
+    }
+    return out;
+  }
+  static double coordinate(const PartCoordinate& c) {
+    return c.kind == PartCoordinate::Kind::half_turn ? std::numeric_limits<double>::infinity() : to_double(c.value);
+  }
+  // Lazy shortest path from node 0 to node 1 over the complete graph of `nodes` (Euclidean in
+  // the chart coordinates, doubles: a ranking only), certifying the motions on it.
+  std::optional<std::vector<std::size_t>> shortest(const std::vector<PinSlotConfiguration>& nodes,
+                                                   std::map<std::pair<std::size_t, std::size_t>, bool>& known) {
+    const std::size_t n = nodes.size();
+    auto length = [&](std::size_t i, std::size_t j) {
+      return std::hypot(coordinate(nodes[i].other) - coordinate(nodes[j].other),
+                        to_double(nodes[i].slide) - to_double(nodes[j].slide));
+    };
+    // the k nearest of each node (and the goal from the start), both ways
+    const std::size_t k_nearest = 14;
+    std::vector<std::set<std::size_t>> neighbours(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::size_t> order;
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i) order.push_back(j);
+      std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return length(i, p) < length(i, q); });
+      for (std::size_t j = 0; j < order.size() && j < k_nearest; ++j) {
+        neighbours[i].insert(order[j]);
+        neighbours[order[j]].insert(i);
+      }
+    }
+    // and the nearest on the same line (the lines' points of one interval see each other)
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::size_t> line;
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i && (same_coordinate(nodes[i].other, nodes[j].other) || nodes[i].slide == nodes[j].slide))
+          line.push_back(j);
+      std::sort(line.begin(), line.end(), [&](std::size_t p, std::size_t q) { return length(i, p) < length(i, q); });
+      for (std::size_t j = 0; j < line.size() && j < 4; ++j) {
+        neighbours[i].insert(line[j]);
+        neighbours[line[j]].insert(i);
+      }
+    }
+    if (n > 1) neighbours[0].insert(1), neighbours[1].insert(0);
+    for (int attempt = 0; attempt < 400; ++attempt) {
+      std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+      std::vector<std::size_t> previous(n, no_index);
+      std::vector<bool> done(n, false);
+      dist[0] = 0;
+      for (;;) {
+        std::size_t u = no_index;
+        for (std::size_t i = 0; i < n; ++i)
+          if (!done[i] && std::isfinite(dist[i]) && (u == no_index || dist[i] < dist[u])) u = i;
+        if (u == no_index || u == 1) break;
+        done[u] = true;
+        for (std::size_t v : neighbours[u]) {
+          if (done[v]) continue;
+          auto it = known.find({std::min(u, v), std::max(u, v)});
+          if (it != known.end() && !it->second) continue;
+          double d = dist[u] + length(u, v);
+          if (d < dist[v]) dist[v] = d, previous[v] = u;
+        }
+      }
+      if (!std::isfinite(dist[1])) return std::nullopt;
+      std::vector<std::size_t> route;
+      for (std::size_t v = 1; v != no_index; v = previous[v]) route.push_back(v);
+      std::reverse(route.begin(), route.end());
+      bool all = true;
+      for (std::size_t i = 0; i + 1 < route.size(); ++i) {
+        auto key = std::make_pair(std::min(route[i], route[i + 1]), std::max(route[i], route[i + 1]));
+        auto it = known.find(key);
+        if (it == known.end()) it = known.emplace(key, motion(nodes[route[i]], nodes[route[i + 1]])).first;
+        if (!it->second) {
+          all = false;
+          break;
+        }
+      }
+      if (all) return route;
+    }
+    return std::nullopt;
+  }
+
+  const Impl& impl_;
+  PinSlotPath& out_;
+};
+
+}  // namespace
+
+PinSlotLocation PinSlotSpace::locate(const PinSlotConfiguration& q) const { return locate_in_stack(*impl_, q); }
+
+bool PinSlotSpace::certainly_connected(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const {
+  auto na = attach(*impl_, a), nb = attach(*impl_, b);
+  if (!na || !nb) return false;
+  return impl_->slices[na->first].free_cells[na->second].group == impl_->slices[nb->first].free_cells[nb->second].group;
+}
+
+bool PinSlotSpace::motion_free(const PinSlotConfiguration& a, const PinSlotConfiguration& b, bool through_half_turn) const {
+  return certify_motion(*impl_, a, b, through_half_turn);
+}
+
+std::string_view to_string(PinSlotPath::Status status) {
+  switch (status) {
+    case PinSlotPath::Status::found: return "found";
+    case PinSlotPath::Status::not_free: return "not_free";
+    case PinSlotPath::Status::not_shown_connected: return "not_shown_connected";
+    case PinSlotPath::Status::not_found: return "not_found";
+  }
+  return "?";
+}
+
+PinSlotPath PinSlotSpace::path(const PinSlotConfiguration& a0, const PinSlotConfiguration& b0) const {
+  const Impl& impl = *impl_;
+  const PinSlotConfiguration a = canonical(a0), b = canonical(b0);
+  PinSlotPath out;
+  if (locate(a).kind != PinSlotLocation::Kind::free || locate(b).kind != PinSlotLocation::Kind::free) return out;
+  auto na = attach(impl, a), nb = attach(impl, b);
+  out.status = PinSlotPath::Status::not_shown_connected;
+  if (!na || !nb) return out;
+  if (impl.slices[na->first].free_cells[na->second].group != impl.slices[nb->first].free_cells[nb->second].group)
+    return out;
+  out.status = PinSlotPath::Status::not_found;
+  // the cell graph: nodes (slice, free cell), edges the connections (either way)
+  using Node = std::pair<std::size_t, std::size_t>;
+  struct Step {
+    Node previous;
+    const PinSlotConnection* connection = nullptr;
+    bool upwards = true;
+  };
+  auto upper_of = [&](const PinSlotConnection& c) { return c.lower + 1 == impl.slices.size() ? std::size_t{0} : c.lower + 1; };
+  std::map<Node, Step> seen;
+  std::deque<Node> queue{*na};
+  seen[*na] = Step{*na, nullptr, true};
+  while (!queue.empty()) {
+    Node node = queue.front();
+    queue.pop_front();
+    if (node == *nb) break;
+    for (const auto& c : impl.connections) {
+      Node lower{c.lower, c.lower_cell}, upper{upper_of(c), c.upper_cell};
+      for (bool upwards : {true, false}) {
+        const Node& here = upwards ? lower : upper;
+        const Node& there = upwards ? upper : lower;
+        if (here != node || seen.count(there)) continue;
+        seen[there] = Step{node, &c, upwards};
+        queue.push_back(there);
+      }
+    }
+  }
+  if (!seen.count(*nb)) return out;   // (the groups agreed: should not happen)
+  std::vector<std::pair<Node, Step>> chain;
+  for (Node n = *nb; seen[n].connection; n = seen[n].previous) chain.emplace_back(n, seen[n]);
+  std::reverse(chain.begin(), chain.end());
+  CellPlanner planner(impl, out);
+  out.waypoints.push_back(a);
+  PinSlotConfiguration current = a;
+  auto go = [&](const PinSlotConfiguration& to, bool wrap) {
+    if (!wrap && same_configuration(current, to)) return true;
+    if (!planner.motion(current, to, wrap)) return false;
+    planner.append(to, wrap);
+    current = to;
+    return true;
+  };
+  // onto the start's slice
+  Node node = *na;
+  if (!go(PinSlotConfiguration{a.other, a.slide, impl.slices[node.first].tau}, false)) return out;
+  for (const auto& [next, step] : chain) {
+    const PinSlotConnection& c = *step.connection;
+    const Rational& lower_tau = impl.slices[c.lower].tau;
+    const Rational& upper_tau = impl.slices[upper_of(c)].tau;
+    PinSlotConfiguration at_lower{c.witness_other, c.witness_slide, lower_tau};
+    PinSlotConfiguration at_upper{c.witness_other_upper, c.witness_slide, upper_tau};
+    const PinSlotConfiguration& enter = step.upwards ? at_lower : at_upper;
+    const PinSlotConfiguration& leave = step.upwards ? at_upper : at_lower;
+    const bool wrap = upper_of(c) == 0;
+    if (!planner.within(node.first, node.second, current, enter)) return out;
+    current = out.waypoints.back();
+    if (!go(leave, wrap)) return out;
+    node = next;
+  }
+  PinSlotConfiguration landing{b.other, b.slide, impl.slices[node.first].tau};
+  if (!planner.within(node.first, node.second, current, landing)) return out;
+  current = out.waypoints.back();
+  if (!go(b, false)) return out;
+  out.status = PinSlotPath::Status::found;
+  return out;
 }
 
 }  // namespace hipair

@@ -28,19 +28,8 @@ namespace {
 
 using Random = std::mt19937_64;
 
-const Model& film_advance() {
-  static const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
-  return model;
-}
-
-// A random rational in [lo, hi] with denominator den.
-Rational random_rational(Random& random, double lo, double hi, long den = 256) {
-  long steps = static_cast<long>(std::floor((hi - lo) * static_cast<double>(den)));
-  long k = static_cast<long>(random() % static_cast<unsigned long>(steps + 1));
-  Rational r = Rational(static_cast<long>(std::floor(lo * static_cast<double>(den))) + k, den);
-  r.canonicalize();
-  return r;
-}
+using pin_slot_test::film_advance;
+using pin_slot_test::random_rational;
 
 PinSlotLocation::Kind oracle(const Model& model, const PinSlotSpace& space, const PinSlotConfiguration& q) {
   const Part& other = model.parts[*model.find_part(space.other_part())];

@@ -1,5 +1,5 @@
 // Helpers shared by the pin-slot tests (pin_slot_test.cpp, pin_slot_limits_test.cpp,
-// pin_slot_scale_test.cpp; session 55: before, each unit had its own copy).
+// pin_slot_scale_test.cpp, pin_slot_path_test.cpp; session 55: before, each unit had its own copy).
 #pragma once
 
 #include <hipair/cspace.hpp>
@@ -8,11 +8,30 @@
 
 #include <gmpxx.h>
 
+#include "test_paths.hpp"
+
+#include <cmath>
 #include <cstddef>
+#include <random>
 #include <set>
 #include <string>
 
 namespace hipair::pin_slot_test {
+
+/// examples/models/film-advance.json, read once.
+inline const Model& film_advance() {
+  static const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/film-advance.json");
+  return model;
+}
+
+/// A random rational in [lo, hi] with denominator den.
+inline Rational random_rational(std::mt19937_64& random, double lo, double hi, long den = 256) {
+  long steps = static_cast<long>(std::floor((hi - lo) * static_cast<double>(den)));
+  long k = static_cast<long>(random() % static_cast<unsigned long>(steps + 1));
+  Rational r = Rational(static_cast<long>(std::floor(lo * static_cast<double>(den))) + k, den);
+  r.canonicalize();
+  return r;
+}
 
 /// 10^exponent, exactly.
 inline Rational exact_power10(int exponent) {
