@@ -6,6 +6,7 @@
 // Internal to src/simulation (Eigen; no type of it crosses include/hipair).
 #pragma once
 
+#include "simulation/exact_lemke.hpp"
 #include "simulation/friction.hpp"
 
 #include <Eigen/Dense>
@@ -69,6 +70,15 @@ inline std::vector<bool> lift_offs(const FrictionalSolution& solution, const Hel
 /// sum's sign — a row separating or at rest by less than the sum's round-off could be restituted).
 inline bool approaches(const Eigen::VectorXd& g, const Eigen::VectorXd& v) { return exact_dot_sign(g, v) < 0; }
 
+/// Whether a contact row g can give way at an impact, its A_gg = sum_i g_i^2 minv_i > 0, decided
+/// exactly (session 68, impactpin68; minv >= 0: some coordinate of the row has a positive inverse
+/// mass — the double sum could underflow to 0 where it is not).
+inline bool gives_way(const Eigen::VectorXd& g, const Eigen::VectorXd& minv) {
+  for (Eigen::Index i = 0; i < g.size(); ++i)
+    if (g(i) != 0 && minv(i) > 0) return true;
+  return false;
+}
+
 /// An impact's restitution terms exactly (session 68, impact68): h_k = e_k (G_k . v) in rationals
 /// on the doubles G, v and e (until then the rounded double e_k * (G v)_k: a decision at a tie
 /// was taken on its rounding — e = 0.3 is not a dyadic number, so the term is rounded at almost
@@ -107,6 +117,82 @@ inline bool slower_than(const Eigen::MatrixXd& J, const Eigen::VectorXd& v, doub
   return true;
 }
 
+/// A frictionless impact's LCP of any size decided exactly (session 68, impactpin68): lambda >= 0,
+/// w = G x + h >= 0, lambda w = 0, x = x0 + M^-1 G^T lambda (diagonal form: x0 = v, M^-1 = minv;
+/// `full`: x0 = M^-1 Q and M^-1 G^T solved exactly on its M) — A = G M^-1 G^T and b = G x0 + h in
+/// rationals, Lemke's algorithm exactly (exact_lemke.hpp), then its held set (w = 0) through
+/// exact_assignment (first_only) for the published solution. Unsolvable (ray termination, A
+/// positive semidefinite: minv >= 0, or M positive definite exactly): solved false. nullopt where
+/// not decided (the full form's M not positive definite exactly; Lemke's pivot bound).
+inline std::optional<FrictionalSolution> exact_impact_lemke(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                                            const Eigen::VectorXd& v, const std::vector<Rational>& h,
+                                                            const FullMass* full) {
+  const auto m = static_cast<std::size_t>(G.rows()), n = static_cast<std::size_t>(G.cols());
+  auto exact = [](double d) { return held_force_detail::exact_value(d); };
+  // D = M^-1 G^T (n x m) and x0, exactly
+  held_force_detail::Matrix<Rational> D(n, std::vector<Rational>(m, Rational(0)));
+  std::vector<Rational> x0(n, Rational(0));
+  if (full) {
+    held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n)), rhs(n, std::vector<Rational>(m + 1));
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
+      for (std::size_t k = 0; k < m; ++k) rhs[i][k] = exact(full->G(Eigen::Index(k), Eigen::Index(i)));
+      rhs[i][m] = exact(full->Q(Eigen::Index(i)));
+    }
+    // M positive definite exactly (every pivot of its elimination positive): else A need not be
+    // positive semidefinite and a ray would prove nothing
+    held_force_detail::Matrix<Rational> e = mass;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (sgn(e[c][c]) <= 0) return std::nullopt;
+      for (std::size_t r = c + 1; r < n; ++r) {
+        if (sgn(e[r][c]) == 0) continue;
+        const Rational f = e[r][c] / e[c][c];
+        for (std::size_t k = c; k < n; ++k) e[r][k] -= f * e[c][k];
+      }
+    }
+    const auto solved = held_force_detail::solve(std::move(mass), std::move(rhs));
+    if (!solved) return std::nullopt;
+    for (std::size_t i = 0; i < n; ++i) {
+      x0[i] = (*solved)[i][m];
+      for (std::size_t k = 0; k < m; ++k) D[i][k] = (*solved)[i][k];
+    }
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      x0[i] = exact(v(Eigen::Index(i)));
+      const Rational mi = exact(minv(Eigen::Index(i)));
+      for (std::size_t k = 0; k < m; ++k)
+        if (G(Eigen::Index(k), Eigen::Index(i)) != 0) D[i][k] = mi * exact(G(Eigen::Index(k), Eigen::Index(i)));
+    }
+  }
+  const Eigen::MatrixXd& rows = full ? full->G : G;
+  held_force_detail::Matrix<Rational> A(m, std::vector<Rational>(m, Rational(0)));
+  std::vector<Rational> b(h);
+  for (std::size_t k = 0; k < m; ++k)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double g = rows(Eigen::Index(k), Eigen::Index(i));
+      if (g == 0) continue;
+      const Rational gq = exact(g);
+      if (sgn(x0[i]) != 0) b[k] += gq * x0[i];
+      for (std::size_t j = 0; j < m; ++j)
+        if (sgn(D[i][j]) != 0) A[k][j] += gq * D[i][j];
+    }
+  bool ray = false;
+  const std::optional<ExactLcpSolution> solution = exact_lemke(A, b, &ray);
+  if (!solution) {
+    if (!ray) return std::nullopt;
+    FrictionalSolution none;
+    none.solved = false;
+    return none;
+  }
+  std::vector<bool> held(m);
+  for (std::size_t k = 0; k < m; ++k) held[k] = sgn(solution->w[k]) == 0;
+  const std::vector<Friction> friction(m);
+  const std::vector<int> state(m, frictionless);
+  static const std::vector<std::size_t> no_groups;
+  const Eigen::VectorXd h_unused = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m));
+  return exact_assignment(G, minv, v, h_unused, friction, state, no_groups, &held, nullptr, full, true, &h);
+}
+
 /// A frictionless impact's LCP decided exactly (session 68, impact68; the fixed-axis and planar
 /// simulators' frictionless impacts): lambda >= 0, w = G x + h >= 0, lambda w = 0 with
 /// x = v + M^-1 G^T lambda (`minv` diagonal, 0 for a driver) and h the exact restitution terms
@@ -119,14 +205,23 @@ inline bool slower_than(const Eigen::MatrixXd& J, const Eigen::VectorXd& v, doub
 /// the doubles' solution is kept: nullopt. Otherwise the exact
 /// solution is returned (the held set's, or the exact enumeration's over every held set, the
 /// largest first: exact_assignment), its numbers the exact ones rounded; `solved` false when none
-/// is consistent (m > 12: not decided, nullopt). Until session 68 the doubles' tolerance decided:
+/// is consistent. Beyond 12 contacts, where the doubles' held set is not the exact one, Lemke's
+/// algorithm exactly decides (exact_impact_lemke; until session 68, impactpin68, the doubles did). Until session 68 the doubles' tolerance decided:
 /// a contact closing or separating within 1e-10 of the problem's scale could be given an impulse
 /// (or none) against the exact law.
+///
+/// `full` (given; session 68, impactpin68: the pin-slot simulator's coupled mass matrix): decided
+/// on the full form (friction.hpp's FullMass: its G, M, Q and frictionless rows; minv and v
+/// unused), x = M^-1 (Q + G^T lambda) solved exactly; the pin-slot impact passes Q = 0 and in h
+/// the whole constant of w, the speed before plus its restitution term, exactly.
 inline std::optional<FrictionalSolution> exact_impact_lcp(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                                           const Eigen::VectorXd& v, const std::vector<Rational>& h,
-                                                          const LcpSolution& lcp) {
+                                                          const LcpSolution& lcp, const FullMass* full = nullptr) {
   const auto m = static_cast<std::size_t>(G.rows());
-  if (m == 0 || m > 12) return std::nullopt;
+  // (session 68, impactpin68: the doubles' held set is decided exactly for any number of contacts
+  // — exact_assignment's first_only has no bound; only the enumeration over every held set, where
+  // that set is not consistent, is bounded to 12 contacts: beyond, nullopt, the doubles decide)
+  if (m == 0) return std::nullopt;
   const std::vector<Friction> friction(m);
   const std::vector<int> state(m, frictionless);
   static const std::vector<std::size_t> no_groups;
@@ -138,7 +233,7 @@ inline std::optional<FrictionalSolution> exact_impact_lcp(const Eigen::MatrixXd&
       held[k] = !(lcp.lambda(r) <= 0 && lcp.w(r) > lcp.tolerance);
     }
     if (std::optional<FrictionalSolution> e =
-            exact_assignment(G, minv, v, h_unused, friction, state, no_groups, &held, nullptr, nullptr, true, &h)) {
+            exact_assignment(G, minv, v, h_unused, friction, state, no_groups, &held, nullptr, full, true, &h)) {
       // (the doubles' impulses also agree with the exact ones to 2^-40 of their largest: an
       // accepted active set whose multiplier within the tolerance was clipped to 0 — a contact
       // separating by 2^-24 of the scale taken as held — leaves the others' impulses off by that
@@ -154,8 +249,9 @@ inline std::optional<FrictionalSolution> exact_impact_lcp(const Eigen::MatrixXd&
       return e;
     }
   }
+  if (m > 12) return exact_impact_lemke(G, minv, v, h, full);
   if (std::optional<FrictionalSolution> e =
-          exact_assignment(G, minv, v, h_unused, friction, state, no_groups, nullptr, nullptr, nullptr, false, &h))
+          exact_assignment(G, minv, v, h_unused, friction, state, no_groups, nullptr, nullptr, full, false, &h))
     return e;
   FrictionalSolution none;
   none.solved = false;

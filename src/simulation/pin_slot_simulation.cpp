@@ -1913,12 +1913,28 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
   // whether a row approaches (its restitution applies), decided exactly on its doubles (session 68,
   // impact68: was the rounded speed's sign, before[i] < 0 — held_friction.hpp's approaches)
   std::vector<bool> approach(rows.size());
+  // (session 68, impactpin68: the rows' speeds and restitution terms exactly on their doubles —
+  // held_friction.hpp's exact_restitution_terms over [J, v_other] . [q', -1]: the speed
+  // J q' - v_other with e = 1 on every row, the terms e v- on the approaching rows only)
+  const auto row_count = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd g5(row_count, 5), u5(row_count, 5);
+  Eigen::VectorXd restitutions(row_count);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    Eigen::VectorXd g(5), u(5);
-    g << r.J[0], r.J[1], r.free ? r.J[2] : 0.0, r.slider ? r.J[3] : 0.0, r.v_other;
-    u << y[2], y[3], r.free ? y[5] : 0.0, r.slider ? y[7] : 0.0, -1.0;
-    approach[i] = simulation::approaches(g, u);
+    const auto ii = static_cast<Eigen::Index>(i);
+    g5.row(ii) << r.J[0], r.J[1], r.free ? r.J[2] : 0.0, r.slider ? r.J[3] : 0.0, r.v_other;
+    u5.row(ii) << y[2], y[3], r.free ? y[5] : 0.0, r.slider ? y[7] : 0.0, -1.0;
+    restitutions(ii) = r.restitution;
+    approach[i] = simulation::approaches(g5.row(ii).transpose(), u5.row(ii).transpose());
+  }
+  // (each row its own velocity vector u5: a row's free or slider column is 0 where it has none)
+  std::vector<Rational> speed_exact(rows.size()), restitution_exact(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    const Eigen::MatrixXd gi = g5.row(ii);
+    const Eigen::VectorXd ui = u5.row(ii).transpose();
+    speed_exact[i] = simulation::exact_restitution_terms(gi, ui, Eigen::VectorXd::Ones(1), false)[0];
+    restitution_exact[i] = simulation::exact_restitution_terms(gi, ui, restitutions.segment(ii, 1), true)[0];
   }
   // (session 64) a pair with friction: Coulomb impacts
   std::vector<double> tangential(rows.size(), 0.0);
@@ -1972,9 +1988,17 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     // each contact its own group — held_friction.hpp's frictional_impulses; the rows are the
     // Cholesky coordinates' doubles)
     const std::vector<std::size_t> own_groups;
+    // (session 68, impactpin68: with the velocity terms exactly, -v_other + scale e v- on the
+    // rows' doubles — the scale dyadic, the restitution limit's bisection — as the other
+    // simulators' impacts: the decisions exact on e, not on the rounded e v-; the rows are still
+    // the Cholesky coordinates' doubles)
     auto solve = [&](double scale) {
+      std::vector<Rational> h_exact(rows.size());
+      const Rational s = simulation::held_force_detail::exact_value(scale);
+      for (std::size_t i = 0; i < rows.size(); ++i)
+        h_exact[i] = simulation::held_force_detail::exact_value(-rows[i].v_other) + s * restitution_exact[i];
       return simulation::frictional_impulses(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part,
-                                             friction, own_groups);
+                                             friction, own_groups, {}, &h_exact);
     };
     bool limited = false;
     simulation::FrictionalSolution sol =
@@ -2014,7 +2038,35 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       const double v = before[static_cast<std::size_t>(i)];
       bv(i) = approach[static_cast<std::size_t>(i)] ? (1 + ri.restitution) * v : v;
     }
-    const simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
+    simulation::LcpSolution lcp = simulation::solve_lcp(A, bv);
+    // (session 68, impactpin68: which rows get an impulse decided exactly — held_friction.hpp's
+    // exact_impact_lcp on the full form: the rows G over the coordinates, the mass matrix M as
+    // its doubles, w = G M^-1 G^T lambda + (v + e v-) with the speeds and terms exact; until then
+    // the doubles' A (the rounded M^-1) and b = (1 + e) v decided, with solve_lcp's tolerance)
+    {
+      const Eigen::Index n = coordinates();
+      simulation::FullMass full;
+      full.G = Eigen::MatrixXd::Zero(k, n);
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Row& r = rows[i];
+        const auto ii = static_cast<Eigen::Index>(i);
+        full.G(ii, 0) = r.J[0];
+        full.G(ii, 1) = r.J[1];
+        if (free) full.G(ii, 2) = r.free ? r.J[2] : 0.0;
+        if (has_slider()) full.G(ii, x_column()) = r.slider ? r.J[3] : 0.0;
+      }
+      full.M = mass_matrix(y);
+      full.Q = Eigen::VectorXd::Zero(n);
+      full.friction.assign(rows.size(), simulation::Friction{});
+      std::vector<Rational> b_exact(rows.size());
+      for (std::size_t i = 0; i < rows.size(); ++i) b_exact[i] = speed_exact[i] + restitution_exact[i];
+      const Eigen::VectorXd none = Eigen::VectorXd::Zero(n);
+      if (const std::optional<simulation::FrictionalSolution> exact =
+              simulation::exact_impact_lcp(full.G, none, none, b_exact, lcp, &full)) {
+        lcp.solved = exact->solved;
+        if (exact->solved) lcp.lambda = exact->lambda;
+      }
+    }
     if (!lcp.solved) {
       refuse_jam(rows);
       std::ostringstream out;

@@ -2693,7 +2693,9 @@ void PlanarSystemSimulation::Impl::impact(double time,
   const std::vector<Rational> h_exact = simulation::exact_restitution_terms(J, v, restitution, false);
   Eigen::MatrixXd A = J * minv.asDiagonal() * J.transpose();
   for (Eigen::Index r = 0; r < m; ++r)
-    if (before(r) < 0 && !(A(r, r) > 0)) {   // a driver against a fixed part or another driver
+    // (session 68, impactpin68: decided exactly — was the rounded J v's sign and the rounded A_rr)
+    if (simulation::approaches(J.row(r).transpose(), v) &&
+        !simulation::gives_way(J.row(r).transpose(), minv)) {   // a driver against a fixed part or another driver
       const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
       throw NumericError(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
                          model.parts[p.first].name + "': nothing there can give way (a jam)");
