@@ -101,6 +101,16 @@ std::string sliced_connected_statement(const SlicedConnectedCertificate& c) {
 
 namespace verify {
 
+std::optional<Model> connected_pair_at_origin(const Model& model, const std::string& fixed, const std::string& planar) {
+  std::optional<Model> moved = pair_moved_to_origin(model, fixed, planar);
+  const Model& at = moved ? *moved : model;
+  auto index = at.find_part(planar);
+  if (!index) return moved;
+  const Point pivot = at.parts[*index].motion.pivot;
+  if (sgn(pivot.x) == 0 && sgn(pivot.y) == 0) return moved;
+  return translated_model(at, pivot);   // every point minus the pivot
+}
+
 std::string sliced_move_failure(const Part& fixed, const Part& planar, const PlanarPose& a, const PlanarPose& b,
                                 std::size_t budget, std::size_t* pieces) {
   if (a.slide || b.slide) return "a pose with a slide (a connected claim poses x, y and tangent)";
@@ -157,12 +167,22 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
   };
   struct Piece {
     Rational u0, u1;
-    int depth;
+    long depth;
   };
   // a piece narrower than 2^-(bits + 64) of the move is not enclosed tighter than its parent (the
   // enclosures' rounding, relative to the move's size, dominates): the move is refused there, in
   // bounded time (a grazing move otherwise halves one end's piece until the budget runs out)
-  const int max_depth = int(model_detail::working_interval_bits()) + 64;
+  // (bits + 64 beyond the pieces the move's length needs: a translation of 2^k times the part's
+  // reach, a rotation by a tangent step of 2^k, needs k more halvings before its pieces are short)
+  Rational size = reach(shape_free);
+  if (sgn(size) <= 0) size = 1;
+  Rational span = kind == Kind::translation ? Rational(abs(b.x - a.x) + abs(b.y - a.y)) / size
+                                            : Rational(abs(b.tangent - a.tangent));
+  const mpz_class whole = span.get_num() / span.get_den();
+  // (at most 1024 more: a move longer than 2^1024 times the part is refused near its ends in
+  // bounded time, before pieces of 40 000-bit rationals)
+  const long longer = sgn(whole) > 0 ? std::min(1024L, long(mpz_sizeinbase(whole.get_mpz_t(), 2))) : 0;
+  const long max_depth = long(model_detail::working_interval_bits()) + 64 + longer;
   std::vector<Piece> stack{{Rational(0), Rational(1), 0}};
   std::size_t count = 0;
   while (!stack.empty()) {
@@ -213,7 +233,7 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     const std::string& fixed_name = name == first ? second : first;
     // a pair far from the origin for its size is checked moved to it (its poses are relative:
     // moving both parts moves the pivot with them), as planar clearance claims are
-    std::optional<Model> moved = pair_moved_to_origin(model, first, second);
+    std::optional<Model> moved = connected_pair_at_origin(model, fixed_name, name);
     const Model& posed = moved ? *moved : model;
     const Part& planar = part_named(posed, name);
     const Part& fixed = part_named(posed, fixed_name);

@@ -116,8 +116,9 @@ std::pair<const Part*, const Part*> connected_parts(const Model& model, const st
   return {&fixed_part, &planar_part};
 }
 
-// A certificate produced on the pair moved to the origin (pair_moved_to_origin: a pair far from it
-// for its size), as the verifier checks it: the claim's poses are relative (moving both parts moves
+// A certificate produced on the pair moved to the origin (verify::connected_pair_at_origin: the
+// pivot at the origin, a pair far from it for its size first moved by pair_moved_to_origin), as
+// the verifier checks it: the claim's poses are relative (moving both parts moves
 // the pivot with them), so the same certificate holds of the model as given; re-checked on it.
 SlicedConnectedResult checked_as_given(SlicedConnectedResult result, const Model& model) {
   if (result.certificate) {
@@ -132,7 +133,7 @@ SlicedConnectedResult checked_as_given(SlicedConnectedResult result, const Model
 SlicedConnectedResult certify_sliced_path(const Model& model, const std::string& fixed, const std::string& planar,
                                           const SlicedPath& sliced, const CertifyContext& context) {
   auto [fixed_part, planar_part] = connected_parts(model, fixed, planar);
-  if (std::optional<Model> moved = pair_moved_to_origin(model, fixed, planar))
+  if (std::optional<Model> moved = verify::connected_pair_at_origin(model, fixed, planar))
     return checked_as_given(certify_sliced_path(*moved, fixed, planar, sliced, context), model);
   SlicedConnectedResult result;
   result.sliced_waypoints = sliced.waypoints.size();
@@ -171,7 +172,7 @@ SlicedConnectedResult certify_sliced_connected(const Model& model, const std::st
                                                const PlanarPose& to, const CertifyContext& context) {
   if (to.part != from.part) throw ModelError("", "sliced_connected: both poses must be of one part");
   connected_parts(model, fixed, from.part);
-  if (std::optional<Model> moved = pair_moved_to_origin(model, fixed, from.part))
+  if (std::optional<Model> moved = verify::connected_pair_at_origin(model, fixed, from.part))
     return checked_as_given(certify_sliced_connected(*moved, fixed, from, to, context), model);
   SlicedSpace space = SlicedSpace::build(model, fixed, from.part);
   SlicedPath sliced = space.path(SlicedConfiguration{from.x, from.y, sliced_angle(from)}, SlicedConfiguration{to.x, to.y, sliced_angle(to)});
