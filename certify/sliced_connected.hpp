@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,12 @@ constexpr std::size_t sliced_total_budget = 100000;
 /// `budget` evaluations. `pieces` (optional) receives the number of pieces evaluated.
 std::string sliced_move_failure(const Part& fixed, const Part& planar, const PlanarPose& a, const PlanarPose& b,
                                 std::size_t budget = sliced_move_budget, std::size_t* pieces = nullptr);
+/// The model a connected claim of the pair (`fixed`, `planar`) is decided on: moved by
+/// pair_moved_to_origin, then so that the planar part's pivot is the origin (the claim's poses are
+/// relative: moving both parts moves the pivot with them); nullopt when that moves nothing. The
+/// producer and the verifier both use it (a pair at 10^6 mm, under pair_moved_to_origin's
+/// threshold, was otherwise checked there, its rotations' enclosures about 10^6 times wider).
+std::optional<Model> connected_pair_at_origin(const Model& model, const std::string& fixed, const std::string& planar);
 /// The exact map of a planar part at a pose (planar_check.cpp).
 ExactMap planar_pose_map(const Part& part, const PlanarPose& pose);
 

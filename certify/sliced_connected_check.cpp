@@ -101,6 +101,16 @@ std::string sliced_connected_statement(const SlicedConnectedCertificate& c) {
 
 namespace verify {
 
+std::optional<Model> connected_pair_at_origin(const Model& model, const std::string& fixed, const std::string& planar) {
+  std::optional<Model> moved = pair_moved_to_origin(model, fixed, planar);
+  const Model& at = moved ? *moved : model;
+  auto index = at.find_part(planar);
+  if (!index) return moved;
+  const Point pivot = at.parts[*index].motion.pivot;
+  if (sgn(pivot.x) == 0 && sgn(pivot.y) == 0) return moved;
+  return translated_model(at, pivot);   // every point minus the pivot
+}
+
 std::string sliced_move_failure(const Part& fixed, const Part& planar, const PlanarPose& a, const PlanarPose& b,
                                 std::size_t budget, std::size_t* pieces) {
   if (a.slide || b.slide) return "a pose with a slide (a connected claim poses x, y and tangent)";
@@ -157,13 +167,32 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
   };
   struct Piece {
     Rational u0, u1;
-    int depth;
+    long depth;
   };
+  // a piece narrower than 2^-(bits + 64) of the move is not enclosed tighter than its parent (the
+  // enclosures' rounding, relative to the move's size, dominates): the move is refused there, in
+  // bounded time (a grazing move otherwise halves one end's piece until the budget runs out)
+  // (bits + 64 beyond the pieces the move's length needs: a translation of 2^k times the part's
+  // reach, a rotation by a tangent step of 2^k, needs k more halvings before its pieces are short)
+  Rational size = reach(shape_free);
+  if (sgn(size) <= 0) size = 1;
+  Rational span = kind == Kind::translation ? Rational(abs(b.x - a.x) + abs(b.y - a.y)) / size
+                                            : Rational(abs(b.tangent - a.tangent));
+  const mpz_class whole = span.get_num() / span.get_den();
+  // (at most 1024 more: a move longer than 2^1024 times the part is refused near its ends in
+  // bounded time, before pieces of 40 000-bit rationals)
+  const long longer = sgn(whole) > 0 ? std::min(1024L, long(mpz_sizeinbase(whole.get_mpz_t(), 2))) : 0;
+  const long max_depth = long(model_detail::working_interval_bits()) + 64 + longer;
   std::vector<Piece> stack{{Rational(0), Rational(1), 0}};
   std::size_t count = 0;
   while (!stack.empty()) {
     Piece piece = stack.back();
     stack.pop_back();
+    if (piece.depth >= max_depth) {
+      if (pieces) *pieces = count;
+      return "not proved free: its pieces reached 2^-" + std::to_string(max_depth) + " of the move near u in [" + text(piece.u0) +
+             ", " + text(piece.u1) + "] (narrower than the enclosures resolve: the parts come too close, or touch)";
+    }
     if (++count > budget) {
       if (pieces) *pieces = count - 1;
       return "not proved free within " + std::to_string(budget) + " interval pieces (stuck near u in [" + text(piece.u0) + ", " +
@@ -204,7 +233,7 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     const std::string& fixed_name = name == first ? second : first;
     // a pair far from the origin for its size is checked moved to it (its poses are relative:
     // moving both parts moves the pivot with them), as planar clearance claims are
-    std::optional<Model> moved = pair_moved_to_origin(model, first, second);
+    std::optional<Model> moved = connected_pair_at_origin(model, fixed_name, name);
     const Model& posed = moved ? *moved : model;
     const Part& planar = part_named(posed, name);
     const Part& fixed = part_named(posed, fixed_name);
@@ -217,19 +246,27 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     if (!same_pose(planar, c.path.back(), c.to)) reject("the path ends at " + pose_words(c.path.back()) + ", not at the claim's end " + pose_words(c.to));
     // each move within its budget, and all of them within the certificate's (a forged path of
     // many grazing moves is refused in bounded time)
-    std::size_t pieces = 0, total = 0;
+    // (more moves than pieces in all cannot be proved: refused before any is checked)
+    if (c.path.size() - 1 > sliced_total_budget)
+      reject("the path has " + std::to_string(c.path.size() - 1) + " moves, more than the " + std::to_string(sliced_total_budget) +
+             " interval pieces a certificate may need in all");
+    std::size_t pieces = 0, total = 0, proved = 0;
     auto budget = [&] { return std::min(sliced_move_budget, sliced_total_budget - total); };
-    if (c.path.size() == 1) {
-      std::string failure = sliced_move_failure(fixed, planar, c.path[0], c.path[0], budget(), &pieces);
-      if (!failure.empty()) reject("at the start: " + failure);
-      total += pieces;
-    }
     for (std::size_t i = 0; i + 1 < c.path.size(); ++i) {
+      // a move that stays at one pose (a repeated vertex or a change of chart) is free where the
+      // moves around it are: its pose is an end of one of them (or the start, checked below)
+      if (same_pose(planar, c.path[i], c.path[i + 1])) continue;
       if (total >= sliced_total_budget)
         reject("the path's moves need more than " + std::to_string(sliced_total_budget) + " interval pieces in all");
       std::string failure = sliced_move_failure(fixed, planar, c.path[i], c.path[i + 1], budget(), &pieces);
       if (!failure.empty())
         reject("move " + std::to_string(i) + " (" + pose_words(c.path[i]) + " to " + pose_words(c.path[i + 1]) + "): " + failure);
+      total += pieces;
+      ++proved;
+    }
+    if (proved == 0) {   // every move stays at the start
+      std::string failure = sliced_move_failure(fixed, planar, c.path[0], c.path[0], budget(), &pieces);
+      if (!failure.empty()) reject("at the start: " + failure);
       total += pieces;
     }
     // the boundaries never meet along the path, so the parts' nesting is that of the start

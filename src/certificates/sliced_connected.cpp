@@ -6,6 +6,7 @@
 // halves until both steps of each piece are proved. The finished certificate is re-checked.
 #include "certificates/producer.hpp"
 #include "certify/sliced_connected.hpp"
+#include "core/model_scale.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/sliced.hpp>
@@ -115,11 +116,25 @@ std::pair<const Part*, const Part*> connected_parts(const Model& model, const st
   return {&fixed_part, &planar_part};
 }
 
+// A certificate produced on the pair moved to the origin (verify::connected_pair_at_origin: the
+// pivot at the origin, a pair far from it for its size first moved by pair_moved_to_origin), as
+// the verifier checks it: the claim's poses are relative (moving both parts moves
+// the pivot with them), so the same certificate holds of the model as given; re-checked on it.
+SlicedConnectedResult checked_as_given(SlicedConnectedResult result, const Model& model) {
+  if (result.certificate) {
+    VerificationResult check = check_sliced_connected(*result.certificate, model);
+    if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
+  }
+  return result;
+}
+
 }  // namespace
 
 SlicedConnectedResult certify_sliced_path(const Model& model, const std::string& fixed, const std::string& planar,
                                           const SlicedPath& sliced, const CertifyContext& context) {
   auto [fixed_part, planar_part] = connected_parts(model, fixed, planar);
+  if (std::optional<Model> moved = verify::connected_pair_at_origin(model, fixed, planar))
+    return checked_as_given(certify_sliced_path(*moved, fixed, planar, sliced, context), model);
   SlicedConnectedResult result;
   result.sliced_waypoints = sliced.waypoints.size();
   if (sliced.status != SlicedPath::Status::found || sliced.waypoints.empty() ||
@@ -157,6 +172,8 @@ SlicedConnectedResult certify_sliced_connected(const Model& model, const std::st
                                                const PlanarPose& to, const CertifyContext& context) {
   if (to.part != from.part) throw ModelError("", "sliced_connected: both poses must be of one part");
   connected_parts(model, fixed, from.part);
+  if (std::optional<Model> moved = verify::connected_pair_at_origin(model, fixed, from.part))
+    return checked_as_given(certify_sliced_connected(*moved, fixed, from, to, context), model);
   SlicedSpace space = SlicedSpace::build(model, fixed, from.part);
   SlicedPath sliced = space.path(SlicedConfiguration{from.x, from.y, sliced_angle(from)}, SlicedConfiguration{to.x, to.y, sliced_angle(to)});
   SlicedConnectedResult result;

@@ -1,12 +1,15 @@
 // libFuzzer target: any byte string given to the certificate reader either yields a
 // certificate or a hipair::Error; a certificate read is then checked by the verifier
 // (check_certificate, what hipair-verify runs) against the example model it names (or the
-// first one), which must answer valid or invalid with a reason. Anything else escaping
+// first one), which must answer valid or invalid with a reason. A sliced_connected certificate
+// (<hipair/sliced_certificate.hpp>, a claim outside Certificate) goes to its own reader and check
+// (check_sliced_connected), as hipair-verify dispatches it (verify_certificate_file). Anything else escaping
 // (another exception, a crash, undefined behaviour, a leak, a hang) is a bug. Built from the
 // verifier's own sources (certify/ and the model reader) by run_certificate_fuzz.sh.
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
+#include <hipair/sliced_certificate.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -22,7 +25,7 @@ namespace {
 const std::vector<hipair::Model>& models() {
   static const std::vector<hipair::Model> list = [] {
     std::vector<hipair::Model> result;
-    for (const char* name : {"lever-stop.json", "ratchet.json", "geneva.json", "cam-follower.json"})
+    for (const char* name : {"lever-stop.json", "ratchet.json", "geneva.json", "cam-follower.json", "peg-in-hole.json"})
       result.push_back(hipair::read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / name));
     return result;
   }();
@@ -33,16 +36,30 @@ const std::vector<hipair::Model>& models() {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string_view text(reinterpret_cast<const char*>(data), size);
+  auto model_named = [](const std::string& name) {
+    const hipair::Model* model = &models().front();
+    for (const hipair::Model& candidate : models())
+      if (candidate.name == name) model = &candidate;
+    return model;
+  };
+  if (hipair::is_sliced_connected_certificate(text)) {
+    hipair::SlicedConnectedCertificate connected;
+    try {
+      connected = hipair::read_sliced_connected_certificate(text);
+    } catch (const hipair::Error&) {
+      return 0;
+    }
+    hipair::VerificationResult result = hipair::check_sliced_connected(connected, *model_named(connected.envelope.model_name));
+    if (result.valid ? result.summary.empty() : result.reason.empty()) __builtin_trap();
+    return 0;
+  }
   hipair::Certificate certificate;
   try {
     certificate = hipair::read_certificate(text);
   } catch (const hipair::Error&) {
     return 0;
   }
-  const hipair::Model* model = &models().front();
-  for (const hipair::Model& candidate : models())
-    if (candidate.name == certificate.model_name) model = &candidate;
-  hipair::VerificationResult result = hipair::check_certificate(certificate, *model);
+  hipair::VerificationResult result = hipair::check_certificate(certificate, *model_named(certificate.model_name));
   // Exactly one of: valid with a summary, invalid with a reason.
   if (result.valid ? result.summary.empty() : result.reason.empty()) __builtin_trap();
   return 0;

@@ -4,7 +4,8 @@
 #   model_reader          the model reader (src/core, src/model); seeds: every example and test model
 #   certificate_verifier  the certificate reader and the verifier, built from the verifier's own
 #                         sources as hipair-verify is (certify/, the model reader); seeds: the
-#                         certificate corpus
+#                         certificate corpus and tests/fuzz/certificate_seeds (sliced_connected
+#                         certificates of examples/models/peg-in-hole.json, session 68)
 # Both targets share one object directory beside WORK_DIR: the reader's objects (src/core,
 # src/model) are compiled once, under a lock, when the two tests run in parallel; each target's
 # own objects are compiled after the lock is released, so that the model reader never waits for
@@ -35,7 +36,8 @@ case "$target" in
              "$source"/certify/certificate_reader.cpp "$source"/certify/exact_geometry.cpp
              "$source"/certify/interval_geometry.cpp "$source"/certify/check.cpp
              "$source"/tests/fuzz/certificate_verifier_fuzzer.cpp)
-    seeds=("$source"/tests/data/certificates/*.json "$source"/tests/fuzz/certificate_regressions/*)
+    seeds=("$source"/tests/data/certificates/*.json "$source"/tests/fuzz/certificate_seeds/*.json
+           "$source"/tests/fuzz/certificate_regressions/*)
     dictionary=certificate.dict ;;
   *) echo "run_fuzz.sh: unknown target '$target' (model_reader or certificate_verifier)" >&2; exit 2 ;;
 esac
