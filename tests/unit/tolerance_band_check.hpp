@@ -49,6 +49,16 @@ void visit_exact_values(const KinematicsResult& exact, const std::string& output
   }
 }
 
+// Two analyses of one chain agree in their notes and in the certified sub-boxes they used, in all
+// and per pair (the part of a bit-for-bit comparison the samples do not show).
+inline void expect_same_notes_and_boxes(const ToleranceResult& a, const ToleranceResult& b) {
+  EXPECT_EQ(a.notes, b.notes);
+  EXPECT_EQ(a.certified_boxes, b.certified_boxes);
+  EXPECT_EQ(a.chain.size(), b.chain.size());
+  for (std::size_t s = 0; s < std::min(a.chain.size(), b.chain.size()); ++s)
+    EXPECT_EQ(a.chain[s].certified_boxes, b.chain[s].certified_boxes) << "pair " << s;
+}
+
 // `ScopedSwitch on(tolerance_detail::chain_case_split(), 0);` sets the switch until `on` ends.
 template <class T>
 class ScopedSwitch {
