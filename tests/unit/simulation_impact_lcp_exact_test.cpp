@@ -21,6 +21,7 @@
 #include "simulation/held_friction.hpp"
 #include "simulation/lcp.hpp"
 #include "held_oracle_support.hpp"
+#include "impact_tie_support.hpp"
 #include "test_seed.hpp"
 
 #include <algorithm>
@@ -34,37 +35,6 @@ namespace hipair {
 namespace {
 
 using held_oracle::Rng;
-
-struct Oracle {
-  Rational lambda[2], w[2];
-};
-
-// the two-contact LCP lambda >= 0, w = A lambda + b >= 0, lambda w = 0 in rationals (A positive
-// definite: exactly one of the four held sets is consistent)
-Oracle lcp_oracle(const Rational A[2][2], const Rational b[2]) {
-  for (int set = 3; set >= 0; --set) {
-    Oracle o;
-    const bool h0 = set & 1, h1 = set & 2;
-    o.lambda[0] = o.lambda[1] = 0;
-    if (h0 && h1) {
-      const Rational d = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-      o.lambda[0] = (-b[0] * A[1][1] + b[1] * A[0][1]) / d;
-      o.lambda[1] = (-b[1] * A[0][0] + b[0] * A[1][0]) / d;
-    } else if (h0) {
-      o.lambda[0] = -b[0] / A[0][0];
-    } else if (h1) {
-      o.lambda[1] = -b[1] / A[1][1];
-    }
-    bool ok = true;
-    for (int k = 0; k < 2; ++k) {
-      o.w[k] = A[k][0] * o.lambda[0] + A[k][1] * o.lambda[1] + b[k];
-      ok = ok && sgn(o.lambda[k]) >= 0 && sgn(o.w[k]) >= 0;
-    }
-    if (ok) return o;
-  }
-  ADD_FAILURE() << "no held set consistent";
-  return {};
-}
 
 TEST(ImpactLcpExact, FrictionlessImpulsesAtPlantedTiesAreTheExactLawOnTheExactRestitutionTerms) {
   Rng rng{test::test_seed(6803)};
@@ -98,35 +68,17 @@ TEST(ImpactLcpExact, FrictionlessImpulsesAtPlantedTiesAreTheExactLawOnTheExactRe
           for (int i = 0; i < n; ++i) A[a][c] += q(G(a, i)) * q(minv(i)) * q(G(c, i));
         }
     };
-    form_A();
-    if (sgn(A[0][1]) == 0 || sgn(A[0][0] * A[1][1] - A[0][1] * A[1][0]) <= 0 || sgn(dot(0, v)) == 0) continue;
-    if (sgn(dot(0, v)) > 0) G.row(0) = -G.row(0);   // contact 1 approaching
-    form_A();
-    if (sgn(A[0][1]) < 0) G.row(1) = -G.row(1);   // contact 2 approaching where it is planted (r > 0)
-    form_A();
-    const bool plant = rng.below(4) != 0;
-    int k = 0, side = 0;
-    if (plant) {
-      // g2 v = (A21 / A11) g1 v + delta: v_1 solved (g2_1 = +-1)
-      k = 1 + rng.below(60);
-      side = rng.below(3) - 1;
-      const Rational delta = side * Rational(std::ldexp(1.0, -(s + k)));
-      const Rational target = A[1][0] / A[0][0] * dot(0, v) + delta;
-      Rational rest = 0;
-      for (int i = 0; i < n; ++i)
-        if (i != 1) rest += q(G(1, i)) * q(v(i));
-      const Rational v1 = (target - rest) / q(G(1, 1));
-      const double d = to_double(v1);
-      if (!std::isfinite(d) || q(d) != v1) continue;   // beyond a double's precision
-      v(1) = d;
-      if (sgn(dot(0, v)) >= 0) continue;
-    }
+    const std::optional<impact_tie::Plant> tie = impact_tie::orient_and_plant(G, v, A, n, s, rng, form_A, dot);
+    if (!tie) continue;
+    const bool plant = tie->planted;
+    const int k = tie->k, side = tie->side;
     const double e = restitutions[rng.below(6)];
     const Eigen::VectorXd ev = Eigen::VectorXd::Constant(2, e);
     const std::vector<Rational> h_exact = simulation::exact_restitution_terms(G, v, ev);
     Rational b[2];
     for (int r = 0; r < 2; ++r) b[r] = dot(r, v) + h_exact[static_cast<std::size_t>(r)];
-    const Oracle o = lcp_oracle(A, b);
+    const impact_tie::Lcp2 o = impact_tie::lcp2(A, b);
+    ASSERT_TRUE(o.found);
     // the doubles' problem as the fixed-axis simulator forms it
     const Eigen::MatrixXd Ad = G * minv.asDiagonal() * G.transpose();
     const Eigen::VectorXd gv = G * v;

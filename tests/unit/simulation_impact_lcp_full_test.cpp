@@ -23,6 +23,7 @@
 #include "simulation/exact_lp.hpp"
 #include "simulation/lcp.hpp"
 #include "held_oracle_support.hpp"
+#include "impact_tie_support.hpp"
 #include "test_seed.hpp"
 
 #include <algorithm>
@@ -87,55 +88,21 @@ TEST(ImpactLcpFullMass, PinSlotImpulsesAtPlantedTiesAreTheExactLawOnTheFullMassM
             for (int j = 0; j < n; ++j) A[a][c] += q(G(a, i)) * minv[i][j] * q(G(c, j));
         }
     };
-    form_A();
-    if (sgn(A[0][1]) == 0 || sgn(A[0][0] * A[1][1] - A[0][1] * A[1][0]) <= 0 || sgn(dot(0, v)) == 0) continue;
-    if (sgn(dot(0, v)) > 0) G.row(0) = -G.row(0);   // contact 1 approaching
-    form_A();
-    if (sgn(A[0][1]) < 0) G.row(1) = -G.row(1);   // contact 2 approaching where it is planted
-    form_A();
-    const bool plant = rng.below(4) != 0;
-    int k = 0, side = 0;
-    if (plant) {
-      k = 1 + rng.below(60);
-      side = rng.below(3) - 1;
-      const Rational delta = side * Rational(std::ldexp(1.0, -(s + k)));
-      const Rational target = A[1][0] / A[0][0] * dot(0, v) + delta;
-      Rational rest = 0;
-      for (int i = 0; i < n; ++i)
-        if (i != 1) rest += q(G(1, i)) * q(v(i));
-      const Rational v1 = (target - rest) / q(G(1, 1));
-      const double d = to_double(v1);
-      if (!std::isfinite(d) || q(d) != v1) continue;
-      v(1) = d;
-      if (sgn(dot(0, v)) >= 0) continue;
-    }
+    const std::optional<impact_tie::Plant> tie = impact_tie::orient_and_plant(G, v, A, n, s, rng, form_A, dot);
+    if (!tie) continue;
+    const bool plant = tie->planted;
+    const int k = tie->k, side = tie->side;
     const double e = restitutions[rng.below(6)];
     const std::vector<Rational> h_exact =
         simulation::exact_restitution_terms(G, v, Eigen::VectorXd::Constant(m, e));
     std::vector<Rational> b_exact(static_cast<std::size_t>(m));
     for (int r = 0; r < m; ++r) b_exact[static_cast<std::size_t>(r)] = dot(r, v) + h_exact[static_cast<std::size_t>(r)];
     // the oracle: the two contacts' LCP (A positive definite: one held set consistent)
-    Rational lam[2], w[2];
-    bool found = false;
-    for (int set = 3; set >= 0 && !found; --set) {
-      const bool h0 = set & 1, h1 = set & 2;
-      lam[0] = lam[1] = 0;
-      if (h0 && h1) {
-        const Rational d = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-        lam[0] = (-b_exact[0] * A[1][1] + b_exact[1] * A[0][1]) / d;
-        lam[1] = (-b_exact[1] * A[0][0] + b_exact[0] * A[1][0]) / d;
-      } else if (h0) {
-        lam[0] = -b_exact[0] / A[0][0];
-      } else if (h1) {
-        lam[1] = -b_exact[1] / A[1][1];
-      }
-      found = true;
-      for (int c = 0; c < 2; ++c) {
-        w[c] = A[c][0] * lam[0] + A[c][1] * lam[1] + b_exact[static_cast<std::size_t>(c)];
-        found = found && sgn(lam[c]) >= 0 && sgn(w[c]) >= 0;
-      }
-    }
-    ASSERT_TRUE(found);
+    Rational bb[2] = {b_exact[0], b_exact[1]};
+    const impact_tie::Lcp2 o = impact_tie::lcp2(A, bb);
+    ASSERT_TRUE(o.found);
+    const Rational(&lam)[2] = o.lambda;
+    const Rational(&w)[2] = o.w;
     // the doubles' problem as the pin-slot simulator forms it: A = G M^-1 G^T with M^-1 in
     // doubles, b = (1 + e) G v rounded on an approaching row
     Eigen::MatrixXd Minv = Eigen::MatrixXd::Identity(N, N);
