@@ -12,13 +12,7 @@
 # one).
 # usage: run_blocked_start_tests.sh HIPAIR_BINARY HIPAIR_VERIFY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-61}; [ "$seed" = random ] && seed=$RANDOM
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/seeded_verify_test.sh" "$@"
 # the model with its stop-gap's nominal value G (no tolerance): a certificate holds for the file
 turning_stop() {   # G FILE
   python3 - "$source/examples/models/lever-stop.json" "$1" "$2" <<'PY'

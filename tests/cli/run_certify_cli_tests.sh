@@ -6,13 +6,7 @@
 # messages that never print two different values as equal.
 # usage: run_certify_cli_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-# python3 resolved once to the interpreter itself: a pyenv shim starts a shell script per call
-# (~0.7 s of CPU each), and these scripts call python3 in loops (session 43, build43).
-hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/seeded_verify_test.sh" "$@"
 hash_of() { sha256sum "$1" | cut -d' ' -f1; }
 
 # ------------------------------------------------------------------ squares 1 mm apart, collinear edges

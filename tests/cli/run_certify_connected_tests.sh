@@ -7,11 +7,7 @@
 # invalid with its reason; bad input exits 2 naming the option, nothing written.
 # usage: run_certify_connected_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/seeded_verify_test.sh" "$@"
 
 for hole in 14.15 14.14; do
   sed "s/\"hole-side\": { \"nominal\": 12 }/\"hole-side\": { \"nominal\": $hole }/" "$source/examples/models/peg-in-hole.json" >"$work/peg-$hole.json"

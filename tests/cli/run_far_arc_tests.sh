@@ -15,12 +15,7 @@
 # where the lever crosses the stop is certified and verified too.
 # usage: run_far_arc_tests.sh HIPAIR_BINARY HIPAIR_VERIFY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-61}; [ "$seed" = random ] && seed=$RANDOM
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/seeded_verify_test.sh" "$@"
 
 python3 - "$source/examples/models/lever-stop.json" "$work" "$seed" <<'EOF'
 import json, random, sys

@@ -10,15 +10,7 @@
 # model.file is refused at its pointer.
 # usage: run_literal_cli_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-# python3 resolved once to the interpreter itself: a pyenv shim starts a shell script per call
-# (~0.7 s of CPU each), and these scripts call python3 in loops (session 43, build43).
-hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-seed=${HIPAIR_TEST_SEED:-61}; [ "$seed" = random ] && seed=$RANDOM
-RANDOM=$seed
-fail() { echo "FAIL (seed $seed): $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/seeded_verify_test.sh" "$@"
 # shellcheck source=expect_refused.sh
 source "$(dirname "$0")/expect_refused.sh"
 model="$source/examples/models/lever-stop.json"
