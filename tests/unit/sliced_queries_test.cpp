@@ -9,6 +9,8 @@
 #include <hipair/sliced.hpp>
 
 #include "algebra/exact_real.hpp"
+#include "sliced/critical_angles.hpp"
+#include "sliced_model_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
 
@@ -24,69 +26,9 @@
 namespace hipair {
 namespace {
 
-using Random = std::mt19937_64;
+using namespace sliced_models;
+using sliced::real_of;
 namespace algebra = cspace::algebra;
-
-std::string text(const Rational& r) { return "\"" + to_exact_string(r) + "\""; }
-std::string point(const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; }
-std::string polygon(const std::vector<std::pair<Rational, Rational>>& p) {
-  std::string loop = R"({ "start": )" + point(p[0].first, p[0].second) + R"(, "edges": [ )";
-  for (std::size_t i = 1; i <= p.size(); ++i)
-    loop += std::string(i > 1 ? ", " : "") + R"({ "line_to": )" + point(p[i % p.size()].first, p[i % p.size()].second) + " }";
-  return loop + " ] }";
-}
-std::string rectangle(const Rational& x0, const Rational& y0, const Rational& x1, const Rational& y1) {
-  return polygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
-std::string circle(const Rational& x, const Rational& y, const Rational& r) {
-  return R"({ "circle": { "center": )" + point(x, y) + R"(, "radius": )" + text(r) + " } }";
-}
-// A stadium (a slot with round ends): centres (-l, 0), (l, 0), radius r.
-std::string stadium(const Rational& l, const Rational& r) {
-  return R"({ "start": )" + point(-l, -r) + R"(, "edges": [ { "line_to": )" + point(l, -r) + R"( }, { "arc_to": )" +
-         point(l, r) + R"(, "center": )" + point(l, 0) + R"(, "dir": "ccw" }, { "line_to": )" + point(-l, r) +
-         R"( }, { "arc_to": )" + point(-l, -r) + R"(, "center": )" + point(-l, 0) + R"(, "dir": "ccw" } ] })";
-}
-Model pair_model(const std::string& fixed_loops, const std::string& free_loops, const Point& pivot = {0, 0}) {
-  return read_model(R"({ "hipair": 1, "name": "three-dof", "parts": [
-    { "name": "fixed", "motion": "fixed", "loops": [ )" + fixed_loops + R"( ] },
-    { "name": "free", "motion": { "planar": { "pivot": )" + point(pivot.x, pivot.y) + R"( } }, "loops": [ )" +
-                    free_loops + R"( ] } ] })");
-}
-Model peg_in_hole(const Rational& s, const Rational& h) {
-  return pair_model(rectangle(-20, -20, 20, 20) + ", " + rectangle(-h / 2, -h / 2, h / 2, h / 2),
-                    rectangle(-s / 2, -s / 2, s / 2, s / 2));
-}
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
-std::vector<std::pair<Rational, Rational>> star(Random& random, int k, double cx, double cy, double radius) {
-  std::vector<std::pair<Rational, Rational>> points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * std::numbers::pi * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (0.45 + 0.55 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(8 * (cx + r * std::cos(angle)))), 8);
-    Rational y(static_cast<long>(std::lround(8 * (cy + r * std::sin(angle)))), 8);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
-  return points;
-}
-algebra::Real real_of(const AlgebraicNumber& a) {
-  algebra::Real t;
-  t.polynomial = a.polynomial;
-  t.lower = a.lower;
-  t.upper = a.upper;
-  t.exact = a.exact;
-  return t;
-}
 
 // The motion's configuration at a rational u (straight in x, y and the chart's w).
 SlicedConfiguration at(const SlicedMotion& m, const Rational& u) {
@@ -100,18 +42,6 @@ SlicedConfiguration at(const SlicedMotion& m, const Rational& u) {
   return SlicedConfiguration{Rational(m.from.x + u * (m.to.x - m.from.x)), Rational(m.from.y + u * (m.to.y - m.from.y)), angle};
 }
 
-PartRelation oracle(const Model& model, const SlicedConfiguration& q) {
-  const Part& a = model.parts[0];
-  const Part& b = model.parts[1];
-  Rational c = -1, s = 0;
-  if (!q.angle.half_turn) {
-    Rational d = 1 + q.angle.t * q.angle.t;
-    c = (1 - q.angle.t * q.angle.t) / d;
-    s = 2 * q.angle.t / d;
-  }
-  return part_overlap(a, Placement{}, b, placement_about(b.motion.pivot, c, s, Point{q.x, q.y})).relation;
-}
-
 // First contact vs dense sampling: every sample before u* is apart; the first sample that is not
 // apart lies at or after u*; at a rational u* the parts touch; `before` is apart.
 struct Tally {
@@ -120,7 +50,7 @@ struct Tally {
 void expect_first_crossing_agrees(const Model& model, const SlicedSpace& space, const SlicedMotion& m, Tally& tally,
                                   int samples = 160) {
   SlicedMotionCrossing crossing = space.first_crossing(m);
-  if (oracle(model, m.from) != PartRelation::apart) {
+  if (relation_at(model, m.from) != PartRelation::apart) {
     EXPECT_EQ(crossing.status, CrossingStatus::starts_in_contact);
     ++tally.started_in_contact;
     return;
@@ -133,10 +63,10 @@ void expect_first_crossing_agrees(const Model& model, const SlicedSpace& space, 
     EXPECT_GE(u.compare(crossing.u_lower), 0);
     EXPECT_LE(u.compare(crossing.u_upper), 0);
     EXPECT_FALSE(crossing.features.empty());
-    EXPECT_EQ(oracle(model, crossing.before), PartRelation::apart);
+    EXPECT_EQ(relation_at(model, crossing.before), PartRelation::apart);
     if (u.exact) {
       ++tally.rational_roots;
-      EXPECT_EQ(oracle(model, at(m, u.lower)), PartRelation::touching) << "at the exact first contact u = " << u.lower.get_str();
+      EXPECT_EQ(relation_at(model, at(m, u.lower)), PartRelation::touching) << "at the exact first contact u = " << u.lower.get_str();
     }
     ++tally.crossings;
   } else {
@@ -146,7 +76,7 @@ void expect_first_crossing_agrees(const Model& model, const SlicedSpace& space, 
     Rational s(k, samples);
     s.canonicalize();
     bool before = crossing.status != CrossingStatus::crossing || u.compare(s) > 0;
-    PartRelation relation = oracle(model, at(m, s));
+    PartRelation relation = relation_at(model, at(m, s));
     if (before)
       ASSERT_EQ(relation, PartRelation::apart) << "sample u = " << s.get_str() << " before the reported first contact";
     else if (relation != PartRelation::apart)
@@ -287,7 +217,7 @@ TEST(SlicedQueries, FeaturesNearAgreeWithTranslationContacts) {
       // near the fitting orientation (the peg of the first model fits only within about 5.7 degrees)
       SlicedConfiguration q = random_configuration(random, Rational(1, 2));
       q.angle = SlicedAngle{random_rational(random, Rational(-1, 20), Rational(1, 20)), false};
-      if (oracle(model, q) != PartRelation::apart) continue;
+      if (relation_at(model, q) != PartRelation::apart) continue;
       for (int direction = 0; direction < 8; ++direction) {
         // directions (3, 4)-rotated by quarter turns and mirrored: |v| = 5 exactly
         const int vx[8] = {3, 4, -3, -4, 3, 4, -3, -4}, vy[8] = {4, 3, 4, 3, -4, -3, -4, -3};
@@ -383,7 +313,7 @@ void expect_path_free(const Model& model, const SlicedSpace& space, const Sliced
     for (int k = 0; k <= 24; ++k) {
       Rational s(k, 24);
       s.canonicalize();
-      ASSERT_EQ(oracle(model, at(m, s)), PartRelation::apart) << "motion " << i << " at u = " << s.get_str();
+      ASSERT_EQ(relation_at(model, at(m, s)), PartRelation::apart) << "motion " << i << " at u = " << s.get_str();
     }
   }
 }
@@ -477,7 +407,7 @@ TEST(SlicedQueries, RoundPegInRoundAndSquareHoles) {
       SlicedConfiguration q{random_rational(random, -3, 3), random_rational(random, -3, 3),
                             SlicedAngle{random_rational(random, -4, 4, 13), random() % 7 == 0}};
       SlicedLocation l = space.locate(q);
-      PartRelation expected = oracle(model, q);
+      PartRelation expected = relation_at(model, q);
       ASSERT_EQ(l.kind == SlicedLocation::Kind::free, expected == PartRelation::apart);
       ASSERT_EQ(l.kind == SlicedLocation::Kind::blocked, expected == PartRelation::overlapping);
       if (l.kind == SlicedLocation::Kind::free) {

@@ -20,6 +20,7 @@
 #include "cli/cspace_sliced.hpp"
 #include "core/model_scale.hpp"
 #include "sliced/critical_angles.hpp"
+#include "sliced_model_support.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -36,18 +37,9 @@
 namespace hipair {
 namespace {
 
-using Random = std::mt19937_64;
+using namespace sliced_models;
 namespace algebra = cspace::algebra;
 
-std::string text(const Rational& r) { return "\"" + to_exact_string(r) + "\""; }
-std::string point(const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; }
-
-std::string polygon(const std::vector<std::pair<Rational, Rational>>& p) {
-  std::string loop = R"({ "start": )" + point(p[0].first, p[0].second) + R"(, "edges": [ )";
-  for (std::size_t i = 1; i <= p.size(); ++i)
-    loop += std::string(i > 1 ? ", " : "") + R"({ "line_to": )" + point(p[i % p.size()].first, p[i % p.size()].second) + " }";
-  return loop + " ] }";
-}
 
 // The L-shaped corridor of tests/unit/sliced_test.cpp (width W = 4: the arm's critical angle is
 // the root in (0, 1) of (W - 2) - 2 L t + (W + 2) t^2); a 6 x 2 peg turns the corner. Its pivot
@@ -83,31 +75,6 @@ algebra::Real real(const AlgebraicNumber& a) {
   return t;
 }
 
-SlicedLocation::Kind oracle(const Model& model, const SlicedConfiguration& q) {
-  const Part& a = model.parts[0];
-  const Part& b = model.parts[1];
-  Rational c = -1, s = 0;
-  if (!q.angle.half_turn) {
-    Rational d = 1 + q.angle.t * q.angle.t;
-    c = (1 - q.angle.t * q.angle.t) / d;
-    s = 2 * q.angle.t / d;
-  }
-  auto relation = part_overlap(a, Placement{}, b, placement_about(b.motion.pivot, c, s, Point{q.x, q.y})).relation;
-  return relation == PartRelation::apart ? SlicedLocation::Kind::free
-         : relation == PartRelation::touching ? SlicedLocation::Kind::contact
-                                              : SlicedLocation::Kind::blocked;
-}
-
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
-
 struct Structure {
   std::vector<std::string> interval_keys;   // per interval: its free cells' contact keys
   std::vector<std::size_t> connections;     // per crossing
@@ -132,8 +99,8 @@ Structure structure_of(const SlicedSpace& space) {
 void expect_witnesses_certified(const Model& model, const SlicedSpace& space) {
   for (const auto& crossing : space.crossings())
     for (const auto& link : crossing.connections) {
-      EXPECT_EQ(static_cast<int>(oracle(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
-      EXPECT_EQ(static_cast<int>(oracle(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
+      EXPECT_EQ(static_cast<int>(kind_at(model, link.left_witness)), static_cast<int>(SlicedLocation::Kind::free));
+      EXPECT_EQ(static_cast<int>(kind_at(model, link.right_witness)), static_cast<int>(SlicedLocation::Kind::free));
       SlicedLocation l = space.locate(link.left_witness), r = space.locate(link.right_witness);
       EXPECT_EQ(l.interval, crossing.left_interval);
       EXPECT_EQ(l.cell, link.left_cell);
@@ -205,7 +172,7 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
   int counts[3] = {0, 0, 0};
   for (const auto& q : configurations) {
     unit_locations.push_back(reference.locate(q));
-    ASSERT_EQ(static_cast<int>(unit_locations.back().kind), static_cast<int>(oracle(unit, q)));
+    ASSERT_EQ(static_cast<int>(unit_locations.back().kind), static_cast<int>(kind_at(unit, q)));
     ++counts[static_cast<int>(unit_locations.back().kind)];
   }
   EXPECT_GT(counts[0], 40);
@@ -254,7 +221,7 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
       ASSERT_EQ(static_cast<int>(l.kind), static_cast<int>(unit_locations[n].kind)) << "configuration " << n;
       EXPECT_EQ(l.interval, unit_locations[n].interval);
       EXPECT_EQ(l.cell, unit_locations[n].cell);
-      if (n % 10 == 0) EXPECT_EQ(static_cast<int>(oracle(model, q)), static_cast<int>(l.kind)) << "configuration " << n;
+      if (n % 10 == 0) EXPECT_EQ(static_cast<int>(kind_at(model, q)), static_cast<int>(l.kind)) << "configuration " << n;
     }
     SlicedConfiguration h = in_horizontal_arm, v = in_vertical_arm;
     h.x *= s;
@@ -469,7 +436,7 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
           SlicedConfiguration in_mm = configurations[n];
           in_mm.x *= s;
           in_mm.y *= s;
-          EXPECT_EQ(static_cast<int>(oracle(model, in_mm)), static_cast<int>(got_location.kind)) << "configuration " << n;
+          EXPECT_EQ(static_cast<int>(kind_at(model, in_mm)), static_cast<int>(got_location.kind)) << "configuration " << n;
         }
       }
       // the witnesses, in mm, on the parts at S
@@ -480,8 +447,8 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
       };
       for (const auto& crossing : space.crossings())
         for (const auto& link : crossing.connections) {
-          EXPECT_EQ(static_cast<int>(oracle(model, mm(link.left_witness))), static_cast<int>(SlicedLocation::Kind::free));
-          EXPECT_EQ(static_cast<int>(oracle(model, mm(link.right_witness))), static_cast<int>(SlicedLocation::Kind::free));
+          EXPECT_EQ(static_cast<int>(kind_at(model, mm(link.left_witness))), static_cast<int>(SlicedLocation::Kind::free));
+          EXPECT_EQ(static_cast<int>(kind_at(model, mm(link.right_witness))), static_cast<int>(SlicedLocation::Kind::free));
         }
       // the JSON, read back in mm
       const nlohmann::json doc = nlohmann::json::parse(cli::sliced_json(space, false));
@@ -492,7 +459,7 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
         for (const auto& cell : doc.at("slices").at(i).at("free_cells")) {
           SlicedConfiguration q{parse_rational(cell.at("sample").at("x").get<std::string>()),
                                 parse_rational(cell.at("sample").at("y").get<std::string>()), angle};
-          EXPECT_EQ(static_cast<int>(oracle(model, q)), static_cast<int>(SlicedLocation::Kind::free)) << "slice " << i;
+          EXPECT_EQ(static_cast<int>(kind_at(model, q)), static_cast<int>(SlicedLocation::Kind::free)) << "slice " << i;
           q.x = times_power_of_two(q.x, -l);
           q.y = times_power_of_two(q.y, -l);
           SlicedLocation at = space.locate(q);
@@ -508,7 +475,7 @@ TEST(SlicedScale, BeyondTheDoublesWhenAskedTheBuildIsInUnitsOfAPowerOfTwo) {
             SlicedConfiguration q{parse_rational(w.at("x").get<std::string>()), parse_rational(w.at("y").get<std::string>()),
                                   SlicedAngle{w.at("half_turn").get<bool>() ? Rational(0) : parse_rational(w.at("t").get<std::string>()),
                                               w.at("half_turn").get<bool>()}};
-            EXPECT_EQ(static_cast<int>(oracle(model, q)), static_cast<int>(SlicedLocation::Kind::free));
+            EXPECT_EQ(static_cast<int>(kind_at(model, q)), static_cast<int>(SlicedLocation::Kind::free));
             q.x = times_power_of_two(q.x, -l);
             q.y = times_power_of_two(q.y, -l);
             SlicedLocation at = space.locate(q);
@@ -632,7 +599,7 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
         EXPECT_EQ(labelss, labels1) << "motion " << n;
         // `before`, back at 1: on the motion, before u (x is linear in u), free at S in mm
         const SlicedConfiguration before_mm = in_mm(cs.before);
-        EXPECT_EQ(static_cast<int>(oracle(model, before_mm)), static_cast<int>(SlicedLocation::Kind::free)) << "motion " << n;
+        EXPECT_EQ(static_cast<int>(kind_at(model, before_mm)), static_cast<int>(SlicedLocation::Kind::free)) << "motion " << n;
         const SlicedConfiguration before_1{Rational(before_mm.x / s), Rational(before_mm.y / s), cs.before.angle};
         EXPECT_EQ(static_cast<int>(reference.locate(before_1).kind), static_cast<int>(SlicedLocation::Kind::free)) << "motion " << n;
         const Rational dx = motion.to.x - motion.from.x;
@@ -678,7 +645,7 @@ TEST(SlicedScale, QueriesInMillimetresAnswerAsAtScaleOne) {
       EXPECT_TRUE(in_mm(ps.waypoints.front()).x == at_s(q).x && in_mm(ps.waypoints.front()).y == at_s(q).y);
       EXPECT_TRUE(in_mm(ps.waypoints.back()).x == at_s(other).x && in_mm(ps.waypoints.back()).y == at_s(other).y);
       for (std::size_t i = 0; i < ps.waypoints.size(); ++i) {
-        EXPECT_EQ(static_cast<int>(oracle(model, in_mm(ps.waypoints[i]))), static_cast<int>(SlicedLocation::Kind::free)) << "waypoint " << i;
+        EXPECT_EQ(static_cast<int>(kind_at(model, in_mm(ps.waypoints[i]))), static_cast<int>(SlicedLocation::Kind::free)) << "waypoint " << i;
         ++waypoints;
         if (i + 1 < ps.waypoints.size())
           EXPECT_TRUE(space.motion_free(SlicedMotion{ps.waypoints[i], ps.waypoints[i + 1], ps.through_half_turn[i]})) << "motion " << i;

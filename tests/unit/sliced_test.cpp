@@ -10,6 +10,7 @@
 
 #include "algebra/exact_real.hpp"
 #include "sliced/critical_angles.hpp"
+#include "sliced_model_support.hpp"
 #include "test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -25,60 +26,9 @@
 namespace hipair {
 namespace {
 
-using Random = std::mt19937_64;
+using namespace sliced_models;
 namespace algebra = cspace::algebra;
 
-std::string text(const Rational& r) { return "\"" + to_exact_string(r) + "\""; }
-std::string point(const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; }
-
-std::string polygon(const std::vector<std::pair<Rational, Rational>>& p) {
-  std::string loop = R"({ "start": )" + point(p[0].first, p[0].second) + R"(, "edges": [ )";
-  for (std::size_t i = 1; i <= p.size(); ++i)
-    loop += std::string(i > 1 ? ", " : "") + R"({ "line_to": )" + point(p[i % p.size()].first, p[i % p.size()].second) + " }";
-  return loop + " ] }";
-}
-
-std::string rectangle(const Rational& x0, const Rational& y0, const Rational& x1, const Rational& y1) {
-  return polygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
-}
-
-Model pair_model(const std::string& fixed_loops, const std::string& free_loops, const Point& pivot = {0, 0}) {
-  return read_model(R"({ "hipair": 1, "name": "three-dof", "parts": [
-    { "name": "fixed", "motion": "fixed", "loops": [ )" + fixed_loops + R"( ] },
-    { "name": "free", "motion": { "planar": { "pivot": )" + point(pivot.x, pivot.y) + R"( } }, "loops": [ )" +
-                    free_loops + R"( ] } ] })");
-}
-
-// A square plate [-20, 20]^2 with a square hole of side h, and a square peg of side s.
-Model peg_in_hole(const Rational& s, const Rational& h) {
-  return pair_model(rectangle(-20, -20, 20, 20) + ", " + rectangle(-h / 2, -h / 2, h / 2, h / 2),
-                    rectangle(-s / 2, -s / 2, s / 2, s / 2));
-}
-
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
-
-// A star-shaped polygon with k vertices around (cx, cy) on a 1/8 grid (doubles only place input).
-std::vector<std::pair<Rational, Rational>> star(Random& random, int k, double cx, double cy, double radius) {
-  std::vector<std::pair<Rational, Rational>> points;
-  for (int i = 0; i < k; ++i) {
-    double angle = 2 * std::numbers::pi * (i + 0.15 + 0.7 * static_cast<double>(random() % 1000) / 1000.0) / k;
-    double r = radius * (0.45 + 0.55 * static_cast<double>(random() % 1000) / 1000.0);
-    Rational x(static_cast<long>(std::lround(8 * (cx + r * std::cos(angle)))), 8);
-    Rational y(static_cast<long>(std::lround(8 * (cy + r * std::sin(angle)))), 8);
-    x.canonicalize();
-    y.canonicalize();
-    points.emplace_back(x, y);
-  }
-  return points;
-}
 
 using sliced::real_of;
 
@@ -122,21 +72,6 @@ void expect_intervals_consistent(const SlicedSpace& space, Random& random) {
   EXPECT_GT(checked, 4);
 }
 
-SlicedLocation::Kind oracle(const Model& model, const SlicedConfiguration& q) {
-  const Part& a = model.parts[0];
-  const Part& b = model.parts[1];
-  Rational c = -1, s = 0;
-  if (!q.angle.half_turn) {
-    Rational d = 1 + q.angle.t * q.angle.t;
-    c = (1 - q.angle.t * q.angle.t) / d;
-    s = 2 * q.angle.t / d;
-  }
-  auto relation = part_overlap(a, Placement{}, b, placement_about(b.motion.pivot, c, s, Point{q.x, q.y})).relation;
-  return relation == PartRelation::apart ? SlicedLocation::Kind::free
-         : relation == PartRelation::touching ? SlicedLocation::Kind::contact
-                                              : SlicedLocation::Kind::blocked;
-}
-
 // 10,000 random rational configurations (40 rational angles, among them the half turn and
 // angles of the critical set when they are rational, x 250 offsets, a fifth of them exact
 // vertex–vertex contact translations): point location equals the overlap oracle.
@@ -176,7 +111,7 @@ void expect_oracle_agreement(const Model& model, const SlicedSpace& space, Rando
         q.x = random_rational(random, -range, range);
         q.y = random_rational(random, -range, range);
       }
-      SlicedLocation::Kind expected = oracle(model, q);
+      SlicedLocation::Kind expected = kind_at(model, q);
       SlicedLocation located = space.locate(q);
       ASSERT_EQ(static_cast<int>(located.kind), static_cast<int>(expected))
           << "at (" << q.x.get_str() << ", " << q.y.get_str() << ", t = " << (angle.half_turn ? "pi" : angle.t.get_str()) << ")";
@@ -383,7 +318,7 @@ TEST(Sliced, AFarPivotKeepsTheCriticalAnglesComponentsAndLocations) {
       if (k % 5 == 0) q = SlicedConfiguration{1, random_rational(random, -1, 1), SlicedAngle{0, false}};
       SlicedLocation a = base.locate(q), b = space.locate(moved(q));
       ASSERT_EQ(a.kind, b.kind) << "at (" << q.x.get_str() << ", " << q.y.get_str() << ", t = " << q.angle.t.get_str() << ")";
-      EXPECT_EQ(a.kind, oracle(centred, q));
+      EXPECT_EQ(a.kind, kind_at(centred, q));
       ++kinds[static_cast<int>(a.kind)];
       if (a.kind == SlicedLocation::Kind::free) free_ones.push_back(q);
     }
