@@ -16,6 +16,7 @@
 #include <string>
 
 #include "test_paths.hpp"
+#include "random_rationals.hpp"
 
 namespace hipair {
 namespace {
@@ -34,13 +35,7 @@ Model planar_model(const std::string& fixed_loops, const std::string& free_loops
     { "name": "peg", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ )" + free_loops + R"( ] } ] })");
 }
 Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 61) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
+  return test_numbers::random_rational(random, lo, hi, den);
 }
 PartRelation relation(const Model& model, const PlanarPose& pose) {
   Rational c = -1, s = 0;

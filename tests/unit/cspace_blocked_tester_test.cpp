@@ -17,6 +17,7 @@
 #include "test_paths.hpp"
 #include "chart_sub_axis.hpp"
 #include "test_seed.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -344,15 +345,7 @@ TEST(BlockedTester, BlockedBoxesOfTheExamplesOverlapEverywhere) {
 // ---------------------------------------------------------------- generated tangencies
 
 // A random rational in [lo, hi] with a denominator up to `den`.
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
+using test_numbers::random_rational;
 
 std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
 

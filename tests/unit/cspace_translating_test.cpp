@@ -8,6 +8,7 @@
 // The Minkowski-sum equality for polygons is in cspace_minkowski_test.cpp (CGAL there).
 #include "algebra/exact_real.hpp"
 #include "curves/contact_curves.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -25,15 +26,7 @@ namespace {
 
 using Random = std::mt19937_64;
 
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
+using test_numbers::random_rational;
 
 std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
 std::string point(const Rational& x, const Rational& y) { return "[" + text(x) + ", " + text(y) + "]"; }

@@ -8,6 +8,7 @@
 // interference. Generated over random rational sizes and positions with a fixed seed.
 #include "curves/contact_curves.hpp"
 #include "test_paths.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/kinematics.hpp>
@@ -28,15 +29,7 @@ namespace {
 using Random = std::mt19937_64;
 
 // A random rational in [lo, hi] with a denominator up to `den` (not a decimal in general).
-Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
+using test_numbers::random_rational;
 
 // The model text of a rational: "p/q" is an exact expression.
 std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }

@@ -9,6 +9,8 @@
 #include <hipair/rational.hpp>
 #include <hipair/sliced.hpp>
 
+#include "random_rationals.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -59,16 +61,7 @@ inline Model peg_in_hole(const Rational& s, const Rational& h) {
                     rectangle(-s / 2, -s / 2, s / 2, s / 2));
 }
 
-// lo + (p / q) (hi - lo), q in 1..den, p in 0..q (canonical)
-inline Rational random_rational(Random& random, const Rational& lo, const Rational& hi, long den = 97) {
-  long q = 1 + static_cast<long>(random() % static_cast<unsigned long>(den));
-  long p = static_cast<long>(random() % static_cast<unsigned long>(q + 1));
-  Rational u(p, q);
-  u.canonicalize();
-  Rational value = lo + u * (hi - lo);
-  value.canonicalize();
-  return value;
-}
+using test_numbers::random_rational;   // lo + (p / q) (hi - lo), q in 1..den (97), p in 0..q
 
 // A star-shaped polygon with k vertices around (cx, cy) on a 1/8 grid (doubles only place input).
 inline std::vector<std::pair<Rational, Rational>> star(Random& random, int k, double cx, double cy, double radius) {
