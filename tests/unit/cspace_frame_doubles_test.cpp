@@ -162,25 +162,16 @@ TEST(CSpaceFrameDoubles, RangesEqualContactFrameAtTheSameRationals) {
 }
 
 TEST(CSpaceFrameDoubles, SimulationRunsEqualTheRunsWithoutIt) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"escapement.json", 0.5, 1e-3}, {"escapement.json", 0.1, 1e-6}, {"ratchet.json", 0.2, 1e-6},
-                        {"cam-follower.json", 0.3, 1e-6}, {"scotch-yoke.json", 0.3, 1e-6}};
-  std::size_t steps = 0, events = 0;
   const std::size_t misses_before = simulation::frame_cache_misses(), fallbacks_before = contact_frame_ranges_fallbacks();
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide run = test::run_side_by_side<simulation::frame_doubles>(model, options, c.t_end, where, 100000);
-    ASSERT_EQ(run.mismatch, "");
-    ASSERT_EQ(run.error, "") << where;
-    steps += run.steps;
-    events += run.events;
-  }
+  const test::SideBySide total =
+      test::runs_side_by_side<simulation::frame_doubles>(HIPAIR_EXAMPLES,
+                                                         {{"escapement.json", 0.5, 1e-3},
+                                                          {"escapement.json", 0.1, 1e-6},
+                                                          {"ratchet.json", 0.2, 1e-6},
+                                                          {"cam-follower.json", 0.3, 1e-6},
+                                                          {"scotch-yoke.json", 0.3, 1e-6}},
+                                                         100000);
+  const std::size_t steps = total.steps, events = total.events;
   // frames made (the runs with the route and without it alike: half each), and how many of the
   // route's were answered by contact_frame
   const std::size_t made = simulation::frame_cache_misses() - misses_before;

@@ -167,25 +167,15 @@ TEST(CSpaceStatusOnly, AnswersHaveTheFullAnswersStatus) {
 }
 
 TEST(SimulationStatusOnlyNudges, RunsEqualTheRunsWithoutThem) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"escapement.json", 0.5, 1e-3}, {"escapement.json", 0.1, 1e-6}, {"ratchet.json", 0.2, 1e-6},
-                        {"cam-follower.json", 0.3, 1e-6}};
-  std::size_t steps = 0, events = 0;
   const std::size_t before = skipped_descriptions();
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide run = test::run_side_by_side<simulation::status_only_nudges>(model, options, c.t_end, where, 100000);
-    ASSERT_EQ(run.mismatch, "");
-    ASSERT_EQ(run.error, "") << where;
-    steps += run.steps;
-    events += run.events;
-  }
+  const test::SideBySide total =
+      test::runs_side_by_side<simulation::status_only_nudges>(HIPAIR_EXAMPLES,
+                                                              {{"escapement.json", 0.5, 1e-3},
+                                                               {"escapement.json", 0.1, 1e-6},
+                                                               {"ratchet.json", 0.2, 1e-6},
+                                                               {"cam-follower.json", 0.3, 1e-6}},
+                                                              100000);
+  const std::size_t steps = total.steps, events = total.events;
   const std::size_t skipped = skipped_descriptions() - before;
   std::printf("status-only nudges: %zu steps, %zu events equal; %zu descriptions skipped\n", steps, events, skipped);
   EXPECT_GT(events, 50u);

@@ -17,6 +17,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "test_paths.hpp"
@@ -25,26 +26,17 @@ namespace hipair {
 namespace {
 
 TEST(SimulationCrossingLimit, RunsEqualTheRunsWithCompleteQueries) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"escapement.json", 0.5, 1e-3},    {"escapement.json", 0.25, 1e-6},
-                        {"geneva-drive.json", 1.0, 1e-3}, {"geneva-drive.json", 0.5, 1e-6},
-                        {"bouncing-bar.json", 0.5, 1e-3}, {"cam-drive.json", 0.5, 1e-3}};
   const std::size_t limited_before = simulation::limited_queries(), requeried_before = simulation::requeried_limits();
-  std::size_t steps = 0, events = 0;
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide run = test::run_side_by_side<simulation::crossing_limits>(model, options, c.t_end, where);
-    ASSERT_EQ(run.mismatch, "");
-    ASSERT_EQ(run.error, "") << where;
-    steps += run.steps;
-    events += run.events;
-  }
+  const test::SideBySide total =
+      test::runs_side_by_side<simulation::crossing_limits>(HIPAIR_EXAMPLES,
+                                                           {{"escapement.json", 0.5, 1e-3},
+                                                            {"escapement.json", 0.25, 1e-6},
+                                                            {"geneva-drive.json", 1.0, 1e-3},
+                                                            {"geneva-drive.json", 0.5, 1e-6},
+                                                            {"bouncing-bar.json", 0.5, 1e-3},
+                                                            {"cam-drive.json", 0.5, 1e-3}},
+                                                           std::numeric_limits<std::size_t>::max());
+  const std::size_t steps = total.steps, events = total.events;
   const std::size_t limited_queries = simulation::limited_queries() - limited_before;
   const std::size_t requeried = simulation::requeried_limits() - requeried_before;
   std::printf("crossing limits: %zu steps, %zu events equal; %zu queries stopped at their limit, %zu of them resumed\n",

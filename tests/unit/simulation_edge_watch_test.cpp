@@ -115,28 +115,17 @@ TEST(SimulationEdgeWatch, StallExitReturnsTheScansAnswer) {
 }
 
 TEST(SimulationEdgeWatch, RunsEqualTheRunsWithoutTheExit) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"examples/models/escapement.json", 0.5, 1e-3},
-                        {"examples/models/escapement.json", 0.1, 1e-6},
-                        {"tests/data/simulation/escapement-frictionless.json", 0.25, 1e-3},
-                        {"examples/models/ratchet.json", 0.5, 1e-3},
-                        {"examples/models/geneva-drive.json", 2.0, 1e-3},
-                        {"examples/models/cam-follower.json", 0.5, 1e-4}};
   const std::size_t stalls_before = simulation::watch_stalls();
-  std::size_t steps = 0, events = 0;
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_SOURCE_DIR) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide run = test::run_side_by_side<simulation::watch_stall_exit>(model, options, c.t_end, where);
-    ASSERT_EQ(run.mismatch, "");
-    steps += run.steps;
-    events += run.events;
-  }
+  const test::SideBySide total = test::runs_side_by_side<simulation::watch_stall_exit>(
+      HIPAIR_SOURCE_DIR,
+      {{"examples/models/escapement.json", 0.5, 1e-3},
+       {"examples/models/escapement.json", 0.1, 1e-6},
+       {"tests/data/simulation/escapement-frictionless.json", 0.25, 1e-3},
+       {"examples/models/ratchet.json", 0.5, 1e-3},
+       {"examples/models/geneva-drive.json", 2.0, 1e-3},
+       {"examples/models/cam-follower.json", 0.5, 1e-4}},
+      std::numeric_limits<std::size_t>::max(), true);
+  const std::size_t steps = total.steps, events = total.events;
   const std::size_t stalls = simulation::watch_stalls() - stalls_before;
   std::printf("edge watch: %zu steps, %zu events equal; %zu scans left at their fixed point\n", steps, events, stalls);
   EXPECT_GE(stalls, 6u);

@@ -76,26 +76,14 @@ TEST(SimulationOrdinateFilter, DirectedConversionsBoundEveryRational) {
 }
 
 TEST(SimulationOrdinateFilter, EscapementRunsEqualTheRunsWithoutIt) {
-  struct Case {
-    const char* model;
-    double t_end, accuracy;
-  };
-  const Case cases[] = {{"examples/models/escapement.json", 0.5, 1e-3},
-                        {"examples/models/escapement.json", 0.25, 1e-6},
-                        {"tests/data/simulation/escapement-frictionless.json", 0.25, 1e-3}};
   const std::size_t decided_before = simulation::ordinate_filter_decided();
-  std::size_t steps = 0, events = 0;
-  for (const Case& c : cases) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_SOURCE_DIR) / c.model);
-    SimulationOptions options;
-    options.accuracy = c.accuracy;
-    const std::string where = std::string(c.model) + " at " + std::to_string(c.accuracy);
-    test::SideBySide run = test::run_side_by_side<simulation::ordinate_filter>(model, options, c.t_end, where);
-    ASSERT_EQ(run.mismatch, "");
-    ASSERT_EQ(run.error, "") << where;
-    steps += run.steps;
-    events += run.events;
-  }
+  const test::SideBySide total = test::runs_side_by_side<simulation::ordinate_filter>(
+      HIPAIR_SOURCE_DIR,
+      {{"examples/models/escapement.json", 0.5, 1e-3},
+       {"examples/models/escapement.json", 0.25, 1e-6},
+       {"tests/data/simulation/escapement-frictionless.json", 0.25, 1e-3}},
+      std::numeric_limits<std::size_t>::max());
+  const std::size_t steps = total.steps, events = total.events;
   const std::size_t decided = simulation::ordinate_filter_decided() - decided_before;
   std::printf("ordinate filter: %zu steps, %zu events equal; %zu vertex comparisons decided in doubles\n", steps, events,
               decided);
