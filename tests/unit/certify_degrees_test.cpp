@@ -10,6 +10,7 @@
 // (degrees_to_radians, then exact_position_from_angle), and a position beyond the part's
 // motion limits is an input error naming the part and its limits.
 #include "cli/angles.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
@@ -65,11 +66,7 @@ std::string model_text(const Case& c) {
          block + "] } ] }";
 }
 
-Rational power_of_ten(int k) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(k < 0 ? -k : k));
-  return k < 0 ? Rational(mpz_class(1), p) : Rational(p);
-}
+using test_numbers::power_of_ten;
 
 TEST(CertifyDegrees, QuarterTurnsAreExactAndTouchingIsTouching) {
   std::mt19937_64 random(32);

@@ -12,6 +12,7 @@
 // witness points about 1.9e11 mm away whose rays graze the lever's vertices (the verifier used
 // to screen ray crossings with a double bounding box and accepted some of them).
 #include "oracle/overlap.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/certificate.hpp>
 #include <hipair/model.hpp>
@@ -126,11 +127,7 @@ std::string model_json(const std::vector<PartSpec>& parts, const Rational& scale
   return text + "], \"pairs\": [{\"parts\": [\"a\", \"b\"]}]}";
 }
 
-Rational power_of_ten(int k) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, unsigned(std::abs(k)));
-  return k >= 0 ? Rational(p) : Rational(1) / Rational(p);
-}
+using test_numbers::power_of_ten;
 
 // ----------------------------------------------------------------------------- random values
 

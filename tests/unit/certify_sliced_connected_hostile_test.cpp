@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sliced_peg_in_hole.hpp"
+#include "random_rationals.hpp"
 
 namespace hipair {
 namespace {
@@ -45,11 +46,7 @@ void expect_rejected(const SlicedConnectedCertificate& c, const Model& model, co
   EXPECT_NE(v.reason.find(reason), std::string::npos) << v.reason.substr(0, 600);
 }
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent));
-  return Rational(p);
-}
+using test_numbers::power_of_ten;
 
 // The 10 mm peg in a 12 mm hole of a 40 mm plate, both moved by (d, d) (the peg's pivot with it).
 Model peg_in_hole_at(const Rational& d) {

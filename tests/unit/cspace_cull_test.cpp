@@ -17,6 +17,7 @@
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
@@ -41,11 +42,7 @@ namespace {
 
 std::string text(const Rational& q) { return "\"" + q.get_str() + "\""; }
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
-}
+using test_numbers::power_of_ten;
 
 Rational random_rational(std::mt19937_64& random, double lo, double hi, long q) {
   double u = lo + (hi - lo) * static_cast<double>(random() % 100001) / 100000.0;

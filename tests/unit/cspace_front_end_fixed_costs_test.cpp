@@ -11,6 +11,7 @@
 #include <hipair/model.hpp>
 
 #include "test_paths.hpp"
+#include "random_rationals.hpp"
 
 #include <gtest/gtest.h>
 
@@ -36,11 +37,7 @@ Rational random_rational(std::mt19937_64& random, long range, long dmax, const R
   return Rational(q * scale);
 }
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
-  return exponent < 0 ? Rational(mpz_class(1), p) : Rational(p);
-}
+using test_numbers::power_of_ten;
 
 // The oracle: the certified enclosure of the exact rational u . p (no axis case).
 Interval exact_dot(const Point& u, const Point& p) { return Interval::enclose(Rational(u.x * p.x + u.y * p.y)); }

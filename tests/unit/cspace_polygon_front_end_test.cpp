@@ -21,6 +21,7 @@
 #include <CGAL/minkowski_sum_2.h>
 
 #include "polygon_loop_json.hpp"
+#include "random_rationals.hpp"
 
 #include <gtest/gtest.h>
 
@@ -87,11 +88,7 @@ Points shifted_on_grid(std::mt19937_64& random, Points points) {
   return points;
 }
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
-}
+using test_numbers::power_of_ten;
 
 void expect_same_numbers(const AlgebraicNumber& a, const AlgebraicNumber& b) {
   EXPECT_EQ(a.exact, b.exact);

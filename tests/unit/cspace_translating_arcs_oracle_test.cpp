@@ -23,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include "random_rationals.hpp"
+
 namespace hipair {
 namespace {
 
@@ -194,11 +196,7 @@ Rational near_scaled(double v, double scale_as_double, const Rational& scale, lo
   return r * scale;
 }
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(exponent)));
-  return exponent >= 0 ? Rational(p) : Rational(mpz_class(1), p);
-}
+using test_numbers::power_of_ten;
 
 class CSpaceTranslatingArcs : public testing::TestWithParam<int> {};
 

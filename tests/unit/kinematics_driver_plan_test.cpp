@@ -20,6 +20,7 @@
 #include "kinematics/engine.hpp"
 #include "kinematics_axis_lines.hpp"
 #include "test_paths.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
@@ -38,11 +39,7 @@
 namespace hipair::kinematics_detail {
 namespace {
 
-Rational power_of_ten(long e) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::labs(e)));
-  return e >= 0 ? Rational(p) : Rational(mpz_class(1), p);
-}
+using test_numbers::power_of_ten;
 
 // A random rational of magnitude about 10^e: a 40-bit numerator over a 20-bit denominator.
 Rational random_rational(std::mt19937_64& random, long e) {

@@ -11,6 +11,7 @@
 // rationals.
 #include "curves/contact_curves.hpp"
 #include "oracle/overlap.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/model.hpp>
 
@@ -40,11 +41,7 @@ Rational random_rational(Random& random, long bound, long den = 997) {
   return canonical(Rational(p, q));
 }
 
-Rational power_of_ten(int k) {
-  mpz_class p = 1;
-  for (int i = 0; i < (k < 0 ? -k : k); ++i) p *= 10;
-  return k < 0 ? canonical(Rational(mpz_class(1), p)) : Rational(p);
-}
+using test_numbers::power_of_ten;
 
 std::string text(const Rational& r) { return "\"" + r.get_str() + "\""; }
 std::string point_text(const Point& p) { return "[" + text(p.x) + ", " + text(p.y) + "]"; }

@@ -1,6 +1,6 @@
 // Generated integers and rationals for the tests of the machine-number fast cases
 // (cspace_segment_stage_test.cpp, near_quotient_test.cpp) and random rationals in a range
-// (cspace_irrational_fit_test.cpp).
+// (cspace_irrational_fit_test.cpp), powers of ten.
 #pragma once
 
 #include <hipair/rational.hpp>
@@ -31,6 +31,13 @@ inline Rational random_rational(std::mt19937_64& random, const Rational& lo, con
   Rational value = lo + canonical(p, q) * (hi - lo);
   value.canonicalize();
   return value;
+}
+
+// 10^e exactly (e of either sign; canonical).
+inline Rational power_of_ten(long e) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
 }
 
 }  // namespace hipair::test_numbers

@@ -11,6 +11,7 @@
 #include "model/exact_trig.hpp"
 #include "model/expression.hpp"
 #include "test_seed.hpp"
+#include "random_rationals.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,11 +28,7 @@ namespace {
 using hipair::Rational;
 using hipair::model_detail::simplest_rational_between;
 
-Rational power_of_ten(int exponent) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(exponent < 0 ? -exponent : exponent));
-  return exponent < 0 ? Rational(mpz_class(1), p) : Rational(p);
-}
+using hipair::test_numbers::power_of_ten;
 
 // |unit - (cos a, sin a)| <= bound for a = phase + multiple pi, certified with 256-bit MPFI.
 bool within_of_angle(const hipair::Point& unit, const Rational& phase, const Rational& multiple, const Rational& bound) {

@@ -15,6 +15,7 @@
 #include "rounding_oracle.hpp"
 #include "sliced_peg_in_hole.hpp"
 #include "test_seed.hpp"
+#include "random_rationals.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -33,11 +34,7 @@ using test::rounding::oracle_round;
 using test::rounding::power_of_two;
 using test::rounding::same_double;
 
-Rational power_of_ten(long e) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
-  return e < 0 ? Rational(1, p) : Rational(p);
-}
+using test_numbers::power_of_ten;
 
 SlicedAngle angle_of(const Rational& t) {
   SlicedAngle a;

@@ -22,6 +22,7 @@
 #include "sliced/critical_angles.hpp"
 #include "sliced_model_support.hpp"
 #include "test_paths.hpp"
+#include "random_rationals.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -60,11 +61,7 @@ Model scaled(const Model& model, const Rational& s) {
   return out;
 }
 
-Rational power_of_ten(int e) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
-  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
-}
+using test_numbers::power_of_ten;
 
 algebra::Real real(const AlgebraicNumber& a) {
   algebra::Real t;

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 #include "test_seed.hpp"
+#include "random_rationals.hpp"
 #include <mpfi.h>
 
 #include <cmath>
@@ -587,11 +588,7 @@ Rational power_of_two(int k) {   // 2^-k
   return Rational(mpz_class(1), d);
 }
 
-Rational power_of_ten(int e) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
-  return e < 0 ? Rational(mpz_class(1), p) : Rational(p);
-}
+using test_numbers::power_of_ten;
 
 struct RuleCase {
   std::string name, key, refusal;   // the template, the argument the rule names, its message (part)

@@ -6,6 +6,7 @@
 // distributions() refuses a parameter whose range overflows the doubles with a ModelError naming
 // /parameters/NAME, accepting the same model with a range that fits.
 #include "tolerance/sampling.hpp"
+#include "random_rationals.hpp"
 
 #include <hipair/error.hpp>
 
@@ -22,11 +23,7 @@ namespace {
 using tolerance_detail::distributions;
 using tolerance_detail::round_to_double;
 
-Rational power_of_ten(int k) {
-  mpz_class p;
-  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(k));
-  return Rational(p);
-}
+using test_numbers::power_of_ten;
 
 // m / n x 10^k, m in [1, 10^6], n in [1, 1000], with a random sign
 Rational huge(std::mt19937_64& rng, int k) {
