@@ -1771,6 +1771,34 @@ PinSlotPath PinSlotSpace::path(const PinSlotConfiguration& a0, const PinSlotConf
   if (!planner.within(node.first, node.second, current, landing)) return out;
   current = out.waypoints.back();
   if (!go(b, false)) return out;
+  // consecutive in-slice motions along one line, the same way, joined: their union is the
+  // joined segment, certified free throughout by the two certificates (exact: collinear by the
+  // cross product, the same way by the dot product)
+  std::vector<PinSlotConfiguration> joined{out.waypoints.front()};
+  std::vector<bool> wraps;
+  for (std::size_t j = 1; j < out.waypoints.size(); ++j) {
+    const PinSlotConfiguration& q = out.waypoints[j];
+    const bool wrap = out.through_half_turn[j - 1];
+    if (joined.size() >= 2 && !wrap && !wraps.back()) {
+      const PinSlotConfiguration& p = joined[joined.size() - 2];
+      const PinSlotConfiguration& m = joined.back();
+      const bool rotation_or_offset = p.other.kind != PartCoordinate::Kind::half_turn &&
+                                      m.other.kind != PartCoordinate::Kind::half_turn &&
+                                      q.other.kind != PartCoordinate::Kind::half_turn;
+      if (rotation_or_offset && p.tau == m.tau && m.tau == q.tau) {
+        const Rational ux = m.other.value - p.other.value, uy = m.slide - p.slide;
+        const Rational vx = q.other.value - m.other.value, vy = q.slide - m.slide;
+        if (ux * vy - uy * vx == 0 && ux * vx + uy * vy > 0) {
+          joined.back() = q;
+          continue;
+        }
+      }
+    }
+    joined.push_back(q);
+    wraps.push_back(wrap);
+  }
+  out.waypoints = std::move(joined);
+  out.through_half_turn = std::move(wraps);
   out.status = PinSlotPath::Status::found;
   return out;
 }
