@@ -249,11 +249,9 @@ class PinSlotSpace {
 
   /// A path through free space from `a` to `b` when certainly_connected(a, b) (the same
   /// witnessed connections and groups): the vertical segment from each end to the slice its
-  /// group was found through, moves inside slice cells (since session 69 on the free cell's
-  /// vertical decomposition, complete up to a motion budget; the sampled roadmap of session
-  /// 68 as a fallback), and the connections' witness segments. Every motion is certified by
-  /// motion_free before it is taken (consecutive in-slice motions along one line are then
-  /// joined into one); "not found" is a status, never an uncertified path.
+  /// group was found through, moves inside slice cells (a lazy roadmap on the cells' exact
+  /// slices), and the connections' witness segments. Every motion is certified by
+  /// motion_free before it is taken; "not found" is a status, never an uncertified path.
   PinSlotPath path(const PinSlotConfiguration& a, const PinSlotConfiguration& b) const;
 
 

@@ -48,20 +48,24 @@ void path_on_panel(const PinSlotSpace& space, const PinSlotPath& path, std::size
     std::snprintf(text, sizeof text, "\u03c8 %.2f\u00b0", 2 * std::atan(to_double(w[j].tau)) * 180 / std::numbers::pi);
     return std::string(text);
   };
-  bool joined = false;   // the previous point drawn is joined to the next
   for (std::size_t j = 0; j < w.size(); ++j) {
-    if (w[j].tau != tau) {
-      joined = false;
-      continue;
-    }
+    if (w[j].tau != tau) continue;
     auto [x, y] = panel_point(space, w[j]);
     const bool in_from = j > 0 && w[j - 1].tau == tau;
     const bool in_to = j + 1 < w.size() && w[j + 1].tau == tau;
-    if (in_from || in_to) {
-      CSpacePathPoint p{x, y, false, !joined || !in_from};
-      svg.path.push_back(p);
-      joined = in_to;
+    // a motion is straight in the other part's half-angle tangent: drawn through 15 points
+    // between its ends (a chord in the angle would not be the certified motion)
+    if (in_from && space.other_kind() == Motion::Kind::rotation &&
+        w[j - 1].other.kind == PartCoordinate::Kind::half_angle_tangent &&
+        w[j].other.kind == PartCoordinate::Kind::half_angle_tangent) {
+      const double t0 = to_double(w[j - 1].other.value), t1 = to_double(w[j].other.value);
+      const double s0 = to_double(w[j - 1].slide), s1 = to_double(w[j].slide);
+      for (int i = 1; i < 16; ++i) {
+        const double u = i / 16.0;
+        svg.path.push_back(CSpacePathPoint{2 * std::atan(t0 + u * (t1 - t0)), s0 + u * (s1 - s0), false, false});
+      }
     }
+    if (in_from || in_to) svg.path.push_back(CSpacePathPoint{x, y, false, !in_from});
     std::string label;
     if (j == 0) label = "start";
     if (j + 1 == w.size()) label += label.empty() ? "end" : ", end";

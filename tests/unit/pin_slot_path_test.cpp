@@ -176,8 +176,9 @@ void check_stack(const char* other, const PinSlotBuildOptions& options, std::uin
 }
 
 TEST(PinSlotPath, FilmFollowerPathsAreFreeByTheOracle) {
-  // the in-slice planner is complete since session 69 (the cell's vertical decomposition): no
-  // "not found" (session 68's sampled roadmap gave up once here, 5 times in 60 pairs at 30)
+  // since session 69 the in-slice planner walks the cell's vertical decomposition (complete
+  // except through the other part's half turn, and up to its line and budget limits): no "not
+  // found" here (session 68's sampled roadmap gave up once here, 5 times in 60 pairs at 30)
   check_stack("film", stack(6), 68013, 10, 6, 0);
 }
 
