@@ -54,6 +54,7 @@ struct CSpaceCommandOptions {
   std::size_t slices = 0;
   bool plane_witnesses = false;
   std::vector<std::size_t> full_slices;   // 3-DOF pairs: slices drawn at full size
+  std::vector<std::string> at, to;         // pin-in-slot pairs: a path's ends (--at, --to)
   std::set<std::string> given;             // the long options given on the command line
 };
 
@@ -70,7 +71,12 @@ void refuse_options_that_do_not_apply(const CSpaceCommandOptions& options, bool 
   if (!pin_slot) {
     refuse("--slices", "applies to pin-in-slot pairs; " + pairs + "such pair");
     refuse("--plane-witnesses", "applies to pin-in-slot pairs; " + pairs + "such pair");
+    refuse("--at", "a path's start, for pin-in-slot pairs; " + pairs + "such pair");
+    refuse("--to", "a path's end, for pin-in-slot pairs; " + pairs + "such pair");
   }
+  if (!options.to.empty() && (fixed_axis || sliced))
+    refuse("--to", "a path is planned through one pin-in-slot pair's stack: give --pair OTHER:PIN");
+  if (options.to.empty()) refuse("--at", "the start of a path to --to: give --to");
   if (!fixed_axis)
     for (const char* option : {"--region", "--tiles", "--spurious", "--aggregated", "--algebraic-traits", "--quadratic-max-bits"})
       refuse(option, "applies to pairs of rotating or translating parts (fixed-axis pairs); " + pairs + "such pair");
@@ -370,6 +376,14 @@ int run(const CSpaceCommandOptions& options) {
   // (kinematic_decimal_exponent): a model written at 10^E times an ordinary one gets that one's
   // stack, its lengths written in mm times 10^E exactly (session 54; the slices' samples and
   // witnesses differed with the power-of-two unit, and a stack at 10^-300 took 4 x as long).
+  // a path's ends (--at/--to), read before the build: one pin-in-slot pair
+  std::optional<PinSlotPathEnds> path_ends;
+  if (!options.to.empty()) {
+    if (pin_requests.size() != 1)
+      throw ModelError("", "--to: a path is planned through one pin-in-slot pair's stack, and the model has " +
+                               std::to_string(pin_requests.size()) + ": give --pair OTHER:PIN");
+    path_ends = pin_slot_path_ends(model, pin_requests[0].first, pin_requests[0].second, options.at, options.to);
+  }
   std::vector<PinSlotSpace> pin_spaces;
   const long pin_exponent = pin_requests.empty() ? 0 : kinematic_decimal_exponent(model);
   const Model pin_model = pin_exponent != 0 ? decimal_scaled_model(model, pin_exponent) : Model();
@@ -393,6 +407,13 @@ int run(const CSpaceCommandOptions& options) {
       outputs.push_back({suffixed(options.json, space.other_part(), space.pin_slot_part(), several), "--json"});
   }
   io::refuse_overwriting_inputs(outputs, {options.model});
+  // the path (its ends checked: outside the limits, blocked or touching is refused, exit 2,
+  // before anything is written)
+  std::optional<PinSlotPath> path;
+  if (path_ends) {
+    for (const std::string& note : path_ends->notes) std::printf("%s\n", note.c_str());
+    path = pin_slot_path(pin_spaces.front(), *path_ends, pin_exponent);
+  }
   // every document is made before any is written: a failure leaves no partial output
   std::vector<std::pair<std::filesystem::path, std::string>> sliced_documents;
   for (const SlicedSpace& space : sliced_spaces) {
@@ -422,12 +443,13 @@ int run(const CSpaceCommandOptions& options) {
       if (long unit = space.length_unit_exponent(); unit != 0)
         svg.title += " (slides in units of 2^" + std::to_string(unit) + " mm)";
       if (pin_exponent != 0) svg.title += " (slides in units of 1e" + std::to_string(pin_exponent) + " mm)";
+      if (path) svg.path = &*path;
       sliced_documents.emplace_back(suffixed(options.svg, space.other_part(), space.pin_slot_part(), several),
                                     render::pin_slot_stack_svg(space, svg));
     }
     if (!options.json.empty())
       sliced_documents.emplace_back(suffixed(options.json, space.other_part(), space.pin_slot_part(), several),
-                                    pin_slot_json(space, options.stats, pin_exponent));
+                                    pin_slot_json(space, options.stats, pin_exponent, path ? &*path : nullptr));
   }
   for (const CSpace& space : spaces) {
     if (options.stats) print_statistics(space);
@@ -457,7 +479,12 @@ int run(const CSpaceCommandOptions& options) {
       io::write_file_atomically(suffixed(options.json, space, several),
                                 [&](std::ostream& out) { write_space_json(out, space, options.stats); });
   }
-  for (const auto& [path, document] : sliced_documents) io::write_file_atomically(path, document);
+  for (const auto& [file, document] : sliced_documents) io::write_file_atomically(file, document);
+  if (path) {
+    // a path not found (or not shown connected) is a result, written with its status: exit 1
+    std::printf("%s\n", pin_slot_path_summary(pin_spaces.front(), *path).c_str());
+    return path->status == PinSlotPath::Status::found ? 0 : 1;
+  }
   return 0;
 }
 
@@ -504,6 +531,12 @@ void register_cspace(CLI::App& app, Action& action) {
   command->add_flag("--plane-witnesses", options->plane_witnesses,
                     "Pin-in-slot pairs: also join cells of neighbouring slices through paths at constant slide "
                     "(one 2-D C-space per slide tried; slower, connects more)");
+  command->add_option("--at", options->at,
+                      "Pin-in-slot pairs: the start of a path to --to: PIN=SLIDE,ANGLE and OTHER=VALUE (an angle in rad "
+                      "or NNdeg, an offset or slide in mm; default the model's initial configuration)");
+  command->add_option("--to", options->to,
+                      "Pin-in-slot pairs: plan a path from --at to PIN=SLIDE,ANGLE (and OTHER=VALUE; what is left out "
+                      "stays as at the start), written into --json and drawn on --svg; exit 1 when none is found");
   add_parameter_options(command, options->overrides, options->allow_out_of_tolerance);
   add_rounding_option(command, options->rounding);
   command->callback([options, &action, command] {

@@ -1,13 +1,17 @@
 #include "cli/cspace_pinslot.hpp"
 
+#include "cli/angles.hpp"
 #include "core/model_scale.hpp"
 
 #include <hipair/error.hpp>
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <numbers>
+#include <set>
 
 namespace hipair::cli {
 namespace {
@@ -34,6 +38,93 @@ json coordinate_json(const PartCoordinate& c, Motion::Kind kind, LengthUnit unit
   return {{"t", to_exact_string(c.value)}};
 }
 
+
+// A length given in mm, in the space's units (mm / 10^decimal / 2^binary), exactly.
+Rational space_length(const Rational& mm, LengthUnit unit) {
+  Rational value = mm;
+  if (unit.decimal != 0) value *= power_of_ten_rational(-unit.decimal);
+  return times_power_of_two(value, -unit.binary);
+}
+
+// A rotating part's position as a half-angle tangent coordinate (the half turn: kind half_turn).
+PartCoordinate rotation_coordinate(const ExactPosition& p) {
+  PartCoordinate c;
+  if (!p.half_turn) {
+    c.value = p.value;
+  } else if (sgn(p.value) == 0) {
+    c.kind = PartCoordinate::Kind::half_turn;
+  } else {   // theta = pi + 2 atan(v): tan(theta/2) = -1/v
+    c.value = Rational(-1) / p.value;
+    c.value.canonicalize();
+  }
+  return c;
+}
+
+double degrees_of_tangent(const Rational& t) { return 2 * std::atan(to_double(t)) * 180 / std::numbers::pi; }
+
+std::string motion_kind(const PinSlotConfiguration& a, const PinSlotConfiguration& b, bool through_half_turn) {
+  if (through_half_turn) return "turn_through_half_turn";
+  if (a.tau == b.tau) return "in_slice";
+  bool same_other = a.other.kind == b.other.kind &&
+                    (a.other.kind == PartCoordinate::Kind::half_turn || a.other.value == b.other.value);
+  if (same_other && a.slide == b.slide) return "turn";
+  return "plane";
+}
+
+json configuration_json(const PinSlotSpace& space, const PinSlotConfiguration& q, LengthUnit unit) {
+  json j;
+  const Motion::Kind kind = space.other_kind();
+  j["other"] = coordinate_json(q.other, kind, unit);
+  if (kind == Motion::Kind::translation) {
+    j["other_mm"] = std::ldexp(to_double(q.other.value), static_cast<int>(unit.binary)) * std::pow(10.0, unit.decimal);
+  } else if (kind == Motion::Kind::rotation) {
+    j["other_degrees"] = q.other.kind == PartCoordinate::Kind::half_turn ? 180.0 : degrees_of_tangent(q.other.value);
+  }
+  j["slide"] = mm_text(q.slide, unit);
+  j["slide_mm"] = std::ldexp(to_double(q.slide), static_cast<int>(unit.binary)) * std::pow(10.0, unit.decimal);
+  j["tau"] = to_exact_string(q.tau);
+  j["psi_degrees"] = degrees_of_tangent(q.tau);
+  json slice = nullptr;
+  for (std::size_t k = 0; k < space.slices().size(); ++k)
+    if (space.slices()[k].tau == q.tau) slice = k;
+  j["slice"] = slice;
+  return j;
+}
+
+json path_json(const PinSlotSpace& space, const PinSlotPath& path, LengthUnit unit) {
+  json out;
+  out["status"] = std::string(to_string(path.status));
+  switch (path.status) {
+    case PinSlotPath::Status::found:
+      out["status_note"] = "every motion between consecutive waypoints is certified free throughout, ends included (exact)";
+      break;
+    case PinSlotPath::Status::not_shown_connected:
+      out["status_note"] =
+          "the stack does not show the ends connected (different groups, or an end joined to no slice's cell): not a "
+          "proof that they are apart";
+      break;
+    case PinSlotPath::Status::not_found:
+      out["status_note"] = "the ends are in one group, but the planner found no certified path";
+      break;
+    case PinSlotPath::Status::not_free: out["status_note"] = "an end is not a free configuration"; break;
+  }
+  json waypoints = json::array();
+  if (path.status == PinSlotPath::Status::found)
+    for (const auto& w : path.waypoints) waypoints.push_back(configuration_json(space, w, unit));
+  out["waypoints"] = waypoints;
+  json motions = json::array();
+  if (path.status == PinSlotPath::Status::found)
+    for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i)
+      motions.push_back({{"from", i}, {"to", i + 1},
+                         {"kind", motion_kind(path.waypoints[i], path.waypoints[i + 1], path.through_half_turn[i])}});
+  out["motions"] = motions;
+  out["motions_note"] =
+      "straight in (the other part's coordinate: half-angle tangent or offset, s, tau); in_slice: at constant tau; turn: "
+      "the pin-slot part turns at constant (other, s); plane: at constant s; turn_through_half_turn: across psi = 180 "
+      "deg, straight in -1/tau";
+  out["motions_checked"] = path.motions_checked;
+  return out;
+}
 }  // namespace
 
 std::optional<std::pair<std::string, std::string>> pin_slot_pair(const Model& model, const std::string& first,
@@ -78,7 +169,120 @@ PinSlotSpace build_pin_slot(const Model& model, const std::string& other, const 
   return space;
 }
 
-std::string pin_slot_json(const PinSlotSpace& space, bool with_times, long decimal_exponent) {
+
+PinSlotPathEnds pin_slot_path_ends(const Model& model, const std::string& other_name, const std::string& pin_name,
+                                   const std::vector<std::string>& at, const std::vector<std::string>& to) {
+  const Part& pin = model.parts[*model.find_part(pin_name)];
+  const Part& other = model.parts[*model.find_part(other_name)];
+  const bool moves = other.motion.kind != Motion::Kind::fixed;
+  PinSlotPathEnds ends;
+  auto tau_of = [&](const ExactPosition& p, const std::string& option) {
+    PartCoordinate c = rotation_coordinate(p);
+    if (c.kind == PartCoordinate::Kind::half_turn)
+      throw ModelError("", option + ": the pin-slot part's angle is the half turn (180 deg), where tan(psi/2) is "
+                               "infinite: give an angle off it");
+    return c.value;
+  };
+  // the start: the model's initial configuration
+  ends.from.slide = pin.initial.offset;
+  ends.from.tau = tau_of(exact_position_from_angle(pin.initial.angle), "--at (the model's initial configuration)");
+  if (other.motion.kind == Motion::Kind::rotation) {
+    ends.from.other = rotation_coordinate(exact_position_from_angle(other.initial.angle));
+  } else if (other.motion.kind == Motion::Kind::translation) {
+    ends.from.other = PartCoordinate{PartCoordinate::Kind::offset, other.initial.offset};
+  }
+  auto read = [&](const std::vector<std::string>& assignments, const std::string& option, PinSlotConfiguration& q,
+                  std::string& described) {
+    std::set<std::string> named_parts;   // each part once per option
+    for (const std::string& assignment : assignments)
+      if (!named_parts.insert(assignment.substr(0, assignment.find('='))).second)
+        throw ModelError("", option + " " + assignment + ": part '" + assignment.substr(0, assignment.find('=')) +
+                                 "' is given twice in " + option);
+    const std::string expected = pin.name + "=SLIDE,ANGLE" + (moves ? " or " + other.name + "=VALUE" : std::string());
+    for (const std::string& assignment : assignments) {
+      const std::string named = option + " " + assignment;
+      described += (described.empty() ? "" : " ") + named;
+      auto equals = assignment.find('=');
+      std::string name = equals == std::string::npos ? "" : assignment.substr(0, equals);
+      std::string rest = equals == std::string::npos ? "" : assignment.substr(equals + 1);
+      if (name == pin.name) {
+        auto comma = rest.find(',');
+        if (comma == std::string::npos)
+          throw ModelError("", option + " expects " + pin.name + "=SLIDE,ANGLE for the pin-slot part, got '" + assignment + "'");
+        q.slide = parse_angle_literal(rest.substr(0, comma), false, named).value;
+        ExactPosition rotation = exact_position_from_text(rest.substr(comma + 1), named);
+        if (std::string label = angle_label(rest.substr(comma + 1), rotation); !label.empty())
+          ends.notes.push_back(option + ": " + label);
+        q.tau = tau_of(rotation, named);
+      } else if (moves && name == other.name) {
+        if (other.motion.kind == Motion::Kind::rotation) {
+          ExactPosition rotation = exact_position_from_text(rest, named);
+          if (std::string label = angle_label(rest, rotation); !label.empty()) ends.notes.push_back(option + ": " + label);
+          q.other = rotation_coordinate(rotation);
+        } else {
+          q.other = PartCoordinate{PartCoordinate::Kind::offset, parse_angle_literal(rest, false, named).value};
+        }
+      } else {
+        throw ModelError("", option + " expects " + expected + " (the pair " + other.name + ":" + pin.name + "), got '" +
+                                 assignment + "'");
+      }
+    }
+  };
+  read(at, "--at", ends.from, ends.from_option);
+  if (ends.from_option.empty()) ends.from_option = "--at (the model's initial configuration)";
+  ends.to = ends.from;
+  read(to, "--to", ends.to, ends.to_option);
+  return ends;
+}
+
+PinSlotPath pin_slot_path(const PinSlotSpace& space, const PinSlotPathEnds& ends, long decimal_exponent) {
+  const LengthUnit unit{space.length_unit_exponent(), decimal_exponent};
+  auto in_space = [&](PinSlotConfiguration q) {
+    q.slide = space_length(q.slide, unit);
+    if (q.other.kind == PartCoordinate::Kind::offset) q.other.value = space_length(q.other.value, unit);
+    q.slide.canonicalize();
+    q.other.value.canonicalize();
+    q.tau.canonicalize();
+    return q;
+  };
+  const PinSlotConfiguration from = in_space(ends.from), to = in_space(ends.to);
+  for (const auto& [q, option] : {std::pair{&from, &ends.from_option}, std::pair{&to, &ends.to_option}}) {
+    if (q->other.kind == PartCoordinate::Kind::half_turn)
+      throw ModelError("", *option + ": the other part at its half turn (180 deg) is not a configuration a path takes "
+                                     "here (its half-angle tangent is infinite): give an angle off it");
+    switch (space.locate(*q).kind) {
+      case PinSlotLocation::Kind::free: break;
+      case PinSlotLocation::Kind::outside:
+        throw ModelError("", *option + ": the configuration is outside the limits (the pin-slot part's angle or slide "
+                                       "limits, or the other part's): a path runs through free configurations");
+      case PinSlotLocation::Kind::blocked:
+        throw ModelError("", *option + ": the configuration is blocked (the parts overlap there, exactly): a path runs "
+                                       "through free configurations");
+      case PinSlotLocation::Kind::contact:
+        throw ModelError("", *option + ": the parts touch at the configuration (exactly): a path runs through free "
+                                       "configurations");
+    }
+  }
+  return space.path(from, to);
+}
+
+std::string pin_slot_path_summary(const PinSlotSpace& space, const PinSlotPath& path) {
+  std::string out = "path " + space.other_part() + ":" + space.pin_slot_part() + ": " + std::string(to_string(path.status));
+  if (path.status == PinSlotPath::Status::found) {
+    std::size_t between = 0;
+    for (std::size_t i = 0; i + 1 < path.waypoints.size(); ++i)
+      between += path.waypoints[i].tau != path.waypoints[i + 1].tau ? 1 : 0;
+    out += ", " + std::to_string(path.waypoints.size()) + " waypoints, " + std::to_string(path.waypoints.size() - 1) +
+           " motions (" + std::to_string(between) + " between slices), each certified free";
+  } else if (path.status == PinSlotPath::Status::not_shown_connected) {
+    out += " (the stack does not show the ends connected; not a proof that they are apart)";
+  } else if (path.status == PinSlotPath::Status::not_found) {
+    out += " (the ends are in one group; the planner found no certified path)";
+  }
+  return out;
+}
+
+std::string pin_slot_json(const PinSlotSpace& space, bool with_times, long decimal_exponent, const PinSlotPath* path) {
   // every length below (samples' and witnesses' slides and offsets) in mm, exactly
   const LengthUnit unit{space.length_unit_exponent(), decimal_exponent};
   json out;
@@ -154,6 +358,7 @@ std::string pin_slot_json(const PinSlotSpace& space, bool with_times, long decim
                        {"witness_spaces", st.witness_spaces},
                        {"plane_witness_spaces", st.plane_spaces},
                        {"witness_candidates", st.witness_candidates}};
+  if (path) out["path"] = path_json(space, *path, unit);
   // wall times differ from run to run: only with --stats, so that the same input gives the same bytes
   if (with_times)
     out["statistics"]["seconds"] = {{"slices", st.seconds_slices}, {"connections", st.seconds_connections}, {"total", st.seconds_total}};

@@ -25,6 +25,7 @@
 #include <numbers>
 #include <optional>
 #include <set>
+#include <tuple>
 
 namespace hipair {
 
@@ -1191,6 +1192,8 @@ class CellPlanner {
     }
     auto space = impl_.slice(impl_.slices[k].tau);
     if (space->dimension() == 1) return false;   // an interval is convex: the straight motion is the path
+    if (decomposed(k, cell, from, to)) return true;
+    // (the sampled roadmap of session 68: what the decomposition did not join)
     const std::size_t slice_cell = impl_.slices[k].free_cells[cell].slice_cell;
     const Rational& tau = impl_.slices[k].tau;
     std::vector<PinSlotConfiguration> nodes{from, to};
@@ -1264,6 +1267,312 @@ class CellPlanner {
   }
 
  private:
+  // ---------------------------------------------------------------- vertical decomposition
+  // A complete planner inside one free cell of a 2-D slice (session 69). The cell's boundary
+  // edges are x-monotone and the abscissae of their end vertices (with the charts' box ends,
+  // all in the other part's coordinate: its half-angle tangent or offset) cut the x axis into
+  // open strips; inside a strip no boundary vertex lies, so the cell's part there is a union of
+  // trapezoids, each bounded below and above by one edge (or a box side), each met by every
+  // vertical line of the strip in one interval, in the same order on every line. Inside a
+  // trapezoid two points are joined by bisection towards the middle of the trapezoid's
+  // intervals (the polyline of middles converges to the trapezoid's mid-curve, which lies
+  // inside it: a fine enough one is free). Trapezoids of neighbouring strips are joined across
+  // the vertex abscissa between them by a motion at constant y from a line just left of it to
+  // a line just right of it (closer and closer), at ordinates inside both intervals. Every
+  // motion is certified by certify_motion before it is used; doubles only rank. Gives up (a
+  // status) on its motion budget, and for paths that would have to pass the other part's half
+  // turn.
+  struct Range {
+    Rational lo, hi;    // certainly inside the interval: (lo, hi), exact
+    double dlo = 0, dhi = 0;
+  };
+  struct Strip {
+    Rational lo, hi;
+    bool lo_infinite = false, hi_infinite = false;
+  };
+
+  // The cell's intervals on the vertical line at the other part's coordinate x (adjacent
+  // intervals of the cell merged), ascending in y.
+  const std::vector<Range>& line_ranges(const CSpace& space, std::size_t slice_cell, const Rational& x) {
+    auto it = lines_.find(x);
+    if (it != lines_.end()) return it->second;
+    std::vector<Range> out;
+    bool done = false;
+    for (std::size_t chart = 0; chart < space.charts().size() && !done; ++chart) {
+      const CSpaceChart& box = space.charts()[chart];
+      Rational at = x;
+      if (box.x_half_turn) {
+        if (sgn(x) == 0) continue;
+        at = Rational(-1) / x;
+        at.canonicalize();
+      }
+      if (!(box.x_lo < at && at < box.x_hi)) continue;
+      for (const Slice& line : space.slice(SliceAxis::x, at)) {
+        if (line.chart != chart) continue;
+        done = true;
+        bool open = false;
+        for (std::size_t k = 0; k < line.intervals.size(); ++k) {
+          const Slice::Interval& in = line.intervals[k];
+          const bool mine = in.cell.valid() && in.cell.index() == slice_cell && in.kind == CellKind::free;
+          if (!mine) {
+            open = false;
+            continue;
+          }
+          Rational lo = k == 0 ? line.lower : (line.points[k - 1].at.exact ? line.points[k - 1].at.lower : line.points[k - 1].at.upper);
+          Rational hi = k + 1 == line.intervals.size() ? line.upper : line.points[k].at.lower;
+          if (open && !out.empty()) {
+            out.back().hi = hi;
+          } else {
+            out.push_back(Range{lo, hi});
+          }
+          open = true;
+        }
+      }
+    }
+    for (Range& r : out) r.dlo = to_double(r.lo), r.dhi = to_double(r.hi);
+    return lines_.emplace(x, std::move(out)).first->second;
+  }
+
+  // A simple rational in the middle part [lo + f (hi - lo), lo + g (hi - lo)].
+  static Rational between(const Rational& lo, const Rational& hi, long f_num, long g_num, long den) {
+    Rational a = lo + (hi - lo) * Rational(f_num, den), b = lo + (hi - lo) * Rational(g_num, den);
+    a.canonicalize();
+    b.canonicalize();
+    return cspace::algebra::simplest_between(a, b);
+  }
+
+  // The strips of the cell's vertical decomposition (see above).
+  std::vector<Strip> strips(const CSpace& space, std::size_t slice_cell) {
+    std::vector<std::pair<Rational, Rational>> groups;   // isolating intervals of abscissae
+    auto add = [&](const Rational& lo, const Rational& hi) { groups.emplace_back(lo, hi); };
+    bool rotation = false;
+    for (const CSpaceChart& box : space.charts()) {
+      rotation = rotation || box.x_kind == AxisKind::rotation;
+      for (const Rational& end : {box.x_lo, box.x_hi}) {
+        if (!box.x_half_turn) {
+          add(end, end);
+        } else if (sgn(end) != 0) {
+          Rational t = Rational(-1) / end;
+          t.canonicalize();
+          add(t, t);
+        }
+      }
+    }
+    for (std::size_t e : space.cells()[slice_cell].boundary) {
+      const CSpaceEdge& edge = space.edges()[e];
+      for (std::size_t v : {edge.source, edge.target}) {
+        if (v == no_index) continue;
+        const CSpaceVertex& vertex = space.vertices()[v];
+        const AlgebraicNumber& x = vertex.x;
+        Rational lo = x.lower, hi = x.exact ? x.lower : x.upper;
+        if (space.charts()[vertex.chart].x_half_turn) {
+          if (!(sgn(lo) > 0 || sgn(hi) < 0)) continue;   // at the half turn itself
+          Rational a = Rational(-1) / lo, b = Rational(-1) / hi;
+          a.canonicalize();
+          b.canonicalize();
+          lo = a, hi = b;
+        }
+        add(lo, hi);
+      }
+    }
+    std::sort(groups.begin(), groups.end());
+    std::vector<std::pair<Rational, Rational>> merged;
+    for (auto& g : groups) {
+      if (!merged.empty() && !(merged.back().second < g.first)) {
+        if (merged.back().second < g.second) merged.back().second = g.second;
+      } else {
+        merged.push_back(g);
+      }
+    }
+    std::vector<Strip> out;
+    if (merged.empty()) return out;
+    if (rotation) out.push_back(Strip{merged.front().first, merged.front().first, true, false});
+    for (std::size_t i = 0; i + 1 < merged.size(); ++i) out.push_back(Strip{merged[i].second, merged[i + 1].first});
+    if (rotation) out.push_back(Strip{merged.back().second, merged.back().second, false, true});
+    return out;
+  }
+
+  // A line of strip `s` at 1/e of its width from its right end (`right`) or its left end
+  // (infinite strips: at 1/e from the finite end).
+  static Rational near_end(const Strip& s, bool right, long e) {
+    Rational x = right ? (s.lo_infinite ? Rational(s.hi - Rational(1, e)) : Rational(s.hi - (s.hi - s.lo) / e))
+                       : (s.hi_infinite ? Rational(s.lo + Rational(1, e)) : Rational(s.lo + (s.hi - s.lo) / e));
+    x.canonicalize();
+    return x;
+  }
+
+  // The strip holding x strictly inside, or no_index.
+  static std::size_t strip_of(const std::vector<Strip>& strips, const Rational& x) {
+    for (std::size_t i = 0; i < strips.size(); ++i)
+      if ((strips[i].lo_infinite || strips[i].lo < x) && (strips[i].hi_infinite || x < strips[i].hi)) return i;
+    return no_index;
+  }
+
+  // The range of `ranges` holding y (exactly inside when it can tell, else nearest by doubles).
+  static std::size_t range_of(const std::vector<Range>& ranges, const Rational& y) {
+    for (std::size_t k = 0; k < ranges.size(); ++k)
+      if (ranges[k].lo < y && y < ranges[k].hi) return k;
+    const double d = to_double(y);
+    std::size_t best = no_index;
+    double gap = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < ranges.size(); ++k) {
+      double g = d < ranges[k].dlo ? ranges[k].dlo - d : d > ranges[k].dhi ? d - ranges[k].dhi : 0;
+      if (g < gap) gap = g, best = k;
+    }
+    return best;
+  }
+
+  PinSlotConfiguration at(const PartCoordinate& like, const Rational& x, const Rational& y, const Rational& tau) const {
+    PartCoordinate other;
+    other.kind = like.kind == PartCoordinate::Kind::offset ? PartCoordinate::Kind::offset
+                                                           : PartCoordinate::Kind::half_angle_tangent;
+    other.value = x;
+    return PinSlotConfiguration{other, y, tau};
+  }
+
+  // Inside trapezoid k of the strip holding both abscissae: from `p` to `q`, appending to out_.
+  bool walk(const CSpace& space, std::size_t slice_cell, const PinSlotConfiguration& p, const PinSlotConfiguration& q,
+            std::size_t k, int depth) {
+    if (same_configuration(p, q)) return true;
+    if (budget_ == 0) return false;
+    --budget_;
+    if (motion(p, q)) {
+      append(q);
+      return true;
+    }
+    if (depth == 0 || p.other.value == q.other.value) return false;
+    Rational xm = between(p.other.value < q.other.value ? p.other.value : q.other.value,
+                          p.other.value < q.other.value ? q.other.value : p.other.value, 1, 3, 4);
+    const std::vector<Range>& ranges = line_ranges(space, slice_cell, xm);
+    if (k >= ranges.size()) return false;
+    PinSlotConfiguration m = at(p.other, xm, between(ranges[k].lo, ranges[k].hi, 3, 5, 8), p.tau);
+    return walk(space, slice_cell, p, m, k, depth - 1) && walk(space, slice_cell, m, q, k, depth - 1);
+  }
+
+  // From `from` to `to` in free cell `cell` of slice `k` by the vertical decomposition.
+  bool decomposed(std::size_t k, std::size_t cell, const PinSlotConfiguration& from, const PinSlotConfiguration& to) {
+    if (from.other.kind == PartCoordinate::Kind::half_turn || to.other.kind == PartCoordinate::Kind::half_turn)
+      return false;
+    auto space = impl_.slice(impl_.slices[k].tau);
+    const std::size_t slice_cell = impl_.slices[k].free_cells[cell].slice_cell;
+    const Rational& tau = impl_.slices[k].tau;
+    lines_.clear();
+    budget_ = 4000;
+    const std::vector<Strip> all = strips(*space, slice_cell);
+    const std::size_t before = out_.waypoints.size();
+    auto undo = [&] {
+      out_.waypoints.resize(before);
+      out_.through_half_turn.resize(before - 1);
+      return false;
+    };
+    // an end on a strip boundary is first moved at constant y into a strip beside it
+    auto into_strip = [&](const PinSlotConfiguration& q, bool is_start, PinSlotConfiguration& moved) -> std::size_t {
+      const Rational& x0 = q.other.value;
+      std::size_t s = strip_of(all, x0);
+      if (s != no_index) {
+        moved = q;
+        return s;
+      }
+      std::size_t left = no_index, right = no_index;   // the strips either side of x0's group
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        if (!all[i].hi_infinite && !(x0 < all[i].hi)) left = i;
+        if (right == no_index && !all[i].lo_infinite && !(all[i].lo < x0)) right = i;
+      }
+      for (long e = 8; e <= (1L << 20); e *= 8)
+        for (std::size_t i : {left, right}) {
+          if (i == no_index) continue;
+          const Strip& strip = all[i];
+          const Rational x = near_end(strip, i == left, e);
+          PinSlotConfiguration m = at(q.other, x, q.slide, tau);
+          if (is_start ? motion(q, m) : motion(m, q)) {
+            moved = m;
+            return i;
+          }
+        }
+      return no_index;
+    };
+    PinSlotConfiguration start, goal;
+    const std::size_t s0 = into_strip(from, true, start), s1 = into_strip(to, false, goal);
+    if (s0 == no_index || s1 == no_index) return false;
+    const std::size_t k0 = range_of(line_ranges(*space, slice_cell, start.other.value), start.slide);
+    const std::size_t k1 = range_of(line_ranges(*space, slice_cell, goal.other.value), goal.slide);
+    if (k0 == no_index || k1 == no_index) return false;
+    // crossings between trapezoids of strips i and i + 1: (k, m) -> the motion's ends
+    using Node = std::pair<std::size_t, std::size_t>;
+    std::map<std::size_t, std::vector<std::tuple<std::size_t, std::size_t, PinSlotConfiguration, PinSlotConfiguration>>> crossings;
+    auto crossings_at = [&](std::size_t i) -> const auto& {   // between strips i and i + 1
+      auto it = crossings.find(i);
+      if (it != crossings.end()) return it->second;
+      auto& list = crossings[i];
+      const Strip& left = all[i];
+      const Strip& right = all[i + 1];
+      std::set<std::pair<std::size_t, std::size_t>> joined;
+      for (long e = 8; e <= 4096; e *= 8) {
+        const Rational xl = near_end(left, true, e), xr = near_end(right, false, e);
+        const std::vector<Range> L = line_ranges(*space, slice_cell, xl);
+        const std::vector<Range>& R = line_ranges(*space, slice_cell, xr);
+        for (std::size_t a = 0; a < L.size(); ++a)
+          for (std::size_t b = 0; b < R.size(); ++b) {
+            if (joined.count({a, b})) continue;
+            Rational lo = L[a].lo < R[b].lo ? R[b].lo : L[a].lo, hi = L[a].hi < R[b].hi ? L[a].hi : R[b].hi;
+            if (!(lo < hi)) continue;
+            for (auto [f, g] : {std::pair{3L, 5L}, std::pair{1L, 3L}, std::pair{5L, 7L}}) {
+              if (budget_ == 0) return list;
+              --budget_;
+              Rational y = between(lo, hi, f, g, 8);
+              PinSlotConfiguration p = at(start.other, xl, y, tau), q = at(start.other, xr, y, tau);
+              if (motion(p, q)) {
+                joined.insert({a, b});
+                list.emplace_back(a, b, p, q);
+                break;
+              }
+            }
+          }
+      }
+      return list;
+    };
+    // breadth-first over trapezoids (strip, index)
+    std::map<Node, std::pair<Node, std::optional<std::pair<PinSlotConfiguration, PinSlotConfiguration>>>> seen;
+    std::deque<Node> queue{Node{s0, k0}};
+    seen[Node{s0, k0}] = {Node{s0, k0}, std::nullopt};
+    const Node target{s1, k1};
+    while (!queue.empty() && !seen.count(target)) {
+      Node n = queue.front();
+      queue.pop_front();
+      if (n.first + 1 < all.size())
+        for (const auto& [a, b, p, q] : crossings_at(n.first))
+          if (a == n.second && !seen.count(Node{n.first + 1, b})) {
+            seen[Node{n.first + 1, b}] = {n, std::make_pair(p, q)};
+            queue.push_back(Node{n.first + 1, b});
+          }
+      if (n.first > 0)
+        for (const auto& [a, b, p, q] : crossings_at(n.first - 1))
+          if (b == n.second && !seen.count(Node{n.first - 1, a})) {
+            seen[Node{n.first - 1, a}] = {n, std::make_pair(q, p)};
+            queue.push_back(Node{n.first - 1, a});
+          }
+      if (budget_ == 0) break;
+    }
+    if (!seen.count(target)) return undo();
+    std::vector<std::pair<Node, std::pair<PinSlotConfiguration, PinSlotConfiguration>>> chain;
+    for (Node n = target; seen[n].second; n = seen[n].first) chain.emplace_back(seen[n].first, *seen[n].second);
+    std::reverse(chain.begin(), chain.end());
+    budget_ = 4000;
+    if (!same_configuration(from, start)) append(start);
+    PinSlotConfiguration current = start;
+    for (const auto& [node, ends] : chain) {
+      if (!walk(*space, slice_cell, current, ends.first, node.second, 16)) return undo();
+      append(ends.second);
+      current = ends.second;
+    }
+    if (!walk(*space, slice_cell, current, goal, k1, 16)) return undo();
+    if (!same_configuration(goal, to)) append(to);
+    return true;
+  }
+
+  std::map<Rational, std::vector<Range>> lines_;
+  std::size_t budget_ = 0;
+
   // Points of the free intervals of `cell` on a line: each interval's sample and the simplest
   // rational of its middle half (its ends bounded by their exact isolating intervals): a sample
   // can lie near an end, a thin channel's middle is where motions along it stay inside.
@@ -1462,6 +1771,34 @@ PinSlotPath PinSlotSpace::path(const PinSlotConfiguration& a0, const PinSlotConf
   if (!planner.within(node.first, node.second, current, landing)) return out;
   current = out.waypoints.back();
   if (!go(b, false)) return out;
+  // consecutive in-slice motions along one line, the same way, joined: their union is the
+  // joined segment, certified free throughout by the two certificates (exact: collinear by the
+  // cross product, the same way by the dot product)
+  std::vector<PinSlotConfiguration> joined{out.waypoints.front()};
+  std::vector<bool> wraps;
+  for (std::size_t j = 1; j < out.waypoints.size(); ++j) {
+    const PinSlotConfiguration& q = out.waypoints[j];
+    const bool wrap = out.through_half_turn[j - 1];
+    if (joined.size() >= 2 && !wrap && !wraps.back()) {
+      const PinSlotConfiguration& p = joined[joined.size() - 2];
+      const PinSlotConfiguration& m = joined.back();
+      const bool rotation_or_offset = p.other.kind != PartCoordinate::Kind::half_turn &&
+                                      m.other.kind != PartCoordinate::Kind::half_turn &&
+                                      q.other.kind != PartCoordinate::Kind::half_turn;
+      if (rotation_or_offset && p.tau == m.tau && m.tau == q.tau) {
+        const Rational ux = m.other.value - p.other.value, uy = m.slide - p.slide;
+        const Rational vx = q.other.value - m.other.value, vy = q.slide - m.slide;
+        if (ux * vy - uy * vx == 0 && ux * vx + uy * vy > 0) {
+          joined.back() = q;
+          continue;
+        }
+      }
+    }
+    joined.push_back(q);
+    wraps.push_back(wrap);
+  }
+  out.waypoints = std::move(joined);
+  out.through_half_turn = std::move(wraps);
   out.status = PinSlotPath::Status::found;
   return out;
 }

@@ -532,6 +532,7 @@ class Painter {
       auto point = display_of(path[i].x, path[i].y);
       double wx = X(point.first), wy = dimension_ == 2 ? Y(point.second) : plot_height_ / 2;
       bool wraps = open && (std::fabs(point.first - previous.first) > 180 || std::fabs(point.second - previous.second) > 180);
+      if (open && path[i].break_before) flush();
       if (open && (wraps || path[i].contact != contact)) {
         if (!wraps) polyline.line_to(wx, wy);   // the segment ends where the contact changes
         flush();

@@ -28,6 +28,7 @@ struct CSpacePathPoint {
   double x = 0;
   double y = 0;
   bool contact = false;
+  bool break_before = false;   ///< start a new piece here (not joined to the previous point)
 };
 
 struct CSpaceSvgOptions {

@@ -14,6 +14,11 @@ struct PinSlotSvgOptions {
   double panel_pixel_width = 360;
   std::size_t columns = 0;   ///< 0: about the square root of the number of panels (at most 6)
   std::string title;
+  /// A path through the stack (PinSlotSpace::path), drawn on the panels: its motions inside a
+  /// slice as a polyline on that slice's panel, its waypoints where it leaves a slice ("-> k":
+  /// to slice k, or to an end between slices) and arrives ("<- k") marked, its ends marked
+  /// "start" / "end" (on the panel of the slice they lie on).
+  const PinSlotPath* path = nullptr;
 };
 
 /// The SVG document of the stack (2-D slices; a pair against a fixed part has 1-D slices, drawn
