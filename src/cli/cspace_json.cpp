@@ -19,6 +19,8 @@
 #include <cstring>
 #include <optional>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 namespace hipair::cli {
 
@@ -349,7 +351,88 @@ void write_decimal(JsonText& json, double value, long unit, mpfr_rnd_t round = M
     json.string(decimal_in_mm(value, unit, round));   // a string: 1e400 overflows JSON readers' doubles
 }
 
-void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit) {
+// The texts of an irrational exact number as write_exact_number writes them (the decimal, the
+// exact text, the interval's ends), remembered per write_space_json call: the vertices of a
+// 2-D space repeat their numbers (a chart's seam vertices in both charts, a mapped twin chart's
+// vertices in its twin's columns: Geneva 424 irrational coordinates, 118 distinct), and each
+// costs a refinement to the nearest double and a polynomial's text. An entry is keyed by
+// everything the texts are functions of — the number's polynomial and interval, the variable's
+// name and the axis unit — compared exactly (the hash only picks the bucket), so a remembered
+// text is the one the number would get written anew: the same bytes.
+class ExactNumberMemo {
+ public:
+  struct Text {
+    double decimal = 0;   // given.approximate()
+    std::string exact, lower, upper;
+  };
+  // the texts of `given` (not exact); null when not remembered yet
+  const Text* find(const AlgebraicNumber& given, const char* variable, long unit, std::size_t hash) const {
+    const auto it = entries_.find(hash);
+    if (it == entries_.end()) return nullptr;
+    for (const Entry& e : it->second)
+      if (e.unit == unit && e.variable == variable && e.number.lower == given.lower &&
+          e.number.upper == given.upper && e.number.polynomial == given.polynomial)
+        return &e.text;
+    return nullptr;
+  }
+  const Text& add(const AlgebraicNumber& given, const char* variable, long unit, std::size_t hash, Text text) {
+    auto& bucket = entries_[hash];
+    bucket.push_back(Entry{given, variable, unit, std::move(text)});
+    return bucket.back().text;
+  }
+  static std::size_t hash(const AlgebraicNumber& n, long unit) {
+    std::size_t h = std::hash<long>{}(unit) ^ (n.polynomial.size() * 0x9e3779b97f4a7c15ULL);
+    auto mix = [&h](const mpz_t z) {
+      const std::size_t limb = mpz_size(z) > 0 ? static_cast<std::size_t>(mpz_getlimbn(z, 0)) : 0;
+      h = (h ^ (limb + static_cast<std::size_t>(z->_mp_size) * 0x100000001b3ULL)) * 0x9e3779b97f4a7c15ULL;
+      h ^= h >> 29;
+    };
+    for (const mpz_class& c : n.polynomial) mix(c.get_mpz_t());
+    mix(mpq_numref(n.lower.get_mpq_t()));
+    mix(mpq_denref(n.lower.get_mpq_t()));
+    mix(mpq_numref(n.upper.get_mpq_t()));
+    mix(mpq_denref(n.upper.get_mpq_t()));
+    return h;
+  }
+
+ private:
+  struct Entry {
+    AlgebraicNumber number;
+    std::string variable;
+    long unit;
+    Text text;
+  };
+  std::unordered_map<std::size_t, std::vector<Entry>> entries_;
+};
+
+void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit,
+                        ExactNumberMemo& memo) {
+  if (!given.exact) {
+    // (an irrational number: its texts remembered, see ExactNumberMemo)
+    const std::size_t hash = ExactNumberMemo::hash(given, unit);
+    const ExactNumberMemo::Text* text = memo.find(given, variable, unit, hash);
+    if (!text) {
+      std::optional<AlgebraicNumber> scaled;
+      if (unit != 0) scaled = in_mm(given, unit);
+      const AlgebraicNumber& n = scaled ? *scaled : given;
+      ExactNumberMemo::Text made;
+      made.decimal = given.approximate();
+      made.exact = n.to_string(variable);
+      made.lower = to_exact_string(n.lower);
+      made.upper = to_exact_string(n.upper);
+      text = &memo.add(given, variable, unit, hash, std::move(made));
+    }
+    json.begin_object();
+    json.key("decimal");
+    write_decimal(json, text->decimal, unit);
+    json.key("exact").string(text->exact);
+    json.key("interval").begin_array();
+    json.string(text->lower);
+    json.string(text->upper);
+    json.end_array();
+    json.end_object();
+    return;
+  }
   // (a number of a rotation axis, unit 0, is written as it is: no copy)
   std::optional<AlgebraicNumber> scaled;
   if (unit != 0) scaled = in_mm(given, unit);
@@ -358,12 +441,6 @@ void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char
   json.key("decimal");
   write_decimal(json, given.approximate(), unit);
   json.key("exact").string(n.to_string(variable));
-  if (!n.exact) {
-    json.key("interval").begin_array();
-    json.string(to_exact_string(n.lower));
-    json.string(to_exact_string(n.upper));
-    json.end_array();
-  }
   json.end_object();
 }
 
@@ -427,7 +504,8 @@ void write_cell(JsonText& json, const CSpace& space, const CSpaceCell& cell) {
   json.end_object();
 }
 
-void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& vertex, std::string& scratch) {
+void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& vertex, std::string& scratch,
+                  ExactNumberMemo& memo) {
   json.begin_object();
   json.key("chart").number(vertex.chart);
   json.key("contact_change").boolean(vertex.contact_change);
@@ -438,11 +516,11 @@ void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& verte
   const CSpaceChart& chart = space.charts()[vertex.chart];
   const long x_unit = axis_unit(space, chart.x_kind), y_unit = axis_unit(space, chart.y_kind);
   json.key("x");
-  write_exact_number(json, vertex.x, "x", x_unit);
+  write_exact_number(json, vertex.x, "x", x_unit, memo);
   if (space.dimension() == 2) {
     json.key("y");
     if (vertex.y_exact) {
-      write_exact_number(json, vertex.y, "y", y_unit);
+      write_exact_number(json, vertex.y, "y", y_unit, memo);
     } else {
       json.begin_object();
       const Rational middle = (vertex.y_lower + vertex.y_upper) / 2;
@@ -562,7 +640,8 @@ void write_space_json(std::ostream& out, const CSpace& space, bool with_seconds)
   json.key("statistics");
   write_statistics(json, space.statistics(), with_seconds);
   json.key("vertices").begin_array();
-  for (const CSpaceVertex& vertex : space.vertices()) write_vertex(json, space, vertex, scratch);
+  ExactNumberMemo memo;
+  for (const CSpaceVertex& vertex : space.vertices()) write_vertex(json, space, vertex, scratch, memo);
   json.end_array();
   json.key("x_part").string(space.x_part());
   if (two) json.key("y_part").string(space.y_part());
