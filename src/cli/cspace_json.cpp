@@ -553,7 +553,45 @@ void write_cell_index(JsonText& json, std::size_t cell) {
     json.number(cell);
 }
 
-void write_edge(JsonText& json, const CSpace& space, std::size_t e, std::string& scratch) {
+// An edge's polynomial text, remembered per write_space_json call: the edges of one curve (and
+// of a mapped twin chart's curves) have the same support polynomial. Keyed by the coefficients
+// and the axis units (everything the text is a function of), compared exactly: the same bytes
+// as writing each anew.
+class PolynomialTextMemo {
+ public:
+  using Coefficients = std::vector<std::vector<mpz_class>>;
+  const std::string& text(const Coefficients& c, long x_unit, long y_unit) {
+    std::size_t h = std::hash<long>{}(x_unit) * 31 + std::hash<long>{}(y_unit) + c.size() * 0x9e3779b97f4a7c15ULL;
+    for (const auto& row : c) {
+      h = (h ^ row.size()) * 0x100000001b3ULL;
+      for (const mpz_class& v : row) {
+        const std::size_t limb = mpz_size(v.get_mpz_t()) > 0 ? static_cast<std::size_t>(mpz_getlimbn(v.get_mpz_t(), 0)) : 0;
+        h = (h ^ (limb + static_cast<std::size_t>(v.get_mpz_t()->_mp_size))) * 0x9e3779b97f4a7c15ULL;
+        h ^= h >> 29;
+      }
+    }
+    auto& bucket = entries_[h];
+    for (const Entry& e : bucket)
+      if (e.x_unit == x_unit && e.y_unit == y_unit && e.coefficients == c) return e.text;
+    std::string made;
+    if (x_unit == 0 && y_unit == 0)
+      append_polynomial_text(made, c);
+    else
+      append_polynomial_text(made, polynomial_in_mm(c, x_unit, y_unit));
+    bucket.push_back(Entry{c, x_unit, y_unit, std::move(made)});
+    return bucket.back().text;
+  }
+
+ private:
+  struct Entry {
+    Coefficients coefficients;
+    long x_unit, y_unit;
+    std::string text;
+  };
+  std::unordered_map<std::size_t, std::vector<Entry>> entries_;
+};
+
+void write_edge(JsonText& json, const CSpace& space, std::size_t e, PolynomialTextMemo& polynomials) {
   const CSpaceEdge& edge = space.edges()[e];
   const CSpaceChart& chart = space.charts()[edge.chart];
   const long x_unit = axis_unit(space, chart.x_kind), y_unit = axis_unit(space, chart.y_kind);
@@ -574,12 +612,7 @@ void write_edge(JsonText& json, const CSpace& space, std::size_t e, std::string&
   json.key("feature_pairs").numbers(edge.curves);
   json.key("left_cell");
   write_cell_index(json, edge.left_cell);
-  scratch.clear();
-  if (x_unit == 0 && y_unit == 0)
-    append_polynomial_text(scratch, space.edge_polynomial_coefficients(e));
-  else
-    append_polynomial_text(scratch, polynomial_in_mm(space.edge_polynomial_coefficients(e), x_unit, y_unit));
-  json.key("polynomial").string(scratch);
+  json.key("polynomial").string(polynomials.text(space.edge_polynomial_coefficients(e), x_unit, y_unit));
   json.key("real").boolean(edge.real);
   json.key("right_cell");
   write_cell_index(json, edge.right_cell);
@@ -618,7 +651,8 @@ void write_space_json(std::ostream& out, const CSpace& space, bool with_seconds)
   json.key("dimension").number(space.dimension());
   if (two) {
     json.key("edges").begin_array();
-    for (std::size_t e = 0; e < space.edges().size(); ++e) write_edge(json, space, e, scratch);
+    PolynomialTextMemo polynomials;
+    for (std::size_t e = 0; e < space.edges().size(); ++e) write_edge(json, space, e, polynomials);
     json.end_array();
   }
   json.key("feature_pairs").begin_array();
