@@ -351,59 +351,71 @@ void write_decimal(JsonText& json, double value, long unit, mpfr_rnd_t round = M
     json.string(decimal_in_mm(value, unit, round));   // a string: 1e400 overflows JSON readers' doubles
 }
 
-// The texts of an irrational exact number as write_exact_number writes them (the decimal, the
-// exact text, the interval's ends), remembered per write_space_json call: the vertices of a
-// 2-D space repeat their numbers (a chart's seam vertices in both charts, a mapped twin chart's
-// vertices in its twin's columns: Geneva 424 irrational coordinates, 118 distinct), and each
-// costs a refinement to the nearest double and a polynomial's text. An entry is keyed by
-// everything the texts are functions of — the number's polynomial and interval, the variable's
-// name and the axis unit — compared exactly (the hash only picks the bucket), so a remembered
-// text is the one the number would get written anew: the same bytes.
-class ExactNumberMemo {
- public:
-  struct Text {
-    double decimal = 0;   // given.approximate()
-    std::string exact, lower, upper;
-  };
-  // the texts of `given` (not exact); null when not remembered yet
-  const Text* find(const AlgebraicNumber& given, const char* variable, long unit, std::size_t hash) const {
-    const auto it = entries_.find(hash);
-    if (it == entries_.end()) return nullptr;
-    for (const Entry& e : it->second)
-      if (e.unit == unit && e.variable == variable && e.number.lower == given.lower &&
-          e.number.upper == given.upper && e.number.polynomial == given.polynomial)
-        return &e.text;
-    return nullptr;
-  }
-  const Text& add(const AlgebraicNumber& given, const char* variable, long unit, std::size_t hash, Text text) {
-    auto& bucket = entries_[hash];
-    bucket.push_back(Entry{given, variable, unit, std::move(text)});
-    return bucket.back().text;
-  }
-  static std::size_t hash(const AlgebraicNumber& n, long unit) {
-    std::size_t h = std::hash<long>{}(unit) ^ (n.polynomial.size() * 0x9e3779b97f4a7c15ULL);
-    auto mix = [&h](const mpz_t z) {
-      const std::size_t limb = mpz_size(z) > 0 ? static_cast<std::size_t>(mpz_getlimbn(z, 0)) : 0;
-      h = (h ^ (limb + static_cast<std::size_t>(z->_mp_size) * 0x100000001b3ULL)) * 0x9e3779b97f4a7c15ULL;
-      h ^= h >> 29;
-    };
-    for (const mpz_class& c : n.polynomial) mix(c.get_mpz_t());
-    mix(mpq_numref(n.lower.get_mpq_t()));
-    mix(mpq_denref(n.lower.get_mpq_t()));
-    mix(mpq_numref(n.upper.get_mpq_t()));
-    mix(mpq_denref(n.upper.get_mpq_t()));
-    return h;
-  }
+}  // namespace
 
- private:
-  struct Entry {
-    AlgebraicNumber number;
-    std::string variable;
-    long unit;
-    Text text;
-  };
-  std::unordered_map<std::size_t, std::vector<Entry>> entries_;
-};
+// ---------------------------------------------------------------- the texts remembered per space
+
+const ExactNumberMemo::Text* ExactNumberMemo::find(const AlgebraicNumber& given, const char* variable, long unit,
+                                                   std::size_t hash) const {
+  const auto it = entries_.find(hash);
+  if (it == entries_.end()) return nullptr;
+  for (const Entry& e : it->second)
+    if (e.unit == unit && e.variable == variable && e.number.exact == given.exact && e.number.lower == given.lower &&
+        e.number.upper == given.upper && e.number.polynomial == given.polynomial)
+      return &e.text;
+  return nullptr;
+}
+
+const ExactNumberMemo::Text& ExactNumberMemo::add(const AlgebraicNumber& given, const char* variable, long unit,
+                                                  std::size_t hash, Text text) {
+  auto& bucket = entries_[hash];
+  bucket.push_back(Entry{given, variable, unit, std::move(text)});
+  return bucket.back().text;
+}
+
+namespace {
+// (a coefficient's size and lowest limb: numbers that differ only above it share a bucket and
+// are told apart by the exact comparison)
+void mix_limb(std::size_t& h, const mpz_t z) {
+  const std::size_t limb = mpz_size(z) > 0 ? static_cast<std::size_t>(mpz_getlimbn(z, 0)) : 0;
+  h = (h ^ (limb + static_cast<std::size_t>(static_cast<long>(z->_mp_size)) * 0x100000001b3ULL)) * 0x9e3779b97f4a7c15ULL;
+  h ^= h >> 29;
+}
+}  // namespace
+
+std::size_t ExactNumberMemo::hash(const AlgebraicNumber& n, long unit) {
+  std::size_t h = std::hash<long>{}(unit) ^ (n.polynomial.size() * 0x9e3779b97f4a7c15ULL);
+  for (const mpz_class& c : n.polynomial) mix_limb(h, c.get_mpz_t());
+  mix_limb(h, mpq_numref(n.lower.get_mpq_t()));
+  mix_limb(h, mpq_denref(n.lower.get_mpq_t()));
+  mix_limb(h, mpq_numref(n.upper.get_mpq_t()));
+  mix_limb(h, mpq_denref(n.upper.get_mpq_t()));
+  return h;
+}
+
+std::size_t PolynomialTextMemo::hash(const Coefficients& c, long x_unit, long y_unit) {
+  std::size_t h = std::hash<long>{}(x_unit) * 31 + std::hash<long>{}(y_unit) + c.size() * 0x9e3779b97f4a7c15ULL;
+  for (const auto& row : c) {
+    h = (h ^ row.size()) * 0x100000001b3ULL;
+    for (const mpz_class& v : row) mix_limb(h, v.get_mpz_t());
+  }
+  return h;
+}
+
+const std::string& PolynomialTextMemo::text(const Coefficients& c, long x_unit, long y_unit) {
+  auto& bucket = entries_[hash(c, x_unit, y_unit)];
+  for (const Entry& e : bucket)
+    if (e.x_unit == x_unit && e.y_unit == y_unit && e.coefficients == c) return e.text;
+  std::string made;
+  if (x_unit == 0 && y_unit == 0)
+    append_polynomial_text(made, c);
+  else
+    append_polynomial_text(made, polynomial_in_mm(c, x_unit, y_unit));
+  bucket.push_back(Entry{c, x_unit, y_unit, std::move(made)});
+  return bucket.back().text;
+}
+
+namespace {
 
 void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit,
                         ExactNumberMemo& memo) {
@@ -552,44 +564,6 @@ void write_cell_index(JsonText& json, std::size_t cell) {
   else
     json.number(cell);
 }
-
-// An edge's polynomial text, remembered per write_space_json call: the edges of one curve (and
-// of a mapped twin chart's curves) have the same support polynomial. Keyed by the coefficients
-// and the axis units (everything the text is a function of), compared exactly: the same bytes
-// as writing each anew.
-class PolynomialTextMemo {
- public:
-  using Coefficients = std::vector<std::vector<mpz_class>>;
-  const std::string& text(const Coefficients& c, long x_unit, long y_unit) {
-    std::size_t h = std::hash<long>{}(x_unit) * 31 + std::hash<long>{}(y_unit) + c.size() * 0x9e3779b97f4a7c15ULL;
-    for (const auto& row : c) {
-      h = (h ^ row.size()) * 0x100000001b3ULL;
-      for (const mpz_class& v : row) {
-        const std::size_t limb = mpz_size(v.get_mpz_t()) > 0 ? static_cast<std::size_t>(mpz_getlimbn(v.get_mpz_t(), 0)) : 0;
-        h = (h ^ (limb + static_cast<std::size_t>(v.get_mpz_t()->_mp_size))) * 0x9e3779b97f4a7c15ULL;
-        h ^= h >> 29;
-      }
-    }
-    auto& bucket = entries_[h];
-    for (const Entry& e : bucket)
-      if (e.x_unit == x_unit && e.y_unit == y_unit && e.coefficients == c) return e.text;
-    std::string made;
-    if (x_unit == 0 && y_unit == 0)
-      append_polynomial_text(made, c);
-    else
-      append_polynomial_text(made, polynomial_in_mm(c, x_unit, y_unit));
-    bucket.push_back(Entry{c, x_unit, y_unit, std::move(made)});
-    return bucket.back().text;
-  }
-
- private:
-  struct Entry {
-    Coefficients coefficients;
-    long x_unit, y_unit;
-    std::string text;
-  };
-  std::unordered_map<std::size_t, std::vector<Entry>> entries_;
-};
 
 void write_edge(JsonText& json, const CSpace& space, std::size_t e, PolynomialTextMemo& polynomials) {
   const CSpaceEdge& edge = space.edges()[e];
