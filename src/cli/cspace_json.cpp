@@ -19,6 +19,8 @@
 #include <cstring>
 #include <optional>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 namespace hipair::cli {
 
@@ -349,7 +351,100 @@ void write_decimal(JsonText& json, double value, long unit, mpfr_rnd_t round = M
     json.string(decimal_in_mm(value, unit, round));   // a string: 1e400 overflows JSON readers' doubles
 }
 
-void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit) {
+}  // namespace
+
+// ---------------------------------------------------------------- the texts remembered per space
+
+const ExactNumberMemo::Text* ExactNumberMemo::find(const AlgebraicNumber& given, const char* variable, long unit,
+                                                   std::size_t hash) const {
+  const auto it = entries_.find(hash);
+  if (it == entries_.end()) return nullptr;
+  for (const Entry& e : it->second)
+    if (e.unit == unit && e.variable == variable && e.number.exact == given.exact && e.number.lower == given.lower &&
+        e.number.upper == given.upper && e.number.polynomial == given.polynomial)
+      return &e.text;
+  return nullptr;
+}
+
+const ExactNumberMemo::Text& ExactNumberMemo::add(const AlgebraicNumber& given, const char* variable, long unit,
+                                                  std::size_t hash, Text text) {
+  auto& bucket = entries_[hash];
+  bucket.push_back(Entry{given, variable, unit, std::move(text)});
+  return bucket.back().text;
+}
+
+namespace {
+// (a coefficient's size and lowest limb: numbers that differ only above it share a bucket and
+// are told apart by the exact comparison)
+void mix_limb(std::size_t& h, const mpz_t z) {
+  const std::size_t limb = mpz_size(z) > 0 ? static_cast<std::size_t>(mpz_getlimbn(z, 0)) : 0;
+  h = (h ^ (limb + static_cast<std::size_t>(static_cast<long>(z->_mp_size)) * 0x100000001b3ULL)) * 0x9e3779b97f4a7c15ULL;
+  h ^= h >> 29;
+}
+}  // namespace
+
+std::size_t ExactNumberMemo::hash(const AlgebraicNumber& n, long unit) {
+  std::size_t h = std::hash<long>{}(unit) ^ (n.polynomial.size() * 0x9e3779b97f4a7c15ULL);
+  for (const mpz_class& c : n.polynomial) mix_limb(h, c.get_mpz_t());
+  mix_limb(h, mpq_numref(n.lower.get_mpq_t()));
+  mix_limb(h, mpq_denref(n.lower.get_mpq_t()));
+  mix_limb(h, mpq_numref(n.upper.get_mpq_t()));
+  mix_limb(h, mpq_denref(n.upper.get_mpq_t()));
+  return h;
+}
+
+std::size_t PolynomialTextMemo::hash(const Coefficients& c, long x_unit, long y_unit) {
+  std::size_t h = std::hash<long>{}(x_unit) * 31 + std::hash<long>{}(y_unit) + c.size() * 0x9e3779b97f4a7c15ULL;
+  for (const auto& row : c) {
+    h = (h ^ row.size()) * 0x100000001b3ULL;
+    for (const mpz_class& v : row) mix_limb(h, v.get_mpz_t());
+  }
+  return h;
+}
+
+const std::string& PolynomialTextMemo::text(const Coefficients& c, long x_unit, long y_unit) {
+  auto& bucket = entries_[hash(c, x_unit, y_unit)];
+  for (const Entry& e : bucket)
+    if (e.x_unit == x_unit && e.y_unit == y_unit && e.coefficients == c) return e.text;
+  std::string made;
+  if (x_unit == 0 && y_unit == 0)
+    append_polynomial_text(made, c);
+  else
+    append_polynomial_text(made, polynomial_in_mm(c, x_unit, y_unit));
+  bucket.push_back(Entry{c, x_unit, y_unit, std::move(made)});
+  return bucket.back().text;
+}
+
+namespace {
+
+void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char* variable, long unit,
+                        ExactNumberMemo& memo) {
+  if (!given.exact) {
+    // (an irrational number: its texts remembered, see ExactNumberMemo)
+    const std::size_t hash = ExactNumberMemo::hash(given, unit);
+    const ExactNumberMemo::Text* text = memo.find(given, variable, unit, hash);
+    if (!text) {
+      std::optional<AlgebraicNumber> scaled;
+      if (unit != 0) scaled = in_mm(given, unit);
+      const AlgebraicNumber& n = scaled ? *scaled : given;
+      ExactNumberMemo::Text made;
+      made.decimal = given.approximate();
+      made.exact = n.to_string(variable);
+      made.lower = to_exact_string(n.lower);
+      made.upper = to_exact_string(n.upper);
+      text = &memo.add(given, variable, unit, hash, std::move(made));
+    }
+    json.begin_object();
+    json.key("decimal");
+    write_decimal(json, text->decimal, unit);
+    json.key("exact").string(text->exact);
+    json.key("interval").begin_array();
+    json.string(text->lower);
+    json.string(text->upper);
+    json.end_array();
+    json.end_object();
+    return;
+  }
   // (a number of a rotation axis, unit 0, is written as it is: no copy)
   std::optional<AlgebraicNumber> scaled;
   if (unit != 0) scaled = in_mm(given, unit);
@@ -358,12 +453,6 @@ void write_exact_number(JsonText& json, const AlgebraicNumber& given, const char
   json.key("decimal");
   write_decimal(json, given.approximate(), unit);
   json.key("exact").string(n.to_string(variable));
-  if (!n.exact) {
-    json.key("interval").begin_array();
-    json.string(to_exact_string(n.lower));
-    json.string(to_exact_string(n.upper));
-    json.end_array();
-  }
   json.end_object();
 }
 
@@ -427,7 +516,8 @@ void write_cell(JsonText& json, const CSpace& space, const CSpaceCell& cell) {
   json.end_object();
 }
 
-void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& vertex, std::string& scratch) {
+void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& vertex, std::string& scratch,
+                  ExactNumberMemo& memo) {
   json.begin_object();
   json.key("chart").number(vertex.chart);
   json.key("contact_change").boolean(vertex.contact_change);
@@ -438,11 +528,11 @@ void write_vertex(JsonText& json, const CSpace& space, const CSpaceVertex& verte
   const CSpaceChart& chart = space.charts()[vertex.chart];
   const long x_unit = axis_unit(space, chart.x_kind), y_unit = axis_unit(space, chart.y_kind);
   json.key("x");
-  write_exact_number(json, vertex.x, "x", x_unit);
+  write_exact_number(json, vertex.x, "x", x_unit, memo);
   if (space.dimension() == 2) {
     json.key("y");
     if (vertex.y_exact) {
-      write_exact_number(json, vertex.y, "y", y_unit);
+      write_exact_number(json, vertex.y, "y", y_unit, memo);
     } else {
       json.begin_object();
       const Rational middle = (vertex.y_lower + vertex.y_upper) / 2;
@@ -475,7 +565,7 @@ void write_cell_index(JsonText& json, std::size_t cell) {
     json.number(cell);
 }
 
-void write_edge(JsonText& json, const CSpace& space, std::size_t e, std::string& scratch) {
+void write_edge(JsonText& json, const CSpace& space, std::size_t e, PolynomialTextMemo& polynomials) {
   const CSpaceEdge& edge = space.edges()[e];
   const CSpaceChart& chart = space.charts()[edge.chart];
   const long x_unit = axis_unit(space, chart.x_kind), y_unit = axis_unit(space, chart.y_kind);
@@ -496,12 +586,7 @@ void write_edge(JsonText& json, const CSpace& space, std::size_t e, std::string&
   json.key("feature_pairs").numbers(edge.curves);
   json.key("left_cell");
   write_cell_index(json, edge.left_cell);
-  scratch.clear();
-  if (x_unit == 0 && y_unit == 0)
-    append_polynomial_text(scratch, space.edge_polynomial_coefficients(e));
-  else
-    append_polynomial_text(scratch, polynomial_in_mm(space.edge_polynomial_coefficients(e), x_unit, y_unit));
-  json.key("polynomial").string(scratch);
+  json.key("polynomial").string(polynomials.text(space.edge_polynomial_coefficients(e), x_unit, y_unit));
   json.key("real").boolean(edge.real);
   json.key("right_cell");
   write_cell_index(json, edge.right_cell);
@@ -540,7 +625,8 @@ void write_space_json(std::ostream& out, const CSpace& space, bool with_seconds)
   json.key("dimension").number(space.dimension());
   if (two) {
     json.key("edges").begin_array();
-    for (std::size_t e = 0; e < space.edges().size(); ++e) write_edge(json, space, e, scratch);
+    PolynomialTextMemo polynomials;
+    for (std::size_t e = 0; e < space.edges().size(); ++e) write_edge(json, space, e, polynomials);
     json.end_array();
   }
   json.key("feature_pairs").begin_array();
@@ -562,7 +648,8 @@ void write_space_json(std::ostream& out, const CSpace& space, bool with_seconds)
   json.key("statistics");
   write_statistics(json, space.statistics(), with_seconds);
   json.key("vertices").begin_array();
-  for (const CSpaceVertex& vertex : space.vertices()) write_vertex(json, space, vertex, scratch);
+  ExactNumberMemo memo;
+  for (const CSpaceVertex& vertex : space.vertices()) write_vertex(json, space, vertex, scratch, memo);
   json.end_array();
   json.key("x_part").string(space.x_part());
   if (two) json.key("y_part").string(space.y_part());

@@ -10,6 +10,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace hipair::cli {
@@ -74,6 +75,56 @@ const char* cell_kind_name(CellKind kind);
 
 /// A polynomial sum_ij c[i][j] x^i y^j as text, highest terms first: "3*x^2*y - y + 7"; "0".
 void append_polynomial_text(std::string& text, const std::vector<std::vector<mpz_class>>& coefficients);
+
+/// The texts of an irrational vertex coordinate as write_space_json writes them (the decimal, the
+/// exact text, the interval's ends), remembered for one document: a 2-D space's vertices repeat
+/// their numbers (a seam vertex in both charts, a mapped twin chart's vertices in its twin's
+/// columns: Geneva's 424 irrational coordinates are 118 numbers), and each costs a refinement
+/// to the nearest double and a polynomial's text. An entry is keyed by everything its texts are
+/// functions of (the number's polynomial, interval and exactness, the variable's name, the axis
+/// unit), compared exactly (the hash picks a bucket only), so a remembered text is the one the
+/// number would be given anew: the same bytes.
+class ExactNumberMemo {
+ public:
+  struct Text {
+    double decimal = 0;   // the number's approximate()
+    std::string exact, lower, upper;
+  };
+  /// The texts remembered for `given` (with `hash` = hash(given, unit)); null when none.
+  const Text* find(const AlgebraicNumber& given, const char* variable, long unit, std::size_t hash) const;
+  /// Remembers `text` as given's (not found before) and returns it.
+  const Text& add(const AlgebraicNumber& given, const char* variable, long unit, std::size_t hash, Text text);
+  /// A bucket: of the coefficients' and ends' sizes and lowest limbs, and the unit.
+  static std::size_t hash(const AlgebraicNumber& n, long unit);
+
+ private:
+  struct Entry {
+    AlgebraicNumber number;
+    std::string variable;
+    long unit;
+    Text text;
+  };
+  std::unordered_map<std::size_t, std::vector<Entry>> entries_;
+};
+
+/// An edge's polynomial text (append_polynomial_text, in mm when an axis has a unit exponent),
+/// remembered for one document: the edges of one curve, and a mapped twin chart's, have the
+/// same support. Keyed by the coefficients and the axes' units, compared exactly: the same bytes
+/// as making each text anew.
+class PolynomialTextMemo {
+ public:
+  using Coefficients = std::vector<std::vector<mpz_class>>;
+  const std::string& text(const Coefficients& c, long x_unit, long y_unit);
+  static std::size_t hash(const Coefficients& c, long x_unit, long y_unit);
+
+ private:
+  struct Entry {
+    Coefficients coefficients;
+    long x_unit, y_unit;
+    std::string text;
+  };
+  std::unordered_map<std::size_t, std::vector<Entry>> entries_;
+};
 
 /// Writes the JSON document of a 1-D or 2-D C-space (what `hipair cspace --json` writes: pair,
 /// charts, feature pairs, cells, vertices, edges with their exact polynomials, statistics;

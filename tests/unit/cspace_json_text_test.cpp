@@ -8,6 +8,7 @@
 #include "algebra/exact_real.hpp"
 #include "cspace/builder_impl.hpp"
 #include "test_paths.hpp"
+#include "test_seed.hpp"
 
 #include <hipair/cspace.hpp>
 #include <hipair/error.hpp>
@@ -546,6 +547,82 @@ TEST(CSpaceJsonText, PolynomialTextAsBefore) {
     cli::append_polynomial_text(text, c);
     ASSERT_EQ("prefix " + polynomial_text(c), text);
   }
+}
+
+// write_space_json remembers an irrational coordinate's texts and an edge polynomial's text per
+// document (ExactNumberMemo, PolynomialTextMemo; session 69). The documents' bytes are checked
+// against the tree above (EveryExampleModelsPairsAsTheTreeWroteThem: Geneva's 424 irrational
+// coordinates are 118 numbers); here the memos themselves, on families whose hashes all collide
+// (coefficients and ends equal in size and lowest limb, different above it): every number and
+// polynomial gets its own texts, those it would be given anew, whatever was remembered before.
+TEST(CSpaceJsonText, RememberedTextsAreEachNumbersAndPolynomialsOwn) {
+  std::mt19937_64 random(test::test_seed(69));
+  const mpz_class limb = mpz_class(1) << 64;
+  // x^2 - a, a = k 2^64 + 2 (two limbs, the lowest 2), in (0, 2^40): the positive root sqrt(a)
+  std::vector<AlgebraicNumber> numbers;
+  std::vector<int> ks;
+  for (int n = 0; n < 12; ++n) {
+    int k = 1 + static_cast<int>(random() % 4000);
+    AlgebraicNumber a;
+    a.polynomial = {-(k * limb + 2), 0, 1};
+    a.lower = 0;
+    a.upper = Rational(mpz_class(1) << 40);
+    numbers.push_back(a);
+    ks.push_back(k);
+  }
+  const std::size_t bucket = cli::ExactNumberMemo::hash(numbers.front(), 0);
+  for (const AlgebraicNumber& n : numbers) ASSERT_EQ(bucket, cli::ExactNumberMemo::hash(n, 0));   // all collide
+  cli::ExactNumberMemo memo;
+  std::size_t made = 0;
+  for (int round = 0; round < 3; ++round)
+    for (std::size_t m = 0; m < numbers.size(); ++m) {
+      const AlgebraicNumber& n = numbers[(m * 5 + static_cast<std::size_t>(round)) % numbers.size()];
+      for (const char* variable : {"x", "y"})
+        for (long unit : {0L, -3L}) {
+          const std::size_t h = cli::ExactNumberMemo::hash(n, unit);
+          const cli::ExactNumberMemo::Text* text = memo.find(n, variable, unit, h);
+          if (!text) {
+            cli::ExactNumberMemo::Text fresh;
+            fresh.decimal = n.approximate();
+            fresh.exact = n.to_string(variable) + (unit != 0 ? " (mm)" : "");   // (the unit's texts differ)
+            fresh.lower = to_exact_string(n.lower);
+            fresh.upper = to_exact_string(n.upper);
+            text = &memo.add(n, variable, unit, h, fresh);
+            ++made;
+          }
+          SCOPED_TRACE(n.to_string(variable));
+          EXPECT_EQ(n.approximate(), text->decimal);
+          EXPECT_EQ(n.to_string(variable) + (unit != 0 ? " (mm)" : ""), text->exact);
+          EXPECT_EQ(to_exact_string(n.lower), text->lower);
+          EXPECT_EQ(to_exact_string(n.upper), text->upper);
+        }
+    }
+  std::sort(ks.begin(), ks.end());
+  const auto distinct = static_cast<std::size_t>(std::unique(ks.begin(), ks.end()) - ks.begin());
+  EXPECT_EQ(distinct * 4, made);   // one per number, variable and unit: each made once
+  // an exact number with the same polynomial and ends is another key
+  AlgebraicNumber exact_one = numbers.front();
+  exact_one.exact = true;
+  EXPECT_EQ(nullptr, memo.find(exact_one, "x", 0, cli::ExactNumberMemo::hash(exact_one, 0)));
+
+  // polynomials: c[i][j] = k_ij 2^64 + 5 (all one bucket), against append_polynomial_text
+  cli::PolynomialTextMemo texts;
+  std::vector<std::vector<std::vector<mpz_class>>> polynomials;
+  for (int n = 0; n < 10; ++n) {
+    std::vector<std::vector<mpz_class>> c(3, std::vector<mpz_class>(3));
+    for (auto& row : c)
+      for (auto& v : row) v = static_cast<long>(1 + random() % 3) * limb + 5;
+    polynomials.push_back(c);
+  }
+  for (const auto& c : polynomials) ASSERT_EQ(cli::PolynomialTextMemo::hash(polynomials.front(), 0, 0),
+                                              cli::PolynomialTextMemo::hash(c, 0, 0));
+  for (int round = 0; round < 3; ++round)
+    for (const auto& c : polynomials) {
+      std::string fresh;
+      cli::append_polynomial_text(fresh, c);
+      if (round == 0) texts.text(c, 2, 0);   // the same coefficients in other units first
+      EXPECT_EQ(fresh, texts.text(c, 0, 0));
+    }
 }
 
 }  // namespace
