@@ -14,7 +14,7 @@
 // outside the window, on either side; the film advance's three pin-slot pairs sliced at dyadic
 // tau = k / 2^m around -7/2048 (m <= 20), at seeded random rationals, and around the film pair's
 // exact critical values, each slice also located at seeded rational points against the exact
-// overlap oracle (part_overlap).
+// overlap oracle (part_overlap); and every chart of the examples' fixed-axis pairs with a rotating part.
 #include "algebra/exact_real.hpp"
 #include "arrangement/arrangement.hpp"
 #include "arrangement/quadratic_traits.hpp"
@@ -174,6 +174,29 @@ TEST(CSpaceEdgeBoxes, QuadraticStageStretchesOutsideTheWindowsStayInTheirBoxes) 
             << " samples, " << tally.outside << " outside\n";
   EXPECT_GT(built, 200u);
   EXPECT_GT(tally.edges, 300u);
+}
+
+// The fixed-axis pairs of the examples with a rotating part (rot-trans and rot-rot charts, the
+// quadratic stage with culling windows): every edge of every chart lies in its box.
+TEST(CSpaceEdgeBoxes, ExampleFixedAxisPairsHoldTheirEdges) {
+  BoxTally tally;
+  std::size_t charts = 0;
+  for (const char* name : {"cam-follower", "cam-drive", "cam-follower-lever", "cam-shim-stack", "escapement", "geneva",
+                           "geneva-drive", "ratchet", "scotch-yoke", "lever-stop", "two-pin-wedge", "wheel-socket",
+                           "film-advance"}) {
+    const Model model = read_model_file(std::string(HIPAIR_EXAMPLES) + "/" + name + ".json");
+    for (const PairBuild& pair : CSpace::build_pairs(model)) {
+      ASSERT_EQ(pair.status, PairBuild::Status::built) << name << " " << pair.first_part << ":" << pair.second_part;
+      for (const cspace::ChartData& chart : cspace::impl_of(*pair.space).charts) {
+        ++charts;
+        expect_boxes_hold_edges(chart.arrangement, std::string(name) + " " + pair.first_part + ":" + pair.second_part,
+                                tally, true);
+      }
+    }
+  }
+  std::cout << "[ edge boxes ] " << charts << " charts, " << tally.edges << " curved edges, " << tally.samples
+            << " samples\n";
+  EXPECT_GT(tally.edges, 1000u);
 }
 
 // The film advance's pin-slot pairs sliced at dyadic tau around -7/2048, seeded random rationals
