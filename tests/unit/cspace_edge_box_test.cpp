@@ -4,7 +4,7 @@
 // in its certified box"). A piece's spurious end stretch outside the curve's windows (clip_arc's
 // `near`) once crossed a horizontal tangent that was never isolated there (cut_roots isolates
 // cuts only in the windows): the film advance's cam:follower slice at tan(psi/2) = -7/2048 (and
-// 24 other dyadic slices near it) could not be built.
+// 15 other dyadic slices near it) could not be built.
 //
 // The oracle: at rational abscissae strictly inside an edge's x-range (15 evenly spaced, and 2^-j
 // of the range from either end, j = 1..40: a stretch over a tangent near an end is met), the
@@ -29,6 +29,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <random>
 #include <string>
@@ -241,8 +242,10 @@ TEST(PinSlotSliceSweep, FilmAdvanceSlicesBuildHoldTheirEdgesAndLocateAsTheOverla
     }
     const Part& other = model.parts[*model.find_part(other_name)];
     const Part& pin = model.parts[*model.find_part("follower")];
-    for (Rational& tau : taus) {
-      tau.canonicalize();
+    for (Rational& tau : taus) tau.canonicalize();
+    std::sort(taus.begin(), taus.end());
+    taus.erase(std::unique(taus.begin(), taus.end()), taus.end());
+    for (const Rational& tau : taus) {
       if (tau < space.tau_lower() || space.tau_upper() < tau) continue;
       const std::string what = std::string(other_name) + ":follower at tau " + tau.get_str();
       std::shared_ptr<const CSpace> slice;
@@ -281,8 +284,8 @@ TEST(PinSlotSliceSweep, FilmAdvanceSlicesBuildHoldTheirEdgesAndLocateAsTheOverla
   }
   std::cout << "[ slices ] " << slices << " slices, " << tally.edges << " curved edges, " << tally.samples
             << " samples; " << located << " points located, " << free << " free\n";
-  EXPECT_GT(slices, 150u);
-  EXPECT_GT(tally.edges, 500u);
+  EXPECT_GT(slices, 100u);
+  EXPECT_GT(tally.edges, 300u);
   EXPECT_GT(free, 50u);
 }
 
