@@ -1426,11 +1426,15 @@ class QuadraticBuilder {
       for (const auto& [lo, hi] : *windows)
         for (const Rational* bound : {&lo, &hi})
           if (box_.x_lo < *bound && *bound < box_.x_hi) soft.push_back(Real::from_rational(*bound));
+    Polynomial tangents;   // resultant_y(f, f_x): its roots hold the horizontal tangents' abscissae
     {   // horizontal tangents of the whole polynomial (pieces stay y-monotone)
       std::vector<Polynomial> cols = columns(f), f_x;
       for (const auto& c : cols) f_x.push_back(algebra::derivative(c));
       while (!f_x.empty() && f_x.back().empty()) f_x.pop_back();
-      if (!f_x.empty()) cut_roots(remembered_resultant_y(cols, f_x), hard);
+      if (!f_x.empty()) {
+        tangents = remembered_resultant_y(cols, f_x);
+        cut_roots(tangents, hard);
+      }
     }
     cut_windows_ = nullptr;
     std::vector<Cut> cuts;
@@ -1481,7 +1485,7 @@ class QuadraticBuilder {
         YExpr expr = s.degree == 1 ? YExpr{id, 2, 0} : YExpr{id, 0, k == 0 ? -a_sign[i] : a_sign[i]};
         std::optional<Point> first = end_point(s, id, expr, bounds[i], bound_signs[i]);
         std::optional<Point> last = end_point(s, id, expr, bounds[i + 1], bound_signs[i + 1]);
-        clip_arc(s, id, expr, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, pieces);
+        clip_arc(s, id, expr, first, last, bounds[i], bounds[i + 1], inside, f, alternatives, windows, tangents, pieces);
       }
     }
     // isolated points: a double root with no branch on either side
@@ -1576,7 +1580,8 @@ class QuadraticBuilder {
   void clip_arc(const Support& s, int id, const YExpr& expr, const std::optional<Point>& first_end,
                 const std::optional<Point>& last_end, const Real& x_first, const Real& x_last,
                 const std::vector<const Cut*>& inside, const IntegerPolynomial2& f,
-                const ClauseAlternatives& alternatives, const Windows* windows, std::vector<XCurve>& pieces) {
+                const ClauseAlternatives& alternatives, const Windows* windows, const Polynomial& tangents,
+                std::vector<XCurve>& pieces) {
     // the cut abscissae along the arc, its ends included (an infinite end keeps its x)
     // (a cut's point is made only where a piece ends at it: most cuts bound culled or
     // invalid stretches, and each point costs a canonical x)
@@ -1637,9 +1642,21 @@ class QuadraticBuilder {
       // a point of the arc strictly between xs[from] and xs[to], near xs[to] (a short
       // spurious stretch: 8 halvings toward the bound of xs[to]'s interval on this side)
       Rational m = algebra::rational_between(*xs[std::min(from, to)], *xs[std::max(from, to)]);
+      // The stretch joins the piece, whose box is the box of its ends: it must hold no
+      // horizontal tangent. Inside the windows every tangent is a hard cut; outside them none
+      // was isolated (cut_roots), so there the closed x-range from the point to xs[to]'s
+      // interval is checked exactly, and where a tangent may lie in it the piece ends at the
+      // cut itself (session 69: the film advance's cam:follower slice at tan(psi/2) = -7/2048
+      // had a piece over a tangent outside its window, and its box missed the arc's top).
+      const bool outside_windows = windows && !in_windows(m, windows);
       const Rational& bound = from < to ? xs[to]->lower : xs[to]->upper;
       if (from < to ? m < bound || xs[to]->exact : bound < m || xs[to]->exact)
         for (int k = 0; k < 8; ++k) m = (m + bound) / 2;
+      if (outside_windows && algebra::degree(tangents) >= 1) {
+        const Rational& lo = from < to ? std::min(m, xs[to]->lower) : xs[to]->lower;
+        const Rational& hi = from < to ? xs[to]->upper : std::max(m, xs[to]->upper);
+        if (!roots_in(tangents, lo, hi).empty()) return point_at(to);
+      }
       return traits_.make_point(Real::from_rational(m), expr);
     };
     for (std::size_t i = 0; i < count;) {
