@@ -3,6 +3,8 @@
 
 #include "simulation/exact_lp.hpp"
 
+#include <sstream>
+
 namespace hipair::simulation {
 
 std::optional<std::vector<std::size_t>> locking_rows(const std::vector<std::vector<Rational>>& a,
@@ -32,6 +34,30 @@ std::optional<std::vector<std::size_t>> locking_rows(const std::vector<std::vect
   for (std::size_t i = 0; i < y->size(); ++i)
     if (sgn((*y)[i]) > 0) out.push_back(i);
   return out;
+}
+
+namespace {
+
+std::string quoted(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i ? (i + 1 == names.size() ? "' and '" : "', '") : "'") + names[i];
+  return out + "'";
+}
+
+}  // namespace
+
+std::string jam_message(const std::vector<std::string>& drivers, bool constant, const std::vector<std::string>& jammed,
+                        std::size_t count, const std::vector<std::string>& contacts, const std::string& on) {
+  std::ostringstream out;
+  out << "the " << (constant ? "constant-speed" : "prescribed") << " driver" << (drivers.size() > 1 ? "s " : " ")
+      << quoted(drivers) << (drivers.size() > 1 ? " jam " : " jams ") << quoted(jammed)
+      << " (a jam): no motion of the free parts keeps its " << count << " contacts [";
+  for (std::size_t i = 0; i < contacts.size(); ++i) out << (i ? "; " : "") << contacts[i];
+  out << "] (decided exactly" << on << ": a nonnegative combination of their normals vanishes on every free "
+      << "coordinate and the driver closes it), and " << (constant ? "a driver at constant speed" : "a prescribed driver")
+      << " cannot give way";
+  return out.str();
 }
 
 }  // namespace hipair::simulation

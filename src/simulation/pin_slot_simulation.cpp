@@ -1808,9 +1808,7 @@ void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
   }
   const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
   if (!locked) return;
-  std::vector<std::string> drivers_closing;   // every driver whose surface speed closes the combination
-  std::string contacts;
-  std::size_t n = 0;
+  std::vector<std::string> drivers_closing, contacts;   // every driver whose surface speed closes the combination
   for (const std::size_t i : *locked) {
     const Row& r = rows[i];
     if (!r.limit && sgn(r.exact.v_other) != 0) {
@@ -1818,19 +1816,12 @@ void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
       if (std::find(drivers_closing.begin(), drivers_closing.end(), name) == drivers_closing.end())
         drivers_closing.push_back(name);
     }
-    contacts += (n++ ? "; " : "") + r.label;
+    contacts.push_back(r.label);
   }
-  std::string driver;
-  for (std::size_t i = 0; i < drivers_closing.size(); ++i)
-    driver += (i ? (i + 1 == drivers_closing.size() ? "' and '" : "', '") : "") + drivers_closing[i];
-  std::ostringstream out;
-  out << where(t) << ": the constant-speed driver" << (drivers_closing.size() > 1 ? "s '" : " '") << driver
-      << (drivers_closing.size() > 1 ? "' jam '" : "' jams '") << model.parts[part].name
-      << "' (a jam): no motion of the free parts keeps its " << n << " contacts [" << contacts << "]"
-      << " (decided exactly: a nonnegative combination of their normals vanishes on every free coordinate "
-      << "and the driver closes it), and a driver at constant speed cannot give way";
+  const std::string message = where(t) + ": " +
+                              simulation::jam_message(drivers_closing, true, {model.parts[part].name}, contacts.size(), contacts);
   publish();
-  throw SimulationJam(out.str(), t / time_scale);
+  throw SimulationJam(message, t / time_scale);
 }
 
 void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool hold_met) {

@@ -2705,12 +2705,10 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
   }
   const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
   if (!locked) return;
-  std::vector<std::string> drivers, jammed;
-  std::string contacts;
+  std::vector<std::string> drivers, jammed, contacts;
   auto add = [](std::vector<std::string>& to, const std::string& name) {
     if (std::find(to.begin(), to.end(), name) == to.end()) to.push_back(name);
   };
-  std::size_t count = 0;
   for (const std::size_t i : *locked) {
     const Pair& p = pairs[rows.pair[i]];
     for (const std::size_t part : {p.first, p.second}) {
@@ -2719,22 +2717,11 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
       if (!bodies[body].driven) add(jammed, model.parts[part].name);
       else if (sgn(d[i]) != 0) add(drivers, model.parts[part].name);
     }
-    contacts += (count++ ? "; " : "") + rows.feature[i].label;
+    contacts.push_back(rows.feature[i].label);
   }
-  auto listed = [](const std::vector<std::string>& names) {
-    std::string out;
-    for (std::size_t i = 0; i < names.size(); ++i)
-      out += (i ? (i + 1 == names.size() ? "' and '" : "', '") : "'") + names[i];
-    return out + "'";
-  };
-  std::ostringstream out;
-  out << where(time) << ": the constant-speed driver" << (drivers.size() > 1 ? "s " : " ") << listed(drivers)
-      << (drivers.size() > 1 ? " jam " : " jams ") << listed(jammed) << " (a jam): no motion of the free parts keeps "
-      << count << " contacts [" << contacts << "]"
-      << " (decided exactly: a nonnegative combination of their normals vanishes on every free coordinate "
-      << "and the driver closes it), and a driver at constant speed cannot give way";
+  const std::string message = where(time) + ": " + simulation::jam_message(drivers, true, jammed, contacts.size(), contacts);
   publish();
-  throw SimulationJam(out.str(), time / time_scale);
+  throw SimulationJam(message, time / time_scale);
 }
 
 void PlanarSystemSimulation::Impl::impact(double time,

@@ -1896,24 +1896,14 @@ struct Simulation::Impl {
           constant = constant && dofs[i].profile_t.empty();
         }
       }
-      const std::vector<std::string> named = labels(pair_of[k], features[k]);
-      if (named.empty()) add(contacts, pair_name(pair_of[k]));
-      for (const std::string& l : named) add(contacts, l);
+      std::string named;   // the contact: its feature pairs (an edge's curves), or its pair
+      for (const std::string& l : labels(pair_of[k], features[k])) named += (named.empty() ? "" : " + ") + l;
+      contacts.push_back(named.empty() ? pair_name(pair_of[k]) : named);
     }
-    auto listed = [](const std::vector<std::string>& names) {
-      std::string out;
-      for (std::size_t i = 0; i < names.size(); ++i)
-        out += (i ? (i + 1 == names.size() ? "' and '" : "', '") : "'") + names[i];
-      return out + "'";
-    };
     std::ostringstream out;
-    out << "simulation: at t = " << published_time(time) << " " << time_unit << " the "
-        << (constant ? "constant-speed " : "prescribed ") << "driver" << (drivers.size() > 1 ? "s " : " ")
-        << listed(drivers) << (drivers.size() > 1 ? " jam " : " jams ") << listed(jammed)
-        << " (a jam): no motion of the free parts keeps " << locked->size() << " contacts [";   // (their feature pairs)
-    for (std::size_t i = 0; i < contacts.size(); ++i) out << (i ? "; " : "") << contacts[i];
-    out << "] (decided exactly on the contact rows' doubles: a nonnegative combination of them vanishes on every "
-        << "free coordinate and the driver closes it), and a prescribed driver cannot give way";
+    out << "simulation: at t = " << published_time(time) << " " << time_unit << " "
+        << simulation::jam_message(drivers, constant, jammed, locked->size(), contacts,
+                                   " on the contact rows' doubles (the C-spaces' contact gradients)");
     return out.str();
   }
   void refuse_jam(const std::vector<ContactRow>& rows) {
