@@ -13,14 +13,19 @@ namespace hipair {
 
 /// A run stopped by a jam of the mechanism: no motion of the free parts keeps the contacts the
 /// constant-speed drivers close (docs/simulation.md, "Session 69 (jam69)"). `time()` is the stop's
-/// time in the model's time unit.
+/// time in the model's time unit; `exact()` whether the verdict was decided exactly (the pin-slot
+/// and planar simulators: exact contact normals) or is approximate (the fixed-axis simulator:
+/// its C-spaces' rounded contact gradients; the message says so).
 class SimulationJam : public NumericError {
  public:
-  SimulationJam(const std::string& message, double time) : NumericError(message), time_(time) {}
+  SimulationJam(const std::string& message, double time, bool exact = true)
+      : NumericError(message), time_(time), exact_(exact) {}
   double time() const noexcept { return time_; }
+  bool exact() const noexcept { return exact_; }
 
  private:
   double time_;
+  bool exact_;
 };
 
 }  // namespace hipair

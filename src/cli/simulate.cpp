@@ -820,6 +820,7 @@ void run_within_budget(const Sim& simulation, const SimulateOptions& options, co
 struct RunStop {
   double time = 0;
   std::string message;
+  bool exact = true;   // decided exactly (SimulationJam::exact), or approximate
 };
 
 // run_within_budget, a jam kept as the run's stop
@@ -829,19 +830,25 @@ std::optional<RunStop> run_to_end_or_jam(const Sim& simulation, const SimulateOp
   try {
     run_within_budget(simulation, options, time_unit, std::forward<Run>(run));
   } catch (const SimulationJam& jam) {
-    return RunStop{jam.time(), jam.what()};
+    return RunStop{jam.time(), jam.what(), jam.exact()};
   }
   return std::nullopt;
 }
 
 // The summary's line of a stopped run (after its "simulated ... to t = ..." line)
 void print_stop(const std::optional<RunStop>& stop, const std::string& tu) {
-  if (stop) std::cout << "  stopped early at t = " << number(stop->time) << " " << tu << " (a jam): " << stop->message << "\n";
+  if (stop)
+    std::cout << "  stopped early at t = " << number(stop->time) << " " << tu << (stop->exact ? " (a jam): " : " (a jam, approximate): ")
+              << stop->message << "\n";
 }
 
 // events.json's "stopped" member of a stopped run: its time and why
 void add_stop(nlohmann::json& summary, const std::optional<RunStop>& stop) {
-  if (stop) summary["stopped"] = {{"time", stop->time}, {"reason", "jam"}, {"message", stop->message}};
+  if (stop)
+    summary["stopped"] = {{"time", stop->time},
+                          {"reason", "jam"},
+                          {"decision", stop->exact ? "exact" : "approximate"},
+                          {"message", stop->message}};
 }
 
 // The end of a run: 0, or for a stopped run its jam's error (exit 3), saying what was written
@@ -905,7 +912,8 @@ void add_event_files(std::vector<io::RunFile>& files, const Model& model, const 
   for (auto& [key, value] : summary.items()) doc[key] = value;
   doc["events"] = log;
   if (summary.contains("stopped"))   // (session 69) the stop, after the events up to it
-    text += "t = " + number(summary["stopped"]["time"].get<double>()) + " " + tu + ": stopped early (a jam): " +
+    text += "t = " + number(summary["stopped"]["time"].get<double>()) + " " + tu + ": stopped early (a jam" +
+            (summary["stopped"]["decision"] == "exact" ? "" : ", approximate") + "): " +
             summary["stopped"]["message"].get<std::string>() + "\n";
   files.push_back({"events.json", doc.dump(1) + "\n"});
   files.push_back({"events.txt", text});

@@ -48,13 +48,13 @@ std::string quoted(const std::vector<std::string>& names) {
 }  // namespace
 
 std::string jam_message(const std::vector<std::string>& drivers, bool constant, const std::vector<std::string>& jammed,
-                        std::size_t count, const std::vector<std::string>& contacts, const std::string& on) {
+                        std::size_t count, const std::vector<std::string>& contacts, const std::string& decided) {
   std::ostringstream out;
   out << "the " << (constant ? "constant-speed" : "prescribed") << " driver" << (drivers.size() > 1 ? "s " : " ")
       << quoted(drivers) << (drivers.size() > 1 ? " jam " : " jams ") << quoted(jammed)
       << " (a jam): no motion of the free parts keeps its " << count << " contacts [";
   for (std::size_t i = 0; i < contacts.size(); ++i) out << (i ? "; " : "") << contacts[i];
-  out << "] (decided exactly" << on << ": a nonnegative combination of their normals vanishes on every free "
+  out << "] (" << decided << ": a nonnegative combination of their normals vanishes on every free "
       << "coordinate and the driver closes it), and " << (constant ? "a driver at constant speed" : "a prescribed driver")
       << " cannot give way";
   return out.str();

@@ -23,12 +23,13 @@ std::optional<std::vector<std::size_t>> locking_rows(const std::vector<std::vect
                                                      const std::vector<Rational>& d);
 
 /// The jam's message after the simulator's "where": "the constant-speed driver 'cam' jams
-/// 'follower' (a jam): no motion of the free parts keeps its N contacts [c1; c2; ...] (decided
-/// exactly`on`: a nonnegative combination of their normals vanishes on every free coordinate and
-/// the driver closes it), and a driver at constant speed cannot give way" — several drivers or
-/// parts listed "'a', 'b' and 'c'"; `constant` false: "prescribed driver", "a prescribed driver
-/// cannot give way". `on`: "" (the rows' exact normals) or what the decision was exact on.
+/// 'follower' (a jam): no motion of the free parts keeps its N contacts [c1; c2; ...] (`decided`:
+/// a nonnegative combination of their normals vanishes on every free coordinate and the driver
+/// closes it), and a driver at constant speed cannot give way" — several drivers or parts listed
+/// "'a', 'b' and 'c'"; `constant` false: "prescribed driver", "a prescribed driver cannot give
+/// way". `decided`: "decided exactly" (the rows' exact normals), or how an approximate verdict was found.
 std::string jam_message(const std::vector<std::string>& drivers, bool constant, const std::vector<std::string>& jammed,
-                        std::size_t count, const std::vector<std::string>& contacts, const std::string& on = "");
+                        std::size_t count, const std::vector<std::string>& contacts,
+                        const std::string& decided = "decided exactly");
 
 }  // namespace hipair::simulation

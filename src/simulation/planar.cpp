@@ -2719,6 +2719,7 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
     }
     contacts.push_back(rows.feature[i].label);
   }
+  if (jammed.empty() || drivers.empty()) return;   // (a driver against a fixed part: the caller's message)
   const std::string message = where(time) + ": " + simulation::jam_message(drivers, true, jammed, contacts.size(), contacts);
   publish();
   throw SimulationJam(message, time / time_scale);
@@ -2754,6 +2755,7 @@ void PlanarSystemSimulation::Impl::impact(double time,
     if (simulation::approaches(J.row(r).transpose(), v) &&
         !simulation::gives_way(J.row(r).transpose(), minv)) {   // a driver against a fixed part or another driver
       const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
+      refuse_jam(time, contact);   // (session 69: the jam's contacts named where the exact test finds them)
       publish();   // (session 69: a jam, the state published at it, its run's result kept by the CLI)
       throw SimulationJam(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
                               model.parts[p.first].name + "': nothing there can give way (a jam)",

@@ -839,6 +839,7 @@ struct Simulation::Impl {
         static const std::vector<std::size_t> no_groups;   // (exact stick limits, except in a wedge)
         s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged(), wedged() ? nullptr : &no_groups);
         if (!s.solved) {
+          refuse_held_jam(G, vs, time);   // (session 69: a lock does not depend on the friction)
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
                << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
@@ -889,16 +890,7 @@ struct Simulation::Impl {
       if (!s.solved) {
         // (session 69, jam69) held contacts the drivers lock without a fresh contact: a jam,
         // named, where it is one (the state published is the step's start, this state)
-        std::vector<Vec> rows(m, Vec(n, 0.0));
-        std::vector<std::size_t> pair_of;
-        std::vector<std::vector<FeatureId>> features;
-        for (std::size_t k = 0; k < m; ++k) {
-          for (std::size_t i = 0; i < n; ++i) rows[k][i] = G(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i));
-          pair_of.push_back(active[k].pair);
-          features.push_back(features_of(active[k]));
-        }
-        if (std::optional<std::string> message = jam(rows, pair_of, features, vs, time))
-          throw SimulationJam(*message, published_time(time));
+        refuse_held_jam(G, vs, time);
         std::ostringstream out;
         out << "simulation: at t = " << published_time(time) << " " << time_unit
             << " the contact-force complementarity problem of " << m << " contacts has no solution (a jam)";
@@ -1858,9 +1850,11 @@ struct Simulation::Impl {
   }
 
   // (session 69, jam69) Contact rows g (over the dofs: the pairs' C-space contact gradients)
-  // that no velocity of the free dofs keeps: is it a jam of the driven parts? Decided exactly on
-  // the rows' doubles and the drivers' velocities' doubles (simulation/jam.hpp, the test of the
-  // pin-slot and planar simulators, whose rows are exact normals): some y >= 0 with
+  // that no velocity of the free dofs keeps: is it a jam of the driven parts? APPROXIMATE: the
+  // LP is exact (simulation/jam.hpp, the test of the pin-slot and planar simulators, whose rows
+  // are exact normals) but on the rows' doubles (rounded gradients) and the drivers' velocity
+  // doubles, so a verdict at a lock that holds only in exact geometry may differ; said so in the
+  // message and SimulationJam::exact() false: some y >= 0 with
   // sum y_k g_k = 0 on the free dofs and sum y_k (g_k . v_driven) < 0. Throws the jam's
   // jam's message naming the drivers, the jammed parts and the contacts of that combination;
   // nullopt where there is none.
@@ -1900,11 +1894,27 @@ struct Simulation::Impl {
       for (const std::string& l : labels(pair_of[k], features[k])) named += (named.empty() ? "" : " + ") + l;
       contacts.push_back(named.empty() ? pair_name(pair_of[k]) : named);
     }
+    if (jammed.empty() || drivers.empty()) return std::nullopt;   // (a driver against a fixed part: the caller's message)
     std::ostringstream out;
     out << "simulation: at t = " << published_time(time) << " " << time_unit << " "
         << simulation::jam_message(drivers, constant, jammed, locked->size(), contacts,
-                                   " on the contact rows' doubles (the C-spaces' contact gradients)");
+                                   "approximate (found exactly on the contact rows' doubles, the C-spaces' rounded contact "
+                                   "gradients, not on the exact geometry)");
     return out.str();
+  }
+  // The held contacts' rows G (active order) at a state whose force problem has no solution: a
+  // jam throws its SimulationJam (the state published: the step's start, this state)
+  void refuse_held_jam(const Eigen::MatrixXd& G, const Vec& vs, double time) const {
+    std::vector<Vec> rows(active.size(), Vec(dofs.size(), 0.0));
+    std::vector<std::size_t> pair_of;
+    std::vector<std::vector<FeatureId>> features;
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      for (std::size_t i = 0; i < dofs.size(); ++i) rows[k][i] = G(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i));
+      pair_of.push_back(active[k].pair);
+      features.push_back(features_of(active[k]));
+    }
+    if (std::optional<std::string> message = jam(rows, pair_of, features, vs, time))
+      throw SimulationJam(*message, published_time(time), false);
   }
   void refuse_jam(const std::vector<ContactRow>& rows) {
     std::vector<Vec> g;
@@ -1918,7 +1928,7 @@ struct Simulation::Impl {
     }
     if (std::optional<std::string> message = jam(g, pair_of, features, v, t)) {
       publish();   // the state at the jam
-      throw SimulationJam(*message, published_time(t));
+      throw SimulationJam(*message, published_time(t), false);
     }
   }
   // solve_impacts, and where it throws (no solution), the jam test first (session 69)
