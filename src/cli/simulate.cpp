@@ -18,6 +18,7 @@
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
 #include <hipair/simulation.hpp>
+#include <hipair/simulation_stop.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -810,6 +811,55 @@ void run_within_budget(const Sim& simulation, const SimulateOptions& options, co
   }
 }
 
+// A run stopped by a jam of the mechanism (session 69, jam69: hipair::SimulationJam, decided
+// exactly by the simulators): its time and the simulator's message. Such a run keeps what it
+// computed: its summary, trajectory, events and pictures up to the jam are reported and written
+// (whole, as every run's files), the report and events.json say it stopped early, when and why,
+// and the command still exits 3 with the jam's message (`stopped_run`). Any other stop
+// (NumericError) writes nothing, as before; bad input is refused before the run (exit 2).
+struct RunStop {
+  double time = 0;
+  std::string message;
+  bool exact = true;   // decided exactly (SimulationJam::exact), or approximate
+};
+
+// run_within_budget, a jam kept as the run's stop
+template <class Sim, class Run>
+std::optional<RunStop> run_to_end_or_jam(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit,
+                                         Run&& run) {
+  try {
+    run_within_budget(simulation, options, time_unit, std::forward<Run>(run));
+  } catch (const SimulationJam& jam) {
+    return RunStop{jam.time(), jam.what(), jam.exact()};
+  }
+  return std::nullopt;
+}
+
+// The summary's line of a stopped run (after its "simulated ... to t = ..." line)
+void print_stop(const std::optional<RunStop>& stop, const std::string& tu) {
+  if (stop)
+    std::cout << "  stopped early at t = " << number(stop->time) << " " << tu << (stop->exact ? " (a jam): " : " (a jam, approximate): ")
+              << stop->message << "\n";
+}
+
+// events.json's "stopped" member of a stopped run: its time and why
+void add_stop(nlohmann::json& summary, const std::optional<RunStop>& stop) {
+  if (stop)
+    summary["stopped"] = {{"time", stop->time},
+                          {"reason", "jam"},
+                          {"decision", stop->exact ? "exact" : "approximate"},
+                          {"message", stop->message}};
+}
+
+// The end of a run: 0, or for a stopped run its jam's error (exit 3), saying what was written
+int stopped_run(const std::optional<RunStop>& stop, const SimulateOptions& options, const std::string& tu) {
+  if (!stop) return 0;
+  throw NumericError(stop->message + (options.out.empty()
+                                          ? std::string()
+                                          : "; the run stopped there: its results up to t = " + number(stop->time) + " " +
+                                                tu + " were written to " + options.out));
+}
+
 struct ProgressLine {
   explicit ProgressLine(const SimulateOptions& options) : terminal(isatty(2) && !options.quiet) {}
   bool terminal;
@@ -861,6 +911,10 @@ void add_event_files(std::vector<io::RunFile>& files, const Model& model, const 
   if (length_display_exponent() != 0) doc["units"]["energy"] = scaled_unit(fu + "·mm", 2);
   for (auto& [key, value] : summary.items()) doc[key] = value;
   doc["events"] = log;
+  if (summary.contains("stopped"))   // (session 69) the stop, after the events up to it
+    text += "t = " + number(summary["stopped"]["time"].get<double>()) + " " + tu + ": stopped early (a jam" +
+            (summary["stopped"]["decision"] == "exact" ? "" : ", approximate") + "): " +
+            summary["stopped"]["message"].get<std::string>() + "\n";
   files.push_back({"events.json", doc.dump(1) + "\n"});
   files.push_back({"events.txt", text});
 }
@@ -942,13 +996,17 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   };
   std::vector<double> times = frame_times(options, tu, playback);
   if (!times.empty()) record_frame();
-  run_within_budget(simulation, options, tu, [&] {
+  const std::optional<RunStop> stop = run_to_end_or_jam(simulation, options, tu, [&] {
     for (double t : times) {
       simulation.run_until(t, progress);
       record_frame();
     }
     simulation.run_until(options.t_end, progress);
   });
+  if (stop && state_time(simulation) > samples.back().time) {   // the jam's state, the last one
+    samples.push_back({state_time(simulation), planar_states(simulation)});
+    if (!times.empty()) record_frame();
+  }
   double seconds = thread_cpu_seconds() - cpu_start;
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
   const std::vector<PlanarState> end = planar_states(simulation);
@@ -956,6 +1014,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   std::cout << "simulated " << shown_name(model.name) << " to t = " << number(state_time(simulation)) << " " << tu << " in "
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
+  print_stop(stop, tu);
   for (std::size_t k = 0; k < parts.size(); ++k)
     std::cout << "  " << model.parts[parts[k]].name << ": x " << shown(end[k].x, 1) << " mm, y " << shown(end[k].y, 1)
               << " mm, angle " << number(end[k].angle) << " rad; velocity (" << shown(end[k].vx, 1) << ", "
@@ -969,7 +1028,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     std::cout << "  " << stats.restitution_limited
               << " frictional impacts with their restitution limited (Newton's law would have created energy)\n";
   print_events(simulation.events(), tu, fu);
-  if (options.out.empty()) return 0;
+  if (options.out.empty()) return stopped_run(stop, options, tu);
 
   std::vector<io::RunFile> files;
   const char* names[6] = {"x", "y", "angle", "vx", "vy", "omega"};
@@ -995,13 +1054,14 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
-  add_event_files(files, model, simulation.events(), tu, fu,
-                  {{"t_end", state_time(simulation)},
-                   {"steps", simulation.steps()},
-                   {"energy", simulation.energy()},
-                   {length_display_exponent() != 0 ? "chord_deviation_1e" + std::to_string(length_display_exponent()) + "mm"
-                                                   : std::string("chord_deviation_mm"),
-                    simulation.chord_deviation()}});
+  nlohmann::json summary{{"t_end", state_time(simulation)},
+                         {"steps", simulation.steps()},
+                         {"energy", simulation.energy()},
+                         {length_display_exponent() != 0 ? "chord_deviation_1e" + std::to_string(length_display_exponent()) + "mm"
+                                                         : std::string("chord_deviation_mm"),
+                          simulation.chord_deviation()}};
+  add_stop(summary, stop);
+  add_event_files(files, model, simulation.events(), tu, fu, std::move(summary));
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
@@ -1035,7 +1095,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   publish_run(files, options);
-  return 0;
+  return stopped_run(stop, options, tu);
 }
 
 // A model with a pin-in-slot part (docs/simulation.md, "Pin-in-slot parts"): PinSlotSimulation.
@@ -1073,7 +1133,9 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     samples.push_back(simulation.state());
     line.show(t, options, tu, simulation.steps(), simulation.events().size());
   };
-  run_within_budget(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
+  const std::optional<RunStop> stop =
+      run_to_end_or_jam(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
+  if (stop && simulation.state().time > samples.back().time) samples.push_back(simulation.state());   // the jam's
   double seconds = thread_cpu_seconds() - cpu_start;
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
   const PinSlotState& end = simulation.state();
@@ -1081,6 +1143,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   std::cout << "simulated " << shown_name(model.name) << " to t = " << number(end.time) << " " << tu << " in "
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
+  print_stop(stop, tu);
   std::cout << "  " << name << ": slide " << shown(end.slide, 1) << " mm, angle " << number(end.angle)
             << " rad; rates " << shown(end.slide_rate, 1) << " mm/" << tu << ", " << number(end.angle_rate) << " rad/"
             << tu << "\n";
@@ -1088,7 +1151,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   std::cout << "  collision tests: " << simulation.chord_tests() << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   print_events(simulation.events(), tu, fu);
-  if (options.out.empty()) return 0;
+  if (options.out.empty()) return stopped_run(stop, options, tu);
   // moving: every moving part beside the pin-slot part (its coordinate); dynamic: those moved by
   // their dynamics, not prescribed (a torque-driven cam, a pushed translating part: their rates too)
   std::vector<std::size_t> moving, dynamic;
@@ -1123,11 +1186,12 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
-  add_event_files(files, model, simulation.events(), tu, fu,
-                  {{"t_end", end.time},
-                   {"steps", simulation.steps()},
-                   {"energy", simulation.energy()},
-                   {"chord_deviation_mm", simulation.chord_deviation()}});
+  nlohmann::json summary{{"t_end", end.time},
+                         {"steps", simulation.steps()},
+                         {"energy", simulation.energy()},
+                         {"chord_deviation_mm", simulation.chord_deviation()}};
+  add_stop(summary, stop);
+  add_event_files(files, model, simulation.events(), tu, fu, std::move(summary));
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
@@ -1158,7 +1222,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
     }
   }
   publish_run(files, options);
-  return 0;
+  return stopped_run(stop, options, tu);
 }
 
 // --t-end and --max-step, before anything is read or built: T positive and finite, H (when
@@ -1287,6 +1351,7 @@ int run(const SimulateOptions& options) {
   std::vector<render::MechanismFrame> frames;
   double playback = 0;
   std::vector<double> times = frame_times(options, simulation.time_unit(), playback);
+  std::optional<RunStop> stop;
   {
     auto record_frame = [&] {
       render::MechanismFrame frame;
@@ -1301,13 +1366,17 @@ int run(const SimulateOptions& options) {
       frames.push_back(std::move(frame));
     };
     if (!times.empty()) record_frame();
-    run_within_budget(simulation, options, simulation.time_unit(), [&] {
+    stop = run_to_end_or_jam(simulation, options, simulation.time_unit(), [&] {
       for (double t : times) {
         simulation.run_until(t, progress);
         record_frame();
       }
       simulation.run_until(options.t_end, progress);
     });
+    if (stop && simulation.state().time > samples.back().time) {   // the jam's state, the last one
+      samples.push_back(simulation.state());
+      if (!times.empty()) record_frame();
+    }
   }
   double seconds = thread_cpu_seconds() - cpu_start;
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
@@ -1317,6 +1386,7 @@ int run(const SimulateOptions& options) {
   std::cout << "simulated " << shown_name(model.name) << " to t = " << number(simulation.state().time) << " " << tu << " in "
             << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
             << " s CPU\n";
+  print_stop(stop, tu);
   for (std::size_t p : moving)
     std::cout << "  " << model.parts[p].name << ": position "
               << shown(simulation.state().position[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
@@ -1329,7 +1399,7 @@ int run(const SimulateOptions& options) {
   std::cout << "  energy " << energy_text(simulation.energy(), fu)
             << " (kinetic + potential; a constant torque's potential is -T·angle)\n";
   print_events(simulation.events(), tu, fu);
-  if (options.out.empty()) return 0;
+  if (options.out.empty()) return stopped_run(stop, options, tu);
 
   std::vector<io::RunFile> files;
   {
@@ -1351,8 +1421,9 @@ int run(const SimulateOptions& options) {
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
-  add_event_files(files, model, simulation.events(), tu, fu,
-                  {{"t_end", simulation.state().time}, {"steps", simulation.steps()}, {"energy", simulation.energy()}});
+  nlohmann::json summary{{"t_end", simulation.state().time}, {"steps", simulation.steps()}, {"energy", simulation.energy()}};
+  add_stop(summary, stop);
+  add_event_files(files, model, simulation.events(), tu, fu, std::move(summary));
   if (!options.no_pictures) {
     std::vector<double> event_times;
     for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
@@ -1411,7 +1482,7 @@ int run(const SimulateOptions& options) {
     files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   publish_run(files, options);
-  return 0;
+  return stopped_run(stop, options, tu);
 }
 
 }  // namespace

@@ -40,14 +40,15 @@
 // every computation is the one before (the same outputs, byte for byte).
 #include <hipair/error.hpp>
 #include <hipair/pin_slot_simulation.hpp>
+#include <hipair/simulation_stop.hpp>
 
 #include "core/angle_limits.hpp"
 #include "simulation/frame_rate.hpp"
-#include "simulation/exact_lp.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/held_friction.hpp"
 #include "simulation/held_extent.hpp"
 #include "simulation/held_force_sign.hpp"
+#include "simulation/jam.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/motion_datum.hpp"
 #include "simulation/relative_configuration.hpp"
@@ -1796,54 +1797,31 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
 }
 
 void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
-  simulation::ExactLinearSystem lp;
-  lp.variables = rows.size();
-  lp.nonnegative.assign(rows.size(), true);
-  for (const Row& r : rows)
+  // (session 69, jam69: the exact test shared with the planar simulators, simulation/jam.hpp:
+  // a row's speed a . rates - v_other, so d = -v_other)
+  std::vector<std::vector<Rational>> a;
+  std::vector<Rational> d;
+  for (const Row& r : rows) {
     if (!r.exact.defined) return;
-  for (std::size_t k = 0; k < 4; ++k) {   // sum y_i a_ik = 0 on every coordinate
-    std::vector<Rational> row;
-    bool any = false;
-    for (const Row& r : rows) {
-      row.push_back(r.exact.a[k]);
-      any = any || sgn(r.exact.a[k]) != 0;
-    }
-    if (!any) continue;
-    lp.rows.push_back(std::move(row));
-    lp.rhs.emplace_back(0);
-    lp.equality.push_back(true);
+    a.emplace_back(r.exact.a.begin(), r.exact.a.end());
+    d.push_back(-r.exact.v_other);
   }
-  std::vector<Rational> closing;   // sum y_i v_other_i = 1 (> 0, scaled)
-  for (const Row& r : rows) closing.push_back(r.exact.v_other);
-  lp.rows.push_back(std::move(closing));
-  lp.rhs.emplace_back(1);
-  lp.equality.push_back(true);
-  const std::optional<std::vector<Rational>> y = simulation::exact_feasible_point(lp);
-  if (!y) return;
-  std::vector<std::string> drivers_closing;   // every driver whose surface speed closes the combination
-  std::string contacts;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (sgn((*y)[i]) <= 0) continue;
+  const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
+  if (!locked) return;
+  std::vector<std::string> drivers_closing, contacts;   // every driver whose surface speed closes the combination
+  for (const std::size_t i : *locked) {
     const Row& r = rows[i];
     if (!r.limit && sgn(r.exact.v_other) != 0) {
       const std::string& name = model.parts[pairs[r.pair].other].name;
       if (std::find(drivers_closing.begin(), drivers_closing.end(), name) == drivers_closing.end())
         drivers_closing.push_back(name);
     }
-    contacts += (n++ ? "; " : "") + r.label;
+    contacts.push_back(r.label);
   }
-  std::string driver;
-  for (std::size_t i = 0; i < drivers_closing.size(); ++i)
-    driver += (i ? (i + 1 == drivers_closing.size() ? "' and '" : "', '") : "") + drivers_closing[i];
-  std::ostringstream out;
-  out << where(t) << ": the constant-speed driver" << (drivers_closing.size() > 1 ? "s '" : " '") << driver
-      << (drivers_closing.size() > 1 ? "' jam '" : "' jams '") << model.parts[part].name
-      << "' (a jam): no motion of the free parts keeps its " << n << " contacts [" << contacts << "]"
-      << " (decided exactly: a nonnegative combination of their normals vanishes on every free coordinate "
-      << "and the driver closes it), and a driver at constant speed cannot give way";
+  const std::string message = where(t) + ": " +
+                              simulation::jam_message(drivers_closing, true, {model.parts[part].name}, contacts.size(), contacts);
   publish();
-  throw NumericError(out.str());
+  throw SimulationJam(message, t / time_scale);
 }
 
 void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool hold_met) {

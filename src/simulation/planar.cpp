@@ -39,6 +39,7 @@
 // (far) or by exact chords that skip the held pairs (SlicedMotion::ignored).
 #include <hipair/error.hpp>
 #include <hipair/simulation.hpp>
+#include <hipair/simulation_stop.hpp>
 
 #include "kernels/contact_geometry.hpp"
 #include "kernels/dual.hpp"
@@ -48,6 +49,7 @@
 #include "simulation/friction_names.hpp"
 #include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
+#include "simulation/jam.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/motion_datum.hpp"
 #include "simulation/planar_bounds.hpp"
@@ -2345,6 +2347,14 @@ struct PlanarSystemSimulation::Impl {
   };
   Rows contact_rows(const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) const;
   void impact(double time, const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching);
+  // (session 69, jam69) Contact rows (an impact's, or the held contacts') that no velocity of
+  // the free bodies keeps: is it a jam of the constant-speed drivers? Decided exactly on the
+  // rows' exact normals (simulation/jam.hpp, as the pin-slot simulator's refuse_jam): some y >= 0
+  // with sum y_i a_i = 0 on the free bodies' coordinates and sum y_i (a_i . v_driven) < 0 (the
+  // driven bodies' velocities' exact doubles). Throws the jam's SimulationJam naming the
+  // drivers, the jammed parts and the contacts of that combination, the state published at the
+  // jam; returns where there is none.
+  void refuse_jam(double time, const Rows& rows);
   bool advance(double span);
 };
 
@@ -2523,10 +2533,15 @@ SimulationEvent PlanarSystemSimulation::Impl::held_event(SimulationEvent::Kind k
 bool PlanarSystemSimulation::Impl::decide() {
   if (held.empty()) return false;
   HeldProblem p = held_problem(k, true);
-  if (!p.solution.solved)
+  if (!p.solution.solved) {
+    // (session 69, jam69) a held set that the constant-speed drivers lock without a fresh contact
+    std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
+    for (const Held& h : held) touching.emplace_back(h.pair, h.feature);
+    refuse_jam(t, contact_rows(touching));
     throw NumericError(where(t) + ": the contact problem of the held contacts has no consistent solution "
                                   "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)" +
                        named_pairs(held_pairs()));
+  }
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
   const std::vector<bool> lifts = lift_offs(p, inverse_mass(), pair_of);
@@ -2667,6 +2682,49 @@ PlanarSystemSimulation::Impl::Rows PlanarSystemSimulation::Impl::contact_rows(
   return out;
 }
 
+void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
+  if (rows.exact.empty()) return;
+  const Eigen::VectorXd v = velocity(k);
+  std::vector<std::vector<Rational>> a;
+  std::vector<Rational> d;
+  for (const simulation::ExactRow& r : rows.exact) {
+    std::vector<Rational> free;
+    Rational closing(0);
+    for (std::size_t body = 0; body < bodies.size(); ++body)
+      for (std::size_t j = 3 * body; j < 3 * body + 3; ++j) {
+        if (!bodies[body].driven) {
+          free.push_back(r.a[j]);
+          continue;
+        }
+        const double vj = v(static_cast<Eigen::Index>(j));
+        if (!std::isfinite(vj)) return;
+        if (sgn(r.a[j]) != 0 && vj != 0) closing += r.a[j] * Rational(vj);
+      }
+    a.push_back(std::move(free));
+    d.push_back(std::move(closing));
+  }
+  const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
+  if (!locked) return;
+  std::vector<std::string> drivers, jammed, contacts;
+  auto add = [](std::vector<std::string>& to, const std::string& name) {
+    if (std::find(to.begin(), to.end(), name) == to.end()) to.push_back(name);
+  };
+  for (const std::size_t i : *locked) {
+    const Pair& p = pairs[rows.pair[i]];
+    for (const std::size_t part : {p.first, p.second}) {
+      const std::size_t body = body_of[part];
+      if (body == no_index) continue;
+      if (!bodies[body].driven) add(jammed, model.parts[part].name);
+      else if (sgn(d[i]) != 0) add(drivers, model.parts[part].name);
+    }
+    contacts.push_back(rows.feature[i].label);
+  }
+  if (jammed.empty() || drivers.empty()) return;   // (a driver against a fixed part: the caller's message)
+  const std::string message = where(time) + ": " + simulation::jam_message(drivers, true, jammed, contacts.size(), contacts);
+  publish();
+  throw SimulationJam(message, time / time_scale);
+}
+
 void PlanarSystemSimulation::Impl::impact(double time,
                                           const std::vector<std::pair<std::size_t, SlicedFeaturePair>>& touching) {
   const auto n = static_cast<Eigen::Index>(3 * bodies.size());
@@ -2697,8 +2755,11 @@ void PlanarSystemSimulation::Impl::impact(double time,
     if (simulation::approaches(J.row(r).transpose(), v) &&
         !simulation::gives_way(J.row(r).transpose(), minv)) {   // a driver against a fixed part or another driver
       const Pair& p = pairs[row_pair[static_cast<std::size_t>(r)]];
-      throw NumericError(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
-                         model.parts[p.first].name + "': nothing there can give way (a jam)");
+      refuse_jam(time, contact);   // (session 69: the jam's contacts named where the exact test finds them)
+      publish();   // (session 69: a jam, the state published at it, its run's result kept by the CLI)
+      throw SimulationJam(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
+                              model.parts[p.first].name + "': nothing there can give way (a jam)",
+                          time / time_scale);
     }
   bool frictional = false;
   for (std::size_t i : row_pair) frictional = frictional || pairs[i].mu_static > 0;
@@ -2708,6 +2769,7 @@ void PlanarSystemSimulation::Impl::impact(double time,
     // (session 68, impact68: which rows get an impulse decided exactly — exact_impact_lcp)
     const std::optional<simulation::FrictionalSolution> exact = simulation::exact_impact_lcp(J, minv, v, h_exact, lcp);
     if (exact) lcp.solved = exact->solved;
+    if (!lcp.solved) refuse_jam(time, contact);   // (session 69: a jam, named, where it is one)
     if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
     lambda = exact ? exact->lambda : lcp.lambda;
     after_v = exact ? exact->x : Eigen::VectorXd(v + minv.asDiagonal() * (J.transpose() * lcp.lambda));

@@ -19,6 +19,7 @@
 #include <hipair/edge_tracker.hpp>
 #include <hipair/error.hpp>
 #include <hipair/motion_words.hpp>
+#include <hipair/simulation_stop.hpp>
 
 #include "simulation/crossing_limit.hpp"
 #include "simulation/crossing_sweep.hpp"
@@ -29,6 +30,7 @@
 #include "simulation/friction.hpp"
 #include "simulation/friction_names.hpp"
 #include "simulation/held_friction.hpp"
+#include "simulation/jam.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/motion_datum.hpp"
@@ -837,6 +839,7 @@ struct Simulation::Impl {
         static const std::vector<std::size_t> no_groups;   // (exact stick limits, except in a wedge)
         s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged(), wedged() ? nullptr : &no_groups);
         if (!s.solved) {
+          refuse_held_jam(G, vs, time);   // (session 69: a lock does not depend on the friction)
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
                << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
@@ -885,6 +888,9 @@ struct Simulation::Impl {
       simulation::LcpSolution& s = w.lcp_solution;
       simulation::solve_lcp(A, b, w.lcp, s);
       if (!s.solved) {
+        // (session 69, jam69) held contacts the drivers lock without a fresh contact: a jam,
+        // named, where it is one (the state published is the step's start, this state)
+        refuse_held_jam(G, vs, time);
         std::ostringstream out;
         out << "simulation: at t = " << published_time(time) << " " << time_unit
             << " the contact-force complementarity problem of " << m << " contacts has no solution (a jam)";
@@ -1843,11 +1849,103 @@ struct Simulation::Impl {
     return w >= 0 && alpha < 0 && w * w <= 2 * -alpha * accuracy;
   }
 
+  // (session 69, jam69) Contact rows g (over the dofs: the pairs' C-space contact gradients)
+  // that no velocity of the free dofs keeps: is it a jam of the driven parts? APPROXIMATE: the
+  // LP is exact (simulation/jam.hpp, the test of the pin-slot and planar simulators, whose rows
+  // are exact normals) but on the rows' doubles (rounded gradients) and the drivers' velocity
+  // doubles, so a verdict at a lock that holds only in exact geometry may differ; said so in the
+  // message and SimulationJam::exact() false: some y >= 0 with
+  // sum y_k g_k = 0 on the free dofs and sum y_k (g_k . v_driven) < 0. Throws the jam's
+  // jam's message naming the drivers, the jammed parts and the contacts of that combination;
+  // nullopt where there is none.
+  std::optional<std::string> jam(const std::vector<Vec>& g, const std::vector<std::size_t>& pair_of,
+                                 const std::vector<std::vector<FeatureId>>& features, const Vec& vs,
+                                 double time) const {
+    std::vector<std::vector<Rational>> a;
+    std::vector<Rational> d;
+    for (const Vec& row : g) {
+      std::vector<Rational> free;
+      Rational closing(0);
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        if (!std::isfinite(row[i]) || !std::isfinite(vs[i])) return std::nullopt;
+        if (!dofs[i].driven) free.emplace_back(row[i]);
+        else if (row[i] != 0 && vs[i] != 0) closing += Rational(row[i]) * Rational(vs[i]);
+      }
+      a.push_back(std::move(free));
+      d.push_back(std::move(closing));
+    }
+    const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
+    if (!locked) return std::nullopt;
+    std::vector<std::string> drivers, jammed, contacts;
+    auto add = [](std::vector<std::string>& to, const std::string& name) {
+      if (std::find(to.begin(), to.end(), name) == to.end()) to.push_back(name);
+    };
+    bool constant = true;
+    for (const std::size_t k : *locked) {
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        if (g[k][i] == 0) continue;
+        if (!dofs[i].driven) add(jammed, model.parts[dofs[i].part].name);
+        else if (vs[i] != 0) {
+          add(drivers, model.parts[dofs[i].part].name);
+          constant = constant && dofs[i].profile_t.empty();
+        }
+      }
+      std::string named;   // the contact: its feature pairs (an edge's curves), or its pair
+      for (const std::string& l : labels(pair_of[k], features[k])) named += (named.empty() ? "" : " + ") + l;
+      contacts.push_back(named.empty() ? pair_name(pair_of[k]) : named);
+    }
+    if (jammed.empty() || drivers.empty()) return std::nullopt;   // (a driver against a fixed part: the caller's message)
+    std::ostringstream out;
+    out << "simulation: at t = " << published_time(time) << " " << time_unit << " "
+        << simulation::jam_message(drivers, constant, jammed, locked->size(), contacts,
+                                   "approximate (found exactly on the contact rows' doubles, the C-spaces' rounded contact "
+                                   "gradients, not on the exact geometry)");
+    return out.str();
+  }
+  // The held contacts' rows G (active order) at a state whose force problem has no solution: a
+  // jam throws its SimulationJam (the state published: the step's start, this state)
+  void refuse_held_jam(const Eigen::MatrixXd& G, const Vec& vs, double time) const {
+    std::vector<Vec> rows(active.size(), Vec(dofs.size(), 0.0));
+    std::vector<std::size_t> pair_of;
+    std::vector<std::vector<FeatureId>> features;
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      for (std::size_t i = 0; i < dofs.size(); ++i) rows[k][i] = G(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i));
+      pair_of.push_back(active[k].pair);
+      features.push_back(features_of(active[k]));
+    }
+    if (std::optional<std::string> message = jam(rows, pair_of, features, vs, time))
+      throw SimulationJam(*message, published_time(time), false);
+  }
+  void refuse_jam(const std::vector<ContactRow>& rows) {
+    std::vector<Vec> g;
+    std::vector<std::size_t> pair_of;
+    std::vector<std::vector<FeatureId>> features;
+    for (const ContactRow& r : rows) {
+      if (r.graze) continue;
+      g.push_back(r.g);
+      pair_of.push_back(r.pair);
+      features.push_back(r.features);
+    }
+    if (std::optional<std::string> message = jam(g, pair_of, features, v, t)) {
+      publish();   // the state at the jam
+      throw SimulationJam(*message, published_time(t), false);
+    }
+  }
+  // solve_impacts, and where it throws (no solution), the jam test first (session 69)
+  Vec impacts(const std::vector<ContactRow>& rows, Vec* tangential) {
+    try {
+      return solve_impacts(rows, tangential);
+    } catch (const NumericError&) {
+      refuse_jam(rows);
+      throw;
+    }
+  }
+
   // The impact problem without the rows that only graze a vertex (ContactRow::graze): their
   // impulses are 0, the others' are those of the problem without them. Without grazes, as before.
   Vec solve_grazed(const std::vector<ContactRow>& rows, Vec& tangential) {
     if (std::none_of(rows.begin(), rows.end(), [](const ContactRow& r) { return r.graze; }))
-      return solve_impacts(rows, &tangential);
+      return impacts(rows, &tangential);
     std::vector<ContactRow> struck;
     std::vector<std::size_t> index;
     for (std::size_t k = 0; k < rows.size(); ++k)
@@ -1859,7 +1957,7 @@ struct Simulation::Impl {
     tangential.assign(rows.size(), 0.0);
     if (struck.empty()) return lambda;
     Vec struck_tangential;
-    Vec struck_lambda = solve_impacts(struck, &struck_tangential);
+    Vec struck_lambda = impacts(struck, &struck_tangential);
     for (std::size_t k = 0; k < index.size(); ++k) {
       lambda[index[k]] = struck_lambda[k];
       tangential[index[k]] = struck_tangential[k];
@@ -2185,7 +2283,7 @@ struct Simulation::Impl {
     for (std::size_t r = 0; r < rows.size(); ++r)
       for (std::size_t i = 0; i < dofs.size(); ++i) before[r] += rows[r].g[i] * v[i];
     Vec tangential;
-    Vec lambda = solve_impacts(rows, &tangential);
+    Vec lambda = impacts(rows, &tangential);
     double vtol = velocity_tolerance();
     auto after_of = [&](std::size_t r) {
       double w = 0;
