@@ -1992,19 +1992,29 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     // rows' doubles — the scale dyadic, the restitution limit's bisection — as the other
     // simulators' impacts: the decisions exact on e, not on the rounded e v-; the rows are still
     // the Cholesky coordinates' doubles)
-    auto solve = [&](double scale) {
+    auto terms = [&](double scale) {
       std::vector<Rational> h_exact(rows.size());
       const Rational s = simulation::held_force_detail::exact_value(scale);
       for (std::size_t i = 0; i < rows.size(); ++i)
         h_exact[i] = simulation::held_force_detail::exact_value(-rows[i].v_other) + s * restitution_exact[i];
-      return simulation::frictional_impulses(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part,
-                                             friction, own_groups, {}, &h_exact);
+      return h_exact;
+    };
+    const Eigen::VectorXd unit = Eigen::VectorXd::Ones(n);
+    auto solve = [&](double scale) {
+      const std::vector<Rational> h_exact = terms(scale);
+      return simulation::frictional_impulses(Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups,
+                                             {}, &h_exact);
+    };
+    // (session 69, exact69: whether the impact creates kinetic energy, |x|^2 > |vz|^2, decided
+    // exactly on the exact solution of the rows — held_friction.hpp's creates_energy; until then
+    // on the rounded x)
+    auto creates = [&](const simulation::FrictionalSolution& s, double scale) {
+      const std::vector<Rational> h_exact = terms(scale);
+      return simulation::creates_energy(Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups, s,
+                                        &h_exact);
     };
     bool limited = false;
-    simulation::FrictionalSolution sol =
-        driven ? solve(1)
-               : simulation::restitution_limited(
-                     solve, [](const Eigen::VectorXd& x) { return x.squaredNorm(); }, vz.squaredNorm(), limited);
+    simulation::FrictionalSolution sol = driven ? solve(1) : simulation::restitution_limited(solve, creates, limited);
     if (!sol.solved) {
       refuse_jam(rows);
       std::ostringstream out;
