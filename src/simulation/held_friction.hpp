@@ -118,6 +118,14 @@ inline bool slower_than(const Eigen::MatrixXd& J, const Eigen::VectorXd& v, doub
   return true;
 }
 
+/// v + dv exactly (v's doubles and the rationals dv), each entry rounded once to the nearest double.
+inline Eigen::VectorXd exact_sum(const Eigen::VectorXd& v, const std::vector<Rational>& dv) {
+  Eigen::VectorXd out(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    out(i) = to_double(held_force_detail::exact_value(v(i)) + dv[static_cast<std::size_t>(i)]);
+  return out;
+}
+
 /// A frictionless impact's LCP of any size decided exactly (session 68, impactpin68): lambda >= 0,
 /// w = G x + h >= 0, lambda w = 0, x = x0 + M^-1 G^T lambda (diagonal form: x0 = v, M^-1 = minv;
 /// `full`: x0 = M^-1 Q and M^-1 G^T solved exactly on its M) — A = G M^-1 G^T and b = G x0 + h in
