@@ -74,6 +74,11 @@ struct FrictionalSolution {
   Eigen::VectorXd f;             ///< tangential force (physical) per contact: stick: solved; slip: -sign mu_k N
   std::vector<int> state;        ///< per contact
   double tolerance = 0;          ///< of the normal LCP
+  /// The exact x of this solution's held set and states where an exact decision computed it
+  /// (exact_assignment's; session 69, exact69: over the problem's own coordinates — the full
+  /// form's M coordinates where one is given), empty otherwise. Read by the restitution limit's
+  /// exact energy test (held_friction.hpp's creates_energy).
+  std::vector<Rational> x_exact;
 };
 
 /// The reduced normal problem for given states: x = x0 + B lambda (stick forces eliminated),
@@ -946,6 +951,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       // (an open contact's gap acceleration exactly 0 published as 0; a positive one stays positive)
       s.w(r) = is_held[k] ? 0.0 : to_double(wk);
     }
+    s.x_exact = std::move(x);
     return s;
   };
   if (first) {
@@ -1046,6 +1052,7 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     // (every field coulomb_satisfied and adjust read is written below before it is read)
     s.solved = false;
     s.state = state;
+    s.x_exact.clear();
     bool sticks = false;   // some contact of this assignment sticks
     bool slides = false;   // some undecided contact of this assignment slides
     for (std::size_t k = 0; k < m; ++k) {
@@ -1078,16 +1085,20 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
       // contacts the doubles accept — their slip-direction test has a 1e-9 slack — is taken only
       // where the exact LP on the candidate's held set confirms it; otherwise decided below as
       // a rejected candidate.)
+      // (session 69, exact69: a confirmation's exact x is kept with the doubles' candidate —
+      // FrictionalSolution::x_exact — for the restitution limit's exact energy test)
+      std::optional<FrictionalSolution> confirmation;
+      auto confirmed = [&] {
+        confirmation =
+            exact_assignment(G, minv, a0, h, friction, state, *exact_groups, &held_first, nullptr, full, true, rounded);
+        return confirmation.has_value();
+      };
       if (exact_groups && sticks
               ? coulomb_satisfied(s, friction) &&
-                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full) &&
-                    (!rounded || exact_assignment(G, minv, a0, h, friction, state, *exact_groups, &held_first,
-                                                  nullptr, full, true, rounded))
-              : coulomb_satisfied(s, friction) &&
-                    (!exact_groups || (!slides && !rounded) ||
-                     exact_assignment(G, minv, a0, h, friction, state, *exact_groups, &held_first, nullptr, full,
-                                      true, rounded))) {
+                    exact_stick_holds(G, minv, a0, h, friction, s, *exact_groups, full) && (!rounded || confirmed())
+              : coulomb_satisfied(s, friction) && (!exact_groups || (!slides && !rounded) || confirmed())) {
         s.solved = true;
+        if (confirmation) s.x_exact = std::move(confirmation->x_exact);
         return s;
       }
     }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -115,6 +116,14 @@ inline bool slower_than(const Eigen::MatrixXd& J, const Eigen::VectorXd& v, doub
     if (exact_dot_sign(row, at) <= 0) return false;
   }
   return true;
+}
+
+/// v + dv exactly (v's doubles and the rationals dv), each entry rounded once to the nearest double.
+inline Eigen::VectorXd exact_sum(const Eigen::VectorXd& v, const std::vector<Rational>& dv) {
+  Eigen::VectorXd out(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    out(i) = to_double(held_force_detail::exact_value(v(i)) + dv[static_cast<std::size_t>(i)]);
+  return out;
 }
 
 /// A frictionless impact's LCP of any size decided exactly (session 68, impactpin68): lambda >= 0,
@@ -294,27 +303,77 @@ inline FrictionalSolution frictional_impulses(const Eigen::MatrixXd& G, const Ei
   return solve_frictional(G, minv, v, h, friction, adjust, false, &group, nullptr, h_exact);
 }
 
+/// Whether a frictional impact's solution `sol` ends with more kinetic energy than before, decided
+/// exactly (session 69, exact69; until then the rounded 1/2 sum x_i^2 / minv_i of the doubles' x
+/// against the rounded one of v: an impact that keeps the energy exactly — e = 1 with no work done
+/// by friction — read as creating some by the sums' round-off about half the time, and its
+/// restitution was cut by the limit's bisection). The velocities after are the exact x of the
+/// solution's held set and stick/slip states (FrictionalSolution::x_exact where the impact's exact
+/// decision computed it; else exact_assignment on that held set, then on every held set at those
+/// states), and the energies 1/2 sum_i x_i^2 / minv_i over the coordinates with minv_i > 0 (a
+/// driver's carries none; minv = 1: |x|^2 / 2, the pin-slot's Cholesky coordinates) against v's,
+/// in rationals on the doubles v and minv. G, minv, v, h, friction, group and h_exact as the
+/// impact's frictional_impulses call (h and h_exact scaled by the restitution limit's factor).
+/// Where no exact x is found (more than 12 contacts and the held set not consistent exactly, or a
+/// candidate beyond the doubles' range) the doubles' comparison decides, as before.
+inline bool creates_energy(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& v,
+                           const Eigen::VectorXd& h, const std::vector<Friction>& friction,
+                           const std::vector<std::size_t>& group, const FrictionalSolution& sol,
+                           const std::vector<Rational>* h_exact = nullptr) {
+  auto doubles = [&] {
+    auto kinetic = [&](const Eigen::VectorXd& u) {
+      return 0.5 * (minv.array() > 0).select(u.array().square() / minv.array(), 0.0).sum();
+    };
+    return kinetic(sol.x) > kinetic(v);
+  };
+  std::optional<FrictionalSolution> computed;
+  const std::vector<Rational>* x = &sol.x_exact;
+  if (x->empty()) {
+    if (!sol.x.allFinite() || !sol.lambda.allFinite()) return doubles();
+    const auto m = static_cast<std::size_t>(G.rows());
+    std::vector<bool> held(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      held[k] = !(sol.lambda(r) <= 0 && sol.w(r) > sol.tolerance);
+    }
+    computed = exact_assignment(G, minv, v, h, friction, sol.state, group, &held, nullptr, nullptr, true, h_exact);
+    if (!computed)
+      computed = exact_assignment(G, minv, v, h, friction, sol.state, group, &held, nullptr, nullptr, false, h_exact);
+    if (!computed) return doubles();
+    x = &computed->x_exact;
+  }
+  Rational after = 0, before = 0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!(minv(i) > 0)) continue;
+    const Rational mi = held_force_detail::exact_value(minv(i)), vi = held_force_detail::exact_value(v(i));
+    const Rational& xi = (*x)[static_cast<std::size_t>(i)];
+    after += xi * xi / mi;
+    before += vi * vi / mi;
+  }
+  return after > before;
+}
+
 /// Newton's restitution with Coulomb friction can create energy where the normal and tangential
 /// rows are coupled (J M^-1 T^T != 0: a corner of a turning part; Kane and Levinson). `solve(scale)`
-/// solves the frictional impact with the restitution scaled by `scale`; `kinetic(x)` is a
-/// monotone measure of the kinetic energy of velocities x (the same one as `before`, the
-/// velocities' before the impact). Where the full restitution's solution would exceed `before`,
-/// the restitution is scaled down to the largest factor (bisection to 2^-30) whose solution does
-/// not (a scale whose problem has no solution counts as exceeding), and `limited` is set; the
-/// plastic impact (scale 0) not solved is returned as it is. `scale` (given) gets the factor taken.
-template <class Solve, class Kinetic>
-FrictionalSolution restitution_limited(Solve&& solve, Kinetic&& kinetic, double before, bool& limited,
-                                       double* scale = nullptr) {
+/// solves the frictional impact with the restitution scaled by `scale`; `creates(sol, scale)`
+/// whether its solution ends with more kinetic energy than before (creates_energy: exact since
+/// session 69, exact69; until then a double measure of the kinetic energy of sol.x against the
+/// one before). Where the full restitution's solution creates energy, the restitution is scaled
+/// down to the largest factor (bisection to 2^-30) whose solution does not (a scale whose problem
+/// has no solution counts as creating), and `limited` is set; the plastic impact (scale 0) not
+/// solved is returned as it is. `scale` (given) gets the factor taken.
+template <class Solve, class Creates>
+FrictionalSolution restitution_limited(Solve&& solve, Creates&& creates, bool& limited, double* scale = nullptr) {
   FrictionalSolution sol = solve(1.0);
   limited = false;
   if (scale) *scale = 1;
-  if (!sol.solved || !(kinetic(sol.x) > before)) return sol;
+  if (!sol.solved || !creates(sol, 1.0)) return sol;
   double lo = 0, hi = 1;
   FrictionalSolution best = solve(0.0);
   for (int i = 0; i < 30 && best.solved; ++i) {
     const double mid = 0.5 * (lo + hi);
     FrictionalSolution trial = solve(mid);
-    if (!trial.solved || kinetic(trial.x) > before) {
+    if (!trial.solved || creates(trial, mid)) {
       hi = mid;
     } else {
       lo = mid;
@@ -324,6 +383,50 @@ FrictionalSolution restitution_limited(Solve&& solve, Kinetic&& kinetic, double 
   limited = true;
   if (scale) *scale = lo;
   return best;
+}
+
+/// The restitution terms h_exact scaled exactly by a restitution limit's factor (dyadic: the
+/// bisection's) — empty where none are given.
+inline std::vector<Rational> scaled_terms(const std::vector<Rational>* h_exact, double scale) {
+  std::vector<Rational> scaled;
+  if (!h_exact) return scaled;
+  scaled = *h_exact;
+  if (scale != 1)
+    for (Rational& x : scaled) x *= held_force_detail::exact_value(scale);
+  return scaled;
+}
+
+/// A frictional impact with the restitution limit, in the diagonal form (both planar simulators'
+/// frictional impacts; session 69, exact69: moved here from planar.cpp's frictional_impact so that
+/// a test runs the simulators' own composition): frictional_impulses at each scale of the
+/// restitution h (and of its exact terms h_exact, given), restitution_limited with the exact
+/// energy test creates_energy. A plastic impact (h = 0) is one problem at every scale: solved
+/// once. `unsolved` (given) is called with a scale's solution that has none (the planar
+/// simulators throw there, naming the pairs).
+inline FrictionalSolution limited_frictional_impulses(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
+                                                      const Eigen::VectorXd& v, const Eigen::VectorXd& h,
+                                                      const std::vector<Friction>& friction,
+                                                      const std::vector<std::size_t>& group,
+                                                      const std::function<void(FrictionalSolution&)>& adjust,
+                                                      const std::vector<Rational>* h_exact, bool& limited,
+                                                      const std::function<void()>& unsolved = {},
+                                                      double* scale_taken = nullptr) {
+  std::optional<FrictionalSolution> plastic;
+  const bool no_restitution = h.isZero(0.0);
+  auto solve = [&](double scale) {
+    if (no_restitution && plastic) return *plastic;
+    const std::vector<Rational> scaled = scaled_terms(h_exact, scale);
+    FrictionalSolution sol =
+        frictional_impulses(G, minv, v, scale * h, friction, group, adjust, h_exact ? &scaled : nullptr);
+    if (!sol.solved && unsolved) unsolved();
+    if (no_restitution) plastic = sol;
+    return sol;
+  };
+  auto creates = [&](const FrictionalSolution& sol, double scale) {
+    const std::vector<Rational> scaled = scaled_terms(h_exact, scale);
+    return creates_energy(G, minv, v, scale * h, friction, group, sol, h_exact ? &scaled : nullptr);
+  };
+  return restitution_limited(solve, creates, limited, scale_taken);
 }
 
 }  // namespace hipair::simulation

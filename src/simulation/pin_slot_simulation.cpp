@@ -1879,8 +1879,6 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     row.exact = exact_held(h);
     rows.push_back(row);
   }
-  // (M^-1 by the Schur complement, inverse_mass_times: never det M; the free driver's 1/I)
-  const Eigen::Matrix2d Minv = inverse_mass2(y[0]);
   const bool free = free_driver != no_index;
   const double inverse_inertia = free ? 1 / drivers[free_driver].inertia : 0.0;
   const double inverse_slider_mass = has_slider() ? 1 / slider.mass : 0.0;
@@ -1970,19 +1968,29 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     // rows' doubles — the scale dyadic, the restitution limit's bisection — as the other
     // simulators' impacts: the decisions exact on e, not on the rounded e v-; the rows are still
     // the Cholesky coordinates' doubles)
-    auto solve = [&](double scale) {
+    auto terms = [&](double scale) {
       std::vector<Rational> h_exact(rows.size());
       const Rational s = simulation::held_force_detail::exact_value(scale);
       for (std::size_t i = 0; i < rows.size(); ++i)
         h_exact[i] = simulation::held_force_detail::exact_value(-rows[i].v_other) + s * restitution_exact[i];
-      return simulation::frictional_impulses(Gz, Eigen::VectorXd::Ones(n), vz, offsets + scale * restitution_part,
-                                             friction, own_groups, {}, &h_exact);
+      return h_exact;
+    };
+    const Eigen::VectorXd unit = Eigen::VectorXd::Ones(n);
+    auto solve = [&](double scale) {
+      const std::vector<Rational> h_exact = terms(scale);
+      return simulation::frictional_impulses(Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups,
+                                             {}, &h_exact);
+    };
+    // (session 69, exact69: whether the impact creates kinetic energy, |x|^2 > |vz|^2, decided
+    // exactly on the exact solution of the rows — held_friction.hpp's creates_energy; until then
+    // on the rounded x)
+    auto creates = [&](const simulation::FrictionalSolution& s, double scale) {
+      const std::vector<Rational> h_exact = terms(scale);
+      return simulation::creates_energy(Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups, s,
+                                        &h_exact);
     };
     bool limited = false;
-    simulation::FrictionalSolution sol =
-        driven ? solve(1)
-               : simulation::restitution_limited(
-                     solve, [](const Eigen::VectorXd& x) { return x.squaredNorm(); }, vz.squaredNorm(), limited);
+    simulation::FrictionalSolution sol = driven ? solve(1) : simulation::restitution_limited(solve, creates, limited);
     if (!sol.solved) {
       refuse_jam(rows);
       std::ostringstream out;
@@ -2021,9 +2029,10 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     // exact_impact_lcp on the full form: the rows G over the coordinates, the mass matrix M as
     // its doubles, w = G M^-1 G^T lambda + (v + e v-) with the speeds and terms exact; until then
     // the doubles' A (the rounded M^-1) and b = (1 + e) v decided, with solve_lcp's tolerance)
+    const Eigen::Index n = coordinates();
+    simulation::FullMass full;
+    std::vector<Rational> change;   // M^-1 G^T lambda, exactly (session 69, exact69)
     {
-      const Eigen::Index n = coordinates();
-      simulation::FullMass full;
       full.G = Eigen::MatrixXd::Zero(k, n);
       for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
@@ -2042,7 +2051,10 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       if (const std::optional<simulation::FrictionalSolution> exact =
               simulation::exact_impact_lcp(full.G, none, none, b_exact, lcp, &full)) {
         lcp.solved = exact->solved;
-        if (exact->solved) lcp.lambda = exact->lambda;
+        if (exact->solved) {
+          lcp.lambda = exact->lambda;
+          change = exact->x_exact;   // (Q = 0: x = M^-1 G^T lambda, the exact impulses')
+        }
       }
     }
     if (!lcp.solved) {
@@ -2052,15 +2064,30 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
           << " contacts has no solution of its complementarity problem (" << rows.front().label << ")";
       throw NumericError(out.str());
     }
+    // (session 69, exact69: where the exact decision published the impulses — the doubles' held
+    // set not the exact one, or their impulses off by more than 2^-40 — they are applied exactly,
+    // q'+ = q'- + M^-1 G^T lambda in rationals on the full form's M and G (the exact solution's own
+    // x), the velocities after rounded once; until then the rounded exact impulses went through
+    // the rounded M^-1, rounded at every product and sum. Where the doubles' solution is kept (it
+    // agrees with the exact one) it is applied as before: output identity.)
+    const Eigen::Matrix2d Minv = inverse_mass2(y[0]);   // (by the Schur complement: never det M)
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const double lambda = lcp.lambda(static_cast<Eigen::Index>(i));
       if (!(lambda > 0)) continue;
       const Row& r = rows[i];
       total[i] = lambda;
+      if (!change.empty()) continue;
       y[2] += (Minv(0, 0) * r.J[0] + Minv(0, 1) * r.J[1]) * lambda;
       y[3] += (Minv(1, 0) * r.J[0] + Minv(1, 1) * r.J[1]) * lambda;
       if (free) y[5] += r.J[2] * inverse_inertia * lambda;
       if (has_slider()) y[7] += r.J[3] * inverse_slider_mass * lambda;
+    }
+    if (!change.empty()) {
+      const Eigen::VectorXd after = simulation::exact_sum(rates(y), change);
+      y[2] = after(0);
+      y[3] = after(1);
+      if (free) y[5] = after(2);
+      if (has_slider()) y[7] = after(x_column());
     }
   }
   impact_loss += energy_before - energy_of(y);

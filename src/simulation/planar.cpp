@@ -435,33 +435,15 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
                                                  const std::string& named, bool& limited,
                                                  const std::vector<Rational>* h_exact = nullptr) {
   // (session 67, impact67: the impulses' Coulomb conditions decided exactly, the collinear
-  // groups given — held_friction.hpp's frictional_impulses)
-  // A plastic impact (h = 0) is one problem at every scale of the restitution: solved once (the
-  // restitution limit's bisection asks it some 30 times where a driver adds energy).
-  std::optional<simulation::FrictionalSolution> plastic;
-  const bool no_restitution = h.isZero(0.0);
-  auto solve = [&](double scale) {
-    if (no_restitution && plastic) return *plastic;
-    // (session 68, impact68: the exact restitution terms, scaled exactly — the scale is dyadic)
-    std::vector<Rational> scaled;
-    if (h_exact) {
-      scaled = *h_exact;
-      if (scale != 1)
-        for (Rational& x : scaled) x *= simulation::held_force_detail::exact_value(scale);
-    }
-    simulation::FrictionalSolution sol = simulation::frictional_impulses(
-        J, minv, v, scale * h, friction, group,
-        [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); }, h_exact ? &scaled : nullptr);
-    if (!sol.solved)
-      throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
-                                 "inconsistency of Coulomb friction, or more than 8 contacts)" + named);
-    if (no_restitution) plastic = sol;
-    return sol;
-  };
-  auto kinetic = [&](const Eigen::VectorXd& u) {
-    return 0.5 * (minv.array() > 0).select(u.array().square() / minv.array(), 0.0).sum();
-  };
-  return simulation::restitution_limited(solve, kinetic, kinetic(v), limited);
+  // groups given — held_friction.hpp's frictional_impulses; session 68, impact68: on the exact
+  // restitution terms, scaled exactly — the scale is dyadic; session 69, exact69: the energy test
+  // exact, and the composition in held_friction.hpp's limited_frictional_impulses)
+  return simulation::limited_frictional_impulses(
+      J, minv, v, h, friction, group, [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); },
+      h_exact, limited, [&] {
+        throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
+                                   "inconsistency of Coulomb friction, or more than 8 contacts)" + named);
+      });
 }
 
 // ---- held contacts, shared by both planar simulators (docs/simulation.md, "Sustained contact

@@ -452,14 +452,16 @@ TEST(RestitutionLimited, AFrictionalImpactThatWouldCreateEnergyIsScaledToTheLarg
     auto solve = [&](double scale) {
       return simulation::solve_frictional(Gz, Eigen::VectorXd::Ones(2), vz, scale * restitution, friction);
     };
-    auto kinetic = [](const Eigen::VectorXd& x) { return x.squaredNorm(); };
+    // (session 69, exact69: the energy test exact — held_friction.hpp's creates_energy)
+    auto creates_energy = [&](const simulation::FrictionalSolution& s, double scale) {
+      return simulation::creates_energy(Gz, Eigen::VectorXd::Ones(2), vz, scale * restitution, friction, {}, s);
+    };
     bool limited = false;
     double scale = -1;
-    const simulation::FrictionalSolution sol =
-        simulation::restitution_limited(solve, kinetic, vz.squaredNorm(), limited, &scale);
+    const simulation::FrictionalSolution sol = simulation::restitution_limited(solve, creates_energy, limited, &scale);
     ASSERT_TRUE(sol.solved) << trial;
     const simulation::FrictionalSolution full = solve(1);
-    const bool creates = full.solved && kinetic(full.x) > vz.squaredNorm();
+    const bool creates = full.solved && creates_energy(full, 1);
     ASSERT_EQ(limited, creates) << trial;
     const Eigen::Vector2d after = llt.matrixU().solve(sol.x);
     const double before_energy = 0.5 * v.dot(M * v), after_energy = 0.5 * after.dot(M * after);
@@ -475,7 +477,7 @@ TEST(RestitutionLimited, AFrictionalImpactThatWouldCreateEnergyIsScaledToTheLarg
     EXPECT_LT(scale, 1.0);
     EXPECT_EQ(solve(scale).x, sol.x) << trial;   // the factor reported is the one taken
     const simulation::FrictionalSolution above = solve(scale + 0x1p-30);
-    EXPECT_TRUE(!above.solved || kinetic(above.x) > vz.squaredNorm()) << trial;   // the largest, to 2^-30
+    EXPECT_TRUE(!above.solved || creates_energy(above, scale + 0x1p-30)) << trial;   // the largest, to 2^-30
   }
   std::cout << "frictional corner impacts: " << cases << ", restitution limited in " << limited_cases << "\n";
   EXPECT_GE(limited_cases, cases / 20) << "the generated impacts should reach the guard";
