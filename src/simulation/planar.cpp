@@ -2765,9 +2765,16 @@ void PlanarSystemSimulation::Impl::impact(double time,
       friction[r].mu_kinetic = pair.mu_kinetic;
     }
     bool limited = false;
-    simulation::FrictionalSolution sol = frictional_impact(J, minv, v, b - before, friction,
-                                                           collinear_groups(friction, row_pair), where(time),
-                                                           named_pairs(row_pair), limited, &h_exact);
+    simulation::FrictionalSolution sol;
+    try {
+      sol = frictional_impact(J, minv, v, b - before, friction, collinear_groups(friction, row_pair), where(time),
+                              named_pairs(row_pair), limited, &h_exact);
+    } catch (const NumericError&) {
+      // a geometric lock does not depend on the friction: the jam's contacts named where the exact
+      // test finds them (as the frictionless branch above), else the impact's own message
+      refuse_jam(time, contact);
+      throw;
+    }
     if (limited) ++stats.restitution_limited;
     lambda = sol.lambda;
     tangential = sol.f;
