@@ -50,6 +50,21 @@ template <>
 HessianJet constant_of<HessianJet>(double c) { return HessianJet(Interval::point(c)); }
 template <>
 TaylorJet constant_of<TaylorJet>(double c) { return TaylorJet(TaylorModel1(Interval::point(c))); }
+// The kind of the feature an edge is when it is not a vertex.
+template <class T>
+FeatureKind edge_kind(const model_detail::EdgeValue<T>& e) {
+  return e.arc ? FeatureKind::arc : FeatureKind::segment;
+}
+// A box geometry's memoised contact constant as evaluate's argument for `curve` (nullptr: evaluate
+// makes it). The geometry memo is keyed by the features' edges, not their kinds (a vertex is the
+// source of its edge: an arc and its first vertex share the geometry), and the constant is made
+// for the edges' own kinds (CurveSolver::constant_of_pair): a curve of other kinds (one with a
+// vertex, which has no constant) makes its own.
+template <class T>
+const ContactConstant<T>* made(const std::optional<ContactConstant<T>>& c, const FeatureKind (&kinds)[2],
+                               const CurveSlice& curve) {
+  return c && curve.first.kind == kinds[0] && curve.second.kind == kinds[1] ? &*c : nullptr;
+}
 }  // namespace
 
 Box CurveSolver::in_units(const Box& box) const {
@@ -81,7 +96,22 @@ PairGeometry<T> CurveSolver::geometry(const CurveSlice& curve, const std::vector
 }
 
 template <class T>
-T CurveSolver::evaluate(const CurveSlice& curve, const PairGeometry<T>& g, const T& fixed, const T& free) const {
+std::optional<ContactConstant<T>> CurveSolver::constant_of_pair(const CurveSlice& curve, const PairGeometry<T>& g,
+                                                                const FeatureKind (&kinds)[2]) const {
+  // for the features of kinds `kinds` (the edges' own, not the curve's: see made())
+  FeatureIdentity first = curve.first, second = curve.second;
+  first.kind = kinds[0];
+  second.kind = kinds[1];
+  try {
+    return contact_constant(g.first, first, g.second, second);
+  } catch (const NumericError&) {
+    return std::nullopt;   // evaluate makes it, and throws, at each evaluation as before
+  }
+}
+
+template <class T>
+T CurveSolver::evaluate(const CurveSlice& curve, const PairGeometry<T>& g, const T& fixed, const T& free,
+                        const ContactConstant<T>* constant) const {
   const Model& m = nominal();
   kernels::Pose<T> fixed_pose =
       pose_of(m.parts[curve.fixed_part].motion, g.fixed_pivot, g.fixed_direction, fixed, curve.fixed_half_turn);
@@ -89,6 +119,7 @@ T CurveSolver::evaluate(const CurveSlice& curve, const PairGeometry<T>& g, const
       pose_of(m.parts[curve.free_part].motion, g.free_pivot, g.free_direction, free, curve.free_half_turn);
   const kernels::Pose<T>& a = curve.first.part == curve.fixed_part ? fixed_pose : free_pose;
   const kernels::Pose<T>& b = curve.second.part == curve.fixed_part ? fixed_pose : free_pose;
+  if (constant) return contact_function(g.first, curve.first, a, g.second, curve.second, b, *constant);
   return contact_function(g.first, curve.first, a, g.second, curve.second, b);
 }
 
@@ -139,9 +170,9 @@ int CurveSolver::range_sign(const CurveSlice& curve, const PairGeometry<Interval
 }
 
 bool CurveSolver::certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry,
-                                       Interval bracket, Interval& root) const {
+                                       Interval bracket, Interval& root, const ContactConstant<Interval>* constant) const {
   Interval fixed = curve.fixed_range ? *curve.fixed_range : Interval::enclose(curve.fixed_value);
-  auto sign_at = [&](double v) { return evaluate<Interval>(curve, geometry, fixed, Interval::point(v)).sign(); };
+  auto sign_at = [&](double v) { return evaluate<Interval>(curve, geometry, fixed, Interval::point(v), constant).sign(); };
   double a = bracket.lo, b = bracket.hi;
   int sa = sign_at(a), sb = sign_at(b);
   if (sa == 2 || sb == 2 || sa == 0 || sb == 0 || sa == sb) return false;
@@ -232,7 +263,8 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   // so the brackets keep growing up to `cap` rather than four or six times from the slack.
   const double cap = 1e-3 * (1 + std::fabs(free_value));
   for (int attempt = 0; (attempt < 4 || w0 <= cap) && !found; ++attempt, w0 *= 4)
-    found = certified_point_root(at_mid, memo->at_center, Interval(free_value + shift - w0, free_value + shift + w0), root);
+    found = certified_point_root(at_mid, memo->at_center, Interval(free_value + shift - w0, free_value + shift + w0), root,
+                                 made(memo->at_center_constant, memo->constant_kinds, curve));
   if (!found) return false;
   // Geometry over the box as interval jets (values and partial derivatives over the box), and
   // at its centre as intervals. F over the box at a fixed v is enclosed in mean-value form:
@@ -245,7 +277,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   Interval fixed_at_mid = held_offset ? *at_mid.fixed_range : fixed;
   // F(c, v) + sum_i F_i (B_i - c_i) with the partials of `f`, a jet containing F_i(B, v).
   auto mean_value_sign = [&](double v, const IntervalJet& f) {
-    Interval value = evaluate<Interval>(curve, at_center, fixed_at_mid, Interval::point(v));
+    Interval value = evaluate<Interval>(curve, at_center, fixed_at_mid, Interval::point(v), made(memo->at_center_constant, memo->constant_kinds, curve));
     for (std::size_t a = 0; a < k; ++a) {
       std::size_t i = active[a];
       value = value + f.partial(a) * Interval(box.lo[i] - center[i], box.hi[i] - center[i]);
@@ -281,7 +313,7 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
         if (s == 1 || s == -1) return s;
       }
     }
-    return mean_value_sign(v, evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v))));
+    return mean_value_sign(v, evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet(Interval::point(v)), made(memo->jet_constant, memo->constant_kinds, curve)));
   };
   auto offset = [&](std::size_t i) {   // B_i - c_i, outward rounded
     return Interval::point(box.lo[i]) - Interval::point(center[i]);
@@ -293,7 +325,8 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
   auto enclose = [&](const Interval& y, Interval& out) {
     if (reuse_y_jets_) {
       // its partials serve the end signs of Y itself first
-      over_y = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      over_y = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1),
+                                     made(memo->jet_constant, memo->constant_kinds, curve));
       over_y_range = y;
       over_y_narrowed = !use_taylor;
     }
@@ -305,7 +338,8 @@ bool CurveSolver::box_range(const CurveSlice& curve, const Box& box, double free
       narrow_over_y();
       f = *over_y;
     } else {
-      f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1));
+      f = evaluate<IntervalJet>(curve, jet, fixed_jet, IntervalJet::variable(y, k, held_offset ? k + 2 : k + 1),
+                                made(memo->jet_constant, memo->constant_kinds, curve));
       if (use_taylor) taylor_partials(curve, *memo, fixed, held_offset, y, f);
     }
     if (use_second) tighten_partials(curve, *memo, box, center, fixed, held_offset, y, f);
@@ -470,6 +504,15 @@ std::shared_ptr<const CurveSolver::BoxGeometry> CurveSolver::box_geometry(const 
   g->center_parameters = values(center_deviations);
   g->jet = geometry(curve, values(jets));
   g->at_center = geometry(curve, g->center_parameters);
+  // the feature pair's contact constants (session 69), for the edges' own kinds
+  g->constant_kinds[0] = edge_kind(g->jet.first);
+  g->constant_kinds[1] = edge_kind(g->jet.second);
+  g->jet_constant = constant_of_pair(curve, g->jet, g->constant_kinds);
+  g->at_center_constant = constant_of_pair(curve, g->at_center, g->constant_kinds);
+  if (g->second_order) {
+    g->jet_at_center_constant = constant_of_pair(curve, g->jet_at_center, g->constant_kinds);
+    g->jet2_constant = constant_of_pair(curve, g->jet2, g->constant_kinds);
+  }
   std::lock_guard<std::mutex> lock(memo_->mutex);
   if (memo_->entries.size() >= memo_->limit) memo_->entries.clear();
   return memo_->entries.emplace(std::move(key), std::move(g)).first->second;
@@ -496,10 +539,11 @@ void CurveSolver::tighten_partials_or_throw(const CurveSlice& curve, const BoxGe
   double tc = held_offset ? fixed.middle() : 0.0;
   // first order at the centre (c, y_c, t_c)
   IntervalJet fixed_c = held_offset ? IntervalJet::variable(Interval::point(tc), k + 1, size) : IntervalJet(fixed);
-  IntervalJet fc = evaluate<IntervalJet>(curve, memo.jet_at_center, fixed_c, IntervalJet::variable(Interval::point(yc), k, size));
+  IntervalJet fc = evaluate<IntervalJet>(curve, memo.jet_at_center, fixed_c, IntervalJet::variable(Interval::point(yc), k, size),
+                                         made(memo.jet_at_center_constant, memo.constant_kinds, curve));
   // second order over the box
   HessianJet fixed2 = held_offset ? HessianJet::variable(fixed, k + 1, size) : HessianJet(fixed);
-  HessianJet f2 = evaluate<HessianJet>(curve, memo.jet2, fixed2, HessianJet::variable(y, k, size));
+  HessianJet f2 = evaluate<HessianJet>(curve, memo.jet2, fixed2, HessianJet::variable(y, k, size), made(memo.jet2_constant, memo.constant_kinds, curve));
   std::vector<Interval> offsets(size);
   for (std::size_t a = 0; a < k; ++a) {
     std::size_t i = active[a];
@@ -536,6 +580,7 @@ bool CurveSolver::taylor_geometry(const CurveSlice& curve, const BoxGeometry& me
       edges_->motion(curve.free_part, box, memo.active, parameters, g.free_pivot, g.free_direction);
       memo.taylor = std::move(g);
       memo.has_taylor = true;
+      memo.taylor_constant = constant_of_pair(curve, memo.taylor, memo.constant_kinds);
     } catch (const NumericError&) {
       // a construction the Taylor models cannot follow over this box (a square root or atan2
       // whose argument's range reaches its singularity, an undecided |x|): interval jets only
@@ -552,7 +597,8 @@ void CurveSolver::taylor_partials(const CurveSlice& curve, const BoxGeometry& me
     TaylorJet fixed_t = held_offset ? TaylorJet::variable(TaylorModel1::over(fixed.lo, fixed.hi, k + 1), k + 1, size)
                                     : TaylorJet(TaylorModel1(fixed));
     TaylorJet ft = evaluate<TaylorJet>(curve, memo.taylor, fixed_t,
-                                       TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size));
+                                       TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size),
+                                       made(memo.taylor_constant, memo.constant_kinds, curve));
     if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
     for (std::size_t a = 0; a < size; ++a) {
       Interval t = ft.partial(a).range();
@@ -647,7 +693,7 @@ bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box_in, cons
   IntervalJet fixed_jet = held ? IntervalJet::variable(fixed, k + 1, size) : IntervalJet(fixed);
   IntervalJet f;
   try {
-    f = evaluate<IntervalJet>(curve, memo->jet, fixed_jet, IntervalJet::variable(y, k, size));
+    f = evaluate<IntervalJet>(curve, memo->jet, fixed_jet, IntervalJet::variable(y, k, size), made(memo->jet_constant, memo->constant_kinds, curve));
   } catch (const NumericError&) {
     return false;
   }
@@ -656,7 +702,8 @@ bool CurveSolver::root_partials(const CurveSlice& curve, const Box& box_in, cons
     try {
       TaylorJet fixed_t = held ? TaylorJet::variable(TaylorModel1::over(fixed.lo, fixed.hi, k + 1), k + 1, size)
                                : TaylorJet(TaylorModel1(fixed));
-      ft = evaluate<TaylorJet>(curve, memo->taylor, fixed_t, TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size));
+      ft = evaluate<TaylorJet>(curve, memo->taylor, fixed_t, TaylorJet::variable(TaylorModel1::over(y.lo, y.hi, k), k, size),
+                               made(memo->taylor_constant, memo->constant_kinds, curve));
       if (f.gradient.size() < size) f.gradient.resize(size, Interval(0));
       for (std::size_t a = 0; a < size; ++a) {
         Interval t = ft->partial(a).range();

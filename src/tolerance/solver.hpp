@@ -89,8 +89,10 @@ class CurveSolver {
                             Interval bracket, Interval& root) const;
   /// Same with the curve's geometry already evaluated (point_geometry): the geometry does not
   /// depend on the held coordinate, so positions along one feature pair share it.
+  /// `constant` (when given): the feature pair's contact_constant over `geometry`, made once
+  /// (contact_function.hpp; the same root bit for bit).
   bool certified_point_root(const CurveSlice& curve, const PairGeometry<Interval>& geometry, Interval bracket,
-                            Interval& root) const;
+                            Interval& root, const ContactConstant<Interval>* constant = nullptr) const;
   /// The sign of F at the free chart value `free` (the held coordinate `curve.fixed_value`, or
   /// `curve.fixed_range` when it ranges), the geometry evaluated (point_geometry): +1 or -1 when
   /// certain (-1: the features penetrate there), 0 for an exact zero, 2 when undecided.
@@ -165,8 +167,17 @@ class CurveSolver {
  private:
   template <class T>
   PairGeometry<T> geometry(const CurveSlice& curve, const std::vector<T>& parameters) const;
+  /// The contact function at (fixed, free) over `geometry`; `constant` (when given) the feature
+  /// pair's contact_constant over `geometry` (the same value bit for bit, made once: session 69).
   template <class T>
-  T evaluate(const CurveSlice& curve, const PairGeometry<T>& geometry, const T& fixed, const T& free) const;
+  T evaluate(const CurveSlice& curve, const PairGeometry<T>& geometry, const T& fixed, const T& free,
+             const ContactConstant<T>* constant = nullptr) const;
+  /// The feature pair's contact_constant over `geometry`, or nothing when it cannot be made (a
+  /// square root T cannot take: evaluate then makes it, and throws, as before).
+  /// Made for features of kinds `kinds` (the curve's own features otherwise).
+  template <class T>
+  std::optional<ContactConstant<T>> constant_of_pair(const CurveSlice& curve, const PairGeometry<T>& geometry,
+                                                     const FeatureKind (&kinds)[2]) const;
   /// Per parameter: whether the curve's geometry (both features, both axes) has a non-zero
   /// partial derivative with respect to it at the nominal vector.
   std::vector<bool> dependencies(const CurveSlice& curve) const;
@@ -188,6 +199,14 @@ class CurveSolver {
     PairGeometry<IntervalJet> jet_at_center;
     PairGeometry<HessianJet> jet2;
     bool second_order = false;   ///< jet_at_center and jet2 hold
+    /// The feature pair's contact_constant over each geometry above (session 69 (chain69): made
+    /// once per box rather than at every bracket; absent when it cannot be made), for the
+    /// features of kinds `constant_kinds` (the edges' own: the memo's key has no kinds, an arc
+    /// and the vertex at its source sharing it).
+    FeatureKind constant_kinds[2] = {FeatureKind::vertex, FeatureKind::vertex};
+    std::optional<ContactConstant<IntervalJet>> jet_constant, jet_at_center_constant;
+    std::optional<ContactConstant<Interval>> at_center_constant;
+    std::optional<ContactConstant<HessianJet>> jet2_constant;
     /// For the Taylor-model partials (taylor_): the geometry over the box as jets of Taylor
     /// models in the box's active parameters (variables 0..k-1; the free coordinate is k, the
     /// held one k + 1).
@@ -195,6 +214,7 @@ class CurveSolver {
     mutable std::once_flag taylor_once;
     mutable PairGeometry<TaylorJet> taylor;
     mutable bool has_taylor = false;   ///< `taylor` holds
+    mutable std::optional<ContactConstant<TaylorJet>> taylor_constant;   ///< over `taylor`
   };
   /// The Taylor-model geometry of `memo`'s box (computed on first use); false when the Taylor
   /// models cannot follow the construction over the box.
