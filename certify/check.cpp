@@ -2,12 +2,12 @@
 // check throws a Rejection with the exact reason.
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
+#include <hipair/sliced_apart.hpp>
 
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
 #include "certify/planar_check.hpp"
 #include "certify/sliced_connected.hpp"
-#include <hipair/sliced_apart.hpp>
 #include "certify/tolerance_check.hpp"
 #include "certify/tolerance_support.hpp"
 #include "core/model_scale.hpp"

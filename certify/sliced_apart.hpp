@@ -62,8 +62,14 @@ std::string apart_proof_failure(const Part& fixed, const Part& planar, const Apa
 
 /// Do the closed boxes meet (across the seam when periodic)?
 bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, bool periodic);
-/// The leaves whose closed boxes meet `box` (leaf `skip` left out).
-void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_t skip, std::vector<std::size_t>& out);
+/// The leaves whose closed boxes meet `box` (leaf `skip` left out); `visited` (optional) counts the
+/// tree's nodes tested.
+void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_t skip, std::vector<std::size_t>& out,
+                          std::size_t* visited = nullptr);
+/// The verifier's work on the open leaves' adjacency: nodes tested, at most this many per node of
+/// the tree (and 10^6 in all at least). A forged tree of 2^17 x-slabs meeting 2^17 y-slabs would
+/// otherwise cost 10^10 box comparisons; an honest tree tests a few dozen nodes per leaf.
+constexpr std::size_t apart_visits_per_node = 400;
 /// The leaves whose closed boxes hold the pose (x, y, u).
 std::vector<std::size_t> apart_leaves_at(const ApartTree& tree, const Rational& x, const Rational& y, const Rational& u);
 /// Does the box touch the domain's non-periodic boundary?

@@ -263,11 +263,13 @@ bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, bool periodic) {
   return periodic && ((a.hi[2] == 3 && b.lo[2] == -1) || (b.hi[2] == 3 && a.lo[2] == -1));
 }
 
-void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_t skip, std::vector<std::size_t>& out) {
+void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_t skip, std::vector<std::size_t>& out,
+                          std::size_t* visited) {
   std::vector<std::size_t> stack{0};
   while (!stack.empty()) {
     const std::size_t n = stack.back();
     stack.pop_back();
+    if (visited) ++*visited;
     const ApartTree::Node& node = tree.nodes[n];
     if (!apart_boxes_meet(node.box, box, tree.periodic)) continue;
     if (node.axis >= 0) {
@@ -340,6 +342,8 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
       return n;
     };
     std::vector<std::size_t> around;
+    std::size_t visited = 0;
+    const std::size_t visit_budget = std::max<std::size_t>(1000000, apart_visits_per_node * tree.nodes.size());
     for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
       const ApartTree::Node& node = tree.nodes[n];
       if (node.axis >= 0) continue;
@@ -349,7 +353,10 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
       if (apart_on_boundary(tree, node.box))
         reject("the open leaf " + box_words(node.box) + " touches the domain's boundary (every leaf there must be blocked)");
       around.clear();
-      apart_leaves_meeting(tree, node.box, n, around);
+      apart_leaves_meeting(tree, node.box, n, around, &visited);
+      if (visited > visit_budget)
+        reject("the open leaves' adjacency needs more than " + std::to_string(visit_budget) + " box tests (" +
+               std::to_string(apart_visits_per_node) + " per node of the tree)");
       for (std::size_t m : around)
         if (!tree.nodes[m].blocked) parent[root(m)] = root(n);
     }
@@ -381,7 +388,7 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
     return std::string(claim_name) + ": part '" + name + "' cannot move from " + pose_words(c.a) + " to " + pose_words(c.b) +
            " without touching '" + fixed_name + "' (" + std::to_string(leaves) + " boxes, " + std::to_string(blocked) +
            " proved blocked, none open on the domain's boundary, the ends in different components of the " +
-           std::to_string(open) + " open ones)";
+           std::to_string(open) + " open ones; " + std::to_string(visited) + " box tests)";
   });
 }
 

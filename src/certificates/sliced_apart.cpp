@@ -88,7 +88,7 @@ class ApartSearch {
         if (state_[n] == State::mixed) mixed.push_back(n);
         if (parent[n] == n) break;
       }
-      if (mixed.empty()) return "a chain of boxes proved free joins a and b (they are connected)";
+      if (mixed.empty()) return "a chain of boxes proved free joins a and b: they are connected (not certified here: --claim connected certifies it)";
       for (std::size_t n : mixed)
         if (std::string why = split(n); !why.empty()) return why;
     }
@@ -375,7 +375,7 @@ SlicedApartResult certify_sliced_apart(const Model& model, const std::string& fi
     // would not close is not repeated: bounded by max_leaves and the five domains)
     if (why != "the domain's boundary has free poses") break;
   }
-  result.failure = "no separation proved (not a proof that a and b are connected): " +
+  result.failure = "no separation proved: " +
                    (failures.empty() ? std::string("b lies too far from a for the domains tried") : failures);
   return result;
 }

@@ -126,10 +126,16 @@ TEST(CertifySlicedApart, InTheWiderHoleApartIsUnprovenAndConnectedIsCertified) {
   const Model wide = test::peg_in_hole("5", "7.075");
   SlicedApartResult r = certify_sliced_apart(wide, "plate", peg_pose(0, 0, 0), peg_pose(0, 0, 1), {}, 300);
   EXPECT_FALSE(r.certificate);
-  EXPECT_NE(r.failure.find("not a proof that a and b are connected"), std::string::npos) << r.failure;
+  EXPECT_NE(r.failure.find("no separation proved"), std::string::npos) << r.failure;
   SlicedConnectedResult connected = certify_sliced_connected(wide, "plate", peg_pose(0, 0, 0), peg_pose(0, 0, 1));
   ASSERT_TRUE(connected.certificate) << connected.failure;
   EXPECT_TRUE(check_sliced_connected(*connected.certificate, wide).valid);
+  // the 14.14 mm hole: separated (its certificate, 32 499 boxes, takes about a minute; docs/certify.md),
+  // but not within 800 boxes: unproven, never a wrong verdict
+  const Model narrow = test::peg_in_hole("5", "7.07");
+  SlicedApartResult thin = certify_sliced_apart(narrow, "plate", peg_pose(0, 0, 0), peg_pose(0, 0, 1), {}, 800);
+  EXPECT_FALSE(thin.certificate);
+  EXPECT_NE(thin.failure.find("more than 800 boxes"), std::string::npos) << thin.failure;
   // an end overlapping the plate: no certificate
   SlicedApartResult stuck = certify_sliced_apart(wide, "plate", peg_pose(3, 0, 0), peg_pose(0, 0, 1), {}, 300);
   EXPECT_FALSE(stuck.certificate);
