@@ -68,8 +68,9 @@ void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_
                           std::size_t* visited = nullptr);
 /// The verifier's work on the open leaves' adjacency: nodes tested, at most this many per node of
 /// the tree (and 10^6 in all at least). A forged tree of 2^17 x-slabs meeting 2^17 y-slabs would
-/// otherwise cost 10^10 box comparisons; an honest tree tests a few dozen nodes per leaf.
-constexpr std::size_t apart_visits_per_node = 400;
+/// otherwise cost 10^10 box comparisons; an honest tree tests 20 to 40 per node (the 12 and
+/// 14.14 mm holes' certificates): a forged tree of 400 000 leaves costs about a minute at most.
+constexpr std::size_t apart_visits_per_node = 128;
 /// The leaves whose closed boxes hold the pose (x, y, u).
 std::vector<std::size_t> apart_leaves_at(const ApartTree& tree, const Rational& x, const Rational& y, const Rational& u);
 /// Does the box touch the domain's non-periodic boundary?

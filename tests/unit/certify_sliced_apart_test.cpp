@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 #include <string>
 
@@ -247,6 +248,21 @@ TEST(CertifySlicedApart, MutatedCertificatesAreRejected) {
   m.full_turn = false;
   m.u = RationalInterval{Rational(-1), Rational(3)};   // the seam closed: u = -1 and 3 are boundary
   expect_rejected(m, model, "touches the domain's boundary");
+}
+
+TEST(CertifySlicedApart, AForgedTreeOfMeetingSlabsIsRefusedInBoundedWork) {
+  // 2^12 u-slabs left of x = 0 meeting 2^12 y-slabs right of it: 1.7 * 10^7 pairs of meeting open
+  // leaves, refused by the adjacency's budget before any proof is checked
+  const Model model = test::peg_in_hole("5", "6");
+  SlicedApartCertificate m = twelve();
+  std::function<std::string(char, int)> slabs = [&](char axis, int k) -> std::string {
+    return k == 0 ? std::string("o") : axis + slabs(axis, k - 1) + slabs(axis, k - 1);
+  };
+  const std::string p = "y" + ("y" + std::string("b") + slabs('u', 12)) + "b";
+  const std::string q = "y" + ("y" + std::string("b") + slabs('y', 12)) + "b";
+  m.tree = "x" + ("x" + std::string("b") + p) + ("x" + q + "b");
+  m.proofs.resize(6, m.proofs.front());
+  expect_rejected(m, model, "the open leaves' adjacency needs more than");
 }
 
 TEST(CertifySlicedApart, TheCertificateHoldsAtEveryScale) {
