@@ -9,6 +9,7 @@
 #include "model/json_document.hpp"
 
 #include <initializer_list>
+#include <string_view>
 #include <string>
 
 namespace hipair::certificate_json {
@@ -31,5 +32,10 @@ const JsonValue& read_array(const JsonValue& value);
 /// A pose as planar claims read it ({"part", "x", "y", "tangent", "centre"?}).
 PlanarPose read_pose(const JsonValue& value);
 [[noreturn]] void refuse(const JsonValue& at, const std::string& reason);
+/// Is `json_text` an object whose "claim" is `claim`? (false when it does not parse)
+bool has_claim(std::string_view json_text, const char* claim);
+/// Checks the top-level keys, the format version (1) and the claim of a claim kept outside the
+/// Certificate struct, reads the envelope into `envelope`; returns the claim's body.
+const JsonValue& read_claim(const JsonValue& root, const char* claim, Certificate& envelope);
 
 }  // namespace hipair::certificate_json

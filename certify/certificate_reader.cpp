@@ -274,6 +274,26 @@ const JsonValue& read_array(const JsonValue& value) { return array(value); }
 PlanarPose read_pose(const JsonValue& value) { return pose_of(value); }
 [[noreturn]] void refuse(const JsonValue& at, const std::string& reason) { fail(at, reason); }
 
+bool has_claim(std::string_view json_text, const char* claim) {
+  try {
+    JsonValue root = model_detail::parse_json(json_text);
+    const JsonValue* found = root.is_object() ? root.find("claim") : nullptr;
+    return found && found->is_string() && found->text == claim;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+const JsonValue& read_claim(const JsonValue& root, const char* claim, Certificate& envelope) {
+  check_keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", claim});
+  const JsonValue& version = require(root, "hipair_certificate");
+  if (!version.is_number() || version.text != "1") fail(version, "unsupported certificate version (expected 1)");
+  const JsonValue& named = require(root, "claim");
+  if (text(named) != claim) fail(named, std::string("expected the claim '") + claim + "'");
+  read_envelope(root, envelope);
+  return require(root, claim);
+}
+
 }  // namespace certificate_json
 
 Certificate read_certificate(std::string_view json_text) {

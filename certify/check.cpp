@@ -2,6 +2,7 @@
 // check throws a Rejection with the exact reason.
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
+#include <hipair/sliced_apart.hpp>
 
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
@@ -856,9 +857,12 @@ VerificationResult verify_certificate_file(const std::filesystem::path& certific
   VerificationResult result;
   Certificate certificate;
   std::optional<SlicedConnectedCertificate> connected;   // a claim outside Certificate (sliced_connected.hpp)
+  std::optional<SlicedApartCertificate> apart;           // and another (<hipair/sliced_apart.hpp>)
   try {
     const std::string certificate_text = io::read_file(certificate_path);
-    if (is_sliced_connected_certificate(certificate_text))
+    if (is_sliced_apart_certificate(certificate_text))
+      apart = read_sliced_apart_certificate(certificate_text);
+    else if (is_sliced_connected_certificate(certificate_text))
       connected = read_sliced_connected_certificate(certificate_text);
     else
       certificate = read_certificate(certificate_text);
@@ -874,6 +878,7 @@ VerificationResult verify_certificate_file(const std::filesystem::path& certific
     return result;
   }
   if (connected) return check_sliced_connected_text(*connected, text, model_path.filename().string());
+  if (apart) return check_sliced_apart_text(*apart, text, model_path.filename().string());
   return check_certificate_text(certificate, text, model_path.filename().string());
 }
 

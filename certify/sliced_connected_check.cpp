@@ -62,26 +62,12 @@ const Part& part_named(const Model& model, const std::string& name) {
 
 }  // namespace
 
-bool is_sliced_connected_certificate(std::string_view json_text) {
-  try {
-    JsonValue root = model_detail::parse_json(json_text);
-    const JsonValue* claim = root.is_object() ? root.find("claim") : nullptr;
-    return claim && claim->is_string() && claim->text == claim_name;
-  } catch (const Error&) {
-    return false;
-  }
-}
+bool is_sliced_connected_certificate(std::string_view json_text) { return certificate_json::has_claim(json_text, claim_name); }
 
 SlicedConnectedCertificate read_sliced_connected_certificate(std::string_view json_text) {
   JsonValue root = model_detail::parse_json(json_text);
-  certificate_json::keys(root, {"hipair_certificate", "claim", "statement", "model", "pair", claim_name});
-  const JsonValue& version = certificate_json::member(root, "hipair_certificate");
-  if (!version.is_number() || version.text != "1") certificate_json::refuse(version, "unsupported certificate version (expected 1)");
-  const JsonValue& claim = certificate_json::member(root, "claim");
-  if (certificate_json::read_text(claim) != claim_name) certificate_json::refuse(claim, std::string("expected the claim '") + claim_name + "'");
   SlicedConnectedCertificate c;
-  certificate_json::read_envelope(root, c.envelope);
-  const JsonValue& body = certificate_json::member(root, claim_name);
+  const JsonValue& body = certificate_json::read_claim(root, claim_name, c.envelope);
   certificate_json::keys(body, {"from", "to", "path"});
   c.from = certificate_json::read_pose(certificate_json::member(body, "from"));
   c.to = certificate_json::read_pose(certificate_json::member(body, "to"));

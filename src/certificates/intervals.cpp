@@ -602,6 +602,11 @@ class MarchCover {
 
 }  // namespace
 
+std::optional<RationalInterval> certify_detail::crossing_piece_of(const IntervalEdge& ec, const IntervalEdge& eo,
+                                                                  const IntervalEdge& gc, const IntervalEdge& go) {
+  return crossing_piece(ec, eo, gc, go);
+}
+
 std::optional<Certificate> certify_free_passage(const Model& model, const std::string& first, const std::string& second,
                                                 const PassagePath& path, std::optional<Rational> distance,
                                                 const CertifyContext& context, const IntervalSearchOptions& options) {

@@ -65,6 +65,12 @@ verify::IntervalMap interval_map(const Part& part, const RationalInterval& range
 std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
                                           const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b);
 
+/// A piece of edge e (posed at one pose: ec, over a set of poses: eo) that crosses edge g (gc,
+/// go) for every pose of the set, proved by verify::crossing_certain, or nullopt: the search of
+/// the jam and free-passage producers (src/certificates/intervals.cpp), used by sliced_apart.
+std::optional<RationalInterval> crossing_piece_of(const verify::IntervalEdge& ec, const verify::IntervalEdge& eo,
+                                                  const verify::IntervalEdge& gc, const verify::IntervalEdge& go);
+
 /// `value` rounded towards zero to `digits` significant decimal digits.
 Rational round_down(const Rational& value, int digits);
 

@@ -12,6 +12,7 @@
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
+#include <hipair/sliced_apart.hpp>
 #include <hipair/sliced_certificate.hpp>
 
 #include <cmath>
@@ -37,11 +38,11 @@ struct CertifyArguments {
 // `--trap` were taken and ignored).
 void refuse_options_of_other_claims(const CertifyArguments& arguments) {
   static const std::vector<std::pair<const char*, std::set<std::string>>> claims_of = {
-      {"--at", {"interference", "clearance", "connected"}},
+      {"--at", {"interference", "clearance", "connected", "apart"}},
       {"--distance", {"clearance", "free"}},
       {"--driver", {"jam", "free"}},
       {"--from", {"free"}},
-      {"--to", {"free", "connected"}},
+      {"--to", {"free", "connected", "apart"}},
       {"--follower-at", {"free"}},
       {"--ratio", {"free"}},
       {"--direction", {"jam"}},
@@ -161,7 +162,7 @@ int run(const CertifyArguments& arguments) {
                          "ranges only (hipair-verify rejects a value outside its range): write the value into the model "
                          "(as its nominal, with its tolerance) and certify that model");
   if (arguments.claim == "interference" || arguments.claim == "clearance" || arguments.claim == "jam" ||
-      arguments.claim == "free" || arguments.claim == "connected")
+      arguments.claim == "free" || arguments.claim == "connected" || arguments.claim == "apart")
     refuse_options_of_other_claims(arguments);
   refuse_repeated_names(arguments.overrides, "--set", "parameter");
   refuse_repeated_names(arguments.at, "--at", "part");
@@ -188,19 +189,36 @@ int run(const CertifyArguments& arguments) {
   std::vector<std::string> notes;   // how angles in degrees were taken
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
   const Part* pin_slot = a.motion.kind == Motion::Kind::pin_slot ? &a : b.motion.kind == Motion::Kind::pin_slot ? &b : nullptr;
-  if (arguments.claim == "connected") {
+  if (arguments.claim == "connected" || arguments.claim == "apart") {
     // a planar part's two poses connected through free space (sliced C-space path, staircase
     // certificate: <hipair/sliced_certificate.hpp>); the certificate is its own kind
     const Part& fixed = planar == &a ? b : a;
     if (!planar || fixed.motion.kind != Motion::Kind::fixed)
-      throw ModelError("", "--claim connected: the pair " + a.name + ":" + b.name +
+      throw ModelError("", "--claim " + arguments.claim + ": the pair " + a.name + ":" + b.name +
                                " must be a fixed part and a part free in the plane (motion \"planar\")");
     if (planar->motion.angle_limits || planar->motion.translation_limits)
-      throw ModelError("", "--claim connected: part '" + planar->name + "' has motion limits (connected claims cover parts without limits)");
-    if (arguments.to.empty()) throw ModelError("", "--claim connected needs --to " + planar->name + "=X,Y,ANGLE (the end pose)");
+      throw ModelError("", "--claim " + arguments.claim + ": part '" + planar->name + "' has motion limits (" + arguments.claim +
+                               " claims cover parts without limits)");
+    if (arguments.to.empty())
+      throw ModelError("", "--claim " + arguments.claim + " needs --to " + planar->name + "=X,Y,ANGLE (the end pose)");
     PlanarPose from = planar_pose(*planar, arguments.at, "--at", notes);
     PlanarPose to = planar_pose(*planar, {arguments.to}, "--to", notes);
     for (const std::string& note : notes) std::cout << note << "\n";
+    if (arguments.claim == "apart") {
+      // the poses in different components of the free space: a kd-tree of boxes whose blocked
+      // leaves wall a's component off (<hipair/sliced_apart.hpp>)
+      SlicedApartResult found = certify_sliced_apart(model, fixed.name, from, to, context);
+      if (!found.certificate) {
+        std::cerr << "hipair: cannot certify: " << found.failure << "\n";
+        return 1;
+      }
+      io::write_file_atomically(arguments.out, write_sliced_apart_certificate(*found.certificate));
+      std::cout << "certified sliced_apart: " << found.certificate->envelope.statement << " (" << found.leaves << " boxes, "
+                << found.blocked << " proved blocked)\n"
+                << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
+                << ")\n";
+      return 0;
+    }
     SlicedConnectedResult found = certify_sliced_connected(model, fixed.name, from, to, context);
     if (!found.certificate) {
       std::cerr << "hipair: cannot certify: " << found.failure << "\n";
@@ -411,7 +429,7 @@ int run(const CertifyArguments& arguments) {
       failure = "some configuration of the trap's cut or walls is not certainly blocked, or no configuration tried in the trap is certainly free";
     }
   } else {
-    throw ModelError("", "--claim must be interference, clearance, jam, free or connected");
+    throw ModelError("", "--claim must be interference, clearance, jam, free, connected or apart");
   }
   for (const std::string& note : notes) std::cout << note << "\n";
   if (!certificate) {
@@ -431,17 +449,17 @@ void register_certify(CLI::App& app, Action& action) {
   auto arguments = std::make_shared<CertifyArguments>();
   CLI::App* command = app.add_subcommand("certify", "Produce a certificate of interference, clearance, jam or free passage");
   command->add_option("model", arguments->path, "model file")->required();
-  command->add_option("--claim", arguments->claim, "interference | clearance | jam | free | connected")->required();
+  command->add_option("--claim", arguments->claim, "interference | clearance | jam | free | connected | apart")->required();
   command->add_option("--out", arguments->out, "certificate file to write (JSON)")->required()->check(output_path());
   command->add_option("--pair", arguments->pair, "A:B (default: the model's first pair)");
   command->add_option("--set", arguments->overrides, "override a parameter: NAME=VALUE (repeatable)");
-  command->add_option("--at", arguments->at, "interference/clearance/connected: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE; "
+  command->add_option("--at", arguments->at, "interference/clearance/connected/apart: PART=VALUE, angle in rad (or NNdeg) or offset in mm (a planar part: PART=X,Y,ANGLE; "
                                              "a pin-slot part: PART=SLIDE,ANGLE) "
                                              "(default: the initial configuration)");
   command->add_option("--distance", arguments->distance, "clearance/free: the clearance to certify (mm; default: found)");
   command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");
   command->add_option("--from", arguments->from, "free: start of the driver range (default: its initial position)");
-  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn); connected: the end pose PART=X,Y,ANGLE");
+  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn); connected/apart: the end pose PART=X,Y,ANGLE");
   command->add_option("--follower-at", arguments->follower_at, "free: follower position at the start (default: initial)");
   command->add_option("--ratio", arguments->ratio, "free: follower moves by RATIO x driver motion (default 0: it stays)");
   command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1; + and - are synonyms");

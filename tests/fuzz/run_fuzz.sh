@@ -33,6 +33,7 @@ case "$target" in
     sources=("$source"/src/model/parametric/*.cpp
              "$source"/src/io/atomic_file.cpp "$source"/certify/tolerance_check.cpp "$source"/certify/free_path_check.cpp
              "$source"/certify/planar_check.cpp "$source"/certify/statement.cpp "$source"/certify/sliced_connected_check.cpp
+             "$source"/certify/sliced_apart_check.cpp
              "$source"/certify/certificate_reader.cpp "$source"/certify/exact_geometry.cpp
              "$source"/certify/interval_geometry.cpp "$source"/certify/check.cpp
              "$source"/tests/fuzz/certificate_verifier_fuzzer.cpp)

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# `hipair certify --claim apart` and `hipair-verify` on sliced_apart certificates (session 69): the
+# 10 mm square peg of examples/models/peg-in-hole.json (12 mm hole) cannot turn a quarter
+# (certified, verified); the certificate edited (the domain's boundary opened, a leaf dropped, b
+# moved into a's component, a crossing's piece perturbed, the statement) is invalid with its
+# reason; bad input exits 2 naming the option, nothing written.
+# usage: run_certify_apart_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
+set -uo pipefail
+hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
+hipair=$1 verify=$2 source=$3 work=$4
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+model="$work/peg-in-hole.json"
+cp "$source/examples/models/peg-in-hole.json" "$model"
+"$hipair" certify "$model" --claim apart --at peg=0,0,0 --to peg=0,0,90deg --out "$work/apart.json" >"$work/apart.out" 2>&1 \
+  || fail "certify --claim apart refuses the peg in the 12 mm hole: $(cat "$work/apart.out")"
+grep -qF "certified sliced_apart: Part 'peg' cannot move from x=0, y=0, t=0 to x=0, y=0, t=1 without touching part 'plate'." "$work/apart.out" \
+  || fail "certify --claim apart: not the statement: $(cat "$work/apart.out")"
+out=$("$verify" "$work/apart.json" "$model") || fail "hipair-verify refuses the apart certificate: $out"
+case "$out" in "valid: sliced_apart: part 'peg' cannot move from x=0, y=0, t=0 to x=0, y=0, t=1 without touching 'plate'"*) ;;
+  *) fail "hipair-verify: not the summary: $out" ;; esac
+
+mutate() {   # NAME PYTHON-STATEMENTS-ON-body MESSAGE
+  python3 - "$work/apart.json" "$work/$1.json" "$2" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+body = c["sliced_apart"]
+exec(sys.argv[3])
+json.dump(c, open(sys.argv[2], "w"), indent=1)
+PY
+  out=$("$verify" "$work/$1.json" "$model") && fail "$1: the edited certificate verifies"
+  case "$out" in *"$3"*) ;; *) fail "$1: not the reason '$3': $out" ;; esac
+}
+# the first leaf holds the domain's lowest corner: blocked, its proof the first
+mutate boundary-opened 'i = min(body["tree"].index("o"), body["tree"].index("b")); body["tree"] = body["tree"][:i] + "o" + body["tree"][i + 1:]; body["proofs"].pop(0)' \
+  "touches the domain's boundary"
+mutate leaf-dropped 'body["tree"] = body["tree"][:-1]' "the tree ends before it covers the domain"
+mutate same-component 'body["b"]["tangent"] = "1/50"; c["statement"] = c["statement"].replace("t=1 without", "t=1/50 without")' \
+  "a and b lie in one component"
+mutate piece-perturbed 'p = next(p for p in body["proofs"] if p[0] == "cross"); p[6] = "0"; p[7] = "1/1000000"' \
+  "the crossing does not hold over the box"
+mutate statement 'c["statement"] = "Part peg cannot move."' "the statement does not say"
+mutate unknown-key 'body["speed"] = "1"' "malformed certificate: /sliced_apart/speed: unknown key 'speed'"
+
+# bad input: exit 2, one message naming the option, nothing written
+expect_refused() {   # NAME MESSAGE ARGS...
+  local name=$1 message=$2
+  shift 2
+  "$hipair" certify "$model" "$@" --out "$work/$name.json" >"$work/$name.out" 2>&1
+  local status=$?
+  [ $status -eq 2 ] || fail "$name: exit $status, not 2: $(cat "$work/$name.out")"
+  [ ! -e "$work/$name.json" ] || fail "$name: a certificate was written"
+  grep -qF -- "$message" "$work/$name.out" || fail "$name: not '$message': $(cat "$work/$name.out")"
+}
+expect_refused no-to "--claim apart needs --to peg=X,Y,ANGLE" --claim apart --at peg=0,0,0
+expect_refused distance "--distance: applies to --claim clearance or free, not to --claim apart" --claim apart --to peg=0,0,1 --distance 1
+expect_refused bad-to "--to expects peg=X,Y,ANGLE" --claim apart --to peg=0,0
+
+[ $failures -eq 0 ] && echo "certify apart CLI tests passed"
+exit $((failures > 0))
