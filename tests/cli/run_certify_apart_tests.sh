@@ -6,11 +6,7 @@
 # reason; bad input exits 2 naming the option, nothing written.
 # usage: run_certify_apart_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
-hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
-hipair=$1 verify=$2 source=$3 work=$4
-rm -rf "$work" && mkdir -p "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/seeded_verify_test.sh" "$@"
 
 model="$work/peg-in-hole.json"
 cp "$source/examples/models/peg-in-hole.json" "$model"
@@ -22,17 +18,7 @@ out=$("$verify" "$work/apart.json" "$model") || fail "hipair-verify refuses the 
 case "$out" in "valid: sliced_apart: part 'peg' cannot move from x=0, y=0, t=0 to x=0, y=0, t=1 without touching 'plate'"*) ;;
   *) fail "hipair-verify: not the summary: $out" ;; esac
 
-mutate() {   # NAME PYTHON-STATEMENTS-ON-body MESSAGE
-  python3 - "$work/apart.json" "$work/$1.json" "$2" <<'PY'
-import json, sys
-c = json.load(open(sys.argv[1]))
-body = c["sliced_apart"]
-exec(sys.argv[3])
-json.dump(c, open(sys.argv[2], "w"), indent=1)
-PY
-  out=$("$verify" "$work/$1.json" "$model") && fail "$1: the edited certificate verifies"
-  case "$out" in *"$3"*) ;; *) fail "$1: not the reason '$3': $out" ;; esac
-}
+mutate() { mutate_certificate "$work/apart.json" sliced_apart "$model" "$@"; }   # NAME PYTHON-STATEMENTS-ON-c-AND-body MESSAGE
 # the first leaf holds the domain's lowest corner: blocked, its proof the first
 mutate boundary-opened 'i = min(body["tree"].index("o"), body["tree"].index("b")); body["tree"] = body["tree"][:i] + "o" + body["tree"][i + 1:]; body["proofs"].pop(0)' \
   "touches the domain's boundary"

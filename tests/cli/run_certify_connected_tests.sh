@@ -29,19 +29,7 @@ case "$out" in "invalid: model hash mismatch"*) ;; *) fail "narrow hole: not a h
 grep -qF "different components of the sliced free space (not certified" "$work/stuck.out" || fail "the 14.14 mm hole: $(cat "$work/stuck.out")"
 
 # edited certificates
-mutate() {   # NAME PYTHON-EXPRESSION-ON-c MESSAGE
-  python3 - "$work/turn.json" "$work/$1.json" "$2" <<'PY'
-import json, sys
-c = json.load(open(sys.argv[1]))
-body = c["sliced_connected"]
-exec(sys.argv[3])
-json.dump(c, open(sys.argv[2], "w"), indent=1)
-PY
-  local out
-  out=$("$verify" "$work/$1.json" "$wide")
-  [ $? -eq 1 ] || fail "mutation $1 not invalid: $out"
-  case "$out" in *"$3"*) ;; *) fail "mutation $1: not '$3': $out" ;; esac
-}
+mutate() { mutate_certificate "$work/turn.json" sliced_connected "$wide" "$@"; }   # NAME PYTHON-STATEMENTS-ON-c-AND-body MESSAGE
 mutate end-moved 'body["to"]["x"] = "1/10"' "the path ends at x=0, y=0, t=1, not at the claim's end x=1/10"
 mutate through-plate 'body["path"].insert(1, ["20", "0", "0"])' "move 0 (x=0, y=0, t=0 to x=20, y=0, t=0): the parts overlap"
 mutate turned-off-centre 'body["path"] = [["0", "0", "0"], ["1", "0", "0"], ["1", "0", "1"], ["0", "0", "1"]]' "move 1 (x=1, y=0, t=0 to x=1, y=0, t=1): the parts overlap"
