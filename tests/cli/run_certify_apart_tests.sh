@@ -44,5 +44,22 @@ expect_refused no-to "--claim apart needs --to peg=X,Y,ANGLE" --claim apart --at
 expect_refused distance "--distance: applies to --claim clearance or free, not to --claim apart" --claim apart --to peg=0,0,1 --distance 1
 expect_refused bad-to "--to expects peg=X,Y,ANGLE" --claim apart --to peg=0,0
 
+# The "one 0.01 mm too large is not [connected]": the 10 mm peg in a 14.14 mm hole
+# (0.0021 mm under 10 sqrt 2) cannot turn a quarter. Its certificate (30 585 boxes, 50 s to
+# produce, too slow for a test) is committed, made by
+#   hipair certify tests/data/sliced-apart/peg-in-hole-14.14.json --claim apart --at peg=0,0,0 \
+#     --to peg=0,0,90deg --out tests/data/sliced-apart/peg-14.14-quarter-turn-apart.json
+# hipair-verify accepts it (1.5 s) and refuses it for the 14.15 mm hole, where the turn is possible.
+data="$source/tests/data/sliced-apart"
+out=$("$verify" "$data/peg-14.14-quarter-turn-apart.json" "$data/peg-in-hole-14.14.json") \
+  || fail "hipair-verify refuses the 14.14 mm hole's apart certificate: $out"
+case "$out" in "valid: sliced_apart: part 'peg' cannot move from x=0, y=0, t=0 to x=0, y=0, t=1 without touching 'plate'"*) ;;
+  *) fail "the 14.14 mm hole: not the summary: $out" ;; esac
+sed 's/"hole-side": { "nominal": 14.14 }/"hole-side": { "nominal": 14.15 }/' "$data/peg-in-hole-14.14.json" >"$work/peg-14.15.json"
+grep -q '"nominal": 14.15' "$work/peg-14.15.json" || fail "the 14.15 mm model was not made"
+out=$("$verify" "$data/peg-14.14-quarter-turn-apart.json" "$work/peg-14.15.json")
+[ $? -eq 1 ] || fail "the 14.14 mm certificate against the 14.15 mm hole: not invalid: $out"
+case "$out" in "invalid: model hash mismatch"*) ;; *) fail "the 14.14 mm certificate against the 14.15 mm hole: $out" ;; esac
+
 [ $failures -eq 0 ] && echo "certify apart CLI tests passed"
 exit $((failures > 0))
