@@ -184,8 +184,8 @@ SlicedConnectedResult certify_sliced_connected(const Model& model, const std::st
       result.failure = "an end is not a free configuration (the parts touch or overlap there)";
       return result;
     case SlicedPath::Status::not_connected:
-      result.failure = "the ends lie in different components of the sliced free space (not certified: no certificate of "
-                       "separation is made)";
+      result.failure = "the ends lie in different components of the sliced free space (not certified here: "
+                       "`--claim apart` certifies a separation)";
       return result;
     case SlicedPath::Status::not_found:
       result.failure = "the sliced C-space found no path between the ends (they are connected)";

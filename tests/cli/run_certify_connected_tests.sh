@@ -2,7 +2,7 @@
 # `hipair certify --claim connected` and `hipair-verify` on sliced_connected certificates (session
 # 68): the 10 mm square peg of examples/models/peg-in-hole.json turns a quarter in a 14.15 mm hole
 # (certified, verified) but not in a 14.14 mm one (exit 1, not certified: "different components"
-# is the sliced C-space's verdict, no certificate of separation is made); the certificate edited
+# is the sliced C-space's verdict; `--claim apart` certifies it: run_certify_apart_tests.sh); the certificate edited
 # (an end moved, a vertex moved so that a move passes through the plate, the statement) is
 # invalid with its reason; bad input exits 2 naming the option, nothing written.
 # usage: run_certify_connected_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
