@@ -72,12 +72,6 @@ SlicedApartProof proof_of(const JsonValue& value) {
   return p;
 }
 
-const Part& part_named(const Model& model, const std::string& name) {
-  auto index = model.find_part(name);
-  if (!index) reject("the model has no part '" + name + "'");
-  return model.parts[*index];
-}
-
 }  // namespace
 
 bool is_sliced_apart_certificate(std::string_view json_text) { return certificate_json::has_claim(json_text, claim_name); }
@@ -308,21 +302,9 @@ bool apart_on_boundary(const ApartTree& tree, const ApartBox& box) {
 VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Model& model) {
   using namespace verify;
   return verdict_of([&] {
-    check_certificate_model(c.envelope, model);
-    const std::string &first = c.envelope.first, &second = c.envelope.second;
-    if (first == second) reject("a pair needs two different parts");
-    const std::string& name = c.a.part;
-    if (c.b.part != name) reject("the claim poses '" + name + "' at a and '" + c.b.part + "' at b");
-    if (name != first && name != second) reject("the posed part '" + name + "' is not a part of the pair");
-    const std::string& fixed_name = name == first ? second : first;
-    std::optional<Model> moved = connected_pair_at_origin(model, fixed_name, name);
-    const Model& posed = moved ? *moved : model;
-    const Part& planar = part_named(posed, name);
-    const Part& fixed = part_named(posed, fixed_name);
-    if (planar.motion.kind != Motion::Kind::planar) reject("part '" + name + "' is not free in the plane (motion \"planar\")");
-    if (fixed.motion.kind != Motion::Kind::fixed) reject("part '" + fixed_name + "' is not fixed");
-    if (planar.motion.angle_limits || planar.motion.translation_limits)
-      reject("part '" + name + "' has motion limits (apart claims cover parts without limits)");
+    const SlicedPair pair = checked_sliced_pair(c.envelope, model, c.a, c.b, "a", "b", "apart");
+    const std::string &name = pair.planar_name, &fixed_name = pair.fixed_name;
+    const Part &planar = pair.planar(), &fixed = pair.fixed();
     if (!(c.x.lo < c.x.hi) || !(c.y.lo < c.y.hi) || (!c.full_turn && !(c.u.lo < c.u.hi && c.u.lo >= -1 && c.u.hi <= 3)))
       reject("the domain is empty or its angle range leaves [-1, 3]");
     const ApartTree tree = parse_apart_tree(c.tree, apart_domain(c), c.full_turn, c.proofs.size());

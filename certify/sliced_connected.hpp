@@ -37,6 +37,21 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
 /// producer and the verifier both use it (a pair at 10^6 mm, under pair_moved_to_origin's
 /// threshold, was otherwise checked there, its rotations' enclosures about 10^6 times wider).
 std::optional<Model> connected_pair_at_origin(const Model& model, const std::string& fixed, const std::string& planar);
+/// The pair of a sliced claim (connected, apart), checked: the certificate names the model
+/// (check_certificate_model), the part posed at both ends is one of the envelope's two different
+/// parts, free in the plane without motion limits, and the other is fixed; rejected otherwise, the
+/// ends called `a_words` and `b_words` and the claim `claim` in the reasons. posed() is the model
+/// the claim is decided on (connected_pair_at_origin).
+struct SlicedPair {
+  const Model* given = nullptr;
+  std::optional<Model> moved;
+  std::string planar_name, fixed_name;
+  const Model& posed() const { return moved ? *moved : *given; }
+  const Part& planar() const;
+  const Part& fixed() const;
+};
+SlicedPair checked_sliced_pair(const Certificate& envelope, const Model& model, const PlanarPose& a, const PlanarPose& b,
+                               const std::string& a_words, const std::string& b_words, const std::string& claim);
 /// The exact map of a planar part at a pose (planar_check.cpp).
 ExactMap planar_pose_map(const Part& part, const PlanarPose& pose);
 

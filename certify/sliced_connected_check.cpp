@@ -97,6 +97,32 @@ std::optional<Model> connected_pair_at_origin(const Model& model, const std::str
   return translated_model(at, pivot);   // every point minus the pivot
 }
 
+const Part& SlicedPair::planar() const { return part_named(posed(), planar_name); }
+const Part& SlicedPair::fixed() const { return part_named(posed(), fixed_name); }
+
+SlicedPair checked_sliced_pair(const Certificate& envelope, const Model& model, const PlanarPose& a, const PlanarPose& b,
+                               const std::string& a_words, const std::string& b_words, const std::string& claim) {
+  check_certificate_model(envelope, model);
+  const std::string &first = envelope.first, &second = envelope.second;
+  if (first == second) reject("a pair needs two different parts");
+  const std::string& name = a.part;
+  if (b.part != name) reject("the claim poses '" + name + "' at " + a_words + " and '" + b.part + "' at " + b_words);
+  if (name != first && name != second) reject("the posed part '" + name + "' is not a part of the pair");
+  SlicedPair pair;
+  pair.given = &model;
+  pair.planar_name = name;
+  pair.fixed_name = name == first ? second : first;
+  // a pair far from the origin for its size is checked moved to it (its poses are relative:
+  // moving both parts moves the pivot with them), as planar clearance claims are
+  pair.moved = connected_pair_at_origin(model, pair.fixed_name, name);
+  const Part &planar = pair.planar(), &fixed = pair.fixed();
+  if (planar.motion.kind != Motion::Kind::planar) reject("part '" + name + "' is not free in the plane (motion \"planar\")");
+  if (fixed.motion.kind != Motion::Kind::fixed) reject("part '" + pair.fixed_name + "' is not fixed");
+  if (planar.motion.angle_limits || planar.motion.translation_limits)
+    reject("part '" + name + "' has motion limits (" + claim + " claims cover parts without limits)");
+  return pair;
+}
+
 std::string sliced_move_failure(const Part& fixed, const Part& planar, const PlanarPose& a, const PlanarPose& b,
                                 std::size_t budget, std::size_t* pieces) {
   if (a.slide || b.slide) return "a pose with a slide (a connected claim poses x, y and tangent)";
@@ -210,23 +236,9 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
 VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, const Model& model) {
   using namespace verify;
   return verdict_of([&] {
-    check_certificate_model(c.envelope, model);
-    const std::string &first = c.envelope.first, &second = c.envelope.second;
-    if (first == second) reject("a pair needs two different parts");
-    const std::string& name = c.from.part;
-    if (c.to.part != name) reject("the claim poses '" + name + "' at the start and '" + c.to.part + "' at the end");
-    if (name != first && name != second) reject("the posed part '" + name + "' is not a part of the pair");
-    const std::string& fixed_name = name == first ? second : first;
-    // a pair far from the origin for its size is checked moved to it (its poses are relative:
-    // moving both parts moves the pivot with them), as planar clearance claims are
-    std::optional<Model> moved = connected_pair_at_origin(model, fixed_name, name);
-    const Model& posed = moved ? *moved : model;
-    const Part& planar = part_named(posed, name);
-    const Part& fixed = part_named(posed, fixed_name);
-    if (planar.motion.kind != Motion::Kind::planar) reject("part '" + name + "' is not free in the plane (motion \"planar\")");
-    if (fixed.motion.kind != Motion::Kind::fixed) reject("part '" + fixed_name + "' is not fixed");
-    if (planar.motion.angle_limits || planar.motion.translation_limits)
-      reject("part '" + name + "' has motion limits (connected claims cover parts without limits)");
+    const SlicedPair pair = checked_sliced_pair(c.envelope, model, c.from, c.to, "the start", "the end", "connected");
+    const std::string &name = pair.planar_name, &fixed_name = pair.fixed_name;
+    const Part &planar = pair.planar(), &fixed = pair.fixed();
     if (c.path.empty()) reject("the path has no vertex");
     if (!same_pose(planar, c.path.front(), c.from)) reject("the path starts at " + pose_words(c.path.front()) + ", not at the claim's start " + pose_words(c.from));
     if (!same_pose(planar, c.path.back(), c.to)) reject("the path ends at " + pose_words(c.path.back()) + ", not at the claim's end " + pose_words(c.to));
