@@ -22,8 +22,6 @@
 namespace hipair::verify {
 namespace {
 
-[[noreturn]] void reject(const std::string& reason) { throw Rejection{reason}; }
-
 // ----------------------------------------------------------------------------- messages
 // Values are printed so that a message never shows two different numbers as equal: exactly
 // when a short decimal is exact, and two values that are compared with enough significant
@@ -135,10 +133,9 @@ void check_model(const Certificate& c, const Model& model) {
   }
 }
 
-const Part& part_named(const Model& model, const std::string& name) {
-  auto index = model.find_part(name);
-  if (!index) reject("the model has no part '" + name + "'");
-  const Part& part = model.parts[*index];
+// a part of a fixed-axis claim: named in the model (part_named) and fixed, rotating or translating
+const Part& fixed_axis_part(const Model& model, const std::string& name) {
+  const Part& part = part_named(model, name);
   Motion::Kind kind = part.motion.kind;
   if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
     reject("part '" + name + "' is not a fixed-axis part (certificates cover fixed, rotating and translating parts)");
@@ -159,7 +156,7 @@ std::string limits_text(const Part& part) {
 }
 
 const Edge& edge_of(const Model& model, const EdgeReference& reference) {
-  const Part& part = part_named(model, reference.part);
+  const Part& part = fixed_axis_part(model, reference.part);
   if (reference.loop >= part.loops.size() || reference.edge >= part.loops[reference.loop].edges.size())
     reject("part '" + part.name + "' has no loop " + std::to_string(reference.loop) + " edge " + std::to_string(reference.edge));
   const Edge& edge = part.loops[reference.loop].edges[reference.edge];
@@ -341,7 +338,7 @@ std::string configuration_text(const Certificate& c) {
 }
 
 std::string check_interference(const Certificate& c, const Model& model) {
-  const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  const Part &a = fixed_axis_part(model, c.first), &b = fixed_axis_part(model, c.second);
   check_configuration_parts(c.configuration, {c.first, c.second});
   PlacedPart placed_a = place(a, exact_map(a, c.configuration)), placed_b = place(b, exact_map(b, c.configuration));
   if (c.witness_point) {
@@ -369,7 +366,7 @@ std::string check_interference(const Certificate& c, const Model& model) {
 
 std::string check_clearance(const Certificate& c, const Model& model) {
   if (sgn(c.distance) <= 0) reject("the claimed clearance must be positive");
-  const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  const Part &a = fixed_axis_part(model, c.first), &b = fixed_axis_part(model, c.second);
   check_configuration_parts(c.configuration, {c.first, c.second});
   ExactMap map_a = exact_map(a, c.configuration), map_b = exact_map(b, c.configuration);
   std::string closest;
@@ -398,7 +395,7 @@ struct Roles {
 };
 
 Roles roles(const Certificate& c, const Model& model) {
-  const Part &a = part_named(model, c.first), &b = part_named(model, c.second);
+  const Part &a = fixed_axis_part(model, c.first), &b = fixed_axis_part(model, c.second);
   if (c.driver != a.name && c.driver != b.name) reject("the driver '" + c.driver + "' is not a part of the pair");
   const Part& driver = c.driver == a.name ? a : b;
   const Part& other = c.driver == a.name ? b : a;

@@ -9,14 +9,6 @@
 namespace hipair::verify {
 namespace {
 
-[[noreturn]] void reject(const std::string& reason) { throw Rejection{reason}; }
-
-const Part& part_named(const Model& model, const std::string& name) {
-  auto index = model.find_part(name);
-  if (!index) reject("the model has no part '" + name + "'");
-  return model.parts[*index];
-}
-
 // exact up to 60 characters, else 25 digits marked rounded (a forged x = 1e100000 printed a
 // 100 KB line until session 36, as the tolerance messages did until session 35)
 std::string text(const Rational& r) { return fraction_or_rounded(r); }

@@ -18,19 +18,38 @@ namespace hipair {
 namespace {
 
 using certificate_json::JsonValue;
+using verify::fraction_or_rounded;
+using verify::reject;
+using verify::sliced_pose_words;
 const char* const claim_name = "sliced_apart";
 
-[[noreturn]] void reject(const std::string& reason) { throw verify::Rejection{reason}; }
-
-std::string text(const Rational& r) { return verify::fraction_or_rounded(r); }
-
-std::string pose_words(const PlanarPose& p) {
-  return "x=" + text(p.x) + ", y=" + text(p.y) + (p.half_turn ? ", t(pi)=" : ", t=") + text(p.tangent);
+std::string box_words(const verify::ApartTree& tree, const verify::ApartBox& b) {
+  std::string out;
+  for (int k = 0; k < 3; ++k)
+    out += std::string(k ? ", " : "") + tree.marks[k] + " in [" + fraction_or_rounded(b.lo[k]) + ", " + fraction_or_rounded(b.hi[k]) + "]";
+  return out;
 }
 
-std::string box_words(const verify::ApartBox& b) {
-  return "x in [" + text(b.lo[0]) + ", " + text(b.hi[0]) + "], y in [" + text(b.lo[1]) + ", " + text(b.hi[1]) + "], u in [" +
-         text(b.lo[2]) + ", " + text(b.hi[2]) + "]";
+// the other part's position in a pin-slot claim's words: "t=1/3", "t(pi)=0", "offset 2"
+std::string position_words(const ExactPosition& p) {
+  if (p.is_offset) return "offset " + fraction_or_rounded(p.value);
+  return (p.half_turn ? "t(pi)=" : "t=") + fraction_or_rounded(p.value);
+}
+
+// {"tangent": "t", "centre": "pi"?} (a rotating part) or {"offset": "s"} (a translating part)
+ExactPosition position_of(const JsonValue& value) {
+  certificate_json::keys(value, {"tangent", "centre", "offset"});
+  ExactPosition p;
+  p.is_offset = value.find("offset") != nullptr;
+  if (p.is_offset == (value.find("tangent") != nullptr))
+    certificate_json::refuse(value, "a position gives exactly one of \"tangent\" (rotating) and \"offset\" (translating)");
+  p.value = certificate_json::read_rational(certificate_json::member(value, p.is_offset ? "offset" : "tangent"));
+  if (const JsonValue* centre = value.find("centre")) {
+    const std::string c = certificate_json::read_text(*centre);
+    if (p.is_offset || (c != "pi" && c != "0")) certificate_json::refuse(*centre, "centre is \"0\" or \"pi\", for a tangent");
+    p.half_turn = c == "pi";
+  }
+  return p;
 }
 
 RationalInterval range_of(const JsonValue& value) {
@@ -80,15 +99,41 @@ SlicedApartCertificate read_sliced_apart_certificate(std::string_view json_text)
   JsonValue root = model_detail::parse_json(json_text);
   SlicedApartCertificate c;
   const JsonValue& body = certificate_json::read_claim(root, claim_name, c.envelope);
-  certificate_json::keys(body, {"a", "b", "domain", "tree", "proofs"});
+  certificate_json::keys(body, {"a", "b", "a_other", "b_other", "domain", "tree", "proofs"});
   c.a = certificate_json::read_pose(certificate_json::member(body, "a"));
   c.b = certificate_json::read_pose(certificate_json::member(body, "b"));
-  for (const PlanarPose* end : {&c.a, &c.b})
-    if (end->slide) certificate_json::refuse(body, "an apart claim poses a planar part by x, y and tangent, not a slide");
+  c.pin_slot = bool(c.a.slide);
+  if (bool(c.b.slide) != c.pin_slot)
+    certificate_json::refuse(body, "both ends give a slide (a pin-slot part) or neither (a planar part: x, y and tangent)");
+  for (const char* key : {"a_other", "b_other"})
+    if (const JsonValue* other = body.find(key)) {
+      if (!c.pin_slot) certificate_json::refuse(*other, "the other part's position belongs to pin-slot claims (ends with a slide)");
+      (key[0] == 'a' ? c.a_other : c.b_other) = position_of(*other);
+    }
+  if (bool(c.a_other) != bool(c.b_other)) certificate_json::refuse(body, "give the other part's position at both ends (a_other, b_other) or at neither");
   const JsonValue& domain = certificate_json::member(body, "domain");
-  certificate_json::keys(domain, {"x", "y", "angle"});
-  c.x = range_of(certificate_json::member(domain, "x"));
-  c.y = range_of(certificate_json::member(domain, "y"));
+  if (c.pin_slot) {
+    certificate_json::keys(domain, {"other", "slide", "angle"});
+    if (const JsonValue* other = domain.find("other")) {
+      if (!c.a_other) certificate_json::refuse(*other, "a fixed other part (no a_other, b_other) has no range");
+      if (other->is_string()) {
+        if (other->text != "full" || c.a_other->is_offset)
+          certificate_json::refuse(*other, "the other part's range is \"full\" (rotating) or [\"lo\", \"hi\"]");
+        c.other_full_turn = true;
+        c.x = RationalInterval{Rational(-1), Rational(3)};
+      } else {
+        c.x = range_of(*other);
+      }
+    } else {
+      if (c.a_other) certificate_json::refuse(domain, "the domain needs the other part's range (\"other\")");
+      c.x = RationalInterval{Rational(0), Rational(0)};
+    }
+    c.y = range_of(certificate_json::member(domain, "slide"));
+  } else {
+    certificate_json::keys(domain, {"x", "y", "angle"});
+    c.x = range_of(certificate_json::member(domain, "x"));
+    c.y = range_of(certificate_json::member(domain, "y"));
+  }
   const JsonValue& angle = certificate_json::member(domain, "angle");
   if (angle.is_string()) {
     if (angle.text != "full") certificate_json::refuse(angle, "the angle range is \"full\" or [\"u0\", \"u1\"] within [-1, 3]");
@@ -105,18 +150,30 @@ SlicedApartCertificate read_sliced_apart_certificate(std::string_view json_text)
 
 std::string sliced_apart_statement(const SlicedApartCertificate& c) {
   const std::string& fixed = c.envelope.first == c.a.part ? c.envelope.second : c.envelope.first;
-  return "Part '" + c.a.part + "' cannot move from " + pose_words(c.a) + " to " + pose_words(c.b) + " without touching part '" +
-         fixed + "'.";
+  auto end = [&](const PlanarPose& p, const std::optional<ExactPosition>& other) {
+    return sliced_pose_words(p) + (other ? " ('" + fixed + "' at " + position_words(*other) + ")" : "");
+  };
+  return "Part '" + c.a.part + "' cannot move from " + end(c.a, c.a_other) + " to " + end(c.b, c.b_other) +
+         " without touching part '" + fixed + "'.";
 }
 
 namespace verify {
 
-ApartBox apart_domain(const SlicedApartCertificate& c) {
+ApartTree apart_tree_of(const SlicedApartCertificate& c) {
+  ApartTree tree;
   ApartBox d;
   d.lo[0] = c.x.lo, d.hi[0] = c.x.hi, d.lo[1] = c.y.lo, d.hi[1] = c.y.hi;
   d.lo[2] = c.full_turn ? Rational(-1) : c.u.lo;
   d.hi[2] = c.full_turn ? Rational(3) : c.u.hi;
-  return d;
+  tree.nodes.push_back(ApartTree::Node{});
+  tree.nodes[0].box = d;
+  tree.periodic[0] = c.pin_slot && c.other_full_turn;
+  tree.periodic[1] = false;
+  tree.periodic[2] = c.full_turn;
+  tree.marks = c.pin_slot ? "qsu" : "xyu";
+  for (int k = 0; k < 3; ++k)
+    if (d.lo[k] == d.hi[k]) tree.closed_lo[k] = tree.closed_hi[k] = true;   // an axis of one value (a fixed other part)
+  return tree;
 }
 
 std::size_t split_apart_leaf(ApartTree& tree, std::size_t n, int axis) {
@@ -139,38 +196,36 @@ std::size_t split_apart_leaf(ApartTree& tree, std::size_t n, int axis) {
   return first;
 }
 
-ApartTree parse_apart_tree(const std::string& text, const ApartBox& domain, bool periodic, std::size_t proofs) {
-  ApartTree tree;
-  tree.periodic = periodic;
-  tree.nodes.push_back(ApartTree::Node{});
-  tree.nodes[0].box = domain;
+void parse_apart_tree(const std::string& text, ApartTree& tree, std::size_t proofs) {
   std::size_t at = 0, leaves = 0, proof = 0;
   std::vector<std::size_t> stack{0};   // nodes still to read, next on top
+  const std::string marks = tree.marks;
   while (!stack.empty()) {
     const std::size_t n = stack.back();
     stack.pop_back();
     if (at >= text.size()) reject("the tree ends before it covers the domain (a box is missing after " + std::to_string(at) + " marks)");
     const char mark = text[at++];
-    if (mark == 'x' || mark == 'y' || mark == 'u') {
+    if (const std::size_t axis = marks.find(mark); axis != std::string::npos) {
       if (tree.nodes[n].depth >= apart_max_depth)
         reject("the tree is deeper than " + std::to_string(apart_max_depth) + " halvings (mark " + std::to_string(at - 1) + ")");
-      const std::size_t first = split_apart_leaf(tree, n, mark == 'x' ? 0 : mark == 'y' ? 1 : 2);
+      if (tree.nodes[0].box.lo[axis] == tree.nodes[0].box.hi[axis])
+        reject("the tree's mark " + std::to_string(at - 1) + " halves " + mark + ", an axis of one value");
+      const std::size_t first = split_apart_leaf(tree, n, int(axis));
       stack.push_back(first + 1);
       stack.push_back(first);
     } else if (mark == 'o' || mark == 'b') {
-      if (++leaves > apart_max_leaves) reject("the tree has more than " + std::to_string(apart_max_leaves) + " leaves");
+      if (++leaves > apart_max_leaves) reject("the tree has more than " + std::to_string(apart_max_leaves) + " leaves (the format's limit)");
       if (mark == 'b') {
         if (proof >= proofs) reject("the tree has more blocked leaves than proofs (" + std::to_string(proofs) + ")");
         tree.nodes[n].blocked = true;
         tree.nodes[n].proof = proof++;
       }
     } else {
-      reject("the tree's mark " + std::to_string(at - 1) + " is not x, y, u, o or b");
+      reject("the tree's mark " + std::to_string(at - 1) + " is not " + marks[0] + ", " + marks[1] + ", " + marks[2] + ", o or b");
     }
   }
   if (at != text.size()) reject("the tree has " + std::to_string(text.size() - at) + " marks after its last box");
   if (proof != proofs) reject("the certificate has " + std::to_string(proofs) + " proofs for " + std::to_string(proof) + " blocked leaves");
-  return tree;
 }
 
 std::string apart_tree_text(const ApartTree& tree) {
@@ -180,7 +235,7 @@ std::string apart_tree_text(const ApartTree& tree) {
     const ApartTree::Node& node = tree.nodes[stack.back()];
     stack.pop_back();
     if (node.axis >= 0) {
-      out += "xyu"[node.axis];
+      out += tree.marks[node.axis];
       stack.push_back(node.upper);
       stack.push_back(node.child);
     } else {
@@ -190,12 +245,13 @@ std::string apart_tree_text(const ApartTree& tree) {
   return out;
 }
 
-Rational apart_u_of(const PlanarPose& pose) {
-  const Rational& t = pose.tangent;
+Rational apart_u_of(const Rational& t, bool half_turn) {
   const bool small = abs(t) <= 1;
-  if (!pose.half_turn) return small ? t : Rational(2 - 1 / t);
+  if (!half_turn) return small ? t : Rational(2 - 1 / t);
   return small ? Rational(2 + t) : Rational(-1 / t);
 }
+
+Rational apart_u_of(const PlanarPose& pose) { return apart_u_of(pose.tangent, pose.half_turn); }
 
 PlanarPose apart_pose_at(const std::string& part, const Rational& x, const Rational& y, const Rational& u) {
   return u <= 1 ? PlanarPose{part, x, y, u, false, std::nullopt} : PlanarPose{part, x, y, Rational(u - 2), true, std::nullopt};
@@ -204,45 +260,135 @@ PlanarPose apart_pose_at(const std::string& part, const Rational& x, const Ratio
 namespace {
 Interval theta_of(const Rational& u) { return u <= 1 ? angle_of_tangent(u, false) : angle_of_tangent(Rational(u - 2), true); }
 Interval hull_of(const Rational& lo, const Rational& hi) { return hull2(Interval(lo), Interval(hi)); }
-}  // namespace
-
-IntervalMap apart_box_map(const Part& planar, const ApartBox& box) {
-  const Interval angle = hull2(theta_of(box.lo[2]), theta_of(box.hi[2]));   // theta increases with u
+// the rotations of the box's u range about the origin
+IntervalMap turned_over(const Rational& lo, const Rational& hi) {
+  const Interval angle = hull2(theta_of(lo), theta_of(hi));   // theta increases with u
   IntervalMap m;
   m.c = cos_of(angle);
   m.s = sin_of(angle);
+  return m;
+}
+// the rotation at u (exact), about the origin
+ExactMap turned_at(const Rational& u) {
+  const PlanarPose p = apart_pose_at("", Rational(0), Rational(0), u);
+  const Rational w = 1 + p.tangent * p.tangent;
+  const int sign = p.half_turn ? -1 : 1;
+  ExactMap m;
+  m.c = sign * (1 - p.tangent * p.tangent) / w;
+  m.s = sign * 2 * p.tangent / w;
+  return m;
+}
+Part turning_copy(const Part& part) {   // the part as if it only turned about its pivot: its shape relative to the pivot
+  Part copy = part;
+  copy.motion.kind = Motion::Kind::rotation;
+  return copy;
+}
+}  // namespace
+
+IntervalMap apart_box_map(const Part& planar, const ApartBox& box) {
+  IntervalMap m = turned_over(box.lo[2], box.hi[2]);
   const Interval px(planar.motion.pivot.x), py(planar.motion.pivot.y);
   m.shift.x = px - (m.c * px - m.s * py) + hull_of(box.lo[0], box.hi[0]);
   m.shift.y = py - (m.s * px + m.c * py) + hull_of(box.lo[1], box.hi[1]);
   return m;
 }
 
+void apart_middle(const ApartBox& box, Rational out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = (box.lo[k] + box.hi[k]) / 2;
+}
+
 PlanarPose apart_middle_pose(const Part& planar, const ApartBox& box) {
   return apart_pose_at(planar.name, (box.lo[0] + box.hi[0]) / 2, (box.lo[1] + box.hi[1]) / 2, (box.lo[2] + box.hi[2]) / 2);
 }
 
-std::string apart_proof_failure(const Part& fixed, const Part& planar, const ApartBox& box, const SlicedApartProof& proof) {
+ApartPair::ApartPair(const Part& other_part, const Part& moving_part)
+    : other(other_part), moving(moving_part), pin_slot(moving_part.motion.kind == Motion::Kind::pin_slot),
+      other_shape(shape_of(other_part)), moving_shape(shape_of(moving_part)), other_placed(place(other_part, ExactMap{})) {}
+
+ExactMap ApartPair::moving_at(const Rational& x0, const Rational& x1, const Rational& u) const {
+  if (!pin_slot) return planar_pose_map(moving, apart_pose_at(moving.name, x0, x1, u));
+  PlanarPose p = apart_pose_at(moving.name, Rational(0), Rational(0), u);
+  p.slide = x1;
+  return planar_pose_map(moving, p);
+}
+
+ExactMap ApartPair::other_at(const Rational& q) const {
+  ExactMap m;
+  if (other.motion.kind == Motion::Kind::rotation) {
+    m = turned_at(q);
+    m.pivot = other.motion.pivot;
+  } else if (other.motion.kind == Motion::Kind::translation) {
+    m.shift = Point{Rational(q * other.motion.direction.x), Rational(q * other.motion.direction.y)};
+  }
+  return m;
+}
+
+IntervalMap ApartPair::moving_over(const ApartBox& box) const {
+  if (!pin_slot) return apart_box_map(moving, box);
+  // p -> P + R (p - P) + s R d over the box (pin_slot parts are shaped about the origin)
+  IntervalMap m = turned_over(box.lo[2], box.hi[2]);
+  const Interval px(moving.motion.pivot.x), py(moving.motion.pivot.y), dx(moving.motion.direction.x), dy(moving.motion.direction.y);
+  const Interval slide = hull_of(box.lo[1], box.hi[1]);
+  m.shift.x = px - (m.c * px - m.s * py) + slide * (m.c * dx - m.s * dy);
+  m.shift.y = py - (m.s * px + m.c * py) + slide * (m.s * dx + m.c * dy);
+  return m;
+}
+
+IntervalMap ApartPair::other_over(const ApartBox& box) const {
+  if (other.motion.kind == Motion::Kind::rotation) return turned_over(box.lo[0], box.hi[0]);   // about its pivot (its shape's)
+  if (other.motion.kind == Motion::Kind::translation) return translation_over(other.motion.direction, RationalInterval{box.lo[0], box.hi[0]});
+  return IntervalMap{};
+}
+
+void ApartPair::coordinates(const PlanarPose& pose, const std::optional<ExactPosition>& position, Rational out[3]) const {
+  out[2] = apart_u_of(pose);
+  if (!pin_slot) {
+    out[0] = pose.x, out[1] = pose.y;
+    return;
+  }
+  out[1] = pose.slide ? *pose.slide : Rational(0);
+  out[0] = !position ? Rational(0) : position->is_offset ? position->value : apart_u_of(position->value, position->half_turn);
+}
+
+std::string apart_proof_failure(const ApartPair& pair, const ApartBox& box, const SlicedApartProof& proof) {
+  const Part &fixed = pair.other, &planar = pair.moving;
+  Rational middle[3];
+  apart_middle(box, middle);
+  const bool other_moves = pair.other.motion.kind != Motion::Kind::fixed;
   if (proof.kind == SlicedApartProof::Kind::point) {
-    const Point p{Rational(planar.motion.pivot.x + proof.point.x), Rational(planar.motion.pivot.y + proof.point.y)};
-    if (locate(place(fixed, ExactMap{}), p) <= 0) return "the point is not strictly inside '" + fixed.name + "'";
-    if (sgn(point_boundary_distance_lower_bound(shape_of(planar), apart_box_map(planar, box), p, Rational(1))) <= 0)
+    // planar claims: relative to the planar part's pivot; pin-slot claims: a world point
+    const Point p = pair.pin_slot ? proof.point
+                                  : Point{Rational(planar.motion.pivot.x + proof.point.x), Rational(planar.motion.pivot.y + proof.point.y)};
+    if (!other_moves) {
+      if (locate(pair.other_placed, p) <= 0) return "the point is not strictly inside '" + fixed.name + "'";
+    } else {
+      if (sgn(point_boundary_distance_lower_bound(pair.other_shape, pair.other_over(box), p, Rational(1))) <= 0)
+        return "the point is not certainly off the boundary of '" + fixed.name + "' over the box";
+      if (locate(place(fixed, pair.other_at(middle[0])), p) <= 0)
+        return "the point is not strictly inside '" + fixed.name + "' at the box's middle";
+    }
+    if (sgn(point_boundary_distance_lower_bound(pair.moving_shape, pair.moving_over(box), p, Rational(1))) <= 0)
       return "the point is not certainly off the boundary of '" + planar.name + "' over the box";
-    if (locate(place(planar, planar_pose_map(planar, apart_middle_pose(planar, box))), p) <= 0)
+    if (locate(place(planar, pair.moving_at(middle[0], middle[1], middle[2])), p) <= 0)
       return "the point is not strictly inside '" + planar.name + "' at the box's middle";
     return "";
   }
-  auto single = [&](const Part& owner, std::size_t loop, std::size_t edge, bool moving) -> std::optional<IntervalEdge> {
+  auto single = [&](const Part& owner, const IntervalPart& shape, std::size_t loop, std::size_t edge,
+                    const IntervalMap& map) -> std::optional<IntervalEdge> {
     if (loop >= owner.loops.size() || edge >= owner.loops[loop].edges.size()) return std::nullopt;
-    Part one;   // the one edge, moving like its part
-    one.name = owner.name;
-    one.motion = owner.motion;
-    one.loops.push_back(Loop{{owner.loops[loop].edges[edge]}, false, ""});
-    return place_over(one, moving ? apart_box_map(planar, box) : IntervalMap{}).loops[0][0];
+    IntervalPart one;   // the one edge, moving like its part
+    one.name = shape.name;
+    one.pivot = shape.pivot;
+    one.loops.push_back({shape.loops[loop][edge]});
+    return place_over(one, map).loops[0][0];
   };
   const Part& first = proof.planar_edge ? planar : fixed;
   const Part& second = proof.planar_edge ? fixed : planar;
-  std::optional<IntervalEdge> e = single(first, proof.edge_loop, proof.edge, proof.planar_edge);
-  std::optional<IntervalEdge> g = single(second, proof.across_loop, proof.across, !proof.planar_edge);
+  const IntervalMap moving_map = pair.moving_over(box), other_map = pair.other_over(box);
+  std::optional<IntervalEdge> e = proof.planar_edge ? single(planar, pair.moving_shape, proof.edge_loop, proof.edge, moving_map)
+                                                    : single(fixed, pair.other_shape, proof.edge_loop, proof.edge, other_map);
+  std::optional<IntervalEdge> g = proof.planar_edge ? single(fixed, pair.other_shape, proof.across_loop, proof.across, other_map)
+                                                    : single(planar, pair.moving_shape, proof.across_loop, proof.across, moving_map);
   if (!e) return "part '" + first.name + "' has no loop " + std::to_string(proof.edge_loop) + " edge " + std::to_string(proof.edge);
   if (!g) return "part '" + second.name + "' has no loop " + std::to_string(proof.across_loop) + " edge " + std::to_string(proof.across);
   std::string why;
@@ -250,11 +396,25 @@ std::string apart_proof_failure(const Part& fixed, const Part& planar, const Apa
   return "";
 }
 
-bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, bool periodic) {
-  for (int k = 0; k < 2; ++k)
-    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
-  if (!(a.hi[2] < b.lo[2] || b.hi[2] < a.lo[2])) return true;
-  return periodic && ((a.hi[2] == 3 && b.lo[2] == -1) || (b.hi[2] == 3 && a.lo[2] == -1));
+std::string apart_pin_slot_end_failure(const ApartPair& pair, const Rational at[3]) {
+  const ExactMap moving = pair.moving_at(at[0], at[1], at[2]), other = pair.other_at(at[0]);
+  if (sgn(boundary_distance_lower_bound(pair.other_shape, to_interval_map(other), pair.moving_shape, to_interval_map(moving), Rational(1))) <= 0)
+    return "the boundaries are not certainly apart there";
+  try {
+    check_nesting(place(pair.other, other), place(pair.moving, moving), "there");
+  } catch (const Rejection& rejection) {
+    return rejection.reason;
+  }
+  return "";
+}
+
+bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, const bool periodic[3]) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k])) continue;
+    if (periodic[k] && ((a.hi[k] == 3 && b.lo[k] == -1) || (b.hi[k] == 3 && a.lo[k] == -1))) continue;
+    return false;
+  }
+  return true;
 }
 
 void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_t skip, std::vector<std::size_t>& out,
@@ -275,15 +435,16 @@ void apart_leaves_meeting(const ApartTree& tree, const ApartBox& box, std::size_
   }
 }
 
-std::vector<std::size_t> apart_leaves_at(const ApartTree& tree, const Rational& x, const Rational& y, const Rational& u) {
+std::vector<std::size_t> apart_leaves_at(const ApartTree& tree, const Rational at[3]) {
   ApartBox point;
-  point.lo[0] = point.hi[0] = x, point.lo[1] = point.hi[1] = y, point.lo[2] = point.hi[2] = u;
   const ApartBox& d = tree.nodes[0].box;
-  for (int k = 0; k < 3; ++k)
-    if (point.lo[k] < d.lo[k] || point.hi[k] > d.hi[k]) return {};
+  for (int k = 0; k < 3; ++k) {
+    point.lo[k] = point.hi[k] = at[k];
+    if (at[k] < d.lo[k] || at[k] > d.hi[k]) return {};
+  }
   std::vector<std::size_t> out;
-  // (a point meets a box across the seam only at u = -1 or 3, where it lies in the box's face
-  // on the other side too: apart_boxes_meet joins them)
+  // (a point meets a box across a seam only at -1 or 3, where it lies in the box's face on the
+  // other side too: apart_boxes_meet joins them)
   apart_leaves_meeting(tree, point, std::size_t(-1), out);
   return out;
 }
@@ -291,31 +452,106 @@ std::vector<std::size_t> apart_leaves_at(const ApartTree& tree, const Rational& 
 bool apart_on_boundary(const ApartTree& tree, const ApartBox& box) {
   const ApartBox& d = tree.nodes[0].box;
   for (int k = 0; k < 3; ++k) {
-    if (k == 2 && tree.periodic) break;
-    if (box.lo[k] == d.lo[k] || box.hi[k] == d.hi[k]) return true;
+    if (tree.periodic[k]) continue;
+    if ((box.lo[k] == d.lo[k] && !tree.closed_lo[k]) || (box.hi[k] == d.hi[k] && !tree.closed_hi[k])) return true;
   }
   return false;
 }
 
 }  // namespace verify
 
+namespace {
+
+// The pin-slot claim's pair and ends, checked; the faces at motion limits closed in `tree`.
+void check_pin_slot_pair(const SlicedApartCertificate& c, const Model& model, verify::ApartTree& tree, const Part*& other_part,
+                         const Part*& moving_part) {
+  using namespace verify;
+  check_certificate_model(c.envelope, model);
+  const std::string &first = c.envelope.first, &second = c.envelope.second;
+  if (first == second) reject("a pair needs two different parts");
+  if (c.b.part != c.a.part) reject("the claim poses '" + c.a.part + "' at a and '" + c.b.part + "' at b");
+  if (c.a.part != first && c.a.part != second) reject("the posed part '" + c.a.part + "' is not a part of the pair");
+  const Part& moving = part_named(model, c.a.part);
+  const Part& other = part_named(model, c.a.part == first ? second : first);
+  if (moving.motion.kind != Motion::Kind::pin_slot) reject("part '" + moving.name + "' has no pin_slot motion (a pose with a slide)");
+  const Motion::Kind kind = other.motion.kind;
+  if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
+    reject("part '" + other.name + "' must be fixed, rotate or translate");
+  if ((kind == Motion::Kind::fixed) != !c.a_other)
+    reject(kind == Motion::Kind::fixed ? "part '" + other.name + "' is fixed: the ends give no position of it"
+                                       : "the ends give no position of the moving part '" + other.name + "'");
+  if (c.a_other && c.a_other->is_offset != (kind == Motion::Kind::translation))
+    reject("part '" + other.name + "' " + (kind == Motion::Kind::rotation ? "rotates: its positions are tangents" : "translates: its positions are offsets"));
+  if (c.other_full_turn && kind != Motion::Kind::rotation) reject("only a rotating part's range is the full turn");
+  if (kind == Motion::Kind::rotation && !c.other_full_turn && !(c.x.lo >= -1 && c.x.hi <= 3))
+    reject("the rotating part's range [" + fraction_or_rounded(c.x.lo) + ", " + fraction_or_rounded(c.x.hi) + "] leaves [-1, 3]");
+  // the ends are configurations: within the motion limits (the slide exactly, angles certainly)
+  for (const PlanarPose* end : {&c.a, &c.b}) {
+    const std::string which = end == &c.a ? "a" : "b";
+    const auto& limits = moving.motion.translation_limits;
+    if (limits && (*end->slide < limits->lo || *end->slide > limits->hi))
+      reject("the end " + which + ": the slide of '" + moving.name + "' (" + fraction_or_rounded(*end->slide) + ") is outside its limits");
+    if (!certainly_within(moving.motion.angle_limits, angle_of_tangent(end->tangent, end->half_turn), true))
+      reject("the end " + which + ": the angle of '" + moving.name + "' is not certainly within its limits");
+    const std::optional<ExactPosition>& position = end == &c.a ? c.a_other : c.b_other;
+    if (position) {
+      try {
+        exact_map(other, {{other.name, *position}});
+      } catch (const Rejection& rejection) {
+        reject("the end " + which + ": " + rejection.reason);
+      }
+    }
+  }
+  // faces at motion limits: no motion of the mechanism crosses them (a rotating part's or the
+  // pin-slot part's angle limits are not used: the full turn holds every motion within them)
+  auto close = [&](int k, const std::optional<RationalInterval>& limits) {
+    if (!limits) return;
+    const ApartBox& d = tree.nodes[0].box;
+    if (d.lo[k] <= limits->lo) tree.closed_lo[k] = true;
+    if (d.hi[k] >= limits->hi) tree.closed_hi[k] = true;
+  };
+  if (kind == Motion::Kind::translation) close(0, other.motion.translation_limits);
+  close(1, moving.motion.translation_limits);
+  other_part = &other;
+  moving_part = &moving;
+}
+
+}  // namespace
+
 VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Model& model) {
   using namespace verify;
   return verdict_of([&] {
-    const SlicedPair pair = checked_sliced_pair(c.envelope, model, c.a, c.b, "a", "b", "apart");
-    const std::string &name = pair.planar_name, &fixed_name = pair.fixed_name;
-    const Part &planar = pair.planar(), &fixed = pair.fixed();
-    if (!(c.x.lo < c.x.hi) || !(c.y.lo < c.y.hi) || (!c.full_turn && !(c.u.lo < c.u.hi && c.u.lo >= -1 && c.u.hi <= 3)))
+    // (a fixed other part: q's range is [0, 0], the axis of one value)
+    const bool one_q = c.pin_slot && !c.a_other;
+    if (!(one_q ? sgn(c.x.lo) == 0 && sgn(c.x.hi) == 0 : c.x.lo < c.x.hi) || !(c.y.lo < c.y.hi) ||
+        (!c.full_turn && !(c.u.lo < c.u.hi && c.u.lo >= -1 && c.u.hi <= 3)))
       reject("the domain is empty or its angle range leaves [-1, 3]");
-    const ApartTree tree = parse_apart_tree(c.tree, apart_domain(c), c.full_turn, c.proofs.size());
+    if (c.other_full_turn && !(c.x.lo == -1 && c.x.hi == 3)) reject("the other part's full turn is the range [-1, 3]");
+    ApartTree tree = apart_tree_of(c);
+    std::optional<SlicedPair> planar_pair;
+    const Part *other = nullptr, *moving = nullptr;
+    if (c.pin_slot) {
+      check_pin_slot_pair(c, model, tree, other, moving);
+    } else {
+      if (c.a_other || c.b_other || c.other_full_turn) reject("a planar claim gives no other part's position");
+      planar_pair = checked_sliced_pair(c.envelope, model, c.a, c.b, "a", "b", "apart");
+      other = &planar_pair->fixed();
+      moving = &planar_pair->planar();
+    }
+    const ApartPair pair(*other, *moving);
+    parse_apart_tree(c.tree, tree, c.proofs.size());
     // both ends free (the claim is about two poses of the free space)
+    Rational at_a[3], at_b[3];
+    pair.coordinates(c.a, c.a_other, at_a);
+    pair.coordinates(c.b, c.b_other, at_b);
     for (const PlanarPose* end : {&c.a, &c.b}) {
       const std::string which = end == &c.a ? "a" : "b";
-      std::string failure = sliced_move_failure(fixed, planar, *end, *end);
-      if (!failure.empty()) reject("the end " + which + " (" + pose_words(*end) + ") is not certainly free: " + failure);
-      check_nesting(place(fixed, ExactMap{}), place(planar, planar_pose_map(planar, *end)), "at the end " + which);
+      std::string failure = c.pin_slot ? apart_pin_slot_end_failure(pair, end == &c.a ? at_a : at_b)
+                                       : sliced_move_failure(*other, *moving, *end, *end);
+      if (!failure.empty()) reject("the end " + which + " (" + sliced_pose_words(*end) + ") is not certainly free: " + failure);
+      if (!c.pin_slot) check_nesting(place(*other, ExactMap{}), place(*moving, planar_pose_map(*moving, *end)), "at the end " + which);
     }
-    // every leaf on the domain's boundary blocked, then the open leaves' components
+    // every leaf on the domain's walled faces blocked, then the open leaves' components
     std::size_t leaves = 0, open = 0;
     std::vector<std::size_t> parent(tree.nodes.size());
     std::iota(parent.begin(), parent.end(), std::size_t(0));
@@ -325,7 +561,6 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
     };
     std::vector<std::size_t> around;
     std::size_t visited = 0;
-    const std::size_t visit_budget = std::max<std::size_t>(1000000, apart_visits_per_node * tree.nodes.size());
     for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
       const ApartTree::Node& node = tree.nodes[n];
       if (node.axis >= 0) continue;
@@ -333,43 +568,47 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
       if (node.blocked) continue;
       ++open;
       if (apart_on_boundary(tree, node.box))
-        reject("the open leaf " + box_words(node.box) + " touches the domain's boundary (every leaf there must be blocked)");
+        reject("the open leaf " + box_words(tree, node.box) + " touches the domain's boundary (every leaf there must be blocked)");
       around.clear();
       apart_leaves_meeting(tree, node.box, n, around, &visited);
-      if (visited > visit_budget)
-        reject("the open leaves' adjacency needs more than " + std::to_string(visit_budget) + " box tests (" +
-               std::to_string(apart_visits_per_node) + " per node of the tree)");
+      if (visited > apart_max_box_tests)
+        reject("the open leaves' adjacency needs more than " + std::to_string(apart_max_box_tests) +
+               " box tests (the format's limit; refused before any proof is checked)");
       for (std::size_t m : around)
         if (!tree.nodes[m].blocked) parent[root(m)] = root(n);
     }
-    auto open_at = [&](const PlanarPose& p, const std::string& which) {
+    auto open_at = [&](const PlanarPose& p, const Rational at[3], const std::string& which) {
       std::vector<std::size_t> found, components;
-      found = apart_leaves_at(tree, p.x, p.y, apart_u_of(p));
-      if (found.empty()) reject("the end " + which + " (" + pose_words(p) + ") lies outside the domain");
+      found = apart_leaves_at(tree, at);
+      if (found.empty()) reject("the end " + which + " (" + sliced_pose_words(p) + ") lies outside the domain");
       for (std::size_t n : found)
         if (!tree.nodes[n].blocked) components.push_back(root(n));
       if (components.empty()) reject("the end " + which + " lies in blocked leaves only");
       return components;
     };
-    const std::vector<std::size_t> at_a = open_at(c.a, "a"), at_b = open_at(c.b, "b");
-    for (std::size_t k : at_a)
-      if (std::find(at_b.begin(), at_b.end(), k) != at_b.end())
-        reject("a and b lie in one component of the open leaves (" + box_words(tree.nodes[k].box) + " and its neighbours)");
+    const std::vector<std::size_t> in_a = open_at(c.a, at_a, "a"), in_b = open_at(c.b, at_b, "b");
+    for (std::size_t k : in_a)
+      if (std::find(in_b.begin(), in_b.end(), k) != in_b.end())
+        reject("a and b lie in one component of the open leaves (" + box_words(tree, tree.nodes[k].box) + " and its neighbours)");
     // every blocked leaf's proof
     std::size_t blocked = 0;
     for (const ApartTree::Node& node : tree.nodes) {
       if (node.axis >= 0 || !node.blocked) continue;
       ++blocked;
-      std::string failure = apart_proof_failure(fixed, planar, node.box, c.proofs[node.proof]);
-      if (!failure.empty()) reject("the blocked leaf " + box_words(node.box) + " (proof " + std::to_string(node.proof) + "): " + failure);
+      std::string failure = apart_proof_failure(pair, node.box, c.proofs[node.proof]);
+      if (!failure.empty()) reject("the blocked leaf " + box_words(tree, node.box) + " (proof " + std::to_string(node.proof) + "): " + failure);
     }
     const std::string expected = sliced_apart_statement(c);
     if (c.envelope.statement != expected)
       reject("the statement does not say what the claim's data prove: it reads '" + c.envelope.statement.substr(0, 400) +
              "', the claim's data give '" + expected + "'");
-    return std::string(claim_name) + ": part '" + name + "' cannot move from " + pose_words(c.a) + " to " + pose_words(c.b) +
-           " without touching '" + fixed_name + "' (" + std::to_string(leaves) + " boxes, " + std::to_string(blocked) +
-           " proved blocked, none open on the domain's boundary, the ends in different components of the " +
+    const std::string& fixed_name = other->name;
+    auto end = [&](const PlanarPose& p, const std::optional<ExactPosition>& position) {
+      return sliced_pose_words(p) + (position ? " ('" + fixed_name + "' at " + position_words(*position) + ")" : "");
+    };
+    return std::string(claim_name) + ": part '" + moving->name + "' cannot move from " + end(c.a, c.a_other) + " to " +
+           end(c.b, c.b_other) + " without touching '" + fixed_name + "' (" + std::to_string(leaves) + " boxes, " +
+           std::to_string(blocked) + " proved blocked, none open on the domain's boundary, the ends in different components of the " +
            std::to_string(open) + " open ones; " + std::to_string(visited) + " box tests)";
   });
 }

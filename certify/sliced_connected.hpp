@@ -19,6 +19,14 @@ namespace hipair {
 
 namespace verify {
 
+/// The verifier's refusal: throws Rejection{reason} (shared by the certify/ checks).
+[[noreturn]] void reject(const std::string& reason);
+/// The part called `name` of `model`; rejected ("the model has no part ...") when there is none.
+const Part& part_named(const Model& model, const std::string& name);
+/// A planar pose in claims' words: "x=.., y=.., t=.." (t(pi)= in the chart centred at the half
+/// turn), a pin-slot pose "s=.., t=..": numbers exact up to 60 characters (fraction_or_rounded).
+std::string sliced_pose_words(const PlanarPose& pose);
+
 /// The work budget of one move: interval pieces evaluated before the move is refused.
 constexpr std::size_t sliced_move_budget = 40000;
 /// The work budget of a whole certificate (every move's pieces together): a forged path of

@@ -22,13 +22,10 @@ namespace {
 using certificate_json::JsonValue;
 const char* const claim_name = "sliced_connected";
 
-[[noreturn]] void reject(const std::string& reason) { throw verify::Rejection{reason}; }
-
-std::string text(const Rational& r) { return verify::fraction_or_rounded(r); }
-
-std::string pose_words(const PlanarPose& p) {
-  return "x=" + text(p.x) + ", y=" + text(p.y) + (p.half_turn ? ", t(pi)=" : ", t=") + text(p.tangent);
-}
+using verify::fraction_or_rounded;
+using verify::part_named;
+using verify::reject;
+using verify::sliced_pose_words;
 
 // A path vertex: ["x", "y", "tangent"] or ["x", "y", "tangent", "pi"] (the chart centred at the
 // half turn: tangent = tan((theta - pi)/2)).
@@ -54,12 +51,6 @@ bool same_pose(const Part& part, const PlanarPose& a, const PlanarPose& b) {
   return p.c == q.c && p.s == q.s && p.shift.x == q.shift.x && p.shift.y == q.shift.y;
 }
 
-const Part& part_named(const Model& model, const std::string& name) {
-  auto index = model.find_part(name);
-  if (!index) reject("the model has no part '" + name + "'");
-  return model.parts[*index];
-}
-
 }  // namespace
 
 bool is_sliced_connected_certificate(std::string_view json_text) { return certificate_json::has_claim(json_text, claim_name); }
@@ -81,11 +72,25 @@ SlicedConnectedCertificate read_sliced_connected_certificate(std::string_view js
 
 std::string sliced_connected_statement(const SlicedConnectedCertificate& c) {
   const std::string& fixed = c.envelope.first == c.from.part ? c.envelope.second : c.envelope.first;
-  return "Part '" + c.from.part + "' moves from " + pose_words(c.from) + " to " + pose_words(c.to) +
+  return "Part '" + c.from.part + "' moves from " + sliced_pose_words(c.from) + " to " + sliced_pose_words(c.to) +
          " without touching part '" + fixed + "'.";
 }
 
 namespace verify {
+
+void reject(const std::string& reason) { throw Rejection{reason}; }
+
+const Part& part_named(const Model& model, const std::string& name) {
+  auto index = model.find_part(name);
+  if (!index) reject("the model has no part '" + name + "'");
+  return model.parts[*index];
+}
+
+std::string sliced_pose_words(const PlanarPose& p) {
+  const std::string turned = (p.half_turn ? ", t(pi)=" : ", t=") + fraction_or_rounded(p.tangent);
+  if (p.slide) return "s=" + fraction_or_rounded(*p.slide) + turned;
+  return "x=" + fraction_or_rounded(p.x) + ", y=" + fraction_or_rounded(p.y) + turned;
+}
 
 std::optional<Model> connected_pair_at_origin(const Model& model, const std::string& fixed, const std::string& planar) {
   std::optional<Model> moved = pair_moved_to_origin(model, fixed, planar);
@@ -175,7 +180,7 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
   auto overlap_at = [&](const Rational& u) -> std::string {
     const PlanarPose p = pose_at(u);
     std::string evidence = overlap_evidence(placed_fixed, place(planar, planar_pose_map(planar, p)));
-    return evidence.empty() ? std::string() : "the parts overlap at u = " + text(u) + " (" + pose_words(p) + "): " + evidence;
+    return evidence.empty() ? std::string() : "the parts overlap at u = " + fraction_or_rounded(u) + " (" + sliced_pose_words(p) + "): " + evidence;
   };
   struct Piece {
     Rational u0, u1;
@@ -202,13 +207,13 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
     stack.pop_back();
     if (piece.depth >= max_depth) {
       if (pieces) *pieces = count;
-      return "not proved free: its pieces reached 2^-" + std::to_string(max_depth) + " of the move near u in [" + text(piece.u0) +
-             ", " + text(piece.u1) + "] (narrower than the enclosures resolve: the parts come too close, or touch)";
+      return "not proved free: its pieces reached 2^-" + std::to_string(max_depth) + " of the move near u in [" + fraction_or_rounded(piece.u0) +
+             ", " + fraction_or_rounded(piece.u1) + "] (narrower than the enclosures resolve: the parts come too close, or touch)";
     }
     if (++count > budget) {
       if (pieces) *pieces = count - 1;
-      return "not proved free within " + std::to_string(budget) + " interval pieces (stuck near u in [" + text(piece.u0) + ", " +
-             text(piece.u1) + "]: the parts come too close, or touch)";
+      return "not proved free within " + std::to_string(budget) + " interval pieces (stuck near u in [" + fraction_or_rounded(piece.u0) + ", " +
+             fraction_or_rounded(piece.u1) + "]: the parts come too close, or touch)";
     }
     Rational bound = boundary_distance_lower_bound(shape_fixed, identity, shape_free, map_over(piece.u0, piece.u1), enough);
     if (sgn(bound) > 0) continue;
@@ -221,7 +226,7 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
       }
       if (kind == Kind::stay) {
         if (pieces) *pieces = count;
-        return "the parts are not certainly apart at " + pose_words(a);
+        return "the parts are not certainly apart at " + sliced_pose_words(a);
       }
     }
     stack.push_back({middle, piece.u1, piece.depth + 1});
@@ -240,8 +245,8 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     const std::string &name = pair.planar_name, &fixed_name = pair.fixed_name;
     const Part &planar = pair.planar(), &fixed = pair.fixed();
     if (c.path.empty()) reject("the path has no vertex");
-    if (!same_pose(planar, c.path.front(), c.from)) reject("the path starts at " + pose_words(c.path.front()) + ", not at the claim's start " + pose_words(c.from));
-    if (!same_pose(planar, c.path.back(), c.to)) reject("the path ends at " + pose_words(c.path.back()) + ", not at the claim's end " + pose_words(c.to));
+    if (!same_pose(planar, c.path.front(), c.from)) reject("the path starts at " + sliced_pose_words(c.path.front()) + ", not at the claim's start " + sliced_pose_words(c.from));
+    if (!same_pose(planar, c.path.back(), c.to)) reject("the path ends at " + sliced_pose_words(c.path.back()) + ", not at the claim's end " + sliced_pose_words(c.to));
     // each move within its budget, and all of them within the certificate's (a forged path of
     // many grazing moves is refused in bounded time)
     // (more moves than pieces in all cannot be proved: refused before any is checked)
@@ -258,7 +263,7 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
         reject("the path's moves need more than " + std::to_string(sliced_total_budget) + " interval pieces in all");
       std::string failure = sliced_move_failure(fixed, planar, c.path[i], c.path[i + 1], budget(), &pieces);
       if (!failure.empty())
-        reject("move " + std::to_string(i) + " (" + pose_words(c.path[i]) + " to " + pose_words(c.path[i + 1]) + "): " + failure);
+        reject("move " + std::to_string(i) + " (" + sliced_pose_words(c.path[i]) + " to " + sliced_pose_words(c.path[i + 1]) + "): " + failure);
       total += pieces;
       ++proved;
     }
@@ -273,7 +278,7 @@ VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, c
     if (c.envelope.statement != expected)
       reject("the statement does not say what the claim's data prove: it reads '" + c.envelope.statement.substr(0, 400) +
              "', the claim's data give '" + expected + "'");
-    return std::string(claim_name) + ": part '" + name + "' moves from " + pose_words(c.from) + " to " + pose_words(c.to) +
+    return std::string(claim_name) + ": part '" + name + "' moves from " + sliced_pose_words(c.from) + " to " + sliced_pose_words(c.to) +
            " without touching '" + fixed_name + "' (" + std::to_string(c.path.size() - 1) + " moves, each proved free over " +
            std::to_string(total) + " interval pieces in all)";
   });

@@ -7,7 +7,9 @@
 // that every pose of the closed box overlaps (two edges that cross for every pose, or a point
 // strictly inside both parts); every leaf touching D's non-periodic boundary is blocked, and the
 // leaves not blocked, joined when their closed boxes meet (across the seam u = 3 / u = -1 for a
-// full turn), leave a's and b's leaves in different components. Kept apart from the Certificate
+// full turn), leave a's and b's leaves in different components. Pin-slot claims (session 70): a
+// part on a pin in a slot (motion "pin_slot") against a fixed, rotating or translating part, the
+// domain's axes the other part's coordinate q, the slide s and the pin-slot part's angle u. Kept apart from the Certificate
 // struct (<hipair/certificate.hpp> is widely included): its own reader and writer.
 #pragma once
 
@@ -46,6 +48,14 @@ struct SlicedApartCertificate {
   /// the lower first), 'o' an open leaf, 'b' a blocked leaf (its proof the next of `proofs`).
   std::string tree;
   std::vector<SlicedApartProof> proofs;
+  /// Pin-slot claims (a and b give a slide; session 70): the axes are q (the other part's
+  /// coordinate: its angle coordinate u when it rotates, `other_full_turn` the periodic full turn
+  /// [-1, 3]; its offset when it translates; none, [0, 0], when it is fixed), the slide s and the
+  /// pin-slot part's angle u; `x` holds q's range and `y` s's; the tree's marks are q, s, u. A
+  /// point proof's point is a world point (not relative to a pivot).
+  bool pin_slot = false;
+  bool other_full_turn = false;
+  std::optional<ExactPosition> a_other, b_other;   ///< the other part's position at a and b (absent when fixed)
 };
 
 /// Is `json_text` a certificate whose claim is "sliced_apart"? (false when it does not parse)
@@ -76,5 +86,18 @@ struct SlicedApartResult {
 /// \throws ModelError / GeometryError for parts that are not a fixed part and a planar part.
 SlicedApartResult certify_sliced_apart(const Model& model, const std::string& fixed, const PlanarPose& a, const PlanarPose& b,
                                        const CertifyContext& context = {}, std::size_t max_leaves = 40000);
+
+/// Certifies that the pin-slot part (a.part, motion "pin_slot") cannot move from (a, a_other)
+/// to (b, b_other) without touching `other` (fixed: no positions; rotating: tangents; translating:
+/// offsets): the same adaptive subdivision over the domain q x s x u: q the other's full turn or
+/// its offset limits (a's offset +- its reach without), s the slide limits (a's slide +- h
+/// without), the pin-slot part's full turn. Faces of the domain at a motion limit need no
+/// blocked box (no motion crosses them).
+/// \throws ModelError / GeometryError for parts that are not a pin-slot part and a fixed,
+/// rotating or translating part, or positions that do not fit them.
+SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& other, const PlanarPose& a,
+                                         const std::optional<ExactPosition>& a_other, const PlanarPose& b,
+                                         const std::optional<ExactPosition>& b_other, const CertifyContext& context = {},
+                                         std::size_t max_leaves = 40000);
 
 }  // namespace hipair

@@ -18,6 +18,7 @@
 #include <hipair/sliced_apart.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <deque>
 #include <unordered_map>
 
@@ -25,29 +26,28 @@ namespace hipair {
 namespace {
 
 using namespace certify_detail;
-using verify::ApartBox;
-using verify::ApartTree;
 
 enum class State : char { blocked, free, mixed };
 
+// the placement of an exact map (p -> pivot + R (p - pivot) + shift)
+Placement placement_of(const verify::ExactMap& m) { return placement_about(m.pivot, m.c, m.s, m.shift); }
+
 class ApartSearch {
  public:
-  ApartSearch(const Part& fixed, const Part& planar, const ApartBox& domain, std::size_t max_leaves)
-      : fixed_(fixed), planar_(planar), shape_fixed_(verify::shape_of(fixed)), shape_planar_(verify::shape_of(planar)),
-        posed_fixed_(verify::place_over(shape_fixed_, verify::IntervalMap{})), placed_fixed_(verify::place(fixed, verify::ExactMap{})),
-        max_leaves_(max_leaves) {
-    reach_ = verify::reach(shape_planar_);
-    if (sgn(reach_) <= 0) reach_ = 1;
-    enough_ = reach_;
-    tree_.periodic = true;
-    tree_.nodes.push_back(ApartTree::Node{});
-    tree_.nodes[0].box = domain;
+  // `tree` holds the domain (its axes' seams and closed faces set); `weights` scale the box's
+  // sides to lengths (mm per unit of each coordinate) when the longest is halved
+  ApartSearch(const verify::ApartPair& pair, verify::ApartTree tree, const Rational (&weights)[3], std::size_t max_leaves)
+      : pair_(pair), tree_(std::move(tree)), max_leaves_(max_leaves) {
+    for (int k = 0; k < 3; ++k) weights_[k] = weights[k];
+    enough_ = weights[2];
+    if (sgn(enough_) <= 0) enough_ = 1;
+    look_ahead_ = !std::getenv("HIPAIR_APART_PLAIN");   // TEMPORARY A/B switch (measurement only)
     evaluate(0);
   }
 
   // "" when a's open boxes and b's are in different components; else why not.
-  std::string run(const PlanarPose& a, const PlanarPose& b) {
-    // 1. the domain's boundary blocked
+  std::string run(const Rational (&a)[3], const Rational (&b)[3]) {
+    // 1. the domain's walled faces blocked
     std::vector<std::size_t> queue{0};
     while (!queue.empty()) {
       const std::size_t n = queue.back();
@@ -64,9 +64,8 @@ class ApartSearch {
       queue.push_back(tree_.nodes[n].upper);
     }
     // 2. chains of open boxes from a to b split until there is none
-    const Rational ua = verify::apart_u_of(a), ub = verify::apart_u_of(b);
     for (;;) {
-      std::vector<std::size_t> from = open_at(a.x, a.y, ua), to = open_at(b.x, b.y, ub);
+      std::vector<std::size_t> from = open_at(a), to = open_at(b);
       if (from.empty() || to.empty()) return "an end lies in blocked boxes only";
       std::unordered_map<std::size_t, std::size_t> parent;
       std::deque<std::size_t> frontier;
@@ -90,20 +89,22 @@ class ApartSearch {
       }
       if (mixed.empty()) return "a chain of boxes proved free joins a and b: they are connected (not certified here: --claim connected certifies it)";
       for (std::size_t n : mixed)
-        if (std::string why = split(n); !why.empty()) return why;
+        if (std::string why = split(n, look_ahead_); !why.empty()) return why;
     }
   }
 
+  // the tree and its proofs (preorder); the domain's ranges
   SlicedApartCertificate certificate_body() const {
     SlicedApartCertificate c;
-    const ApartBox& d = tree_.nodes[0].box;
+    const verify::ApartBox& d = tree_.nodes[0].box;
     c.x = RationalInterval{d.lo[0], d.hi[0]};
     c.y = RationalInterval{d.lo[1], d.hi[1]};
-    c.full_turn = true;
+    c.full_turn = tree_.periodic[2];
+    c.u = RationalInterval{d.lo[2], d.hi[2]};
     c.tree = verify::apart_tree_text(tree_);
     std::vector<std::size_t> stack{0};   // proofs in the tree's preorder
     while (!stack.empty()) {
-      const ApartTree::Node& node = tree_.nodes[stack.back()];
+      const verify::ApartTree::Node& node = tree_.nodes[stack.back()];
       const std::size_t n = stack.back();
       stack.pop_back();
       if (node.axis >= 0) {
@@ -120,19 +121,37 @@ class ApartSearch {
   std::size_t blocked() const { return std::size_t(std::count(state_.begin(), state_.end(), State::blocked)); }
 
  private:
-  std::vector<std::size_t> open_at(const Rational& x, const Rational& y, const Rational& u) const {
+  std::vector<std::size_t> open_at(const Rational (&at)[3]) const {
     std::vector<std::size_t> out;
-    for (std::size_t n : verify::apart_leaves_at(tree_, x, y, u))
+    for (std::size_t n : verify::apart_leaves_at(tree_, at))
       if (state_[n] != State::blocked) out.push_back(n);
     return out;
   }
 
-  std::string split(std::size_t n) {
+  // Halves leaf n. Plain: along its longest side (lengths in mm: weights_). Looking ahead (the
+  // mixed boxes of a chain from a to b): along the side, among those at least a quarter of the
+  // longest, whose halves are decided (blocked or free) the most, the longest on a tie; the
+  // halves' outcomes tried are kept.
+  std::string split(std::size_t n, bool look_ahead = false) {
     if (tree_.nodes[n].depth + 1 >= verify::apart_max_depth) return "boxes reached the verifier's depth limit near " + where(n);
     if (leaves_ + 1 > max_leaves_) return "more than " + std::to_string(max_leaves_) + " boxes (stuck near " + where(n) + ")";
-    const ApartBox& box = tree_.nodes[n].box;
-    const Rational sizes[3] = {box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], (box.hi[2] - box.lo[2]) * reach_};
-    const int axis = int(std::max_element(sizes, sizes + 3) - sizes);
+    const verify::ApartBox box = tree_.nodes[n].box;
+    Rational sizes[3];
+    for (int k = 0; k < 3; ++k) sizes[k] = (box.hi[k] - box.lo[k]) * weights_[k];
+    int axis = int(std::max_element(sizes, sizes + 3) - sizes);
+    std::optional<std::pair<Outcome, Outcome>> halves;
+    if (look_ahead) {
+      int best_score = -1;
+      for (int k : {axis, (axis + 1) % 3, (axis + 2) % 3}) {
+        if (sgn(sizes[k]) <= 0 || sizes[k] * 4 < sizes[axis]) continue;
+        verify::ApartBox lower = box, upper = box;
+        lower.hi[k] = upper.lo[k] = (box.lo[k] + box.hi[k]) / 2;
+        std::pair<Outcome, Outcome> tried{assess(lower), assess(upper)};
+        const int score = int(tried.first.state != State::mixed) + int(tried.second.state != State::mixed);
+        if (score > best_score) best_score = score, axis = k, halves = std::move(tried);
+        if (score == 2) break;
+      }
+    }
     const std::size_t first = verify::split_apart_leaf(tree_, n, axis);
     ++leaves_;
     // the halves' neighbours: the sibling and those of the box halved that meet them
@@ -151,62 +170,85 @@ class ApartSearch {
     }
     state_.resize(tree_.nodes.size(), State::mixed);
     proofs_.erase(n);
-    evaluate(first);
-    evaluate(first + 1);
+    record(first, halves ? halves->first : assess(tree_.nodes[first].box));
+    record(first + 1, halves ? halves->second : assess(tree_.nodes[first + 1].box));
     return "";
   }
 
   std::string where(std::size_t n) const {
-    const ApartBox& b = tree_.nodes[n].box;
-    return "x = " + to_decimal_string(b.lo[0]) + ", y = " + to_decimal_string(b.lo[1]) + ", u = " + to_decimal_string(b.lo[2]);
+    const verify::ApartBox& b = tree_.nodes[n].box;
+    std::string out;
+    for (int k = 0; k < 3; ++k) out += std::string(k ? ", " : "") + tree_.marks[k] + " = " + to_decimal_string(b.lo[k]);
+    return out;
   }
 
-  bool try_proof(std::size_t n, const SlicedApartProof& proof) {
-    if (!verify::apart_proof_failure(fixed_, planar_, tree_.nodes[n].box, proof).empty()) return false;
-    proofs_[n] = proof;
-    state_[n] = State::blocked;
-    tree_.nodes[n].blocked = true;
-    return true;
-  }
+  // what a box is: free, blocked (with its proof) or mixed
+  struct Outcome {
+    State state = State::mixed;
+    std::optional<SlicedApartProof> proof;
+  };
 
-  void evaluate(std::size_t n) {
+  void evaluate(std::size_t n) { record(n, assess(tree_.nodes[n].box)); }
+
+  void record(std::size_t n, const Outcome& outcome) {
     state_.resize(tree_.nodes.size(), State::mixed);
-    state_[n] = State::mixed;
-    const ApartBox& box = tree_.nodes[n].box;
-    const PlanarPose middle = verify::apart_middle_pose(planar_, box);
-    const verify::ExactMap exact = verify::planar_pose_map(planar_, middle);
-    const verify::IntervalMap map = verify::apart_box_map(planar_, box);
-    const verify::PlacedPart placed = verify::place(planar_, exact);
+    state_[n] = outcome.state;
+    if (outcome.state == State::blocked) {
+      proofs_[n] = *outcome.proof;
+      tree_.nodes[n].blocked = true;
+    }
+  }
+
+  // a point proof's point: world (pin-slot claims) or relative to the planar part's pivot
+  SlicedApartProof point_proof(const Point& world) const {
+    SlicedApartProof proof;
+    proof.kind = SlicedApartProof::Kind::point;
+    const Point& pivot = pair_.moving.motion.pivot;
+    proof.point = pair_.pin_slot ? world : Point{Rational(world.x - pivot.x), Rational(world.y - pivot.y)};
+    return proof;
+  }
+
+  Outcome assess(const verify::ApartBox& box) const {
+    auto blocked_by = [](const SlicedApartProof& proof) { return Outcome{State::blocked, proof}; };
+    auto proved = [&](const SlicedApartProof& proof) { return verify::apart_proof_failure(pair_, box, proof).empty(); };
+    Rational middle[3];
+    verify::apart_middle(box, middle);
+    const verify::ExactMap exact = pair_.moving_at(middle[0], middle[1], middle[2]);
+    const verify::ExactMap other_exact = pair_.other_at(middle[0]);
+    const bool other_moves = pair_.other.motion.kind != Motion::Kind::fixed;
+    const verify::IntervalMap map = pair_.moving_over(box), other_map = pair_.other_over(box);
+    const verify::PlacedPart placed = verify::place(pair_.moving, exact);
+    const verify::PlacedPart placed_other = other_moves ? verify::place(pair_.other, other_exact) : pair_.other_placed;
     // the boundaries apart over the whole box: free, or nested (blocked) at every pose
-    const bool apart_over = sgn(verify::boundary_distance_lower_bound(shape_fixed_, verify::IntervalMap{}, shape_planar_, map, enough_)) > 0;
+    const bool apart_over =
+        sgn(verify::boundary_distance_lower_bound(pair_.other_shape, other_map, pair_.moving_shape, map, enough_)) > 0;
     if (apart_over) {
       bool nested = false;
       for (int side = 0; side < 2 && !nested; ++side) {
-        const verify::PlacedPart& inner = side ? placed : placed_fixed_;
-        const verify::PlacedPart& outer = side ? placed_fixed_ : placed;
+        const verify::PlacedPart& inner = side ? placed : placed_other;
+        const verify::PlacedPart& outer = side ? placed_other : placed;
         for (const auto& loop : inner.loops)
           if (!loop.empty() && verify::locate(outer, loop[0].source) >= 0) nested = true;
       }
-      if (!nested) {
-        state_[n] = State::free;
-        return;
-      }
+      if (!nested) return Outcome{State::free, std::nullopt};
     }
     // edges crossing at the middle, their crossing pieces tried over the box
-    const verify::IntervalPart at_middle = verify::place_over(shape_planar_, verify::to_interval_map(exact));
-    std::optional<verify::IntervalPart> over;
+    const verify::IntervalPart at_middle = verify::place_over(pair_.moving_shape, verify::to_interval_map(exact));
+    const verify::IntervalPart other_middle = verify::place_over(pair_.other_shape, verify::to_interval_map(other_exact));
+    std::optional<verify::IntervalPart> over, other_over;
     for (std::size_t i = 0; i < placed.loops.size(); ++i)
       for (std::size_t j = 0; j < placed.loops[i].size(); ++j)
-        for (std::size_t k = 0; k < placed_fixed_.loops.size(); ++k)
-          for (std::size_t l = 0; l < placed_fixed_.loops[k].size(); ++l) {
-            if (!verify::edges_cross(placed.loops[i][j], placed_fixed_.loops[k][l])) continue;
-            if (!over) over = verify::place_over(shape_planar_, map);
-            const verify::IntervalEdge &pc = at_middle.loops[i][j], &po = over->loops[i][j], &f = posed_fixed_.loops[k][l];
+        for (std::size_t k = 0; k < placed_other.loops.size(); ++k)
+          for (std::size_t l = 0; l < placed_other.loops[k].size(); ++l) {
+            if (!verify::edges_cross(placed.loops[i][j], placed_other.loops[k][l])) continue;
+            if (!over) over = verify::place_over(pair_.moving_shape, map), other_over = verify::place_over(pair_.other_shape, other_map);
+            const verify::IntervalEdge &pc = at_middle.loops[i][j], &po = over->loops[i][j];
+            const verify::IntervalEdge &fc = other_middle.loops[k][l], &fo = other_over->loops[k][l];
             for (int order = 0; order < 2; ++order) {
-              const verify::PlacedEdge& pe = order == 0 ? placed.loops[i][j] : placed_fixed_.loops[k][l];
-              const verify::PlacedEdge& pg = order == 0 ? placed_fixed_.loops[k][l] : placed.loops[i][j];
-              const verify::IntervalEdge& eo = order == 0 ? po : f;
-              const verify::IntervalEdge& go = order == 0 ? f : po;
+              const verify::PlacedEdge& pe = order == 0 ? placed.loops[i][j] : placed_other.loops[k][l];
+              const verify::PlacedEdge& pg = order == 0 ? placed_other.loops[k][l] : placed.loops[i][j];
+              const verify::IntervalEdge& eo = order == 0 ? po : fo;
+              const verify::IntervalEdge& go = order == 0 ? fo : po;
               std::optional<RationalInterval> piece;
               if (!pe.arc && !pg.arc) {
                 // two segments: pieces about the exact crossing at the middle, narrowing
@@ -221,7 +263,7 @@ class ApartSearch {
                   if (verify::crossing_certain(eo, along, go, nullptr)) piece = along;
                 }
               } else {
-                piece = order == 0 ? crossing_piece_of(pc, po, f, f) : crossing_piece_of(f, f, pc, po);
+                piece = order == 0 ? crossing_piece_of(pc, po, fc, fo) : crossing_piece_of(fc, fo, pc, po);
               }
               if (!piece) continue;
               SlicedApartProof proof;
@@ -232,15 +274,12 @@ class ApartSearch {
               proof.across = order == 0 ? l : j;
               proof.along = *piece;
               // (proved by crossing_certain over the box: the verifier's check of the finished tree repeats it)
-              proofs_[n] = proof;
-              state_[n] = State::blocked;
-              tree_.nodes[n].blocked = true;
-              return;
+              return blocked_by(proof);
             }
           }
-    // no crossing proved: a point strictly inside both parts at the middle, off the planar part's
-    // boundary over the box (the fixed part does not move): the points of a 6 x 6 grid over the
-    // planar part's box at the middle, the farthest from its boundary first, then the oracle's witness
+    // no crossing proved: a point strictly inside both parts at the middle, off the moving
+    // boundaries over the box: the points of a 6 x 6 grid over the moving part's box at the
+    // middle, the farthest from its boundary first, then the oracle's witness
     {
       Rational x0 = placed.loops[0][0].source.x, x1 = x0, y0 = placed.loops[0][0].source.y, y1 = y0;
       for (const auto& loop : placed.loops)
@@ -252,37 +291,28 @@ class ApartSearch {
       for (int i = 1; i <= 6; ++i)
         for (int j = 1; j <= 6; ++j) {
           const Point p{Rational(x0 + (x1 - x0) * Rational(2 * i - 1, 12)), Rational(y0 + (y1 - y0) * Rational(2 * j - 1, 12))};
-          if (verify::locate(placed_fixed_, p) <= 0 || verify::locate(placed, p) <= 0) continue;
-          const Rational bound = verify::point_boundary_distance_lower_bound(shape_planar_, map, p, enough_);
+          if (verify::locate(placed_other, p) <= 0 || verify::locate(placed, p) <= 0) continue;
+          Rational bound = verify::point_boundary_distance_lower_bound(pair_.moving_shape, map, p, enough_);
+          if (other_moves && sgn(bound) > 0)
+            bound = std::min(bound, verify::point_boundary_distance_lower_bound(pair_.other_shape, other_map, p, enough_));
           if (bound > best_bound) best = p, best_bound = bound;
         }
-      if (best) {
-        SlicedApartProof proof;
-        proof.kind = SlicedApartProof::Kind::point;
-        proof.point = Point{Rational(best->x - planar_.motion.pivot.x), Rational(best->y - planar_.motion.pivot.y)};
-        if (try_proof(n, proof)) return;
-      }
+      if (best && proved(point_proof(*best))) return blocked_by(point_proof(*best));
     }
-    const Placement placement = placement_about(planar_.motion.pivot, exact.c, exact.s, Point{middle.x, middle.y});
-    const PartOverlap overlap = part_overlap(fixed_, Placement{}, planar_, placement, true);
-    if (overlap.relation == PartRelation::overlapping && overlap.witness) {
-      SlicedApartProof proof;
-      proof.kind = SlicedApartProof::Kind::point;
-      proof.point = Point{Rational(overlap.witness->x - planar_.motion.pivot.x), Rational(overlap.witness->y - planar_.motion.pivot.y)};
-      try_proof(n, proof);
-    }
+    const PartOverlap overlap = part_overlap(pair_.other, placement_of(other_exact), pair_.moving, placement_of(exact), true);
+    if (overlap.relation == PartRelation::overlapping && overlap.witness && proved(point_proof(*overlap.witness)))
+      return blocked_by(point_proof(*overlap.witness));
+    return Outcome{};
   }
 
-  const Part& fixed_;
-  const Part& planar_;
-  verify::IntervalPart shape_fixed_, shape_planar_, posed_fixed_;
-  verify::PlacedPart placed_fixed_;
-  Rational reach_, enough_;
-  ApartTree tree_;
+  const verify::ApartPair& pair_;
+  verify::ApartTree tree_;
+  Rational weights_[3], enough_;
   std::vector<State> state_;
   std::unordered_map<std::size_t, SlicedApartProof> proofs_;
   std::vector<std::vector<std::size_t>> adjacent_{1};   // each leaf's neighbours (closed boxes meet)
   std::size_t leaves_ = 1, max_leaves_;
+  bool look_ahead_ = true;
 };
 
 std::pair<const Part*, const Part*> apart_parts(const Model& model, const std::string& fixed, const std::string& planar) {
@@ -313,15 +343,48 @@ std::string range_text(const RationalInterval& r) {
 }  // namespace
 
 std::string write_sliced_apart_certificate(const SlicedApartCertificate& c) {
+  using certificate_json::quoted_text;
+  auto position = [](const ExactPosition& p) {
+    if (p.is_offset) return "{\"offset\": " + quoted_text(to_exact_string(p.value)) + "}";
+    return "{\"tangent\": " + quoted_text(to_exact_string(p.value)) + (p.half_turn ? ", \"centre\": \"pi\"}" : std::string("}"));
+  };
   std::string out = certificate_json::envelope(c.envelope, 1, "sliced_apart");
-  out += "  \"sliced_apart\": {\n    \"a\": " + certificate_json::pose(c.a, true) + ",\n    \"b\": " + certificate_json::pose(c.b, true) +
-         ",\n    \"domain\": {\"x\": " + range_text(c.x) + ", \"y\": " + range_text(c.y) +
-         ", \"angle\": " + (c.full_turn ? std::string("\"full\"") : range_text(c.u)) + "},\n    \"tree\": " +
-         certificate_json::quoted_text(c.tree) + ",\n    \"proofs\": [";
+  out += "  \"sliced_apart\": {\n    \"a\": " + certificate_json::pose(c.a, true) + ",\n    \"b\": " + certificate_json::pose(c.b, true);
+  if (c.a_other && c.b_other) out += ",\n    \"a_other\": " + position(*c.a_other) + ",\n    \"b_other\": " + position(*c.b_other);
+  const std::string angle = c.full_turn ? std::string("\"full\"") : range_text(c.u);
+  if (c.pin_slot)
+    out += ",\n    \"domain\": {" +
+           (c.a_other ? "\"other\": " + (c.other_full_turn ? std::string("\"full\"") : range_text(c.x)) + ", " : std::string()) +
+           "\"slide\": " + range_text(c.y) + ", \"angle\": " + angle + "}";
+  else
+    out += ",\n    \"domain\": {\"x\": " + range_text(c.x) + ", \"y\": " + range_text(c.y) + ", \"angle\": " + angle + "}";
+  out += ",\n    \"tree\": " + quoted_text(c.tree) + ",\n    \"proofs\": [";
   for (std::size_t i = 0; i < c.proofs.size(); ++i) out += std::string(i ? ",\n      " : "\n      ") + proof_text(c.proofs[i]);
   out += c.proofs.empty() ? "]" : "\n    ]";
   return out + "\n  }\n}\n";
 }
+
+namespace {
+
+// the certificate of the search's tree, self-checked by the verifier's code
+SlicedApartCertificate finished(const ApartSearch& search, const Model& model, const CertifyContext& context, const std::string& other,
+                                const PlanarPose& a, const PlanarPose& b, const std::optional<ExactPosition>& a_other,
+                                const std::optional<ExactPosition>& b_other, bool other_full_turn) {
+  SlicedApartCertificate c = search.certificate_body();
+  c.envelope = start_certificate(model, context, ClaimKind::planar_clearance, other, a.part);
+  c.a = a;
+  c.b = b;
+  c.pin_slot = bool(a.slide);
+  c.a_other = a_other;
+  c.b_other = b_other;
+  c.other_full_turn = other_full_turn;
+  c.envelope.statement = sliced_apart_statement(c);
+  VerificationResult check = check_sliced_apart(c, model);
+  if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
+  return c;
+}
+
+}  // namespace
 
 SlicedApartResult certify_sliced_apart(const Model& model, const std::string& fixed, const PlanarPose& a, const PlanarPose& b,
                                        const CertifyContext& context, std::size_t max_leaves) {
@@ -347,27 +410,27 @@ SlicedApartResult certify_sliced_apart(const Model& model, const std::string& fi
       return result;
     }
   }
-  const Rational reach = verify::reach(verify::shape_of(*planar_part));
+  const verify::ApartPair pair(*fixed_part, *planar_part);
+  const Rational reach = verify::reach(pair.moving_shape);
+  const Rational weights[3] = {Rational(1), Rational(1), sgn(reach) > 0 ? reach : Rational(1)};
+  Rational at_a[3], at_b[3];
+  pair.coordinates(a, std::nullopt, at_a);
+  pair.coordinates(b, std::nullopt, at_b);
   std::string failures;
   for (int k : {1, 2, 0, 3, 4}) {   // half the reach first: a wall at the reach is often all boundary
     const Rational h = round_down((sgn(reach) > 0 ? reach : Rational(1)) / Rational(1 << k), 2);
     if (abs(b.x - a.x) >= h || abs(b.y - a.y) >= h) continue;   // b within the domain
-    ApartBox domain;
+    verify::ApartTree tree;
+    tree.nodes.push_back(verify::ApartTree::Node{});
+    verify::ApartBox& domain = tree.nodes[0].box;
     domain.lo[0] = a.x - h, domain.hi[0] = a.x + h, domain.lo[1] = a.y - h, domain.hi[1] = a.y + h;
     domain.lo[2] = -1, domain.hi[2] = 3;
-    ApartSearch search(*fixed_part, *planar_part, domain, max_leaves);
-    std::string why = search.run(a, b);
+    ApartSearch search(pair, std::move(tree), weights, max_leaves);
+    std::string why = search.run(at_a, at_b);
     result.leaves = search.leaves();
     result.blocked = search.blocked();
     if (why.empty()) {
-      SlicedApartCertificate c = search.certificate_body();
-      c.envelope = start_certificate(model, context, ClaimKind::planar_clearance, fixed, a.part);
-      c.a = a;
-      c.b = b;
-      c.envelope.statement = sliced_apart_statement(c);
-      VerificationResult check = check_sliced_apart(c, model);
-      if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
-      result.certificate = std::move(c);
+      result.certificate = finished(search, model, context, fixed, a, b, std::nullopt, std::nullopt, false);
       return result;
     }
     failures += (failures.empty() ? "" : "; ") + std::string("h = ") + to_decimal_string(h) + ": " + why;
@@ -380,5 +443,91 @@ SlicedApartResult certify_sliced_apart(const Model& model, const std::string& fi
   return result;
 }
 
-}  // namespace hipair
+SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& other, const PlanarPose& a,
+                                         const std::optional<ExactPosition>& a_other, const PlanarPose& b,
+                                         const std::optional<ExactPosition>& b_other, const CertifyContext& context,
+                                         std::size_t max_leaves) {
+  if (b.part != a.part) throw ModelError("", "sliced_apart: both poses must be of one part");
+  if (!a.slide || !b.slide) throw ModelError("", "sliced_apart: a pin-slot part's poses give its slide and tangent");
+  const Part& other_part = part_of(model, other);
+  const Part& moving = part_of(model, a.part);
+  if (&other_part == &moving) throw ModelError("", "sliced_apart: a pair needs two different parts");
+  if (moving.motion.kind != Motion::Kind::pin_slot) throw GeometryError("sliced_apart: part '" + a.part + "' has no pin_slot motion");
+  const Motion::Kind kind = other_part.motion.kind;
+  if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
+    throw GeometryError("sliced_apart: part '" + other + "' must be fixed, rotate or translate (against a pin-slot part)");
+  if ((kind == Motion::Kind::fixed) != (!a_other || !b_other) || (a_other && (a_other->is_offset || b_other->is_offset) != (kind == Motion::Kind::translation)))
+    throw ModelError("", "sliced_apart: give the positions of '" + other + "' at both ends exactly when it moves (" +
+                             (kind == Motion::Kind::translation ? "offsets" : "tangents") + ")");
+  const verify::ApartPair pair(other_part, moving);
+  Rational at_a[3], at_b[3];
+  pair.coordinates(a, a_other, at_a);
+  pair.coordinates(b, b_other, at_b);
+  SlicedApartResult result;
+  const auto& slide_limits = moving.motion.translation_limits;
+  const auto& offset_limits = other_part.motion.translation_limits;
+  for (int end = 0; end < 2; ++end) {
+    const Rational* at = end == 0 ? at_a : at_b;
+    const std::string which = end == 0 ? "a" : "b";
+    std::string failure;
+    if (slide_limits && (at[1] < slide_limits->lo || at[1] > slide_limits->hi)) failure = "the slide is outside its limits";
+    else if (kind == Motion::Kind::translation && offset_limits && (at[0] < offset_limits->lo || at[0] > offset_limits->hi))
+      failure = "the offset of '" + other + "' is outside its limits";
+    else failure = verify::apart_pin_slot_end_failure(pair, at);
+    if (!failure.empty()) {
+      result.failure = "the end " + which + " is not certainly free: " + failure;
+      return result;
+    }
+  }
+  // the domain: q the other's full turn, its offset limits (or the ends +- the reaches), s the
+  // slide limits (or the ends +- the part's reach), u the full turn
+  Part turning = moving;
+  turning.motion.kind = Motion::Kind::rotation;
+  const Rational reach = verify::reach(verify::shape_of(turning));   // about the pin
+  Part other_turning = other_part;
+  other_turning.motion.kind = Motion::Kind::rotation;
+  const Rational other_reach = kind == Motion::Kind::rotation ? verify::reach(verify::shape_of(other_turning)) : Rational(1);
+  verify::ApartTree tree;
+  tree.marks = "qsu";
+  tree.nodes.push_back(verify::ApartTree::Node{});
+  verify::ApartBox& d = tree.nodes[0].box;
+  auto around = [&](int k, const Rational& margin) {
+    d.lo[k] = std::min(at_a[k], at_b[k]) - margin;
+    d.hi[k] = std::max(at_a[k], at_b[k]) + margin;
+  };
+  const bool full_other = kind == Motion::Kind::rotation;
+  if (kind == Motion::Kind::fixed) {
+    d.lo[0] = d.hi[0] = 0;
+    tree.closed_lo[0] = tree.closed_hi[0] = true;
+  } else if (full_other) {
+    d.lo[0] = -1, d.hi[0] = 3;
+    tree.periodic[0] = true;
+  } else if (offset_limits && offset_limits->lo < offset_limits->hi) {
+    d.lo[0] = offset_limits->lo, d.hi[0] = offset_limits->hi;
+    tree.closed_lo[0] = tree.closed_hi[0] = true;
+  } else {
+    around(0, reach + other_reach);
+  }
+  if (slide_limits && slide_limits->lo < slide_limits->hi) {
+    d.lo[1] = slide_limits->lo, d.hi[1] = slide_limits->hi;
+    tree.closed_lo[1] = tree.closed_hi[1] = true;
+  } else {
+    around(1, sgn(reach) > 0 ? reach : Rational(1));
+  }
+  d.lo[2] = -1, d.hi[2] = 3;
+  const Rational slide_reach = std::max(Rational(abs(d.lo[1])), Rational(abs(d.hi[1])));
+  const Rational weights[3] = {kind == Motion::Kind::fixed ? Rational(0) : full_other ? other_reach : Rational(1), Rational(1),
+                               Rational(reach + slide_reach)};
+  ApartSearch search(pair, std::move(tree), weights, max_leaves);
+  const std::string why = search.run(at_a, at_b);
+  result.leaves = search.leaves();
+  result.blocked = search.blocked();
+  if (why.empty()) {
+    result.certificate = finished(search, model, context, other, a, b, a_other, b_other, full_other);
+    return result;
+  }
+  result.failure = "no separation proved: " + why;
+  return result;
+}
 
+}  // namespace hipair

@@ -27,7 +27,8 @@ namespace {
 struct CertifyArguments {
   std::string path, claim, out, pair, driver, trap;
   std::vector<std::string> overrides, at;
-  std::string distance, from, to, follower_at, ratio, start, follower_start, step, travel;
+  std::vector<std::string> to;   // free: one driver value; connected/apart: the end pose (a pin-slot pair: and the other part's position)
+  std::string distance, from, follower_at, ratio, start, follower_start, step, travel;
   std::string direction = "+1";
   bool allow_out_of_tolerance = false;
   std::set<std::string> given;   // the long options given on the command line
@@ -153,6 +154,39 @@ PlanarPose planar_pose(const Part& planar, const std::vector<std::string>& assig
   return PlanarPose{planar.name, x, y, rotation.value, rotation.half_turn, std::nullopt};
 }
 
+// A pin-in-slot pair's configuration: the pin-slot part's pose (slide, angle) and the other part's
+// position (absent when it is fixed), from the model's initial configuration or OPTION
+// PIN=SLIDE,ANGLE and OPTION OTHER=VALUE (an angle in rad or NNdeg, an offset in mm).
+std::pair<PlanarPose, std::optional<ExactPosition>> pin_slot_configuration(const Part& pin_slot, const Part& other,
+                                                                           const std::vector<std::string>& assignments,
+                                                                           const std::string& option, std::vector<std::string>& notes) {
+  Rational slide = pin_slot.initial.offset;
+  ExactPosition rotation = exact_position_from_angle(pin_slot.initial.angle);
+  std::optional<ExactPosition> other_position;
+  if (other.motion.kind != Motion::Kind::fixed)
+    other_position = rotates(other) ? exact_position_from_angle(other.initial.angle) : ExactPosition{other.initial.offset, true, false, {}, {}};
+  for (const std::string& assignment : assignments) {
+    auto equals = assignment.find('=');
+    std::string name = equals == std::string::npos ? "" : assignment.substr(0, equals), rest = assignment.substr(equals + 1);
+    if (name == pin_slot.name) {
+      auto comma = rest.find(',');
+      if (comma == std::string::npos)
+        throw ModelError("", option + " expects " + pin_slot.name + "=SLIDE,ANGLE for the pin-slot part, got '" + assignment + "'");
+      slide = value_of(rest.substr(0, comma), false, option);
+      rotation = angle_at(rest.substr(comma + 1), notes, option);
+    } else if (name == other.name && other.motion.kind != Motion::Kind::fixed) {
+      other_position = rotates(other) ? angle_at(rest, notes, option) : ExactPosition{value_of(rest, false, option), true, false, {}, {}};
+    } else {
+      throw ModelError("", option + " expects " + pin_slot.name + "=SLIDE,ANGLE" +
+                               (other.motion.kind != Motion::Kind::fixed ? " or " + other.name + "=VALUE" : "") + ", got '" +
+                               assignment + "'");
+    }
+  }
+  PlanarPose pose{pin_slot.name, 0, 0, rotation.value, rotation.half_turn, std::nullopt};
+  pose.slide = slide;
+  return {pose, other_position};
+}
+
 int run(const CertifyArguments& arguments) {
   // a certificate holds for parameter values within their tolerances only: hipair-verify checks
   // each value against its range (docs/certify.md); the option every other command reading --set
@@ -166,6 +200,7 @@ int run(const CertifyArguments& arguments) {
     refuse_options_of_other_claims(arguments);
   refuse_repeated_names(arguments.overrides, "--set", "parameter");
   refuse_repeated_names(arguments.at, "--at", "part");
+  refuse_repeated_names(arguments.to, "--to", "part");
   // the --set rule of every command (a message naming the whole item: until session 37 certify
   // named only its value, `--set 4.5=6` for `--set pin-radius=4.5=6`)
   ReadOptions options = parameter_overrides(arguments.overrides, false);
@@ -189,20 +224,43 @@ int run(const CertifyArguments& arguments) {
   std::vector<std::string> notes;   // how angles in degrees were taken
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
   const Part* pin_slot = a.motion.kind == Motion::Kind::pin_slot ? &a : b.motion.kind == Motion::Kind::pin_slot ? &b : nullptr;
+  if (arguments.claim == "apart" && pin_slot && !planar) {
+    // a pin-in-slot part's two configurations (with the other part's positions) in different
+    // components of the pair's free space: the kd-tree over (q, s, u) (<hipair/sliced_apart.hpp>)
+    const Part& other = pin_slot == &a ? b : a;
+    if (arguments.to.empty())
+      throw ModelError("", "--claim apart needs --to " + pin_slot->name + "=SLIDE,ANGLE" +
+                               (other.motion.kind != Motion::Kind::fixed ? " and --to " + other.name + "=VALUE" : "") + " (the end)");
+    auto [from, from_other] = pin_slot_configuration(*pin_slot, other, arguments.at, "--at", notes);
+    auto [to, to_other] = pin_slot_configuration(*pin_slot, other, arguments.to, "--to", notes);
+    for (const std::string& note : notes) std::cout << note << "\n";
+    SlicedApartResult found = certify_pin_slot_apart(model, other.name, from, from_other, to, to_other, context);
+    if (!found.certificate) {
+      std::cerr << "hipair: cannot certify: " << found.failure << "\n";
+      return 1;
+    }
+    io::write_file_atomically(arguments.out, write_sliced_apart_certificate(*found.certificate));
+    std::cout << "certified sliced_apart: " << found.certificate->envelope.statement << " (" << found.leaves << " boxes, "
+              << found.blocked << " proved blocked)\n"
+              << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
+              << ")\n";
+    return 0;
+  }
   if (arguments.claim == "connected" || arguments.claim == "apart") {
     // a planar part's two poses connected through free space (sliced C-space path, staircase
     // certificate: <hipair/sliced_certificate.hpp>); the certificate is its own kind
     const Part& fixed = planar == &a ? b : a;
     if (!planar || fixed.motion.kind != Motion::Kind::fixed)
       throw ModelError("", "--claim " + arguments.claim + ": the pair " + a.name + ":" + b.name +
-                               " must be a fixed part and a part free in the plane (motion \"planar\")");
+                               " must be a fixed part and a part free in the plane (motion \"planar\")" +
+                               (arguments.claim == "apart" ? std::string(", or a pin-in-slot part and a fixed, rotating or translating part") : std::string()));
     if (planar->motion.angle_limits || planar->motion.translation_limits)
       throw ModelError("", "--claim " + arguments.claim + ": part '" + planar->name + "' has motion limits (" + arguments.claim +
                                " claims cover parts without limits)");
     if (arguments.to.empty())
       throw ModelError("", "--claim " + arguments.claim + " needs --to " + planar->name + "=X,Y,ANGLE (the end pose)");
     PlanarPose from = planar_pose(*planar, arguments.at, "--at", notes);
-    PlanarPose to = planar_pose(*planar, {arguments.to}, "--to", notes);
+    PlanarPose to = planar_pose(*planar, arguments.to, "--to", notes);
     for (const std::string& note : notes) std::cout << note << "\n";
     if (arguments.claim == "apart") {
       // the poses in different components of the free space: a kd-tree of boxes whose blocked
@@ -249,30 +307,7 @@ int run(const CertifyArguments& arguments) {
     // --at PART=SLIDE,ANGLE; the other part (fixed, rotating or translating) at its initial
     // position or --at OTHER=VALUE
     const Part& other = pin_slot == &a ? b : a;
-    Rational slide = pin_slot->initial.offset;
-    ExactPosition rotation = exact_position_from_angle(pin_slot->initial.angle);
-    std::optional<ExactPosition> other_position;
-    if (other.motion.kind != Motion::Kind::fixed)
-      other_position = rotates(other) ? exact_position_from_angle(other.initial.angle) : ExactPosition{other.initial.offset, true, false, {}, {}};
-    for (const std::string& assignment : arguments.at) {
-      auto equals = assignment.find('=');
-      std::string name = equals == std::string::npos ? "" : assignment.substr(0, equals), rest = assignment.substr(equals + 1);
-      if (name == pin_slot->name) {
-        auto comma = rest.find(',');
-        if (comma == std::string::npos)
-          throw ModelError("", "--at expects " + pin_slot->name + "=SLIDE,ANGLE for the pin-slot part, got '" + assignment + "'");
-        slide = value_of(rest.substr(0, comma), false, "--at");
-        rotation = angle_at(rest.substr(comma + 1), notes);
-      } else if (name == other.name && other.motion.kind != Motion::Kind::fixed) {
-        other_position = position_of(other, rest, notes);
-      } else {
-        throw ModelError("", "--at expects " + pin_slot->name + "=SLIDE,ANGLE" +
-                                 (other.motion.kind != Motion::Kind::fixed ? " or " + other.name + "=VALUE" : "") + ", got '" +
-                                 assignment + "'");
-      }
-    }
-    PlanarPose pose{pin_slot->name, 0, 0, rotation.value, rotation.half_turn, std::nullopt};
-    pose.slide = slide;
+    auto [pose, other_position] = pin_slot_configuration(*pin_slot, other, arguments.at, "--at", notes);
     std::map<std::string, ExactPosition> configuration;
     if (other_position) configuration[other.name] = *other_position;
     if (arguments.claim == "interference") {
@@ -313,7 +348,8 @@ int run(const CertifyArguments& arguments) {
     if (arguments.claim == "free") {
       PassagePath path{driver.name, follows ? other.name : "", {}, {}};
       path.range.lo = arguments.from.empty() ? coordinate(driver) : value_of(arguments.from, rotates(driver), "--from");
-      if (!arguments.to.empty()) path.range.hi = value_of(arguments.to, rotates(driver), "--to");
+      if (arguments.to.size() > 1) throw ModelError("", "--to: give one end of the driver range");
+      if (!arguments.to.empty()) path.range.hi = value_of(arguments.to[0], rotates(driver), "--to");
       else if (rotates(driver)) path.range.hi = path.range.lo + Rational(6283185307179586, 1000000000000000);
       else throw ModelError("", "give --to for a translating driver");
       if (!(path.range.lo < path.range.hi))
@@ -459,7 +495,8 @@ void register_certify(CLI::App& app, Action& action) {
   command->add_option("--distance", arguments->distance, "clearance/free: the clearance to certify (mm; default: found)");
   command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");
   command->add_option("--from", arguments->from, "free: start of the driver range (default: its initial position)");
-  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn); connected/apart: the end pose PART=X,Y,ANGLE");
+  command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn); connected/apart: the end pose PART=X,Y,ANGLE "
+                                             "(apart, a pin-slot part: PART=SLIDE,ANGLE, and OTHER=VALUE for a moving other part, repeatable)");
   command->add_option("--follower-at", arguments->follower_at, "free: follower position at the start (default: initial)");
   command->add_option("--ratio", arguments->ratio, "free: follower moves by RATIO x driver motion (default 0: it stays)");
   command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1; + and - are synonyms");
