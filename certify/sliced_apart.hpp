@@ -24,6 +24,10 @@ namespace hipair::verify {
 constexpr std::size_t apart_max_leaves = 100000;
 constexpr std::size_t apart_max_depth = 160;
 constexpr std::size_t apart_max_box_tests = 10000000;
+/// Point proofs cost each about one test per edge of the two parts (the certified distance from the
+/// moving boundary, the exact location): at most this many edge tests in all (a forged certificate
+/// of 100 000 point proofs against parts of hundreds of edges is refused before they are checked).
+constexpr std::size_t apart_max_point_edge_tests = 4000000;
 
 /// A box of poses: lo[k] .. hi[k] for k = 0 (x, or q), 1 (y, or s), 2 (u).
 struct ApartBox {

@@ -470,6 +470,7 @@ void check_pin_slot_pair(const SlicedApartCertificate& c, const Model& model, ve
   const std::string &first = c.envelope.first, &second = c.envelope.second;
   if (first == second) reject("a pair needs two different parts");
   if (c.b.part != c.a.part) reject("the claim poses '" + c.a.part + "' at a and '" + c.b.part + "' at b");
+  if (!c.a.slide || !c.b.slide) reject("a pin-slot claim's ends give the part's slide and tangent");
   if (c.a.part != first && c.a.part != second) reject("the posed part '" + c.a.part + "' is not a part of the pair");
   const Part& moving = part_named(model, c.a.part);
   const Part& other = part_named(model, c.a.part == first ? second : first);
@@ -590,7 +591,15 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
     for (std::size_t k : in_a)
       if (std::find(in_b.begin(), in_b.end(), k) != in_b.end())
         reject("a and b lie in one component of the open leaves (" + box_words(tree, tree.nodes[k].box) + " and its neighbours)");
-    // every blocked leaf's proof
+    // every blocked leaf's proof (the point proofs' work bounded first)
+    std::size_t edges = 0, point_proofs = 0;
+    for (const Part* part : {other, moving})
+      for (const Loop& loop : part->loops) edges += loop.edges.size();
+    for (const ApartTree::Node& node : tree.nodes)
+      if (node.axis < 0 && node.blocked && c.proofs[node.proof].kind == SlicedApartProof::Kind::point) ++point_proofs;
+    if (point_proofs * edges > apart_max_point_edge_tests)
+      reject("the " + std::to_string(point_proofs) + " point proofs need more than " + std::to_string(apart_max_point_edge_tests) +
+             " edge tests (" + std::to_string(edges) + " edges; the format's limit)");
     std::size_t blocked = 0;
     for (const ApartTree::Node& node : tree.nodes) {
       if (node.axis >= 0 || !node.blocked) continue;

@@ -128,7 +128,8 @@ class ApartSearch {
     return out;
   }
 
-  // Halves leaf n. Plain: along its longest side (lengths in mm: weights_). Looking ahead (the
+  // Halves leaf n. Plain: along its longest side (lengths in mm: weights_, an angle coordinate's
+  // also by d theta / du at the box's middle). Looking ahead (the
   // mixed boxes of a chain from a to b): along the side, among those at least a quarter of the
   // longest, whose halves are decided (blocked or free) the most, the longest on a tie; the
   // halves' outcomes tried are kept.
@@ -137,7 +138,13 @@ class ApartSearch {
     if (leaves_ + 1 > max_leaves_) return "more than " + std::to_string(max_leaves_) + " boxes (stuck near " + where(n) + ")";
     const verify::ApartBox box = tree_.nodes[n].box;
     Rational sizes[3];
-    for (int k = 0; k < 3; ++k) sizes[k] = (box.hi[k] - box.lo[k]) * weights_[k];
+    for (int k = 0; k < 3; ++k) {
+      sizes[k] = (box.hi[k] - box.lo[k]) * weights_[k];
+      if (k == 2 || tree_.periodic[k]) {   // an angle coordinate: d theta / du = 2 / (1 + t^2), t its chart's tangent
+        const Rational middle = (box.lo[k] + box.hi[k]) / 2, t = middle <= 1 ? middle : Rational(middle - 2);
+        sizes[k] *= Rational(2) / (1 + t * t);
+      }
+    }
     int axis = int(std::max_element(sizes, sizes + 3) - sizes);
     std::optional<std::pair<Outcome, Outcome>> halves;
     if (look_ahead) {
@@ -456,7 +463,9 @@ SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& 
   const Motion::Kind kind = other_part.motion.kind;
   if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
     throw GeometryError("sliced_apart: part '" + other + "' must be fixed, rotate or translate (against a pin-slot part)");
-  if ((kind == Motion::Kind::fixed) != (!a_other || !b_other) || (a_other && (a_other->is_offset || b_other->is_offset) != (kind == Motion::Kind::translation)))
+  const bool offsets = kind == Motion::Kind::translation;
+  if ((kind == Motion::Kind::fixed) != (!a_other || !b_other) ||
+      (a_other && b_other && (a_other->is_offset != offsets || b_other->is_offset != offsets)))
     throw ModelError("", "sliced_apart: give the positions of '" + other + "' at both ends exactly when it moves (" +
                              (kind == Motion::Kind::translation ? "offsets" : "tangents") + ")");
   const verify::ApartPair pair(other_part, moving);

@@ -187,6 +187,20 @@ std::pair<PlanarPose, std::optional<ExactPosition>> pin_slot_configuration(const
   return {pose, other_position};
 }
 
+// An apart claim's result: the certificate written and its statement printed (exit 0), or why
+// there is none (exit 1, nothing written).
+int apart_written(const SlicedApartResult& found, const CertifyArguments& arguments) {
+  if (!found.certificate) {
+    std::cerr << "hipair: cannot certify: " << found.failure << "\n";
+    return 1;
+  }
+  io::write_file_atomically(arguments.out, write_sliced_apart_certificate(*found.certificate));
+  std::cout << "certified sliced_apart: " << found.certificate->envelope.statement << " (" << found.leaves << " boxes, "
+            << found.blocked << " proved blocked)\n"
+            << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path << ")\n";
+  return 0;
+}
+
 int run(const CertifyArguments& arguments) {
   // a certificate holds for parameter values within their tolerances only: hipair-verify checks
   // each value against its range (docs/certify.md); the option every other command reading --set
@@ -234,17 +248,7 @@ int run(const CertifyArguments& arguments) {
     auto [from, from_other] = pin_slot_configuration(*pin_slot, other, arguments.at, "--at", notes);
     auto [to, to_other] = pin_slot_configuration(*pin_slot, other, arguments.to, "--to", notes);
     for (const std::string& note : notes) std::cout << note << "\n";
-    SlicedApartResult found = certify_pin_slot_apart(model, other.name, from, from_other, to, to_other, context);
-    if (!found.certificate) {
-      std::cerr << "hipair: cannot certify: " << found.failure << "\n";
-      return 1;
-    }
-    io::write_file_atomically(arguments.out, write_sliced_apart_certificate(*found.certificate));
-    std::cout << "certified sliced_apart: " << found.certificate->envelope.statement << " (" << found.leaves << " boxes, "
-              << found.blocked << " proved blocked)\n"
-              << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
-              << ")\n";
-    return 0;
+    return apart_written(certify_pin_slot_apart(model, other.name, from, from_other, to, to_other, context), arguments);
   }
   if (arguments.claim == "connected" || arguments.claim == "apart") {
     // a planar part's two poses connected through free space (sliced C-space path, staircase
@@ -265,17 +269,7 @@ int run(const CertifyArguments& arguments) {
     if (arguments.claim == "apart") {
       // the poses in different components of the free space: a kd-tree of boxes whose blocked
       // leaves wall a's component off (<hipair/sliced_apart.hpp>)
-      SlicedApartResult found = certify_sliced_apart(model, fixed.name, from, to, context);
-      if (!found.certificate) {
-        std::cerr << "hipair: cannot certify: " << found.failure << "\n";
-        return 1;
-      }
-      io::write_file_atomically(arguments.out, write_sliced_apart_certificate(*found.certificate));
-      std::cout << "certified sliced_apart: " << found.certificate->envelope.statement << " (" << found.leaves << " boxes, "
-                << found.blocked << " proved blocked)\n"
-                << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
-                << ")\n";
-      return 0;
+      return apart_written(certify_sliced_apart(model, fixed.name, from, to, context), arguments);
     }
     SlicedConnectedResult found = certify_sliced_connected(model, fixed.name, from, to, context);
     if (!found.certificate) {
@@ -348,7 +342,9 @@ int run(const CertifyArguments& arguments) {
     if (arguments.claim == "free") {
       PassagePath path{driver.name, follows ? other.name : "", {}, {}};
       path.range.lo = arguments.from.empty() ? coordinate(driver) : value_of(arguments.from, rotates(driver), "--from");
-      if (arguments.to.size() > 1) throw ModelError("", "--to: give one end of the driver range");
+      if (arguments.to.size() > 1)   // a usage error, as CLI11's for a single-valued option given twice (exit 114)
+        throw CLI::ArgumentMismatch("--to: the driver range has one end, given twice ('" + arguments.to[0] + "', then '" +
+                                    arguments.to[1] + "')");
       if (!arguments.to.empty()) path.range.hi = value_of(arguments.to[0], rotates(driver), "--to");
       else if (rotates(driver)) path.range.hi = path.range.lo + Rational(6283185307179586, 1000000000000000);
       else throw ModelError("", "give --to for a translating driver");

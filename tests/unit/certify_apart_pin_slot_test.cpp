@@ -18,10 +18,12 @@
 
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <random>
 #include <string>
 
 #include "random_rationals.hpp"
+#include "sliced_apart_support.hpp"
 #include "sliced_peg_in_hole.hpp"
 #include "test_seed.hpp"
 
@@ -90,29 +92,14 @@ std::optional<ExactPosition> post_position(Post post, const Rational& value) {
   return ExactPosition{value, post == Post::sliding, false, {}, {}};
 }
 
-// Walks the certificate's tree: every blocked leaf's middle and `samples` random exact poses of
-// it overlap (the exact oracle); returns the number of blocked leaves.
+// Every blocked leaf's middle and `samples` random exact poses of it overlap (the exact oracle);
+// returns the number of blocked leaves.
 std::size_t check_blocked_leaves(const SlicedApartCertificate& c, const Model& model, std::mt19937_64& random, int samples) {
-  struct Box {
-    Rational lo[3], hi[3];
-  };
-  std::vector<Box> stack{Box{{c.x.lo, c.y.lo, Rational(-1)}, {c.x.hi, c.y.hi, Rational(3)}}};
   std::size_t blocked = 0;
-  for (char mark : c.tree) {
-    Box b = stack.back();
-    stack.pop_back();
-    if (mark == 'q' || mark == 's' || mark == 'u') {
-      const int k = mark == 'q' ? 0 : mark == 's' ? 1 : 2;
-      Box lo = b, hi = b;
-      lo.hi[k] = hi.lo[k] = (b.lo[k] + b.hi[k]) / 2;
-      stack.push_back(hi);
-      stack.push_back(lo);
-      continue;
-    }
-    if (mark != 'b') continue;
+  EXPECT_TRUE(test::walk_apart_tree(c, [&](const test::ApartLeaf& b) {
+    if (!b.blocked) return;
     ++blocked;
-    EXPECT_EQ(relation_at(model, (b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, (b.lo[2] + b.hi[2]) / 2),
-              PartRelation::overlapping)
+    EXPECT_EQ(relation_at(model, (b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, (b.lo[2] + b.hi[2]) / 2), PartRelation::overlapping)
         << "blocked leaf " << blocked;
     for (int k = 0; k < samples; ++k) {
       Rational at[3];
@@ -120,18 +107,11 @@ std::size_t check_blocked_leaves(const SlicedApartCertificate& c, const Model& m
         at[axis] = b.lo[axis] == b.hi[axis] ? b.lo[axis] : test_numbers::random_rational(random, b.lo[axis], b.hi[axis], 1009);
       EXPECT_EQ(relation_at(model, at[0], at[1], at[2]), PartRelation::overlapping) << "blocked leaf " << blocked << " sample " << k;
     }
-  }
-  EXPECT_TRUE(stack.empty());
+  }));
   return blocked;
 }
 
-void expect_rejected(const SlicedApartCertificate& c, const Model& model, const std::string& reason, bool restate = true) {
-  SlicedApartCertificate m = c;
-  if (restate) m.envelope.statement = sliced_apart_statement(m);
-  VerificationResult v = check_sliced_apart(m, model);
-  EXPECT_FALSE(v.valid);
-  EXPECT_NE(v.reason.find(reason), std::string::npos) << v.reason;
-}
+using test::expect_apart_rejected;
 
 TEST(CertifyApartPinSlot, GeneratedBarsCannotTurnPastAFixedPost) {
   std::mt19937_64 random(test::test_seed(7001));
@@ -186,11 +166,11 @@ TEST(CertifyApartPinSlot, ATurningAndASlidingPostWallTheTurnAtEveryPosition) {
     // the other part's positions are part of the claim
     SlicedApartCertificate m = c;
     m.a_other.reset();
-    expect_rejected(m, model, "");
+    expect_apart_rejected(m, model, "");
     if (kind == Post::sliding) {
       m = c;
       m.a_other->value = 3;   // beyond the post's limits
-      expect_rejected(m, model, "the end a: the offset of 'post' is outside its limits");
+      expect_apart_rejected(m, model, "the end a: the offset of 'post' is outside its limits");
       // the offset's faces need no wall only where they are the post's limits
       m = c;
       m.x = RationalInterval{Rational(-1, 2), Rational(3, 2)};
@@ -207,39 +187,39 @@ TEST(CertifyApartPinSlot, MutatedCertificatesAreRejected) {
   ASSERT_TRUE(check_sliced_apart(c, model).valid);
   SlicedApartCertificate m = c;
   m.b = bar_pose(0, Rational(1, 50));   // a few degrees from a: one component
-  expect_rejected(m, model, "a and b lie in one component");
+  expect_apart_rejected(m, model, "a and b lie in one component");
   m = c;
   m.y = RationalInterval{Rational(-1), Rational(2)};   // the slide's lower face inside the limits: walls needed there
-  expect_rejected(m, model, "");
+  expect_apart_rejected(m, model, "");
   m = c;
   m.b = bar_pose(3, 1);   // beyond the slide's limits
-  expect_rejected(m, model, "the end b: the slide of 'bar' (3) is outside its limits");
+  expect_apart_rejected(m, model, "the end b: the slide of 'bar' (3) is outside its limits");
   m = c;
   m.tree = "q" + c.tree;   // the fixed post has no coordinate to halve
-  expect_rejected(m, model, "halves q, an axis of one value");
+  expect_apart_rejected(m, model, "halves q, an axis of one value");
   m = c;
   m.tree[0] = 'x';
-  expect_rejected(m, model, "is not q, s, u, o or b");
+  expect_apart_rejected(m, model, "is not q, s, u, o or b");
   m = c;
   for (SlicedApartProof& p : m.proofs)
     if (p.kind == SlicedApartProof::Kind::cross) {
       p.along = RationalInterval{Rational(0), Rational(1, 1000000)};
       break;
     }
-  expect_rejected(m, model, "the crossing does not hold over the box");
+  expect_apart_rejected(m, model, "the crossing does not hold over the box");
   m = c;
   m.a_other = m.b_other = ExactPosition{Rational(0), false, false, {}, {}};
   m.x = RationalInterval{Rational(-1), Rational(1)};
-  expect_rejected(m, model, "part 'post' is fixed: the ends give no position of it");
+  expect_apart_rejected(m, model, "part 'post' is fixed: the ends give no position of it");
   m = c;
   m.envelope.statement = "Part 'bar' cannot turn.";
-  expect_rejected(m, model, "the statement does not say", false);
+  expect_apart_rejected(m, model, "the statement does not say", false);
   // a planar part's poses in a pin-slot pair
   m = c;
   m.pin_slot = false;
   m.a.slide.reset();
   m.b.slide.reset();
-  expect_rejected(m, model, "");
+  expect_apart_rejected(m, model, "");
 }
 
 TEST(CertifyApartPinSlot, TreesBeyondTheFormatsLimitsAreRefusedBeforeTheirProofs) {
@@ -259,12 +239,12 @@ TEST(CertifyApartPinSlot, TreesBeyondTheFormatsLimitsAreRefusedBeforeTheirProofs
   m.tree = balanced(17);
   m.proofs.clear();
   auto started = std::chrono::steady_clock::now();
-  expect_rejected(m, model, "the tree has more than 100000 leaves (the format's limit)");
+  expect_apart_rejected(m, model, "the tree has more than 100000 leaves (the format's limit)");
   // 161 halvings down to the lowest corner
   m.tree.clear();
   for (int k = 0; k < 161; ++k) m.tree += "xyu"[k % 3];
   m.tree += std::string(162, 'o');
-  expect_rejected(m, model, "the tree is deeper than 160 halvings");
+  expect_apart_rejected(m, model, "the tree is deeper than 160 halvings");
   // 2^13 u-slabs left of x = 0 meeting 2^13 y-slabs right of it: 6.7 * 10^7 pairs of meeting open
   // leaves (16 386 leaves, within the leaf limit), refused by the adjacency's budget
   std::function<std::string(char, int)> slabs = [&](char axis, int k) -> std::string {
@@ -273,7 +253,55 @@ TEST(CertifyApartPinSlot, TreesBeyondTheFormatsLimitsAreRefusedBeforeTheirProofs
   m.tree = "x" + ("x" + std::string("b") + ("y" + ("y" + std::string("b") + slabs('u', 13)) + "b")) +
            ("x" + ("y" + ("y" + std::string("b") + slabs('y', 13)) + "b") + "b");
   m.proofs.assign(6, honest.certificate->proofs.front());
-  expect_rejected(m, model, "the open leaves' adjacency needs more than 10000000 box tests");
+  expect_apart_rejected(m, model, "the open leaves' adjacency needs more than 10000000 box tests");
+  // a peg of 302 edges (a zigzag bottom) and 2^15 leaves, all blocked by point proofs but the 16
+  // holding a or b: 32 752 point proofs x 310 edges, refused before any is checked
+  {
+    std::string zigzag = R"({ "start": [-3, 1], "edges": [ )";
+    for (int i = 0; i <= 300; ++i)
+      zigzag += R"({ "line_to": [)" + n(Rational(-3) + Rational(6 * i, 300)) + "," + n(Rational(-1) - Rational(i % 2, 100)) + "] }, ";
+    zigzag += R"({ "line_to": [3, 1] }, { "line_to": [-3, 1] } ] })";
+    const std::string plate = rectangle(-20, -20, 20, 20) + ", " + rectangle(-6, -6, 6, 6);
+    const Model comb = read_model(R"({ "hipair": 1, "name": "comb", "parts": [
+      { "name": "plate", "motion": "fixed", "loops": [ )" + plate + R"( ] },
+      { "name": "peg", "motion": { "planar": { "pivot": [0, 0] } }, "loops": [ )" + zigzag + " ] } ] })");
+    SlicedApartCertificate f = m;
+    // (an envelope naming the comb model: a planar clearance certificate's)
+    std::optional<Certificate> clearance = certify_planar_clearance(comb, "plate", f.a, std::nullopt);
+    ASSERT_TRUE(clearance);
+    f.envelope = *clearance;
+    f.tree.clear();
+    f.proofs.clear();
+    std::size_t open = 0;
+    std::function<void(int, Rational*, Rational*)> build = [&](int k, Rational* lo, Rational* hi) {
+      if (k == 15) {
+        auto holds = [&](const Rational& u) { return lo[0] <= 0 && hi[0] >= 0 && lo[1] <= 0 && hi[1] >= 0 && lo[2] <= u && hi[2] >= u; };
+        if (holds(0) || holds(1)) {
+          f.tree += 'o';
+          ++open;
+        } else {
+          f.tree += 'b';
+          SlicedApartProof p;
+          p.kind = SlicedApartProof::Kind::point;
+          f.proofs.push_back(p);
+        }
+        return;
+      }
+      const int axis = k % 3;
+      f.tree += "xyu"[axis];
+      const Rational middle = (lo[axis] + hi[axis]) / 2, saved_hi = hi[axis], saved_lo = lo[axis];
+      hi[axis] = middle;
+      build(k + 1, lo, hi);
+      hi[axis] = saved_hi;
+      lo[axis] = middle;
+      build(k + 1, lo, hi);
+      lo[axis] = saved_lo;
+    };
+    Rational lo[3] = {Rational(-7, 2), Rational(-7, 2), Rational(-1)}, hi[3] = {Rational(7, 2), Rational(7, 2), Rational(3)};
+    build(0, lo, hi);
+    EXPECT_EQ(open, 16u);
+    expect_apart_rejected(f, comb, "point proofs need more than 4000000 edge tests (310 edges; the format's limit)");
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   EXPECT_LT(seconds, 120.0);   // (a loose bound on a loaded machine: about 5 s when idle)
 }

@@ -20,6 +20,7 @@
 #include <random>
 #include <string>
 
+#include "sliced_apart_support.hpp"
 #include "sliced_peg_in_hole.hpp"
 #include "test_seed.hpp"
 
@@ -61,12 +62,9 @@ const SlicedApartCertificate& twelve() {
   return c;
 }
 
+using test::expect_apart_rejected;
 void expect_rejected(const SlicedApartCertificate& c, const Model& model, const std::string& reason, bool restate = true) {
-  SlicedApartCertificate m = c;
-  if (restate) m.envelope.statement = sliced_apart_statement(m);
-  VerificationResult v = check_sliced_apart(m, model);
-  EXPECT_FALSE(v.valid);
-  EXPECT_NE(v.reason.find(reason), std::string::npos) << v.reason;
+  expect_apart_rejected(c, model, reason, restate);
 }
 
 // The index in `tree` of the k-th leaf mark (o or b), and the number of b marks before it.
@@ -89,31 +87,16 @@ TEST(CertifySlicedApart, TheSquarePegCannotTurnAQuarterInTheNarrowHole) {
   EXPECT_NE(v.summary.find("proved blocked"), std::string::npos);
   // the oracle: the middle pose of every blocked leaf overlaps (exact), and a, b are apart
   std::size_t leaves = 0, blocked = 0;
-  {
-    // walk the tree as the verifier does, through the certificate's own middle poses
-    struct Box { Rational lo[3], hi[3]; };
-    std::vector<Box> stack{Box{{c.x.lo, c.y.lo, Rational(-1)}, {c.x.hi, c.y.hi, Rational(3)}}};
-    for (char mark : c.tree) {
-      Box b = stack.back();
-      stack.pop_back();
-      if (mark == 'x' || mark == 'y' || mark == 'u') {
-        const int k = mark == 'x' ? 0 : mark == 'y' ? 1 : 2;
-        Box lo = b, hi = b;
-        lo.hi[k] = hi.lo[k] = (b.lo[k] + b.hi[k]) / 2;
-        stack.push_back(hi);
-        stack.push_back(lo);
-        continue;
-      }
-      ++leaves;
-      if (mark != 'b') continue;
-      ++blocked;
-      const Rational u = (b.lo[2] + b.hi[2]) / 2;
-      const PlanarPose p = u <= 1 ? peg_pose((b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, u)
-                                  : peg_pose((b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, u - 2, true);
-      ASSERT_EQ(relation(model, p), PartRelation::overlapping) << "blocked leaf " << blocked;
-    }
-    EXPECT_TRUE(stack.empty());
-  }
+  // walk the tree as the verifier does, through the certificate's own middle poses
+  EXPECT_TRUE(test::walk_apart_tree(c, [&](const test::ApartLeaf& b) {
+    ++leaves;
+    if (!b.blocked) return;
+    ++blocked;
+    const Rational u = (b.lo[2] + b.hi[2]) / 2;
+    const PlanarPose p = u <= 1 ? peg_pose((b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, u)
+                                : peg_pose((b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, u - 2, true);
+    EXPECT_EQ(relation(model, p), PartRelation::overlapping) << "blocked leaf " << blocked;
+  }));
   EXPECT_EQ(blocked, c.proofs.size());
   EXPECT_GT(leaves, blocked);
   EXPECT_EQ(relation(model, c.a), PartRelation::apart);
