@@ -10,6 +10,7 @@
 // the verifier's code), a chain of free boxes joins a and b, or the limits are reached.
 #include "certificates/producer.hpp"
 #include "certify/certificate_json.hpp"
+#include "certify/planar_check.hpp"
 #include "certify/sliced_apart.hpp"
 #include "certify/sliced_connected.hpp"
 
@@ -476,13 +477,24 @@ SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& 
   const auto& slide_limits = moving.motion.translation_limits;
   const auto& offset_limits = other_part.motion.translation_limits;
   for (int end = 0; end < 2; ++end) {
-    const Rational* at = end == 0 ? at_a : at_b;
+    const PlanarPose& pose = end == 0 ? a : b;
+    const std::optional<ExactPosition>& position = end == 0 ? a_other : b_other;
     const std::string which = end == 0 ? "a" : "b";
-    std::string failure;
-    if (slide_limits && (at[1] < slide_limits->lo || at[1] > slide_limits->hi)) failure = "the slide is outside its limits";
-    else if (kind == Motion::Kind::translation && offset_limits && (at[0] < offset_limits->lo || at[0] > offset_limits->hi))
-      failure = "the offset of '" + other + "' is outside its limits";
-    else failure = verify::apart_pin_slot_end_failure(pair, at);
+    // a configuration of the mechanism (the verifier's tests): else bad input
+    if (slide_limits && (*pose.slide < slide_limits->lo || *pose.slide > slide_limits->hi))
+      throw ModelError("", "sliced_apart: the end " + which + ": the slide of '" + moving.name + "' (" + to_decimal_string(*pose.slide) +
+                               ") is outside its limits [" + to_decimal_string(slide_limits->lo) + ", " +
+                               to_decimal_string(slide_limits->hi) + "]");
+    if (!verify::certainly_within(moving.motion.angle_limits, verify::angle_of_tangent(pose.tangent, pose.half_turn), true))
+      throw ModelError("", "sliced_apart: the end " + which + ": the angle of '" + moving.name + "' is not certainly within its limits");
+    if (position) {
+      try {
+        verify::exact_map(other_part, {{other, *position}});
+      } catch (const verify::Rejection& rejection) {
+        throw ModelError("", "sliced_apart: the end " + which + ": " + rejection.reason);
+      }
+    }
+    const std::string failure = verify::apart_pin_slot_end_failure(pair, end == 0 ? at_a : at_b);
     if (!failure.empty()) {
       result.failure = "the end " + which + " is not certainly free: " + failure;
       return result;
