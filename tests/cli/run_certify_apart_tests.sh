@@ -57,7 +57,7 @@ cat >"$bar" <<'JSON'
   { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-2, 2] } },
     "loops": [ { "start": [-10, -0.5], "edges": [
     { "line_to": [10, -0.5] }, { "line_to": [10, 0.5] }, { "line_to": [-10, 0.5] }, { "line_to": [-10, -0.5] } ] } ] } ],
-  "pairs": [["post", "bar"]] }
+  "pairs": [{"parts": ["post", "bar"]}] }
 JSON
 "$hipair" certify "$bar" --claim apart --at bar=1,0 --to bar=-1,90deg --out "$work/bar-apart.json" >"$work/bar-apart.out" 2>&1 \
   || fail "certify --claim apart refuses the bar and post: $(cat "$work/bar-apart.out")"

@@ -52,7 +52,7 @@ Model bar_and_post(const Rational& px, const Rational& py, const Rational& r, co
                     rectangle(Rational(px - r), Rational(py - r), Rational(px + r), Rational(py + r)) + R"( ] },
     { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-2, 2] } },
       "loops": [ )" + rectangle(tail, Rational(-w), Rational(10), w) + R"( ] } ],
-    "pairs": [["post", "bar"]] })");
+    "pairs": [{"parts": ["post", "bar"]}] })");
 }
 
 PlanarPose bar_pose(const Rational& s, const Rational& t, bool half_turn = false) {
