@@ -13,6 +13,7 @@
 // ends are checked by exact point locations: the motion is in the start cell at u_lower and
 // (unless grazing) no longer in it at u_upper.
 #include "cspace/crossing_shrink.hpp"
+#include "cspace_point_of.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -65,24 +66,13 @@ struct Toggling {
 using test::describe_crossing;
 using test::axis_path;
 using test::part_value;
+using test::point_of;
 
 struct Tally {
   int motions = 0, crossings = 0, identical = 0, narrower = 0, helped = 0, ends_checked = 0, shifted_from = 0;
   std::size_t steps = 0;
 };
 
-// The path's configuration at u, exactly (a point query's path).
-MotionPath point_of(const MotionPath& path, const Rational& u) {
-  MotionPath point;
-  for (auto [from, to] : {std::pair{&path.x, &point.x}, std::pair{&path.y, &point.y}}) {
-    to->kind = from->kind;
-    Rational v(0);
-    for (std::size_t i = from->coefficients.size(); i-- > 0;) v = v * u + from->coefficients[i];
-    v.canonicalize();
-    to->coefficients = {v};
-  }
-  return point;
-}
 
 void compare(const CSpace& space, const MotionPath& path, const std::string& what, Tally& tally, bool shifted = false);
 

@@ -7,6 +7,7 @@
 // without it (the exact path of the subdivision), field for field; and the free stretch it
 // reports is checked against exact point locations along the path.
 #include "cspace/angle_filter.hpp"
+#include "cspace_point_of.hpp"
 #include "cspace_test_support.hpp"
 #include "test_paths.hpp"
 
@@ -37,6 +38,7 @@ std::filesystem::path degenerate(const std::string& name) {
 using Switch = test::FlagSwitch<&cspace::second_order>;
 using test::describe_crossing;
 using test::axis_path;
+using test::point_of;
 
 
 struct Tally {
@@ -55,18 +57,6 @@ std::vector<double> part_polynomial(AxisKind kind, bool half_turn, double t0, do
           g2 * t1 * t2 + g3 * t1 * t1 * t1 / 6};
 }
 
-// The path's configuration at u, exactly (a point query's path).
-MotionPath point_of(const MotionPath& path, const Rational& u) {
-  MotionPath point;
-  for (auto [from, to] : {std::pair{&path.x, &point.x}, std::pair{&path.y, &point.y}}) {
-    to->kind = from->kind;
-    Rational v(0);
-    for (std::size_t i = from->coefficients.size(); i-- > 0;) v = v * u + from->coefficients[i];
-    v.canonicalize();
-    to->coefficients = {v};
-  }
-  return point;
-}
 
 // With and without the second-order form: the same answer (both or neither throw). Where the
 // motion is reported free up to u_lower (none: u_end), exact point locations at eight places of

@@ -17,6 +17,8 @@
 #include <hipair/rational.hpp>
 #include <hipair/sliced.hpp>
 
+#include "sliced_model_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <set>
@@ -53,11 +55,7 @@ Model peg_in_slot(const Rational& p, const Point& pivot) {
                     loop(box(-6, Rational(-11 - p / 2), 6, Rational(-11 + p / 2))) + R"( ] } ] })");
 }
 
-std::pair<Rational, Rational> rotation(const SlicedAngle& a) {
-  if (a.half_turn) return {Rational(-1), Rational(0)};
-  const Rational d = 1 + a.t * a.t;
-  return {Rational((1 - a.t * a.t) / d), Rational(2 * a.t / d)};
-}
+using sliced_models::rotation;
 
 bool apart(const Model& model, const SlicedConfiguration& q) {
   const auto [c, s] = rotation(q.angle);

@@ -17,6 +17,7 @@
 #include <hipair/sliced.hpp>
 
 #include "core/exact_sqrt.hpp"
+#include "sliced_model_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -74,12 +75,7 @@ Case make_case(Random& random, bool about_pivot) {
   return c;
 }
 
-// cos, sin of the half-angle tangent t
-std::pair<Rational, Rational> rotation(const SlicedAngle& angle) {
-  if (angle.half_turn) return {Rational(-1), Rational(0)};
-  Rational d = 1 + angle.t * angle.t;
-  return {Rational((1 - angle.t * angle.t) / d), Rational(2 * angle.t / d)};
-}
+using sliced_models::rotation;
 
 SlicedLocation::Kind oracle(const Model& model, const SlicedConfiguration& q) {
   const Part& a = model.parts[0];

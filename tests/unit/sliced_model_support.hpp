@@ -1,7 +1,8 @@
 // Shared by the 3-DOF (sliced) tests: model text for polygons, rectangles, circles and stadiums
 // with exact rational coordinates, a fixed part against a planar part, the square peg in a square
 // hole, random rationals and star-shaped polygons on a 1/8 grid, and the exact overlap oracle at a
-// configuration (x, y, t = tan(theta/2) or the half turn).
+// configuration (x, y, t = tan(theta/2) or the half turn), the rotation of a slice's angle and a
+// vertex-vertex contact's offset.
 #pragma once
 
 #include <hipair/model.hpp>
@@ -78,17 +79,28 @@ inline std::vector<std::pair<Rational, Rational>> star(Random& random, int k, do
   return points;
 }
 
+// cos and sin of a slice's angle, exactly: (1 - t^2, 2t) / (1 + t^2) of its half-angle tangent t,
+// (-1, 0) at the half turn.
+inline std::pair<Rational, Rational> rotation(const SlicedAngle& angle) {
+  if (angle.half_turn) return {Rational(-1), Rational(0)};
+  const Rational d = 1 + angle.t * angle.t;
+  return {Rational((1 - angle.t * angle.t) / d), Rational(2 * angle.t / d)};
+}
+
+// The offset (x, y) at which vertex b of the planar part, turned by (c, s) about its pivot, meets
+// vertex a of the fixed part: a - pivot - R (b - pivot).
+inline std::pair<Rational, Rational> vertex_vertex_offset(const Point& a, const Point& b, const Point& pivot,
+                                                          const Rational& c, const Rational& s) {
+  const Rational bx = b.x - pivot.x, by = b.y - pivot.y;
+  return {Rational(a.x - pivot.x - (c * bx - s * by)), Rational(a.y - pivot.y - (s * bx + c * by))};
+}
+
 // The exact overlap oracle: part 0 fixed, part 1 turned about its pivot to q's angle and moved by
 // (q.x, q.y).
 inline PartRelation relation_at(const Model& model, const SlicedConfiguration& q) {
   const Part& a = model.parts[0];
   const Part& b = model.parts[1];
-  Rational c = -1, s = 0;
-  if (!q.angle.half_turn) {
-    Rational d = 1 + q.angle.t * q.angle.t;
-    c = (1 - q.angle.t * q.angle.t) / d;
-    s = 2 * q.angle.t / d;
-  }
+  const auto [c, s] = rotation(q.angle);
   return part_overlap(a, Placement{}, b, placement_about(b.motion.pivot, c, s, Point{q.x, q.y})).relation;
 }
 

@@ -139,21 +139,14 @@ TEST(SlicedScale, UniformScalesHaveTheSameCriticalAnglesCellsAndLocations) {
     if (n >= 1 && n <= reference.intervals().size())
       for (const auto& cell : reference.slice(angle)->cells())
         if (cell.kind == CellKind::free) free_samples.push_back(Point{cell.sample_x, cell.sample_y});
-    Rational c = -1, s = 0;
-    if (!angle.half_turn) {
-      Rational d = 1 + angle.t * angle.t;
-      c = (1 - angle.t * angle.t) / d;
-      s = 2 * angle.t / d;
-    }
+    const auto [c, s] = sliced_models::rotation(angle);
     for (int k = 0; k < 50; ++k) {
       SlicedConfiguration q;
       q.angle = angle;
       if (k % 5 == 0) {
         const Point& a = av[random() % av.size()];
         const Point& b = bv[random() % bv.size()];
-        Rational bx = b.x - pivot.x, by = b.y - pivot.y;
-        q.x = a.x - pivot.x - (c * bx - s * by);
-        q.y = a.y - pivot.y - (s * bx + c * by);
+        std::tie(q.x, q.y) = sliced_models::vertex_vertex_offset(a, b, pivot, c, s);
       } else if (k % 5 == 1 && !free_samples.empty()) {
         const Point& p = free_samples[random() % free_samples.size()];
         q.x = p.x;

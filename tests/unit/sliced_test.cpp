@@ -21,6 +21,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace hipair {
@@ -91,12 +92,7 @@ void expect_oracle_agreement(const Model& model, const SlicedSpace& space, Rando
   const Rational range = space.bound() + 2;
   int counts[3] = {0, 0, 0};
   for (const auto& angle : angles) {
-    Rational c = -1, s = 0;
-    if (!angle.half_turn) {
-      Rational d = 1 + angle.t * angle.t;
-      c = (1 - angle.t * angle.t) / d;
-      s = 2 * angle.t / d;
-    }
+    const auto [c, s] = sliced_models::rotation(angle);
     for (int k = 0; k < 250; ++k) {
       SlicedConfiguration q;
       q.angle = angle;
@@ -104,9 +100,7 @@ void expect_oracle_agreement(const Model& model, const SlicedSpace& space, Rando
         // a vertex–vertex contact: a - pivot - R (b - pivot)
         const Point& a = av[random() % av.size()];
         const Point& b = bv[random() % bv.size()];
-        Rational bx = b.x - pivot.x, by = b.y - pivot.y;
-        q.x = a.x - pivot.x - (c * bx - s * by);
-        q.y = a.y - pivot.y - (s * bx + c * by);
+        std::tie(q.x, q.y) = sliced_models::vertex_vertex_offset(a, b, pivot, c, s);
       } else {
         q.x = random_rational(random, -range, range);
         q.y = random_rational(random, -range, range);
