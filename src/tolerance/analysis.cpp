@@ -2063,13 +2063,11 @@ ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, 
                         std::vector<long>* exponents) {
   if (exponents) exponents->clear();
   if (options.chain) {
-    ToleranceResult result = tolerance_detail::analyze_chain(text, options);
-    // the chain's pairs run on analysed_form of the model (chain.cpp): the same form again,
-    // read only for a chain at an extreme scale
-    if (exponents && result.length_exponent != 0)
-      *exponents = model_detail::parameter_scale_exponents(*tolerance_detail::analysed_form(
-          model_detail::ParametricModel::read(text, "<string>", tolerance_detail::design_read_options(options)), options));
-    else if (exponents)
+    // the chain's pairs run on analysed_form of the model (chain.cpp): at an extreme scale the
+    // exponents of that form, handed back by the chain (session 70: no longer read and rescaled
+    // a second time here)
+    ToleranceResult result = tolerance_detail::analyze_chain(text, options, {}, exponents);
+    if (exponents && result.length_exponent == 0)
       exponents->assign(result.parameters.size(), 0);   // all 0, as for a pair (session 68)
     return result;
   }

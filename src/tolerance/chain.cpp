@@ -22,6 +22,7 @@
 //     the path: a tooth hand-over inside the box followed; monte_carlo, actual_root), certified
 //     (interval bisection), its driver ranging over the previous pair's certified value there.
 #include "core/model_scale.hpp"
+#include "model/parametric/dimensions.hpp"
 #include "model/parametric/parametric.hpp"
 #include "tolerance/handover.hpp"
 #include "tolerance/mean_value.hpp"
@@ -170,8 +171,9 @@ struct PositionStage {
 
 class ChainAnalysis {
  public:
-  ChainAnalysis(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths)
-      : text_(text), options_(options), paths_(paths) {
+  ChainAnalysis(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths,
+                std::vector<long>* exponents = nullptr)
+      : text_(text), options_(options), paths_(paths), exponents_(exponents) {
     if (options.threshold || options.certify || options.contact_changes)
       throw ModelError("", "the jamming threshold, tolerance certificates and contact changes are analysed per pair "
                            "(--pair), not over an assembly chain");
@@ -326,6 +328,9 @@ class ChainAnalysis {
     result_.parameters = first.result.parameters;
     result_.sigma = first.result.sigma;
     result_.mean_shift = first.result.mean_shift;
+    // the parameters' scale exponents of the form the pairs ran on, for the reports (session 70:
+    // analyze() read and rescaled the model a second time for them)
+    if (exponent != 0 && exponents_) *exponents_ = model_detail::parameter_scale_exponents(*parametric_model());
     compose();
     result_.seconds_sensitivity = wall_since(t0);
     bar_.begin(3);
@@ -1704,6 +1709,7 @@ class ChainAnalysis {
   // band, the Monte Carlo.
   StagedProgress bar_{options_.progress, {0, 0.05, 0.2, 0.4, 0.6, 1}};
   ChainPaths paths_;
+  std::vector<long>* exponents_ = nullptr;   ///< analyze_chain's: the parameters' scale exponents
   // The hand-over envelope (handover.cpp): on unless the caller assumes the nominal holders.
   bool envelope_on() const { return !options_.chain_assume_nominal_holder; }
   std::vector<StageAnalysis> stages_;
@@ -1755,8 +1761,10 @@ std::size_t& chain_memo_entries() {
   return entries;
 }
 
-ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths) {
-  return ChainAnalysis(text, options, paths).run();
+ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths,
+                              std::vector<long>* exponents) {
+  if (exponents) exponents->clear();
+  return ChainAnalysis(text, options, paths, exponents).run();
 }
 
 }  // namespace hipair::tolerance_detail

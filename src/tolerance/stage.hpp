@@ -210,8 +210,12 @@ std::atomic<std::size_t>& chain_cases_resumed();
 /// replayed, and the far walk's), summed over every chain analysis since the program started.
 std::atomic<std::size_t>& chain_compositions_made();
 
-/// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp).
-ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {});
+/// The analysis of an assembly chain (ToleranceOptions::chain; chain.cpp). With `exponents`, for
+/// a chain analysed at an extreme scale (ToleranceResult::length_exponent not 0), its parameters'
+/// scale exponents (model_detail::parameter_scale_exponents of the analysed form every pair ran
+/// on), else left empty: the form the chain read, not read again (session 70).
+ToleranceResult analyze_chain(std::string_view text, const ToleranceOptions& options, const ChainPaths& paths = {},
+                              std::vector<long>* exponents = nullptr);
 
 /// The pair (options.driver, options.follower) of the model `text` at `path`; `space`, when
 /// given, is the pair's nominal C-space (built by the caller for the same model text), not built
