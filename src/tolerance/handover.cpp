@@ -294,7 +294,7 @@ std::shared_ptr<const HandoverSearch::BoxParts> HandoverSearch::box_parts(const 
     parts->variables = keep.size();
     for (std::size_t a : keep) parts->parameter_of.push_back(active[a]);
     auto compact = [&](TaylorModel1& x) {
-      TaylorModel1::Coefficients coefficients(keep.size(), Interval(0));
+      std::vector<Interval> coefficients(keep.size(), Interval(0));
       for (std::size_t b = 0; b < keep.size(); ++b)
         if (keep[b] < x.coefficients.size()) coefficients[b] = x.coefficients[keep[b]];
       x.coefficients = std::move(coefficients);

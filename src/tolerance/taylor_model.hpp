@@ -12,7 +12,6 @@
 #pragma once
 
 #include "model/parametric/number_traits.hpp"
-#include "tolerance/recycling_allocator.hpp"
 
 #include <hipair/error.hpp>
 
@@ -25,18 +24,15 @@ namespace hipair::tolerance_detail {
 
 struct TaylorModel1 {
   using Interval = kernels::Interval;
-  /// (their storage recycled per thread: recycling_allocator.hpp, session 70)
-  using Coefficients = std::vector<Interval, RecyclingAllocator<Interval>>;
   Interval constant{0};
-  Coefficients coefficients;   ///< of xi_0, xi_1, ...; missing ones are 0
+  std::vector<Interval> coefficients;   ///< of xi_0, xi_1, ...; missing ones are 0
   Interval remainder{0};
 
   TaylorModel1() = default;
   TaylorModel1(int value) : constant(value) {}                  // NOLINT(google-explicit-constructor)
   explicit TaylorModel1(const Interval& value) : constant(value) {}
-  TaylorModel1(const Interval& c, Coefficients a, const Interval& r) : constant(c), coefficients(std::move(a)), remainder(r) {}
-  TaylorModel1(const Interval& c, const std::vector<Interval>& a, const Interval& r)
-      : constant(c), coefficients(a.begin(), a.end()), remainder(r) {}
+  TaylorModel1(const Interval& c, std::vector<Interval> a, const Interval& r)
+      : constant(c), coefficients(std::move(a)), remainder(r) {}
 
   /// The variable ranging over [lo, hi] as the `index`-th of the box's variables: c + h xi with
   /// c = the middle, h its half width rounded up, so that c + h [-1, 1] contains [lo, hi].
