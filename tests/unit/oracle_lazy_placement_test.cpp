@@ -10,6 +10,7 @@
 // most edges unplaced.
 #include "curves/contact_curves.hpp"
 #include "oracle/overlap.hpp"
+#include "oracle/filter_counts.hpp"
 #include "spur_gear_pairs.hpp"
 #include "test_seed.hpp"
 #include "algebra/exact_real.hpp"
@@ -22,6 +23,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace hipair {
 namespace {
@@ -171,6 +173,58 @@ TEST(OracleLazyPlacement, LazyFilterIsTheEagerFilterOnGeneratedGearPairs) {
   EXPECT_GT(decided * 5, asked) << decided << " of " << asked;
   EXPECT_LT(decided, asked);
   std::printf("[lazy filter] %zu boxes, %zu decided overlapping\n", asked, decided);
+}
+
+// Session 70 (growth70): certainly_overlapping skips a block of the first part whose posed box
+// meets no block box of the second part (not only the second part's whole box, which holds a
+// quarter of a gear's teeth): the edges it poses per call no longer grow with the tooth count
+// (they did linearly: n^1.8 of the operating region's classification). On generated spur-gear
+// pairs of 16, 32 and 64 teeth, over narrow boxes (as the builder's vertices ask) about random
+// points of every chart pair, the answer must be the eager route's (every edge posed,
+// set_lazy_placement(false)), and the mean number of edges posed per call at 64 teeth at most
+// 1.5 times that at 16 teeth (on the base, without the window, about 4 times: it fails there).
+TEST(OracleLazyPlacement, FilterWindowedByTheMatesBlocksIsTheEagerFilterAtAnyToothCount) {
+  std::mt19937_64 random(hipair::test::test_seed(7001));
+  std::vector<double> posed_per_call;
+  for (const long z : {16L, 32L, 64L}) {
+    const long z2 = z + static_cast<long>(random() % 5);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z, z2, name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    ASSERT_EQ(axes.dimension(), 2);
+    const cspace::PairOverlap oracle(model, axes);
+    std::uint64_t calls = 0, posed = 0;
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts)
+        for (int k = 0; k < 120; ++k) {
+          const Rational px = between(x, random, 1 << 20), py = between(y, random, 1 << 20);
+          const int shrink = 10 + static_cast<int>(random() % 30);
+          const Rational wx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink);
+          const Rational wy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
+          Rational xlo = std::max(Rational(px - wx), x.lo), xhi = std::min(Rational(px + wx), x.hi);
+          Rational ylo = std::max(Rational(py - wy), y.lo), yhi = std::min(Rational(py + wy), y.hi);
+          for (Rational* r : {&xlo, &xhi, &ylo, &yhi}) r->canonicalize();
+          const kernels::Interval bx(cspace::algebra::lower_double(xlo), cspace::algebra::upper_double(xhi));
+          const kernels::Interval by(cspace::algebra::lower_double(ylo), cspace::algebra::upper_double(yhi));
+          cspace::set_lazy_placement(false);
+          const bool eager = oracle.certainly_overlapping(x, y, bx, by);
+          cspace::set_lazy_placement(true);
+          const std::uint64_t before = cspace::overlap_filter_posed_edges();
+          const bool lazy = oracle.certainly_overlapping(x, y, bx, by);
+          posed += cspace::overlap_filter_posed_edges() - before;
+          ++calls;
+          EXPECT_EQ(lazy, eager) << "over [" << xlo.get_str() << ", " << xhi.get_str() << "] x [" << ylo.get_str()
+                                 << ", " << yhi.get_str() << "]";
+        }
+    posed_per_call.push_back(static_cast<double>(posed) / static_cast<double>(calls));
+    std::printf("[windowed filter] %ld x %ld teeth: %.1f edges posed per call (%llu calls)\n", z, z2,
+                posed_per_call.back(), static_cast<unsigned long long>(calls));
+  }
+  EXPECT_GT(posed_per_call.front(), 0.0);
+  EXPECT_LE(posed_per_call.back(), 1.5 * posed_per_call.front())
+      << "16 teeth: " << posed_per_call.front() << " edges posed per call, 64 teeth: " << posed_per_call.back();
 }
 
 }  // namespace
