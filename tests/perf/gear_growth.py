@@ -206,7 +206,7 @@ def write_svg(path, ns, series):
         return top + (hi_y - math.log10(v)) / (hi_y - lo_y) * (height - top - bottom)
 
     colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22",
-               "#17becf", "#000000", "#aa3377"]
+               "#17becf", "#000000", "#aa3377", "#66aa00"]
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">'
            % (width, height), '<rect width="100%" height="100%" fill="white"/>']
     for d in range(lo_y, hi_y + 1):
