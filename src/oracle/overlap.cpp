@@ -1682,10 +1682,19 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // whole box holds a quarter of its mate's teeth, the block boxes only the meshing ones: the
   // edges posed per call no longer grow with the tooth count (O(n) per call before: n^1.8 of
   // the operating region's classification, docs/performance.md "Session 70 (growth70)").
+  // For the same reason an edge of a block is tested only against the second part's blocks
+  // whose boxes meet the block's (`near`), not against all of them.
   const bool windowed = first.bounded && bounded_map(relative);
-  auto meets_a_block = [&](const Box& box) {
-    for (const Box& block : b.block_boxes)
-      if (box.meets(block)) return true;
+  thread_local std::vector<std::size_t> near;
+  // crossing() over the blocks in `near`
+  auto crossing_near = [&](const IntervalEdge& e, const Box& box) {
+    if (!box.meets(b.total)) return false;
+    for (std::size_t block : near) {
+      if (!box.meets(b.block_boxes[block])) continue;
+      for (std::size_t j = block * PartEnclosure::kBlock;
+           j < std::min(b.boxes.size(), (block + 1) * PartEnclosure::kBlock); ++j)
+        if (box.meets(b.boxes[j]) && filter_pair(e, b.intervals[j]) == Filter::overlapping) return true;
+    }
     return false;
   };
   bool found = false;
@@ -1695,11 +1704,16 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
     Box box;
     for (std::size_t k = 0; k < blocks.size() && !found; ++k) {
       if (!blocks[k].meets(b.total)) continue;
-      if (windowed && !meets_a_block(blocks[k])) continue;
+      if (windowed) {
+        near.clear();
+        for (std::size_t block = 0; block < b.block_boxes.size(); ++block)
+          if (blocks[k].meets(b.block_boxes[block])) near.push_back(block);
+        if (near.empty()) continue;
+      }
       for (std::size_t i = k * PartEnclosure::kBlock; i < std::min(n, (k + 1) * PartEnclosure::kBlock) && !found; ++i) {
         filter_posed_edges.fetch_add(1, std::memory_order_relaxed);
         if (!PlacedPart::posed_edge(first, i, relative, e, box)) return false;   // (as an untamed placement)
-        found = crossing(e, box);
+        found = windowed ? crossing_near(e, box) : crossing(e, box);
       }
     }
   } else {

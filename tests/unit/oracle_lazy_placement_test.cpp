@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -181,8 +182,10 @@ TEST(OracleLazyPlacement, LazyFilterIsTheEagerFilterOnGeneratedGearPairs) {
 // (they did linearly: n^1.8 of the operating region's classification). On generated spur-gear
 // pairs of 16, 32 and 64 teeth, over narrow boxes (as the builder's vertices ask) about random
 // points of every chart pair, the answer must be the eager route's (every edge posed,
-// set_lazy_placement(false)), and the mean number of edges posed per call at 64 teeth at most
-// 1.5 times that at 16 teeth (on the base, without the window, about 4 times: it fails there).
+// set_lazy_placement(false)), and where the filter declines (it then visits every block it does
+// not skip) the mean number of edges posed per call at 64 teeth at most twice that at 16 teeth
+// (linear growth is 4 times; without the window, the base's route, it fails: see
+// docs/performance.md "Session 70 (growth70)").
 TEST(OracleLazyPlacement, FilterWindowedByTheMatesBlocksIsTheEagerFilterAtAnyToothCount) {
   std::mt19937_64 random(hipair::test::test_seed(7001));
   std::vector<double> posed_per_call;
@@ -196,34 +199,75 @@ TEST(OracleLazyPlacement, FilterWindowedByTheMatesBlocksIsTheEagerFilterAtAnyToo
     ASSERT_EQ(axes.dimension(), 2);
     const cspace::PairOverlap oracle(model, axes);
     std::uint64_t calls = 0, posed = 0;
+    // the filter over [xlo, xhi] x [ylo, yhi], lazy (windowed) and eager; `count`: its posed edges
+    // counted where it declines (a call that finds a crossing stops early; one that finds none
+    // visits every block it does not skip, as at the builder's vertices)
+    auto ask = [&](const cspace::ChartAxis& x, const cspace::ChartAxis& y, Rational xlo, Rational xhi, Rational ylo,
+                   Rational yhi, bool count) {
+      xlo = std::max(xlo, x.lo), xhi = std::min(xhi, x.hi), ylo = std::max(ylo, y.lo), yhi = std::min(yhi, y.hi);
+      for (Rational* r : {&xlo, &xhi, &ylo, &yhi}) r->canonicalize();
+      const kernels::Interval bx(cspace::algebra::lower_double(xlo), cspace::algebra::upper_double(xhi));
+      const kernels::Interval by(cspace::algebra::lower_double(ylo), cspace::algebra::upper_double(yhi));
+      cspace::set_lazy_placement(false);
+      const bool eager = oracle.certainly_overlapping(x, y, bx, by);
+      cspace::set_lazy_placement(true);
+      const std::uint64_t before = cspace::overlap_filter_posed_edges();
+      const bool lazy = oracle.certainly_overlapping(x, y, bx, by);
+      if (count && !lazy) {
+        posed += cspace::overlap_filter_posed_edges() - before;
+        ++calls;
+      }
+      EXPECT_EQ(lazy, eager) << "over [" << xlo.get_str() << ", " << xhi.get_str() << "] x [" << ylo.get_str() << ", "
+                             << yhi.get_str() << "]";
+    };
     for (const cspace::ChartAxis& x : layout.x_charts)
-      for (const cspace::ChartAxis& y : layout.y_charts)
-        for (int k = 0; k < 120; ++k) {
+      for (const cspace::ChartAxis& y : layout.y_charts) {
+        // boxes about random points (most deep in blocked space: the filter decides there)
+        for (int k = 0; k < 60; ++k) {
           const Rational px = between(x, random, 1 << 20), py = between(y, random, 1 << 20);
-          const int shrink = 10 + static_cast<int>(random() % 30);
+          // (at most 2^-16 of the chart: a pose uncertainty below a tooth at every tooth count)
+          const int shrink = 16 + static_cast<int>(random() % 24);
           const Rational wx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink);
           const Rational wy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
-          Rational xlo = std::max(Rational(px - wx), x.lo), xhi = std::min(Rational(px + wx), x.hi);
-          Rational ylo = std::max(Rational(py - wy), y.lo), yhi = std::min(Rational(py + wy), y.hi);
-          for (Rational* r : {&xlo, &xhi, &ylo, &yhi}) r->canonicalize();
-          const kernels::Interval bx(cspace::algebra::lower_double(xlo), cspace::algebra::upper_double(xhi));
-          const kernels::Interval by(cspace::algebra::lower_double(ylo), cspace::algebra::upper_double(yhi));
-          cspace::set_lazy_placement(false);
-          const bool eager = oracle.certainly_overlapping(x, y, bx, by);
-          cspace::set_lazy_placement(true);
-          const std::uint64_t before = cspace::overlap_filter_posed_edges();
-          const bool lazy = oracle.certainly_overlapping(x, y, bx, by);
-          posed += cspace::overlap_filter_posed_edges() - before;
-          ++calls;
-          EXPECT_EQ(lazy, eager) << "over [" << xlo.get_str() << ", " << xhi.get_str() << "] x [" << ylo.get_str()
-                                 << ", " << yhi.get_str() << "]";
+          ask(x, y, px - wx, px + wx, py - wy, py + wy, false);
         }
+        // boxes of 2^-30 of the chart about points of the contact boundary (a random column's
+        // change between apart and overlapping, bisected 30 times): where the builder asks
+        for (int column = 0; column < 8; ++column) {
+          const Rational px = between(x, random, 1 << 20);
+          std::optional<cspace::Overlap> previous;
+          Rational previous_y = y.lo;
+          for (long j = 0; j <= 48; ++j) {
+            Rational yj = y.lo + (y.hi - y.lo) * Rational(j, 48);
+            yj.canonicalize();
+            const cspace::Overlap here = oracle.classify(x, y, cspace::ChartPoint{px, yj});
+            if (previous && here != *previous && here != cspace::Overlap::touching &&
+                *previous != cspace::Overlap::touching) {
+              Rational lo = previous_y, hi = yj;
+              for (int step = 0; step < 30; ++step) {
+                Rational mid = (lo + hi) / 2;
+                mid.canonicalize();
+                const cspace::Overlap m = oracle.classify(x, y, cspace::ChartPoint{px, mid});
+                if (m == cspace::Overlap::touching) break;
+                (m == *previous ? lo : hi) = mid;
+              }
+              const Rational wx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << 30);
+              const Rational wy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << 30);
+              ask(x, y, px - wx, px + wx, lo - wy, lo + wy, true);
+              ask(x, y, px - wx, px + wx, hi - wy, hi + wy, true);
+            }
+            previous = here;
+            previous_y = yj;
+          }
+        }
+      }
+    ASSERT_GT(calls, 24u);
     posed_per_call.push_back(static_cast<double>(posed) / static_cast<double>(calls));
-    std::printf("[windowed filter] %ld x %ld teeth: %.1f edges posed per call (%llu calls)\n", z, z2,
+    std::printf("[windowed filter] %ld x %ld teeth: %.1f edges posed per declining call (%llu calls)\n", z, z2,
                 posed_per_call.back(), static_cast<unsigned long long>(calls));
   }
   EXPECT_GT(posed_per_call.front(), 0.0);
-  EXPECT_LE(posed_per_call.back(), 1.5 * posed_per_call.front())
+  EXPECT_LE(posed_per_call.back(), 2 * posed_per_call.front())
       << "16 teeth: " << posed_per_call.front() << " edges posed per call, 64 teeth: " << posed_per_call.back();
 }
 
