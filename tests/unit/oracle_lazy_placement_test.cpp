@@ -180,12 +180,14 @@ TEST(OracleLazyPlacement, LazyFilterIsTheEagerFilterOnGeneratedGearPairs) {
 // meets no block box of the second part (not only the second part's whole box, which holds a
 // quarter of a gear's teeth): the edges it poses per call no longer grow with the tooth count
 // (they did linearly: n^1.8 of the operating region's classification). On generated spur-gear
-// pairs of 16, 32 and 64 teeth, over narrow boxes (as the builder's vertices ask) about random
-// points of every chart pair, the answer must be the eager route's (every edge posed,
-// set_lazy_placement(false)), and where the filter declines (it then visits every block it does
-// not skip) the mean number of edges posed per call at 64 teeth at most twice that at 16 teeth
-// (linear growth is 4 times; without the window, the base's route, it fails: see
-// docs/performance.md "Session 70 (growth70)").
+// pairs of 16, 32 and 64 teeth, over narrow boxes about random points of every chart pair and
+// boxes of 2^-30 of the chart about points of the contact boundary (where the builder's vertices
+// ask, and where the filter declines and so visits every block it does not skip), the answer
+// must be the eager route's (every edge posed, set_lazy_placement(false)). It cannot fail on the
+// base (the same route as the eager one there); a window that drops blocks it must keep (the
+// mutant "half of the mate's meeting blocks kept") fails it 349 times. The edges posed
+// per declining call are printed (windowed 29 / 38 / 46 at 16 / 32 / 64 teeth, the base's route
+// 34 / 51 / 65: the meshing zone itself grows about as the square root of the tooth count).
 TEST(OracleLazyPlacement, FilterWindowedByTheMatesBlocksIsTheEagerFilterAtAnyToothCount) {
   std::mt19937_64 random(hipair::test::test_seed(7001));
   std::vector<double> posed_per_call;
@@ -267,8 +269,6 @@ TEST(OracleLazyPlacement, FilterWindowedByTheMatesBlocksIsTheEagerFilterAtAnyToo
                 posed_per_call.back(), static_cast<unsigned long long>(calls));
   }
   EXPECT_GT(posed_per_call.front(), 0.0);
-  EXPECT_LE(posed_per_call.back(), 2 * posed_per_call.front())
-      << "16 teeth: " << posed_per_call.front() << " edges posed per call, 64 teeth: " << posed_per_call.back();
 }
 
 }  // namespace
