@@ -4,6 +4,9 @@
 
 #include <mpfr.h>
 
+#include <map>
+#include <tuple>
+
 namespace hipair::model_detail {
 namespace {
 
@@ -59,6 +62,48 @@ Point direction_from_mpfr(mpfr_t angle, const std::string& pointer, const std::s
   if (turns % 2 != 0) {
     unit.x = -unit.x;
     unit.y = -unit.y;
+  }
+  return unit;
+}
+
+// The directions this thread has made (session 70, growth70): a model repeats its angles (Geneva
+// writes each slot flank's "... + 1*pi/4 + pi/2" at several polar points, a template turns
+// every tooth by the same pitch multiples), and each direction costs two 256-bit tangents and a
+// continued-fraction descent. The direction is a function of the angle's rationals and the
+// rounding bound in force only, so a repeated angle takes the unit vector and the rounded
+// half-angle tangent made the first time (its Rounding record is written again with this
+// call's pointer and text, as the computation writes it). The key is (which function, its
+// rationals canonical, the bound); the memo is cleared past 4096 directions.
+enum class DirectionKind { angle, pi_multiple, sum };
+using DirectionKey = std::tuple<int, Rational, Rational, Rational>;
+struct MadeDirection {
+  Point unit;
+  Rational tangent;   // the rounded half-angle tangent of the Rounding record
+};
+thread_local std::map<DirectionKey, MadeDirection> made_directions;
+
+// The direction of the angle `make_angle` sets (an mpfr_t of working_bits), through the memo.
+template <class MakeAngle>
+Point memo_direction(DirectionKind kind, const Rational& first, const Rational& second, MakeAngle make_angle,
+                     const std::string& pointer, const std::string& expression, std::vector<Rounding>& roundings) {
+  DirectionKey key{static_cast<int>(kind), first, second, rounding_bound()};
+  std::get<1>(key).canonicalize();
+  std::get<2>(key).canonicalize();
+  std::get<3>(key).canonicalize();
+  if (auto found = made_directions.find(key); found != made_directions.end()) {
+    roundings.push_back(Rounding{pointer, "direction of " + expression + " (half-angle tangent)", found->second.tangent,
+                                 rounding_bound()});
+    return found->second.unit;
+  }
+  mpfr_t a;
+  mpfr_init2(a, working_bits);
+  make_angle(a);
+  const std::size_t before = roundings.size();
+  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
+  mpfr_clear(a);
+  if (roundings.size() == before + 1) {   // (always: the direction is rounded once)
+    if (made_directions.size() >= 4096) made_directions.clear();
+    made_directions.emplace(std::move(key), MadeDirection{unit, roundings.back().value});
   }
   return unit;
 }
@@ -147,12 +192,9 @@ Rational round_simplest(const Rational& value) {
 Point exact_unit_vector(const Rational& angle, const std::string& pointer,
                         const std::string& expression, std::vector<Rounding>& roundings) {
   if (angle == 0) return Point{Rational(1), Rational(0)};
-  mpfr_t a;
-  mpfr_init2(a, working_bits);
-  mpfr_set_q(a, angle.get_mpq_t(), MPFR_RNDN);
-  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
-  mpfr_clear(a);
-  return unit;
+  return memo_direction(
+      DirectionKind::angle, angle, Rational(0), [&](mpfr_t a) { mpfr_set_q(a, angle.get_mpq_t(), MPFR_RNDN); }, pointer,
+      expression, roundings);
 }
 
 Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& pointer,
@@ -172,14 +214,17 @@ Point exact_unit_vector_pi(const Rational& multiple_of_pi, const std::string& po
       default: return Point{Rational(0), Rational(-1)};
     }
   }
-  mpfr_t a, pi;
-  mpfr_inits2(working_bits, a, pi, static_cast<mpfr_ptr>(nullptr));
-  mpfr_const_pi(pi, MPFR_RNDN);
-  mpfr_set_q(a, multiple.get_mpq_t(), MPFR_RNDN);
-  mpfr_mul(a, a, pi, MPFR_RNDN);
-  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
-  mpfr_clears(a, pi, static_cast<mpfr_ptr>(nullptr));
-  return unit;
+  return memo_direction(
+      DirectionKind::pi_multiple, multiple, Rational(0),
+      [&](mpfr_t a) {
+        mpfr_t pi;
+        mpfr_init2(pi, working_bits);
+        mpfr_const_pi(pi, MPFR_RNDN);
+        mpfr_set_q(a, multiple.get_mpq_t(), MPFR_RNDN);
+        mpfr_mul(a, a, pi, MPFR_RNDN);
+        mpfr_clear(pi);
+      },
+      pointer, expression, roundings);
 }
 
 Point exact_unit_vector_sum(const Rational& phase, const Rational& multiple_of_pi, const std::string& pointer,
@@ -195,20 +240,21 @@ Point exact_unit_vector_sum(const Rational& phase, const Rational& multiple_of_p
     roundings.insert(roundings.end(), phase_rounding.begin(), phase_rounding.end());
     return Point{turn.x * base.x - turn.y * base.y, turn.x * base.y + turn.y * base.x};
   }
-  mpfr_t a, pi;
-  mpfr_inits2(working_bits, a, pi, static_cast<mpfr_ptr>(nullptr));
-  mpfr_const_pi(pi, MPFR_RNDN);
   Rational multiple = multiple_of_pi;
   multiple.canonicalize();
-  mpfr_set_q(a, multiple.get_mpq_t(), MPFR_RNDN);
-  mpfr_mul(a, a, pi, MPFR_RNDN);
-  mpfr_t p;
-  mpfr_init2(p, working_bits);
-  mpfr_set_q(p, phase.get_mpq_t(), MPFR_RNDN);
-  mpfr_add(a, a, p, MPFR_RNDN);
-  Point unit = direction_from_mpfr(a, pointer, expression, roundings);
-  mpfr_clears(a, pi, p, static_cast<mpfr_ptr>(nullptr));
-  return unit;
+  return memo_direction(
+      DirectionKind::sum, phase, multiple,
+      [&](mpfr_t a) {
+        mpfr_t pi, p;
+        mpfr_inits2(working_bits, pi, p, static_cast<mpfr_ptr>(nullptr));
+        mpfr_const_pi(pi, MPFR_RNDN);
+        mpfr_set_q(a, multiple.get_mpq_t(), MPFR_RNDN);
+        mpfr_mul(a, a, pi, MPFR_RNDN);
+        mpfr_set_q(p, phase.get_mpq_t(), MPFR_RNDN);
+        mpfr_add(a, a, p, MPFR_RNDN);
+        mpfr_clears(pi, p, static_cast<mpfr_ptr>(nullptr));
+      },
+      pointer, expression, roundings);
 }
 
 }  // namespace hipair::model_detail

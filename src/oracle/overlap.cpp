@@ -16,6 +16,7 @@
 //  4. a loop with no common point with the other boundary lies entirely inside or outside
 //     the other part's interior: one exact point-in-region test per such loop decides.
 #include "oracle/overlap.hpp"
+#include "oracle/filter_counts.hpp"
 #include "curves/algebraic_overlap.hpp"
 
 #include "algebra/near_quotient.hpp"
@@ -261,11 +262,17 @@ struct PartEnclosure {
     double cx = 0, cy = 0, r = 0;
   };
   static constexpr std::size_t kBlock = 8;
+  // Every body coordinate within 2^64 in magnitude and every arc's squared radius within 2^128
+  // (session 70): then an edge posed by a map whose cos/sin are within 2 and offsets within
+  // 2^64 (bounded_map) has every value of its interval geometry within 2^69, far inside the
+  // tame range (2^200): posed_edge cannot fail there.
+  static constexpr double kBodyBound = 0x1p64;
   const Part* part = nullptr;
   std::vector<std::pair<std::size_t, std::size_t>> refs;
   std::vector<std::size_t> loop_begin;
   std::vector<Body> body;
   std::vector<Block> blocks;
+  bool bounded = true;
 
   explicit PartEnclosure(const Part& source) : part(&source) {
     for (std::size_t l = 0; l < source.loops.size(); ++l) {
@@ -288,10 +295,21 @@ struct PartEnclosure {
         b.cy = algebra::enclose_kernel(edge.center.y);
         b.radius_squared = algebra::enclose_kernel(edge.radius_squared);
       }
+      auto within = [](const Interval& v, double bound) { return v.lo >= -bound && v.hi <= bound; };
+      bounded = bounded && within(b.sx, kBodyBound) && within(b.sy, kBodyBound) && within(b.tx, kBodyBound) &&
+                within(b.ty, kBodyBound) && within(b.cx, kBodyBound) && within(b.cy, kBodyBound) &&
+                within(b.radius_squared, kBodyBound * kBodyBound);
       body.push_back(b);
     }
   }
 };
+
+// A map under which every edge of a bounded PartEnclosure poses tame (PartEnclosure::bounded).
+bool bounded_map(const IntervalMap& map) {
+  auto within = [](const Interval& v, double bound) { return v.lo >= -bound && v.hi <= bound; };
+  return within(map.c, 2) && within(map.s, 2) && within(map.ox, PartEnclosure::kBodyBound) &&
+         within(map.oy, PartEnclosure::kBodyBound);
+}
 
 // The interval geometry of a placed part: every edge's posed enclosure and box, each loop's box
 // and the whole part's.
@@ -1611,7 +1629,7 @@ std::array<std::uint64_t, 3> lazy_placement_counts() {
 void set_lazy_placement(bool on) { lazy_placement_enabled = on; }
 
 namespace {
-std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0};
+std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0}, filter_posed_edges{0};
 }
 
 bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
@@ -1653,6 +1671,32 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
     for (std::size_t k = 0; k < first.blocks.size() && lazy; ++k)
       lazy = PlacedPart::posed_block(first.blocks[k], relative, blocks[k]);
   }
+  // Session 70 (growth70): a block of the first part is skipped when its posed box meets no
+  // block box of the second part, not only when it misses the second part's whole box. The
+  // answer is the same: filter_pair's `overlapping` certifies a crossing point p on both edges
+  // at every pose of the box; p lies in the posed box of its edge's block (certified for every
+  // pose) and in the box of the second edge's block (the union of its edges' certified boxes),
+  // so those two boxes meet, and a block meeting none holds no edge that crossing() accepts.
+  // Skipping also skips posed_edge's "untamed" refusal of the block's edges: only where no
+  // edge can be refused (a bounded part under a bounded map, PartEnclosure::bounded). A gear's
+  // whole box holds a quarter of its mate's teeth, the block boxes only the meshing ones: the
+  // edges posed per call no longer grow with the tooth count (O(n) per call before: n^1.8 of
+  // the operating region's classification, docs/performance.md "Session 70 (growth70)").
+  // For the same reason an edge of a block is tested only against the second part's blocks
+  // whose boxes meet the block's (`near`), not against all of them.
+  const bool windowed = first.bounded && bounded_map(relative);
+  thread_local std::vector<std::size_t> near;
+  // crossing() over the blocks in `near`
+  auto crossing_near = [&](const IntervalEdge& e, const Box& box) {
+    if (!box.meets(b.total)) return false;
+    for (std::size_t block : near) {
+      if (!box.meets(b.block_boxes[block])) continue;
+      for (std::size_t j = block * PartEnclosure::kBlock;
+           j < std::min(b.boxes.size(), (block + 1) * PartEnclosure::kBlock); ++j)
+        if (box.meets(b.boxes[j]) && filter_pair(e, b.intervals[j]) == Filter::overlapping) return true;
+    }
+    return false;
+  };
   bool found = false;
   if (lazy) {
     const std::size_t n = first.refs.size();
@@ -1660,9 +1704,16 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
     Box box;
     for (std::size_t k = 0; k < blocks.size() && !found; ++k) {
       if (!blocks[k].meets(b.total)) continue;
+      if (windowed) {
+        near.clear();
+        for (std::size_t block = 0; block < b.block_boxes.size(); ++block)
+          if (blocks[k].meets(b.block_boxes[block])) near.push_back(block);
+        if (near.empty()) continue;
+      }
       for (std::size_t i = k * PartEnclosure::kBlock; i < std::min(n, (k + 1) * PartEnclosure::kBlock) && !found; ++i) {
+        filter_posed_edges.fetch_add(1, std::memory_order_relaxed);
         if (!PlacedPart::posed_edge(first, i, relative, e, box)) return false;   // (as an untamed placement)
-        found = crossing(e, box);
+        found = windowed ? crossing_near(e, box) : crossing(e, box);
       }
     }
   } else {
@@ -1674,6 +1725,8 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   if (found) filter_decided.fetch_add(1, std::memory_order_relaxed);
   return found;
 }
+
+std::uint64_t overlap_filter_posed_edges() { return filter_posed_edges.load(std::memory_order_relaxed); }
 
 std::array<std::uint64_t, 2> overlap_filter_counts() {
   return {filter_asked.load(std::memory_order_relaxed), filter_decided.load(std::memory_order_relaxed)};

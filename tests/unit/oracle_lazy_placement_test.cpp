@@ -10,6 +10,7 @@
 // most edges unplaced.
 #include "curves/contact_curves.hpp"
 #include "oracle/overlap.hpp"
+#include "oracle/filter_counts.hpp"
 #include "spur_gear_pairs.hpp"
 #include "test_seed.hpp"
 #include "algebra/exact_real.hpp"
@@ -20,8 +21,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace hipair {
 namespace {
@@ -171,6 +174,101 @@ TEST(OracleLazyPlacement, LazyFilterIsTheEagerFilterOnGeneratedGearPairs) {
   EXPECT_GT(decided * 5, asked) << decided << " of " << asked;
   EXPECT_LT(decided, asked);
   std::printf("[lazy filter] %zu boxes, %zu decided overlapping\n", asked, decided);
+}
+
+// Session 70 (growth70): certainly_overlapping skips a block of the first part whose posed box
+// meets no block box of the second part (not only the second part's whole box, which holds a
+// quarter of a gear's teeth): the edges it poses per call no longer grow with the tooth count
+// (they did linearly: n^1.8 of the operating region's classification). On generated spur-gear
+// pairs of 16, 32 and 64 teeth, over narrow boxes about random points of every chart pair and
+// boxes of 2^-30 of the chart about points of the contact boundary (where the builder's vertices
+// ask, and where the filter declines and so visits every block it does not skip), the answer
+// must be the eager route's (every edge posed, set_lazy_placement(false)). It cannot fail on the
+// base (the same route as the eager one there); a window that drops blocks it must keep (the
+// mutant "half of the mate's meeting blocks kept") fails it 349 times. The edges posed
+// per declining call are printed (windowed 29 / 38 / 46 at 16 / 32 / 64 teeth, the base's route
+// 34 / 51 / 65: the meshing zone itself grows about as the square root of the tooth count).
+TEST(OracleLazyPlacement, FilterWindowedByTheMatesBlocksIsTheEagerFilterAtAnyToothCount) {
+  std::mt19937_64 random(hipair::test::test_seed(7001));
+  std::vector<double> posed_per_call;
+  for (const long z : {16L, 32L, 64L}) {
+    const long z2 = z + static_cast<long>(random() % 5);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z, z2, name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    ASSERT_EQ(axes.dimension(), 2);
+    const cspace::PairOverlap oracle(model, axes);
+    std::uint64_t calls = 0, posed = 0;
+    // the filter over [xlo, xhi] x [ylo, yhi], lazy (windowed) and eager; `count`: its posed edges
+    // counted where it declines (a call that finds a crossing stops early; one that finds none
+    // visits every block it does not skip, as at the builder's vertices)
+    auto ask = [&](const cspace::ChartAxis& x, const cspace::ChartAxis& y, Rational xlo, Rational xhi, Rational ylo,
+                   Rational yhi, bool count) {
+      xlo = std::max(xlo, x.lo), xhi = std::min(xhi, x.hi), ylo = std::max(ylo, y.lo), yhi = std::min(yhi, y.hi);
+      for (Rational* r : {&xlo, &xhi, &ylo, &yhi}) r->canonicalize();
+      const kernels::Interval bx(cspace::algebra::lower_double(xlo), cspace::algebra::upper_double(xhi));
+      const kernels::Interval by(cspace::algebra::lower_double(ylo), cspace::algebra::upper_double(yhi));
+      cspace::set_lazy_placement(false);
+      const bool eager = oracle.certainly_overlapping(x, y, bx, by);
+      cspace::set_lazy_placement(true);
+      const std::uint64_t before = cspace::overlap_filter_posed_edges();
+      const bool lazy = oracle.certainly_overlapping(x, y, bx, by);
+      if (count && !lazy) {
+        posed += cspace::overlap_filter_posed_edges() - before;
+        ++calls;
+      }
+      EXPECT_EQ(lazy, eager) << "over [" << xlo.get_str() << ", " << xhi.get_str() << "] x [" << ylo.get_str() << ", "
+                             << yhi.get_str() << "]";
+    };
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts) {
+        // boxes about random points (most deep in blocked space: the filter decides there)
+        for (int k = 0; k < 60; ++k) {
+          const Rational px = between(x, random, 1 << 20), py = between(y, random, 1 << 20);
+          // (at most 2^-16 of the chart: a pose uncertainty below a tooth at every tooth count)
+          const int shrink = 16 + static_cast<int>(random() % 24);
+          const Rational wx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink);
+          const Rational wy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
+          ask(x, y, px - wx, px + wx, py - wy, py + wy, false);
+        }
+        // boxes of 2^-30 of the chart about points of the contact boundary (a random column's
+        // change between apart and overlapping, bisected 30 times): where the builder asks
+        for (int column = 0; column < 8; ++column) {
+          const Rational px = between(x, random, 1 << 20);
+          std::optional<cspace::Overlap> previous;
+          Rational previous_y = y.lo;
+          for (long j = 0; j <= 48; ++j) {
+            Rational yj = y.lo + (y.hi - y.lo) * Rational(j, 48);
+            yj.canonicalize();
+            const cspace::Overlap here = oracle.classify(x, y, cspace::ChartPoint{px, yj});
+            if (previous && here != *previous && here != cspace::Overlap::touching &&
+                *previous != cspace::Overlap::touching) {
+              Rational lo = previous_y, hi = yj;
+              for (int step = 0; step < 30; ++step) {
+                Rational mid = (lo + hi) / 2;
+                mid.canonicalize();
+                const cspace::Overlap m = oracle.classify(x, y, cspace::ChartPoint{px, mid});
+                if (m == cspace::Overlap::touching) break;
+                (m == *previous ? lo : hi) = mid;
+              }
+              const Rational wx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << 30);
+              const Rational wy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << 30);
+              ask(x, y, px - wx, px + wx, lo - wy, lo + wy, true);
+              ask(x, y, px - wx, px + wx, hi - wy, hi + wy, true);
+            }
+            previous = here;
+            previous_y = yj;
+          }
+        }
+      }
+    ASSERT_GT(calls, 24u);
+    posed_per_call.push_back(static_cast<double>(posed) / static_cast<double>(calls));
+    std::printf("[windowed filter] %ld x %ld teeth: %.1f edges posed per declining call (%llu calls)\n", z, z2,
+                posed_per_call.back(), static_cast<unsigned long long>(calls));
+  }
+  EXPECT_GT(posed_per_call.front(), 0.0);
 }
 
 }  // namespace

@@ -19,9 +19,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace {
 
@@ -583,4 +586,91 @@ TEST(ModelRounding, AnglesAHalfTurnApartGetExactlyNegatedDirections) {
       EXPECT_EQ(units[1].y, Rational(-units[0].y)) << r << " + pi " << p << " and + pi " << Rational(p + 1);
     }
   }
+}
+
+// Directions asked again (session 70, growth70: exact_trig.cpp keeps the directions a thread has
+// made, since a model repeats its angles). A pool of angles — rational angles (exact_unit_vector),
+// rational multiples of pi (exact_unit_vector_pi) and phase + multiple (exact_unit_vector_sum),
+// some given as non-canonical rationals — asked many times in a random order under random
+// rounding bounds (RoundingBoundScope, nested as a command line's --rounding over a model's):
+// every answer is a direction of ITS bound (exactly on the unit circle, within the bound of the
+// exact angle, certified with 256-bit MPFI), its one Rounding record names THIS call's pointer and
+// text, holds the half-angle tangent t of the direction (unit = +-((1 - t^2), 2t) / (1 + t^2)) and
+// the bound in force, and the same angle under the same bound always gives the same direction and
+// tangent. A memo keyed without the bound, or replaying the first caller's record, fails it. (It
+// cannot fail on the base: there every call computes afresh.)
+TEST(ModelRounding, RepeatedAnglesGetTheDirectionOfTheirOwnBoundAndRecord) {
+  using namespace hipair::model_detail;
+  std::mt19937_64 random(hipair::test::test_seed(20261206));
+  struct Angle {
+    int kind;   // 0: rational angle, 1: multiple of pi, 2: phase + multiple of pi
+    Rational phase, multiple;
+  };
+  std::vector<Angle> pool;
+  for (int i = 0; i < 48; ++i) {
+    const int kind = i % 3;
+    Rational phase, multiple;
+    if (kind != 1) {
+      // away from 0 and +-pi/2 (a phase with an exact direction takes the two-rounding path)
+      phase = hipair::test_numbers::random_rational(random, Rational(1, 50), Rational(7, 5));
+      if (random() % 2) phase = -phase;
+      if (kind == 0 && random() % 2) phase += 2;   // beyond pi/2: reduced by a half turn
+    }
+    if (kind != 0) {
+      const long teeth = 3 + static_cast<long>(random() % 60);
+      multiple = Rational(static_cast<long>(random() % static_cast<unsigned long>(2 * teeth)) - teeth, teeth);
+      multiple.canonicalize();
+    }
+    pool.push_back({kind, phase, multiple});
+  }
+  const std::vector<Rational> bounds{power_of_ten(-12), power_of_ten(-9), power_of_ten(-6), power_of_ten(-3)};
+  std::map<std::tuple<std::size_t, std::size_t>, std::pair<hipair::Point, std::optional<Rational>>> first_answer;
+  std::size_t repeats = 0;
+  for (int call = 0; call < 600; ++call) {
+    const std::size_t a = random() % pool.size(), b = random() % bounds.size();
+    const Angle& angle = pool[a];
+    std::optional<RoundingBoundScope> outer;
+    if (random() % 3 == 0) outer.emplace(bounds[(b + 1) % bounds.size()]);   // overridden by the inner scope
+    RoundingBoundScope scope(bounds[b], outer.has_value());
+    // the same number written as a non-canonical quotient half the time
+    auto written = [&](const Rational& q) {
+      if (random() % 2) return q;
+      return Rational(q.get_num() * 6, q.get_den() * 6);
+    };
+    const std::string pointer = "/call/" + std::to_string(call), text = "angle " + std::to_string(call);
+    std::vector<hipair::Rounding> roundings;
+    hipair::Point unit;
+    if (angle.kind == 0) unit = exact_unit_vector(written(angle.phase), pointer, text, roundings);
+    else if (angle.kind == 1) unit = exact_unit_vector_pi(written(angle.multiple), pointer, text, roundings);
+    else unit = exact_unit_vector_sum(written(angle.phase), written(angle.multiple), pointer, text, roundings);
+    const std::string where = "call " + std::to_string(call) + " kind " + std::to_string(angle.kind) + " phase " +
+                              angle.phase.get_str() + " multiple " + angle.multiple.get_str() + " bound " +
+                              bounds[b].get_str();
+    EXPECT_EQ(unit.x * unit.x + unit.y * unit.y, Rational(1)) << where;
+    EXPECT_TRUE(within_of_angle(unit, angle.phase, angle.multiple, bounds[b])) << where;
+    const Rational twice = 2 * angle.multiple;
+    const bool exact = angle.kind == 1 && twice.get_den() == 1;   // a multiple of pi/2
+    std::optional<Rational> tangent;
+    if (exact) {
+      EXPECT_TRUE(roundings.empty()) << where;
+      EXPECT_EQ(abs(unit.x) + abs(unit.y), Rational(1)) << where;
+    } else {
+      ASSERT_EQ(roundings.size(), 1u) << where;
+      EXPECT_EQ(roundings[0].pointer, pointer) << where;
+      EXPECT_NE(roundings[0].expression.find(text), std::string::npos) << where << ": " << roundings[0].expression;
+      EXPECT_EQ(roundings[0].bound, bounds[b]) << where;
+      tangent = roundings[0].value;
+      const hipair::Point from_tangent = unit_from_half_tangent(*tangent);
+      EXPECT_TRUE((from_tangent.x == unit.x && from_tangent.y == unit.y) ||
+                  (from_tangent.x == -unit.x && from_tangent.y == -unit.y))
+          << where << ": t " << *tangent;
+    }
+    auto [found, inserted] = first_answer.try_emplace({a, b}, unit, tangent);
+    if (!inserted) {
+      ++repeats;
+      EXPECT_TRUE(found->second.first.x == unit.x && found->second.first.y == unit.y) << where;
+      EXPECT_EQ(found->second.second, tangent) << where;
+    }
+  }
+  EXPECT_GT(repeats, 300u);   // most calls ask again
 }
