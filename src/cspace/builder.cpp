@@ -1154,7 +1154,10 @@ void classify_faces(ChartData& chart, const Classifier& classify, ContactSides* 
   chart.rational_vertex_x.reserve(chart.rational_vertex_x.size() + arrangement.vertices.size());   // (no regrowth: its rationals are not copied)
   for (const auto& v : arrangement.vertices)
     if (v.x.exact) chart.rational_vertex_x.push_back(v.x.lower);
-  std::sort(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end());
+  // (CGAL's sweep makes the vertices left to right, so the list is usually sorted already: a
+  // sort moves rationals, and every gmpxx move re-initialises its source, two allocations)
+  if (!std::is_sorted(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end()))
+    std::sort(chart.rational_vertex_x.begin(), chart.rational_vertex_x.end());
   chart.faces.assign(arrangement.faces.size(), FaceData{});
   std::vector<char> known(arrangement.faces.size(), 0);
   std::vector<std::size_t> queue;

@@ -7,8 +7,12 @@
 //   c++ -O3 -DNDEBUG -frounding-math -std=c++20 -DCGAL_USE_GMP -DCGAL_USE_GMPXX=1 -DCGAL_USE_MPFI \
 //     -DCGAL_USE_MPFR -Isrc -Iinclude -I. -isystem /usr/include/eigen3 tests/perf/minkowski_interleaved.cpp \
 //     -o minkowski_interleaved build/libhipair.a -lmpfi -lmpfr -lgmpxx -lgmp -lpthread
-//   ./minkowski_interleaved N ROUNDS BATCH [locate]    (N as BM_MinkowskiHipair/N; e.g. 64 11 5;
-//                                                       or N/M: a convex N-gon and M-gon, e.g. 12/12)
+//   ./minkowski_interleaved N ROUNDS BATCH [locate] [pool]    (N as BM_MinkowskiHipair/N; e.g. 64 11 5;
+//                                                              or N/M: a convex N-gon and M-gon, e.g. 12/12)
+// `pool`: GMP's memory functions are the command line's (hipair::use_throwing_gmp_allocation,
+// src/cli/main.cpp: a per-thread pool of small limb blocks), installed before anything is
+// made, so both sides' GMP numbers (ours and CGAL's) come from it; add -ljemalloc to the link
+// as well to measure both sides as the `hipair` program runs (session 70, mink70).
 // What "ours" times: CSpace::build (eager: every cell classified, the blocked region's boundary
 // edges, vertices, samples and labels all built; everything `hipair cspace --json` writes is
 // read from it without further computation, except the public vertices' exact numbers, copied
@@ -64,7 +68,12 @@ int main(int argc, char** argv) {
   const std::string pair = argv[1];
   const std::size_t slash = pair.find('/');
   int n = std::atoi(argv[1]), rounds = std::atoi(argv[2]), batch = std::atoi(argv[3]);
-  const bool locate = argc > 4 && std::string(argv[4]) == "locate";
+  bool locate = false, pool = false;
+  for (int i = 4; i < argc; ++i) {
+    locate = locate || std::string(argv[i]) == "locate";
+    pool = pool || std::string(argv[i]) == "pool";
+  }
+  if (pool) use_throwing_gmp_allocation();
   auto [a, b] = slash == std::string::npos ? perf::minkowski_polygons(n) : perf::minkowski_polygons(n, std::atoi(pair.c_str() + slash + 1));
   Model model = perf::sliders(a, b);
   CSpace space;
@@ -75,6 +84,6 @@ int main(int argc, char** argv) {
     ours.push_back((t1 - t0) / batch); theirs.push_back((t2 - t1) / batch); ratios.push_back((t1 - t0) / (t2 - t1));
   }
   auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v[v.size() / 2]; };
-  std::printf("n=%s%s ours %.3f ms cgal %.3f ms ratio(medians) %.2f median-of-round-ratios %.2f min-ratio %.2f\n", pair.c_str(), locate ? " (+locate)" : "", 1e3 * median(ours),
+  std::printf("n=%s%s%s ours %.3f ms cgal %.3f ms ratio(medians) %.2f median-of-round-ratios %.2f min-ratio %.2f\n", pair.c_str(), locate ? " (+locate)" : "", pool ? " (gmp pool)" : "", 1e3 * median(ours),
               1e3 * median(theirs), median(ours) / median(theirs), median(ratios), *std::min_element(ratios.begin(), ratios.end()));
 }
