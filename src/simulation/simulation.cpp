@@ -1165,7 +1165,8 @@ struct Simulation::Impl {
     // follower thrown up at 1e5 mm/s named the pair only)
     const std::vector<AtLimit> limits = at_limits(pair, q);
     for (std::size_t k = 0; k < limits.size(); ++k) out << (k ? "; " : ": ") << limits[k].text;
-    if (!limits.empty()) throw SimulationLimit(out.str(), published_time(time), limits.front().part, limits.front().limit);
+    // (the stop's time: the published state's, the last step's end, where this step starts)
+    if (!limits.empty()) throw SimulationLimit(out.str(), public_state.time, limits.front().part, limits.front().limit);
     throw GeometryError(out.str());
   }
 
@@ -1442,7 +1443,8 @@ struct Simulation::Impl {
   // that state published (the step's end, before the nudge's trials). Until session 70 this was
   // "cannot be moved off its contact (a jammed contact change)" with the state of the step before.
   void stop_at_limit(const std::vector<std::pair<std::size_t, Vec>>& set, const Vec& start) {
-    for (const auto& [pair, normal] : set) {
+    for (const auto& entry : set) {
+      const std::size_t pair = entry.first;
       const std::vector<AtLimit> limits = at_limits(pair, start);
       if (limits.empty()) continue;
       std::ostringstream out;
