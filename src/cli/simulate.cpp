@@ -1150,7 +1150,9 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     for (const SimulationEvent& e : events)
       if (e.kind == SimulationEvent::Kind::impact)
         animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
-    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
+    // (session 70) a run stopped before its second frame has nothing to animate: no animation.svg
+    if (frames.size() >= 2 || !stop)
+      files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   publish_run(files, options);
   return stopped_run(stop, options, tu);
@@ -1553,7 +1555,9 @@ int run(const SimulateOptions& options) {
       if (e.kind != SimulationEvent::Kind::impact || !located) continue;
       animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
     }
-    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
+    // (session 70) a run stopped before its second frame has nothing to animate: no animation.svg
+    if (frames.size() >= 2 || !stop)
+      files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   publish_run(files, options);
   return stopped_run(stop, options, tu);

@@ -1952,8 +1952,8 @@ struct Simulation::Impl {
       const int d = part_dof[part];
       if (d < 0) return;
       const Motion& motion = model.parts[part].motion;
-      const Rational along = dofs[d].rotation ? N[1] * (P[0] - motion.pivot.x) - N[0] * (P[1] - motion.pivot.y)
-                                              : N[0] * motion.direction.x + N[1] * motion.direction.y;
+      const Rational along = dofs[d].rotation ? Rational(N[1] * (P[0] - motion.pivot.x) - N[0] * (P[1] - motion.pivot.y))
+                                              : Rational(N[0] * motion.direction.x + N[1] * motion.direction.y);
       if (second) row[static_cast<std::size_t>(d)] += along;
       else row[static_cast<std::size_t>(d)] -= along;
     };

@@ -53,7 +53,6 @@ assert said in stop["message"], stop["message"]
 assert ("decision" in stop) == (kind == "jam"), stop
 t = stop["time"]
 assert doc["t_end"] == t, (doc["t_end"], t)
-assert doc["energy"] is not None and math.isfinite(doc["energy"]), doc["energy"]
 rows = list(csv.reader(open(out + "/trajectory.csv")))
 times = [float(r[0]) for r in rows[1:]]
 assert times and times == sorted(times), "the trajectory is not the run's samples"
@@ -97,7 +96,7 @@ EOF
   "$hipair" simulate "$model" --t-end "$(python3 -c "print(2 * $expected)")" "${extra[@]}" --out "$work/limit-$trial" \
     >"$work/limit-$trial.out" 2>"$work/limit-$trial.err"
   echo $? >"$work/limit-$trial.code"
-  check_stop "limit-$trial" "$work/limit-$trial" "motion limit" "$expected" "$tol" "part 'follower' (/parts/1) is at " "$pictures"
+  check_stop "limit-$trial" "$work/limit-$trial" "motion limit" "$expected" "$tol" "translating part 'follower' (/parts/1/motion) is at " "$pictures"
   python3 - "$work/limit-$trial" "$limit" <<'EOF' || fail "limit-$trial: the part, the limit or the follower's last position"
 import csv, json, sys
 out, L = sys.argv[1], float(sys.argv[2])
@@ -131,7 +130,7 @@ EOF
 "$hipair" simulate "$work/ladder-overflow.json" --t-end 0.02 --max-steps 2000 --out "$work/ladder" \
   >"$work/ladder.out" 2>"$work/ladder.err"
 echo $? >"$work/ladder.code"
-check_stop ladder "$work/ladder" "numeric error" - - "the run's energy is not finite" "positions.svg velocities.svg animation.svg"
+check_stop ladder "$work/ladder" "numeric error" - - "the run's energy is not finite" "positions.svg velocities.svg"
 "$hipair" simulate "$work/pin-slot-overflow.json" --t-end 0.01 --max-steps 100 --no-pictures --out "$work/pinslot" \
   >"$work/pinslot.out" 2>"$work/pinslot.err"
 echo $? >"$work/pinslot.code"
@@ -166,7 +165,7 @@ if [ "$(id -u)" -ne 0 ]; then   # (root writes into a read-only directory)
 fi
 
 # 4. not stops: the step budget and bad input write nothing
-"$hipair" simulate "$work/limit-1.json" --t-end 1 --max-steps 3 --out "$work/budget" >/dev/null 2>"$work/budget.err"
+"$hipair" simulate "$work/limit-1.json" --t-end 0.05 --max-steps 3 --out "$work/budget" >/dev/null 2>"$work/budget.err"
 code=$?
 [ $code -eq 3 ] || fail "step budget: exit $code, not 3"
 grep -q "used up its step budget (--max-steps 3).*nothing was written" "$work/budget.err" || fail "step budget: $(cat "$work/budget.err")"
