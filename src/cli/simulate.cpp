@@ -811,47 +811,96 @@ void run_within_budget(const Sim& simulation, const SimulateOptions& options, co
   }
 }
 
-// A run stopped by a jam of the mechanism (session 69, jam69: hipair::SimulationJam, decided
-// exactly by the simulators): its time and the simulator's message. Such a run keeps what it
-// computed: its summary, trajectory, events and pictures up to the jam are reported and written
-// (whole, as every run's files), the report and events.json say it stopped early, when and why,
-// and the command still exits 3 with the jam's message (`stopped_run`). Any other stop
-// (NumericError) writes nothing, as before; bad input is refused before the run (exit 2).
+// A run that stopped before --t-end keeps what it computed (session 69, jam69: a jam; session
+// 70, stop70: every stop after the run began). Its summary, trajectory, events and pictures up to
+// the stop are reported and written (whole, as every run's files: staged and renamed into --out,
+// io::publish_directory), the report and events.json say it stopped early, when, why and of what
+// kind, and the command still exits 3 with the stop's message saying what was written
+// (`stopped_run`). The kinds:
+//  - "jam" (hipair::SimulationJam): the contacts locked against a driver; the simulator's state
+//    is the jam's;
+//  - "motion limit" (hipair::SimulationLimit): a part at one of its own motion limits (not a
+//    contact); the simulator's state is the stop's (the last step's, or the state at the limit);
+//  - "numeric error" (NumericError: an impact refused as inconsistent, a contact problem with no
+//    solution, a non-finite state or energy, a contact change without progress) and "geometry
+//    error" (GeometryError: a pair leaving its built C-space or operating region, a contact
+//    without a normal): the results up to the last completed step (its sample, its energy, the
+//    events up to its time), not the failed step's partial state.
+// Not stops (nothing written, as before): bad input (ModelError, exit 2: refused before the run,
+// or found in it), and a run out of its step budget (--max-steps: the user's own limit, whose
+// message says what lets it finish).
 struct RunStop {
-  double time = 0;
+  double time = 0;        // the time of the last state written (set by kept_stop_state)
   std::string message;
-  bool exact = true;   // decided exactly (SimulationJam::exact), or approximate
+  std::string kind;       // "jam", "motion limit", "numeric error", "geometry error"
+  bool exact = true;      // a jam's verdict decided exactly (SimulationJam::exact), or approximate
+  bool at_state = true;   // the simulator's state() is the stop's; false: the last completed step's sample
+  std::string part, limit;   // a motion limit's part and limit
 };
 
-// run_within_budget, a jam kept as the run's stop
+// run_within_budget, a stop after the run began kept as the run's stop
 template <class Sim, class Run>
-std::optional<RunStop> run_to_end_or_jam(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit,
-                                         Run&& run) {
+std::optional<RunStop> run_to_end_or_stop(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit,
+                                          Run&& run) {
   try {
     run_within_budget(simulation, options, time_unit, std::forward<Run>(run));
   } catch (const SimulationJam& jam) {
-    return RunStop{jam.time(), jam.what(), jam.exact()};
+    return RunStop{jam.time(), jam.what(), "jam", jam.exact(), true, {}, {}};
+  } catch (const SimulationLimit& limit) {
+    return RunStop{limit.time(), limit.what(), "motion limit", true, true, limit.part(), limit.limit()};
+  } catch (const ModelError&) {
+    throw;
+  } catch (const NumericError& error) {
+    if (simulation.steps() >= options.max_steps) throw;   // the step budget (run_within_budget's message)
+    return RunStop{0, error.what(), "numeric error", true, false, {}, {}};
+  } catch (const GeometryError& error) {
+    return RunStop{0, error.what(), "geometry error", true, false, {}, {}};
   }
   return std::nullopt;
+}
+
+// The stop's time: its last state's, `last` (the samples' last, after the stop's own state was
+// added where it is the simulator's)
+void kept_stop_state(std::optional<RunStop>& stop, double last) {
+  if (stop) stop->time = last;
+}
+
+// The events a run's outputs hold: all of them; for a stop after the last completed step those
+// up to its time (a failed step's events are not results)
+const std::vector<SimulationEvent>& kept_events(const std::vector<SimulationEvent>& all, const std::optional<RunStop>& stop,
+                                                std::vector<SimulationEvent>& storage) {
+  if (!stop || stop->at_state) return all;
+  for (const SimulationEvent& e : all)
+    if (e.time <= stop->time) storage.push_back(e);
+  return storage;
+}
+
+// "a jam", "a jam, approximate", "a motion limit", "a numeric error", "a geometry error"
+std::string stop_words(const std::string& kind, bool exact) {
+  return "a " + kind + (kind == "jam" && !exact ? ", approximate" : "");
 }
 
 // The summary's line of a stopped run (after its "simulated ... to t = ..." line)
 void print_stop(const std::optional<RunStop>& stop, const std::string& tu) {
   if (stop)
-    std::cout << "  stopped early at t = " << number(stop->time) << " " << tu << (stop->exact ? " (a jam): " : " (a jam, approximate): ")
-              << stop->message << "\n";
+    std::cout << "  stopped early at t = " << number(stop->time) << " " << tu << " (" << stop_words(stop->kind, stop->exact)
+              << "): " << stop->message << "\n";
 }
 
-// events.json's "stopped" member of a stopped run: its time and why
+// events.json's "stopped" member of a stopped run: its time, its kind ("reason"), a jam's
+// decision, a motion limit's part and limit, and the message
 void add_stop(nlohmann::json& summary, const std::optional<RunStop>& stop) {
-  if (stop)
-    summary["stopped"] = {{"time", stop->time},
-                          {"reason", "jam"},
-                          {"decision", stop->exact ? "exact" : "approximate"},
-                          {"message", stop->message}};
+  if (!stop) return;
+  summary["stopped"] = {{"time", stop->time}, {"reason", stop->kind}};
+  if (stop->kind == "jam") summary["stopped"]["decision"] = stop->exact ? "exact" : "approximate";
+  if (stop->kind == "motion limit") {
+    summary["stopped"]["part"] = stop->part;
+    summary["stopped"]["limit"] = stop->limit;
+  }
+  summary["stopped"]["message"] = stop->message;
 }
 
-// The end of a run: 0, or for a stopped run its jam's error (exit 3), saying what was written
+// The end of a run: 0, or for a stopped run its error (exit 3), saying what was written
 int stopped_run(const std::optional<RunStop>& stop, const SimulateOptions& options, const std::string& tu) {
   if (!stop) return 0;
   throw NumericError(stop->message + (options.out.empty()
@@ -911,10 +960,11 @@ void add_event_files(std::vector<io::RunFile>& files, const Model& model, const 
   if (length_display_exponent() != 0) doc["units"]["energy"] = scaled_unit(fu + "·mm", 2);
   for (auto& [key, value] : summary.items()) doc[key] = value;
   doc["events"] = log;
-  if (summary.contains("stopped"))   // (session 69) the stop, after the events up to it
-    text += "t = " + number(summary["stopped"]["time"].get<double>()) + " " + tu + ": stopped early (a jam" +
-            (summary["stopped"]["decision"] == "exact" ? "" : ", approximate") + "): " +
-            summary["stopped"]["message"].get<std::string>() + "\n";
+  if (summary.contains("stopped"))   // (sessions 69, 70) the stop, after the events up to it
+    text += "t = " + number(summary["stopped"]["time"].get<double>()) + " " + tu + ": stopped early (" +
+            stop_words(summary["stopped"]["reason"].get<std::string>(),
+                       !summary["stopped"].contains("decision") || summary["stopped"]["decision"] == "exact") +
+            "): " + summary["stopped"]["message"].get<std::string>() + "\n";
   files.push_back({"events.json", doc.dump(1) + "\n"});
   files.push_back({"events.txt", text});
 }
@@ -973,10 +1023,12 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     std::vector<PlanarState> states;
   };
   std::vector<Sample> samples{{state_time(simulation), planar_states(simulation)}};
+  double sample_energy = simulation.energy();   // the last sample's (a stop after it: session 70)
   double cpu_start = thread_cpu_seconds();
   ProgressLine line(options);
   auto progress = [&](double t) {
     samples.push_back({state_time(simulation), planar_states(simulation)});
+    sample_energy = simulation.energy();
     line.show(t, options, tu, simulation.steps(), simulation.events().size());
   };
   std::vector<render::MechanismFrame> frames;
@@ -996,23 +1048,29 @@ int run_planar(const Model& model, const SimulateOptions& options) {
   };
   std::vector<double> times = frame_times(options, tu, playback);
   if (!times.empty()) record_frame();
-  const std::optional<RunStop> stop = run_to_end_or_jam(simulation, options, tu, [&] {
+  std::optional<RunStop> stop = run_to_end_or_stop(simulation, options, tu, [&] {
     for (double t : times) {
       simulation.run_until(t, progress);
       record_frame();
     }
     simulation.run_until(options.t_end, progress);
   });
-  if (stop && state_time(simulation) > samples.back().time) {   // the jam's state, the last one
+  if (stop && stop->at_state && state_time(simulation) > samples.back().time) {   // the stop's state, the last one
     samples.push_back({state_time(simulation), planar_states(simulation)});
     if (!times.empty()) record_frame();
   }
+  kept_stop_state(stop, samples.back().time);
+  std::vector<SimulationEvent> kept;
+  const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
+  const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
+  const double end_time = at_sample ? samples.back().time : state_time(simulation);
+  const double energy = at_sample ? sample_energy : simulation.energy();
   double seconds = thread_cpu_seconds() - cpu_start;
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
-  const std::vector<PlanarState> end = planar_states(simulation);
+  const std::vector<PlanarState> end = at_sample ? samples.back().states : planar_states(simulation);
   const PlanarStatistics& stats = simulation.statistics();
-  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(state_time(simulation)) << " " << tu << " in "
-            << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
+  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(end_time) << " " << tu << " in "
+            << simulation.steps() << " steps, " << events.size() << " events, " << number(seconds)
             << " s CPU\n";
   print_stop(stop, tu);
   for (std::size_t k = 0; k < parts.size(); ++k)
@@ -1020,14 +1078,14 @@ int run_planar(const Model& model, const SimulateOptions& options) {
               << " mm, angle " << number(end[k].angle) << " rad; velocity (" << shown(end[k].vx, 1) << ", "
               << shown(end[k].vy, 1) << ") mm/" << tu << ", " << number(end[k].omega) << " rad/" << tu
               << (end[k].resting ? " (at rest)" : "") << "\n";
-  std::cout << "  energy " << energy_text(simulation.energy(), fu) << "\n";
+  std::cout << "  energy " << energy_text(energy, fu) << "\n";
   std::cout << "  collision tests: " << stats.advancement_steps << " advancement steps, " << stats.distance_queries
             << " distance queries, " << stats.chord_tests << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
   if (stats.restitution_limited > 0)
     std::cout << "  " << stats.restitution_limited
               << " frictional impacts with their restitution limited (Newton's law would have created energy)\n";
-  print_events(simulation.events(), tu, fu);
+  print_events(events, tu, fu);
   if (options.out.empty()) return stopped_run(stop, options, tu);
 
   std::vector<io::RunFile> files;
@@ -1054,17 +1112,17 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
-  nlohmann::json summary{{"t_end", state_time(simulation)},
+  nlohmann::json summary{{"t_end", end_time},
                          {"steps", simulation.steps()},
-                         {"energy", simulation.energy()},
+                         {"energy", energy},
                          {length_display_exponent() != 0 ? "chord_deviation_1e" + std::to_string(length_display_exponent()) + "mm"
                                                          : std::string("chord_deviation_mm"),
                           simulation.chord_deviation()}};
   add_stop(summary, stop);
-  add_event_files(files, model, simulation.events(), tu, fu, std::move(summary));
+  add_event_files(files, model, events, tu, fu, std::move(summary));
   if (!options.no_pictures) {
     std::vector<double> event_times;
-    for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    for (const SimulationEvent& e : events) event_times.push_back(e.time);
     std::string part_names;
     for (std::size_t p : parts) part_names += (part_names.empty() ? "" : ", ") + model.parts[p].name;
     for (int which = 0; which < 2; ++which) {
@@ -1089,10 +1147,12 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     animation.time_unit = tu;
     animation.drawing.title = model.name + ": simulated";
     if (length_display_exponent() != 0) animation.drawing.title += " (lengths in units of " + length_unit_name() + ")";
-    for (const SimulationEvent& e : simulation.events())
+    for (const SimulationEvent& e : events)
       if (e.kind == SimulationEvent::Kind::impact)
         animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
-    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
+    // (session 70) a run stopped before its second frame has nothing to animate: no animation.svg
+    if (frames.size() >= 2 || !stop)
+      files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   publish_run(files, options);
   return stopped_run(stop, options, tu);
@@ -1127,30 +1187,38 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
   std::vector<PinSlotState> samples{simulation.state()};
+  double sample_energy = simulation.energy();   // the last sample's (a stop after it: session 70)
   double cpu_start = thread_cpu_seconds();
   ProgressLine line(options);
   auto progress = [&](double t) {
     samples.push_back(simulation.state());
+    sample_energy = simulation.energy();
     line.show(t, options, tu, simulation.steps(), simulation.events().size());
   };
-  const std::optional<RunStop> stop =
-      run_to_end_or_jam(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
-  if (stop && simulation.state().time > samples.back().time) samples.push_back(simulation.state());   // the jam's
+  std::optional<RunStop> stop =
+      run_to_end_or_stop(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
+  if (stop && stop->at_state && simulation.state().time > samples.back().time)
+    samples.push_back(simulation.state());   // the stop's state
+  kept_stop_state(stop, samples.back().time);
+  std::vector<SimulationEvent> kept;
+  const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
+  const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
+  const double energy = at_sample ? sample_energy : simulation.energy();
   double seconds = thread_cpu_seconds() - cpu_start;
   if (line.terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
-  const PinSlotState& end = simulation.state();
+  const PinSlotState& end = at_sample ? samples.back() : simulation.state();
   const std::string& name = model.parts[simulation.part()].name;
   std::cout << "simulated " << shown_name(model.name) << " to t = " << number(end.time) << " " << tu << " in "
-            << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
+            << simulation.steps() << " steps, " << events.size() << " events, " << number(seconds)
             << " s CPU\n";
   print_stop(stop, tu);
   std::cout << "  " << name << ": slide " << shown(end.slide, 1) << " mm, angle " << number(end.angle)
             << " rad; rates " << shown(end.slide_rate, 1) << " mm/" << tu << ", " << number(end.angle_rate) << " rad/"
             << tu << "\n";
-  std::cout << "  energy " << energy_text(simulation.energy(), fu) << "\n";
+  std::cout << "  energy " << energy_text(energy, fu) << "\n";
   std::cout << "  collision tests: " << simulation.chord_tests() << " exact chord tests (chord deviation "
             << shown(simulation.chord_deviation(), 1) << " mm)\n";
-  print_events(simulation.events(), tu, fu);
+  print_events(events, tu, fu);
   if (options.out.empty()) return stopped_run(stop, options, tu);
   // moving: every moving part beside the pin-slot part (its coordinate); dynamic: those moved by
   // their dynamics, not prescribed (a torque-driven cam, a pushed translating part: their rates too)
@@ -1188,13 +1256,13 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
   }
   nlohmann::json summary{{"t_end", end.time},
                          {"steps", simulation.steps()},
-                         {"energy", simulation.energy()},
+                         {"energy", energy},
                          {"chord_deviation_mm", simulation.chord_deviation()}};
   add_stop(summary, stop);
-  add_event_files(files, model, simulation.events(), tu, fu, std::move(summary));
+  add_event_files(files, model, events, tu, fu, std::move(summary));
   if (!options.no_pictures) {
     std::vector<double> event_times;
-    for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    for (const SimulationEvent& e : events) event_times.push_back(e.time);
     std::string plotted = name;   // the pin-slot part and the parts plotted beside it (session 60)
     for (std::size_t p : dynamic) plotted += ", " + model.parts[p].name;
     for (int which = 0; which < 2; ++which) {
@@ -1339,10 +1407,12 @@ int run(const SimulateOptions& options) {
   for (std::size_t p = 0; p < model.parts.size(); ++p)
     if (model.parts[p].motion.kind != Motion::Kind::fixed) moving.push_back(p);
   std::vector<SimulationState> samples{simulation.state()};
+  double sample_energy = simulation.energy();   // the last sample's (a stop after it: session 70)
   double cpu_start = thread_cpu_seconds();
   ProgressLine line(options);
   auto progress = [&](double t) {
     samples.push_back(simulation.state());
+    sample_energy = simulation.energy();
     line.show(t, options, simulation.time_unit(), simulation.steps(), simulation.events().size());
   };
   // The animation's frames are states at a fixed rate: the run stops exactly at each frame time
@@ -1366,39 +1436,45 @@ int run(const SimulateOptions& options) {
       frames.push_back(std::move(frame));
     };
     if (!times.empty()) record_frame();
-    stop = run_to_end_or_jam(simulation, options, simulation.time_unit(), [&] {
+    stop = run_to_end_or_stop(simulation, options, simulation.time_unit(), [&] {
       for (double t : times) {
         simulation.run_until(t, progress);
         record_frame();
       }
       simulation.run_until(options.t_end, progress);
     });
-    if (stop && simulation.state().time > samples.back().time) {   // the jam's state, the last one
+    if (stop && stop->at_state && simulation.state().time > samples.back().time) {   // the stop's state, the last one
       samples.push_back(simulation.state());
       if (!times.empty()) record_frame();
     }
   }
+  kept_stop_state(stop, samples.back().time);
+  std::vector<SimulationEvent> kept;
+  const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
+  const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
+  const SimulationState& end = at_sample ? samples.back() : simulation.state();
+  const double energy = at_sample ? sample_energy : simulation.energy();
   double seconds = thread_cpu_seconds() - cpu_start;
   if (terminal) std::cerr << "\r" << std::string(90, ' ') << "\r" << std::flush;
 
   const std::string& tu = simulation.time_unit();
   const std::string& fu = simulation.force_unit();
-  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(simulation.state().time) << " " << tu << " in "
-            << simulation.steps() << " steps, " << simulation.events().size() << " events, " << number(seconds)
+  std::cout << "simulated " << shown_name(model.name) << " to t = " << number(end.time) << " " << tu << " in "
+            << simulation.steps() << " steps, " << events.size() << " events, " << number(seconds)
             << " s CPU\n";
   print_stop(stop, tu);
   for (std::size_t p : moving)
     std::cout << "  " << model.parts[p].name << ": position "
-              << shown(simulation.state().position[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
+              << shown(end.position[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
               << (model.parts[p].motion.kind == Motion::Kind::rotation ? " rad" : " mm") << ", velocity "
-              << shown(simulation.state().velocity[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
+              << shown(end.velocity[p], model.parts[p].motion.kind == Motion::Kind::rotation ? 0 : 1)
               << " per " << tu << "\n";
   // kinetic + potential, the potential of a constant torque T (or force F) being -T theta
   // (-F x): the total is negative once a driving torque has given less kinetic energy than the
   // work it did (spur-gears.json: -132.6 N·mm at 0.3 s, kinetic 240.0, the torque's -372.6)
-  std::cout << "  energy " << energy_text(simulation.energy(), fu)
+  std::cout << "  energy " << energy_text(energy, fu)
             << " (kinetic + potential; a constant torque's potential is -T·angle)\n";
-  print_events(simulation.events(), tu, fu);
+  print_events(events, tu, fu);
   if (options.out.empty()) return stopped_run(stop, options, tu);
 
   std::vector<io::RunFile> files;
@@ -1421,12 +1497,12 @@ int run(const SimulateOptions& options) {
     }
     files.push_back({"trajectory.csv", csv.str()});
   }
-  nlohmann::json summary{{"t_end", simulation.state().time}, {"steps", simulation.steps()}, {"energy", simulation.energy()}};
+  nlohmann::json summary{{"t_end", end.time}, {"steps", simulation.steps()}, {"energy", energy}};
   add_stop(summary, stop);
-  add_event_files(files, model, simulation.events(), tu, fu, std::move(summary));
+  add_event_files(files, model, events, tu, fu, std::move(summary));
   if (!options.no_pictures) {
     std::vector<double> event_times;
-    for (const SimulationEvent& e : simulation.events()) event_times.push_back(e.time);
+    for (const SimulationEvent& e : events) event_times.push_back(e.time);
     for (int which = 0; which < 2; ++which) {
       render::TimePlot plot;
       plot.title = model.name + (which == 0 ? ": positions" : ": velocities");
@@ -1451,7 +1527,7 @@ int run(const SimulateOptions& options) {
       // in contact where an event's sustained contact holds: approximated by the samples'
       // neighbourhood of contact events of this pair
       for (const SimulationState& s : samples) picture.path.push_back({s.position[x], s.position[y], false});
-      for (const SimulationEvent& e : simulation.events()) {
+      for (const SimulationEvent& e : events) {
         if (e.kind != SimulationEvent::Kind::impact) continue;
         if (!((e.first_part == space->first_part() && e.second_part == space->second_part()) ||
               (e.first_part == space->second_part() && e.second_part == space->first_part())))
@@ -1474,12 +1550,14 @@ int run(const SimulateOptions& options) {
     animation.time_unit = tu;
     animation.drawing.title = model.name + ": simulated";
     if (length_exponent != 0) animation.drawing.title += " (lengths in units of " + length_unit_name() + ")";
-    for (const SimulationEvent& e : simulation.events()) {
+    for (const SimulationEvent& e : events) {
       bool located = e.point[0] != 0 || e.point[1] != 0 || e.normal[0] != 0 || e.normal[1] != 0;
       if (e.kind != SimulationEvent::Kind::impact || !located) continue;
       animation.marks.push_back({e.time, e.point[0], e.point[1], event_line(e, tu, fu)});
     }
-    files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
+    // (session 70) a run stopped before its second frame has nothing to animate: no animation.svg
+    if (frames.size() >= 2 || !stop)
+      files.push_back({"animation.svg", render::mechanism_animation_svg(model, frames, animation)});
   }
   publish_run(files, options);
   return stopped_run(stop, options, tu);

@@ -10,6 +10,7 @@
 #include <hipair/cspace_slice.hpp>
 #include <hipair/blocked_walk.hpp>
 #include <hipair/contact_frame_doubles.hpp>
+#include <hipair/contact_frame_exact.hpp>
 #include <hipair/crossing_before.hpp>
 #include <hipair/edge_tracker.hpp>
 #include <hipair/edge_slope.hpp>
@@ -261,6 +262,21 @@ bool contact_location(const CSpace::Impl& impl, const Location& location) {
   return false;
 }
 
+// A contact from the kernels' exact frame (contact_at, exact_contact_frame): the point and the
+// normal exact, canonical, with their enclosures.
+Contact exact_contact(FeatureId feature, const kernels::ContactFrame<Rational>& frame) {
+  Contact contact;
+  contact.feature = feature;
+  contact.exact = true;
+  contact.point = {frame.point.x, frame.point.y};
+  contact.normal_direction = {frame.normal.x, frame.normal.y};
+  for (auto& r : contact.point) r.canonicalize();
+  for (auto& r : contact.normal_direction) r.canonicalize();
+  contact.point_range = {range_of(frame.point.x, frame.point.x), range_of(frame.point.y, frame.point.y)};
+  contact.normal = unit_normal({KInterval::enclose(frame.normal.x), KInterval::enclose(frame.normal.y)});
+  return contact;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ typed access
@@ -314,16 +330,7 @@ std::vector<Contact> CSpace::contact_at(const ChartPoint& input) const {
     auto exact = [](const Rational& r) { return r; };
     kernels::ContactFrame<Rational> frame = frame_at<Rational>(impl, q.chart, pair, q.x, q.y, exact);
     if (!frame.defined) continue;
-    Contact contact;
-    contact.feature = id;
-    contact.exact = true;
-    contact.point = {frame.point.x, frame.point.y};
-    contact.normal_direction = {frame.normal.x, frame.normal.y};
-    for (auto& r : contact.point) r.canonicalize();
-    for (auto& r : contact.normal_direction) r.canonicalize();
-    contact.point_range = {range_of(frame.point.x, frame.point.x), range_of(frame.point.y, frame.point.y)};
-    contact.normal = unit_normal({KInterval::enclose(frame.normal.x), KInterval::enclose(frame.normal.y)});
-    contacts.push_back(std::move(contact));
+    contacts.push_back(exact_contact(id, frame));
   }
   return contacts;
 }
@@ -357,6 +364,23 @@ std::optional<Contact> CSpace::contact_frame(FeatureId feature, const PartCoordi
   contact.point_range = {range_of(frame.point.x), range_of(frame.point.y)};
   contact.normal = unit_normal(frame.normal);
   return contact;
+}
+
+// (session 70, stop70: the fixed-axis jam test's exact rows; contact_at's rational frame at a
+// configuration that need not be on the contact curve)
+std::optional<Contact> exact_contact_frame(const CSpace& space, FeatureId feature, const PartCoordinate& x,
+                                           const PartCoordinate& y) {
+  const CSpace::Impl& impl = checked(space);
+  model_of(impl);
+  const std::size_t index = index_in(feature, impl.feature_pairs.size(), "feature pair");
+  auto point = space.to_chart(x, y);
+  if (!point) throw GeometryError("exact_contact_frame: the configuration is outside every chart");
+  if (impl.dimension == 1) point->y = 0;
+  auto exact = [](const Rational& r) { return r; };
+  const kernels::ContactFrame<Rational> frame =
+      frame_at<Rational>(impl, point->chart, impl.feature_pairs[index], point->x, point->y, exact);
+  if (!frame.defined) return std::nullopt;
+  return exact_contact(feature, frame);
 }
 
 // ------------------------------------------------------------------ contact_frame_ranges

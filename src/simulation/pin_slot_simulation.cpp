@@ -350,6 +350,9 @@ struct PinSlotSimulation::Impl {
     // [4] and [5], its equation I phi'' = torque + the contacts' share (no prescribed speed)
     bool free = false;
     double inertia = 0, torque = 0;   // kg mm^2, mN mm
+    // the model's exact speed (rad per its time unit; omega is its double over the time scale):
+    // the jam test's driver shares (session 70, stop70)
+    Rational speed{0};
   };
   std::size_t free_driver = no_index;   // into drivers: the one torque-driven part, if any
   // A translating part pushed by the pin-slot part (session 59: the film): its offset x along its
@@ -1140,26 +1143,29 @@ struct PinSlotSimulation::Impl {
     const double tau = 2 * u / ((1 - bend) + std::sqrt((1 - bend) * (1 - bend) + 4 * bend * u));
     return std::clamp(tau, 0.0, 1.0);
   }
+  // A state beyond the part's own motion limits (a step that overshot them: the limits are
+  // plastic stops, struck as impacts, so only an overshoot the bisection did not catch): the run
+  // stops there (session 70: a SimulationLimit naming the part and the limit, the state
+  // published the last step's; a GeometryError before).
   void check_limits(const State& s, double time) const {
+    auto beyond = [&](const Part& p, const char* what, const char* symbol, double at, const RationalInterval& limits,
+                      const char* unit, const std::string& pointer) {
+      std::ostringstream out, limit;
+      out << where(time) << ": " << what << " '" << p.name << "' leaves its " << (symbol[0] == 'p' ? "angle " : "")
+          << (symbol[0] == 's' ? "slide " : "") << "limits (" << symbol << " = " << at << unit << "; " << pointer << ")";
+      const bool upper = Rational(at) > limits.hi;
+      limit << (upper ? "upper" : "lower") << " limit " << (upper ? limits.hi : limits.lo).get_d() << unit << " of ["
+            << limits.lo.get_d() << ", " << limits.hi.get_d() << "]";
+      throw SimulationLimit(out.str(), public_state.time, p.name, limit.str());
+    };
     const Part& pp = model.parts[part];
-    if (slide_limits && (Rational(s[0]) < slide_limits->lo || Rational(s[0]) > slide_limits->hi)) {
-      std::ostringstream out;
-      out << where(time) << ": pin-slot part '" << pp.name << "' leaves its slide limits (s = " << s[0]
-          << " mm; " << pp.motion.pointer << "/limits)";
-      throw GeometryError(out.str());
-    }
-    if (angle_limits && (Rational(s[1]) < angle_limits->lo || Rational(s[1]) > angle_limits->hi)) {
-      std::ostringstream out;
-      out << where(time) << ": pin-slot part '" << pp.name << "' leaves its angle limits (psi = " << s[1]
-          << " rad; " << pp.motion.pointer << "/angle_limits)";
-      throw GeometryError(out.str());
-    }
+    if (slide_limits && (Rational(s[0]) < slide_limits->lo || Rational(s[0]) > slide_limits->hi))
+      beyond(pp, "pin-slot part", "s", s[0], *slide_limits, " mm", pp.motion.pointer + "/limits");
+    if (angle_limits && (Rational(s[1]) < angle_limits->lo || Rational(s[1]) > angle_limits->hi))
+      beyond(pp, "pin-slot part", "psi", s[1], *angle_limits, " rad", pp.motion.pointer + "/angle_limits");
     if (has_slider() && slider.limits && (Rational(s[6]) < slider.limits->lo || Rational(s[6]) > slider.limits->hi)) {
       const Part& sp = model.parts[slider.part];
-      std::ostringstream out;
-      out << where(time) << ": translating part '" << sp.name << "' leaves its limits (x = " << s[6] << " mm; "
-          << sp.motion.pointer << "/limits)";
-      throw GeometryError(out.str());
+      beyond(sp, "translating part", "x", s[6], *slider.limits, " mm", sp.motion.pointer + "/limits");
     }
   }
   void publish() {
@@ -1799,12 +1805,24 @@ std::vector<PinSlotSimulation::Impl::Row> PinSlotSimulation::Impl::contact_rows(
 void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
   // (session 69, jam69: the exact test shared with the planar simulators, simulation/jam.hpp:
   // a row's speed a . rates - v_other, so d = -v_other)
+  // (session 70, stop70) d from the drivers' exact speeds: v_other is the exact lever times the
+  // driver's rate double omega, so d = -(v_other / omega) times the model's exact speed — every
+  // d over the same positive time scale, which leaves the verdict as it is. With the rates'
+  // doubles two drivers' shares were in the ratio of their rounded speeds; a driver whose double
+  // rate is 0 (an underflowed speed) leaves its share 0 and the verdict approximate.
   std::vector<std::vector<Rational>> a;
   std::vector<Rational> d;
+  bool exact = true;
   for (const Row& r : rows) {
     if (!r.exact.defined) return;
     a.emplace_back(r.exact.a.begin(), r.exact.a.end());
-    d.push_back(-r.exact.v_other);
+    const std::size_t dr = r.limit != 0 || r.pair >= pairs.size() ? no_index : driver_of[pairs[r.pair].other];
+    if (dr == no_index || drivers[dr].free || drivers[dr].omega == 0 || pairs[r.pair].other == slider.part) {
+      exact = exact && !(dr != no_index && !drivers[dr].free && drivers[dr].omega == 0 && sgn(drivers[dr].speed) != 0);
+      d.push_back(-r.exact.v_other);
+      continue;
+    }
+    d.push_back(-(r.exact.v_other / Rational(drivers[dr].omega)) * drivers[dr].speed);
   }
   const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
   if (!locked) return;
@@ -1818,10 +1836,14 @@ void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
     }
     contacts.push_back(r.label);
   }
-  const std::string message = where(t) + ": " +
-                              simulation::jam_message(drivers_closing, true, {model.parts[part].name}, contacts.size(), contacts);
+  const std::string message =
+      where(t) + ": " +
+      simulation::jam_message(drivers_closing, true, {model.parts[part].name}, contacts.size(), contacts,
+                              exact ? "decided exactly"
+                                    : "approximate (found exactly on the exact contact normals and a driver's rate "
+                                      "double, 0 for its nonzero speed)");
   publish();
-  throw SimulationJam(message, t / time_scale);
+  throw SimulationJam(message, t / time_scale, exact);
 }
 
 void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool hold_met) {
@@ -2526,6 +2548,7 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
       throw ModelError(driver->pointer, "part '" + p.name + "': a pin-slot simulation takes constant-speed drivers only");
     s.driver_of[i] = s.drivers.size();
     s.drivers.push_back(Impl::Driver{i, p.initial.angle.get_d(), driver->speed.get_d() / ts});
+    s.drivers.back().speed = driver->speed;
   }
   for (const SimulationSpec::Driver& d : spec.drivers)
     if (d.part == found) throw ModelError(d.pointer, "the pin-slot part cannot be a driver");

@@ -2037,6 +2037,9 @@ struct PlanarSystemSimulation::Impl {
     // the velocity linear between them, constant after the last; empty: a constant velocity
     std::vector<std::array<double, 4>> profile;
     double drive_accel[3] = {0, 0, 0};   // the current profile segment's slope (set per step)
+    // a constant-velocity driver's exact (vx, vy, omega), per the model's time unit (the jam
+    // test's driver shares, session 70: the doubles over the time scale are its velocity)
+    std::array<Rational, 3> speed{Rational(0), Rational(0), Rational(0)};
   };
   std::vector<Body> bodies;
   std::vector<std::size_t> body_of;   // model part -> body index (no_index: fixed)
@@ -2333,7 +2336,9 @@ struct PlanarSystemSimulation::Impl {
   // the free bodies keeps: is it a jam of the constant-speed drivers? Decided exactly on the
   // rows' exact normals (simulation/jam.hpp, as the pin-slot simulator's refuse_jam): some y >= 0
   // with sum y_i a_i = 0 on the free bodies' coordinates and sum y_i (a_i . v_driven) < 0 (the
-  // driven bodies' velocities' exact doubles). Throws the jam's SimulationJam naming the
+  // driven bodies' velocities: a constant-velocity driver's exact speeds from the model, since
+  // session 70 — the doubles before; a speed profile's velocity doubles, the verdict then
+  // labelled approximate). Throws the jam's SimulationJam naming the
   // drivers, the jammed parts and the contacts of that combination, the state published at the
   // jam; returns where there is none.
   void refuse_jam(double time, const Rows& rows);
@@ -2667,8 +2672,12 @@ PlanarSystemSimulation::Impl::Rows PlanarSystemSimulation::Impl::contact_rows(
 void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
   if (rows.exact.empty()) return;
   const Eigen::VectorXd v = velocity(k);
+  // (session 70, stop70) a constant-velocity driver's share from its exact speeds (the same
+  // positive time scale over every share leaves the verdict as it is); a profile's from its
+  // velocity doubles, and then the verdict is approximate
   std::vector<std::vector<Rational>> a;
   std::vector<Rational> d;
+  bool exact = true;
   for (const simulation::ExactRow& r : rows.exact) {
     std::vector<Rational> free;
     Rational closing(0);
@@ -2680,7 +2689,13 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
         }
         const double vj = v(static_cast<Eigen::Index>(j));
         if (!std::isfinite(vj)) return;
-        if (sgn(r.a[j]) != 0 && vj != 0) closing += r.a[j] * Rational(vj);
+        if (sgn(r.a[j]) == 0) continue;
+        if (bodies[body].profile.empty()) {
+          closing += r.a[j] * bodies[body].speed[j - 3 * body];
+        } else if (vj != 0) {
+          closing += r.a[j] * Rational(vj);
+          exact = false;
+        }
       }
     a.push_back(std::move(free));
     d.push_back(std::move(closing));
@@ -2702,9 +2717,21 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
     contacts.push_back(rows.feature[i].label);
   }
   if (jammed.empty() || drivers.empty()) return;   // (a driver against a fixed part: the caller's message)
-  const std::string message = where(time) + ": " + simulation::jam_message(drivers, true, jammed, contacts.size(), contacts);
+  bool constant = true;   // (session 70: a speed profile is a prescribed driver, not a constant-speed one)
+  for (const std::size_t i : *locked) {
+    const Pair& p = pairs[rows.pair[i]];
+    for (const std::size_t part : {p.first, p.second})
+      if (body_of[part] != no_index && bodies[body_of[part]].driven)
+        constant = constant && bodies[body_of[part]].profile.empty();
+  }
+  const std::string message =
+      where(time) + ": " +
+      simulation::jam_message(drivers, constant, jammed, contacts.size(), contacts,
+                              exact ? "decided exactly"
+                                    : "approximate (found exactly on the exact contact normals and the prescribed "
+                                      "drivers' velocity doubles)");
   publish();
-  throw SimulationJam(message, time / time_scale);
+  throw SimulationJam(message, time / time_scale, exact);
 }
 
 void PlanarSystemSimulation::Impl::impact(double time,
@@ -2741,7 +2768,7 @@ void PlanarSystemSimulation::Impl::impact(double time,
       publish();   // (session 69: a jam, the state published at it, its run's result kept by the CLI)
       throw SimulationJam(where(time) + ": driven part '" + model.parts[p.second].name + "' runs into '" +
                               model.parts[p.first].name + "': nothing there can give way (a jam)",
-                          time / time_scale);
+                          time / time_scale, true);   // (exact: no inverse mass on either side of the row)
     }
   bool frictional = false;
   for (std::size_t i : row_pair) frictional = frictional || pairs[i].mu_static > 0;
@@ -3127,6 +3154,7 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
     s.k[body].vx = to_d(spec.drivers[d].speed) / ts;
     s.k[body].vy = to_d(spec.drivers[d + 1].speed) / ts;
     s.k[body].omega = to_d(spec.drivers[d + 2].speed) / ts;
+    b.speed = {spec.drivers[d].speed, spec.drivers[d + 1].speed, spec.drivers[d + 2].speed};
     for (std::size_t p = 0; p < spec.drivers[d].profile.size(); ++p)   // the reader's three equal-length profiles
       b.profile.push_back({to_d(spec.drivers[d].profile[p].first) * ts, to_d(spec.drivers[d].profile[p].second) / ts,
                            to_d(spec.drivers[d + 1].profile[p].second) / ts, to_d(spec.drivers[d + 2].profile[p].second) / ts});

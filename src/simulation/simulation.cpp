@@ -14,6 +14,7 @@
 
 #include <hipair/blocked_walk.hpp>
 #include <hipair/contact_frame_doubles.hpp>
+#include <hipair/contact_frame_exact.hpp>
 #include <hipair/crossing_before.hpp>
 #include <hipair/edge_slope.hpp>
 #include <hipair/edge_tracker.hpp>
@@ -839,7 +840,7 @@ struct Simulation::Impl {
         static const std::vector<std::size_t> no_groups;   // (exact stick limits, except in a wedge)
         s = simulation::solve_frictional(G, minv, a0, h, friction, {}, wedged(), wedged() ? nullptr : &no_groups);
         if (!s.solved) {
-          refuse_held_jam(G, vs, time);   // (session 69: a lock does not depend on the friction)
+          refuse_held_jam(G, qs, vs, time);   // (session 69: a lock does not depend on the friction)
           std::ostringstream text;
           text << "simulation: at t = " << published_time(time) << " " << time_unit << " the contact-force problem of "
                << m << " contacts with Coulomb friction has no consistent stick/slip solution (a frictional jam)";
@@ -890,7 +891,7 @@ struct Simulation::Impl {
       if (!s.solved) {
         // (session 69, jam69) held contacts the drivers lock without a fresh contact: a jam,
         // named, where it is one (the state published is the step's start, this state)
-        refuse_held_jam(G, vs, time);
+        refuse_held_jam(G, qs, vs, time);
         std::ostringstream out;
         out << "simulation: at t = " << published_time(time) << " " << time_unit
             << " the contact-force complementarity problem of " << m << " contacts has no solution (a jam)";
@@ -1125,26 +1126,47 @@ struct Simulation::Impl {
     return "pair (" + model.parts[model.pairs[pair].first].name + ", " + model.parts[model.pairs[pair].second].name + ")";
   }
 
-  [[noreturn]] void outside(std::size_t pair, double time) const {
-    std::ostringstream out;
-    out << "simulation: at t = " << published_time(time) << " " << time_unit << " the motion of " << pair_name(pair)
-        << " leaves its built C-space (a motion limit, or the border of its operating region)";
-    // which part is at a motion limit, named with its pointer (session 61: cam-drive.json with the
-    // follower thrown up at 1e5 mm/s named the pair only)
-    const char* separator = ": ";
+  // (session 70, stop70) The parts of `pair` at one of their own motion limits at the
+  // coordinates qs: within 1e-6 of the limits' scale of an end, or beyond it. `text` "part
+  // 'follower' (/parts/1) is at 4 mm, its limits [-12, 4]" (outside()'s words since session 61),
+  // `limit` "upper limit 4 mm of [-12, 4]".
+  struct AtLimit {
+    std::string part, text, limit;
+  };
+  std::vector<AtLimit> at_limits(std::size_t pair, const Vec& qs) const {
+    std::vector<AtLimit> found;
     for (const std::size_t index : {model.pairs[pair].first, model.pairs[pair].second}) {
       const int d = part_dof[index];
       if (d < 0) continue;
       const Part& part = model.parts[index];
       const auto& limits = dofs[d].rotation ? part.motion.angle_limits : part.motion.translation_limits;
       if (!limits) continue;
-      const double lo = to_d(limits->lo), hi = to_d(limits->hi), at = q[d];
+      const double lo = to_d(limits->lo), hi = to_d(limits->hi), at = qs[d];
       const double margin = 1e-6 * std::max({1.0, std::abs(lo), std::abs(hi)});
       if (at > lo + margin && at < hi - margin) continue;
-      out << separator << described_part(part) << " is at " << at << (dofs[d].rotation ? " rad" : " mm")
-          << ", its limits [" << lo << ", " << hi << "]";
-      separator = "; ";
+      const char* unit = dofs[d].rotation ? " rad" : " mm";
+      std::ostringstream text, limit;
+      text << described_part(part) << " is at " << at << unit << ", its limits [" << lo << ", " << hi << "]";
+      const bool upper = at >= hi - margin;
+      limit << (upper ? "upper" : "lower") << " limit " << (upper ? hi : lo) << unit << " of [" << lo << ", " << hi << "]";
+      found.push_back({part.name, text.str(), limit.str()});
     }
+    return found;
+  }
+
+  // Leaving the pair's built C-space at `time`: at a part's motion limit a SimulationLimit
+  // (session 70: the run's results up to it are kept), otherwise the border of its operating
+  // region (GeometryError). The state published is the last step's, where this step starts.
+  [[noreturn]] void outside(std::size_t pair, double time) const {
+    std::ostringstream out;
+    out << "simulation: at t = " << published_time(time) << " " << time_unit << " the motion of " << pair_name(pair)
+        << " leaves its built C-space (a motion limit, or the border of its operating region)";
+    // which part is at a motion limit, named with its pointer (session 61: cam-drive.json with the
+    // follower thrown up at 1e5 mm/s named the pair only)
+    const std::vector<AtLimit> limits = at_limits(pair, q);
+    for (std::size_t k = 0; k < limits.size(); ++k) out << (k ? "; " : ": ") << limits[k].text;
+    // (the stop's time: the published state's, the last step's end, where this step starts)
+    if (!limits.empty()) throw SimulationLimit(out.str(), public_state.time, limits.front().part, limits.front().limit);
     throw GeometryError(out.str());
   }
 
@@ -1354,7 +1376,10 @@ struct Simulation::Impl {
         alternative.clear();
         continue;
       }
-      if (!done) jammed(set.front().first);
+      if (!done) {
+        stop_at_limit(set, start);
+        jammed(set.front().first);
+      }
       if (q == start) return;
       auto moves = [&](std::size_t pair) {
         int a = part_dof[model.pairs[pair].first], b = part_dof[model.pairs[pair].second];
@@ -1408,6 +1433,29 @@ struct Simulation::Impl {
     back.x = axis(space.x_part());
     if (space.dimension() == 2) back.y = axis(space.y_part());
     return simulation::move_certified(space, back, length, simulation::nudge_allowance * first, options.crossing_bits);
+  }
+
+  // (session 70, stop70) A nudge that finds no free state for a pair of `set` where a part of it
+  // is at one of its own motion limits (at `start`, the state the nudge moves from): the part is
+  // held at a limit the simulator does not model as a contact (a translating part's `limits`, a
+  // rotating part's `angle_limits`: the borders of the pair's C-space), and whatever pushes it
+  // there cannot go on. The run stops there with a SimulationLimit naming the part and the limit,
+  // that state published (the step's end, before the nudge's trials). Until session 70 this was
+  // "cannot be moved off its contact (a jammed contact change)" with the state of the step before.
+  void stop_at_limit(const std::vector<std::pair<std::size_t, Vec>>& set, const Vec& start) {
+    for (const auto& entry : set) {
+      const std::size_t pair = entry.first;
+      const std::vector<AtLimit> limits = at_limits(pair, start);
+      if (limits.empty()) continue;
+      std::ostringstream out;
+      out << "simulation: at t = " << published_time(t) << " " << time_unit << " " << pair_name(pair)
+          << " cannot be moved off its contact: ";
+      for (std::size_t k = 0; k < limits.size(); ++k) out << (k ? "; " : "") << limits[k].text;
+      out << " (a motion limit, not a contact: what pushes the part into it cannot go on)";
+      q = start;
+      publish();
+      throw SimulationLimit(out.str(), published_time(t), limits.front().part, limits.front().limit);
+    }
   }
 
   // `crossed`: the only free configurations found are beyond blocked space the move would cross
@@ -1858,30 +1906,132 @@ struct Simulation::Impl {
     return w >= 0 && alpha < 0 && w * w <= 2 * -alpha * accuracy;
   }
 
-  // (session 69, jam69) Contact rows g (over the dofs: the pairs' C-space contact gradients)
-  // that no velocity of the free dofs keeps: is it a jam of the driven parts? APPROXIMATE: the
-  // LP is exact (simulation/jam.hpp, the test of the pin-slot and planar simulators, whose rows
-  // are exact normals) but on the rows' doubles (rounded gradients) and the drivers' velocity
-  // doubles, so a verdict at a lock that holds only in exact geometry may differ; said so in the
-  // message and SimulationJam::exact() false: some y >= 0 with
-  // sum y_k g_k = 0 on the free dofs and sum y_k (g_k . v_driven) < 0. Throws the jam's
-  // jam's message naming the drivers, the jammed parts and the contacts of that combination;
-  // nullopt where there is none.
-  std::optional<std::string> jam(const std::vector<Vec>& g, const std::vector<std::size_t>& pair_of,
-                                 const std::vector<std::vector<FeatureId>>& features, const Vec& vs,
-                                 double time) const {
+  // (session 70, stop70) A contact row exactly, at the rational configuration of the state's
+  // doubles qs (a rotation's half-angle tangent tan(theta/2) rounded to a double and taken as the
+  // rational it is, a translation's offset): the kernels' exact contact frame of the row's first
+  // feature pair there (exact_contact_frame: point P, normal N), and physical_row's row on it,
+  // N . (J_second(P) - J_first(P)) — J the velocity of P per unit rate of a part's coordinate
+  // (a rotation k x (P - pivot), a translation its direction), exact from the model's pivots and
+  // directions. nullopt where there is none (no feature named, a degenerate frame, a
+  // configuration outside every chart or beyond the doubles), or where it does not agree in
+  // orientation with `g`, the doubles' row (their dot product not positive).
+  std::optional<std::vector<Rational>> exact_jam_row(std::size_t pair, const std::vector<FeatureId>& features, const Vec& g,
+                                                     const Vec& qs) const {
+    if (features.empty() || !spaces[pair]) return std::nullopt;
+    const CSpace& space = *spaces[pair];
+    bool known = true;
+    auto coordinate = [&](const std::string& name) {
+      PartCoordinate c;
+      if (name.empty()) return c;
+      const int d = part_dof[*model.find_part(name)];
+      const double value = d < 0 ? std::numeric_limits<double>::quiet_NaN()
+                           : dofs[d].rotation ? std::tan(std::remainder(qs[d], 2 * std::numbers::pi) / 2)
+                                              : qs[d];
+      if (!std::isfinite(value)) {
+        known = false;
+        return c;
+      }
+      c.kind = dofs[d].rotation ? PartCoordinate::Kind::half_angle_tangent : PartCoordinate::Kind::offset;
+      c.value = Rational(value);
+      return c;
+    };
+    const PartCoordinate x = coordinate(space.x_part());
+    const PartCoordinate y = space.dimension() == 2 ? coordinate(space.y_part()) : PartCoordinate{};
+    if (!known) return std::nullopt;
+    std::optional<Contact> frame;
+    try {
+      frame = exact_contact_frame(space, features.front(), x, y);
+    } catch (const GeometryError&) {
+      return std::nullopt;
+    }
+    if (!frame || !frame->exact) return std::nullopt;
+    const std::array<Rational, 2>& P = frame->point;
+    const std::array<Rational, 2>& N = frame->normal_direction;
+    std::vector<Rational> row(dofs.size(), Rational(0));
+    auto add = [&](std::size_t part, bool second) {
+      const int d = part_dof[part];
+      if (d < 0) return;
+      const Motion& motion = model.parts[part].motion;
+      const Rational along = dofs[d].rotation ? Rational(N[1] * (P[0] - motion.pivot.x) - N[0] * (P[1] - motion.pivot.y))
+                                              : Rational(N[0] * motion.direction.x + N[1] * motion.direction.y);
+      if (second) row[static_cast<std::size_t>(d)] += along;
+      else row[static_cast<std::size_t>(d)] -= along;
+    };
+    const FeaturePair& fp = space.feature_pair(features.front());
+    add(fp.first.part, false);
+    add(fp.second.part, true);
+    double agree = 0;
+    for (std::size_t i = 0; i < dofs.size(); ++i) agree += to_d(row[i]) * g[i];
+    if (!(agree > 0)) return std::nullopt;
+    return row;
+  }
+  // A constant-speed driver's exact speed (the model's; its dof's speed is its double over the
+  // time scale, the same for every driver), nullopt for a speed profile
+  std::optional<Rational> exact_speed(std::size_t i) const {
+    if (!dofs[i].profile_t.empty() || !model.simulation) return std::nullopt;
+    for (const auto& driver : model.simulation->drivers)
+      if (driver.part == dofs[i].part && driver.profile.empty()) return driver.speed;
+    return std::nullopt;
+  }
+
+  // (session 69, jam69; session 70, stop70) Contact rows g (over the dofs: the pairs' C-space
+  // contact gradients, or their physical rows) at the configuration qs that no velocity of the
+  // free dofs keeps: is it a jam of the driven parts? Some y >= 0 with sum y_k a_k = 0 on the
+  // free dofs and sum y_k (a_k . v_driven) < 0 (simulation/jam.hpp, the exact LP the pin-slot and
+  // planar simulators use). EXACT since session 70 where every row has its exact frame
+  // (exact_jam_row, at the rational configuration of qs) and every driver in them a constant
+  // speed (its exact speed): the verdict is exact at that configuration, SimulationJam::exact()
+  // true; where the exact rows lock nothing there is no jam (the caller's error stands).
+  // Otherwise APPROXIMATE, as in session 69: the LP on the rows' doubles (rounded gradients) and
+  // the drivers' velocity doubles, so a verdict at a lock that holds only in exact geometry may
+  // differ; said so in the message and SimulationJam::exact() false. Returns the jam's message
+  // naming the drivers, the jammed parts and the contacts of that combination, and whether it
+  // was decided exactly; nullopt where there is none.
+  std::optional<std::pair<std::string, bool>> jam(const std::vector<Vec>& g, const std::vector<std::size_t>& pair_of,
+                                                  const std::vector<std::vector<FeatureId>>& features, const Vec& qs,
+                                                  const Vec& vs, double time) const {
     std::vector<std::vector<Rational>> a;
     std::vector<Rational> d;
-    for (const Vec& row : g) {
+    for (const Vec& row : g)
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        if (!std::isfinite(row[i]) || !std::isfinite(vs[i])) return std::nullopt;
+    // the exact rows (session 70), where every row and every driver in them has them
+    std::vector<std::vector<Rational>> exact_rows;
+    bool exact = true;
+    for (std::size_t k = 0; k < g.size() && exact; ++k) {
+      std::optional<std::vector<Rational>> row = exact_jam_row(pair_of[k], features[k], g[k], qs);
+      if (!row) {
+        exact = false;
+        break;
+      }
       std::vector<Rational> free;
       Rational closing(0);
-      for (std::size_t i = 0; i < dofs.size(); ++i) {
-        if (!std::isfinite(row[i]) || !std::isfinite(vs[i])) return std::nullopt;
-        if (!dofs[i].driven) free.emplace_back(row[i]);
-        else if (row[i] != 0 && vs[i] != 0) closing += Rational(row[i]) * Rational(vs[i]);
+      for (std::size_t i = 0; i < dofs.size() && exact; ++i) {
+        if (!dofs[i].driven) {
+          free.push_back((*row)[i]);
+        } else if (sgn((*row)[i]) != 0) {
+          const std::optional<Rational> speed = exact_speed(i);
+          if (speed) closing += (*row)[i] * *speed;
+          else exact = false;
+        }
       }
       a.push_back(std::move(free));
       d.push_back(std::move(closing));
+      exact_rows.push_back(std::move(*row));
+    }
+    if (!exact) {   // the doubles' rows (session 69)
+      a.clear();
+      d.clear();
+      for (const Vec& row : g) {
+        std::vector<Rational> free;
+        Rational closing(0);
+        for (std::size_t i = 0; i < dofs.size(); ++i) {
+          if (!dofs[i].driven) free.emplace_back(row[i]);
+          else if (row[i] != 0 && vs[i] != 0) closing += Rational(row[i]) * Rational(vs[i]);
+        }
+        a.push_back(std::move(free));
+        d.push_back(std::move(closing));
+      }
     }
     const std::optional<std::vector<std::size_t>> locked = simulation::locking_rows(a, d);
     if (!locked) return std::nullopt;
@@ -1892,9 +2042,9 @@ struct Simulation::Impl {
     bool constant = true;
     for (const std::size_t k : *locked) {
       for (std::size_t i = 0; i < dofs.size(); ++i) {
-        if (g[k][i] == 0) continue;
+        if (exact ? sgn(exact_rows[k][i]) == 0 : g[k][i] == 0) continue;
         if (!dofs[i].driven) add(jammed, model.parts[dofs[i].part].name);
-        else if (vs[i] != 0) {
+        else if (exact ? sgn(*exact_speed(i)) != 0 : vs[i] != 0) {
           add(drivers, model.parts[dofs[i].part].name);
           constant = constant && dofs[i].profile_t.empty();
         }
@@ -1907,13 +2057,15 @@ struct Simulation::Impl {
     std::ostringstream out;
     out << "simulation: at t = " << published_time(time) << " " << time_unit << " "
         << simulation::jam_message(drivers, constant, jammed, locked->size(), contacts,
-                                   "approximate (found exactly on the contact rows' doubles, the C-spaces' rounded contact "
-                                   "gradients, not on the exact geometry)");
-    return out.str();
+                                   exact ? "decided exactly (at the rational configuration of the state's doubles, on "
+                                           "the kernels' exact contact frames there and the drivers' exact speeds)"
+                                         : "approximate (found exactly on the contact rows' doubles, the C-spaces' "
+                                           "rounded contact gradients, not on the exact geometry)");
+    return std::make_pair(out.str(), exact);
   }
-  // The held contacts' rows G (active order) at a state whose force problem has no solution: a
-  // jam throws its SimulationJam (the state published: the step's start, this state)
-  void refuse_held_jam(const Eigen::MatrixXd& G, const Vec& vs, double time) const {
+  // The held contacts' rows G (active order) at a state (qs, vs) whose force problem has no
+  // solution: a jam throws its SimulationJam (the state published: the step's start, this state)
+  void refuse_held_jam(const Eigen::MatrixXd& G, const Vec& qs, const Vec& vs, double time) const {
     std::vector<Vec> rows(active.size(), Vec(dofs.size(), 0.0));
     std::vector<std::size_t> pair_of;
     std::vector<std::vector<FeatureId>> features;
@@ -1922,8 +2074,8 @@ struct Simulation::Impl {
       pair_of.push_back(active[k].pair);
       features.push_back(features_of(active[k]));
     }
-    if (std::optional<std::string> message = jam(rows, pair_of, features, vs, time))
-      throw SimulationJam(*message, published_time(time), false);
+    if (const auto found = jam(rows, pair_of, features, qs, vs, time))
+      throw SimulationJam(found->first, published_time(time), found->second);
   }
   void refuse_jam(const std::vector<ContactRow>& rows) {
     std::vector<Vec> g;
@@ -1935,9 +2087,9 @@ struct Simulation::Impl {
       pair_of.push_back(r.pair);
       features.push_back(r.features);
     }
-    if (std::optional<std::string> message = jam(g, pair_of, features, v, t)) {
+    if (const auto found = jam(g, pair_of, features, q, v, t)) {
       publish();   // the state at the jam
-      throw SimulationJam(*message, published_time(t), false);
+      throw SimulationJam(found->first, published_time(t), found->second);
     }
   }
   // solve_impacts, and where it throws (no solution), the jam test first (session 69)

@@ -162,9 +162,12 @@ TEST(SimulationJam, ConstantSpeedCamLiftingTheFollowerIntoAFixedStopJamsAtTheClo
     EXPECT_NE(run.message.find("the constant-speed driver 'cam' jams 'follower' (a jam)"), std::string::npos) << run.message;
     EXPECT_NE(run.message.find("stop face / follower shoulder R"), std::string::npos) << run.message;
     EXPECT_NE(run.message.find("cam circle / follower flat face"), std::string::npos) << run.message;
-    // (the fixed-axis rows are the C-spaces' rounded gradients: an approximate verdict, said so)
-    EXPECT_FALSE(run.exact);
-    EXPECT_NE(run.message.find("(approximate"), std::string::npos) << run.message;
+    // (session 70, stop70: decided exactly on the kernels' exact frames at the state's rational
+    // configuration and the cam's exact speed — session 69's verdict was on the C-spaces' rounded
+    // gradients, approximate)
+    EXPECT_TRUE(run.exact);
+    EXPECT_NE(run.message.find("(decided exactly (at the rational configuration of the state's doubles"), std::string::npos)
+        << run.message;
     for (const SimulationEvent& ev : sim.events()) EXPECT_LE(ev.time, *run.jam);
   }
 }
