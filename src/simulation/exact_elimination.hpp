@@ -5,6 +5,8 @@
 
 #include <hipair/rational.hpp>
 
+#include "simulation/fraction_free.hpp"
+
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -15,7 +17,10 @@ namespace hipair::simulation {
 /// later entries (an augmented right-hand side) carried along: a pivot is the first row (from the
 /// current one down) whose entry is not 0 — exact, no choice by size. Returns the pivot columns
 /// in order (their count is E's rank over those columns; the rows beyond it are 0 there).
+/// (Session 70, speed70: in integers, fraction_free_echelon — E's rows nonzero multiples of these,
+/// the same pivots, zero rows and back-substitutions; this rational form with the switch off.)
 inline std::vector<std::size_t> row_echelon(std::vector<std::vector<Rational>>& E, std::size_t columns) {
+  if (fraction_free()) return fraction_free_echelon(E, columns);
   const std::size_t k = E.size();
   std::vector<std::size_t> pivot_column;
   std::size_t row = 0;
