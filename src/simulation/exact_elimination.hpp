@@ -20,7 +20,7 @@ namespace hipair::simulation {
 /// (Session 70, speed70: in integers, fraction_free_echelon — E's rows nonzero multiples of these,
 /// the same pivots, zero rows and back-substitutions; this rational form with the switch off.)
 inline std::vector<std::size_t> row_echelon(std::vector<std::vector<Rational>>& E, std::size_t columns) {
-  if (fraction_free()) return fraction_free_echelon(E, columns);
+  if (fraction_free() && E.size() >= 2) return fraction_free_echelon(E, columns);   // one row: no elimination
   const std::size_t k = E.size();
   std::vector<std::size_t> pivot_column;
   std::size_t row = 0;

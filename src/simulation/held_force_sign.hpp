@@ -76,9 +76,10 @@ inline double magnitude(const kernels::Interval& v) { return std::min(std::abs(v
 /// pivot is certainly nonzero (A singular, or an interval pivot holding 0).
 template <typename T>
 std::optional<Matrix<T>> solve(Matrix<T> A, Matrix<T> B) {
-  // (session 70, speed70: rationals by fraction-free elimination, the same exact answer)
+  // (session 70, speed70: rationals by fraction-free elimination, the same exact answer; a
+  // single row stays rational: one division, where the integer route's set-up costs more)
   if constexpr (std::is_same_v<T, Rational>)
-    if (fraction_free() && B.size() == A.size() &&
+    if (fraction_free() && A.size() >= 2 && B.size() == A.size() &&
         std::all_of(B.begin(), B.end(), [&](const std::vector<T>& row) { return row.size() == B.front().size(); }))
       return fraction_free_solve(A, B);
   const std::size_t n = A.size();
