@@ -6,6 +6,7 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -308,9 +309,21 @@ inline void push_block(BlockPool& pool, std::size_t k, void* p) {
   std::free(p);
 }
 
+// Set by the first allocation GMP could not get; from then on GMP's frees do nothing. GMP's C code
+// is not exception-safe: mpz_mul (and others) free a number's limbs, record its new size and only
+// then allocate, so the throw below leaves a freed block in the number, which its destructor
+// freed again — into the pool twice, and a later allocation or free crashed (SIGSEGV under
+// `ulimit -v` on the spur gears, session 70, where exit 4 and one line were due). After such a
+// failure the computation ends (use_throwing_gmp_allocation's contract): leaking is harmless,
+// freeing is not.
+std::atomic<bool> gmp_failed{false};
+
 [[gnu::noinline]] void* allocate_unpooled(std::size_t size) {
   void* p = std::malloc(size == 0 ? 1 : size);
-  if (!p) throw std::bad_alloc();
+  if (!p) {
+    gmp_failed.store(true, std::memory_order_relaxed);
+    throw std::bad_alloc();
+  }
   return p;
 }
 
@@ -328,6 +341,8 @@ void* gmp_allocate(std::size_t size) {
 }
 
 void gmp_free(void* p, std::size_t size) {
+  if (gmp_failed.load(std::memory_order_relaxed)) [[unlikely]]
+    return;   // after a failed allocation: a number's block may be freed already (gmp_failed)
   const std::size_t k = pool_index(size);
   if (pooled(size, k) && p) {
     BlockPool& pool = block_pool;
