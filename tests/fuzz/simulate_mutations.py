@@ -149,6 +149,25 @@ def snapshot(directory):
     return {name: open(os.path.join(directory, name), 'rb').read() for name in sorted(os.listdir(directory))}
 
 
+# A run stopped after it began (exit 3, "... were written to OUT", session 70): what was there
+# before is untouched, and its results are there whole: the trajectory, the events with their
+# "stopped" member and the event text (--no-pictures), nothing else.
+def stopped_run_problems(out, before):
+    after = snapshot(out)
+    problems = []
+    if any(after.get(name) != content for name, content in before.items()):
+        problems.append('a file that was there before changed')
+    added = set(after) - set(before)
+    if added != {'trajectory.csv', 'events.json', 'events.txt'}:
+        problems.append('a stopped run wrote %s' % sorted(added))
+    try:
+        if 'stopped' not in json.loads(after.get('events.json', b'{}')):
+            problems.append('a stopped run\'s events.json has no "stopped"')
+    except ValueError:
+        problems.append('a stopped run\'s events.json is not JSON')
+    return problems
+
+
 # "/parts/1/dynamics/mass" ... in a message: the JSON pointers it names
 # "nan" or "-nan" as a printed number (session 63: "energy -nan N·mm" after a run at gravity 1.8e308)
 NAN_WORD = re.compile(r"(?<![A-Za-z])-?nan(?![A-Za-z])", re.IGNORECASE)
@@ -301,7 +320,9 @@ def main(argv):
                     problems.append('%d lines on stderr' % len(lines))
                 elif not lines[0].startswith('hipair: error: '):
                     problems.append('not a hipair error line')
-                if snapshot(out) != before:
+                if rc == 3 and ' were written to ' + out in se:
+                    problems += stopped_run_problems(out, before)
+                elif snapshot(out) != before:
                     problems.append('the output directory changed on failure')
             if (label, value) in NOT_A_NUMBER and not remove:
                 if rc != 2:
