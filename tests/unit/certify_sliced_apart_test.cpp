@@ -31,14 +31,6 @@ PlanarPose peg_pose(const Rational& x, const Rational& y, const Rational& t, boo
   return PlanarPose{"peg", x, y, t, half_turn, std::nullopt};
 }
 
-PartRelation relation(const Model& model, const PlanarPose& pose) {
-  const Rational d = 1 + pose.tangent * pose.tangent;
-  const int sign = pose.half_turn ? -1 : 1;
-  const Rational c = sign * (1 - pose.tangent * pose.tangent) / d, s = sign * 2 * pose.tangent / d;
-  const Part& b = model.parts[1];
-  return part_overlap(model.parts[0], Placement{}, b, placement_about(b.motion.pivot, c, s, Point{pose.x, pose.y})).relation;
-}
-
 // test::peg_in_hole with the plate's half side `plate` (20 there).
 Model scaled_peg_in_hole(const std::string& s, const std::string& h, const std::string& plate) {
   auto square = [](const std::string& half) {
@@ -95,12 +87,12 @@ TEST(CertifySlicedApart, TheSquarePegCannotTurnAQuarterInTheNarrowHole) {
     const Rational u = (b.lo[2] + b.hi[2]) / 2;
     const PlanarPose p = u <= 1 ? peg_pose((b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, u)
                                 : peg_pose((b.lo[0] + b.hi[0]) / 2, (b.lo[1] + b.hi[1]) / 2, u - 2, true);
-    EXPECT_EQ(relation(model, p), PartRelation::overlapping) << "blocked leaf " << blocked;
+    EXPECT_EQ(test::relation_at_pose(model, p), PartRelation::overlapping) << "blocked leaf " << blocked;
   }));
   EXPECT_EQ(blocked, c.proofs.size());
   EXPECT_GT(leaves, blocked);
-  EXPECT_EQ(relation(model, c.a), PartRelation::apart);
-  EXPECT_EQ(relation(model, c.b), PartRelation::apart);
+  EXPECT_EQ(test::relation_at_pose(model, c.a), PartRelation::apart);
+  EXPECT_EQ(test::relation_at_pose(model, c.b), PartRelation::apart);
   // the same certificate on a 14.15 mm hole: its walls are not blocked there
   const Model wide = test::peg_in_hole("5", "7.075");
   EXPECT_FALSE(check_sliced_apart(c, wide).valid);
@@ -141,7 +133,7 @@ TEST(CertifySlicedApart, GeneratedPegsAndHolesOnBothSidesOfTheDiagonal) {
     VerificationResult v = check_sliced_apart(read, narrow);
     EXPECT_TRUE(v.valid) << v.reason;
     // the closed form: at 45 degrees about the centre the peg's diagonal exceeds the hole
-    EXPECT_EQ(relation(narrow, peg_pose(0, 0, Rational(41421356, 100000000))), PartRelation::overlapping);
+    EXPECT_EQ(test::relation_at_pose(narrow, peg_pose(0, 0, Rational(41421356, 100000000))), PartRelation::overlapping);
     const Model wide = test::peg_in_hole(side, to_exact_string(wide_h));
     SlicedApartResult w = certify_sliced_apart(wide, "plate", peg_pose(0, 0, 0), peg_pose(0, 0, 1), {}, 250);
     EXPECT_FALSE(w.certificate) << "s " << s << " h " << wide_h << " certified apart";

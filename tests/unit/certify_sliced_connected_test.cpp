@@ -29,15 +29,6 @@ using Random = std::mt19937_64;
 
 using test_numbers::random_rational;
 
-// The exact relation of the parts (model.parts[0] fixed, [1] planar about its pivot) at a pose.
-PartRelation relation(const Model& model, const PlanarPose& pose) {
-  const Rational d = 1 + pose.tangent * pose.tangent;
-  const int sign = pose.half_turn ? -1 : 1;
-  const Rational c = sign * (1 - pose.tangent * pose.tangent) / d, s = sign * 2 * pose.tangent / d;
-  const Part& b = model.parts[1];
-  return part_overlap(model.parts[0], Placement{}, b, placement_about(b.motion.pivot, c, s, Point{pose.x, pose.y})).relation;
-}
-
 // Every move of the certificate is pure (or a chart change at one pose), and the exact oracle
 // finds the parts apart at 9 poses along it.
 void expect_moves_apart(const Model& model, const SlicedConnectedCertificate& c) {
@@ -53,7 +44,7 @@ void expect_moves_apart(const Model& model, const SlicedConnectedCertificate& c)
       p.x = a.x + u * (b.x - a.x);
       p.y = a.y + u * (b.y - a.y);
       p.tangent = a.tangent + u * (b.tangent - a.tangent);
-      ASSERT_EQ(relation(model, p), PartRelation::apart) << "move " << i << " at u = " << u.get_str();
+      ASSERT_EQ(test::relation_at_pose(model, p), PartRelation::apart) << "move " << i << " at u = " << u.get_str();
     }
   }
 }
@@ -162,9 +153,9 @@ TEST(CertifySlicedConnected, GeneratedPegsHolesAndPoses) {
         for (int attempt = 0; attempt < 200; ++attempt) {
           end = pose(random_rational(random, s - h, h - s, 16), random_rational(random, s - h, h - s, 16),
                      same_turn && &end == &ends[1] ? ends[0].tangent : random_rational(random, -1, 1, 24));
-          if (relation(model, end) == PartRelation::apart) break;
+          if (test::relation_at_pose(model, end) == PartRelation::apart) break;
         }
-        ASSERT_EQ(relation(model, end), PartRelation::apart);
+        ASSERT_EQ(test::relation_at_pose(model, end), PartRelation::apart);
       }
       SCOPED_TRACE("from x=" + ends[0].x.get_str() + " y=" + ends[0].y.get_str() + " t=" + ends[0].tangent.get_str() +
                    " to x=" + ends[1].x.get_str() + " y=" + ends[1].y.get_str() + " t=" + ends[1].tangent.get_str());
