@@ -3,7 +3,7 @@
 // vertex on vertex, features touching along a whole interval. Every pair builds without a
 // crash and exact point location agrees with the exact overlap oracle; special
 // configurations are checked exactly.
-#include "curves/contact_curves.hpp"
+#include "cspace_oracle_sampling.hpp"
 #include "test_paths.hpp"
 
 #include <hipair/cspace.hpp>
@@ -21,51 +21,11 @@ std::filesystem::path corpus() { return std::filesystem::path(HIPAIR_TEST_DATA) 
 
 // Point location against the oracle at random rational configurations of every pair.
 void agree_with_oracle(const Model& model, const CSpace& space, int samples, std::uint64_t seed) {
-  std::size_t first = *model.find_part(space.first_part()), second = *model.find_part(space.second_part());
-  cspace::PairAxes axes = cspace::pair_axes(model, first, second);
-  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
-  const std::size_t y_count = space.dimension() == 2 ? layout.y_charts.size() : 1;
+  const test::OracleSampler sampler(model, space);
   std::mt19937_64 random(seed);
   for (int i = 0; i < samples; ++i) {
-    std::size_t c = random() % space.charts().size();
-    const CSpaceChart& chart = space.charts()[c];
-    auto pick = [&](const Rational& lo, const Rational& hi) {
-      Rational u = random() % 3 == 0 ? Rational(static_cast<long>(random() % 33), 32)
-                                      : Rational(mpz_class(static_cast<unsigned long>(random() % 100003)), 100003);
-      u.canonicalize();
-      return Rational(lo + u * (hi - lo));
-    };
-    ChartPoint q{c, pick(chart.x_lo, chart.x_hi), space.dimension() == 2 ? pick(chart.y_lo, chart.y_hi) : Rational(0)};
-    Location location = space.locate(q);
-    cspace::ChartAxis y_axis = space.dimension() == 2 ? layout.y_charts[c % y_count] : cspace::ChartAxis{};
-    cspace::Overlap overlap =
-        cspace::classify_overlap(model, axes, layout.x_charts[c / y_count], y_axis, cspace::ChartPoint{q.x, q.y});
-    std::string where = model.name + " " + space.first_part() + ":" + space.second_part() + " chart " +
-                        std::to_string(c) + " at " + q.x.get_str() + ", " + q.y.get_str();
-    ASSERT_NE(location.kind, Location::Kind::outside) << where;
-    bool contact = location.kind == Location::Kind::edge || location.kind == Location::Kind::vertex;
-    bool real = false;
-    if (location.kind == Location::Kind::edge) real = space.edges()[location.edge].real;
-    if (location.kind == Location::Kind::vertex) {
-      if (space.dimension() == 1) real = location.cell == no_index;
-      real = real || space.vertices()[location.vertex].touching;
-      for (std::size_t e : space.vertices()[location.vertex].edges) real = real || space.edges()[e].real;
-    }
-    if (location.kind == Location::Kind::touching) {
-      EXPECT_EQ(space.cells()[location.cell].kind, CellKind::touching);
-      EXPECT_EQ(overlap, cspace::Overlap::touching) << where;
-    } else if (location.cell != no_index && space.cells()[location.cell].kind == CellKind::touching) {
-      EXPECT_EQ(overlap, cspace::Overlap::touching) << where;
-    } else if (location.kind == Location::Kind::free) {
-      EXPECT_EQ(overlap, cspace::Overlap::apart) << where;
-    } else if (location.kind == Location::Kind::blocked) {
-      EXPECT_EQ(overlap, cspace::Overlap::overlapping) << where;
-    } else if (contact && real) {
-      EXPECT_EQ(overlap, cspace::Overlap::touching) << where;
-    } else if (contact && location.cell != no_index && overlap != cspace::Overlap::touching) {
-      bool free = space.cells()[location.cell].kind == CellKind::free;
-      EXPECT_EQ(overlap, free ? cspace::Overlap::apart : cspace::Overlap::overlapping) << where;
-    }
+    const test::OracleSampler::Sample sample = sampler.next(random, {3, 32, 100003});
+    sampler.expect_agrees(sample, sampler.where(sample));
   }
 }
 

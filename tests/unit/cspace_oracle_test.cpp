@@ -3,6 +3,7 @@
 // classified from the blocked side of a contact edge with the oracle), free <=> apart, blocked <=>
 // overlapping, and a configuration on an edge or a vertex is touching (on a real edge) or of
 // the class of the surrounding cell (on a spurious edge, whose curve may still touch there).
+#include "cspace_oracle_sampling.hpp"
 #include "curves/contact_curves.hpp"
 #include "test_paths.hpp"
 
@@ -31,58 +32,15 @@ Agreement check_pair(const std::string& file, const std::string& first, const st
   CSpaceBuildOptions options;
   options.check_face_classification = true;
   CSpace space = CSpace::build(model, first, second, options);
-  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
-  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+  const test::OracleSampler sampler(model, space);
   std::mt19937_64 random(seed);
-  const std::size_t y_count = space.dimension() == 2 ? layout.y_charts.size() : 1;
-  EXPECT_EQ(space.charts().size(), layout.x_charts.size() * y_count);
+  EXPECT_EQ(space.charts().size(), sampler.oracle_charts());
   for (int i = 0; i < samples; ++i) {
-    std::size_t c = random() % space.charts().size();
-    const CSpaceChart& chart = space.charts()[c];
-    auto pick = [&](const Rational& lo, const Rational& hi) {
-      // a rational with a small denominator (hits edges and vertices now and then) or a
-      // random one
-      Rational u = random() % 4 == 0 ? Rational(static_cast<long>(random() % 65), 64)
-                                      : Rational(mpz_class(static_cast<unsigned long>(random() % 1000003)), 1000003);
-      u.canonicalize();
-      return Rational(lo + u * (hi - lo));
-    };
-    ChartPoint q{c, pick(chart.x_lo, chart.x_hi), space.dimension() == 2 ? pick(chart.y_lo, chart.y_hi) : Rational(0)};
-    Location location = space.locate(q);
-    cspace::ChartAxis y_axis = space.dimension() == 2 ? layout.y_charts[c % y_count] : cspace::ChartAxis{};
-    cspace::Overlap overlap =
-        cspace::classify_overlap(model, axes, layout.x_charts[c / y_count], y_axis, cspace::ChartPoint{q.x, q.y});
-    switch (location.kind) {
-      case Location::Kind::free:
-        EXPECT_EQ(overlap, cspace::Overlap::apart) << file << " chart " << c << " at " << q.x << ", " << q.y;
-        ++counts.free;
-        break;
-      case Location::Kind::blocked:
-        EXPECT_EQ(overlap, cspace::Overlap::overlapping) << file << " chart " << c << " at " << q.x << ", " << q.y;
-        ++counts.blocked;
-        break;
-      case Location::Kind::edge:
-      case Location::Kind::vertex: {
-        bool real = false;
-        if (location.kind == Location::Kind::edge) {
-          real = space.edges()[location.edge].real;
-        } else if (space.dimension() == 1) {
-          real = location.cell == no_index;
-        } else {
-          for (std::size_t e : space.vertices()[location.vertex].edges) real = real || space.edges()[e].real;
-        }
-        if (real) {
-          EXPECT_EQ(overlap, cspace::Overlap::touching) << file << " chart " << c << " at " << q.x << ", " << q.y;
-        } else if (location.cell != no_index && overlap != cspace::Overlap::touching) {
-          bool free = space.cells()[location.cell].kind == CellKind::free;
-          EXPECT_EQ(overlap, free ? cspace::Overlap::apart : cspace::Overlap::overlapping);
-        }
-        ++counts.on_contact;
-        break;
-      }
-      case Location::Kind::outside:
-        ADD_FAILURE() << "a configuration inside a chart box is outside the C-space";
-        break;
+    const test::OracleSampler::Sample sample = sampler.next(random, {4, 64, 1000003});
+    switch (sampler.expect_agrees(sample, file + " " + sampler.where(sample))) {
+      case test::SampleClass::free: ++counts.free; break;
+      case test::SampleClass::blocked: ++counts.blocked; break;
+      case test::SampleClass::on_contact: ++counts.on_contact; break;
     }
   }
   return counts;
@@ -123,39 +81,16 @@ NearCounts check_near_contact(const Model& model, const std::string& first, cons
                               const CSpaceBuildOptions& options, int edge_samples, std::uint64_t seed) {
   NearCounts counts;
   CSpace space = CSpace::build(model, first, second, options);
-  cspace::PairAxes axes = cspace::pair_axes(model, *model.find_part(first), *model.find_part(second));
-  cspace::ChartLayout layout = cspace::chart_layout(model, axes);
-  const std::size_t y_count = space.dimension() == 2 ? layout.y_charts.size() : 1;
+  const test::OracleSampler sampler(model, space);
   auto check = [&](std::size_t chart, const Rational& x, const Rational& y, const char* where) {
     const CSpaceChart& box = space.charts()[chart];
     if (x < box.x_lo || x > box.x_hi || (space.dimension() == 2 && (y < box.y_lo || y > box.y_hi))) return;
-    ChartPoint q{chart, x, space.dimension() == 2 ? y : Rational(0)};
-    Location location = space.locate(q);
-    cspace::ChartAxis y_axis = space.dimension() == 2 ? layout.y_charts[chart % y_count] : cspace::ChartAxis{};
-    cspace::Overlap overlap =
-        cspace::classify_overlap(model, axes, layout.x_charts[chart / y_count], y_axis, cspace::ChartPoint{q.x, q.y});
+    const test::OracleSampler::Sample sample = sampler.at(ChartPoint{chart, x, space.dimension() == 2 ? y : Rational(0)});
     ++counts.points;
-    std::string trace = std::string(where) + " chart " + std::to_string(chart) + " at " + q.x.get_str() + ", " + q.y.get_str();
-    switch (location.kind) {
-      case Location::Kind::free: EXPECT_EQ(overlap, cspace::Overlap::apart) << trace; ++counts.free; break;
-      case Location::Kind::blocked: EXPECT_EQ(overlap, cspace::Overlap::overlapping) << trace; ++counts.blocked; break;
-      case Location::Kind::touching: EXPECT_EQ(overlap, cspace::Overlap::touching) << trace; break;
-      case Location::Kind::edge:
-      case Location::Kind::vertex: {
-        bool real = false;
-        if (location.kind == Location::Kind::edge) real = space.edges()[location.edge].real;
-        else if (space.dimension() == 1) real = location.cell == no_index;
-        else for (std::size_t e : space.vertices()[location.vertex].edges) real = real || space.edges()[e].real;
-        if (real) {
-          EXPECT_EQ(overlap, cspace::Overlap::touching) << trace;
-        } else if (location.cell != no_index && overlap != cspace::Overlap::touching) {
-          bool free = space.cells()[location.cell].kind == CellKind::free;
-          EXPECT_EQ(overlap, free ? cspace::Overlap::apart : cspace::Overlap::overlapping) << trace;
-        }
-        ++counts.on_contact;
-        break;
-      }
-      case Location::Kind::outside: ADD_FAILURE() << "outside: " << trace; break;
+    switch (sampler.expect_agrees(sample, std::string(where) + " " + sampler.where(sample))) {
+      case test::SampleClass::free: ++counts.free; break;
+      case test::SampleClass::blocked: ++counts.blocked; break;
+      case test::SampleClass::on_contact: ++counts.on_contact; break;
     }
   };
   const Rational distances[] = {Rational(mpz_class(1), mpz_class(1) << 20), Rational(mpz_class(1), mpz_class(1) << 64),
