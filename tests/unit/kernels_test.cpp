@@ -26,6 +26,8 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace hipair::cspace {
 namespace {
@@ -331,6 +333,30 @@ Loop circle_through(const Point& c, const Point& start, bool hole = false, std::
   loop.edges.push_back(e);
   loop.is_hole = hole;
   return loop;
+}
+
+// A part turning about `pivot`, sliding along `direction`, or fixed, made of `loops`.
+Part rotating_part(std::string name, const Point& pivot, std::vector<Loop> loops) {
+  Part part;
+  part.name = std::move(name);
+  part.motion.kind = Motion::Kind::rotation;
+  part.motion.pivot = pivot;
+  part.loops = std::move(loops);
+  return part;
+}
+Part translating_part(std::string name, const Point& direction, std::vector<Loop> loops) {
+  Part part;
+  part.name = std::move(name);
+  part.motion.kind = Motion::Kind::translation;
+  part.motion.direction = direction;
+  part.loops = std::move(loops);
+  return part;
+}
+Part fixed_part(std::string name, std::vector<Loop> loops) {
+  Part part;
+  part.name = std::move(name);
+  part.loops = std::move(loops);
+  return part;
 }
 
 Point add(const Point& a, const Point& b) { return pt(a.x + b.x, a.y + b.y); }
@@ -672,16 +698,8 @@ TEST(Kernels, EccentricCamWithFlatFollower) {
   // Cam: disk of radius R = 10 centred e = 3 from the pivot (origin), rotating; follower
   // translating along +x with a flat face x = s facing -x. Contact: s = R + e cos(theta).
   Rational radius = 10, eccentricity = 3;
-  Part cam;
-  cam.name = "cam";
-  cam.motion.kind = Motion::Kind::rotation;
-  cam.motion.pivot = pt(0, 0);
-  cam.loops = {circle_through(pt(eccentricity, 0), pt(eccentricity + radius, 0), false, "cam")};
-  Part follower;
-  follower.name = "follower";
-  follower.motion.kind = Motion::Kind::translation;
-  follower.motion.direction = pt(1, 0);
-  follower.loops = {polygon({pt(0, -20), pt(10, -20), pt(10, 20), pt(0, 20)}, false, "face")};
+  Part cam = rotating_part("cam", pt(0, 0), {circle_through(pt(eccentricity, 0), pt(eccentricity + radius, 0), false, "cam")});
+  Part follower = translating_part("follower", pt(1, 0), {polygon({pt(0, -20), pt(10, -20), pt(10, 20), pt(0, 20)}, false, "face")});
   Model model;
   model.parts = {cam, follower};
   PairAxes axes = pair_axes(model, 0, 1);
@@ -717,11 +735,7 @@ TEST(Kernels, ScotchYokeZeroClearance) {
   // Crank pin (radius 2) at distance r = 15 from the pivot; yoke translating along x with a
   // vertical slot of width 4 (zero clearance) centred at x = s: s = r cos(theta).
   Rational crank = 15, pin = 2;
-  Part crank_part;
-  crank_part.name = "crank";
-  crank_part.motion.kind = Motion::Kind::rotation;
-  crank_part.motion.pivot = pt(0, 0);
-  crank_part.loops = {circle_through(pt(crank, 0), pt(crank + pin, 0), false, "pin")};
+  Part crank_part = rotating_part("crank", pt(0, 0), {circle_through(pt(crank, 0), pt(crank + pin, 0), false, "pin")});
   Part yoke;
   yoke.name = "yoke";
   yoke.motion.kind = Motion::Kind::translation;
@@ -828,15 +842,9 @@ TEST(Kernels, GenevaPinSlotWallBracketsAgreeWithOracle) {
 
 TEST(Kernels, ConcentricBearingIsIdenticallyZero) {
   // A shaft rotating about its own centre inside a fixed bearing of the same radius.
-  Part shaft;
-  shaft.name = "shaft";
-  shaft.motion.kind = Motion::Kind::rotation;
-  shaft.motion.pivot = pt(0, 0);
-  shaft.loops = {circle_through(pt(0, 0), pt(5, 0), false, "journal")};
-  Part frame;
-  frame.name = "frame";
-  frame.loops = {polygon({pt(-10, -10), pt(10, -10), pt(10, 10), pt(-10, 10)}),
-                 circle_through(pt(0, 0), pt(3, 4), true, "bore")};
+  Part shaft = rotating_part("shaft", pt(0, 0), {circle_through(pt(0, 0), pt(5, 0), false, "journal")});
+  Part frame = fixed_part("frame", {polygon({pt(-10, -10), pt(10, -10), pt(10, 10), pt(-10, 10)}),
+                 circle_through(pt(0, 0), pt(3, 4), true, "bore")});
   Model model;
   model.parts = {shaft, frame};
   PairAxes axes = pair_axes(model, 0, 1);
@@ -877,16 +885,8 @@ TEST(Kernels, ArcCentredOnPivotGivesCurveInOtherVariableOnly) {
 TEST(Kernels, ParallelTranslatingSegmentsGiveCoincidentVertexCurves) {
   // Two plates translating along x and y; the horizontal bottom edge of the upper plate and
   // the top edge of the lower plate are parallel: the two vertex curves coincide.
-  Part upper;
-  upper.name = "upper";
-  upper.motion.kind = Motion::Kind::translation;
-  upper.motion.direction = pt(1, 0);
-  upper.loops = {polygon({pt(0, 10), pt(4, 10), pt(4, 12), pt(0, 12)})};
-  Part lower;
-  lower.name = "lower";
-  lower.motion.kind = Motion::Kind::translation;
-  lower.motion.direction = pt(0, 1);
-  lower.loops = {polygon({pt(0, 0), pt(10, 0), pt(10, 2), pt(0, 2)})};
+  Part upper = translating_part("upper", pt(1, 0), {polygon({pt(0, 10), pt(4, 10), pt(4, 12), pt(0, 12)})});
+  Part lower = translating_part("lower", pt(0, 1), {polygon({pt(0, 0), pt(10, 0), pt(10, 2), pt(0, 2)})});
   Model model;
   model.parts = {upper, lower};
   PairAxes axes = pair_axes(model, 0, 1);
@@ -954,9 +954,7 @@ TEST(Kernels, ChartLayoutForLimitedRotation) {
   arm.motion.kind = Motion::Kind::rotation;
   arm.motion.angle_limits = RationalInterval{frac(-1, 2), 2};  // rad
   arm.loops = {polygon({pt(1, 0), pt(2, 0), pt(2, 1)})};
-  Part frame;
-  frame.name = "frame";
-  frame.loops = {polygon({pt(5, 5), pt(6, 5), pt(6, 6)})};
+  Part frame = fixed_part("frame", {polygon({pt(5, 5), pt(6, 5), pt(6, 6)})});
   model.parts = {arm, frame};
   PairAxes axes = pair_axes(model, 0, 1);
   ChartLayout layout = chart_layout(model, axes);
@@ -1061,9 +1059,7 @@ TEST(Kernels, ChartLayoutRotationRangeAcrossHalfTurn) {
   arm.motion.kind = Motion::Kind::rotation;
   arm.motion.angle_limits = RationalInterval{-3, frac(16, 5)};
   arm.loops = {polygon({pt(1, 0), pt(2, 0), pt(2, 1)})};
-  Part frame;
-  frame.name = "frame";
-  frame.loops = {polygon({pt(5, 5), pt(6, 5), pt(6, 6)})};
+  Part frame = fixed_part("frame", {polygon({pt(5, 5), pt(6, 5), pt(6, 6)})});
   model.parts = {arm, frame};
   ChartLayout layout = chart_layout(model, pair_axes(model, 0, 1));
   int around_zero = 0, around_pi = 0;
@@ -1097,14 +1093,8 @@ TEST(Kernels, ChartLayoutTranslationAgainstFixedPart) {
   // A slider along x without limits against a fixed block: the chart covers every offset
   // where they can touch and its ends are in free space.
   Model model;
-  Part slider;
-  slider.name = "slider";
-  slider.motion.kind = Motion::Kind::translation;
-  slider.motion.direction = pt(1, 0);
-  slider.loops = {polygon({pt(0, 0), pt(2, 0), pt(2, 1), pt(0, 1)})};
-  Part block;
-  block.name = "block";
-  block.loops = {polygon({pt(10, 0), pt(12, 0), pt(12, 3), pt(10, 3)})};
+  Part slider = translating_part("slider", pt(1, 0), {polygon({pt(0, 0), pt(2, 0), pt(2, 1), pt(0, 1)})});
+  Part block = fixed_part("block", {polygon({pt(10, 0), pt(12, 0), pt(12, 3), pt(10, 3)})});
   model.parts = {slider, block};
   PairAxes axes = pair_axes(model, 0, 1);
   ChartLayout layout = chart_layout(model, axes);
