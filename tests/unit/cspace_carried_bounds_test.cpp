@@ -29,10 +29,6 @@ namespace hipair {
 namespace {
 
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
-std::filesystem::path degenerate(const std::string& name) {
-  return std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name;
-}
-
 using Switch = test::FlagSwitch<&cspace::carried_bounds>;
 using test::describe_crossing;
 using test::axis_path;
@@ -152,26 +148,9 @@ void generated_motions(const CSpace& space, int count, std::uint64_t seed, Tally
 
 TEST(CSpaceCarriedBounds, FirstCrossingsEqualTheConvertedBoundsOnGeneratedMotions) {
   Tally tally;
-  {
-    Model model = read_model_file(example("geneva-drive.json"));
-    CSpace space = CSpace::build(model, "driver", "wheel");
-    generated_motions(space, 1500, 7, tally);
-    ASSERT_FALSE(HasFatalFailure());
-  }
-  {
-    Model model = read_model_file(example("escapement.json"));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      generated_motions(*pair.space, 500, 11, tally);
-      ASSERT_FALSE(HasFatalFailure());
-    }
-  }
-  {
-    Model model = read_model_file(example("cam-follower.json"));
-    CSpace space = CSpace::build(model, "cam", "follower");
-    generated_motions(space, 400, 13, tally);
-    ASSERT_FALSE(HasFatalFailure());
-  }
+  test::on_example_spaces({{1500, 7}, {500, 11}, {400, 13}},
+                          [&](const CSpace& space, const test::ExampleSamples& run) { generated_motions(space, run.samples, run.seed, tally); });
+  ASSERT_FALSE(HasFatalFailure());
   std::printf("motions %d near %d crossing %d none %d in contact %d grazing %d\n", tally.motions, tally.near_starts,
               tally.status[1], tally.status[0], tally.status[2], tally.grazing);
   RecordProperty("motions", tally.motions);
@@ -189,14 +168,9 @@ TEST(CSpaceCarriedBounds, FirstCrossingsEqualTheConvertedBoundsOnGeneratedMotion
 
 TEST(CSpaceCarriedBounds, FirstCrossingsEqualTheConvertedBoundsOnDegenerateSpaces) {
   Tally tally;
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(degenerate(name));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      generated_motions(*pair.space, 150, 17, tally);
-      ASSERT_FALSE(HasFatalFailure()) << name;
-    }
+  for (const test::NamedSpace& named : test::degenerate_spaces()) {
+    generated_motions(*named.space, 150, 17, tally);
+    ASSERT_FALSE(HasFatalFailure()) << named.file;
   }
   RecordProperty("motions", tally.motions);
   RecordProperty("grazing", tally.grazing);

@@ -27,12 +27,7 @@ namespace hipair::test {
 inline std::vector<std::unique_ptr<CSpace>> crossing_test_spaces(std::size_t& examples) {
   std::vector<std::unique_ptr<CSpace>> spaces = example_spaces();
   examples = spaces.size();
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name);
-    for (const PairBuild& pair : CSpace::build_pairs(model))
-      if (pair.status == PairBuild::Status::built) spaces.push_back(std::make_unique<CSpace>(*pair.space));
-  }
+  for (test::NamedSpace& named : test::degenerate_spaces()) spaces.push_back(std::move(named.space));
   return spaces;
 }
 

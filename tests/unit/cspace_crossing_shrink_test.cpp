@@ -37,10 +37,6 @@ namespace hipair {
 namespace {
 
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
-std::filesystem::path degenerate(const std::string& name) {
-  return std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name;
-}
-
 // What `compare` switches on and off: the whole Newton shrink (the oracle is the plain halving),
 // or only its skipping of the siblings the curve's certified bound keeps free (cspace::skip_left;
 // the oracle is the shrink evaluating them), with the counter of what the switch does.
@@ -264,37 +260,15 @@ void report(const Tally& tally) {
 }
 
 void generated_on_examples(Tally& tally) {
-  {
-    Model model = read_model_file(example("geneva-drive.json"));
-    CSpace space = CSpace::build(model, "driver", "wheel");
-    generated_motions(space, 900, 41, tally);
-    ASSERT_FALSE(::testing::Test::HasFatalFailure());
-  }
-  {
-    Model model = read_model_file(example("escapement.json"));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      generated_motions(*pair.space, 400, 43, tally);
-      ASSERT_FALSE(::testing::Test::HasFatalFailure());
-    }
-  }
-  {
-    Model model = read_model_file(example("cam-follower.json"));
-    CSpace space = CSpace::build(model, "cam", "follower");
-    generated_motions(space, 300, 47, tally);
-    ASSERT_FALSE(::testing::Test::HasFatalFailure());
-  }
+  test::on_example_spaces({{900, 41}, {400, 43}, {300, 47}},
+                          [&](const CSpace& space, const test::ExampleSamples& run) { generated_motions(space, run.samples, run.seed, tally); });
+  ASSERT_FALSE(::testing::Test::HasFatalFailure());
 }
 
 void generated_on_degenerate_spaces(Tally& tally) {
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(degenerate(name));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      generated_motions(*pair.space, 120, 53, tally);
-      ASSERT_FALSE(::testing::Test::HasFatalFailure()) << name;
-    }
+  for (const test::NamedSpace& named : test::degenerate_spaces()) {
+    generated_motions(*named.space, 120, 53, tally);
+    ASSERT_FALSE(::testing::Test::HasFatalFailure()) << named.file;
   }
 }
 

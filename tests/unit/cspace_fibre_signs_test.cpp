@@ -95,14 +95,10 @@ void for_each_ordinate_space(std::uint64_t seed, const Visit& visit) {
     visit(*space, seed++, "example");
     if (::testing::Test::HasFatalFailure()) return;
   }
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name);
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built || pair.space->dimension() != 2) continue;
-      visit(*pair.space, seed++, name);
-      if (::testing::Test::HasFatalFailure()) return;
-    }
+  for (const test::NamedSpace& named : test::degenerate_spaces()) {
+    if (named.space->dimension() != 2) continue;
+    visit(*named.space, seed++, named.file.c_str());
+    if (::testing::Test::HasFatalFailure()) return;
   }
 }
 

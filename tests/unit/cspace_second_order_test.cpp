@@ -31,10 +31,6 @@ namespace hipair {
 namespace {
 
 std::filesystem::path example(const std::string& name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; }
-std::filesystem::path degenerate(const std::string& name) {
-  return std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name;
-}
-
 using Switch = test::FlagSwitch<&cspace::second_order>;
 using test::describe_crossing;
 using test::axis_path;
@@ -243,26 +239,9 @@ void report(Tally tally) {
 
 TEST(CSpaceSecondOrder, SlidingStartsGiveTheAnswersOfTheFirstOrderSubdivision) {
   Tally tally;
-  {
-    Model model = read_model_file(example("geneva-drive.json"));
-    CSpace space = CSpace::build(model, "driver", "wheel");
-    sliding_starts(space, 1000, 19, tally);
-    ASSERT_FALSE(HasFatalFailure());
-  }
-  {
-    Model model = read_model_file(example("escapement.json"));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      sliding_starts(*pair.space, 500, 23, tally);
-      ASSERT_FALSE(HasFatalFailure());
-    }
-  }
-  {
-    Model model = read_model_file(example("cam-follower.json"));
-    CSpace space = CSpace::build(model, "cam", "follower");
-    sliding_starts(space, 300, 29, tally);
-    ASSERT_FALSE(HasFatalFailure());
-  }
+  test::on_example_spaces({{1000, 19}, {500, 23}, {300, 29}},
+                          [&](const CSpace& space, const test::ExampleSamples& run) { sliding_starts(space, run.samples, run.seed, tally); });
+  ASSERT_FALSE(HasFatalFailure());
   report(tally);
   EXPECT_GE(tally.motions, 2000);
   EXPECT_GE(tally.helped, 320);   // the form is exercised
@@ -278,14 +257,9 @@ TEST(CSpaceSecondOrder, SlidingStartsGiveTheAnswersOfTheFirstOrderSubdivision) {
 TEST(CSpaceSecondOrder, SlidingStartsOnDegenerateSpaces) {
   test::FlagSwitch<&cspace::nested_taylor> summed(false);
   Tally tally;
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(degenerate(name));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      sliding_starts(*pair.space, 200, 31, tally, false);
-      ASSERT_FALSE(HasFatalFailure()) << name;
-    }
+  for (const test::NamedSpace& named : test::degenerate_spaces()) {
+    sliding_starts(*named.space, 200, 31, tally, false);
+    ASSERT_FALSE(HasFatalFailure()) << named.file;
   }
   report(tally);
   EXPECT_GE(tally.motions, 650);
@@ -298,14 +272,8 @@ TEST(CSpaceSecondOrder, SlidingStartsOnDegenerateSpaces) {
 TEST(CSpaceNestedTaylor, DegenerateStartsAreTheAnswersWithoutIt) {
   nested_comparison = true;
   Tally tally;
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(degenerate(name));
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      sliding_starts(*pair.space, 200, 31, tally, false);
-      if (HasFatalFailure()) break;
-    }
+  for (const test::NamedSpace& named : test::degenerate_spaces()) {
+    sliding_starts(*named.space, 200, 31, tally, false);
     if (HasFatalFailure()) break;
   }
   nested_comparison = false;

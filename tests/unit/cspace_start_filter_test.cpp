@@ -108,14 +108,9 @@ TEST(CSpaceStartFilter, AnswersEqualTheAnswersWithoutTheFilter) {
       ASSERT_FALSE(HasFatalFailure());
     }
   }
-  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
-                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
-    Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name);
-    for (const PairBuild& pair : CSpace::build_pairs(model)) {
-      if (pair.status != PairBuild::Status::built) continue;
-      generated(*pair.space, 150, seed++, name, tally);
-      ASSERT_FALSE(HasFatalFailure());
-    }
+  for (const test::NamedSpace& named : test::degenerate_spaces()) {
+    generated(*named.space, 150, seed++, named.file, tally);
+    ASSERT_FALSE(HasFatalFailure());
   }
   std::printf("start filter: %zu motions compared, %zu free starts (%zu located by the filter), %zu in contact\n",
               tally.compared, tally.free_starts, tally.filtered, tally.contact_starts);

@@ -9,7 +9,10 @@
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <optional>
@@ -52,6 +55,43 @@ inline std::vector<std::unique_ptr<CSpace>> example_spaces() {
     if (pair.status == PairBuild::Status::built) owned.push_back(std::make_unique<CSpace>(*pair.space));
   owned.push_back(std::make_unique<CSpace>(CSpace::build(read_model_file(example("cam-follower.json")), "cam", "follower")));
   return owned;
+}
+
+// The example spaces of example_spaces() with a sample count and a seed per model: fn(space,
+// run) on Geneva driver:wheel with runs[0], on each built pair of the escapement with runs[1] and
+// on cam:follower with runs[2]; stops at a fatal failure (the caller asserts on it).
+struct ExampleSamples {
+  int samples;
+  std::uint64_t seed;
+};
+template <class Fn>
+void on_example_spaces(const ExampleSamples (&runs)[3], Fn&& fn) {
+  auto example = [](const char* name) { return std::filesystem::path(HIPAIR_EXAMPLES) / name; };
+  fn(CSpace::build(read_model_file(example("geneva-drive.json")), "driver", "wheel"), runs[0]);
+  if (::testing::Test::HasFatalFailure()) return;
+  for (const PairBuild& pair : CSpace::build_pairs(read_model_file(example("escapement.json")))) {
+    if (pair.status != PairBuild::Status::built) continue;
+    fn(*pair.space, runs[1]);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  fn(CSpace::build(read_model_file(example("cam-follower.json")), "cam", "follower"), runs[2]);
+}
+
+// The degenerate corpus the motion tests also run on (tests/data/degenerate): every built pair
+// of its models, each with its model's file name, in the corpus's order.
+struct NamedSpace {
+  std::string file;
+  std::unique_ptr<CSpace> space;
+};
+inline std::vector<NamedSpace> degenerate_spaces() {
+  std::vector<NamedSpace> spaces;
+  for (const char* name : {"zero-clearance.json", "tangent-circles.json", "concentric-arcs.json", "coincident-edges.json",
+                           "collinear-edges.json", "interval-contact.json", "vertex-on-vertex.json"}) {
+    const Model model = read_model_file(std::filesystem::path(HIPAIR_TEST_DATA) / "degenerate" / name);
+    for (const PairBuild& pair : CSpace::build_pairs(model))
+      if (pair.status == PairBuild::Status::built) spaces.push_back({name, std::make_unique<CSpace>(*pair.space)});
+  }
+  return spaces;
 }
 
 // A random rational configuration inside a random built chart or tile (y = 0 in a 1-D space).
