@@ -22,12 +22,7 @@ namespace {
 
 using test_numbers::random_integer;
 
-Polynomial random_polynomial(std::mt19937_64& random, int degree, int bits) {
-  Polynomial p;
-  for (int i = 0; i <= degree; ++i) p.push_back(random_integer(random, 1 + static_cast<int>(random() % bits), true));
-  trim(p);
-  return p;
-}
+using test_algebraic::random_polynomial;
 
 using test_algebraic::times;
 using test_algebraic::random_irrational;

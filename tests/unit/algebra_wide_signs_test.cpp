@@ -15,6 +15,7 @@
 //     oracle.
 #include "algebra/multiprecision_sign.hpp"
 #include "cspace_test_support.hpp"
+#include "random_algebraic.hpp"
 #include "random_rationals.hpp"
 
 #include <hipair/cspace.hpp>
@@ -34,32 +35,9 @@ namespace {
 
 using test_numbers::random_integer;
 
-Polynomial random_polynomial(std::mt19937_64& random, int degree, int bits) {
-  Polynomial p;
-  for (int i = 0; i <= degree; ++i) p.push_back(random_integer(random, 1 + static_cast<int>(random() % bits), true));
-  trim(p);
-  return p;
-}
+using test_algebraic::random_polynomial;
 
-Polynomial times(const Polynomial& a, const Polynomial& b) {
-  Polynomial c(a.size() + b.size() - 1, mpz_class(0));
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  trim(c);
-  return c;
-}
-
-// An irrational root of a random quadratic or cubic with coefficients of `bits` bits, or nothing.
-std::optional<Real> random_irrational(std::mt19937_64& random, int bits) {
-  const int degree = 2 + static_cast<int>(random() % 2);
-  Polynomial q;
-  for (int i = 0; i <= degree; ++i) q.push_back(random_integer(random, bits, true));
-  auto roots = real_roots(q);
-  if (roots.empty()) return std::nullopt;
-  Real u = roots[random() % roots.size()];
-  if (u.exact) return std::nullopt;
-  return u;
-}
+using test_algebraic::times;
 
 // D x - N with N / D within 2^-t |u| of u: its value at u cancels to about 2^-t of its terms.
 Polynomial cancelling_linear_form(const Real& u, int t) {
@@ -77,7 +55,7 @@ TEST(AlgebraWideSigns, TheFilterConvergesLikeNewtonOnDeepCancellation) {
   long most = 0;
   for (int round = 0; round < 24; ++round) {
     const int bits = 200 + static_cast<int>(random() % 600);
-    auto drawn = random_irrational(random, bits);
+    auto drawn = test_algebraic::random_irrational(random, bits, 0);
     if (!drawn) continue;
     const Real& u = *drawn;
     const int t = 1500 + static_cast<int>(random() % 2500);
@@ -109,7 +87,7 @@ TEST(AlgebraWideSigns, CoprimeWideValuesNeedNoIntegerGcdAndZerosStillFindIt) {
   int coprime = 0, zeros = 0, shared = 0;
   for (int round = 0; round < 40; ++round) {
     const int bits = 200 + static_cast<int>(random() % 1200);
-    auto drawn = random_irrational(random, bits);
+    auto drawn = test_algebraic::random_irrational(random, bits, 0);
     if (!drawn) continue;
     const Real& u = *drawn;
     const std::string at = "round " + std::to_string(round) + " (" + std::to_string(bits) + " bits)";

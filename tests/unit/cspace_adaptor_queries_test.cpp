@@ -7,6 +7,7 @@
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 
+#include "cam_and_block_model.hpp"
 #include "curves/contact_curves.hpp"
 #include "curves/pose.hpp"
 #include "test_paths.hpp"
@@ -43,20 +44,7 @@ CertifiedRange x_extent(const CSpace& space, const CSpaceEdge& edge) {
   return {space.vertices()[edge.source].x.approximate(), space.vertices()[edge.target].x.approximate()};
 }
 
-// An eccentric circular cam (centre (8, 0), radius 10) turning about the origin under a fixed
-// block whose flat bottom face is the line y = 14: contact where 8 sin(theta) + 10 = 14.
-const char* cam_and_block = R"({
-  "hipair": 1, "name": "cam-and-block", "units": { "length": "mm", "angle": "rad" },
-  "parts": [
-    { "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } },
-      "features": [ { "circle": { "center": [8, 0], "radius": 10 } } ] },
-    { "name": "block", "motion": "fixed",
-      "loops": [ { "start": [-30, 14], "edges": [
-        { "line_to": [30, 14], "label": "face" }, { "line_to": [30, 20] }, { "line_to": [-30, 20] },
-        { "line_to": [-30, 14] } ] } ] }
-  ],
-  "pairs": [ { "parts": ["cam", "block"] } ]
-})";
+using test::cam_and_block;
 
 // A rotating square plate under a narrow plate translating vertically: vertex–segment and
 // segment–vertex contacts whose contact configurations are rational at rational t.

@@ -7,6 +7,7 @@
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
 
+#include "cam_and_block_model.hpp"
 #include "oracle/overlap.hpp"
 #include "test_paths.hpp"
 
@@ -129,20 +130,7 @@ TEST(CSpaceDoor, FacesAreClosedCyclesWithTheEdgesCellsOnTheirSides) {
   EXPECT_THROW(space.faces(space.charts().size()), GeometryError);
 }
 
-// An eccentric circular cam turning under a fixed block (a 1-D space: contact where
-// 8 sin(theta) + 10 = 14, blocked between).
-const char* cam_and_block = R"({
-  "hipair": 1, "name": "cam-and-block", "units": { "length": "mm", "angle": "rad" },
-  "parts": [
-    { "name": "cam", "motion": { "rotation": { "pivot": [0, 0] } },
-      "features": [ { "circle": { "center": [8, 0], "radius": 10 } } ] },
-    { "name": "block", "motion": "fixed",
-      "loops": [ { "start": [-30, 14], "edges": [
-        { "line_to": [30, 14], "label": "face" }, { "line_to": [30, 20] }, { "line_to": [-30, 20] },
-        { "line_to": [-30, 14] } ] } ] }
-  ],
-  "pairs": [ { "parts": ["cam", "block"] } ]
-})";
+using test::cam_and_block;
 
 TEST(CSpaceDoor, OneDimensionalFacesAreTheIntervalsBetweenContactPointsByExactLocation) {
   std::vector<CSpace> spaces = CSpace::build_all(read_model_file(example("cam-follower.json")));

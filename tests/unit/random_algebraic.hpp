@@ -18,6 +18,15 @@ inline Polynomial times(const Polynomial& a, const Polynomial& b) {
   return c;
 }
 
+// A random integer polynomial of the given degree, each coefficient of 1 ... bits bits and a
+// random sign (trimmed: its degree may come out lower).
+inline Polynomial random_polynomial(std::mt19937_64& random, int degree, int bits) {
+  Polynomial p;
+  for (int i = 0; i <= degree; ++i) p.push_back(test_numbers::random_integer(random, 1 + static_cast<int>(random() % bits), true));
+  trim(p);
+  return p;
+}
+
 // An irrational real root of a random quadratic or cubic with coefficients of `bits` bits,
 // scaled by 2^shift (x -> x / 2^shift), or nothing when the draw has no irrational root.
 inline std::optional<Real> random_irrational(std::mt19937_64& random, int bits, int shift) {
