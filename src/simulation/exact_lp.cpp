@@ -1,5 +1,9 @@
-// HIPAIR — exact linear feasibility (exact_lp.hpp).
+// HIPAIR — exact linear feasibility (exact_lp.hpp); its decision by elimination
+// (exact_lp_elimination.hpp).
 #include "simulation/exact_lp.hpp"
+
+#include "simulation/exact_lp_elimination.hpp"
+#include "simulation/fraction_free.hpp"
 
 #include <hipair/error.hpp>
 
@@ -8,10 +12,155 @@
 #include <CGAL/QP_models.h>
 
 #include <string>
+#include <utility>
 
 namespace hipair::simulation {
 
+namespace {
+
+// an integer row: the unknowns' coefficients, then the constant c of  a . z + c (= or >=) 0
+using IntegerRow = std::vector<mpz_class>;
+
+enum class Constant { no, holds, fails };
+
+// the row divided by its entries' content (a positive factor: the same condition); when no
+// unknown is left, whether the condition holds
+Constant reduce(IntegerRow& row, bool equality, mpz_class& g) {
+  g = 0;
+  for (const mpz_class& e : row)
+    if (sgn(e) != 0) {
+      mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), e.get_mpz_t());
+      if (mpz_cmp_ui(g.get_mpz_t(), 1) == 0) break;
+    }
+  if (sgn(g) != 0 && mpz_cmp_ui(g.get_mpz_t(), 1) != 0)
+    for (mpz_class& e : row)
+      if (sgn(e) != 0) mpz_divexact(e.get_mpz_t(), e.get_mpz_t(), g.get_mpz_t());
+  const std::size_t n = row.size() - 1;
+  for (std::size_t j = 0; j < n; ++j)
+    if (sgn(row[j]) != 0) return Constant::no;
+  const int s = sgn(row[n]);
+  return (equality ? s == 0 : s >= 0) ? Constant::holds : Constant::fails;
+}
+
+// row := f row - g pivot
+void combine(IntegerRow& row, const mpz_class& f, const IntegerRow& pivot, const mpz_class& g) {
+  for (std::size_t j = 0; j < row.size(); ++j) {
+    mpz_class& e = row[j];
+    if (sgn(e) != 0) mpz_mul(e.get_mpz_t(), e.get_mpz_t(), f.get_mpz_t());
+    if (sgn(pivot[j]) != 0) mpz_submul(e.get_mpz_t(), g.get_mpz_t(), pivot[j].get_mpz_t());
+  }
+}
+
+// every row of `rows` with a nonzero entry j: pivot[j] row - row[j] pivot (pivot[j] > 0), so
+// unknown j leaves it; rows that end without unknowns dropped when they hold; false when one fails
+bool eliminate_with(std::vector<IntegerRow>& rows, bool equality, const IntegerRow& pivot, std::size_t j, mpz_class& f,
+                    mpz_class& g) {
+  for (std::size_t r = 0; r < rows.size();) {
+    if (sgn(rows[r][j]) == 0) {
+      ++r;
+      continue;
+    }
+    f = rows[r][j];
+    combine(rows[r], pivot[j], pivot, f);
+    const Constant c = reduce(rows[r], equality, g);
+    if (c == Constant::fails) return false;
+    if (c == Constant::holds) {
+      if (r + 1 != rows.size()) rows[r] = std::move(rows.back());
+      rows.pop_back();
+    } else {
+      ++r;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<bool> feasible_by_elimination(const ExactLinearSystem& system, std::size_t max_rows) {
+  const std::size_t n = system.variables;
+  std::vector<IntegerRow> equalities, inequalities;
+  mpz_class f, g;
+  std::vector<Rational> constant(1);
+  for (std::size_t i = 0; i < system.rows.size(); ++i) {
+    constant[0] = -system.rhs[i];
+    IntegerRow row;
+    fraction_free_detail::integer_row(system.rows[i], &constant, row);
+    const Constant c = reduce(row, system.equality[i], g);
+    if (c == Constant::fails) return false;
+    if (c == Constant::no) (system.equality[i] ? equalities : inequalities).push_back(std::move(row));
+  }
+  for (std::size_t j = 0; j < n; ++j)
+    if (system.nonnegative[j]) {
+      inequalities.emplace_back(n + 1, mpz_class(0));
+      inequalities.back()[j] = 1;
+    }
+  // each equality solved for its first unknown and substituted into every other row
+  while (!equalities.empty()) {
+    IntegerRow pivot = std::move(equalities.back());
+    equalities.pop_back();
+    std::size_t j = 0;
+    while (sgn(pivot[j]) == 0) ++j;   // (reduce kept only rows with an unknown)
+    if (sgn(pivot[j]) < 0)
+      for (mpz_class& e : pivot) mpz_neg(e.get_mpz_t(), e.get_mpz_t());
+    if (!eliminate_with(equalities, true, pivot, j, f, g) || !eliminate_with(inequalities, false, pivot, j, f, g))
+      return false;
+  }
+  // Fourier–Motzkin: the unknown whose elimination makes the fewest rows first (the first such)
+  std::vector<IntegerRow> next;
+  while (!inequalities.empty()) {
+    std::size_t best = n, best_made = 0, best_positive = 0, best_negative = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      std::size_t positive = 0, negative = 0;
+      for (const IntegerRow& row : inequalities) {
+        const int s = sgn(row[j]);
+        positive += s > 0;
+        negative += s < 0;
+      }
+      if (positive + negative == 0) continue;
+      const std::size_t made = positive * negative;
+      if (best == n || made < best_made) {
+        best = j;
+        best_made = made;
+        best_positive = positive;
+        best_negative = negative;
+      }
+    }
+    const std::size_t j = best;   // (every row left has an unknown)
+    next.clear();
+    const std::size_t kept = inequalities.size() - best_positive - best_negative;
+    if (kept + best_made > max_rows) return std::nullopt;
+    // an unknown bounded on one side only satisfies its rows whatever the others are: they go
+    for (const IntegerRow& p : inequalities) {
+      if (sgn(p[j]) <= 0) continue;
+      for (const IntegerRow& q : inequalities) {
+        if (sgn(q[j]) >= 0) continue;
+        // (-q_j) p + p_j q: both factors positive, unknown j gone
+        IntegerRow row = p;
+        f = -q[j];
+        g = -p[j];
+        combine(row, f, q, g);
+        const Constant c = reduce(row, false, g);
+        if (c == Constant::fails) return false;
+        if (c == Constant::no) next.push_back(std::move(row));
+      }
+    }
+    for (IntegerRow& row : inequalities)
+      if (sgn(row[j]) == 0) next.push_back(std::move(row));
+    std::swap(inequalities, next);
+  }
+  return true;
+}
+
 std::optional<std::vector<Rational>> exact_feasible_point(const ExactLinearSystem& system) {
+  if (system.rows.empty()) return std::vector<Rational>(system.variables, Rational(0));
+  // no solution decided by elimination; a solution's point from the linear program, as before
+  // (too many rows for the elimination: the linear program decides alone)
+  const std::optional<bool> feasible =
+      exact_lp_elimination() ? feasible_by_elimination(system) : std::optional<bool>();
+  if (feasible && !*feasible) {
+    ++exact_lp_eliminated();
+    return std::nullopt;
+  }
   // every variable free unless marked; the default relation is overwritten per row
   CGAL::Quadratic_program<Rational> lp(CGAL::EQUAL, false, 0, false, 0);
   for (std::size_t j = 0; j < system.variables; ++j) {
@@ -24,9 +173,12 @@ std::optional<std::vector<Rational>> exact_feasible_point(const ExactLinearSyste
     lp.set_b(static_cast<int>(i), system.rhs[i]);
     lp.set_r(static_cast<int>(i), system.equality[i] ? CGAL::EQUAL : CGAL::LARGER);
   }
-  if (system.rows.empty()) return std::vector<Rational>(system.variables, Rational(0));
   const CGAL::Quadratic_program_solution<Rational> s = CGAL::solve_linear_program(lp, Rational());
-  if (s.is_infeasible()) return std::nullopt;
+  if (s.is_infeasible()) {
+    if (feasible)
+      throw NumericError("internal: the exact linear program has no solution where exact elimination found one");
+    return std::nullopt;
+  }
   std::vector<Rational> z;
   z.reserve(system.variables);
   for (auto it = s.variable_values_begin(); it != s.variable_values_end(); ++it)
