@@ -11,6 +11,7 @@
 #include <CGAL/QP_functions.h>
 #include <CGAL/QP_models.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -72,6 +73,39 @@ bool eliminate_with(std::vector<IntegerRow>& rows, bool equality, const IntegerR
     }
   }
   return true;
+}
+
+// of rows whose unknowns' parts are positive multiples of one another (a . z + c >= 0 for the same
+// a up to the factor), only the tightest (the least c / factor) kept: the same solution set
+void drop_parallel(std::vector<IntegerRow>& rows) {
+  struct Parallel {
+    IntegerRow part;   // the unknowns' part divided by its content
+    Rational c;        // the constant divided by the same
+    std::size_t row;
+  };
+  std::vector<Parallel> parts(rows.size());
+  mpz_class g;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const IntegerRow& row = rows[r];
+    const std::size_t n = row.size() - 1;
+    g = 0;
+    for (std::size_t j = 0; j < n; ++j)
+      if (sgn(row[j]) != 0) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), row[j].get_mpz_t());
+    parts[r].part.assign(row.begin(), row.end() - 1);
+    for (mpz_class& e : parts[r].part)
+      if (sgn(e) != 0) mpz_divexact(e.get_mpz_t(), e.get_mpz_t(), g.get_mpz_t());
+    parts[r].c = Rational(row[n], g);
+    parts[r].c.canonicalize();
+    parts[r].row = r;
+  }
+  std::sort(parts.begin(), parts.end(), [](const Parallel& a, const Parallel& b) {
+    if (a.part != b.part) return a.part < b.part;
+    return a.c < b.c || (a.c == b.c && a.row < b.row);
+  });
+  std::vector<IntegerRow> kept;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    if (k == 0 || parts[k].part != parts[k - 1].part) kept.push_back(std::move(rows[parts[k].row]));
+  std::swap(rows, kept);
 }
 
 }  // namespace
@@ -147,6 +181,7 @@ std::optional<bool> feasible_by_elimination(const ExactLinearSystem& system, std
     for (IntegerRow& row : inequalities)
       if (sgn(row[j]) == 0) next.push_back(std::move(row));
     std::swap(inequalities, next);
+    if (inequalities.size() > 8) drop_parallel(inequalities);
   }
   return true;
 }
