@@ -52,27 +52,11 @@ void combine(IntegerRow& row, const mpz_class& f, const IntegerRow& pivot, const
   }
 }
 
-// every row of `rows` with a nonzero entry j: pivot[j] row - row[j] pivot (pivot[j] > 0), so
-// unknown j leaves it; rows that end without unknowns dropped when they hold; false when one fails
-bool eliminate_with(std::vector<IntegerRow>& rows, bool equality, const IntegerRow& pivot, std::size_t j, mpz_class& f,
-                    mpz_class& g) {
-  for (std::size_t r = 0; r < rows.size();) {
-    if (sgn(rows[r][j]) == 0) {
-      ++r;
-      continue;
-    }
-    f = rows[r][j];
-    combine(rows[r], pivot[j], pivot, f);
-    const Constant c = reduce(rows[r], equality, g);
-    if (c == Constant::fails) return false;
-    if (c == Constant::holds) {
-      if (r + 1 != rows.size()) rows[r] = std::move(rows.back());
-      rows.pop_back();
-    } else {
-      ++r;
-    }
-  }
-  return true;
+// whether the row has an unknown left (a nonzero entry before the constant)
+bool has_unknown(const IntegerRow& row) {
+  for (std::size_t j = 0; j + 1 < row.size(); ++j)
+    if (sgn(row[j]) != 0) return true;
+  return false;
 }
 
 // of rows whose unknowns' parts are positive multiples of one another (a . z + c >= 0 for the same
@@ -119,25 +103,56 @@ std::optional<bool> feasible_by_elimination(const ExactLinearSystem& system, std
     constant[0] = -system.rhs[i];
     IntegerRow row;
     fraction_free_detail::integer_row(system.rows[i], &constant, row);
-    const Constant c = reduce(row, system.equality[i], g);
-    if (c == Constant::fails) return false;
-    if (c == Constant::no) (system.equality[i] ? equalities : inequalities).push_back(std::move(row));
+    // (not divided by its content: the fraction-free steps keep the entries minors)
+    if (!has_unknown(row)) {
+      const int c = sgn(row.back());
+      if (system.equality[i] ? c != 0 : c < 0) return false;
+      continue;
+    }
+    (system.equality[i] ? equalities : inequalities).push_back(std::move(row));
   }
   for (std::size_t j = 0; j < n; ++j)
     if (system.nonnegative[j]) {
       inequalities.emplace_back(n + 1, mpz_class(0));
       inequalities.back()[j] = 1;
     }
-  // each equality solved for its first unknown and substituted into every other row
+  // each equality solved for its first unknown and substituted into every other row, by
+  // fraction-free (Bareiss) steps (fraction_free.hpp): row := (p row - row_j pivot) / p_prev, an
+  // exact division; after the step with pivot p every row is p times itself plus a combination
+  // of equalities (the products of p_k / p_(k-1) telescope), so on the equalities' solutions an
+  // inequality row keeps its sense when p > 0 and is reversed when p < 0
+  mpz_class previous = 1, t;
+  int sense = 1;
   while (!equalities.empty()) {
     IntegerRow pivot = std::move(equalities.back());
     equalities.pop_back();
+    if (!has_unknown(pivot)) {   // 0 = c
+      if (sgn(pivot.back()) != 0) return false;
+      continue;
+    }
     std::size_t j = 0;
-    while (sgn(pivot[j]) == 0) ++j;   // (reduce kept only rows with an unknown)
-    if (sgn(pivot[j]) < 0)
-      for (mpz_class& e : pivot) mpz_neg(e.get_mpz_t(), e.get_mpz_t());
-    if (!eliminate_with(equalities, true, pivot, j, f, g) || !eliminate_with(inequalities, false, pivot, j, f, g))
-      return false;
+    while (sgn(pivot[j]) == 0) ++j;
+    const mpz_class& p = pivot[j];
+    for (std::vector<IntegerRow>* rows : {&equalities, &inequalities})
+      for (IntegerRow& row : *rows) {
+        f = row[j];
+        fraction_free_detail::bareiss_row(row, pivot, p, f, previous, 0, t);
+      }
+    sense = sgn(p);
+    previous = p;
+  }
+  for (std::size_t r = 0; r < inequalities.size();) {
+    IntegerRow& row = inequalities[r];
+    if (sense < 0)
+      for (mpz_class& e : row) mpz_neg(e.get_mpz_t(), e.get_mpz_t());
+    const Constant c = reduce(row, false, g);
+    if (c == Constant::fails) return false;
+    if (c == Constant::holds) {
+      if (r + 1 != inequalities.size()) row = std::move(inequalities.back());
+      inequalities.pop_back();
+    } else {
+      ++r;
+    }
   }
   // Fourier–Motzkin: the unknown whose elimination makes the fewest rows first (the first such)
   std::vector<IntegerRow> next;
