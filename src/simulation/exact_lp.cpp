@@ -5,6 +5,8 @@
 #include "simulation/exact_lp_elimination.hpp"
 #include "simulation/fraction_free.hpp"
 
+#include "kernels/interval.hpp"
+
 #include <hipair/error.hpp>
 
 #include <CGAL/gmpxx.h>
@@ -92,7 +94,124 @@ void drop_parallel(std::vector<IntegerRow>& rows) {
   std::swap(rows, kept);
 }
 
+// ---- the filter in intervals: entries enclosing the exact ones; [0, 0] only where the exact
+// entry is 0 (a sum or product is formed only of nonzero terms, so that zeros stay exact)
+using kernels::Interval;
+using IntervalRow = std::vector<Interval>;
+
+// row := f row - g pivot, entry by entry (f > 0 certainly where row is an inequality)
+void combine(IntervalRow& row, const Interval& f, const IntervalRow& pivot, const Interval& g) {
+  for (std::size_t j = 0; j < row.size(); ++j) {
+    const bool e = row[j].sign() != 0, p = pivot[j].sign() != 0;
+    if (e && p) row[j] = f * row[j] - g * pivot[j];
+    else if (e) row[j] = f * row[j];
+    else if (p) row[j] = -(g * pivot[j]);
+  }
+}
+
+// a row without unknowns that certainly fails (an inequality's constant < 0, an equality's != 0)
+bool certainly_fails(const IntervalRow& row, bool equality) {
+  for (std::size_t j = 0; j + 1 < row.size(); ++j)
+    if (row[j].sign() != 0) return false;
+  const int s = row.back().sign();
+  return equality ? (s == 1 || s == -1) : s == -1;
+}
+
+bool unknown_left(const IntervalRow& row) {
+  for (std::size_t j = 0; j + 1 < row.size(); ++j)
+    if (row[j].sign() != 0) return true;
+  return false;
+}
+
 }  // namespace
+
+bool certainly_infeasible_in_intervals(const ExactLinearSystem& system, std::size_t max_rows) {
+  const std::size_t n = system.variables;
+  std::vector<IntervalRow> equalities, inequalities;
+  for (std::size_t i = 0; i < system.rows.size(); ++i) {
+    IntervalRow row(n + 1);
+    for (std::size_t j = 0; j < n; ++j) row[j] = Interval::enclose(system.rows[i][j]);
+    row[n] = -Interval::enclose(system.rhs[i]);
+    if (certainly_fails(row, system.equality[i])) return true;
+    if (unknown_left(row)) (system.equality[i] ? equalities : inequalities).push_back(std::move(row));
+  }
+  for (std::size_t j = 0; j < n; ++j)
+    if (system.nonnegative[j]) {
+      inequalities.emplace_back(n + 1, Interval(0));
+      inequalities.back()[j] = Interval(1);
+    }
+  // each equality solved for an unknown whose coefficient's sign is certain, substituted into the
+  // other rows: p row - row_j pivot with p > 0 (the pivot negated where p < 0); an equality
+  // without such an unknown is dropped
+  while (!equalities.empty()) {
+    IntervalRow pivot = std::move(equalities.back());
+    equalities.pop_back();
+    std::size_t j = 0;
+    while (j < n && (pivot[j].sign() == 0 || pivot[j].sign() == 2)) ++j;
+    if (j == n) continue;
+    if (pivot[j].sign() < 0)
+      for (Interval& e : pivot) e = -e;
+    for (bool equality : {true, false}) {
+      std::vector<IntervalRow>& rows = equality ? equalities : inequalities;
+      for (std::size_t r = 0; r < rows.size();) {
+        IntervalRow& row = rows[r];
+        if (row[j].sign() != 0) {
+          const Interval g = row[j];
+          combine(row, pivot[j], pivot, g);
+          row[j] = Interval(0);   // (exactly 0 in the exact elimination)
+          if (certainly_fails(row, equality)) return true;
+          if (!unknown_left(row)) {
+            if (r + 1 != rows.size()) row = std::move(rows.back());
+            rows.pop_back();
+            continue;
+          }
+        }
+        ++r;
+      }
+    }
+  }
+  // Fourier–Motzkin on the certain signs; a row whose sign on the unknown eliminated is
+  // uncertain, and the rows of an unknown bounded on one side, are dropped
+  std::vector<IntervalRow> next;
+  while (!inequalities.empty()) {
+    std::size_t best = n, best_cost = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      std::size_t positive = 0, negative = 0, uncertain = 0;
+      for (const IntervalRow& row : inequalities) {
+        const int s = row[j].sign();
+        positive += s == 1;
+        negative += s == -1;
+        uncertain += s == 2;
+      }
+      if (positive + negative + uncertain == 0) continue;
+      const std::size_t cost = positive * negative + 1000 * uncertain;
+      if (best == n || cost < best_cost) {
+        best = j;
+        best_cost = cost;
+      }
+    }
+    if (best == n) return false;
+    const std::size_t j = best;
+    next.clear();
+    for (const IntervalRow& p : inequalities) {
+      if (p[j].sign() != 1) continue;
+      for (const IntervalRow& q : inequalities) {
+        if (q[j].sign() != -1) continue;
+        IntervalRow row = p;
+        combine(row, -q[j], q, -p[j]);   // (-q_j) p + p_j q
+        row[j] = Interval(0);
+        if (certainly_fails(row, false)) return true;
+        if (unknown_left(row)) next.push_back(std::move(row));
+        if (next.size() > max_rows) return false;
+      }
+    }
+    for (IntervalRow& row : inequalities)
+      if (row[j].sign() == 0) next.push_back(std::move(row));
+    if (next.size() > max_rows) return false;
+    std::swap(inequalities, next);
+  }
+  return false;
+}
 
 std::optional<bool> feasible_by_elimination(const ExactLinearSystem& system, std::size_t max_rows) {
   const std::size_t n = system.variables;
@@ -204,6 +323,11 @@ std::optional<bool> feasible_by_elimination(const ExactLinearSystem& system, std
 std::optional<std::vector<Rational>> exact_feasible_point(const ExactLinearSystem& system) {
   if (system.rows.empty()) return std::vector<Rational>(system.variables, Rational(0));
   // no solution decided by elimination; a solution's point from the linear program, as before
+  if (exact_lp_elimination() && certainly_infeasible_in_intervals(system)) {
+    ++exact_lp_eliminated();
+    ++exact_lp_interval_decided();
+    return std::nullopt;
+  }
   // (too many rows for the elimination: the linear program decides alone)
   const std::optional<bool> feasible =
       exact_lp_elimination() ? feasible_by_elimination(system) : std::optional<bool>();
