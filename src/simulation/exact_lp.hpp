@@ -21,8 +21,8 @@ struct ExactLinearSystem {
   std::vector<bool> equality;                 ///< per row: = (true) or >= (false)
 };
 
-/// A solution of the system, exact, or none when it has none (decided exactly: CGAL's
-/// solve_linear_program over mpq_class, a zero objective).
+/// A solution of the system, exact, or none when it has none (decided exactly: "none" by elimination
+/// since session 71, exact_lp_elimination.hpp; a solution from CGAL's solve_linear_program, as before).
 std::optional<std::vector<Rational>> exact_feasible_point(const ExactLinearSystem& system);
 
 }  // namespace hipair::simulation
