@@ -23,6 +23,8 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <functional>
+#include <queue>
 #include <unordered_map>
 
 namespace hipair {
@@ -76,7 +78,11 @@ class ApartSearch {
   // Splits the mixed boxes of shortest chains of open boxes from a to b until no chain is left
   // (false, `why` empty), a chain of boxes proved free joins them (true; `chain` the leaves from
   // a's to b's, consecutive closed boxes meeting), or a limit is reached (false, `why` says so).
-  bool free_chain(const Rational (&a)[3], const Rational (&b)[3], std::vector<std::size_t>& chain, std::string& why) {
+  // `prefer_free` (the connected producer): the chains are the cheapest with a box proved free
+  // costing 1 and a mixed one 8, so that a chain around a wall of mixed boxes is found before the
+  // wall's boxes are all split.
+  bool free_chain(const Rational (&a)[3], const Rational (&b)[3], std::vector<std::size_t>& chain, std::string& why,
+                  bool prefer_free = false) {
     for (;;) {
       std::vector<std::size_t> from = open_at(a), to = open_at(b);
       if (from.empty() || to.empty()) {
@@ -87,6 +93,31 @@ class ApartSearch {
       std::deque<std::size_t> frontier;
       for (std::size_t n : from) parent.emplace(n, n), frontier.push_back(n);
       std::size_t reached = std::size_t(-1);
+      if (prefer_free) {
+        using Entry = std::pair<std::size_t, std::size_t>;   // (cost, leaf)
+        std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+        std::unordered_map<std::size_t, std::size_t> cost;
+        for (std::size_t n : from) cost[n] = 0, queue.push({0, n});
+        while (!queue.empty()) {
+          const auto [c, n] = queue.top();
+          queue.pop();
+          if (c != cost[n]) continue;
+          if (std::find(to.begin(), to.end(), n) != to.end()) {
+            reached = n;
+            break;
+          }
+          for (std::size_t m : adjacent_[n]) {
+            if (state_[m] == State::blocked) continue;
+            const std::size_t next = c + (state_[m] == State::free ? 1 : 8);
+            auto found = cost.find(m);
+            if (found != cost.end() && found->second <= next) continue;
+            cost[m] = next;
+            parent[m] = n;
+            queue.push({next, m});
+          }
+        }
+        frontier.clear();
+      }
       while (!frontier.empty() && reached == std::size_t(-1)) {
         const std::size_t n = frontier.front();
         frontier.pop_front();
@@ -703,7 +734,7 @@ SlicedConnectedResult certify_pin_slot_connected(const Model& model, const std::
     }
     search.emplace(*setup.pair, std::move(tree), setup.weights, max_leaves);
     why.clear();
-    if (search->free_chain(setup.at_a, setup.at_b, chain, why)) break;
+    if (search->free_chain(setup.at_a, setup.at_b, chain, why, true)) break;
     result.failure = why.empty() ? "no chain of boxes proved free joins the ends within the motion limits: the boxes proved "
                                    "blocked separate them there (--claim apart may certify it)"
                                  : "no path proved: " + why;

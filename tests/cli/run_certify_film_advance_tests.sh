@@ -3,7 +3,8 @@
 # (examples/models/film-advance.json: the follower on its pin, 2 degrees in, s = 4.2, in the
 # perforation of the film at offset 0.24) retracts and the film advances one frame (-7.56):
 # certified, verified, byte-identical to examples/certificates/film-advance-claw-connected.json
-# (which is verified as committed). Mutations rejected with their reasons: the film moved with the
+# (which is verified as committed), and the committed certificate of the claw moving on to the next
+# perforation (examples/certificates/film-advance-claw-next-perforation.json) verified. Mutations rejected with their reasons: the film moved with the
 # claw in its perforation, two coordinates at once, detours beyond the film's, the slide's and the
 # angle's limits, and generated detours of the film by 1 to 4.8 mm with the claw in (each passes a
 # configuration that `certify --claim interference` certifies overlapping: an oracle of its own).
@@ -26,6 +27,15 @@ for certificate in "$work/claw.json" "$example"; do
   case "$out" in "valid: sliced_connected: part 'follower' moves from s=21/5"*"without touching 'film' (2 steps, 2 moves proved free"*) ;;
     *) fail "hipair-verify: not the summary: $out" ;; esac
 done
+
+# the claw from its perforation to the next (retract, advance, re-enter: the producer's box search,
+# about 90 s of CPU, so the committed certificate is verified, not produced here), and it
+# without its steps between the ends (the film moved with the claw in)
+next="$source/examples/certificates/film-advance-claw-next-perforation.json"
+out=$("$verify" "$next" "$source/examples/models/film-advance.json") || fail "hipair-verify refuses $next: $out"
+case "$out" in "valid: sliced_connected: part 'follower' moves from s=21/5"*"('film' at offset -189/25) without touching 'film' (144 steps"*) ;;
+  *) fail "hipair-verify: not the summary of the next perforation: $out" ;; esac
+mutate_certificate "$next" sliced_connected "$model" next-direct 'body["steps"] = [body["steps"][0], body["steps"][-1]]' "move 0 (q=6/25, s=21/5"
 
 mutate() { mutate_certificate "$work/claw.json" sliced_connected "$model" "$@"; }   # NAME PYTHON-STATEMENTS MESSAGE
 restate='c["statement"] = c["statement"].replace("to s=21/5, t=0 (", "to s=21/5, t=" + body["to"]["tangent"] + " (")'
