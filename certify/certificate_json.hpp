@@ -21,6 +21,8 @@ std::string envelope(const Certificate& c, int version, const std::string& claim
 /// A pose object: {"part"?, "x", "y" | "slide", "tangent", "centre"?} as planar claims write it.
 std::string pose(const PlanarPose& p, bool with_part);
 std::string quoted_text(const std::string& text);
+/// A moving part's position: {"tangent": "t", "centre": "pi"?} or {"offset": "s"} (pin-slot claims).
+std::string position(const ExactPosition& p);
 
 /// Reads the statement, model identity and pair of `root` into c (not the version or claim).
 void read_envelope(const JsonValue& root, Certificate& c);

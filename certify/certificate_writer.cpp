@@ -130,6 +130,11 @@ namespace certificate_json {
 
 std::string quoted_text(const std::string& text) { return quoted(text); }
 
+std::string position(const ExactPosition& p) {
+  if (p.is_offset) return "{\"offset\": " + number(p.value) + "}";
+  return "{\"tangent\": " + number(p.value) + (p.half_turn ? ", \"centre\": \"pi\"}" : std::string("}"));
+}
+
 std::string pose(const PlanarPose& p, bool with_part) {
   std::string out = "{";
   if (with_part) out += "\"part\": " + quoted(p.part) + ", ";
@@ -237,7 +242,17 @@ std::string write_certificate(const Certificate& c) {
 std::string write_sliced_connected_certificate(const SlicedConnectedCertificate& c) {
   std::string out = certificate_json::envelope(c.envelope, 1, "sliced_connected");
   out += "  \"sliced_connected\": {\n    \"from\": " + certificate_json::pose(c.from, true) +
-         ",\n    \"to\": " + certificate_json::pose(c.to, true) + ",\n    \"path\": [";
+         ",\n    \"to\": " + certificate_json::pose(c.to, true);
+  if (c.pin_slot) {   // session 71: the other part's positions and the steps (q, s, u)
+    if (c.from_other && c.to_other)
+      out += ",\n    \"from_other\": " + certificate_json::position(*c.from_other) + ",\n    \"to_other\": " + certificate_json::position(*c.to_other);
+    out += ",\n    \"steps\": [";
+    for (std::size_t i = 0; i < c.steps.size(); ++i)
+      out += std::string(i ? "," : "") + "\n      [" + number(c.steps[i][0]) + ", " + number(c.steps[i][1]) + ", " + number(c.steps[i][2]) + "]";
+    out += c.steps.empty() ? "]" : "\n    ]";
+    return out + "\n  }\n}\n";
+  }
+  out += ",\n    \"path\": [";
   for (std::size_t i = 0; i < c.path.size(); ++i) {
     const PlanarPose& p = c.path[i];
     out += std::string(i ? "," : "") + "\n      [" + certificate_json::quoted_text(to_exact_string(p.x)) + ", " +

@@ -7,6 +7,7 @@
 #include <hipair/model.hpp>
 #include <hipair/sliced_apart.hpp>
 
+#include "certify/certificate_json.hpp"
 #include "certify/exact_geometry.hpp"
 #include "certify/interval_geometry.hpp"
 
@@ -89,6 +90,9 @@ struct ApartPair {
   void coordinates(const PlanarPose& pose, const std::optional<ExactPosition>& other_position, Rational out[3]) const;
 };
 
+/// The farthest a point of `part` lies from its pivot (its shape as if it only turned about it).
+Rational reach_about_pivot(const Part& part);
+
 /// The box's middle (exact).
 void apart_middle(const ApartBox& box, Rational out[3]);
 /// Every pose of the box of a planar part, enclosed: theta is increasing and continuous in u.
@@ -101,6 +105,38 @@ std::string apart_proof_failure(const ApartPair& pair, const ApartBox& box, cons
 /// Why the pin-slot end (coordinates `at`) is not certainly free ("" when it is): the certified
 /// distance of the boundaries positive and no loop of one part inside the other (exact).
 std::string apart_pin_slot_end_failure(const ApartPair& pair, const Rational at[3]);
+
+/// The pin-slot pair of a sliced claim (apart, connected; session 71), checked: the certificate
+/// names the model, the part posed at both ends (`a`, `b`: with a slide) is one of the envelope's
+/// two different parts and sits on a pin in a slot, the other is fixed, rotating or translating,
+/// its positions are given at both ends exactly when it moves and are of its kind, and both ends
+/// lie within the motion limits (the slide exactly, angles certainly). Rejected otherwise, the
+/// ends called `a_name` and `b_name` in the reasons.
+struct PinSlotParts {
+  const Part* other = nullptr;
+  const Part* moving = nullptr;
+};
+PinSlotParts checked_pin_slot_pair(const Certificate& envelope, const Model& model, const PlanarPose& a, const PlanarPose& b,
+                                   const std::optional<ExactPosition>& a_other, const std::optional<ExactPosition>& b_other,
+                                   const std::string& a_name, const std::string& b_name);
+/// Why a configuration of the box may lie outside the pair's motion limits ("" when every one
+/// certainly lies within): the pin-slot part's slide and angle, the other part's offset or angle.
+std::string apart_limits_failure(const ApartPair& pair, const ApartBox& box);
+/// Do the coordinates `a` and `b` pose both parts alike (exact maps; u = 3 and u = -1 do)?
+bool apart_same_configuration(const ApartPair& pair, const Rational a[3], const Rational b[3]);
+/// Why the move of a pin-slot pair from coordinates `from` to `to` (one of q, s, u changing) is
+/// not certainly free ("" when it is proved free): two coordinates changing, a configuration
+/// outside the motion limits, the parts overlapping at an exact configuration of the move, or a
+/// piece not proved apart (certified distance of the boundaries) within `budget` pieces or
+/// 2^-(bits + 64 + k) of the move. `pieces` (optional) receives the pieces evaluated.
+std::string apart_move_failure(const ApartPair& pair, const Rational from[3], const Rational to[3], std::size_t budget,
+                               std::size_t* pieces = nullptr);
+/// The other part's position in claims' words: "t=1/3", "t(pi)=0", "offset 2".
+std::string position_words(const ExactPosition& p);
+/// A claim's end in words: the pose (sliced_pose_words) and, when given, "('OTHER' at POSITION)".
+std::string sliced_end_words(const PlanarPose& pose, const std::optional<ExactPosition>& position, const std::string& other);
+/// Reads a position {"tangent": "t", "centre": "pi"?} (rotating) or {"offset": "s"} (translating).
+ExactPosition read_position(const certificate_json::JsonValue& value);
 
 /// Do the closed boxes meet (across the seam of each periodic axis)?
 bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, const bool periodic[3]);

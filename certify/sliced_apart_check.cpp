@@ -8,11 +8,13 @@
 #include "certify/planar_check.hpp"
 #include "certify/sliced_connected.hpp"
 #include "certify/tolerance_support.hpp"
+#include "core/model_scale.hpp"
 
 #include <hipair/error.hpp>
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 namespace hipair {
 namespace {
@@ -28,28 +30,6 @@ std::string box_words(const verify::ApartTree& tree, const verify::ApartBox& b) 
   for (int k = 0; k < 3; ++k)
     out += std::string(k ? ", " : "") + tree.marks[k] + " in [" + fraction_or_rounded(b.lo[k]) + ", " + fraction_or_rounded(b.hi[k]) + "]";
   return out;
-}
-
-// the other part's position in a pin-slot claim's words: "t=1/3", "t(pi)=0", "offset 2"
-std::string position_words(const ExactPosition& p) {
-  if (p.is_offset) return "offset " + fraction_or_rounded(p.value);
-  return (p.half_turn ? "t(pi)=" : "t=") + fraction_or_rounded(p.value);
-}
-
-// {"tangent": "t", "centre": "pi"?} (a rotating part) or {"offset": "s"} (a translating part)
-ExactPosition position_of(const JsonValue& value) {
-  certificate_json::keys(value, {"tangent", "centre", "offset"});
-  ExactPosition p;
-  p.is_offset = value.find("offset") != nullptr;
-  if (p.is_offset == (value.find("tangent") != nullptr))
-    certificate_json::refuse(value, "a position gives exactly one of \"tangent\" (rotating) and \"offset\" (translating)");
-  p.value = certificate_json::read_rational(certificate_json::member(value, p.is_offset ? "offset" : "tangent"));
-  if (const JsonValue* centre = value.find("centre")) {
-    const std::string c = certificate_json::read_text(*centre);
-    if (p.is_offset || (c != "pi" && c != "0")) certificate_json::refuse(*centre, "centre is \"0\" or \"pi\", for a tangent");
-    p.half_turn = c == "pi";
-  }
-  return p;
 }
 
 RationalInterval range_of(const JsonValue& value) {
@@ -108,7 +88,7 @@ SlicedApartCertificate read_sliced_apart_certificate(std::string_view json_text)
   for (const char* key : {"a_other", "b_other"})
     if (const JsonValue* other = body.find(key)) {
       if (!c.pin_slot) certificate_json::refuse(*other, "the other part's position belongs to pin-slot claims (ends with a slide)");
-      (key[0] == 'a' ? c.a_other : c.b_other) = position_of(*other);
+      (key[0] == 'a' ? c.a_other : c.b_other) = verify::read_position(*other);
     }
   if (bool(c.a_other) != bool(c.b_other)) certificate_json::refuse(body, "give the other part's position at both ends (a_other, b_other) or at neither");
   const JsonValue& domain = certificate_json::member(body, "domain");
@@ -150,14 +130,36 @@ SlicedApartCertificate read_sliced_apart_certificate(std::string_view json_text)
 
 std::string sliced_apart_statement(const SlicedApartCertificate& c) {
   const std::string& fixed = c.envelope.first == c.a.part ? c.envelope.second : c.envelope.first;
-  auto end = [&](const PlanarPose& p, const std::optional<ExactPosition>& other) {
-    return sliced_pose_words(p) + (other ? " ('" + fixed + "' at " + position_words(*other) + ")" : "");
-  };
-  return "Part '" + c.a.part + "' cannot move from " + end(c.a, c.a_other) + " to " + end(c.b, c.b_other) +
+  return "Part '" + c.a.part + "' cannot move from " + verify::sliced_end_words(c.a, c.a_other, fixed) + " to " +
+         verify::sliced_end_words(c.b, c.b_other, fixed) +
          " without touching part '" + fixed + "'.";
 }
 
 namespace verify {
+
+std::string position_words(const ExactPosition& p) {
+  if (p.is_offset) return "offset " + fraction_or_rounded(p.value);
+  return (p.half_turn ? "t(pi)=" : "t=") + fraction_or_rounded(p.value);
+}
+
+std::string sliced_end_words(const PlanarPose& pose, const std::optional<ExactPosition>& position, const std::string& other) {
+  return sliced_pose_words(pose) + (position ? " ('" + other + "' at " + position_words(*position) + ")" : "");
+}
+
+ExactPosition read_position(const JsonValue& value) {
+  certificate_json::keys(value, {"tangent", "centre", "offset"});
+  ExactPosition p;
+  p.is_offset = value.find("offset") != nullptr;
+  if (p.is_offset == (value.find("tangent") != nullptr))
+    certificate_json::refuse(value, "a position gives exactly one of \"tangent\" (rotating) and \"offset\" (translating)");
+  p.value = certificate_json::read_rational(certificate_json::member(value, p.is_offset ? "offset" : "tangent"));
+  if (const JsonValue* centre = value.find("centre")) {
+    const std::string c = certificate_json::read_text(*centre);
+    if (p.is_offset || (c != "pi" && c != "0")) certificate_json::refuse(*centre, "centre is \"0\" or \"pi\", for a tangent");
+    p.half_turn = c == "pi";
+  }
+  return p;
+}
 
 ApartTree apart_tree_of(const SlicedApartCertificate& c) {
   ApartTree tree;
@@ -278,12 +280,13 @@ ExactMap turned_at(const Rational& u) {
   m.s = sign * 2 * p.tangent / w;
   return m;
 }
-Part turning_copy(const Part& part) {   // the part as if it only turned about its pivot: its shape relative to the pivot
-  Part copy = part;
-  copy.motion.kind = Motion::Kind::rotation;
-  return copy;
-}
 }  // namespace
+
+Rational reach_about_pivot(const Part& part) {
+  Part turning = part;   // the part as if it only turned about its pivot: its shape relative to the pivot
+  turning.motion.kind = Motion::Kind::rotation;
+  return reach(shape_of(turning));
+}
 
 IntervalMap apart_box_map(const Part& planar, const ApartBox& box) {
   IntervalMap m = turned_over(box.lo[2], box.hi[2]);
@@ -408,6 +411,146 @@ std::string apart_pin_slot_end_failure(const ApartPair& pair, const Rational at[
   return "";
 }
 
+PinSlotParts checked_pin_slot_pair(const Certificate& envelope, const Model& model, const PlanarPose& a, const PlanarPose& b,
+                                   const std::optional<ExactPosition>& a_other, const std::optional<ExactPosition>& b_other,
+                                   const std::string& a_name, const std::string& b_name) {
+  check_certificate_model(envelope, model);
+  const std::string &first = envelope.first, &second = envelope.second;
+  if (first == second) reject("a pair needs two different parts");
+  if (b.part != a.part) reject("the claim poses '" + a.part + "' at " + a_name + " and '" + b.part + "' at " + b_name);
+  if (!a.slide || !b.slide) reject("a pin-slot claim's ends give the part's slide and tangent");
+  if (a.part != first && a.part != second) reject("the posed part '" + a.part + "' is not a part of the pair");
+  const Part& moving = part_named(model, a.part);
+  const Part& other = part_named(model, a.part == first ? second : first);
+  if (moving.motion.kind != Motion::Kind::pin_slot) reject("part '" + moving.name + "' has no pin_slot motion (a pose with a slide)");
+  const Motion::Kind kind = other.motion.kind;
+  if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
+    reject("part '" + other.name + "' must be fixed, rotate or translate");
+  if (bool(a_other) != bool(b_other)) reject("the ends give the other part's position at one end only");
+  if ((kind == Motion::Kind::fixed) != !a_other)
+    reject(kind == Motion::Kind::fixed ? "part '" + other.name + "' is fixed: the ends give no position of it"
+                                       : "the ends give no position of the moving part '" + other.name + "'");
+  for (const std::optional<ExactPosition>* position : {&a_other, &b_other})
+    if (*position && (*position)->is_offset != (kind == Motion::Kind::translation))
+      reject("part '" + other.name + "' " + (kind == Motion::Kind::rotation ? "rotates: its positions are tangents" : "translates: its positions are offsets"));
+  // the ends are configurations: within the motion limits (the slide exactly, angles certainly)
+  for (const PlanarPose* end : {&a, &b}) {
+    const std::string& which = end == &a ? a_name : b_name;
+    const auto& limits = moving.motion.translation_limits;
+    if (limits && (*end->slide < limits->lo || *end->slide > limits->hi))
+      reject("the end " + which + ": the slide of '" + moving.name + "' (" + fraction_or_rounded(*end->slide) + ") is outside its limits");
+    if (!certainly_within(moving.motion.angle_limits, angle_of_tangent(end->tangent, end->half_turn), true))
+      reject("the end " + which + ": the angle of '" + moving.name + "' is not certainly within its limits");
+    const std::optional<ExactPosition>& position = end == &a ? a_other : b_other;
+    if (position) {
+      try {
+        exact_map(other, {{other.name, *position}});
+      } catch (const Rejection& rejection) {
+        reject("the end " + which + ": " + rejection.reason);
+      }
+    }
+  }
+  return PinSlotParts{&other, &moving};
+}
+
+std::string apart_limits_failure(const ApartPair& pair, const ApartBox& box) {
+  const Part &moving = pair.moving, &other = pair.other;
+  auto range = [&](int k) { return "[" + fraction_or_rounded(box.lo[k]) + ", " + fraction_or_rounded(box.hi[k]) + "]"; };
+  const auto& slide = moving.motion.translation_limits;
+  if (pair.pin_slot && slide && (box.lo[1] < slide->lo || box.hi[1] > slide->hi))
+    return "the slide of '" + moving.name + "' (s in " + range(1) + ") leaves its limits";
+  // theta is continuous and increasing in u: the angles of a u range are the hull of its ends'
+  if (!certainly_within(moving.motion.angle_limits, hull2(theta_of(box.lo[2]), theta_of(box.hi[2])), true))
+    return "the angle of '" + moving.name + "' (u in " + range(2) + ") is not certainly within its limits";
+  if (other.motion.kind == Motion::Kind::translation) {
+    const auto& offsets = other.motion.translation_limits;
+    if (offsets && (box.lo[0] < offsets->lo || box.hi[0] > offsets->hi))
+      return "the offset of '" + other.name + "' (q in " + range(0) + ") leaves its limits";
+  } else if (other.motion.kind == Motion::Kind::rotation) {
+    if (!certainly_within(other.motion.angle_limits, hull2(theta_of(box.lo[0]), theta_of(box.hi[0])), true))
+      return "the angle of '" + other.name + "' (q in " + range(0) + ") is not certainly within its limits";
+  } else if (sgn(box.lo[0]) != 0 || sgn(box.hi[0]) != 0) {
+    return "q is " + range(0) + " for the fixed part '" + other.name + "' (it is 0)";
+  }
+  return "";
+}
+
+bool apart_same_configuration(const ApartPair& pair, const Rational a[3], const Rational b[3]) {
+  auto same = [](const ExactMap& p, const ExactMap& q) { return p.c == q.c && p.s == q.s && p.shift.x == q.shift.x && p.shift.y == q.shift.y; };
+  return same(pair.moving_at(a[0], a[1], a[2]), pair.moving_at(b[0], b[1], b[2])) && same(pair.other_at(a[0]), pair.other_at(b[0]));
+}
+
+std::string apart_move_failure(const ApartPair& pair, const Rational from[3], const Rational to[3], std::size_t budget,
+                               std::size_t* pieces) {
+  std::size_t count = 0;
+  auto done = [&](std::string why) {
+    if (pieces) *pieces = count;
+    return why;
+  };
+  int axis = -1;
+  for (int k = 0; k < 3; ++k)
+    if (from[k] != to[k]) {
+      if (axis >= 0) return done("it changes two coordinates at once (each move changes one of q, s, u)");
+      axis = k;
+    }
+  ApartBox whole;
+  for (int k = 0; k < 3; ++k) whole.lo[k] = std::min(from[k], to[k]), whole.hi[k] = std::max(from[k], to[k]);
+  if (std::string why = apart_limits_failure(pair, whole); !why.empty()) return done(why);
+  Rational size = reach(pair.moving_shape);
+  if (sgn(size) <= 0) size = 1;
+  const Rational enough = size / Rational(mpz_class(1) << 32);
+  auto overlap_at = [&](const Rational at[3]) -> std::string {
+    std::string evidence = overlap_evidence(place(pair.other, pair.other_at(at[0])), place(pair.moving, pair.moving_at(at[0], at[1], at[2])));
+    return evidence.empty() ? std::string()
+                            : "the parts overlap at q = " + fraction_or_rounded(at[0]) + ", s = " + fraction_or_rounded(at[1]) + ", u = " +
+                                  fraction_or_rounded(at[2]) + ": " + evidence;
+  };
+  // the depth limit as sliced_move_failure's: 2^-(bits + 64 + k) of the move, k the bits of its
+  // length (angle coordinates as they are, a slide or an offset over the part's reach)
+  long longer = 0;
+  if (axis >= 0) {
+    const bool angle = axis == 2 || (axis == 0 && pair.other.motion.kind == Motion::Kind::rotation);
+    const Rational span = angle ? Rational(whole.hi[axis] - whole.lo[axis]) : Rational((whole.hi[axis] - whole.lo[axis]) / size);
+    const mpz_class units = span.get_num() / span.get_den();
+    longer = sgn(units) > 0 ? std::min(1024L, long(mpz_sizeinbase(units.get_mpz_t(), 2))) : 0;
+  }
+  const long max_depth = long(model_detail::working_interval_bits()) + 64 + longer;
+  struct Piece {
+    ApartBox box;
+    long depth;
+  };
+  std::vector<Piece> stack{{whole, 0}};
+  while (!stack.empty()) {
+    Piece piece = stack.back();
+    stack.pop_back();
+    const Rational lo = axis >= 0 ? piece.box.lo[axis] : Rational(0), hi = axis >= 0 ? piece.box.hi[axis] : Rational(0);
+    if (piece.depth >= max_depth)
+      return done("not proved free: its pieces reached 2^-" + std::to_string(max_depth) + " of the move near " + std::string(1, "qsu"[axis]) +
+                  " in [" + fraction_or_rounded(lo) + ", " + fraction_or_rounded(hi) + "] (the parts come too close, or touch)");
+    if (++count > budget) {
+      --count;
+      return done("not proved free within " + std::to_string(budget) + " interval pieces (stuck near " +
+                  std::string(1, axis >= 0 ? "qsu"[axis] : 'q') + " in [" + fraction_or_rounded(lo) + ", " + fraction_or_rounded(hi) +
+                  "]: the parts come too close, or touch)");
+    }
+    const Rational bound =
+        boundary_distance_lower_bound(pair.other_shape, pair.other_over(piece.box), pair.moving_shape, pair.moving_over(piece.box), enough);
+    if (sgn(bound) > 0) continue;
+    Rational middle[3];
+    apart_middle(piece.box, middle);
+    if (axis < 0 || piece.depth % 6 == 0) {
+      if (std::string overlap = overlap_at(middle); !overlap.empty()) return done(overlap);
+      if (axis < 0) return done("the parts are not certainly apart there");
+    }
+    Piece lower = piece, upper = piece;
+    lower.box.hi[axis] = upper.box.lo[axis] = middle[axis];
+    lower.depth = upper.depth = piece.depth + 1;
+    stack.push_back(upper);
+    stack.push_back(lower);
+  }
+  return done("");
+}
+
 bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, const bool periodic[3]) {
   for (int k = 0; k < 3; ++k) {
     if (!(a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k])) continue;
@@ -466,43 +609,12 @@ namespace {
 void check_pin_slot_pair(const SlicedApartCertificate& c, const Model& model, verify::ApartTree& tree, const Part*& other_part,
                          const Part*& moving_part) {
   using namespace verify;
-  check_certificate_model(c.envelope, model);
-  const std::string &first = c.envelope.first, &second = c.envelope.second;
-  if (first == second) reject("a pair needs two different parts");
-  if (c.b.part != c.a.part) reject("the claim poses '" + c.a.part + "' at a and '" + c.b.part + "' at b");
-  if (!c.a.slide || !c.b.slide) reject("a pin-slot claim's ends give the part's slide and tangent");
-  if (c.a.part != first && c.a.part != second) reject("the posed part '" + c.a.part + "' is not a part of the pair");
-  const Part& moving = part_named(model, c.a.part);
-  const Part& other = part_named(model, c.a.part == first ? second : first);
-  if (moving.motion.kind != Motion::Kind::pin_slot) reject("part '" + moving.name + "' has no pin_slot motion (a pose with a slide)");
+  const PinSlotParts parts = checked_pin_slot_pair(c.envelope, model, c.a, c.b, c.a_other, c.b_other, "a", "b");
+  const Part &moving = *parts.moving, &other = *parts.other;
   const Motion::Kind kind = other.motion.kind;
-  if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
-    reject("part '" + other.name + "' must be fixed, rotate or translate");
-  if ((kind == Motion::Kind::fixed) != !c.a_other)
-    reject(kind == Motion::Kind::fixed ? "part '" + other.name + "' is fixed: the ends give no position of it"
-                                       : "the ends give no position of the moving part '" + other.name + "'");
-  if (c.a_other && c.a_other->is_offset != (kind == Motion::Kind::translation))
-    reject("part '" + other.name + "' " + (kind == Motion::Kind::rotation ? "rotates: its positions are tangents" : "translates: its positions are offsets"));
   if (c.other_full_turn && kind != Motion::Kind::rotation) reject("only a rotating part's range is the full turn");
   if (kind == Motion::Kind::rotation && !c.other_full_turn && !(c.x.lo >= -1 && c.x.hi <= 3))
     reject("the rotating part's range [" + fraction_or_rounded(c.x.lo) + ", " + fraction_or_rounded(c.x.hi) + "] leaves [-1, 3]");
-  // the ends are configurations: within the motion limits (the slide exactly, angles certainly)
-  for (const PlanarPose* end : {&c.a, &c.b}) {
-    const std::string which = end == &c.a ? "a" : "b";
-    const auto& limits = moving.motion.translation_limits;
-    if (limits && (*end->slide < limits->lo || *end->slide > limits->hi))
-      reject("the end " + which + ": the slide of '" + moving.name + "' (" + fraction_or_rounded(*end->slide) + ") is outside its limits");
-    if (!certainly_within(moving.motion.angle_limits, angle_of_tangent(end->tangent, end->half_turn), true))
-      reject("the end " + which + ": the angle of '" + moving.name + "' is not certainly within its limits");
-    const std::optional<ExactPosition>& position = end == &c.a ? c.a_other : c.b_other;
-    if (position) {
-      try {
-        exact_map(other, {{other.name, *position}});
-      } catch (const Rejection& rejection) {
-        reject("the end " + which + ": " + rejection.reason);
-      }
-    }
-  }
   // faces at motion limits: no motion of the mechanism crosses them (a rotating part's or the
   // pin-slot part's angle limits are not used: the full turn holds every motion within them)
   auto close = [&](int k, const std::optional<RationalInterval>& limits) {
@@ -612,11 +724,8 @@ VerificationResult check_sliced_apart(const SlicedApartCertificate& c, const Mod
       reject("the statement does not say what the claim's data prove: it reads '" + c.envelope.statement.substr(0, 400) +
              "', the claim's data give '" + expected + "'");
     const std::string& fixed_name = other->name;
-    auto end = [&](const PlanarPose& p, const std::optional<ExactPosition>& position) {
-      return sliced_pose_words(p) + (position ? " ('" + fixed_name + "' at " + position_words(*position) + ")" : "");
-    };
-    return std::string(claim_name) + ": part '" + moving->name + "' cannot move from " + end(c.a, c.a_other) + " to " +
-           end(c.b, c.b_other) + " without touching '" + fixed_name + "' (" + std::to_string(leaves) + " boxes, " +
+    return std::string(claim_name) + ": part '" + moving->name + "' cannot move from " + sliced_end_words(c.a, c.a_other, fixed_name) +
+           " to " + sliced_end_words(c.b, c.b_other, fixed_name) + " without touching '" + fixed_name + "' (" + std::to_string(leaves) + " boxes, " +
            std::to_string(blocked) + " proved blocked, none open on the domain's boundary, the ends in different components of the " +
            std::to_string(open) + " open ones; " + std::to_string(visited) + " box tests)";
   });

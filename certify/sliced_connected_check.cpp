@@ -6,6 +6,7 @@
 #include "certify/certificate_json.hpp"
 #include "certify/interval_geometry.hpp"
 #include "certify/planar_check.hpp"
+#include "certify/sliced_apart.hpp"
 #include "certify/tolerance_support.hpp"
 #include "core/model_scale.hpp"
 
@@ -59,21 +60,40 @@ SlicedConnectedCertificate read_sliced_connected_certificate(std::string_view js
   JsonValue root = model_detail::parse_json(json_text);
   SlicedConnectedCertificate c;
   const JsonValue& body = certificate_json::read_claim(root, claim_name, c.envelope);
-  certificate_json::keys(body, {"from", "to", "path"});
+  certificate_json::keys(body, {"from", "to", "from_other", "to_other", "path", "steps"});
   c.from = certificate_json::read_pose(certificate_json::member(body, "from"));
   c.to = certificate_json::read_pose(certificate_json::member(body, "to"));
-  for (const PlanarPose* end : {&c.from, &c.to})
-    if (end->slide) certificate_json::refuse(body, "a connected claim poses a planar part by x, y and tangent, not a slide");
-  for (const JsonValue& vertex : certificate_json::read_array(certificate_json::member(body, "path")).items)
-    c.path.push_back(vertex_of(vertex, c.from.part));
-  if (c.path.empty()) certificate_json::refuse(certificate_json::member(body, "path"), "the path has no vertex");
+  c.pin_slot = bool(c.from.slide);
+  if (bool(c.to.slide) != c.pin_slot)
+    certificate_json::refuse(body, "both ends give a slide (a pin-slot part) or neither (a planar part: x, y and tangent)");
+  if (!c.pin_slot) {
+    for (const char* key : {"from_other", "to_other", "steps"})
+      if (const JsonValue* found = body.find(key)) certificate_json::refuse(*found, "a planar part's claim has a path, not steps or other positions");
+    for (const JsonValue& vertex : certificate_json::read_array(certificate_json::member(body, "path")).items)
+      c.path.push_back(vertex_of(vertex, c.from.part));
+    if (c.path.empty()) certificate_json::refuse(certificate_json::member(body, "path"), "the path has no vertex");
+    return c;
+  }
+  // a pin-slot part (session 71): the other part's positions and the steps (q, s, u)
+  if (const JsonValue* found = body.find("path")) certificate_json::refuse(*found, "a pin-slot claim's witness is \"steps\" [\"q\", \"s\", \"u\"]");
+  for (const char* key : {"from_other", "to_other"})
+    if (const JsonValue* other = body.find(key)) (key[0] == 'f' ? c.from_other : c.to_other) = verify::read_position(*other);
+  if (bool(c.from_other) != bool(c.to_other)) certificate_json::refuse(body, "give the other part's position at both ends (from_other, to_other) or at neither");
+  const JsonValue& steps = certificate_json::read_array(certificate_json::member(body, "steps"));
+  for (const JsonValue& step : steps.items) {
+    const JsonValue& items = certificate_json::read_array(step);
+    if (items.items.size() != 3) certificate_json::refuse(step, "a step is [\"q\", \"s\", \"u\"]");
+    c.steps.push_back({certificate_json::read_rational(items.items[0]), certificate_json::read_rational(items.items[1]),
+                       certificate_json::read_rational(items.items[2])});
+  }
+  if (c.steps.empty()) certificate_json::refuse(certificate_json::member(body, "steps"), "the steps have no configuration");
   return c;
 }
 
 std::string sliced_connected_statement(const SlicedConnectedCertificate& c) {
   const std::string& fixed = c.envelope.first == c.from.part ? c.envelope.second : c.envelope.first;
-  return "Part '" + c.from.part + "' moves from " + sliced_pose_words(c.from) + " to " + sliced_pose_words(c.to) +
-         " without touching part '" + fixed + "'.";
+  return "Part '" + c.from.part + "' moves from " + verify::sliced_end_words(c.from, c.from_other, fixed) + " to " +
+         verify::sliced_end_words(c.to, c.to_other, fixed) + " without touching part '" + fixed + "'.";
 }
 
 namespace verify {
@@ -238,9 +258,66 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
 
 }  // namespace verify
 
+namespace {
+
+// A pin-slot part's claim (session 71): every step's move proved free over the pair's coordinates
+// (verify::apart_move_failure), within the motion limits, the start free and not nested.
+std::string pin_slot_connected_summary(const SlicedConnectedCertificate& c, const Model& model) {
+  using namespace verify;
+  const PinSlotParts parts = checked_pin_slot_pair(c.envelope, model, c.from, c.to, c.from_other, c.to_other, "from", "to");
+  const ApartPair pair(*parts.other, *parts.moving);
+  if (!c.path.empty()) reject("a pin-slot claim's witness is its steps, not a path of planar poses");
+  if (c.steps.empty()) reject("the steps have no configuration");
+  auto words = [](const std::array<Rational, 3>& at) {
+    return "q=" + fraction_or_rounded(at[0]) + ", s=" + fraction_or_rounded(at[1]) + ", u=" + fraction_or_rounded(at[2]);
+  };
+  Rational from[3], to[3];
+  pair.coordinates(c.from, c.from_other, from);
+  pair.coordinates(c.to, c.to_other, to);
+  if (!apart_same_configuration(pair, c.steps.front().data(), from))
+    reject("the steps start at " + words(c.steps.front()) + ", not at the claim's start");
+  if (!apart_same_configuration(pair, c.steps.back().data(), to)) reject("the steps end at " + words(c.steps.back()) + ", not at the claim's end");
+  if (c.steps.size() - 1 > sliced_total_budget)
+    reject("the steps make " + std::to_string(c.steps.size() - 1) + " moves, more than the " + std::to_string(sliced_total_budget) +
+           " interval pieces a certificate may need in all");
+  // the start free and its nesting exact (the boundaries never meet along the steps, so the
+  // parts' nesting is the start's throughout)
+  if (std::string failure = apart_pin_slot_end_failure(pair, c.steps.front().data()); !failure.empty())
+    reject("at the start (" + words(c.steps.front()) + "): " + failure);
+  {
+    ApartBox start;
+    for (int k = 0; k < 3; ++k) start.lo[k] = start.hi[k] = c.steps.front()[k];
+    if (std::string failure = apart_limits_failure(pair, start); !failure.empty()) reject("at the start: " + failure);
+  }
+  std::size_t pieces = 0, total = 0, proved = 0;
+  for (std::size_t i = 0; i + 1 < c.steps.size(); ++i) {
+    // a move that stays at one configuration (a repeated step, or u = 3 to u = -1) is free where
+    // the moves around it are
+    if (apart_same_configuration(pair, c.steps[i].data(), c.steps[i + 1].data())) continue;
+    if (total >= sliced_total_budget) reject("the steps' moves need more than " + std::to_string(sliced_total_budget) + " interval pieces in all");
+    const std::string failure =
+        apart_move_failure(pair, c.steps[i].data(), c.steps[i + 1].data(), std::min(sliced_move_budget, sliced_total_budget - total), &pieces);
+    if (!failure.empty()) reject("move " + std::to_string(i) + " (" + words(c.steps[i]) + " to " + words(c.steps[i + 1]) + "): " + failure);
+    total += pieces;
+    ++proved;
+  }
+  const std::string expected = sliced_connected_statement(c);
+  if (c.envelope.statement != expected)
+    reject("the statement does not say what the claim's data prove: it reads '" + c.envelope.statement.substr(0, 400) +
+           "', the claim's data give '" + expected + "'");
+  return std::string(claim_name) + ": part '" + parts.moving->name + "' moves from " + sliced_end_words(c.from, c.from_other, parts.other->name) +
+         " to " + sliced_end_words(c.to, c.to_other, parts.other->name) + " without touching '" + parts.other->name + "' (" +
+         std::to_string(c.steps.size() - 1) + " steps, " + std::to_string(proved) + " moves proved free over " + std::to_string(total) +
+         " interval pieces in all, within the motion limits)";
+}
+
+}  // namespace
+
 VerificationResult check_sliced_connected(const SlicedConnectedCertificate& c, const Model& model) {
   using namespace verify;
+  if (c.pin_slot) return verdict_of([&] { return pin_slot_connected_summary(c, model); });
   return verdict_of([&] {
+    if (!c.steps.empty() || c.from_other || c.to_other) reject("a planar part's claim has a path, not steps or other positions");
     const SlicedPair pair = checked_sliced_pair(c.envelope, model, c.from, c.to, "the start", "the end", "connected");
     const std::string &name = pair.planar_name, &fixed_name = pair.fixed_name;
     const Part &planar = pair.planar(), &fixed = pair.fixed();

@@ -12,6 +12,8 @@
 #include <hipair/certificate.hpp>
 #include <hipair/model.hpp>
 
+#include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +25,15 @@ struct SlicedConnectedCertificate {
   Certificate envelope;            ///< statement, model identity, pair (its claim field unused)
   PlanarPose from, to;             ///< the claim: both poses of the planar part (`part` names it)
   std::vector<PlanarPose> path;    ///< the witness: from ... to, consecutive poses one move apart
+  /// Pin-slot claims (session 71: `from` and `to` give a slide): a part on a pin in a slot against
+  /// a fixed, rotating or translating part. `from_other` / `to_other` the other part's positions
+  /// (absent when it is fixed); the witness is `steps` (not `path`): configurations in the
+  /// coordinates (q, s, u) of sliced_apart's pin-slot domain (<hipair/sliced_apart.hpp>: q the
+  /// other's angle coordinate or offset, 0 when fixed; s the slide; u the pin-slot part's angle
+  /// coordinate), consecutive ones differing in one coordinate, or the same configuration.
+  bool pin_slot = false;
+  std::optional<ExactPosition> from_other, to_other;
+  std::vector<std::array<Rational, 3>> steps;
 };
 
 /// Is `json_text` a certificate whose claim is "sliced_connected"? (false when it does not parse)
@@ -45,7 +56,7 @@ struct SlicedConnectedResult {
   /// space (not certified: the verdict of the cell structure only), no path found, or a move the
   /// staircase could not prove free.
   std::string failure;
-  std::size_t sliced_waypoints = 0;   ///< waypoints of the sliced C-space's path
+  std::size_t sliced_waypoints = 0;   ///< waypoints of the sliced C-space's path (pin-slot claims: the boxes of the free chain, 0 for a direct walk)
 };
 
 /// Certifies that the planar part can move from `from` to `to` without touching the fixed part
@@ -63,5 +74,18 @@ SlicedConnectedResult certify_sliced_connected(const Model& model, const std::st
 struct SlicedPath;
 SlicedConnectedResult certify_sliced_path(const Model& model, const std::string& fixed, const std::string& planar,
                                           const SlicedPath& path, const CertifyContext& context = {});
+
+/// Certifies that the pin-slot part (from.part, motion "pin_slot") can move from (from,
+/// from_other) to (to, to_other) without touching `other` (fixed: no positions; rotating:
+/// tangents; translating: offsets), within the parts' motion limits: sliced_apart's adaptive
+/// subdivision over (q, s, u) (within the limits) until a chain of boxes proved free joins the
+/// ends, then a staircase through the chain's shared faces, each move proved free by the
+/// verifier's own check. At most `max_leaves` boxes: beyond, `failure` says so.
+/// \throws ModelError / GeometryError for parts that are not a pin-slot part and a fixed, rotating
+/// or translating part, or positions that do not fit them.
+SlicedConnectedResult certify_pin_slot_connected(const Model& model, const std::string& other, const PlanarPose& from,
+                                                 const std::optional<ExactPosition>& from_other, const PlanarPose& to,
+                                                 const std::optional<ExactPosition>& to_other, const CertifyContext& context = {},
+                                                 std::size_t max_leaves = 40000);
 
 }  // namespace hipair

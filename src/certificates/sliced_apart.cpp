@@ -17,9 +17,14 @@
 #include <hipair/error.hpp>
 #include <hipair/overlap.hpp>
 #include <hipair/sliced_apart.hpp>
+#include <hipair/sliced_certificate.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <deque>
+#include <functional>
+#include <queue>
 #include <unordered_map>
 
 namespace hipair {
@@ -63,13 +68,56 @@ class ApartSearch {
       queue.push_back(tree_.nodes[n].upper);
     }
     // 2. chains of open boxes from a to b split until there is none
+    std::vector<std::size_t> chain;
+    std::string why;
+    if (free_chain(a, b, chain, why))
+      return "a chain of boxes proved free joins a and b: they are connected (not certified here: --claim connected certifies it)";
+    return why;
+  }
+
+  // Splits the mixed boxes of shortest chains of open boxes from a to b until no chain is left
+  // (false, `why` empty), a chain of boxes proved free joins them (true; `chain` the leaves from
+  // a's to b's, consecutive closed boxes meeting), or a limit is reached (false, `why` says so).
+  // `prefer_free` (the connected producer): the chains are the cheapest with a box proved free
+  // costing 1 and a mixed one 8, so that a chain around a wall of mixed boxes is found before the
+  // wall's boxes are all split.
+  bool free_chain(const Rational (&a)[3], const Rational (&b)[3], std::vector<std::size_t>& chain, std::string& why,
+                  bool prefer_free = false) {
     for (;;) {
       std::vector<std::size_t> from = open_at(a), to = open_at(b);
-      if (from.empty() || to.empty()) return "an end lies in blocked boxes only";
+      if (from.empty() || to.empty()) {
+        why = "an end lies in blocked boxes only";
+        return false;
+      }
       std::unordered_map<std::size_t, std::size_t> parent;
       std::deque<std::size_t> frontier;
       for (std::size_t n : from) parent.emplace(n, n), frontier.push_back(n);
       std::size_t reached = std::size_t(-1);
+      if (prefer_free) {
+        using Entry = std::pair<std::size_t, std::size_t>;   // (cost, leaf)
+        std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+        std::unordered_map<std::size_t, std::size_t> cost;
+        for (std::size_t n : from) cost[n] = 0, queue.push({0, n});
+        while (!queue.empty()) {
+          const auto [c, n] = queue.top();
+          queue.pop();
+          if (c != cost[n]) continue;
+          if (std::find(to.begin(), to.end(), n) != to.end()) {
+            reached = n;
+            break;
+          }
+          for (std::size_t m : adjacent_[n]) {
+            if (state_[m] == State::blocked) continue;
+            const std::size_t next = c + (state_[m] == State::free ? 1 : 8);
+            auto found = cost.find(m);
+            if (found != cost.end() && found->second <= next) continue;
+            cost[m] = next;
+            parent[m] = n;
+            queue.push({next, m});
+          }
+        }
+        frontier.clear();
+      }
       while (!frontier.empty() && reached == std::size_t(-1)) {
         const std::size_t n = frontier.front();
         frontier.pop_front();
@@ -80,17 +128,24 @@ class ApartSearch {
         for (std::size_t m : adjacent_[n])
           if (state_[m] != State::blocked && parent.emplace(m, n).second) frontier.push_back(m);
       }
-      if (reached == std::size_t(-1)) return "";
+      if (reached == std::size_t(-1)) return false;
       std::vector<std::size_t> mixed;
+      chain.clear();
       for (std::size_t n = reached;; n = parent[n]) {
+        chain.push_back(n);
         if (state_[n] == State::mixed) mixed.push_back(n);
         if (parent[n] == n) break;
       }
-      if (mixed.empty()) return "a chain of boxes proved free joins a and b: they are connected (not certified here: --claim connected certifies it)";
+      if (mixed.empty()) {
+        std::reverse(chain.begin(), chain.end());
+        return true;
+      }
       for (std::size_t n : mixed)
-        if (std::string why = split(n, look_ahead_); !why.empty()) return why;
+        if (why = split(n, look_ahead_); !why.empty()) return false;
     }
   }
+
+  const verify::ApartTree& tree() const { return tree_; }
 
   // the tree and its proofs (preorder); the domain's ranges
   SlicedApartCertificate certificate_body() const {
@@ -342,11 +397,8 @@ std::string range_text(const RationalInterval& r) {
 }  // namespace
 
 std::string write_sliced_apart_certificate(const SlicedApartCertificate& c) {
+  using certificate_json::position;
   using certificate_json::quoted_text;
-  auto position = [](const ExactPosition& p) {
-    if (p.is_offset) return "{\"offset\": " + quoted_text(to_exact_string(p.value)) + "}";
-    return "{\"tangent\": " + quoted_text(to_exact_string(p.value)) + (p.half_turn ? ", \"centre\": \"pi\"}" : std::string("}"));
-  };
   std::string out = certificate_json::envelope(c.envelope, 1, "sliced_apart");
   out += "  \"sliced_apart\": {\n    \"a\": " + certificate_json::pose(c.a, true) + ",\n    \"b\": " + certificate_json::pose(c.b, true);
   if (c.a_other && c.b_other) out += ",\n    \"a_other\": " + position(*c.a_other) + ",\n    \"b_other\": " + position(*c.b_other);
@@ -442,29 +494,64 @@ SlicedApartResult certify_sliced_apart(const Model& model, const std::string& fi
   return result;
 }
 
-SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& other, const PlanarPose& a,
-                                         const std::optional<ExactPosition>& a_other, const PlanarPose& b,
-                                         const std::optional<ExactPosition>& b_other, const CertifyContext& context,
-                                         std::size_t max_leaves) {
-  if (b.part != a.part) throw ModelError("", "sliced_apart: both poses must be of one part");
-  if (!a.slide || !b.slide) throw ModelError("", "sliced_apart: a pin-slot part's poses give its slide and tangent");
+namespace {
+
+// The search of a pin-slot claim (apart, connected): the pair, the ends' coordinates (q, s, u) and
+// the domain around them, or why an end is not certainly free (`failure`).
+struct PinSlotSearch {
+  std::optional<verify::ApartPair> pair;
+  Rational at_a[3], at_b[3];
+  verify::ApartTree tree;
+  Rational weights[3];
+  bool full_other = false;
+  std::string failure;
+};
+
+// A range [lo, hi] of an angle coordinate (u, see <hipair/sliced_apart.hpp>) holding the ends'
+// coordinates e0, e1 and within `limits` (rad), chosen in doubles (the caller checks it with the
+// verifier's apart_limits_failure); the full turn [-1, 3] (periodic) without limits.
+void angle_range(const std::optional<RationalInterval>& limits, const Rational& e0, const Rational& e1, Rational& lo, Rational& hi,
+                 bool& periodic) {
+  const double pi = 3.141592653589793;
+  periodic = !limits || Rational(limits->hi - limits->lo).get_d() > 2 * pi + 1e-3;
+  if (periodic) {
+    lo = -1, hi = 3;
+    return;
+  }
+  double l = limits->lo.get_d(), h = limits->hi.get_d();
+  const double shift = 2 * pi * std::floor((l + pi / 2) / (2 * pi));   // l in [-pi/2, 3pi/2): the coordinate's chart
+  l -= shift, h -= shift;
+  auto u_of = [&](double theta) { return theta <= pi / 2 ? std::tan(theta / 2) : 2 + std::tan((theta - pi) / 2); };
+  double ul = u_of(l), uh = u_of(std::min(h, 2 * pi - 1e-3));
+  ul += 1e-9 * (1 + std::fabs(ul)), uh -= 1e-9 * (1 + std::fabs(uh));
+  lo = std::min({approximate(ul), e0, e1});
+  hi = std::max({approximate(uh), e0, e1});
+}
+
+PinSlotSearch pin_slot_search(const Model& model, const std::string& other, const PlanarPose& a, const std::optional<ExactPosition>& a_other,
+                              const PlanarPose& b, const std::optional<ExactPosition>& b_other, const std::string& claim,
+                              bool within_limits) {
+  if (b.part != a.part) throw ModelError("", claim + ": both poses must be of one part");
+  if (!a.slide || !b.slide) throw ModelError("", claim + ": a pin-slot part's poses give its slide and tangent");
   const Part& other_part = part_of(model, other);
   const Part& moving = part_of(model, a.part);
-  if (&other_part == &moving) throw ModelError("", "sliced_apart: a pair needs two different parts");
-  if (moving.motion.kind != Motion::Kind::pin_slot) throw GeometryError("sliced_apart: part '" + a.part + "' has no pin_slot motion");
+  if (&other_part == &moving) throw ModelError("", claim + ": a pair needs two different parts");
+  if (moving.motion.kind != Motion::Kind::pin_slot) throw GeometryError(claim + ": part '" + a.part + "' has no pin_slot motion");
   const Motion::Kind kind = other_part.motion.kind;
   if (kind != Motion::Kind::fixed && kind != Motion::Kind::rotation && kind != Motion::Kind::translation)
-    throw GeometryError("sliced_apart: part '" + other + "' must be fixed, rotate or translate (against a pin-slot part)");
+    throw GeometryError(claim + ": part '" + other + "' must be fixed, rotate or translate (against a pin-slot part)");
   const bool offsets = kind == Motion::Kind::translation;
   if ((kind == Motion::Kind::fixed) != (!a_other || !b_other) ||
       (a_other && b_other && (a_other->is_offset != offsets || b_other->is_offset != offsets)))
-    throw ModelError("", "sliced_apart: give the positions of '" + other + "' at both ends exactly when it moves (" +
+    throw ModelError("", claim + ": give the positions of '" + other + "' at both ends exactly when it moves (" +
                              (kind == Motion::Kind::translation ? "offsets" : "tangents") + ")");
-  const verify::ApartPair pair(other_part, moving);
-  Rational at_a[3], at_b[3];
+  PinSlotSearch search;
+  search.pair.emplace(other_part, moving);
+  const verify::ApartPair& pair = *search.pair;
+  Rational(&at_a)[3] = search.at_a;
+  Rational(&at_b)[3] = search.at_b;
   pair.coordinates(a, a_other, at_a);
   pair.coordinates(b, b_other, at_b);
-  SlicedApartResult result;
   const auto& slide_limits = moving.motion.translation_limits;
   const auto& offset_limits = other_part.motion.translation_limits;
   for (int end = 0; end < 2; ++end) {
@@ -473,33 +560,30 @@ SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& 
     const std::string which = end == 0 ? "a" : "b";
     // a configuration of the mechanism (the verifier's tests): else bad input
     if (slide_limits && (*pose.slide < slide_limits->lo || *pose.slide > slide_limits->hi))
-      throw ModelError("", "sliced_apart: the end " + which + ": the slide of '" + moving.name + "' (" + to_decimal_string(*pose.slide) +
+      throw ModelError("", claim + ": the end " + which + ": the slide of '" + moving.name + "' (" + to_decimal_string(*pose.slide) +
                                ") is outside its limits [" + to_decimal_string(slide_limits->lo) + ", " +
                                to_decimal_string(slide_limits->hi) + "]");
     if (!verify::certainly_within(moving.motion.angle_limits, verify::angle_of_tangent(pose.tangent, pose.half_turn), true))
-      throw ModelError("", "sliced_apart: the end " + which + ": the angle of '" + moving.name + "' is not certainly within its limits");
+      throw ModelError("", claim + ": the end " + which + ": the angle of '" + moving.name + "' is not certainly within its limits");
     if (position) {
       try {
         verify::exact_map(other_part, {{other, *position}});
       } catch (const verify::Rejection& rejection) {
-        throw ModelError("", "sliced_apart: the end " + which + ": " + rejection.reason);
+        throw ModelError("", claim + ": the end " + which + ": " + rejection.reason);
       }
     }
     const std::string failure = verify::apart_pin_slot_end_failure(pair, end == 0 ? at_a : at_b);
     if (!failure.empty()) {
-      result.failure = "the end " + which + " is not certainly free: " + failure;
-      return result;
+      search.failure = "the end " + which + " is not certainly free: " + failure;
+      return search;
     }
   }
   // the domain: q the other's full turn, its offset limits (or the ends +- the reaches), s the
-  // slide limits (or the ends +- the part's reach), u the full turn
-  Part turning = moving;
-  turning.motion.kind = Motion::Kind::rotation;
-  const Rational reach = verify::reach(verify::shape_of(turning));   // about the pin
-  Part other_turning = other_part;
-  other_turning.motion.kind = Motion::Kind::rotation;
-  const Rational other_reach = kind == Motion::Kind::rotation ? verify::reach(verify::shape_of(other_turning)) : Rational(1);
-  verify::ApartTree tree;
+  // slide limits (or the ends +- the part's reach), u the full turn; a connected claim's search
+  // (`within_limits`) keeps to the rotating parts' angle limits too
+  const Rational reach = verify::reach_about_pivot(moving);   // about the pin
+  const Rational other_reach = kind == Motion::Kind::rotation ? verify::reach_about_pivot(other_part) : Rational(1);
+  verify::ApartTree& tree = search.tree;
   tree.marks = "qsu";
   tree.nodes.push_back(verify::ApartTree::Node{});
   verify::ApartBox& d = tree.nodes[0].box;
@@ -512,8 +596,10 @@ SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& 
     d.lo[0] = d.hi[0] = 0;
     tree.closed_lo[0] = tree.closed_hi[0] = true;
   } else if (full_other) {
-    d.lo[0] = -1, d.hi[0] = 3;
-    tree.periodic[0] = true;
+    bool periodic = true;
+    if (within_limits) angle_range(other_part.motion.angle_limits, at_a[0], at_b[0], d.lo[0], d.hi[0], periodic);
+    else d.lo[0] = -1, d.hi[0] = 3;
+    tree.periodic[0] = periodic;
   } else if (offset_limits && offset_limits->lo < offset_limits->hi) {
     d.lo[0] = offset_limits->lo, d.hi[0] = offset_limits->hi;
     tree.closed_lo[0] = tree.closed_hi[0] = true;
@@ -526,19 +612,150 @@ SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& 
   } else {
     around(1, sgn(reach) > 0 ? reach : Rational(1));
   }
-  d.lo[2] = -1, d.hi[2] = 3;
+  if (within_limits) {
+    angle_range(moving.motion.angle_limits, at_a[2], at_b[2], d.lo[2], d.hi[2], tree.periodic[2]);
+  } else {
+    d.lo[2] = -1, d.hi[2] = 3;
+  }
+  if (within_limits)
+    if (std::string why = verify::apart_limits_failure(pair, d); !why.empty())
+      throw GeometryError(claim + ": the search's domain could not be placed within the motion limits (" + why + ")");
   const Rational slide_reach = std::max(Rational(abs(d.lo[1])), Rational(abs(d.hi[1])));
-  const Rational weights[3] = {kind == Motion::Kind::fixed ? Rational(0) : full_other ? other_reach : Rational(1), Rational(1),
-                               Rational(reach + slide_reach)};
-  ApartSearch search(pair, std::move(tree), weights, max_leaves);
-  const std::string why = search.run(at_a, at_b);
+  search.weights[0] = kind == Motion::Kind::fixed ? Rational(0) : full_other ? other_reach : Rational(1);
+  search.weights[1] = Rational(1);
+  search.weights[2] = Rational(reach + slide_reach);
+  search.full_other = full_other;
+  return search;
+}
+
+// The staircase through a chain of boxes proved free (consecutive closed boxes meeting): from
+// `a` to a point of each shared face (across a periodic seam: the same configuration at 3 and at
+// -1) and on to `b`, one coordinate at a time, every step inside one closed box of the chain.
+std::vector<std::array<Rational, 3>> staircase_through(const verify::ApartTree& tree, const std::vector<std::size_t>& chain,
+                                                       const Rational (&a)[3], const Rational (&b)[3]) {
+  std::vector<std::array<Rational, 3>> steps{{a[0], a[1], a[2]}};
+  auto walk_to = [&](const Rational (&target)[3]) {
+    for (int k = 0; k < 3; ++k) {
+      if (steps.back()[k] == target[k]) continue;
+      std::array<Rational, 3> next = steps.back();
+      next[k] = target[k];
+      steps.push_back(next);
+    }
+  };
+  for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+    const verify::ApartBox &here = tree.nodes[chain[i]].box, &there = tree.nodes[chain[i + 1]].box;
+    Rational in_here[3], in_there[3];
+    for (int k = 0; k < 3; ++k) {
+      const Rational lo = std::max(here.lo[k], there.lo[k]), hi = std::min(here.hi[k], there.hi[k]);
+      if (lo <= hi) {
+        in_here[k] = in_there[k] = (lo + hi) / 2;
+      } else {   // across the seam of a periodic axis
+        const bool up = here.hi[k] == 3;
+        in_here[k] = up ? Rational(3) : Rational(-1);
+        in_there[k] = up ? Rational(-1) : Rational(3);
+      }
+    }
+    walk_to(in_here);
+    if (steps.back() != std::array<Rational, 3>{in_there[0], in_there[1], in_there[2]}) steps.push_back({in_there[0], in_there[1], in_there[2]});
+  }
+  walk_to(b);
+  return steps;
+}
+
+}  // namespace
+
+SlicedApartResult certify_pin_slot_apart(const Model& model, const std::string& other, const PlanarPose& a,
+                                         const std::optional<ExactPosition>& a_other, const PlanarPose& b,
+                                         const std::optional<ExactPosition>& b_other, const CertifyContext& context,
+                                         std::size_t max_leaves) {
+  PinSlotSearch setup = pin_slot_search(model, other, a, a_other, b, b_other, "sliced_apart", false);
+  SlicedApartResult result;
+  if (!setup.failure.empty()) {
+    result.failure = setup.failure;
+    return result;
+  }
+  ApartSearch search(*setup.pair, std::move(setup.tree), setup.weights, max_leaves);
+  const std::string why = search.run(setup.at_a, setup.at_b);
   result.leaves = search.leaves();
   result.blocked = search.blocked();
   if (why.empty()) {
-    result.certificate = finished(search, model, context, other, a, b, a_other, b_other, full_other);
+    result.certificate = finished(search, model, context, other, a, b, a_other, b_other, setup.full_other);
     return result;
   }
   result.failure = "no separation proved: " + why;
+  return result;
+}
+
+SlicedConnectedResult certify_pin_slot_connected(const Model& model, const std::string& other, const PlanarPose& from,
+                                                 const std::optional<ExactPosition>& from_other, const PlanarPose& to,
+                                                 const std::optional<ExactPosition>& to_other, const CertifyContext& context,
+                                                 std::size_t max_leaves) {
+  PinSlotSearch setup = pin_slot_search(model, other, from, from_other, to, to_other, "sliced_connected", true);
+  SlicedConnectedResult result;
+  if (!setup.failure.empty()) {
+    result.failure = setup.failure;
+    return result;
+  }
+  // the ends joined by at most three moves, one coordinate each, in some order: no search
+  std::vector<std::array<Rational, 3>> direct;
+  for (const std::array<int, 3>& order : {std::array<int, 3>{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}) {
+    direct.assign(1, {setup.at_a[0], setup.at_a[1], setup.at_a[2]});
+    for (int k : order) {
+      if (direct.back()[k] == setup.at_b[k]) continue;
+      std::array<Rational, 3> next = direct.back();
+      next[k] = setup.at_b[k];
+      if (!verify::apart_move_failure(*setup.pair, direct.back().data(), next.data(), 1000).empty()) {
+        direct.clear();
+        break;
+      }
+      direct.push_back(next);
+    }
+    if (!direct.empty()) break;
+  }
+  // domains around the ends first (a path within a smaller domain is a path: its search is
+  // cheaper), the ends' hull widened by 1/8, then 1/2 of the whole domain's sides, then the whole
+  const verify::ApartBox whole = setup.tree.nodes[0].box;
+  std::optional<ApartSearch> search;
+  std::vector<std::size_t> chain;
+  std::string why;
+  for (int widening : {8, 2, 0}) {
+    if (!direct.empty()) break;
+    verify::ApartTree tree = setup.tree;
+    verify::ApartBox& d = tree.nodes[0].box;
+    if (widening > 0) {
+      bool smaller = false;
+      for (int k = 0; k < 3; ++k) {
+        const Rational margin = (whole.hi[k] - whole.lo[k]) / widening;
+        d.lo[k] = std::max(whole.lo[k], Rational(std::min(setup.at_a[k], setup.at_b[k]) - margin));
+        d.hi[k] = std::min(whole.hi[k], Rational(std::max(setup.at_a[k], setup.at_b[k]) + margin));
+        if (d.lo[k] != whole.lo[k] || d.hi[k] != whole.hi[k]) smaller = true, tree.periodic[k] = false;
+      }
+      if (!smaller) continue;
+    }
+    search.emplace(*setup.pair, std::move(tree), setup.weights, max_leaves);
+    why.clear();
+    if (search->free_chain(setup.at_a, setup.at_b, chain, why, true)) break;
+    result.failure = why.empty() ? "no chain of boxes proved free joins the ends within the motion limits: the boxes proved "
+                                   "blocked separate them there (--claim apart may certify it)"
+                                 : "no path proved: " + why;
+    if (!why.empty()) return result;   // a limit reached: a larger domain costs more
+    search.reset();
+  }
+  if (!search && direct.empty()) return result;
+  result.failure.clear();
+  SlicedConnectedCertificate c;
+  c.envelope = start_certificate(model, context, ClaimKind::planar_clearance, other, from.part);
+  c.from = from;
+  c.to = to;
+  c.pin_slot = true;
+  c.from_other = from_other;
+  c.to_other = to_other;
+  c.steps = search ? staircase_through(search->tree(), chain, setup.at_a, setup.at_b) : direct;
+  c.envelope.statement = sliced_connected_statement(c);
+  result.sliced_waypoints = chain.size();
+  VerificationResult check = check_sliced_connected(c, model);
+  if (!check.valid) throw NumericError("the certificate produced does not pass its own check: " + check.reason);
+  result.certificate = std::move(c);
   return result;
 }
 

@@ -187,6 +187,21 @@ std::pair<PlanarPose, std::optional<ExactPosition>> pin_slot_configuration(const
   return {pose, other_position};
 }
 
+// A connected claim's result: the certificate written and its statement printed (exit 0), or why
+// there is none (exit 1, nothing written).
+int connected_written(const SlicedConnectedResult& found, const CertifyArguments& arguments) {
+  if (!found.certificate) {
+    std::cerr << "hipair: cannot certify: " << found.failure << "\n";
+    return 1;
+  }
+  const SlicedConnectedCertificate& c = *found.certificate;
+  io::write_file_atomically(arguments.out, write_sliced_connected_certificate(c));
+  std::cout << "certified sliced_connected: " << c.envelope.statement << " ("
+            << (c.pin_slot ? c.steps.size() - 1 : c.path.size() - 1) << " moves)\n"
+            << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path << ")\n";
+  return 0;
+}
+
 // An apart claim's result: the certificate written and its statement printed (exit 0), or why
 // there is none (exit 1, nothing written).
 int apart_written(const SlicedApartResult& found, const CertifyArguments& arguments) {
@@ -238,17 +253,20 @@ int run(const CertifyArguments& arguments) {
   std::vector<std::string> notes;   // how angles in degrees were taken
   const Part* planar = a.motion.kind == Motion::Kind::planar ? &a : b.motion.kind == Motion::Kind::planar ? &b : nullptr;
   const Part* pin_slot = a.motion.kind == Motion::Kind::pin_slot ? &a : b.motion.kind == Motion::Kind::pin_slot ? &b : nullptr;
-  if (arguments.claim == "apart" && pin_slot && !planar) {
+  if ((arguments.claim == "apart" || arguments.claim == "connected") && pin_slot && !planar) {
     // a pin-in-slot part's two configurations (with the other part's positions) in different
-    // components of the pair's free space: the kd-tree over (q, s, u) (<hipair/sliced_apart.hpp>)
+    // components of the pair's free space: the kd-tree over (q, s, u) (<hipair/sliced_apart.hpp>);
+    // or joined by steps through it, within the motion limits (<hipair/sliced_certificate.hpp>)
     const Part& other = pin_slot == &a ? b : a;
     if (arguments.to.empty())
-      throw ModelError("", "--claim apart needs --to " + pin_slot->name + "=SLIDE,ANGLE" +
+      throw ModelError("", "--claim " + arguments.claim + " needs --to " + pin_slot->name + "=SLIDE,ANGLE" +
                                (other.motion.kind != Motion::Kind::fixed ? " and --to " + other.name + "=VALUE" : "") + " (the end)");
     auto [from, from_other] = pin_slot_configuration(*pin_slot, other, arguments.at, "--at", notes);
     auto [to, to_other] = pin_slot_configuration(*pin_slot, other, arguments.to, "--to", notes);
     for (const std::string& note : notes) std::cout << note << "\n";
-    return apart_written(certify_pin_slot_apart(model, other.name, from, from_other, to, to_other, context), arguments);
+    if (arguments.claim == "apart")
+      return apart_written(certify_pin_slot_apart(model, other.name, from, from_other, to, to_other, context), arguments);
+    return connected_written(certify_pin_slot_connected(model, other.name, from, from_other, to, to_other, context), arguments);
   }
   if (arguments.claim == "connected" || arguments.claim == "apart") {
     // a planar part's two poses connected through free space (sliced C-space path, staircase
@@ -271,17 +289,7 @@ int run(const CertifyArguments& arguments) {
       // leaves wall a's component off (<hipair/sliced_apart.hpp>)
       return apart_written(certify_sliced_apart(model, fixed.name, from, to, context), arguments);
     }
-    SlicedConnectedResult found = certify_sliced_connected(model, fixed.name, from, to, context);
-    if (!found.certificate) {
-      std::cerr << "hipair: cannot certify: " << found.failure << "\n";
-      return 1;
-    }
-    io::write_file_atomically(arguments.out, write_sliced_connected_certificate(*found.certificate));
-    std::cout << "certified sliced_connected: " << found.certificate->envelope.statement << " (" << found.certificate->path.size() - 1
-              << " moves)\n"
-              << "written to " << arguments.out << " (check it with: hipair-verify " << arguments.out << " " << arguments.path
-              << ")\n";
-    return 0;
+    return connected_written(certify_sliced_connected(model, fixed.name, from, to, context), arguments);
   }
   if (planar && (arguments.claim == "interference" || arguments.claim == "clearance")) {
     // a part free in the plane: its pose (x, y, angle) from the model's initial configuration
@@ -492,7 +500,7 @@ void register_certify(CLI::App& app, Action& action) {
   command->add_option("--driver", arguments->driver, "jam/free: the driven part (default: the pair's first moving part)");
   command->add_option("--from", arguments->from, "free: start of the driver range (default: its initial position)");
   command->add_option("--to", arguments->to, "free: end of the driver range (default: one turn); connected/apart: the end pose PART=X,Y,ANGLE "
-                                             "(apart, a pin-slot part: PART=SLIDE,ANGLE, and OTHER=VALUE for a moving other part, repeatable)");
+                                             "(a pin-slot part: PART=SLIDE,ANGLE, and OTHER=VALUE for a moving other part, repeatable)");
   command->add_option("--follower-at", arguments->follower_at, "free: follower position at the start (default: initial)");
   command->add_option("--ratio", arguments->ratio, "free: follower moves by RATIO x driver motion (default 0: it stays)");
   command->add_option("--direction", arguments->direction, "jam: +1 (driver coordinate increases) or -1; + and - are synonyms");

@@ -4,15 +4,16 @@
 // so the turn is walled on both sides. The post fixed (2-D: s, u), turning about its own centre
 // (3-D: its angle, s, u) or sliding along x within [-1, 1] (3-D). Oracles: the exact overlap
 // predicate at every blocked leaf's middle and at random exact poses inside blocked leaves, the
-// ends apart; the other side: without the tail the bar turns the other way round (sampled exactly
-// along that path) and no certificate is produced, and the certificate of the walled bar is
-// invalid for it. Mutated certificates rejected with their reasons. The format's work limits:
+// ends apart; the other side: without the tail the bar turns the other way round (certified since
+// session 71: a sliced_connected certificate, its steps apart by the exact oracle) and no apart
+// certificate is produced, and the certificate of the walled bar is invalid for it. Mutated certificates rejected with their reasons. The format's work limits:
 // a tree of more leaves or halvings than it states is refused before any proof is checked.
 #include <hipair/certificate.hpp>
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/overlap.hpp>
 #include <hipair/sliced_apart.hpp>
+#include <hipair/sliced_certificate.hpp>
 
 #include <gtest/gtest.h>
 
@@ -22,6 +23,7 @@
 #include <random>
 #include <string>
 
+#include "pin_slot_bar_post.hpp"
 #include "random_rationals.hpp"
 #include "sliced_apart_support.hpp"
 #include "sliced_peg_in_hole.hpp"
@@ -30,67 +32,7 @@
 namespace hipair {
 namespace {
 
-std::string n(const Rational& r) { return "\"" + to_exact_string(r) + "\""; }
-
-std::string rectangle(const Rational& x0, const Rational& y0, const Rational& x1, const Rational& y1) {
-  return R"({ "start": [)" + n(x0) + "," + n(y0) + R"(], "edges": [ { "line_to": [)" + n(x1) + "," + n(y0) +
-         R"(] }, { "line_to": [)" + n(x1) + "," + n(y1) + R"(] }, { "line_to": [)" + n(x0) + "," + n(y1) +
-         R"(] }, { "line_to": [)" + n(x0) + "," + n(y0) + "] } ] }";
-}
-
-enum class Post { fixed, turning, sliding };
-
-// The bar (half width w, from `tail` to 10 along x) on a pin at the origin, and a square post of
-// half side r centred at (px, py).
-Model bar_and_post(const Rational& px, const Rational& py, const Rational& r, const Rational& w, Post post,
-                   const Rational& tail = Rational(-10)) {
-  std::string motion = "\"fixed\"";
-  if (post == Post::turning) motion = R"({ "rotation": { "pivot": [)" + n(px) + "," + n(py) + "] } }";
-  if (post == Post::sliding) motion = R"({ "translation": { "direction": [1, 0], "limits": [-1, 1] } })";
-  return read_model(R"({ "hipair": 1, "name": "bar-post", "parts": [
-    { "name": "post", "motion": )" + motion + R"(, "loops": [ )" +
-                    rectangle(Rational(px - r), Rational(py - r), Rational(px + r), Rational(py + r)) + R"( ] },
-    { "name": "bar", "motion": { "pin_slot": { "pivot": [0, 0], "direction": [1, 0], "limits": [-2, 2] } },
-      "loops": [ )" + rectangle(tail, Rational(-w), Rational(10), w) + R"( ] } ],
-    "pairs": [{"parts": ["post", "bar"]}] })");
-}
-
-PlanarPose bar_pose(const Rational& s, const Rational& t, bool half_turn = false) {
-  PlanarPose p{"bar", 0, 0, t, half_turn, std::nullopt};
-  p.slide = s;
-  return p;
-}
-
-// the exact relation of the pair at (q, s, u) (u the two-chart angle coordinate of the bar; q the
-// post's angle coordinate or offset)
-PartRelation relation_at(const Model& model, const Rational& q, const Rational& s, const Rational& u) {
-  auto rotation = [](const Rational& u, Rational& c, Rational& si) {
-    const bool half = u > 1;
-    const Rational t = half ? Rational(u - 2) : u;
-    const Rational d = 1 + t * t;
-    const int sign = half ? -1 : 1;
-    c = sign * (1 - t * t) / d;
-    si = sign * 2 * t / d;
-  };
-  const Part &post = model.parts[0], &bar = model.parts[1];
-  Rational c, si;
-  rotation(u, c, si);
-  const Placement bar_at = placement_about(bar.motion.pivot, c, si, Point{Rational(s * c), Rational(s * si)});
-  Placement post_at;
-  if (post.motion.kind == Motion::Kind::rotation) {
-    Rational pc, ps;
-    rotation(q, pc, ps);
-    post_at = placement_about(post.motion.pivot, pc, ps, Point{Rational(0), Rational(0)});
-  } else if (post.motion.kind == Motion::Kind::translation) {
-    post_at.offset = Point{q, Rational(0)};
-  }
-  return part_overlap(post, post_at, bar, bar_at).relation;
-}
-
-std::optional<ExactPosition> post_position(Post post, const Rational& value) {
-  if (post == Post::fixed) return std::nullopt;
-  return ExactPosition{value, post == Post::sliding, false, {}, {}};
-}
+using namespace test::bar_post;
 
 // Every blocked leaf's middle and `samples` random exact poses of it overlap (the exact oracle);
 // returns the number of blocked leaves.
@@ -136,12 +78,13 @@ TEST(CertifyApartPinSlot, GeneratedBarsCannotTurnPastAFixedPost) {
     EXPECT_EQ(relation_at(model, 0, -slide, 1), PartRelation::apart);
     EXPECT_EQ(check_blocked_leaves(c, model, random, 2), c.proofs.size());
     // the other side: without its tail the bar turns the other way round (-90, -180, -270 =
-    // 90 degrees), sampled exactly; no certificate, and the walled bar's is invalid for it
+    // 90 degrees), certified (session 71: sliced_connected's steps, checked by the verifier and
+    // by the exact oracle at each step); no apart certificate, and the walled bar's is invalid for it
     const Model short_bar = bar_and_post(px, py, r, w, Post::fixed, Rational(-1, 2));
-    for (int k = 0; k <= 60; ++k) {   // u from 0 down to -1 (= 3), then 3 down to 1 (90 degrees)
-      const Rational u = k <= 20 ? Rational(-k, 20) : Rational(3 - Rational(k - 20, 20));
-      EXPECT_EQ(relation_at(short_bar, 0, 0, u), PartRelation::apart) << "u " << u;
-    }
+    SlicedConnectedResult turns = certify_pin_slot_connected(short_bar, "post", bar_pose(0, 0), std::nullopt, bar_pose(0, 1), std::nullopt);
+    ASSERT_TRUE(turns.certificate) << turns.failure;
+    EXPECT_TRUE(check_sliced_connected(*turns.certificate, short_bar).valid);
+    for (const auto& step : turns.certificate->steps) EXPECT_EQ(relation_at(short_bar, step[0], step[1], step[2]), PartRelation::apart);
     EXPECT_FALSE(check_sliced_apart(c, short_bar).valid);
     SlicedApartResult around = certify_pin_slot_apart(short_bar, "post", bar_pose(0, 0), std::nullopt, bar_pose(0, 1), std::nullopt, {}, 3000);
     EXPECT_FALSE(around.certificate) << "the short bar certified apart";
