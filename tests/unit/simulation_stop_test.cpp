@@ -6,7 +6,9 @@
 //    change)", a NumericError naming no limit, the state that of the step before;
 //  - a planar jam against a speed-profile driver (a prescribed driver, its velocity doubles) is
 //    labelled approximate; base69's SimulationJam defaulted `exact` to true and the planar
-//    simulator left it so (and called it a "constant-speed" driver).
+//    simulator left it so (and called it a "constant-speed" driver);
+//  - (session 71, jam71) a planar jam of a constant-speed driver and a speed profile in a model
+//    timed in milliseconds: both drivers' shares in the model's time unit.
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
@@ -137,6 +139,74 @@ TEST(SimulationStop, APlanarJamAgainstASpeedProfileIsLabelledApproximate) {
     EXPECT_NEAR(*jam, expected, tol);
     EXPECT_FALSE(exact);
     EXPECT_NE(message.find("the prescribed driver 'pusher' jams 'block' (a jam)"), std::string::npos) << message;
+    EXPECT_NE(message.find("(approximate (found exactly on the exact contact normals and the prescribed drivers' "
+                           "velocity doubles)"),
+              std::string::npos)
+        << message;
+  }
+}
+
+// Session 71 (jam71; stop70's review, M1): a planar jam in a model whose time unit is the
+// millisecond, with one constant-speed driver and one speed profile. pusher-blocks.json's pusher
+// (constant V mm/ms) carries the 6 mm block into the wall, the wall now planar and driven away by
+// a speed profile at the constant U = r V mm/ms (r 0.1 .. 0.8): the block meets the receding wall
+// and the pusher cannot give way — a jam at t* = (W - 6 + 35) / (V - U) ms (the pusher's face at
+// -35 + V t, the block's right face 6 mm ahead, the wall's face at W + U t). The locking LP must
+// take both drivers' shares in one time unit: base70 took the profile's velocity double per
+// internal time unit (seconds: U / 0.001 = 1000 U mm/s) next to the pusher's V mm/ms, found the
+// wall receding faster than the pusher closes (1000 U > V) and no jam — the run ended with the
+// impact problem's error instead. The verdict: approximate (the profile's velocity doubles), the
+// drivers "prescribed". Tolerance: the model's accuracy 1e-10 over the 100 mm travel, over V - U.
+TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBothInOneTimeUnit) {
+  const std::uint64_t seed = test::test_seed(7103);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int trial = 0; trial < 3; ++trial) {
+    const double v = rng.uniform(0.05, 0.4), u = v * rng.uniform(0.1, 0.8), wall = rng.uniform(50, 80);
+    SCOPED_TRACE("V " + num(v) + " mm/ms, U " + num(u) + " mm/ms, wall " + num(wall) + " mm");
+    nlohmann::json j = example("pusher-blocks.json");
+    nlohmann::json parts = nlohmann::json::array();
+    for (const nlohmann::json& p : j["parts"])
+      if (p["name"] != "small") parts.push_back(p);
+    j["parts"] = parts;
+    ASSERT_EQ(j["parts"][0]["name"], "wall");
+    ASSERT_EQ(j["parts"][2]["name"], "block");
+    j["parts"][0]["motion"] = {{"planar", {{"pivot", {0, 0}}}}};
+    j["parts"][0]["initial"] = {{"x", 0}, {"y", 0}};
+    j["parts"][0]["loops"][0]["start"] = {wall, -20};
+    j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
+                                                                {{"line_to", {wall + 10, 20}}},
+                                                                {{"line_to", {wall, 20}}},
+                                                                {{"line_to", {wall, -20}}, {"label", "wall face"}}});
+    j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
+                                        {{"parts", {"wall", "block"}}, {"restitution", 0}}});
+    j["simulation"]["units"]["time"] = "ms";
+    j["simulation"]["drivers"] = nlohmann::json::array(
+        {{{"part", "pusher"}, {"speed", {{"x", v}}}},
+         {{"part", "wall"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", u}}}, {1e6, {{"x", u}}}}}}});
+    const Model model = read_model(j.dump(), "pusher into a receding wall, ms");
+    PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
+    const double expected = (wall - 6 + 35) / (v - u), tol = 1e-10 * 100 / (v - u);
+    std::optional<double> jam;
+    std::string message;
+    bool exact = true;
+    try {
+      sim.run_until(2 * expected);
+    } catch (const SimulationJam& stop) {
+      jam = stop.time();
+      message = stop.what();
+      exact = stop.exact();
+    } catch (const Error& error) {
+      FAIL() << "not a jam: " << error.what();
+    }
+    ASSERT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " ms (t = " << sim.state().time << " ms)";
+    EXPECT_NEAR(*jam, expected, tol);
+    std::cout << "  jam at " << num(*jam) << " ms, closed form " << num(expected) << " ms: " << (*jam - expected) / tol
+              << " of the tolerance\n";
+    EXPECT_FALSE(exact);
+    EXPECT_NE(message.find("jams 'block' (a jam)"), std::string::npos) << message;
+    EXPECT_NE(message.find("'pusher'"), std::string::npos) << message;
+    EXPECT_NE(message.find("'wall'"), std::string::npos) << message;
     EXPECT_NE(message.find("(approximate (found exactly on the exact contact normals and the prescribed drivers' "
                            "velocity doubles)"),
               std::string::npos)
