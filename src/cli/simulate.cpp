@@ -870,12 +870,11 @@ struct RunStop {
   std::string part, limit;   // a motion limit's part and limit
 };
 
-// run_within_budget, a stop after the run began kept as the run's stop
-// A numeric or geometry error of a run whose initial state's energy is not finite (session 71,
-// jam71: an initial velocity beyond the doubles' range, the pin-slot follower thrown at 1e160
-// mm/s) is bad input, not a stop: a ModelError (exit 2), the simulator's message naming the
-// parts and data, nothing written — session 70 wrote a trajectory of the initial state alone
-// with "energy": null.
+// run_within_budget, a stop after the run began kept as the run's stop. A numeric or geometry
+// error of a run whose initial state's energy is not finite (session 71, jam71: an initial
+// velocity beyond the doubles' range, the pin-slot follower thrown at 1e160 mm/s) is bad input,
+// not a stop: a ModelError (exit 2), the simulator's message naming the parts and data, nothing
+// written — session 70 wrote a trajectory of the initial state alone with "energy": null.
 template <class Sim, class Run>
 std::optional<RunStop> run_to_end_or_stop(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit,
                                           Run&& run) {
