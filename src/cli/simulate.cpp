@@ -870,21 +870,10 @@ struct RunStop {
   std::string part, limit;   // a motion limit's part and limit
 };
 
-// run_within_budget, a stop after the run began kept as the run's stop. A numeric or geometry
-// error of a run whose initial state's energy is not finite (session 71, jam71: an initial
-// velocity beyond the doubles' range, the pin-slot follower thrown at 1e160 mm/s) is bad input,
-// not a stop: a ModelError (exit 2), the simulator's message naming the parts and data, nothing
-// written — session 70 wrote a trajectory of the initial state alone with "energy": null.
+// run_within_budget, a stop after the run began kept as the run's stop
 template <class Sim, class Run>
 std::optional<RunStop> run_to_end_or_stop(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit,
                                           Run&& run) {
-  const double initial_energy = simulation.energy();
-  const auto refuse_initial = [&](const Error& error) {
-    if (!std::isfinite(initial_energy))
-      throw ModelError("", std::string(error.what()) +
-                               " [the initial state's energy is not finite: the model's initial velocities or loads are "
-                               "beyond the doubles' range; nothing was run or written]");
-  };
   try {
     run_within_budget(simulation, options, time_unit, std::forward<Run>(run));
   } catch (const SimulationJam& jam) {
@@ -896,19 +885,29 @@ std::optional<RunStop> run_to_end_or_stop(const Sim& simulation, const SimulateO
   } catch (const SimulationStepBudget&) {
     throw;   // the step budget (run_within_budget's message)
   } catch (const NumericError& error) {
-    refuse_initial(error);
     return RunStop{0, error.what(), "numeric error", true, false, {}, {}};
   } catch (const GeometryError& error) {
-    refuse_initial(error);
     return RunStop{0, error.what(), "geometry error", true, false, {}, {}};
   }
   return std::nullopt;
 }
 
 // The stop's time: its last state's, `last` (the samples' last, after the stop's own state was
-// added where it is the simulator's)
-void kept_stop_state(std::optional<RunStop>& stop, double last) {
-  if (stop) stop->time = last;
+// added where it is the simulator's). `samples` the number of samples, `energy` the last one's
+// energy. A numeric or geometry error before the first completed step (the initial state the
+// only sample) of a run whose initial state's energy is not finite (session 71, jam71: an
+// initial velocity or load beyond the doubles' range, the pin-slot follower thrown at 1e160
+// mm/s) is bad input, not a stop: a ModelError (exit 2), the simulator's message (naming the
+// parts and the largest velocity or load given) and nothing written — session 70 wrote a
+// trajectory of the initial state alone with "energy": null. A run that completed steps before
+// its energy overflowed keeps them (a stop, exit 3).
+void kept_stop_state(std::optional<RunStop>& stop, double last, std::size_t samples, double energy) {
+  if (!stop) return;
+  if (!stop->at_state && samples == 1 && !std::isfinite(energy))
+    throw ModelError("", stop->message +
+                             " [the initial state's energy is not finite: the model's initial velocities or loads are "
+                             "beyond the doubles' range; nothing was written]");
+  stop->time = last;
 }
 
 // The events a run's outputs hold: all of them; for a stopped run those up to its time (a
@@ -1103,7 +1102,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     samples.push_back({state_time(simulation), planar_states(simulation)});
     if (!times.empty()) record_frame();
   }
-  kept_stop_state(stop, samples.back().time);
+  kept_stop_state(stop, samples.back().time, samples.size(), sample_energy);
   std::vector<SimulationEvent> kept;
   const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
   const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
@@ -1243,7 +1242,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
       run_to_end_or_stop(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
   if (stop && stop->at_state && simulation.state().time > samples.back().time)
     samples.push_back(simulation.state());   // the stop's state
-  kept_stop_state(stop, samples.back().time);
+  kept_stop_state(stop, samples.back().time, samples.size(), sample_energy);
   std::vector<SimulationEvent> kept;
   const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
   const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
@@ -1492,7 +1491,7 @@ int run(const SimulateOptions& options) {
       if (!times.empty()) record_frame();
     }
   }
-  kept_stop_state(stop, samples.back().time);
+  kept_stop_state(stop, samples.back().time, samples.size(), sample_energy);
   std::vector<SimulationEvent> kept;
   const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
   const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end

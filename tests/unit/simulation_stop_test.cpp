@@ -156,7 +156,7 @@ TEST(SimulationStop, APlanarJamAgainstASpeedProfileIsLabelledApproximate) {
 // internal time unit (seconds: U / 0.001 = 1000 U mm/s) next to the pusher's V mm/ms, found the
 // wall receding faster than the pusher closes (1000 U > V) and no jam — the run ended with the
 // impact problem's error instead. The verdict: approximate (the profile's velocity doubles), the
-// drivers "prescribed". Tolerance: the model's accuracy 1e-10 over the 100 mm travel, over V - U.
+// drivers "prescribed".
 TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBothInOneTimeUnit) {
   const std::uint64_t seed = test::test_seed(7103);
   SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
@@ -186,7 +186,11 @@ TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBo
          {{"part", "wall"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", u}}}, {1e6, {{"x", u}}}}}}});
     const Model model = read_model(j.dump(), "pusher into a receding wall, ms");
     PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
-    const double expected = (wall - 6 + 35) / (v - u), tol = 1e-10 * 100 / (v - u);
+    // (the tolerance: 1e-6 mm of gap, 10^3 x the model's accuracy 1e-10 over the 100 mm travel as
+    // in run_simulate_jam_tests.sh, over the closing speed V - U: the wall's frame, in which the
+    // pair's C-space is built, moves, and the contact is found up to ~1e-6 mm early — seeds 1..4:
+    // at most 0.09 of it)
+    const double expected = (wall - 6 + 35) / (v - u), tol = 1e3 * 1e-10 * 100 / (v - u);
     std::optional<double> jam;
     std::string message;
     bool exact = true;
@@ -204,9 +208,12 @@ TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBo
     std::cout << "  jam at " << num(*jam) << " ms, closed form " << num(expected) << " ms: " << (*jam - expected) / tol
               << " of the tolerance\n";
     EXPECT_FALSE(exact);
-    EXPECT_NE(message.find("jams 'block' (a jam)"), std::string::npos) << message;
-    EXPECT_NE(message.find("'pusher'"), std::string::npos) << message;
-    EXPECT_NE(message.find("'wall'"), std::string::npos) << message;
+    // (both drivers close the lock, in either order: "the prescribed drivers 'pusher' and 'wall' jam 'block'")
+    const bool named = message.find("the prescribed drivers 'pusher' and 'wall' jam 'block' (a jam)") != std::string::npos ||
+                       message.find("the prescribed drivers 'wall' and 'pusher' jam 'block' (a jam)") != std::string::npos;
+    EXPECT_TRUE(named) << message;
+    EXPECT_NE(message.find("(wall face)"), std::string::npos) << message;
+    EXPECT_NE(message.find("(pusher face)"), std::string::npos) << message;
     EXPECT_NE(message.find("(approximate (found exactly on the exact contact normals and the prescribed drivers' "
                            "velocity doubles)"),
               std::string::npos)
