@@ -108,6 +108,18 @@ struct Stopped {
   bool exact = false;
 };
 
+// A run to `until` that stops with a SimulationJam (no jam: `jam` empty)
+template <class Sim>
+Stopped run_to_jam(Sim& sim, double until) {
+  Stopped run;
+  try {
+    sim.run_until(until);
+  } catch (const SimulationJam& jam) {
+    run = {jam.time(), jam.what(), jam.exact()};
+  }
+  return run;
+}
+
 // cam-drive.json's eccentric cam (e = 8 mm, R = 25 mm) at a constant w rad/s lifting the
 // flat-faced follower (its offset e sin(w t) while it rides the cam) into a fixed stop whose face
 // is h above the follower's faceplate (y = 31 + h). `profile`: the cam a speed_profile driver at
@@ -155,12 +167,7 @@ TEST(SimulationJam, ConstantSpeedCamLiftingTheFollowerIntoAFixedStopJamsAtTheClo
     const Model model = cam_into_stop(h, w);
     Simulation sim = Simulation::create(model, SimulationOptions{});
     const double expected = std::asin(h / e) / w, tol = 1e-9 * 33 / (e * w * std::cos(w * expected));
-    Stopped run;
-    try {
-      sim.run_until(2 * expected);
-    } catch (const SimulationJam& jam) {
-      run = {jam.time(), jam.what(), jam.exact()};
-    }
+    const Stopped run = run_to_jam(sim, 2 * expected);
     ASSERT_TRUE(run.jam.has_value()) << "no jam by " << 2 * expected << " s (t = " << sim.state().time << " s)";
     EXPECT_NEAR(*run.jam, expected, tol);
     std::cout << "  jam at " << num(*run.jam) << " s, closed form " << num(expected) << " s: "
@@ -197,12 +204,7 @@ TEST(SimulationJam, AFixedAxisJamAgainstASpeedProfileDriverIsLabelledApproximate
     const Model model = cam_into_stop(h, w, true);
     Simulation sim = Simulation::create(model, SimulationOptions{});
     const double expected = std::asin(h / e) / w, tol = 1e-9 * 33 / (e * w * std::cos(w * expected));
-    Stopped run;
-    try {
-      sim.run_until(2 * expected);
-    } catch (const SimulationJam& jam) {
-      run = {jam.time(), jam.what(), jam.exact()};
-    }
+    const Stopped run = run_to_jam(sim, 2 * expected);
     ASSERT_TRUE(run.jam.has_value()) << "no jam by " << 2 * expected << " s (t = " << sim.state().time << " s)";
     EXPECT_NEAR(*run.jam, expected, tol);
     EXPECT_EQ(sim.state().time, *run.jam);
@@ -259,12 +261,7 @@ TEST(SimulationJam, ConstantSpeedPusherCarryingABlockIntoAWallJamsAtTheClosedFor
     const Model model = pusher_into_wall(v, x0, wall, mu);
     PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
     const double expected = (wall - 6 + 35) / v, tol = 1e-10 * 100 / v;
-    Stopped run;
-    try {
-      sim.run_until(2 * expected);
-    } catch (const SimulationJam& jam) {
-      run = {jam.time(), jam.what(), jam.exact()};
-    }
+    const Stopped run = run_to_jam(sim, 2 * expected);
     ASSERT_TRUE(run.jam.has_value()) << "no jam by " << 2 * expected << " s (t = " << sim.state().time << " s)";
     EXPECT_NEAR(*run.jam, expected, tol);
     std::cout << "  jam at " << num(*run.jam) << " s, closed form " << num(expected) << " s: "

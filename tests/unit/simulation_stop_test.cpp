@@ -51,6 +51,43 @@ Model cam_to_limit(const std::string& limit, double w) {
   return read_model(j.dump(), "cam-drive with a limit");
 }
 
+// pusher-blocks.json without the small block, the wall's face at x = W, both pairs plastic (the
+// jam tests' model); the drivers are the caller's
+nlohmann::json pusher_into_wall(double wall) {
+  nlohmann::json j = example("pusher-blocks.json");
+  nlohmann::json parts = nlohmann::json::array();
+  for (const nlohmann::json& p : j["parts"])
+    if (p["name"] != "small") parts.push_back(p);
+  j["parts"] = parts;
+  EXPECT_EQ(j["parts"][0]["name"], "wall");
+  EXPECT_EQ(j["parts"][2]["name"], "block");
+  j["parts"][0]["loops"][0]["start"] = {wall, -20};
+  j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
+                                                              {{"line_to", {wall + 10, 20}}},
+                                                              {{"line_to", {wall, 20}}},
+                                                              {{"line_to", {wall, -20}}, {"label", "wall face"}}});
+  j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
+                                      {{"parts", {"wall", "block"}}, {"restitution", 0}}});
+  return j;
+}
+
+// A run to `until` that stops with a SimulationJam: its time, message and verdict (no time: no jam)
+struct Jammed {
+  std::optional<double> time;
+  std::string message;
+  bool exact = true;
+};
+template <class Sim>
+Jammed run_to_jam(Sim& sim, double until) {
+  Jammed out;
+  try {
+    sim.run_until(until);
+  } catch (const SimulationJam& stop) {
+    out = {stop.time(), stop.what(), stop.exact()};
+  }
+  return out;
+}
+
 // Generated: limits L = 1.5 .. 6.5 mm (three decimals: printed as given), w = 20 .. 150 rad/s
 // (below the critical 187 rad/s: the follower rides the cam). The stop at t* within the jam
 // tests' tolerance (1e-9 of the 33 mm reach over the lift's rate e w cos(w t*)); the state
@@ -107,34 +144,13 @@ TEST(SimulationStop, APlanarJamAgainstASpeedProfileIsLabelledApproximate) {
   for (int trial = 0; trial < 3; ++trial) {
     const double v = rng.uniform(20, 400), wall = rng.uniform(50, 80);
     SCOPED_TRACE("V " + num(v) + " mm/s, wall " + num(wall) + " mm");
-    nlohmann::json j = example("pusher-blocks.json");
-    nlohmann::json parts = nlohmann::json::array();
-    for (const nlohmann::json& p : j["parts"])
-      if (p["name"] != "small") parts.push_back(p);
-    j["parts"] = parts;
-    ASSERT_EQ(j["parts"][2]["name"], "block");
-    j["parts"][0]["loops"][0]["start"] = {wall, -20};
-    j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
-                                                                {{"line_to", {wall + 10, 20}}},
-                                                                {{"line_to", {wall, 20}}},
-                                                                {{"line_to", {wall, -20}}, {"label", "wall face"}}});
-    j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
-                                        {{"parts", {"wall", "block"}}, {"restitution", 0}}});
+    nlohmann::json j = pusher_into_wall(wall);
     j["simulation"]["drivers"] = nlohmann::json::array(
         {{{"part", "pusher"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", v}}}, {1000, {{"x", v}}}}}}});
     const Model model = read_model(j.dump(), "pusher into a wall, profile");
     PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
     const double expected = (wall - 6 + 35) / v, tol = 1e-10 * 100 / v;
-    std::optional<double> jam;
-    std::string message;
-    bool exact = true;
-    try {
-      sim.run_until(2 * expected);
-    } catch (const SimulationJam& stop) {
-      jam = stop.time();
-      message = stop.what();
-      exact = stop.exact();
-    }
+    const auto [jam, message, exact] = run_to_jam(sim, 2 * expected);
     ASSERT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " s (t = " << sim.state().time << " s)";
     EXPECT_NEAR(*jam, expected, tol);
     EXPECT_FALSE(exact);
@@ -164,22 +180,9 @@ TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBo
   for (int trial = 0; trial < 3; ++trial) {
     const double v = rng.uniform(0.05, 0.4), u = v * rng.uniform(0.1, 0.8), wall = rng.uniform(50, 80);
     SCOPED_TRACE("V " + num(v) + " mm/ms, U " + num(u) + " mm/ms, wall " + num(wall) + " mm");
-    nlohmann::json j = example("pusher-blocks.json");
-    nlohmann::json parts = nlohmann::json::array();
-    for (const nlohmann::json& p : j["parts"])
-      if (p["name"] != "small") parts.push_back(p);
-    j["parts"] = parts;
-    ASSERT_EQ(j["parts"][0]["name"], "wall");
-    ASSERT_EQ(j["parts"][2]["name"], "block");
+    nlohmann::json j = pusher_into_wall(wall);
     j["parts"][0]["motion"] = {{"planar", {{"pivot", {0, 0}}}}};
     j["parts"][0]["initial"] = {{"x", 0}, {"y", 0}};
-    j["parts"][0]["loops"][0]["start"] = {wall, -20};
-    j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
-                                                                {{"line_to", {wall + 10, 20}}},
-                                                                {{"line_to", {wall, 20}}},
-                                                                {{"line_to", {wall, -20}}, {"label", "wall face"}}});
-    j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
-                                        {{"parts", {"wall", "block"}}, {"restitution", 0}}});
     j["simulation"]["units"]["time"] = "ms";
     j["simulation"]["drivers"] = nlohmann::json::array(
         {{{"part", "pusher"}, {"speed", {{"x", v}}}},
@@ -191,18 +194,7 @@ TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBo
     // pair's C-space is built, moves, and the contact is found up to ~1e-6 mm early — seeds 1..4:
     // at most 0.09 of it)
     const double expected = (wall - 6 + 35) / (v - u), tol = 1e3 * 1e-10 * 100 / (v - u);
-    std::optional<double> jam;
-    std::string message;
-    bool exact = true;
-    try {
-      sim.run_until(2 * expected);
-    } catch (const SimulationJam& stop) {
-      jam = stop.time();
-      message = stop.what();
-      exact = stop.exact();
-    } catch (const Error& error) {
-      FAIL() << "not a jam: " << error.what();
-    }
+    const auto [jam, message, exact] = run_to_jam(sim, 2 * expected);
     ASSERT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " ms (t = " << sim.state().time << " ms)";
     EXPECT_NEAR(*jam, expected, tol);
     std::cout << "  jam at " << num(*jam) << " ms, closed form " << num(expected) << " ms: " << (*jam - expected) / tol
