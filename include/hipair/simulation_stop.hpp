@@ -49,4 +49,14 @@ class SimulationLimit : public GeometryError {
   std::string limit_;
 };
 
+/// A run that used up its step budget (SimulationOptions::max_steps) before its end time: thrown
+/// by run_until after max_steps steps, the simulator's state the last step's (session 71, jam71:
+/// a type of its own, so that a caller tells the budget from a numeric error on the last allowed
+/// step — `hipair simulate` guessed it from steps() >= max_steps). Not a stop of the mechanism:
+/// the user's own limit. A NumericError, as the plain error it was.
+class SimulationStepBudget : public NumericError {
+ public:
+  using NumericError::NumericError;
+};
+
 }  // namespace hipair

@@ -174,7 +174,10 @@ double thread_cpu_seconds() {
 // ------------------------------------------------------------------ --sweep NAME=A:B:N
 // Status of one run of a sweep (docs/simulation.md, "Sweep status"):
 //   failed   the simulator threw (the message is reported);
-//   stopped  it reached t-end, and over the rest window, the last quarter of the run
+//   stopped  it stopped early by a property of the mechanism (session 71, jam71: a jam,
+//            hipair::SimulationJam, or a part at its own motion limit, SimulationLimit — was
+//            "failed"): its reason, time and message are reported, its parts' data up to the
+//            stop; or it reached t-end, and over the rest window, the last quarter of the run
 //            [3/4 t-end, t-end] (W = t-end / 4), every moving part (drivers included) stayed
 //            at rest: at every state recorded in the window (and the last state before it) its
 //            speed is at most v_rest = sqrt(accuracy) * V, V its largest speed over the whole
@@ -188,6 +191,11 @@ double thread_cpu_seconds() {
 // pressed on a fork horn creeps at 2e-4 rad/s after reaching 51 rad/s, 1/8 of the threshold),
 // and a moving mechanism is far above it.
 enum class RunStatus { running, stopped, failed };
+
+// "a jam", "a jam, approximate", "a motion limit", "a numeric error", "a geometry error"
+std::string stop_words(const std::string& kind, bool exact) {
+  return "a " + kind + (kind == "jam" && !exact ? ", approximate" : "");
+}
 
 const char* to_string(RunStatus status) {
   switch (status) {
@@ -256,6 +264,12 @@ struct SweepRow {
   std::vector<std::vector<double>> reversals;   // per moving part: times of those sign changes
   // per moving part, per sign change: the positions of every moving part at that state
   std::vector<std::vector<std::vector<double>>> reversal_positions;
+  // a run stopped early (status stopped, not at t-end): "jam" or "motion limit" (events.json's
+  // "stopped" reasons), a jam's verdict exact or approximate, the stop's time and message
+  // (session 71, jam71)
+  std::string stop_reason, stop_message;
+  bool stop_exact = true;
+  double stop_time = 0;
 };
 
 // A part's periods over the second half of a run, [t_end / 2, t_end]: the times between every
@@ -436,7 +450,8 @@ std::string judge(const Verdict& verdict, const SweepRow& row, double t_end, con
                   const std::vector<std::size_t>& moving, nlohmann::json& details) {
   if (row.status == RunStatus::failed) return "fails (run failed)";
   std::vector<std::string> reasons;
-  if (row.status == RunStatus::stopped) reasons.push_back("stopped");
+  if (row.status == RunStatus::stopped)
+    reasons.push_back(row.stop_reason.empty() ? "stopped" : "stopped early (" + stop_words(row.stop_reason, row.stop_exact) + ")");
   const PeriodCriterion& period = *verdict.period;
   const std::string& name = model.parts[moving[period.part]].name;
   const auto& times = row.reversals[period.part];
@@ -665,6 +680,15 @@ int run_sweep(const SimulateOptions& options) {
               }
             }
           });
+        } catch (const SimulationJam& jam) {   // a stop of the mechanism (session 71): its state is the stop's
+          row.stop_reason = "jam";
+          row.stop_exact = jam.exact();
+          row.stop_message = jam.what();
+          row.stop_time = jam.time();
+        } catch (const SimulationLimit& limit) {
+          row.stop_reason = "motion limit";
+          row.stop_message = limit.what();
+          row.stop_time = limit.time();
         } catch (const Error&) {
           // how far the failed run got (the message names the time)
           row.steps = simulation.steps();
@@ -676,7 +700,7 @@ int run_sweep(const SimulateOptions& options) {
         row.reached = simulation.state().time;
         row.steps = simulation.steps();
         row.events = simulation.events().size();
-        row.status = rest.at_rest() ? RunStatus::stopped : RunStatus::running;
+        row.status = !row.stop_reason.empty() || rest.at_rest() ? RunStatus::stopped : RunStatus::running;
         for (std::size_t k = 0; k < moving.size(); ++k) {
           row.window_range.push_back(rest.range(k));
           row.window_speed.push_back(rest.speed(k));
@@ -696,8 +720,9 @@ int run_sweep(const SimulateOptions& options) {
 
   const Model& model = models.front();
   std::cout << "sweep of " << name << " over " << values.size() << " values, t-end " << number(options.t_end) << "\n";
-  std::cout << "status: failed (simulator error), stopped (over the last quarter of the run every moving part's speed "
-               "stayed below sqrt(accuracy) times its top speed in the run), running (otherwise)\n";
+  std::cout << "status: failed (simulator error), stopped (early, by a jam or a part at its motion limit: the row says "
+               "which; or over the last quarter of the run every moving part's speed stayed below sqrt(accuracy) "
+               "times its top speed in the run), running (otherwise)\n";
   if (verdict.any())
     std::cout << "verdict: works when " << model.parts[moving[verdict.period->part]].name
               << " has at least two periods in the second half of the run, all within "
@@ -710,7 +735,8 @@ int run_sweep(const SimulateOptions& options) {
   std::cout << "\n";
   nlohmann::json doc = nlohmann::json::array();
   for (const SweepRow& row : rows) {
-    bool completed = row.status != RunStatus::failed;
+    const bool ran = row.status != RunStatus::failed;   // the parts' data: to t-end, or to an early stop
+    const bool completed = ran && row.stop_reason.empty();   // reached t-end
     nlohmann::json j{
         {"value", row.value}, {"status", to_string(row.status)}, {"completes", completed}, {"cpu_seconds", row.cpu}};
     std::cout << number(row.value) << "\t" << to_string(row.status);
@@ -725,7 +751,7 @@ int run_sweep(const SimulateOptions& options) {
     std::cout << "\t" << row.steps << "\t" << row.events << "\t" << number(row.cpu);
     j["steps"] = row.steps;    // a failed run: up to its failure
     j["events"] = row.events;
-    if (completed) {
+    if (ran) {
       for (std::size_t k = 0; k < moving.size(); ++k) {
         const bool rotates = model.parts[moving[k]].motion.kind == Motion::Kind::rotation;
         std::cout << "\t" << shown(row.advance[k], rotates ? 0 : 1) << "\t" << row.swings[k];
@@ -735,6 +761,13 @@ int run_sweep(const SimulateOptions& options) {
                                                    {"rest_window_max_speed", row.window_speed[k]},
                                                    {"max_speed", row.top_speed[k]},
                                                    {"second_half_periods", second_half_periods(row.reversals[k], options.t_end)}};
+      }
+      if (!completed) {   // stopped early: when, why (as events.json's "stopped" of a single run)
+        std::cout << "\tstopped early at t = " << number(row.stop_time) << " (" << stop_words(row.stop_reason, row.stop_exact)
+                  << "): " << row.stop_message;
+        j["stopped"] = {{"time", row.stop_time}, {"reason", row.stop_reason}};
+        if (row.stop_reason == "jam") j["stopped"]["decision"] = row.stop_exact ? "exact" : "approximate";
+        j["stopped"]["message"] = row.stop_message;
       }
     } else {
       std::cout << "\t" << row.error;
@@ -801,10 +834,9 @@ template <class Sim, class Run>
 void run_within_budget(const Sim& simulation, const SimulateOptions& options, const std::string& time_unit, Run&& run) {
   try {
     run();
-  } catch (const NumericError&) {
-    if (simulation.steps() < options.max_steps) throw;
+  } catch (const SimulationStepBudget&) {   // (session 71, jam71: its own type; was steps() >= max_steps)
     const double t = simulation.state().time;
-    throw NumericError("simulate: the run used up its step budget (--max-steps " + std::to_string(options.max_steps) +
+    throw SimulationStepBudget("simulate: the run used up its step budget (--max-steps " + std::to_string(options.max_steps) +
                        ") at t = " + number(t) + " " + time_unit + " of --t-end " + number(options.t_end) + " " + time_unit +
                        ", and nothing was written: give a --t-end of at most about " + number(t) + " " + time_unit +
                        " or a larger --max-steps");
@@ -850,8 +882,9 @@ std::optional<RunStop> run_to_end_or_stop(const Sim& simulation, const SimulateO
     return RunStop{limit.time(), limit.what(), "motion limit", true, true, limit.part(), limit.limit()};
   } catch (const ModelError&) {
     throw;
+  } catch (const SimulationStepBudget&) {
+    throw;   // the step budget (run_within_budget's message)
   } catch (const NumericError& error) {
-    if (simulation.steps() >= options.max_steps) throw;   // the step budget (run_within_budget's message)
     return RunStop{0, error.what(), "numeric error", true, false, {}, {}};
   } catch (const GeometryError& error) {
     return RunStop{0, error.what(), "geometry error", true, false, {}, {}};
@@ -860,24 +893,34 @@ std::optional<RunStop> run_to_end_or_stop(const Sim& simulation, const SimulateO
 }
 
 // The stop's time: its last state's, `last` (the samples' last, after the stop's own state was
-// added where it is the simulator's)
-void kept_stop_state(std::optional<RunStop>& stop, double last) {
-  if (stop) stop->time = last;
+// added where it is the simulator's). `samples` the number of samples, `energy` the last one's
+// energy. A numeric or geometry error before the first completed step (the initial state the
+// only sample) of a run whose initial state's energy is not finite (session 71, jam71: an
+// initial velocity or load beyond the doubles' range, the pin-slot follower thrown at 1e160
+// mm/s) is bad input, not a stop: a ModelError (exit 2), the simulator's message (naming the
+// parts and the largest velocity or load given) and nothing written — session 70 wrote a
+// trajectory of the initial state alone with "energy": null. A run that completed steps before
+// its energy overflowed keeps them (a stop, exit 3).
+void kept_stop_state(std::optional<RunStop>& stop, double last, std::size_t samples, double energy) {
+  if (!stop) return;
+  if (!stop->at_state && samples == 1 && !std::isfinite(energy))
+    throw ModelError("", stop->message +
+                             " [the initial state's energy is not finite: the model's initial velocities or loads are "
+                             "beyond the doubles' range; nothing was written]");
+  stop->time = last;
 }
 
-// The events a run's outputs hold: all of them; for a stop after the last completed step those
-// up to its time (a failed step's events are not results)
+// The events a run's outputs hold: all of them; for a stopped run those up to its time (a
+// failed step's events are not results). Every kind of stop (session 71, jam71; session 70
+// filtered only the stops after the last completed step): a motion limit found by the step's
+// end check keeps the last step's state, while the failing step may already have recorded an
+// impact after it.
 const std::vector<SimulationEvent>& kept_events(const std::vector<SimulationEvent>& all, const std::optional<RunStop>& stop,
                                                 std::vector<SimulationEvent>& storage) {
-  if (!stop || stop->at_state) return all;
+  if (!stop) return all;
   for (const SimulationEvent& e : all)
     if (e.time <= stop->time) storage.push_back(e);
   return storage;
-}
-
-// "a jam", "a jam, approximate", "a motion limit", "a numeric error", "a geometry error"
-std::string stop_words(const std::string& kind, bool exact) {
-  return "a " + kind + (kind == "jam" && !exact ? ", approximate" : "");
 }
 
 // The summary's line of a stopped run (after its "simulated ... to t = ..." line)
@@ -1059,7 +1102,7 @@ int run_planar(const Model& model, const SimulateOptions& options) {
     samples.push_back({state_time(simulation), planar_states(simulation)});
     if (!times.empty()) record_frame();
   }
-  kept_stop_state(stop, samples.back().time);
+  kept_stop_state(stop, samples.back().time, samples.size(), sample_energy);
   std::vector<SimulationEvent> kept;
   const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
   const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
@@ -1199,7 +1242,7 @@ int run_pin_slot(const Model& model, const SimulateOptions& options) {
       run_to_end_or_stop(simulation, options, tu, [&] { simulation.run_until(options.t_end, progress); });
   if (stop && stop->at_state && simulation.state().time > samples.back().time)
     samples.push_back(simulation.state());   // the stop's state
-  kept_stop_state(stop, samples.back().time);
+  kept_stop_state(stop, samples.back().time, samples.size(), sample_energy);
   std::vector<SimulationEvent> kept;
   const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
   const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end
@@ -1448,7 +1491,7 @@ int run(const SimulateOptions& options) {
       if (!times.empty()) record_frame();
     }
   }
-  kept_stop_state(stop, samples.back().time);
+  kept_stop_state(stop, samples.back().time, samples.size(), sample_energy);
   std::vector<SimulationEvent> kept;
   const std::vector<SimulationEvent>& events = kept_events(simulation.events(), stop, kept);
   const bool at_sample = stop && !stop->at_state;   // a stop after the last completed step: its sample is the end

@@ -1819,7 +1819,12 @@ void PinSlotSimulation::Impl::refuse_jam(const std::vector<Row>& rows) {
     const std::size_t dr = r.limit != 0 || r.pair >= pairs.size() ? no_index : driver_of[pairs[r.pair].other];
     if (dr == no_index || drivers[dr].free || drivers[dr].omega == 0 || pairs[r.pair].other == slider.part) {
       exact = exact && !(dr != no_index && !drivers[dr].free && drivers[dr].omega == 0 && sgn(drivers[dr].speed) != 0);
-      d.push_back(-r.exact.v_other);
+      // (session 71, jam71) no driver's share here: exact_normal gives v_other (the lever times
+      // the rate double, per internal time unit) only for a driven, not free part, which this
+      // branch takes only at omega 0, where it is 0 exactly; a nonzero one would be a share in
+      // internal time units next to the exact ones in the model's, so it is refused, not mixed
+      if (sgn(r.exact.v_other) != 0) return;
+      d.emplace_back(0);
       continue;
     }
     d.push_back(-(r.exact.v_other / Rational(drivers[dr].omega)) * drivers[dr].speed);
@@ -2795,7 +2800,7 @@ void PinSlotSimulation::step(double t_limit) {
   const double end = t_limit * s.time_scale;
   if (!(end > s.t)) return;
   if (++s.steps > s.options.max_steps)
-    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) +
+    throw SimulationStepBudget(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) +
                        " steps (a runaway or Zeno run)");
   const double before = s.t;
   s.advance(end - s.t);

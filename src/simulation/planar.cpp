@@ -638,7 +638,7 @@ double next_span(State& s, double t_limit, double& limit) {
   if (s.options.max_step > 0) span = std::min(span, s.options.max_step * s.time_scale);
   if (!(span > 0)) return 0;
   if (++s.steps > s.options.max_steps)
-    throw NumericError(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
+    throw SimulationStepBudget(s.where(s.t) + ": more than " + std::to_string(s.options.max_steps) + " steps");
   return span;
 }
 
@@ -2674,7 +2674,12 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
   const Eigen::VectorXd v = velocity(k);
   // (session 70, stop70) a constant-velocity driver's share from its exact speeds (the same
   // positive time scale over every share leaves the verdict as it is); a profile's from its
-  // velocity doubles, and then the verdict is approximate
+  // velocity doubles, and then the verdict is approximate. Every share in the model's time unit
+  // (session 71, jam71): a profile's velocity double is per internal time unit (the model's
+  // speed over time_scale, the seconds per model time unit), so it is taken times time_scale —
+  // session 70 put it next to the constant drivers' model-unit speeds as it was, a factor
+  // time_scale wrong for a model whose time unit is not the second (a millisecond model: a
+  // profile closing at 0.5 mm/ms counted as 500 against a constant driver's 1)
   std::vector<std::vector<Rational>> a;
   std::vector<Rational> d;
   bool exact = true;
@@ -2693,7 +2698,7 @@ void PlanarSystemSimulation::Impl::refuse_jam(double time, const Rows& rows) {
         if (bodies[body].profile.empty()) {
           closing += r.a[j] * bodies[body].speed[j - 3 * body];
         } else if (vj != 0) {
-          closing += r.a[j] * Rational(vj);
+          closing += r.a[j] * Rational(vj) * Rational(time_scale);
           exact = false;
         }
       }

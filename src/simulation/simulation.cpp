@@ -1908,62 +1908,72 @@ struct Simulation::Impl {
 
   // (session 70, stop70) A contact row exactly, at the rational configuration of the state's
   // doubles qs (a rotation's half-angle tangent tan(theta/2) rounded to a double and taken as the
-  // rational it is, a translation's offset): the kernels' exact contact frame of the row's first
-  // feature pair there (exact_contact_frame: point P, normal N), and physical_row's row on it,
+  // rational it is, or its half turn theta = pi where that tangent is beyond 1e15: coordinate(),
+  // the part coordinates friction_of takes — session 71, jam71; session 70 made them itself and
+  // had no half turn), a translation's offset: the kernels' exact contact frame of a feature
+  // pair there (exact_contact_frame: point P, normal N), and physical_row's row on it,
   // N . (J_second(P) - J_first(P)) — J the velocity of P per unit rate of a part's coordinate
   // (a rotation k x (P - pivot), a translation its direction), exact from the model's pivots and
-  // directions. nullopt where there is none (no feature named, a degenerate frame, a
-  // configuration outside every chart or beyond the doubles), or where it does not agree in
-  // orientation with `g`, the doubles' row (their dot product not positive).
+  // directions. Which feature pair (session 71, jam71; session 70 took the first named, whatever
+  // the others): every feature pair of the row whose exact frame is defined there gives a row,
+  // and they must all be the same row up to a positive factor (one feature pair, or coincident
+  // curves of one edge), decided exactly; rows that differ (a C-space vertex, curves crossing)
+  // leave the row without an exact form, and the verdict approximate. nullopt where there is
+  // none (no feature named, no frame defined, a configuration outside every chart or beyond the
+  // doubles), or where it does not agree in orientation with `g`, the doubles' row (their dot
+  // product not positive).
   std::optional<std::vector<Rational>> exact_jam_row(std::size_t pair, const std::vector<FeatureId>& features, const Vec& g,
                                                      const Vec& qs) const {
     if (features.empty() || !spaces[pair]) return std::nullopt;
     const CSpace& space = *spaces[pair];
-    bool known = true;
-    auto coordinate = [&](const std::string& name) {
-      PartCoordinate c;
-      if (name.empty()) return c;
-      const int d = part_dof[*model.find_part(name)];
-      const double value = d < 0 ? std::numeric_limits<double>::quiet_NaN()
-                           : dofs[d].rotation ? std::tan(std::remainder(qs[d], 2 * std::numbers::pi) / 2)
-                                              : qs[d];
-      if (!std::isfinite(value)) {
-        known = false;
-        return c;
+    const int xdof = part_dof[*model.find_part(space.x_part())];
+    const int ydof = space.dimension() == 2 ? part_dof[*model.find_part(space.y_part())] : -1;
+    if (xdof < 0 || (space.dimension() == 2 && ydof < 0)) return std::nullopt;
+    if (!std::isfinite(qs[xdof]) || (ydof >= 0 && !std::isfinite(qs[ydof]))) return std::nullopt;
+    const PartCoordinate x = coordinate(xdof, qs);
+    const PartCoordinate y = ydof >= 0 ? coordinate(ydof, qs) : PartCoordinate{};
+    std::optional<std::vector<Rational>> found;
+    for (const FeatureId f : features) {
+      std::optional<Contact> frame;
+      try {
+        frame = exact_contact_frame(space, f, x, y);
+      } catch (const GeometryError&) {
+        return std::nullopt;
       }
-      c.kind = dofs[d].rotation ? PartCoordinate::Kind::half_angle_tangent : PartCoordinate::Kind::offset;
-      c.value = Rational(value);
-      return c;
-    };
-    const PartCoordinate x = coordinate(space.x_part());
-    const PartCoordinate y = space.dimension() == 2 ? coordinate(space.y_part()) : PartCoordinate{};
-    if (!known) return std::nullopt;
-    std::optional<Contact> frame;
-    try {
-      frame = exact_contact_frame(space, features.front(), x, y);
-    } catch (const GeometryError&) {
-      return std::nullopt;
+      if (!frame || !frame->exact) continue;
+      const std::array<Rational, 2>& P = frame->point;
+      const std::array<Rational, 2>& N = frame->normal_direction;
+      std::vector<Rational> row(dofs.size(), Rational(0));
+      auto add = [&](std::size_t part, bool second) {
+        const int d = part_dof[part];
+        if (d < 0) return;
+        const Motion& motion = model.parts[part].motion;
+        const Rational along = dofs[d].rotation ? Rational(N[1] * (P[0] - motion.pivot.x) - N[0] * (P[1] - motion.pivot.y))
+                                                : Rational(N[0] * motion.direction.x + N[1] * motion.direction.y);
+        if (second) row[static_cast<std::size_t>(d)] += along;
+        else row[static_cast<std::size_t>(d)] -= along;
+      };
+      const FeaturePair& fp = space.feature_pair(f);
+      add(fp.first.part, false);
+      add(fp.second.part, true);
+      if (!found) {
+        found = std::move(row);
+        continue;
+      }
+      // the same row up to a positive factor: every 2x2 minor of (found, row) 0, and found . row > 0
+      Rational dot(0);
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        dot += (*found)[i] * row[i];
+        for (std::size_t j = i + 1; j < dofs.size(); ++j)
+          if ((*found)[i] * row[j] != (*found)[j] * row[i]) return std::nullopt;
+      }
+      if (sgn(dot) <= 0) return std::nullopt;
     }
-    if (!frame || !frame->exact) return std::nullopt;
-    const std::array<Rational, 2>& P = frame->point;
-    const std::array<Rational, 2>& N = frame->normal_direction;
-    std::vector<Rational> row(dofs.size(), Rational(0));
-    auto add = [&](std::size_t part, bool second) {
-      const int d = part_dof[part];
-      if (d < 0) return;
-      const Motion& motion = model.parts[part].motion;
-      const Rational along = dofs[d].rotation ? Rational(N[1] * (P[0] - motion.pivot.x) - N[0] * (P[1] - motion.pivot.y))
-                                              : Rational(N[0] * motion.direction.x + N[1] * motion.direction.y);
-      if (second) row[static_cast<std::size_t>(d)] += along;
-      else row[static_cast<std::size_t>(d)] -= along;
-    };
-    const FeaturePair& fp = space.feature_pair(features.front());
-    add(fp.first.part, false);
-    add(fp.second.part, true);
+    if (!found) return std::nullopt;
     double agree = 0;
-    for (std::size_t i = 0; i < dofs.size(); ++i) agree += to_d(row[i]) * g[i];
+    for (std::size_t i = 0; i < dofs.size(); ++i) agree += to_d((*found)[i]) * g[i];
     if (!(agree > 0)) return std::nullopt;
-    return row;
+    return found;
   }
   // A constant-speed driver's exact speed (the model's; its dof's speed is its double over the
   // time scale, the same for every driver), nullopt for a speed profile
@@ -2816,7 +2826,7 @@ struct Simulation::Impl {
   }
 
   void step(double t_limit) {
-    if (++steps > options.max_steps) throw NumericError("simulation: more than max_steps steps");
+    if (++steps > options.max_steps) throw SimulationStepBudget("simulation: more than max_steps steps");
     frames.clear();
     using namespace boost::numeric::odeint;
     Vec x = pack();

@@ -7,7 +7,9 @@
 #  - planar parts: a pusher at a constant V mm/s strikes a 6 mm block plastically and carries it
 #    into a wall at x = W: the jam at t* = (W - 6 + 35) / V, whatever the block's start;
 #  - pin-slot: the film advance driven at a constant speed pulls its film to its -20 mm limit
-#    (film68's reproducer, perforation 2): the jam at 0.3424 s (the unit tests hold its closed form).
+#    (film68's reproducer, perforation 2): the jam at 0.3424 s (the unit tests hold its closed form);
+#  - (session 71, jam71) a --sweep of the cam's speed whose runs jam: reported "stopped" with
+#    their reason, not "failed".
 # Each run: exit 3 with the jam's message (the driver, the part, the contacts) saying what was
 # written; trajectory.csv, events.json/.txt (and the pictures) up to the jam, its last row the
 # jam's time; events.json's "stopped" {time, reason "jam", decision, message}; the summary's "stopped early"
@@ -20,48 +22,14 @@ hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "
 # shellcheck source=seeded_test.sh
 source "$(dirname "$0")/seeded_test.sh" "$@"
 
+# shellcheck source=stopped_run_checks.sh
+source "$(dirname "$0")/stopped_run_checks.sh"
+
 # check_stopped NAME OUT_DIR EXPECTED_T TOLERANCE DRIVER PART CONTACT DECISION [PICTURES]
-# (DECISION: exact, or approximate where a verdict is found on doubles; the fixed-axis cam exact since session 70)
+# (DECISION: exact, or approximate where a verdict is found on doubles; the fixed-axis cam exact
+# since session 70; the files' checks: stopped_run_checks.sh, at least 3 trajectory rows)
 check_stopped() {
-  local name=$1 out=$2 expected=$3 tol=$4 driver=$5 part=$6 contact=$7 decision=$8 pictures=${9:-}
-  local code
-  code=$(cat "$work/$name.code")
-  [ "$code" -eq 3 ] || fail "$name: exit $code, not 3: $(tail -c 300 "$work/$name.err")"
-  grep -q "the constant-speed driver '$driver' jams '$part' (a jam)" "$work/$name.err" \
-    || fail "$name: no jam named: $(head -c 400 "$work/$name.err")"
-  grep -qF "$contact" "$work/$name.err" || fail "$name: contact '$contact' not named: $(head -c 600 "$work/$name.err")"
-  grep -q "were written to $out" "$work/$name.err" || fail "$name: the error does not say what was written"
-  grep -q "^  stopped early at t = " "$work/$name.out" || fail "$name: no 'stopped early' line in the summary"
-  for f in trajectory.csv events.json events.txt $pictures; do
-    [ -s "$out/$f" ] || fail "$name: $f not written"
-  done
-  # written whole: nothing but the run's files in the directory
-  local extra
-  extra=$(ls -A "$out" | grep -vxE 'trajectory.csv|events.json|events.txt|positions.svg|velocities.svg|animation.svg|cspace-.*\.svg')
-  [ -z "$extra" ] || fail "$name: stray files in $out: $extra"
-  python3 - "$out" "$expected" "$tol" "$contact" "$decision" <<'EOF' || fail "$name: the stopped run's files"
-import csv, json, sys
-out, expected, tol, contact, decision = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4], sys.argv[5]
-doc = json.load(open(out + "/events.json"))
-stop = doc.get("stopped")
-assert stop, "events.json has no 'stopped'"
-assert stop["reason"] == "jam" and stop["decision"] == decision, stop
-assert contact in stop["message"], stop["message"]
-t = stop["time"]
-assert abs(t - expected) <= tol, f"stopped at {t!r}, closed form {expected!r}, tolerance {tol!r}"
-assert doc["t_end"] == t, (doc["t_end"], t)
-rows = list(csv.reader(open(out + "/trajectory.csv")))
-last = float(rows[-1][0])
-# (trajectory.csv's numbers have 12 significant digits: within half a unit of the 12th)
-assert abs(last - t) <= 5e-12 * abs(t), f"the trajectory ends at {last!r}, the jam at {t!r}"
-times = [float(r[0]) for r in rows[1:]]
-assert times == sorted(times) and len(times) > 2, "the trajectory is not the run's samples"
-assert all(e["time"] <= t for e in doc["events"]), "an event after the jam"
-lines = open(out + "/events.txt").read().splitlines()
-said = ": stopped early (a jam" + ("" if decision == "exact" else ", approximate") + "): "
-assert lines[-1].split(said)[1] == stop["message"], lines[-1]
-print(f"  stopped at {t!r}, closed form {expected!r}: error {(t - expected) / tol:+.3g} of the tolerance")
-EOF
+  check_stopped_run "$1" "$2" jam "$8" "$3" "$4" 3 "${9:-}" "the constant-speed driver '$5' jams '$6' (a jam)" "$7"
 }
 
 # 1. fixed-axis: the cam lifts the follower into a stop
@@ -98,6 +66,44 @@ code=$?
 [ $code -eq 3 ] || fail "cam without --out: exit $code"
 grep -q "(a jam)" "$work/cam-none.err" || fail "cam without --out: $(head -c 300 "$work/cam-none.err")"
 grep -q "written" "$work/cam-none.err" && fail "cam without --out: claims a write: $(cat "$work/cam-none.err")"
+
+# 1b. --sweep over the cam's speed (session 71, jam71): a jammed run of a sweep is reported
+# "stopped" (early: not at t-end, "completes" false) with its reason, decision, time and message
+# (sweep.json's "stopped", the table's "stopped early at t = T (a jam): MESSAGE"); its parts'
+# data up to the jam. Until session 71 it was "failed" with the message as an error.
+read -r w1 w2 <<<"$(python3 -c "import random; r = random.Random($seed * 100 + 5); a = r.randint(30, 80); print(a, a + r.randint(10, 60))")"
+read -r h tend <<<"$(python3 - "$work/cam-1.json" "$w1" <<'EOF'
+import json, math, sys
+m = json.load(open(sys.argv[1]))
+stop = next(p for p in m["parts"] if p["name"] == "stop")
+h = stop["loops"][0]["start"][1] - 31
+print(repr(h), repr(2 * math.asin(h / 8) / float(sys.argv[2])))
+EOF
+)"
+"$hipair" simulate "$work/cam-1.json" --t-end "$tend" --sweep "cam-speed=$w1:$w2:2" --jobs 1 --out "$work/sweep" \
+  >"$work/sweep.out" 2>"$work/sweep.err"
+code=$?
+[ $code -eq 0 ] || fail "sweep of jams: exit $code: $(head -c 300 "$work/sweep.err")"
+[ "$(grep -cE $'\tstopped\t.*\tstopped early at t = .* \\(a jam\\): .*the constant-speed driver .cam. jams .follower. \\(a jam\\)' "$work/sweep.out")" -eq 2 ] \
+  || fail "sweep of jams: the table does not report two stopped jams: $(head -c 1500 "$work/sweep.out")"
+python3 - "$work/sweep/sweep.json" "$h" "$w1" "$w2" <<'EOF' || fail "sweep of jams: sweep.json"
+import json, math, sys
+doc = json.load(open(sys.argv[1]))
+h = float(sys.argv[2])
+runs = doc["runs"]
+assert len(runs) == 2, runs
+for run, w in zip(runs, (float(sys.argv[3]), float(sys.argv[4]))):
+    assert run["value"] == w, (run["value"], w)
+    assert run["status"] == "stopped" and run["completes"] is False, run
+    stop = run["stopped"]
+    assert stop["reason"] == "jam" and stop["decision"] == "exact", stop
+    assert "the constant-speed driver 'cam' jams 'follower' (a jam)" in stop["message"], stop["message"]
+    t = math.asin(h / 8) / w
+    tol = 1e-6 / (8 * w * math.cos(w * t))   # (as the single runs' above)
+    assert abs(stop["time"] - t) <= tol, (stop["time"], t, tol)
+    assert "follower" in run["parts"], run
+    print(f"  sweep run {w:g} rad/s stopped at {stop['time']!r}, closed form {t!r}")
+EOF
 
 # 2. planar parts: a pusher carries a block into a wall
 for trial in 1 2; do

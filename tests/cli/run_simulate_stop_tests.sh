@@ -6,10 +6,11 @@
 #     a contact): the stop at t* = asin(L / e) / w, kind "motion limit", the part and the limit
 #     named, the follower at L in the trajectory's last row. Until session 70: exit 3 "cannot be
 #     moved off its contact (a jammed contact change)", nothing written;
-#  2. numeric errors mid-run: the ladder pulled along its floor by gravity m 1e308 mm/s^2 (planar)
-#     and the pin-slot cam's follower thrown down at m 1e160 mm/s: "the run's energy is not
-#     finite" — kind "numeric error", the files up to the last completed step (every number in
-#     them finite, events.json's t_end and energy that step's). Until session 70: nothing written;
+#  2. numeric errors mid-run: the ladder pulled along its floor by gravity m 1e308 mm/s^2
+#     (planar): "the run's energy is not finite" — kind "numeric error", the files up to the last
+#     completed step (every number in them finite, events.json's t_end and energy that step's).
+#     Until session 70: nothing written. The pin-slot cam's follower thrown down at m 1e160 mm/s
+#     has an initial state beyond the doubles: bad input (exit 2, nothing written; session 71);
 #  3. the files are published whole: a publication made to fail at its N-th rename (N random)
 #     leaves an existing --out directory byte for byte as it was and no staging directory; an
 #     output directory that takes no entry (read-only, when not root) is refused before the run;
@@ -25,56 +26,13 @@ hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "
 # shellcheck source=seeded_test.sh
 source "$(dirname "$0")/seeded_test.sh" "$@"
 
+# shellcheck source=stopped_run_checks.sh
+source "$(dirname "$0")/stopped_run_checks.sh"
+
 # check_stop NAME OUT_DIR KIND EXPECTED_T TOLERANCE MESSAGE_PART [PICTURES]
-# (EXPECTED_T "-": no closed form, only the files' agreement)
+# (EXPECTED_T "-": no closed form, only the files' agreement; stopped_run_checks.sh)
 check_stop() {
-  local name=$1 out=$2 kind=$3 expected=$4 tol=$5 said=$6 pictures=${7:-}
-  local code
-  code=$(cat "$work/$name.code")
-  [ "$code" -eq 3 ] || fail "$name: exit $code, not 3: $(tail -c 300 "$work/$name.err")"
-  grep -qF -- "$said" "$work/$name.err" || fail "$name: '$said' not said: $(head -c 600 "$work/$name.err")"
-  grep -q "were written to $out" "$work/$name.err" || fail "$name: the error does not say what was written"
-  grep -q "^  stopped early at t = .* (a $kind): " "$work/$name.out" || fail "$name: no 'stopped early (a $kind)' line"
-  for f in trajectory.csv events.json events.txt $pictures; do
-    [ -s "$out/$f" ] || fail "$name: $f not written"
-  done
-  local extra
-  extra=$(ls -A "$out" | grep -vxE 'trajectory.csv|events.json|events.txt|positions.svg|velocities.svg|animation.svg|cspace-.*\.svg')
-  [ -z "$extra" ] || fail "$name: stray files in $out: $extra"
-  [ -z "$(ls -A "$(dirname "$out")" | grep -F ".$(basename "$out").tmp-")" ] || fail "$name: a staging directory was left"
-  python3 - "$out" "$kind" "$expected" "$tol" "$said" <<'EOF' || fail "$name: the stopped run's files"
-import csv, json, math, sys
-out, kind, expected, tol, said = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5]
-doc = json.load(open(out + "/events.json"))
-stop = doc.get("stopped")
-assert stop, "events.json has no 'stopped'"
-assert stop["reason"] == kind, stop
-assert said in stop["message"], stop["message"]
-assert ("decision" in stop) == (kind == "jam"), stop
-t = stop["time"]
-assert doc["t_end"] == t, (doc["t_end"], t)
-# the energy of the state written last: a finite number, or null only where the stop says the
-# run's energy is not finite (the pin-slot overflow run's initial state)
-if doc["energy"] is None:
-    assert "energy is not finite" in said, "energy written as null: " + stop["message"]
-else:
-    assert math.isfinite(doc["energy"]), doc["energy"]
-rows = list(csv.reader(open(out + "/trajectory.csv")))
-times = [float(r[0]) for r in rows[1:]]
-assert times and times == sorted(times), "the trajectory is not the run's samples"
-assert abs(times[-1] - t) <= 5e-12 * abs(t), f"the trajectory ends at {times[-1]!r}, the stop at {t!r}"
-assert all(math.isfinite(float(x)) for r in rows[1:] for x in r), "a number in the trajectory is not finite"
-assert all(e["time"] <= t for e in doc["events"]), "an event after the stop"
-lines = open(out + "/events.txt").read().splitlines()
-words = f": stopped early (a {kind}): "
-assert words in lines[-1] and lines[-1].split(words)[1] == stop["message"], lines[-1]
-if expected != "-":
-    expected, tol = float(expected), float(tol)
-    assert abs(t - expected) <= tol, f"stopped at {t!r}, closed form {expected!r}, tolerance {tol!r}"
-    print(f"  stopped at {t!r}, closed form {expected!r}: error {(t - expected) / tol:+.3g} of the tolerance")
-else:
-    print(f"  stopped at {t!r} after {len(times)} samples")
-EOF
+  check_stopped_run "$1" "$2" "$3" - "$4" "$5" 1 "${7:-}" "$6"
 }
 
 # 1. fixed axis: the cam lifts the follower to its own motion limit
@@ -137,10 +95,18 @@ EOF
   >"$work/ladder.out" 2>"$work/ladder.err"
 echo $? >"$work/ladder.code"
 check_stop ladder "$work/ladder" "numeric error" - - "the run's energy is not finite" "positions.svg velocities.svg"
+# the pin-slot follower thrown at 1e160 mm/s: its initial state's energy is already beyond the
+# doubles — bad input (session 71, jam71: exit 2, the simulator's message naming the part's
+# data, nothing written; session 70 wrote a trajectory of the initial state alone, "energy": null)
 "$hipair" simulate "$work/pin-slot-overflow.json" --t-end 0.01 --max-steps 100 --no-pictures --out "$work/pinslot" \
   >"$work/pinslot.out" 2>"$work/pinslot.err"
-echo $? >"$work/pinslot.code"
-check_stop pinslot "$work/pinslot" "numeric error" - - "the run's energy is not finite"
+code=$?
+[ $code -eq 2 ] || fail "pin-slot initial overflow: exit $code, not 2: $(head -c 300 "$work/pinslot.err")"
+grep -qF "the run's energy is not finite" "$work/pinslot.err" || fail "pin-slot initial overflow: $(head -c 400 "$work/pinslot.err")"
+grep -qF "the largest velocity or load given is /simulation/velocities/follower (" "$work/pinslot.err" \
+  || fail "pin-slot initial overflow: the initial velocity's pointer not named: $(head -c 600 "$work/pinslot.err")"
+grep -qF "the initial state's energy is not finite" "$work/pinslot.err" || fail "pin-slot initial overflow: not called bad input"
+[ -e "$work/pinslot" ] && fail "pin-slot initial overflow: wrote $work/pinslot"
 
 # 3. published whole: a failed publication leaves an existing --out as it was, no staging left
 d="$work/existing"

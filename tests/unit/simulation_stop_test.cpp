@@ -6,7 +6,9 @@
 //    change)", a NumericError naming no limit, the state that of the step before;
 //  - a planar jam against a speed-profile driver (a prescribed driver, its velocity doubles) is
 //    labelled approximate; base69's SimulationJam defaulted `exact` to true and the planar
-//    simulator left it so (and called it a "constant-speed" driver).
+//    simulator left it so (and called it a "constant-speed" driver);
+//  - (session 71, jam71) a planar jam of a constant-speed driver and a speed profile in a model
+//    timed in milliseconds: both drivers' shares in the model's time unit.
 #include <hipair/error.hpp>
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
@@ -47,6 +49,43 @@ Model cam_to_limit(const std::string& limit, double w) {
   for (nlohmann::json& part : j["parts"])
     if (part["name"] == "follower") part["motion"]["translation"]["limits"] = {-12, std::stod(limit)};
   return read_model(j.dump(), "cam-drive with a limit");
+}
+
+// pusher-blocks.json without the small block, the wall's face at x = W, both pairs plastic (the
+// jam tests' model); the drivers are the caller's
+nlohmann::json pusher_into_wall(double wall) {
+  nlohmann::json j = example("pusher-blocks.json");
+  nlohmann::json parts = nlohmann::json::array();
+  for (const nlohmann::json& p : j["parts"])
+    if (p["name"] != "small") parts.push_back(p);
+  j["parts"] = parts;
+  EXPECT_EQ(j["parts"][0]["name"], "wall");
+  EXPECT_EQ(j["parts"][2]["name"], "block");
+  j["parts"][0]["loops"][0]["start"] = {wall, -20};
+  j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
+                                                              {{"line_to", {wall + 10, 20}}},
+                                                              {{"line_to", {wall, 20}}},
+                                                              {{"line_to", {wall, -20}}, {"label", "wall face"}}});
+  j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
+                                      {{"parts", {"wall", "block"}}, {"restitution", 0}}});
+  return j;
+}
+
+// A run to `until` that stops with a SimulationJam: its time, message and verdict (no time: no jam)
+struct Jammed {
+  std::optional<double> time;
+  std::string message;
+  bool exact = true;
+};
+template <class Sim>
+Jammed run_to_jam(Sim& sim, double until) {
+  Jammed out;
+  try {
+    sim.run_until(until);
+  } catch (const SimulationJam& stop) {
+    out = {stop.time(), stop.what(), stop.exact()};
+  }
+  return out;
 }
 
 // Generated: limits L = 1.5 .. 6.5 mm (three decimals: printed as given), w = 20 .. 150 rad/s
@@ -105,38 +144,68 @@ TEST(SimulationStop, APlanarJamAgainstASpeedProfileIsLabelledApproximate) {
   for (int trial = 0; trial < 3; ++trial) {
     const double v = rng.uniform(20, 400), wall = rng.uniform(50, 80);
     SCOPED_TRACE("V " + num(v) + " mm/s, wall " + num(wall) + " mm");
-    nlohmann::json j = example("pusher-blocks.json");
-    nlohmann::json parts = nlohmann::json::array();
-    for (const nlohmann::json& p : j["parts"])
-      if (p["name"] != "small") parts.push_back(p);
-    j["parts"] = parts;
-    ASSERT_EQ(j["parts"][2]["name"], "block");
-    j["parts"][0]["loops"][0]["start"] = {wall, -20};
-    j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
-                                                                {{"line_to", {wall + 10, 20}}},
-                                                                {{"line_to", {wall, 20}}},
-                                                                {{"line_to", {wall, -20}}, {"label", "wall face"}}});
-    j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
-                                        {{"parts", {"wall", "block"}}, {"restitution", 0}}});
+    nlohmann::json j = pusher_into_wall(wall);
     j["simulation"]["drivers"] = nlohmann::json::array(
         {{{"part", "pusher"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", v}}}, {1000, {{"x", v}}}}}}});
     const Model model = read_model(j.dump(), "pusher into a wall, profile");
     PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
     const double expected = (wall - 6 + 35) / v, tol = 1e-10 * 100 / v;
-    std::optional<double> jam;
-    std::string message;
-    bool exact = true;
-    try {
-      sim.run_until(2 * expected);
-    } catch (const SimulationJam& stop) {
-      jam = stop.time();
-      message = stop.what();
-      exact = stop.exact();
-    }
+    const auto [jam, message, exact] = run_to_jam(sim, 2 * expected);
     ASSERT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " s (t = " << sim.state().time << " s)";
     EXPECT_NEAR(*jam, expected, tol);
     EXPECT_FALSE(exact);
     EXPECT_NE(message.find("the prescribed driver 'pusher' jams 'block' (a jam)"), std::string::npos) << message;
+    EXPECT_NE(message.find("(approximate (found exactly on the exact contact normals and the prescribed drivers' "
+                           "velocity doubles)"),
+              std::string::npos)
+        << message;
+  }
+}
+
+// Session 71 (jam71; stop70's review, M1): a planar jam in a model whose time unit is the
+// millisecond, with one constant-speed driver and one speed profile. pusher-blocks.json's pusher
+// (constant V mm/ms) carries the 6 mm block into the wall, the wall now planar and driven away by
+// a speed profile at the constant U = r V mm/ms (r 0.1 .. 0.8): the block meets the receding wall
+// and the pusher cannot give way — a jam at t* = (W - 6 + 35) / (V - U) ms (the pusher's face at
+// -35 + V t, the block's right face 6 mm ahead, the wall's face at W + U t). The locking LP must
+// take both drivers' shares in one time unit: base70 took the profile's velocity double per
+// internal time unit (seconds: U / 0.001 = 1000 U mm/s) next to the pusher's V mm/ms, found the
+// wall receding faster than the pusher closes (1000 U > V) and no jam — the run ended with the
+// impact problem's error instead. The verdict: approximate (the profile's velocity doubles), the
+// drivers "prescribed".
+TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBothInOneTimeUnit) {
+  const std::uint64_t seed = test::test_seed(7103);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int trial = 0; trial < 3; ++trial) {
+    const double v = rng.uniform(0.05, 0.4), u = v * rng.uniform(0.1, 0.8), wall = rng.uniform(50, 80);
+    SCOPED_TRACE("V " + num(v) + " mm/ms, U " + num(u) + " mm/ms, wall " + num(wall) + " mm");
+    nlohmann::json j = pusher_into_wall(wall);
+    j["parts"][0]["motion"] = {{"planar", {{"pivot", {0, 0}}}}};
+    j["parts"][0]["initial"] = {{"x", 0}, {"y", 0}};
+    j["simulation"]["units"]["time"] = "ms";
+    j["simulation"]["drivers"] = nlohmann::json::array(
+        {{{"part", "pusher"}, {"speed", {{"x", v}}}},
+         {{"part", "wall"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", u}}}, {1e6, {{"x", u}}}}}}});
+    const Model model = read_model(j.dump(), "pusher into a receding wall, ms");
+    PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
+    // (the tolerance: 1e-6 mm of gap, 10^3 x the model's accuracy 1e-10 over the 100 mm travel as
+    // in run_simulate_jam_tests.sh, over the closing speed V - U: the wall's frame, in which the
+    // pair's C-space is built, moves, and the contact is found up to ~1e-6 mm early — seeds 1..4:
+    // at most 0.09 of it)
+    const double expected = (wall - 6 + 35) / (v - u), tol = 1e3 * 1e-10 * 100 / (v - u);
+    const auto [jam, message, exact] = run_to_jam(sim, 2 * expected);
+    ASSERT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " ms (t = " << sim.state().time << " ms)";
+    EXPECT_NEAR(*jam, expected, tol);
+    std::cout << "  jam at " << num(*jam) << " ms, closed form " << num(expected) << " ms: " << (*jam - expected) / tol
+              << " of the tolerance\n";
+    EXPECT_FALSE(exact);
+    // (both drivers close the lock, in either order: "the prescribed drivers 'pusher' and 'wall' jam 'block'")
+    const bool named = message.find("the prescribed drivers 'pusher' and 'wall' jam 'block' (a jam)") != std::string::npos ||
+                       message.find("the prescribed drivers 'wall' and 'pusher' jam 'block' (a jam)") != std::string::npos;
+    EXPECT_TRUE(named) << message;
+    EXPECT_NE(message.find("(wall face)"), std::string::npos) << message;
+    EXPECT_NE(message.find("(pusher face)"), std::string::npos) << message;
     EXPECT_NE(message.find("(approximate (found exactly on the exact contact normals and the prescribed drivers' "
                            "velocity doubles)"),
               std::string::npos)
