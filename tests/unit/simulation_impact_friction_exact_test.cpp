@@ -326,7 +326,7 @@ TEST(FixedAxisFrictionalImpact, BeyondTwelveContactsTheSolutionIsExactlyConsiste
     }
     e(0) = rng.uniform(0, 1);
     const double mu_s = rng.uniform(0.05, 1.5);
-    p.friction.assign(std::size_t(m), simulation::Friction{});
+    p.friction.assign(static_cast<std::size_t>(m), simulation::Friction{});
     p.friction[0] = coulomb(T, mu_s, mu_s * rng.uniform(0.3, 1));
     for (Eigen::Index k = 1; k < m; ++k) {
       p.G(k, 2 + k) = 1;
@@ -338,7 +338,7 @@ TEST(FixedAxisFrictionalImpact, BeyondTwelveContactsTheSolutionIsExactlyConsiste
     const simulation::FrictionalSolution s = simulation::fixed_axis_frictional_impulses(p.G, p.minv, p.v, e, p.friction);
     ASSERT_TRUE(s.solved) << trial;
     ASSERT_EQ(s.x_exact.size(), std::size_t(n)) << trial;   // an exact decision's solution
-    std::vector<bool> held(std::size_t(m));
+    std::vector<bool> held(static_cast<std::size_t>(m));
     for (Eigen::Index k = 0; k < m; ++k) held[std::size_t(k)] = s.w(k) == 0;
     for (Eigen::Index k = 1; k < m; ++k) EXPECT_FALSE(held[std::size_t(k)]) << trial << " contact " << k;
     const std::optional<std::vector<Rational>> x = oracle_x(p, held, s.state);
@@ -407,7 +407,7 @@ std::optional<CoupledImpact> coupled_impact(Rng& rng, bool extra, bool above) {
   const Rational lambda = ia * d0 + ib * d1, f = ib * d0 + ic * d1;
   if (sgn(lambda) <= 0) return std::nullopt;
   const double mu = 1.5 * to_double(abs(f) / lambda) + 0.1;
-  p.friction.assign(std::size_t(m), simulation::Friction{});
+  p.friction.assign(static_cast<std::size_t>(m), simulation::Friction{});
   p.friction[0] = coulomb(T, mu, mu);
   c.e = Eigen::VectorXd::Constant(m, e);
   c.h = Eigen::VectorXd::Zero(m);
@@ -516,10 +516,10 @@ TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
       }
     }
     // the pin-slot's terms: speed G q' - v_other, its restitution e (speed) where it approaches
-    std::vector<Rational> speed(std::size_t(m)), restitution(std::size_t(m));
+    std::vector<Rational> speed(static_cast<std::size_t>(m)), restitution(static_cast<std::size_t>(m));
     Eigen::VectorXd before(m), hv(m);
-    p.h.resize(std::size_t(m));
-    p.bias.resize(std::size_t(m));
+    p.h.resize(static_cast<std::size_t>(m));
+    p.bias.resize(static_cast<std::size_t>(m));
     for (Eigen::Index k = 0; k < m; ++k) {
       Rational sp = -q(v_other(k)), tb = -q(t_other(k));
       for (Eigen::Index i = 0; i < n; ++i) {
@@ -547,12 +547,12 @@ TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
     ++cases;
     const Eigen::MatrixXd Gz = llt.matrixL().solve(p.G.transpose()).transpose();
     const Eigen::VectorXd vz = llt.matrixU() * p.v, unit = Eigen::VectorXd::Ones(n);
-    std::vector<Rational> hz(std::size_t(m));
+    std::vector<Rational> hz(static_cast<std::size_t>(m));
     for (std::size_t k = 0; k < std::size_t(m); ++k) hz[k] = -q(v_other(Eigen::Index(k))) + restitution[k];
     const std::vector<std::size_t> own;
     const simulation::FrictionalSolution filter = simulation::frictional_impulses(Gz, unit, vz, hv, fz, own, {}, &hz);
     simulation::FullMass full{p.G, p.M, Eigen::VectorXd::Zero(n), fq};
-    std::vector<Rational> h_full(std::size_t(m)), t_exact(std::size_t(m));
+    std::vector<Rational> h_full(static_cast<std::size_t>(m)), t_exact(static_cast<std::size_t>(m));
     for (std::size_t k = 0; k < std::size_t(m); ++k) {
       h_full[k] = speed[k] + restitution[k];
       Rational tb = -q(t_other(Eigen::Index(k)));
@@ -565,7 +565,7 @@ TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
     if (!s.solved) continue;
     ++solved;
     ASSERT_EQ(s.x_exact.size(), std::size_t(n)) << trial;
-    std::vector<Rational> x(std::size_t(n));
+    std::vector<Rational> x(static_cast<std::size_t>(n));
     for (std::size_t i = 0; i < std::size_t(n); ++i) x[i] = q(p.v(Eigen::Index(i))) + s.x_exact[i];
     bool matched = false;
     for (const std::vector<Rational>& o : all) matched = matched || o == x;
