@@ -36,4 +36,17 @@ inline std::string named_friction(const Model& model, std::vector<std::size_t> i
   return out.str();
 }
 
+/// The refusal of a frictional impact without a consistent stick/slip solution (the fixed-axis
+/// simulator's; session 70, exact70: composed here so that a test reads it): "simulation: at t =
+/// <when> the impact problem of <contacts> simultaneous contacts with Coulomb friction has no
+/// consistent stick/slip solution; pairs involved: ..." (named_friction of `pairs`).
+inline std::string inconsistent_frictional_impact(const std::string& when, std::size_t contacts, const Model& model,
+                                                  const std::vector<std::size_t>& pairs) {
+  std::ostringstream out;
+  out << "simulation: at t = " << when << " the impact problem of " << contacts
+      << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution"
+      << named_friction(model, pairs);
+  return out.str();
+}
+
 }  // namespace hipair::simulation
