@@ -80,6 +80,14 @@ struct FrictionalSolution {
   /// form's M coordinates where one is given), empty otherwise. Read by the restitution limit's
   /// exact energy test (held_friction.hpp's creates_energy).
   std::vector<Rational> x_exact;
+  /// Where `solved` is false, whether that is a verdict (session 71, exact71): true where the
+  /// search was complete — every stick/slip assignment of the undecided frictional contacts (at
+  /// most 8) decided on every held set (at most 12 contacts) by the exact LP (solve_frictional in
+  /// exact mode, full_form_impulses): no consistent solution exists, exactly. False where it was
+  /// not (more than 8 undecided frictional contacts: nothing tried; more than 12 contacts: one held
+  /// set per assignment, the exact LCP's; the doubles alone deciding): none was found, which is
+  /// not a proof that none exists.
+  bool exhausted = false;
 };
 
 /// The reduced normal problem for given states: x = x0 + B lambda (stick forces eliminated),
@@ -746,8 +754,11 @@ inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLin
 /// doubles (x and w from the exact ones; a friction shared by a group split in proportion to its
 /// members' normal forces). None: the assignment has no consistent force, exactly.
 /// Beyond 12 contacts (session 70, exact70) the held sets are not enumerated: after `first`, only
-/// the held set of the assignment's exact LCP (Lemke's algorithm in rationals) is decided; none
-/// found there is not a verdict (nullopt, as the bound's nullopt before).
+/// the held set of the assignment's exact LCP (Lemke's algorithm in rationals, its pivots capped
+/// at 2^20) is decided; none found there — Lemke's ray or cap, dependent sticking rows, the LCP's
+/// held set breaking a Coulomb condition — is not a verdict (nullopt, as the bound's nullopt
+/// before). This applies to the held contacts' stepping decisions too (solve_frictional's exact
+/// mode at each step's start), not only to impacts.
 /// `tried` (optional) counts the linear programs solved. `first_only` (with `first` given; session
 /// 66, slip66): only the held set `first` is decided (any number of contacts): a candidate's
 /// confirmation, not the assignment's verdict.
@@ -1011,6 +1022,11 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     if (!lcp) return std::nullopt;
     std::vector<bool> is_held(m);
     for (std::size_t k = 0; k < m; ++k) is_held[k] = sgn(lcp->w[k]) == 0;
+    // (the doubles' held set `first` was decided above; Lemke's being the same, nothing else is
+    // tried although another held set might be consistent at these states: nullopt, not a verdict
+    // — every caller reads a nullopt beyond 12 contacts so: solve_frictional's unsolved result is
+    // not `exhausted`, creates_energy compares the applied velocities' energy, the fixed-axis and
+    // full-form impacts publish `exhausted` false)
     if (first && is_held == *first) return std::nullopt;
     return try_set(is_held);
   }
@@ -1096,7 +1112,10 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     else open.push_back(k);
   }
   FrictionalSolution best;
-  if (open.size() > 8) return best;
+  if (open.size() > 8) return best;   // (not a verdict: exhausted false)
+  // (session 71, exact71: an unsolved result is a verdict only where the exact mode decided every
+  // assignment on every held set — up to 12 contacts, exact_assignment's enumeration)
+  best.exhausted = exact_groups && m <= 12;
   std::optional<LcpSolution> plain;   // the frictionless problem, once needed
   Eigen::MatrixXd Af;
   Eigen::VectorXd bf;

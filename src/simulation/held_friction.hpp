@@ -309,7 +309,9 @@ inline FrictionalSolution frictional_impulses(const Eigen::MatrixXd& G, const Ei
 /// (session 70, exact70): the difference sum_i (x_i^2 - v_i^2) / minv_i in intervals (every
 /// operation's rounding enclosed, kernels::Interval) decides where its sign is certain, the
 /// rationals of the doubles where it is not. Non-finite x: true (no energy to compare; counted as
-/// creating, as a scale without a solution is by the restitution limit).
+/// creating, as a scale without a solution is by the restitution limit). Only creates_energy calls
+/// it, on a solution the restitution limit's solve published as solved; the solvers' Coulomb and
+/// LCP tests reject non-finite numbers, so no caller is known to reach that case (session 71).
 inline bool kinetic_exceeds(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const Eigen::VectorXd& minv) {
   if (!x.allFinite()) return true;
   using kernels::Interval;
@@ -347,7 +349,8 @@ inline bool kinetic_exceeds(const Eigen::VectorXd& x, const Eigen::VectorXd& v, 
 /// factor). Where no exact x is found (the LCP's held set breaking a Coulomb condition, Lemke's
 /// ray, a candidate beyond the doubles' range) the comparison is exact on the doubles' x, the
 /// velocities the simulator applies (kinetic_exceeds: interval filter, rationals behind it; until
-/// session 70, exact70, the rounded sums decided there).
+/// session 70, exact70, the rounded sums decided there): the energy of the applied velocities
+/// decided exactly, not that of an exact solution of the impact (review70 L1).
 inline bool creates_energy(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv, const Eigen::VectorXd& v,
                            const Eigen::VectorXd& h, const std::vector<Friction>& friction,
                            const std::vector<std::size_t>& group, const FrictionalSolution& sol,
@@ -460,15 +463,18 @@ inline FrictionalSolution limited_frictional_impulses(const Eigen::MatrixXd& G, 
 /// with Coulomb friction on rows G over coordinates with diagonal inverse masses minv (0: driven),
 /// velocities v before and restitutions e by row — h_k = e_k min(G_k v, 0) for a row approaching
 /// exactly (approaches), 0 otherwise, its exact terms exact_restitution_terms — solved by
-/// frictional_impulses (every decision exact). Where that finds no solution: up to 12 contacts the
-/// exact enumeration was complete (every held set, every stick/slip assignment, by an exact LP),
-/// so the impact has none: solved false (the simulator refuses it, naming the pairs). Beyond 12
+/// frictional_impulses (every decision exact). Where that finds no solution: up to 12 contacts with
+/// at most 8 of them frictional and undecided the exact enumeration was complete (every held set,
+/// every stick/slip assignment, by an exact LP), so the impact has none: solved false, exhausted
+/// true (the simulator refuses it, naming the pairs). With more than 8 frictional contacts nothing
+/// was tried (solve_frictional's bound): solved false, exhausted false — none found, not a
+/// verdict (session 71, exact71; until then refused with the words of a verdict). Beyond 12
 /// (where the enumeration is not complete) the session-36 rule — the frictionless impulses where
 /// the sticking rows leave the multipliers open (solve_frictional's `undetermined_plain`) — finds
 /// a candidate in doubles, which is taken only where its held set and states are exactly
 /// consistent (exact_assignment on them, the exact terms): the exact solution, its numbers rounded
-/// once; else solved false (until session 70 the doubles' candidate, within their tolerance, was
-/// applied as it was).
+/// once; else solved false, exhausted false (until session 70 the doubles' candidate, within their
+/// tolerance, was applied as it was).
 inline FrictionalSolution fixed_axis_frictional_impulses(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                                          const Eigen::VectorXd& v, const Eigen::VectorXd& e,
                                                          const std::vector<Friction>& friction) {
@@ -480,33 +486,38 @@ inline FrictionalSolution fixed_axis_frictional_impulses(const Eigen::MatrixXd& 
   const std::vector<Rational> h_exact = exact_restitution_terms(G, v, e);
   FrictionalSolution solution = frictional_impulses(G, minv, v, h, friction, no_groups, {}, &h_exact);
   if (solution.solved || m <= 12) return solution;
+  FrictionalSolution none;   // (exhausted false: beyond 12 contacts the search is not complete)
+  none.solved = false;
   const FrictionalSolution plain = solve_frictional(G, minv, v, h, friction, {}, true);
-  if (!plain.solved) return plain;
+  if (!plain.solved) return none;
   std::vector<bool> held(static_cast<std::size_t>(m));
   for (Eigen::Index k = 0; k < m; ++k) held[static_cast<std::size_t>(k)] = !(plain.lambda(k) <= 0 && plain.w(k) > plain.tolerance);
   if (std::optional<FrictionalSolution> exact =
           exact_assignment(G, minv, v, h, friction, plain.state, no_groups, &held, nullptr, nullptr, true, &h_exact))
     return *exact;
-  FrictionalSolution none;
-  none.solved = false;
   return none;
 }
 
 /// Whether an impact's exact change of velocities dv (rationals over the coordinates) raises the
 /// kinetic energy 1/2 v^T M v of the velocities v before, M a full mass matrix's doubles: 2 v^T M dv
 /// + dv^T M dv > 0 exactly (session 70, exact70: the pin-slot simulator's Coulomb impacts on M
-/// itself; until then |x|^2 > |vz|^2 on the Cholesky coordinates' rounded rows).
+/// itself; until then |x|^2 > |vz|^2 on the Cholesky coordinates' rounded rows). The change of
+/// (v + dv)^T M (v + dv) - v^T M v is v^T M dv + dv^T M v + dv^T M dv for any M: summed in that
+/// form (session 71, exact71, review L2), so that an M whose doubles are not exactly symmetric
+/// cannot make the test wrong (mass_matrix() builds M[0][1] and M[1][0] from one expression).
 inline bool kinetic_grows(const Eigen::MatrixXd& M, const Eigen::VectorXd& v, const std::vector<Rational>& dv) {
   const Eigen::Index n = v.size();
   Rational growth = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    Rational row = 0;   // (M (2 v + dv))_i
-    for (Eigen::Index j = 0; j < n; ++j)
-      if (M(i, j) != 0)
-        row += held_force_detail::exact_value(M(i, j)) *
-               (2 * held_force_detail::exact_value(v(j)) + dv[static_cast<std::size_t>(j)]);
-    growth += dv[static_cast<std::size_t>(i)] * row;
-  }
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (M(i, j) == 0) continue;
+      const Rational& di = dv[static_cast<std::size_t>(i)];
+      const Rational& dj = dv[static_cast<std::size_t>(j)];
+      if (sgn(di) == 0 && sgn(dj) == 0) continue;
+      // v_i M_ij dv_j + dv_i M_ij v_j + dv_i M_ij dv_j
+      growth += held_force_detail::exact_value(M(i, j)) *
+                (held_force_detail::exact_value(v(i)) * dj + di * held_force_detail::exact_value(v(j)) + di * dj);
+    }
   return sgn(growth) > 0;
 }
 
@@ -521,7 +532,8 @@ inline bool kinetic_grows(const Eigen::MatrixXd& M, const Eigen::VectorXd& v, co
 /// only), give the solution; else every stick/slip assignment of the frictional contacts in the
 /// enumeration's order (fewest sliding first; at most 3^8) is decided on the full form by
 /// exact_assignment (every held set up to 12 contacts, the exact LCP's beyond), the first
-/// consistent taken. solved false: none (exactly, up to 12 contacts). The solution's x_exact is the
+/// consistent taken. solved false: none — exactly (exhausted true) up to 12 contacts with at most 8
+/// of them frictional; beyond, none found (exhausted false, not a verdict). The solution's x_exact is the
 /// exact change of the velocities (its x, lambda, f, w the exact numbers rounded, x in the factor's
 /// coordinates as exact_assignment publishes them).
 inline FrictionalSolution full_form_impulses(const FrictionalSolution& filter, const FullMass& full,
@@ -548,7 +560,7 @@ inline FrictionalSolution full_form_impulses(const FrictionalSolution& filter, c
     else open.push_back(k);
   }
   FrictionalSolution unsolved;
-  if (open.size() > 8) return unsolved;
+  if (open.size() > 8) return unsolved;   // (exhausted false: nothing tried)
   for (std::size_t code : assignment_order(open.size())) {
     assign_states(code, open, state);
     if (std::optional<FrictionalSolution> e = exact_assignment(full.G, none, none, h, full.friction, state, own,
@@ -556,6 +568,7 @@ inline FrictionalSolution full_form_impulses(const FrictionalSolution& filter, c
                                                                &h_exact, &t_exact))
       return *e;
   }
+  unsolved.exhausted = m <= 12;   // (beyond 12, exact_assignment's nullopt is not a verdict)
   return unsolved;
 }
 

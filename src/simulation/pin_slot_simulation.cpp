@@ -1984,21 +1984,10 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       restitution_part(ii) = hv(ii) - offsets(ii);
       driven = driven || rows[i].v_other != 0 || (friction[i].on && friction[i].bias != 0);
     }
-    // (session 67, impact67: the impulses' Coulomb conditions decided exactly on these rows,
-    // each contact its own group — held_friction.hpp's frictional_impulses; the rows are the
-    // Cholesky coordinates' doubles)
-    const std::vector<std::size_t> own_groups;
-    // (session 68, impactpin68: with the velocity terms exactly, -v_other + scale e v- on the
-    // rows' doubles — the scale dyadic, the restitution limit's bisection — as the other
-    // simulators' impacts: the decisions exact on e, not on the rounded e v-; the rows are still
-    // the Cholesky coordinates' doubles)
-    auto terms = [&](double scale) {
-      std::vector<Rational> h_exact(rows.size());
-      const Rational s = simulation::held_force_detail::exact_value(scale);
-      for (std::size_t i = 0; i < rows.size(); ++i)
-        h_exact[i] = simulation::held_force_detail::exact_value(-rows[i].v_other) + s * restitution_exact[i];
-      return h_exact;
-    };
+    // (session 67, impact67: the impulses' Coulomb conditions decided exactly on these rows;
+    // session 68, impactpin68: on the exact velocity terms -v_other + scale e v-; session 70,
+    // exact70: on the full form, below — the Cholesky rows' doubles are only its filter since
+    // session 71, exact71)
     const Eigen::VectorXd unit = Eigen::VectorXd::Ones(n);
     // (session 70, exact70: the impulses decided exactly on the full form — the rows G and T over
     // the coordinates, M itself, Q = 0 so that x is the velocities' change, the normal rows'
@@ -2030,10 +2019,12 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       for (std::size_t i = 0; i < rows.size(); ++i) h_exact[i] = speed_exact[i] + s * restitution_exact[i];
       return h_exact;
     };
+    // (session 71, exact71, review70 M2: the filter in doubles only — solve_frictional without its
+    // exact mode; until then frictional_impulses, whose exact decisions on the Cholesky rows were
+    // taken and then taken again on the full form: the full form's is the one exact decision)
     auto solve = [&](double scale) {
-      const std::vector<Rational> h_exact = terms(scale);
-      const simulation::FrictionalSolution filter = simulation::frictional_impulses(
-          Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups, {}, &h_exact);
+      const simulation::FrictionalSolution filter =
+          simulation::solve_frictional(Gz, unit, vz, offsets + scale * restitution_part, friction);
       return simulation::full_form_impulses(filter, full, full_terms(scale), tangent_exact);
     };
     // (session 69, exact69: whether the impact creates kinetic energy decided exactly; session 70,
@@ -2047,9 +2038,16 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     if (!sol.solved) {
       refuse_jam(rows);
       std::ostringstream out;
-      out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
-          << " contacts has no consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more than 8 "
-          << "contacts; " << rows.front().label << ")";
+      // (session 71, exact71: the words of a verdict only where the exact search was complete)
+      if (sol.exhausted)
+        out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
+            << " contacts has no consistent solution (a Painlevé-type inconsistency of Coulomb friction; "
+            << rows.front().label << ")";
+      else
+        out << where(t) << ": no consistent solution was found for the frictional impact of '"
+            << model.parts[part].name << "' on " << rows.size()
+            << " contacts (the search is complete only up to 12 contacts with at most 8 of them frictional: this is "
+            << "not a proof that none exists; " << rows.front().label << ")";
       throw NumericError(out.str());
     }
     // (session 70, exact70: the velocities after q'- + dq' with the exact change, rounded once;

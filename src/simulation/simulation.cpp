@@ -1796,10 +1796,12 @@ struct Simulation::Impl {
       // the impulses' Coulomb conditions decided exactly (session 67, impact67) on the exact
       // restitution terms (session 68, impact68): held_friction.hpp's fixed_axis_frictional_impulses
       // (session 70, exact70: the composition moved there, a test runs it). No consistent
-      // solution — up to 12 contacts exactly none (the exact enumeration is complete: session 69,
-      // exact69), beyond 12 none found (the session-61 frictionless-impulse rule for a cusp of the
-      // free space, since session 70 taken only where its held set is exactly consistent) — is
-      // refused below, naming the pairs. No model is known to reach it (session 69: the
+      // solution — up to 12 contacts with at most 8 frictional exactly none (the exact enumeration
+      // is complete: session 69, exact69), else none found (more than 8 frictional: nothing tried;
+      // beyond 12 the session-61 frictionless-impulse rule for a cusp of the free space, since
+      // session 70 taken only where its held set is exactly consistent) — is refused below, naming
+      // the pairs, in the words of a verdict only in the first case (session 71, exact71:
+      // FrictionalSolution::exhausted). No model is known to reach it (session 69: the
       // session-61 cusps, 6 x 10, 6 x 11, 7 x 11 teeth, are solved by the exact enumeration).
       simulation::FrictionalSolution solution =
           simulation::fixed_axis_frictional_impulses(G, inverse_masses(), vm, restitutions(rows), friction);
@@ -1808,7 +1810,8 @@ struct Simulation::Impl {
         when << published_time(t) << " " << time_unit;
         std::vector<std::size_t> involved;
         for (const ContactRow& r : rows) involved.push_back(r.pair);
-        throw NumericError(simulation::inconsistent_frictional_impact(when.str(), m, model, involved));
+        throw NumericError(
+            simulation::inconsistent_frictional_impact(when.str(), m, model, involved, solution.exhausted));
       }
       for (std::size_t i = 0; i < n; ++i)
         if (!dofs[i].driven) v[i] = solution.x(i);

@@ -34,6 +34,8 @@ using simulation::held_force_detail::Matrix;
 
 Rational q(double d) { return simulation::held_force_detail::exact_value(d); }
 
+int oracle_undetermined = 0;   // held sets whose velocities after the oracle found not unique
+
 struct Impact {
   Eigen::MatrixXd G;
   Eigen::VectorXd minv, v;
@@ -95,31 +97,93 @@ std::optional<std::vector<Rational>> oracle_x(const Impact& p, const std::vector
   for (std::size_t i = 0; i < n; ++i) v[i] = q(p.v(Eigen::Index(i)));
   auto tangent_constant = [&](std::size_t k) { return p.bias.empty() ? Rational(0) : p.bias[k]; };
   const std::size_t u = unknowns.size();
-  Matrix<Rational> E(u, std::vector<Rational>(u)), rhs(u, std::vector<Rational>(1));
+  Matrix<Rational> E(u, std::vector<Rational>(u + 1));   // [E | rhs]
   for (std::size_t r = 0; r < u; ++r) {   // the equation of unknown r's contact (gap or tangent)
     const std::vector<Rational> row = row_of(unknowns[r].contact, unknowns[r].tangent);
     for (std::size_t j = 0; j < u; ++j) E[r][j] = dot(row, direction[j]);
-    rhs[r][0] = -dot(row, v) - (unknowns[r].tangent ? tangent_constant(unknowns[r].contact) : p.h[unknowns[r].contact]);
+    E[r][u] = -dot(row, v) - (unknowns[r].tangent ? tangent_constant(unknowns[r].contact) : p.h[unknowns[r].contact]);
   }
-  std::vector<Rational> z(u);
-  if (u > 0) {
-    const auto solved = simulation::held_force_detail::solve(std::move(E), std::move(rhs));
-    if (!solved) return std::nullopt;
-    for (std::size_t j = 0; j < u; ++j) z[j] = (*solved)[j][0];
+  // (session 71, exact71: the system may be singular — two sticking contacts of a plastic impact
+  // over 2 coordinates stop the part, x = 0, with the multipliers left open (the session-61 cusp):
+  // until then the oracle skipped every singular held set, so such a consistent solution, which
+  // full_form_impulses finds first (the largest held set first), matched none of its solutions.)
+  // z = z0 + N t: the equations' solutions by reduced row echelon form in rationals
+  std::vector<std::size_t> pivot_of_row;
+  std::vector<bool> is_pivot(u, false);
+  for (std::size_t col = 0, row = 0; col < u && row < u; ++col) {
+    std::size_t r = row;
+    while (r < u && sgn(E[r][col]) == 0) ++r;
+    if (r == u) continue;
+    std::swap(E[r], E[row]);
+    const Rational pivot = E[row][col];
+    for (Rational& e : E[row]) e /= pivot;
+    for (std::size_t o = 0; o < u; ++o)
+      if (o != row && sgn(E[o][col]) != 0) {
+        const Rational factor = E[o][col];
+        for (std::size_t j = 0; j <= u; ++j) E[o][j] -= factor * E[row][j];
+      }
+    pivot_of_row.push_back(col);
+    is_pivot[col] = true;
+    ++row;
   }
+  for (std::size_t r = pivot_of_row.size(); r < u; ++r)
+    if (sgn(E[r][u]) != 0) return std::nullopt;   // inconsistent equations
+  std::vector<std::size_t> free_columns;
+  for (std::size_t j = 0; j < u; ++j)
+    if (!is_pivot[j]) free_columns.push_back(j);
+  const std::size_t d = free_columns.size();
+  // z_j = zc[j] + sum_f zn[j][f] t_f
+  std::vector<Rational> zc(u);
+  std::vector<std::vector<Rational>> zn(u, std::vector<Rational>(d));
+  for (std::size_t f = 0; f < d; ++f) zn[free_columns[f]][f] = 1;
+  for (std::size_t r = 0; r < pivot_of_row.size(); ++r) {
+    zc[pivot_of_row[r]] = E[r][u];
+    for (std::size_t f = 0; f < d; ++f) zn[pivot_of_row[r]][f] = -E[r][free_columns[f]];
+  }
+  // x = xc + sum_f xn[f] t_f; the oracle publishes x only where it is unique (xn = 0)
   std::vector<Rational> x = v;
   for (std::size_t j = 0; j < u; ++j)
-    for (std::size_t i = 0; i < n; ++i) x[i] += z[j] * direction[j][i];
+    for (std::size_t i = 0; i < n; ++i) x[i] += zc[j] * direction[j][i];
+  for (std::size_t f = 0; f < d; ++f)
+    for (std::size_t i = 0; i < n; ++i) {
+      Rational xn = 0;
+      for (std::size_t j = 0; j < u; ++j) xn += zn[j][f] * direction[j][i];
+      if (sgn(xn) != 0) {
+        ++oracle_undetermined;   // (the test asserts none: every plant's x is unique)
+        return std::nullopt;
+      }
+    }
+  // the conditions as inequalities a . t + b >= 0 (with x fixed, those on x are constants)
+  struct Inequality {
+    std::vector<Rational> a;
+    Rational b;
+  };
+  std::vector<Inequality> conditions;
+  auto on_z = [&](const std::vector<Rational>& c) {   // c . z as a . t + b
+    Inequality q{std::vector<Rational>(d), Rational(0)};
+    for (std::size_t j = 0; j < u; ++j) {
+      if (sgn(c[j]) == 0) continue;
+      q.b += c[j] * zc[j];
+      for (std::size_t f = 0; f < d; ++f) q.a[f] += c[j] * zn[j][f];
+    }
+    conditions.push_back(q);
+  };
   for (std::size_t j = 0; j < u; ++j) {
-    const std::size_t k = unknowns[j].contact;
-    if (!unknowns[j].tangent) {
-      if (sgn(z[j]) < 0) return std::nullopt;
+    std::vector<Rational> c(u);
+    if (!unknowns[j].tangent) {   // lambda >= 0
+      c[j] = 1;
+      on_z(c);
       continue;
     }
-    Rational lambda = 0;
+    std::size_t normal = u;   // mu_s lambda -+ f >= 0
     for (std::size_t i = 0; i < u; ++i)
-      if (unknowns[i].contact == k && !unknowns[i].tangent) lambda = z[i];
-    if (abs(z[j]) > q(p.friction[k].mu_static) * lambda) return std::nullopt;
+      if (unknowns[i].contact == unknowns[j].contact && !unknowns[i].tangent) normal = i;
+    for (int side : {1, -1}) {
+      c.assign(u, Rational(0));
+      c[normal] = q(p.friction[unknowns[j].contact].mu_static);
+      c[j] = -side;
+      on_z(c);
+    }
   }
   for (std::size_t k = 0; k < m; ++k) {
     const simulation::Friction& c = p.friction[k];
@@ -129,6 +193,23 @@ std::optional<std::vector<Rational>> oracle_x(const Impact& p, const std::vector
         st * (dot(row_of(k, true), x) + tangent_constant(k)) < 0)
       return std::nullopt;
   }
+  // feasibility of the t-system by Fourier-Motzkin elimination (d <= 2 here)
+  for (std::size_t f = d; f-- > 0;) {
+    std::vector<Inequality> next, lower, upper;
+    for (Inequality& c : conditions) {
+      const int sign = sgn(c.a[f]);
+      (sign == 0 ? next : sign > 0 ? lower : upper).push_back(c);
+    }
+    for (const Inequality& lo : lower)     // t_f >= -(b + a' t') / a_f
+      for (const Inequality& hi : upper) { // t_f <= (b + a' t') / -a_f
+        Inequality c{std::vector<Rational>(d), lo.b * -hi.a[f] + hi.b * lo.a[f]};
+        for (std::size_t g = 0; g < f; ++g) c.a[g] = lo.a[g] * -hi.a[f] + hi.a[g] * lo.a[f];
+        next.push_back(std::move(c));
+      }
+    conditions = std::move(next);
+  }
+  for (const Inequality& c : conditions)
+    if (sgn(c.b) < 0) return std::nullopt;
   return x;
 }
 
@@ -241,7 +322,8 @@ TEST(FixedAxisFrictionalImpact, AnInconsistentImpactIsRefusedNamingItsPairs) {
     const simulation::FrictionalSolution s =
         simulation::fixed_axis_frictional_impulses(p.G, p.minv, p.v, e, p.friction);
     EXPECT_FALSE(s.solved) << trial;
-    const std::string message = simulation::inconsistent_frictional_impact("0.25 s", 2, model, {0, 1, 0});
+    EXPECT_TRUE(s.exhausted) << trial << ": 2 contacts, the exact search is complete";
+    const std::string message = simulation::inconsistent_frictional_impact("0.25 s", 2, model, {0, 1, 0}, s.exhausted);
     EXPECT_EQ(message,
               "simulation: at t = 0.25 s the impact problem of 2 simultaneous contacts with Coulomb friction has no "
               "consistent stick/slip solution; pairs involved: (wheel /parts/0, frame /parts/2) (/pairs/0, friction "
@@ -251,11 +333,79 @@ TEST(FixedAxisFrictionalImpact, AnInconsistentImpactIsRefusedNamingItsPairs) {
   EXPECT_GE(refused, 20);   // (22 of 200 planted at the default seed)
 }
 
+// More than 8 frictional contacts (session 71, exact71; review70 M1): solve_frictional tries no
+// stick/slip assignment there (at most 3^8), so the fixed-axis composition finds none — but one
+// exists: 9 frictional contacts (rows 9 to 12, the rest frictionless), each on its own 2
+// coordinates, mu_k <= mu_s, so the impact splits into one-contact impacts, each of which the
+// oracle solves (a one-contact impact with mu_k <= mu_s always has a consistent solution). The
+// refusal must not read as a verdict: `exhausted` false, and the message says none was found and
+// that this is no proof (until session 71 "has no consistent stick/slip solution").
+TEST(FixedAxisFrictionalImpact, NineFrictionalContactsAreRefusedWithoutAVerdict) {
+  Rng rng{test::test_seed(7007)};
+  Model model;
+  for (const char* name : {"wheel", "frame"}) {
+    Part part;
+    part.name = name;
+    part.pointer = std::string("/parts/") + std::to_string(model.parts.size());
+    model.parts.push_back(part);
+  }
+  PairSpec pair;
+  pair.first = 0;
+  pair.second = 1;
+  pair.pointer = "/pairs/0";
+  pair.friction = Rational(1, 2);
+  model.pairs.push_back(pair);
+  int cases = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const Eigen::Index m = 9 + trial % 4, n = 2 * m;
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(m, n);
+    Eigen::VectorXd minv(n), v(n), e(m);
+    std::vector<simulation::Friction> friction(static_cast<std::size_t>(m));
+    for (Eigen::Index k = 0; k < m; ++k) {
+      const Eigen::Index c = 2 * k;
+      Impact one;   // the contact on its own two coordinates, for the oracle
+      one.G.resize(1, 2);
+      one.minv.resize(2);
+      one.v.resize(2);
+      Eigen::VectorXd T = Eigen::VectorXd::Zero(n), t(2);
+      for (Eigen::Index i = 0; i < 2; ++i) {
+        G(k, c + i) = one.G(0, i) = rng.uniform(-1, 1);
+        minv(c + i) = one.minv(i) = rng.uniform(0.3, 3);
+        v(c + i) = one.v(i) = rng.uniform(-2, 2);
+        T(c + i) = t(i) = rng.uniform(-1, 1);
+      }
+      e(k) = rng.uniform(0, 1);
+      const double mu_s = rng.uniform(0.05, 1.5), mu_k = mu_s * rng.uniform(0.3, 1);
+      if (k < 9) {
+        friction[std::size_t(k)] = coulomb(T, mu_s, mu_k);
+        one.friction.push_back(coulomb(t, mu_s, mu_k));
+      } else {
+        one.friction.resize(1);
+      }
+      one.h = simulation::exact_restitution_terms(one.G, one.v, e.segment(k, 1));
+      ASSERT_FALSE(oracle_all(one).empty()) << trial << " contact " << k << ": the plant";
+    }
+    ++cases;
+    const simulation::FrictionalSolution s = simulation::fixed_axis_frictional_impulses(G, minv, v, e, friction);
+    ASSERT_FALSE(s.solved) << trial << ": more than 8 frictional contacts are not searched";
+    EXPECT_FALSE(s.exhausted) << trial << ": " << m << " contacts, 9 frictional: the search was not complete";
+    const std::string message =
+        simulation::inconsistent_frictional_impact("0.5 s", std::size_t(m), model, {0}, s.exhausted);
+    EXPECT_EQ(message, "simulation: at t = 0.5 s no consistent stick/slip solution was found for the impact problem "
+                       "of " + std::to_string(m) + " simultaneous contacts with Coulomb friction (the search is "
+                       "complete only up to 12 contacts with at most 8 of them frictional: this is not a proof that "
+                       "none exists); pairs involved: (wheel /parts/0, frame /parts/1) (/pairs/0, friction 0.5)")
+        << trial;
+  }
+  EXPECT_EQ(cases, 12);
+}
+
 // Generated fixed-axis impacts (1 contact over 3 coordinates or 2 over 5, one sometimes driven;
 // mu_k <= mu_s): solved exactly when the oracle's enumeration finds a consistent
 // (held set, states), and its velocities after are one of those solutions'.
 TEST(FixedAxisFrictionalImpact, GeneratedImpactsAgreeWithTheExactEnumeration) {
   Rng rng{test::test_seed(7002)};
+  oracle_undetermined = 0;
   int solved = 0, cases = 0;
   for (int trial = 0; trial < 400; ++trial) {
     const Eigen::Index m = 1 + trial % 2, n = 2 * m + 1;   // (two sticking contacts: 4 rows on 5 coordinates)
@@ -299,6 +449,7 @@ TEST(FixedAxisFrictionalImpact, GeneratedImpactsAgreeWithTheExactEnumeration) {
   }
   std::cout << "generated fixed-axis frictional impacts: " << cases << ", solved " << solved << "\n";
   EXPECT_GE(solved, cases * 9 / 10);
+  EXPECT_EQ(oracle_undetermined, 0) << "a held set whose velocities after are not unique: the oracle cannot decide";
 }
 
 // Beyond 12 contacts (the exact enumeration's bound): one frictional contact over 3 coordinates
@@ -487,6 +638,7 @@ TEST(ImpactEnergy, EnergyCreatedBelowTheRoundOffIsCaught) {
 // (L^-T x, the call before session 70) against the exact ones rounded.
 TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
   Rng rng{test::test_seed(7005)};
+  oracle_undetermined = 0;
   int cases = 0, solved = 0, rounded_differs = 0, energy_checked = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const Eigen::Index n = 2 + trial % 2, m = 1 + (trial / 2) % 2;
@@ -547,10 +699,8 @@ TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
     ++cases;
     const Eigen::MatrixXd Gz = llt.matrixL().solve(p.G.transpose()).transpose();
     const Eigen::VectorXd vz = llt.matrixU() * p.v, unit = Eigen::VectorXd::Ones(n);
-    std::vector<Rational> hz(static_cast<std::size_t>(m));
-    for (std::size_t k = 0; k < std::size_t(m); ++k) hz[k] = -q(v_other(Eigen::Index(k))) + restitution[k];
-    const std::vector<std::size_t> own;
-    const simulation::FrictionalSolution filter = simulation::frictional_impulses(Gz, unit, vz, hv, fz, own, {}, &hz);
+    // (the filter in doubles only, as the simulator since session 71)
+    const simulation::FrictionalSolution filter = simulation::solve_frictional(Gz, unit, vz, hv, fz);
     simulation::FullMass full{p.G, p.M, Eigen::VectorXd::Zero(n), fq};
     std::vector<Rational> h_full(static_cast<std::size_t>(m)), t_exact(static_cast<std::size_t>(m));
     for (std::size_t k = 0; k < std::size_t(m); ++k) {
@@ -562,7 +712,10 @@ TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
     const simulation::FrictionalSolution s = simulation::full_form_impulses(filter, full, h_full, t_exact);
     const std::vector<std::vector<Rational>> all = oracle_all(p);
     ASSERT_EQ(s.solved, !all.empty()) << trial;
-    if (!s.solved) continue;
+    if (!s.solved) {
+      EXPECT_TRUE(s.exhausted) << trial;   // (at most 2 contacts: the search is complete)
+      continue;
+    }
     ++solved;
     ASSERT_EQ(s.x_exact.size(), std::size_t(n)) << trial;
     std::vector<Rational> x(static_cast<std::size_t>(n));
@@ -595,6 +748,7 @@ TEST(FullFormImpact, PinSlotCoulombImpactsAreDecidedOnTheMassMatrix) {
             << "velocities after differ from the exact ones rounded in " << rounded_differs << "\n";
   EXPECT_GE(solved, cases * 9 / 10);
   EXPECT_EQ(energy_checked, solved);
+  EXPECT_EQ(oracle_undetermined, 0) << "a held set whose velocities after are not unique: the oracle cannot decide";
 }
 
 // kinetic_exceeds (creates_energy's comparison where no exact x is found) against the rationals:
