@@ -274,7 +274,9 @@ TEST(FixedAxisFrictionalImpact, AnInconsistentImpactIsRefusedNamingItsPairs) {
     model.pairs.push_back(pair);
   }
   int refused = 0;
-  for (int trial = 0; trial < 200; ++trial) {
+  // (session 71, exact71: 400 trials, until then 200 — the plant holds in about 1 in 9, and at
+  // seed 4 only 14 of 200 were planted, below the count asserted)
+  for (int trial = 0; trial < 400; ++trial) {
     Impact p;
     p.G = Eigen::MatrixXd::Zero(2, 4);
     p.minv.resize(4);
@@ -329,8 +331,8 @@ TEST(FixedAxisFrictionalImpact, AnInconsistentImpactIsRefusedNamingItsPairs) {
               "consistent stick/slip solution; pairs involved: (wheel /parts/0, frame /parts/2) (/pairs/0, friction "
               "0.1, kinetic 3); (pawl /parts/1, frame /parts/2) (/pairs/1, friction 0.1, kinetic 3)");
   }
-  std::cout << "inconsistent frictional impacts refused: " << refused << " of 200\n";
-  EXPECT_GE(refused, 20);   // (22 of 200 planted at the default seed)
+  std::cout << "inconsistent frictional impacts refused: " << refused << " of 400\n";
+  EXPECT_GE(refused, 20);
 }
 
 // More than 8 frictional contacts (session 71, exact71; review70 M1): solve_frictional tries no
@@ -545,7 +547,8 @@ std::optional<CoupledImpact> coupled_impact(Rng& rng, bool extra, bool above) {
   const Rational before = ia * u0 * u0 + 2 * ib * u0 * u1 + ic * u1 * u1;
   const double e2 = to_double(before / (ia * u0 * u0));
   if (!(e2 > 0.01 && e2 < 0.98)) return std::nullopt;
-  auto change = [&](double e) {   // 2 x the stick's energy change, exactly
+  auto change = [&](double e) -> Rational {   // 2 x the stick's energy change, exactly (a Rational:
+    // the GMP expression would hold the local `up` beyond its life)
     const Rational up = -q(e) * u0;
     return ia * up * up - before;
   };
@@ -578,12 +581,16 @@ std::optional<CoupledImpact> coupled_impact(Rng& rng, bool extra, bool above) {
 
 TEST(ImpactEnergy, EnergyCreatedBelowTheRoundOffIsCaught) {
   Rng rng{test::test_seed(7003)};
-  int cases = 0, creating = 0, old_missed = 0;
+  int cases = 0, creating = 0, old_missed = 0, extra_cases = 0;
   for (int trial = 0; trial < 240; ++trial) {
-    const bool extra = trial % 4 >= 2, above = trial % 2 == 0;
+    // (session 71, exact71: the 13-contact rows — each a restitution limit's bisection of up to 30
+    // exact LCPs on 13 contacts — cut from half the trials to 12 of 240, 6 creating and 6 not:
+    // the test ran beyond 60 s)
+    const bool extra = trial % 40 >= 38, above = trial % 2 == 0;
     const std::optional<CoupledImpact> c = coupled_impact(rng, extra, above);
     if (!c) continue;
     ++cases;
+    extra_cases += extra;
     const Impact& p = c->p;
     std::vector<std::size_t> own(p.friction.size());
     for (std::size_t k = 0; k < own.size(); ++k) own[k] = k;
@@ -622,8 +629,10 @@ TEST(ImpactEnergy, EnergyCreatedBelowTheRoundOffIsCaught) {
     old_missed += creates && !(kinetic(full.x) > kinetic(p.v));
   }
   std::cout << "coupled impacts at the energy's tie: " << cases << " (" << creating << " creating by about 2^-52 "
-            << "of the energy); the rounded test read " << old_missed << " of those as creating none\n";
+            << "of the energy; " << extra_cases << " with 13 contacts); the rounded test read " << old_missed
+            << " of those as creating none\n";
   EXPECT_GE(cases, 100);
+  EXPECT_GE(extra_cases, 6);
   if (std::getenv("HIPAIR_TEST_SEED") == nullptr) EXPECT_GT(old_missed, 0) << "the plant should reach the rounded test's error";
 }
 
