@@ -582,11 +582,11 @@ std::optional<CoupledImpact> coupled_impact(Rng& rng, bool extra, bool above) {
 TEST(ImpactEnergy, EnergyCreatedBelowTheRoundOffIsCaught) {
   Rng rng{test::test_seed(7003)};
   int cases = 0, creating = 0, old_missed = 0, extra_cases = 0;
-  for (int trial = 0; trial < 240; ++trial) {
+  for (int trial = 0; trial < 600; ++trial) {
     // (session 71, exact71: the 13-contact rows — each a restitution limit's bisection of up to 30
-    // exact LCPs on 13 contacts — cut from half the trials to 12 of 240, 6 creating and 6 not:
-    // the test ran beyond 60 s)
-    const bool extra = trial % 40 >= 38, above = trial % 2 == 0;
+    // exact LCPs on 13 contacts — cut from half the trials to 60 of 600, 30 creating and 30 not:
+    // the test ran beyond 60 s; 600 trials, 240 before, since about 1 in 5 plants holds)
+    const bool extra = trial % 40 >= 36, above = trial % 2 == 0;
     const std::optional<CoupledImpact> c = coupled_impact(rng, extra, above);
     if (!c) continue;
     ++cases;
