@@ -21,6 +21,7 @@
 
 #include "kernels/interval.hpp"
 #include "simulation/exact_elimination.hpp"
+#include "simulation/exact_lemke.hpp"
 #include "simulation/exact_lp.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
@@ -79,6 +80,14 @@ struct FrictionalSolution {
   /// form's M coordinates where one is given), empty otherwise. Read by the restitution limit's
   /// exact energy test (held_friction.hpp's creates_energy).
   std::vector<Rational> x_exact;
+  /// Where `solved` is false, whether that is a verdict (session 71, exact71): true where the
+  /// search was complete — every stick/slip assignment of the undecided frictional contacts (at
+  /// most 8) decided on every held set (at most 12 contacts) by the exact LP (solve_frictional in
+  /// exact mode, full_form_impulses): no consistent solution exists, exactly. False where it was
+  /// not (more than 8 undecided frictional contacts: nothing tried; more than 12 contacts: one held
+  /// set per assignment, the exact LCP's; the doubles alone deciding): none was found, which is
+  /// not a proof that none exists.
+  bool exhausted = false;
 };
 
 /// The reduced normal problem for given states: x = x0 + B lambda (stick forces eliminated),
@@ -744,6 +753,12 @@ inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLin
 /// (exact_lp.hpp); the first feasible one gives the solution, its numbers rounded to the nearest
 /// doubles (x and w from the exact ones; a friction shared by a group split in proportion to its
 /// members' normal forces). None: the assignment has no consistent force, exactly.
+/// Beyond 12 contacts (session 70, exact70) the held sets are not enumerated: after `first`, only
+/// the held set of the assignment's exact LCP (Lemke's algorithm in rationals, its pivots capped
+/// at 2^20) is decided; none found there — Lemke's ray or cap, dependent sticking rows, the LCP's
+/// held set breaking a Coulomb condition — is not a verdict (nullopt, as the bound's nullopt
+/// before). This applies to the held contacts' stepping decisions too (solve_frictional's exact
+/// mode at each step's start), not only to impacts.
 /// `tried` (optional) counts the linear programs solved. `first_only` (with `first` given; session
 /// 66, slip66): only the held set `first` is decided (any number of contacts): a candidate's
 /// confirmation, not the assignment's verdict.
@@ -757,6 +772,9 @@ inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLin
 /// `h_exact` (given; session 68, impact68): the velocity terms of the normal rows as exact
 /// rationals in place of h's doubles (an impact's restitution terms e G v-, exact on G, v and e:
 /// exact_restitution_terms in held_friction.hpp; h's doubles are their rounding).
+/// `bias_exact` (given; session 70, exact70): the tangent rows' constants (by contact) as exact
+/// rationals in place of the Friction data's `bias` doubles (an impact on the full form with
+/// Q = 0: x the velocities' change, a tangent row's constant T v- less the driver's speed, exact).
 inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd& G_given, const Eigen::VectorXd& minv,
                                                           const Eigen::VectorXd& a0, const Eigen::VectorXd& h,
                                                           const std::vector<Friction>& friction_given,
@@ -766,12 +784,12 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
                                                           std::size_t* tried = nullptr,
                                                           const FullMass* full = nullptr,
                                                           bool first_only = false,
-                                                          const std::vector<Rational>* h_exact = nullptr) {
+                                                          const std::vector<Rational>* h_exact = nullptr,
+                                                          const std::vector<Rational>* bias_exact = nullptr) {
   const Eigen::MatrixXd& G = full ? full->G : G_given;
   const std::vector<Friction>& friction = full ? full->friction : friction_given;
   const auto m = static_cast<std::size_t>(G.rows()), n = static_cast<std::size_t>(G.cols());
   first_only = first_only && first;
-  if (m > 12 && !first_only) return std::nullopt;
   std::vector<std::size_t> reps;   // the sticking rows (one per group)
   const HeldForceRows rows = frictional_rows(G, minv, a0, h, friction, state, reps, group, full);
   auto group_of = [&](std::size_t k) { return group.empty() ? k : group[k]; };
@@ -835,7 +853,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       const Eigen::VectorXd r = tangent ? friction[k].T : Eigen::VectorXd(G.row(static_cast<Eigen::Index>(k)).transpose());
       const double c = tangent ? friction[k].bias : h(static_cast<Eigen::Index>(k));
       std::vector<Rational> rq(n);
-      a.constant = !tangent && h_exact ? (*h_exact)[k] : exact(c);
+      a.constant = !tangent && h_exact ? (*h_exact)[k] : tangent && bias_exact ? (*bias_exact)[k] : exact(c);
       for (std::size_t i = 0; i < n; ++i) {
         rq[i] = exact(r(static_cast<Eigen::Index>(i)));
         if (sgn(rq[i]) != 0) a.constant += rq[i] * x0[i];
@@ -958,6 +976,60 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     if (auto s = try_set(*first)) return s;
     if (first_only) return std::nullopt;
   }
+  // (session 70, exact70: beyond 12 contacts, where the 2^m held sets are not enumerated — until
+  // then nullopt there, the doubles deciding — the held set of the assignment's exact LCP: the
+  // sticking rows' friction eliminated exactly, T_S x + bias_S = 0 solved for f in lambda, then
+  // w = A lambda + b over every contact in rationals, Lemke's algorithm exactly (exact_lemke.hpp);
+  // its solution's held set (w = 0) is decided by the same exact LP as any other, the Coulomb
+  // conditions included. Where Lemke ends on a ray (A need not be copositive-plus once contacts
+  // slip), the sticking rows are dependent, or the LCP's solution breaks a Coulomb condition,
+  // nothing is decided: nullopt, as before.)
+  if (m > 12) {
+    std::vector<std::size_t> all(m);
+    for (std::size_t k = 0; k < m; ++k) all[k] = k;
+    std::vector<Rational> coefficients;
+    Rational constant;
+    // f = F lambda + F0: the sticking rows' equalities T_S D^T [lambda; f] + c_S = 0
+    held_force_detail::Matrix<Rational> stick_rows(p, std::vector<Rational>(p)), stick_rhs(p, std::vector<Rational>(m + 1));
+    for (std::size_t j = 0; j < p; ++j) {
+      affine(reps[j], true, all, coefficients, constant);
+      for (std::size_t l = 0; l < p; ++l) stick_rows[j][l] = coefficients[m + l];
+      for (std::size_t l = 0; l < m; ++l) stick_rhs[j][l] = -coefficients[l];
+      stick_rhs[j][m] = -constant;
+    }
+    held_force_detail::Matrix<Rational> F;
+    if (p > 0) {
+      std::optional<held_force_detail::Matrix<Rational>> solved =
+          held_force_detail::solve(std::move(stick_rows), std::move(stick_rhs));
+      if (!solved) return std::nullopt;
+      F = std::move(*solved);
+    }
+    held_force_detail::Matrix<Rational> A(m, std::vector<Rational>(m));
+    std::vector<Rational> b(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      affine(k, false, all, coefficients, constant);
+      b[k] = constant;
+      for (std::size_t l = 0; l < m; ++l) A[k][l] = coefficients[l];
+      for (std::size_t j = 0; j < p; ++j) {
+        const Rational& c = coefficients[m + j];
+        if (sgn(c) == 0) continue;
+        b[k] += c * F[j][m];
+        for (std::size_t l = 0; l < m; ++l)
+          if (sgn(F[j][l]) != 0) A[k][l] += c * F[j][l];
+      }
+    }
+    const std::optional<ExactLcpSolution> lcp = exact_lemke(A, b);
+    if (!lcp) return std::nullopt;
+    std::vector<bool> is_held(m);
+    for (std::size_t k = 0; k < m; ++k) is_held[k] = sgn(lcp->w[k]) == 0;
+    // (the doubles' held set `first` was decided above; Lemke's being the same, nothing else is
+    // tried although another held set might be consistent at these states: nullopt, not a verdict
+    // — every caller reads a nullopt beyond 12 contacts so: solve_frictional's unsolved result is
+    // not `exhausted`, creates_energy compares the applied velocities' energy, the fixed-axis and
+    // full-form impacts publish `exhausted` false)
+    if (first && is_held == *first) return std::nullopt;
+    return try_set(is_held);
+  }
   std::vector<std::size_t> codes(std::size_t{1} << m);
   for (std::size_t c = 0; c < codes.size(); ++c) codes[c] = c;
   // the largest held sets first (bit k set: contact k open), lexicographic within a size
@@ -971,6 +1043,32 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     if (auto s = try_set(is_held)) return s;
   }
   return std::nullopt;
+}
+
+/// The order in which the stick/slip assignments of `open` undecided contacts are tried: codes in
+/// base 3 (digit i: contact open[i] sticks, 0, slides positive, 1, or negative, 2), the fewest
+/// sliding contacts first, in code order within a count (solve_frictional's enumeration; session
+/// 70, exact70: shared with held_friction.hpp's full_form_impulses).
+inline std::vector<std::size_t> assignment_order(std::size_t open) {
+  std::size_t combinations = 1;
+  for (std::size_t i = 0; i < open; ++i) combinations *= 3;
+  std::vector<std::size_t> order(combinations);
+  auto slips = [&](std::size_t code) {
+    int count = 0;
+    for (std::size_t i = 0; i < open; ++i, code /= 3) count += code % 3 != 0;
+    return count;
+  };
+  for (std::size_t c = 0; c < combinations; ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slips(a) < slips(b); });
+  return order;
+}
+
+/// The states of the contacts `open` for an assignment's code (assignment_order) written into state.
+inline void assign_states(std::size_t code, const std::vector<std::size_t>& open, std::vector<int>& state) {
+  for (std::size_t i = 0; i < open.size(); ++i, code /= 3) {
+    static constexpr int digit_state[3] = {stick, slip_positive, slip_negative};
+    state[open[i]] = digit_state[code % 3];
+  }
 }
 
 /// The normal LCP with Coulomb friction: states of the undecided frictional contacts by
@@ -1014,20 +1112,14 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
     else open.push_back(k);
   }
   FrictionalSolution best;
-  if (open.size() > 8) return best;
+  if (open.size() > 8) return best;   // (not a verdict: exhausted false)
+  // (session 71, exact71: an unsolved result is a verdict only where the exact mode decided every
+  // assignment on every held set — up to 12 contacts, exact_assignment's enumeration)
+  best.exhausted = exact_groups && m <= 12;
   std::optional<LcpSolution> plain;   // the frictionless problem, once needed
   Eigen::MatrixXd Af;
   Eigen::VectorXd bf;
-  std::size_t combinations = 1;
-  for (std::size_t i = 0; i < open.size(); ++i) combinations *= 3;
-  std::vector<std::size_t> order(combinations);
-  auto slips = [&](std::size_t code) {
-    int count = 0;
-    for (std::size_t i = 0; i < open.size(); ++i, code /= 3) count += code % 3 != 0;
-    return count;
-  };
-  for (std::size_t c = 0; c < combinations; ++c) order[c] = c;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slips(a) < slips(b); });
+  const std::vector<std::size_t> order = assignment_order(open.size());
   // Every assignment's matrices, LCP and candidate solution in storage kept across the
   // enumeration (BilateralWork, LcpWork): each is resized and written before it is read, by the
   // same Eigen operations as the fresh ones per assignment before — the same doubles (session
@@ -1040,11 +1132,7 @@ inline FrictionalSolution solve_frictional(const Eigen::MatrixXd& G, const Eigen
   LcpSolution lcp;
   FrictionalSolution s;
   for (std::size_t code : order) {
-    std::size_t rest = code;
-    for (std::size_t i = 0; i < open.size(); ++i, rest /= 3) {
-      static constexpr int digit_state[3] = {stick, slip_positive, slip_negative};
-      state[open[i]] = digit_state[rest % 3];
-    }
+    assign_states(code, open, state);
     reduce(G, minv, a0, friction, state, work.r, work);
     A.noalias() = G * r.B;
     b = G * r.x0 + h;

@@ -36,4 +36,27 @@ inline std::string named_friction(const Model& model, std::vector<std::size_t> i
   return out.str();
 }
 
+/// The refusal of a frictional impact without a consistent stick/slip solution (the fixed-axis
+/// simulator's; session 70, exact70: composed here so that a test reads it): "simulation: at t =
+/// <when> the impact problem of <contacts> simultaneous contacts with Coulomb friction has no
+/// consistent stick/slip solution; pairs involved: ..." (named_friction of `pairs`) where the
+/// exact search was complete (`exhausted`: FrictionalSolution::exhausted); otherwise (session 71,
+/// exact71: until then the same words, a verdict, for a search that was not complete) "... no
+/// consistent stick/slip solution was found for the impact problem of <contacts> simultaneous
+/// contacts with Coulomb friction (the search is complete only up to 12 contacts with at most 8
+/// of them frictional: this is not a proof that none exists); pairs involved: ...".
+inline std::string inconsistent_frictional_impact(const std::string& when, std::size_t contacts, const Model& model,
+                                                  const std::vector<std::size_t>& pairs, bool exhausted) {
+  std::ostringstream out;
+  if (exhausted)
+    out << "simulation: at t = " << when << " the impact problem of " << contacts
+        << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
+  else
+    out << "simulation: at t = " << when << " no consistent stick/slip solution was found for the impact problem of "
+        << contacts << " simultaneous contacts with Coulomb friction (the search is complete only up to 12 contacts "
+        << "with at most 8 of them frictional: this is not a proof that none exists)";
+  out << named_friction(model, pairs);
+  return out.str();
+}
+
 }  // namespace hipair::simulation

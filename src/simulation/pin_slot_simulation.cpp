@@ -1959,6 +1959,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(k, n);
     Eigen::VectorXd hv(k);
     std::vector<simulation::Friction> friction(rows.size());
+    std::vector<Eigen::VectorXd> tangents(rows.size());   // over the coordinates (q)
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const Row& r = rows[i];
       const auto ii = static_cast<Eigen::Index>(i);
@@ -1971,6 +1972,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       const Tangent tangent = r.held ? held_tangent(held[i - fresh_rows], y, t) : tangent_at(r.pair, r.point, r.normal, y);
       friction[i] = friction_of(llt, G.row(ii).transpose(), tangent, pairs[r.pair]);
       friction[i].bias = -tangent.v_other;
+      tangents[i] = tangent.T;
     }
     const Eigen::MatrixXd Gz = llt.matrixL().solve(G.transpose()).transpose();
     const Eigen::VectorXd vz = llt.matrixU() * rates(y);
@@ -1987,46 +1989,79 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       restitution_part(ii) = hv(ii) - offsets(ii);
       driven = driven || rows[i].v_other != 0 || (friction[i].on && friction[i].bias != 0);
     }
-    // (session 67, impact67: the impulses' Coulomb conditions decided exactly on these rows,
-    // each contact its own group — held_friction.hpp's frictional_impulses; the rows are the
-    // Cholesky coordinates' doubles)
-    const std::vector<std::size_t> own_groups;
-    // (session 68, impactpin68: with the velocity terms exactly, -v_other + scale e v- on the
-    // rows' doubles — the scale dyadic, the restitution limit's bisection — as the other
-    // simulators' impacts: the decisions exact on e, not on the rounded e v-; the rows are still
-    // the Cholesky coordinates' doubles)
-    auto terms = [&](double scale) {
+    // (session 67, impact67: the impulses' Coulomb conditions decided exactly on these rows;
+    // session 68, impactpin68: on the exact velocity terms -v_other + scale e v-; session 70,
+    // exact70: on the full form, below — the Cholesky rows' doubles are only its filter since
+    // session 71, exact71)
+    const Eigen::VectorXd unit = Eigen::VectorXd::Ones(n);
+    // (session 70, exact70: the impulses decided exactly on the full form — the rows G and T over
+    // the coordinates, M itself, Q = 0 so that x is the velocities' change, the normal rows'
+    // constants G q'- - v_other + scale e v- and the tangent rows' T q'- - v_other exact: held_friction.hpp's
+    // full_form_impulses, the Cholesky rows' doubles solution its filter (its held set and states
+    // confirmed there, else every assignment decided there); until then every decision was exact
+    // on the Cholesky rows' doubles Gz = G L^-T, vz = L^T q'-, each rounded)
+    simulation::FullMass full;
+    full.G = G;
+    full.M = mass_matrix(y);
+    full.Q = Eigen::VectorXd::Zero(n);
+    full.friction = friction;
+    const Eigen::VectorXd velocities = rates(y);
+    std::vector<Rational> tangent_exact(rows.size(), Rational(0));
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (!friction[i].on) continue;
+      full.friction[i].T = tangents[i];
+      full.friction[i].bias = 0;
+      Rational constant = simulation::held_force_detail::exact_value(friction[i].bias);   // -v_other
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (tangents[i](j) != 0)
+          constant += simulation::held_force_detail::exact_value(tangents[i](j)) *
+                      simulation::held_force_detail::exact_value(velocities(j));
+      tangent_exact[i] = constant;
+    }
+    auto full_terms = [&](double scale) {
       std::vector<Rational> h_exact(rows.size());
       const Rational s = simulation::held_force_detail::exact_value(scale);
-      for (std::size_t i = 0; i < rows.size(); ++i)
-        h_exact[i] = simulation::held_force_detail::exact_value(-rows[i].v_other) + s * restitution_exact[i];
+      for (std::size_t i = 0; i < rows.size(); ++i) h_exact[i] = speed_exact[i] + s * restitution_exact[i];
       return h_exact;
     };
-    const Eigen::VectorXd unit = Eigen::VectorXd::Ones(n);
+    // (session 71, exact71, review70 M2: the filter in doubles only — solve_frictional without its
+    // exact mode; until then frictional_impulses, whose exact decisions on the Cholesky rows were
+    // taken and then taken again on the full form: the full form's is the one exact decision)
     auto solve = [&](double scale) {
-      const std::vector<Rational> h_exact = terms(scale);
-      return simulation::frictional_impulses(Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups,
-                                             {}, &h_exact);
+      const simulation::FrictionalSolution filter =
+          simulation::solve_frictional(Gz, unit, vz, offsets + scale * restitution_part, friction);
+      return simulation::full_form_impulses(filter, full, full_terms(scale), tangent_exact);
     };
-    // (session 69, exact69: whether the impact creates kinetic energy, |x|^2 > |vz|^2, decided
-    // exactly on the exact solution of the rows — held_friction.hpp's creates_energy; until then
-    // on the rounded x)
-    auto creates = [&](const simulation::FrictionalSolution& s, double scale) {
-      const std::vector<Rational> h_exact = terms(scale);
-      return simulation::creates_energy(Gz, unit, vz, offsets + scale * restitution_part, friction, own_groups, s,
-                                        &h_exact);
+    // (session 69, exact69: whether the impact creates kinetic energy decided exactly; session 70,
+    // exact70: on M and the exact change of the velocities, 2 q'-^T M dq' + dq'^T M dq' > 0 —
+    // held_friction.hpp's kinetic_grows; until then |x|^2 > |vz|^2 on the Cholesky coordinates)
+    auto creates = [&](const simulation::FrictionalSolution& s, double) {
+      return simulation::kinetic_grows(full.M, velocities, s.x_exact);
     };
     bool limited = false;
     simulation::FrictionalSolution sol = driven ? solve(1) : simulation::restitution_limited(solve, creates, limited);
     if (!sol.solved) {
       refuse_jam(rows);
       std::ostringstream out;
-      out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
-          << " contacts has no consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more than 8 "
-          << "contacts; " << rows.front().label << ")";
+      // (session 71, exact71: the words of a verdict only where the exact search was complete)
+      if (sol.exhausted)
+        out << where(t) << ": the frictional impact of '" << model.parts[part].name << "' on " << rows.size()
+            << " contacts has no consistent solution (a Painlevé-type inconsistency of Coulomb friction; "
+            << rows.front().label << ")";
+      else
+        out << where(t) << ": no consistent solution was found for the frictional impact of '"
+            << model.parts[part].name << "' on " << rows.size()
+            << " contacts (the search is complete only up to 12 contacts with at most 8 of them frictional: this is "
+            << "not a proof that none exists; " << rows.front().label << ")";
       throw NumericError(out.str());
     }
-    add_rates(y, Eigen::VectorXd(llt.matrixU().solve(sol.x) - rates(y)));
+    // (session 70, exact70: the velocities after q'- + dq' with the exact change, rounded once;
+    // until then L^-T x of the Cholesky coordinates' rounded solution)
+    const Eigen::VectorXd after = simulation::exact_sum(velocities, sol.x_exact);
+    y[2] = after(0);
+    y[3] = after(1);
+    if (free) y[5] = after(2);
+    if (has_slider()) y[7] = after(x_column());
     for (std::size_t i = 0; i < rows.size(); ++i) {
       total[i] = std::max(sol.lambda(static_cast<Eigen::Index>(i)), 0.0);
       tangential[i] = friction[i].on ? sol.f(static_cast<Eigen::Index>(i)) : 0.0;

@@ -1792,50 +1792,26 @@ struct Simulation::Impl {
       for (std::size_t k = 0; k < m; ++k)
         for (std::size_t i = 0; i < n; ++i) G(k, i) = rows[k].g[i];
       Eigen::VectorXd vm = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
-      Eigen::VectorXd gv = G * vm, h(m);
-      // (session 67, impact67: whether a row approaches, G v- < 0, is decided exactly on the
-      // doubles G and v- (exact_dot_sign); its restitution term e G v- is the double as before)
-      for (std::size_t k = 0; k < m; ++k)
-        h(k) = approaching(G.row(static_cast<Eigen::Index>(k)).transpose(), vm)
-                   ? rows[k].restitution * std::min(gv(k), 0.0)
-                   : 0.0;
-      // velocity level: v+ = v- + M^-1 (W^T Lambda + T_S^T F_S), w = G v+ + e G v- (Newton).
-      // Session 67 (impact67): the impulses' Coulomb conditions decided exactly, as the held
-      // contacts' at a step's start (held_friction.hpp's frictional_impulses)
-      static const std::vector<std::size_t> no_groups;
-      // (session 68, impact68: the decisions on the exact restitution terms e G v-, not on their
-      // rounded doubles h)
-      const std::vector<Rational> h_exact = simulation::exact_restitution_terms(G, vm, restitutions(rows));
+      // velocity level: v+ = v- + M^-1 (W^T Lambda + T_S^T F_S), w = G v+ + e min(G v-, 0) (Newton),
+      // the impulses' Coulomb conditions decided exactly (session 67, impact67) on the exact
+      // restitution terms (session 68, impact68): held_friction.hpp's fixed_axis_frictional_impulses
+      // (session 70, exact70: the composition moved there, a test runs it). No consistent
+      // solution — up to 12 contacts with at most 8 frictional exactly none (the exact enumeration
+      // is complete: session 69, exact69), else none found (more than 8 frictional: nothing tried;
+      // beyond 12 the session-61 frictionless-impulse rule for a cusp of the free space, since
+      // session 70 taken only where its held set is exactly consistent) — is refused below, naming
+      // the pairs, in the words of a verdict only in the first case (session 71, exact71:
+      // FrictionalSolution::exhausted). No model is known to reach it (session 69: the
+      // session-61 cusps, 6 x 10, 6 x 11, 7 x 11 teeth, are solved by the exact enumeration).
       simulation::FrictionalSolution solution =
-          simulation::frictional_impulses(G, inverse_masses(), vm, h, friction, no_groups, {}, &h_exact);
-      // No assignment consistent: a plastic impact into a cusp of the free space (a gear pair
-      // whose channel closes, the held contact of the gear's tip on the pinion's radial flank
-      // meeting the back flanks' contact, rows nearly opposite: 6 x 10 teeth without backlash at
-      // centre offset 0.1 mm, t = 0.0620619 s, session 61). Both contacts sticking stop the pair
-      // (v+ = 0) and leave the normal impulses open (the reduced matrix vanishes), so the
-      // minimum-norm impulses (0) cannot stick and each slip is inconsistent; the frictionless
-      // impulses that stop both rows are a consistent solution there, with no tangential
-      // impulse (inside every friction cone). The same rule as the held wedge's forces (session
-      // 36, `undetermined_plain`), tried only where the enumeration without it finds nothing,
-      // so every impact it solved is solved as before.
-      // (session 69, exact69: the fallback is taken only where that enumeration was not complete —
-      // more than 12 contacts, exact_assignment's bound. Up to 12 the exact enumeration has tried
-      // every stick/slip assignment on every held set with an exact LP, frictionless-impulse sticks
-      // (f = 0) included, so what the fallback could accept — a solution within the doubles'
-      // tolerance — is exactly inconsistent: the impact is refused below, naming its pairs. The
-      // session-61 cusps (6 x 10, 6 x 11, 7 x 11) no longer reach it: the exact enumeration finds
-      // their stopping impulses itself.)
-      const bool enumeration_complete = m <= 12;
-      if (!solution.solved && !enumeration_complete)
-        solution = simulation::solve_frictional(G, inverse_masses(), vm, h, friction, {}, true);
+          simulation::fixed_axis_frictional_impulses(G, inverse_masses(), vm, restitutions(rows), friction);
       if (!solution.solved) {
-        std::ostringstream out;
-        out << "simulation: at t = " << published_time(t) << " " << time_unit << " the impact problem of " << m
-            << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
+        std::ostringstream when;
+        when << published_time(t) << " " << time_unit;
         std::vector<std::size_t> involved;
         for (const ContactRow& r : rows) involved.push_back(r.pair);
-        out << simulation::named_friction(model, involved);
-        throw NumericError(out.str());
+        throw NumericError(
+            simulation::inconsistent_frictional_impact(when.str(), m, model, involved, solution.exhausted));
       }
       for (std::size_t i = 0; i < n; ++i)
         if (!dofs[i].driven) v[i] = solution.x(i);
