@@ -10,7 +10,9 @@
 
 #include "model/parametric/parametric.hpp"
 #include "rotation_pair_oracle.hpp"
+#include "certificate_test_support.hpp"
 #include "test_paths.hpp"
+#include "tolerance_certificate_support.hpp"
 
 #include <hipair/error.hpp>
 
@@ -25,14 +27,8 @@
 namespace hipair {
 namespace {
 
-std::filesystem::path geneva() { return std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"; }
-
-std::string read(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::filesystem::path geneva() { return test::example_model("geneva.json"); }
+std::string read(const std::filesystem::path& path) { return test::slurp(path.string()); }
 
 Rational q(long n, long d) {
   Rational r(n, d);

@@ -11,7 +11,9 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
 #include "rotation_pair_oracle.hpp"
+#include "certificate_test_support.hpp"
 #include "test_paths.hpp"
+#include "tolerance_certificate_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,14 +26,8 @@
 namespace hipair {
 namespace {
 
-std::filesystem::path geneva() { return std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"; }
-
-std::string read(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::filesystem::path geneva() { return test::example_model("geneva.json"); }
+std::string read(const std::filesystem::path& path) { return test::slurp(path.string()); }
 
 // A no_jam certificate whose evidence passes checks 1-6 (the named sides stay apart over every
 // leaf): the verdict is "valid" when check 7 proves a free follower path across the range,
@@ -90,11 +86,9 @@ const ToleranceResult& certified() {
 
 TEST(CertifyTolerance, GenevaNoJamCertificateVerifies) {
   const ToleranceResult& result = certified();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate);
-  ASSERT_TRUE(c.certificate->tolerance);
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   EXPECT_EQ(c.certificate->tolerance->varied.size(), 26u);
   EXPECT_EQ(c.certificate->tolerance->scale, Rational(4));
   EXPECT_GT(c.leaves, 0u);
@@ -117,11 +111,10 @@ TEST(CertifyTolerance, FreePathLeavesMakeTheCertificateValid) {
   options.certify_scale = 4;
   options.certify_free_path = true;
   ToleranceResult result = analyze_tolerances(geneva(), options);
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   EXPECT_FALSE(c.unproven) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
   VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-free-path-test.json");
   EXPECT_TRUE(v.valid) << v.summary;
 }
@@ -454,10 +447,9 @@ const ToleranceResult& below_threshold() {
 
 TEST(CertifyTolerance, JustBelowTheThresholdTheCertificateVerifies) {
   const ToleranceResult& result = below_threshold();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.scale, Rational(3791, 500));
   EXPECT_EQ(t.varied.size(), 26u);
@@ -676,10 +668,9 @@ const ToleranceResult& nine_tenths_of_the_threshold() {
 
 TEST(CertifyTolerance, SecondOrderLeavesCertifyTheFullRangeAtNineTenthsOfTheThreshold) {
   const ToleranceResult& result = nine_tenths_of_the_threshold();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.range.lo, Rational(11, 5));
   EXPECT_EQ(t.range.hi, Rational(23, 10));
@@ -852,11 +843,10 @@ Rational half_angle_tangent(const Rational& angle) {
 
 TEST(CertifyTolerance, EnvelopeWitnessesMakeTheFreePathCertificateValid) {
   const ToleranceResult& result = envelope_certified();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   EXPECT_FALSE(c.unproven) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.scale, Rational(free_path_scale));
   EXPECT_EQ(t.varied.size(), 26u);
