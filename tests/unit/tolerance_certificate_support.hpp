@@ -1,8 +1,8 @@
 // Shared by the no-jam tolerance-certificate tests (certify_tolerance_test.cpp,
 // certify_witness_split_test.cpp, certify_tolerance_witness_budget_test.cpp,
 // certify_plain_drop_test.cpp, tolerance_threshold_bracket_test.cpp; session 71): an example model's
-// path, the options certifying over a driver range, the leaves without a witness path, and the
-// certified outcome's checks every test started with.
+// path, the options certifying over a driver range, the leaves without a witness path, the
+// certified outcome's checks every test started with, and a mutated certificate's rejection.
 #pragma once
 
 #include <hipair/certificate.hpp>
@@ -61,6 +61,16 @@ inline const ToleranceCertification* certified_outcome(const ToleranceResult& re
     return nullptr;
   }
   return &c;
+}
+
+/// `c` written, read back and checked against `model_text` (the file `model_name`) by the
+/// verifier's code: invalid (neither valid nor unproven), its reason containing `reason`.
+inline void expect_rejected(const Certificate& c, const std::string& model_text, const std::string& model_name,
+                            const std::string& reason, const std::string& what) {
+  VerificationResult v = check_certificate_text(read_certificate(write_certificate(c)), model_text, model_name);
+  EXPECT_FALSE(v.valid) << what;
+  EXPECT_FALSE(v.unproven) << what;
+  EXPECT_NE(v.reason.find(reason), std::string::npos) << what << ": " << v.reason;
 }
 
 }  // namespace hipair::test
