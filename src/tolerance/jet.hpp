@@ -125,45 +125,6 @@ inline void accumulate(TaylorModel1& g, TaylorModel1&& t) {
   if (g.exact_zero()) g = std::move(t);
   else if (!t.exact_zero()) taylor_detail::add_to(g, t);
 }
-// accumulate(g, times(x, f, f_finite)) without the product's own model where g is not an exact
-// zero and the product takes multiply()'s sparse form (session 71): there the product's constant
-// ca cb is an outward-rounded product, never an exact zero, so accumulate() adds the product to g
-// (add_to); its coefficient i is times(a_i, cb), plus times(b_i, ca) where b_i is listed too (the
-// two supports merged in increasing index), 0 elsewhere (plus(g_i, 0) is g_i); its remainder is
-// product_remainder(). The same operations on the same operands in the same order: bit for bit
-// (tests/unit/taylor_jet_prepared_test.cpp, tolerance_taylor_times_test.cpp).
-inline void accumulate_product(TaylorModel1& g, const TaylorModel1& x, const taylor_detail::Factor& f, bool f_finite) {
-  using taylor_detail::plus;
-  using taylor_detail::times;
-  taylor_detail::Support sx;
-  taylor_detail::scan(x, sx);
-  const TaylorModel1& b = *f.model;
-  const taylor_detail::Support& sb = f.support;
-  if (g.exact_zero() || sx.constant || f.constant || !sx.listed || !sb.listed || !taylor_detail::finite(x.constant) ||
-      !taylor_detail::finite(b.constant)) {
-    if (f_finite && sx.constant && taylor_detail::zero(x.constant)) accumulate(g, TaylorModel1(0));   // x.exact_zero()
-    else accumulate(g, taylor_detail::multiply(x, sx, f));
-    return;
-  }
-  g.constant = plus(g.constant, x.constant * b.constant);
-  const std::size_t n = std::max(x.coefficients.size(), b.coefficients.size());
-  if (g.coefficients.size() < n) g.coefficients.resize(n, kernels::Interval(0));
-  std::size_t i = 0, j = 0;
-  while (i < sx.count || j < sb.count) {
-    const std::uint32_t xi = i < sx.count ? sx.index[i] : UINT32_MAX, bj = j < sb.count ? sb.index[j] : UINT32_MAX;
-    kernels::Interval t;
-    std::uint32_t k;
-    if (xi < bj) {
-      k = xi, t = times(x.coefficients[k], b.constant), ++i;
-    } else if (bj < xi) {
-      k = bj, t = plus(kernels::Interval(0), times(b.coefficients[k], x.constant)), ++j;
-    } else {
-      k = xi, t = plus(times(x.coefficients[k], b.constant), times(b.coefficients[k], x.constant)), ++i, ++j;
-    }
-    g.coefficients[k] = plus(g.coefficients[k], t);
-  }
-  g.remainder = plus(g.remainder, taylor_detail::product_remainder(x, sx.linear, b, f.linear));
-}
 template <class S>
 std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& fb) {
   if constexpr (!std::is_same_v<S, TaylorModel1>) {
@@ -176,7 +137,7 @@ std::vector<S> combine(const Jet<S>& a, const S& fa, const Jet<S>& b, const S& f
     const taylor_detail::Factor pa = taylor_detail::factor(fa), pb = taylor_detail::factor(fb);
     for (std::size_t i = 0; i < a.gradient.size(); ++i) g.push_back(times(a.gradient[i], pa, fa_finite));
     g.resize(n, S(0));
-    for (std::size_t i = 0; i < b.gradient.size(); ++i) accumulate_product(g[i], b.gradient[i], pb, fb_finite);
+    for (std::size_t i = 0; i < b.gradient.size(); ++i) accumulate(g[i], times(b.gradient[i], pb, fb_finite));
     return g;
   }
 }

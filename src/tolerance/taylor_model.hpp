@@ -81,34 +81,9 @@ inline Interval plus(const Interval& a, const Interval& b) {
   if (zero(b)) return a;
   return a + b;
 }
-/// a * b (kernels::Interval's product) of finite a and b, the two end products it keeps chosen
-/// by the ends' signs instead of taking the least and greatest of all four (session 71: the
-/// Taylor models' coefficient products are most of the gear train's interval products). Bit for
-/// bit a * b: rounding to nearest is monotone, so the end product that is least (greatest) as an
-/// exact real is least (greatest) among the four rounded ones, and an equal one differs at most in
-/// the sign of a zero, which down() and up() do not see; a product of finite doubles is never NaN
-/// (a * b's 0 x inf rule does not arise). tests/unit/tolerance_taylor_times_test.cpp.
-inline Interval times_finite(const Interval& a, const Interval& b) {
-  double low, high;
-  if (b.lo >= 0.0) {
-    if (a.lo >= 0.0) low = a.lo * b.lo, high = a.hi * b.hi;
-    else if (a.hi <= 0.0) low = a.lo * b.hi, high = a.hi * b.lo;
-    else low = a.lo * b.hi, high = a.hi * b.hi;
-  } else if (b.hi <= 0.0) {
-    if (a.lo >= 0.0) low = a.hi * b.lo, high = a.lo * b.hi;
-    else if (a.hi <= 0.0) low = a.hi * b.hi, high = a.lo * b.lo;
-    else low = a.hi * b.lo, high = a.lo * b.lo;
-  } else {
-    if (a.lo >= 0.0) low = a.hi * b.lo, high = a.hi * b.hi;
-    else if (a.hi <= 0.0) low = a.lo * b.hi, high = a.lo * b.lo;
-    else low = std::min(a.lo * b.hi, a.hi * b.lo), high = std::max(a.lo * b.lo, a.hi * b.hi);
-  }
-  return Interval(kernels::interval_detail::down(low), kernels::interval_detail::up(high));
-}
 inline Interval times(const Interval& a, const Interval& b) {
-  const bool a_finite = std::isfinite(a.lo) && std::isfinite(a.hi), b_finite = std::isfinite(b.lo) && std::isfinite(b.hi);
-  if ((zero(a) && b_finite) || (zero(b) && a_finite)) return Interval(0);
-  if (a_finite && b_finite) return times_finite(a, b);
+  if ((zero(a) && std::isfinite(b.lo) && std::isfinite(b.hi)) || (zero(b) && std::isfinite(a.lo) && std::isfinite(a.hi)))
+    return Interval(0);
   return a * b;
 }
 inline Interval square(const Interval& x) {
