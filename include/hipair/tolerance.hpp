@@ -83,6 +83,11 @@ struct ToleranceOptions {
   /// leaf's box (else split it): certificates whose free path the verifier proves (`valid`)
   /// where the plain search writes `unproven` ones (docs/tolerance.md, session 17).
   bool certify_free_path = false;
+  /// A leaf whose named sides checks 1-6 prove apart from their slopes alone, without a witness
+  /// follower path (check 7 cannot start there), is split along the driver instead of accepted,
+  /// at most this many times along a branch; beyond, it is accepted and the certificate is
+  /// `unproven`, its reason naming that leaf (docs/tolerance.md, sessions 67 and 71).
+  std::size_t certify_witness_splits = 6;
   /// Look for contacts that appear or disappear under tolerance (ToleranceResult::contact_changes).
   bool contact_changes = false;
   /// Exact C-spaces built to confirm them (one per change, the largest linearised first).

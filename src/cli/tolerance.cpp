@@ -57,6 +57,7 @@ struct ToleranceCliOptions {
   std::string certify_scale = "1";
   std::size_t certify_leaves = 20000;
   bool certify_free_path = false;
+  std::size_t certify_witness_splits = 6;
   std::set<std::string> given;   // the long options given on the command line
   bool certify_interference = false;
   std::string follower_range;
@@ -168,6 +169,9 @@ int run_interference(const ToleranceCliOptions& options) {
   if (options.certify || options.threshold || options.contact_changes || options.monte_carlo > 0)
     throw ModelError("", "--certify-interference runs alone: drop --certify, --threshold, --contact-changes and --monte-carlo "
                          "(run the analysis separately)");
+  if (options.given.count("--certify-witness-splits"))
+    throw ModelError("", "--certify-witness-splits is for the no-jam certificate (--certify or --certify-free-path): "
+                         "a never-interferes certificate has no witness paths");
   std::string scale = trim(options.certify_scale);
   if (!scale.empty() && (scale.back() == 'T' || scale.back() == 't'))
     throw ModelError("", "--certify-scale " + scale +
@@ -366,12 +370,15 @@ int run(const ToleranceCliOptions& options) {
   analysis.certify_scale = certify_scale(scale, options.certify_scale);
   analysis.certify_max_leaves = options.certify_leaves;
   analysis.certify_free_path = options.certify_free_path;
+  analysis.certify_witness_splits = options.certify_witness_splits;
   // the certificate's scale and budget without a certificate were taken and ignored (session 45;
   // checked after the scale's own checks)
   if (!options.certify && !options.certify_free_path)
     for (const char* option : {"--certify-scale", "--certify-leaves"})
       if (options.given.count(option))
         throw ModelError("", std::string(option) + " is for --certify, --certify-free-path or --certify-interference");
+  if (!options.certify && !options.certify_free_path && options.given.count("--certify-witness-splits"))
+    throw ModelError("", "--certify-witness-splits is for --certify or --certify-free-path");
   bool terminal = isatty(2) && !options.quiet;
   if (terminal)
     // written when the percent grows (the nominal sweep's fractions are not monotonic: docs/performance.md, session 36)
@@ -468,6 +475,11 @@ void register_tolerance(CLI::App& app, Action& action) {
                     "with --certify: accept a leaf only when the verifier's check 7 also proves its witness path "
                     "free (else split it), so that the certificate verifies 'valid' where the plain search writes "
                     "an 'unproven' one");
+  command->add_option("--certify-witness-splits", options->certify_witness_splits,
+                      "with --certify: split a leaf whose sides are proved apart but which has no witness follower "
+                      "path at most this many times along a branch (default 6; 0 to 64); beyond, it is accepted and "
+                      "the certificate is written 'unproven', naming that leaf")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{64}));
   command->add_flag("--certify-interference", options->certify_interference,
                     "instead of the analysis: prove that the pair never interferes for any parameters in the box, "
                     "driver in --range and follower in --follower-range; writes interference-certificate.json "

@@ -1132,6 +1132,7 @@ class Analysis {
     request.follower = follower_;
     request.max_leaves = options_.certify_max_leaves;
     request.free_path_leaves = options_.certify_free_path;
+    request.witness_splits = options_.certify_witness_splits;
     std::vector<bool> varied = varied_parameters();
     for (std::size_t i = 0; i < varied.size(); ++i)
       if (varied[i]) request.varied.push_back(i);

@@ -1145,9 +1145,4 @@ ThresholdBracket bracket_threshold(const CertifyRequest& base, const Rational& b
   return out;
 }
 
-std::size_t& certify_witness_splits() {
-  static std::size_t splits = 6;   // (session 67)
-  return splits;
-}
-
 }  // namespace hipair::tolerance_detail

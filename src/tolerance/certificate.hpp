@@ -28,11 +28,6 @@ struct ChannelSample {
   std::string unbounded_why;
 };
 
-/// Tests only: the default of CertifyRequest::witness_splits (6 unless changed; session 70: a
-/// smaller budget reaches the producer's exhausted-split path — a leaf still without a witness
-/// path accepted and the certificate `unproven`, naming it — on a model at hand).
-std::size_t& certify_witness_splits();
-
 struct CertifyRequest {
   std::shared_ptr<const model_detail::ParametricModel> model;
   std::string model_text;
@@ -50,7 +45,8 @@ struct CertifyRequest {
   /// A leaf whose sides checks 1-6 prove apart from their slopes alone (no witness path: check 7
   /// cannot start there, so the certificate would be unproven) is split instead, up to this many
   /// times along a branch; beyond, it is accepted and the certificate's check names it (session 67).
-  std::size_t witness_splits = certify_witness_splits();
+  /// ToleranceOptions::certify_witness_splits (`--certify-witness-splits`; session 71).
+  std::size_t witness_splits = 6;
   /// Progress of certify_no_jam (the corner search by driver position its first tenth, then the
   /// share of the region box x range the certified leaves cover, to 0.95) and of
   /// bracket_threshold (the bisection's width against the width asked for); empty: none.

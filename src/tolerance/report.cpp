@@ -434,7 +434,13 @@ std::string text_report(const ToleranceResult& r, const std::vector<long>& expon
               << number(c.seconds_produce, 3) << " s; the verifier's code (" << number(c.seconds_verify, 3)
               << " s) checked that the named contact sides stay apart over every leaf, but did not prove a free "
                  "follower path across the range (check 7: "
-              << c.reason << "): verdict unproven, the claim 'no jam' is not proved (docs/certify.md)\n";
+              << c.reason << "): verdict unproven, the claim 'no jam' is not proved (docs/certify.md)"
+              // a leaf accepted without a witness path: the producer's witness-split budget ran out (session 71)
+              << (c.reason.find(" has no witness path for the follower") != std::string::npos
+                      ? "; such a leaf is split at most --certify-witness-splits times along a branch: a larger "
+                        "budget may give it a witness path"
+                      : "")
+              << "\n";
         else
           out << "  CERTIFIED: " << c.leaves << " leaves (" << c.attempts << " boxes tried) in "
               << number(c.seconds_produce, 3) << " s, re-checked by the verifier's code in " << number(c.seconds_verify, 3)

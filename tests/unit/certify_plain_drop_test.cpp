@@ -31,6 +31,7 @@
 #include "rotation_pair_oracle.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
+#include "tolerance_certificate_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -52,11 +53,7 @@ std::string escapement_path() { return (std::filesystem::path(HIPAIR_EXAMPLES) /
 // The plain search (no free_path_leaves) over [from, to] at `scale` x the tolerances.
 ToleranceCertification plain_certificate(const std::string& model_text, const Rational& from, const Rational& to,
                                          const Rational& scale) {
-  ToleranceOptions options;
-  options.range = std::make_pair(from, to);
-  options.threads = 1;
-  options.relative_accuracy = 0.5;   // (the band is not what is tested)
-  options.certify = true;
+  ToleranceOptions options = test::certify_over(from, to);
   options.certify_scale = scale;
   ToleranceResult result = analyze_tolerances_text(model_text, options);
   if (!result.certification) return {};
@@ -64,11 +61,7 @@ ToleranceCertification plain_certificate(const std::string& model_text, const Ra
 }
 
 // How many leaves of a certificate carry no witness path (check 7 cannot start on them).
-std::size_t unwitnessed(const ToleranceClaim& t) {
-  std::size_t n = 0;
-  for (const ToleranceLeaf& leaf : t.leaves) n += leaf.witness ? 0 : 1;
-  return n;
-}
+std::size_t unwitnessed(const Certificate& c) { return test::leaves_without_witness(c).size(); }
 
 // The tangent of half of `angle`, rounded to 1e-12: a rotation by a rational cosine and sine, so
 // the exact predicate is evaluated within about 1e-12 rad of the witness pose, not on it (enough
@@ -119,7 +112,7 @@ TEST(CertifyPlainDrop, TheOldPlainChoiceMeetsTheToothAndTheNewOneIsValidAndFree)
   EXPECT_FALSE(c.unproven) << c.reason;   // the verifier's code on the written text: valid
   ASSERT_TRUE(c.certificate && c.certificate->tolerance);
   const ToleranceClaim& t = *c.certificate->tolerance;
-  EXPECT_EQ(unwitnessed(t), 0u);
+  EXPECT_EQ(unwitnessed(*c.certificate), 0u);
   // The witness paths against the exact overlap predicate, at the centre and at 8 points
   // (corners and interior points by test_seed(68)) of every leaf.
   std::mt19937_64 random(test::test_seed(68));
@@ -190,7 +183,7 @@ TEST(CertifyPlainDrop, GeneratedRangesAcrossTheDropsAreValidWithThePlainSearch) 
     const ToleranceCertification c = plain_certificate(model_text, from, to, scale);
     ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
     ASSERT_TRUE(c.certificate && c.certificate->tolerance);
-    EXPECT_EQ(unwitnessed(*c.certificate->tolerance), 0u);
+    EXPECT_EQ(unwitnessed(*c.certificate), 0u);
     EXPECT_FALSE(c.unproven) << c.reason;
     std::cout << "[ plain drop ] " << what << ": " << c.leaves << " leaves, " << c.attempts << " boxes\n";
   }
@@ -233,7 +226,7 @@ TEST(CertifyPlainDrop, GeneratedEscapementGeometriesAreValidWithThePlainSearch) 
     const ToleranceCertification c = plain_certificate(model, Rational(3, 10), Rational(1, 2), Rational(1, 2));
     ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
     ASSERT_TRUE(c.certificate && c.certificate->tolerance);
-    EXPECT_EQ(unwitnessed(*c.certificate->tolerance), 0u);
+    EXPECT_EQ(unwitnessed(*c.certificate), 0u);
     EXPECT_FALSE(c.unproven) << c.reason;
     std::cout << "[ plain drop ] " << what << ": " << c.leaves << " leaves, " << c.attempts << " boxes\n";
   }

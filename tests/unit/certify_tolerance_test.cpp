@@ -11,7 +11,9 @@
 #include "model/parametric/parametric.hpp"
 #include "tolerance/contact_function.hpp"
 #include "rotation_pair_oracle.hpp"
+#include "certificate_test_support.hpp"
 #include "test_paths.hpp"
+#include "tolerance_certificate_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,13 +26,33 @@
 namespace hipair {
 namespace {
 
-std::filesystem::path geneva() { return std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"; }
+std::filesystem::path geneva() { return test::example_model("geneva.json"); }
+std::string read(const std::filesystem::path& path) { return test::slurp(path.string()); }
 
-std::string read(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// The identity of a certificate's feature reference on `part` of the nominal model.
+FeatureIdentity feature_identity(const Model& m, std::size_t part, const FeatureReference& f) {
+  FeatureIdentity id;
+  id.part = part;
+  id.loop = f.edge.loop;
+  id.edge = f.edge.edge;
+  const Edge& e = m.parts[part].loops[f.edge.loop].edges[f.edge.edge];
+  id.kind = f.vertex ? FeatureKind::vertex : e.is_arc() ? FeatureKind::arc : FeatureKind::segment;
+  return id;
+}
+
+// The root of f in [lo, hi] (f(lo) = flo, of the other sign than f(hi)) by 80 halvings.
+template <class F>
+double bisected_root(const F& f, double lo, double hi, double flo) {
+  for (int i = 0; i < 80; ++i) {
+    double mid = 0.5 * (lo + hi), fm = f(mid);
+    if ((fm < 0) == (flo < 0)) {
+      lo = mid;
+      flo = fm;
+    } else {
+      hi = mid;
+    }
+  }
+  return 0.5 * (lo + hi);
 }
 
 // A no_jam certificate whose evidence passes checks 1-6 (the named sides stay apart over every
@@ -90,11 +112,9 @@ const ToleranceResult& certified() {
 
 TEST(CertifyTolerance, GenevaNoJamCertificateVerifies) {
   const ToleranceResult& result = certified();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate);
-  ASSERT_TRUE(c.certificate->tolerance);
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   EXPECT_EQ(c.certificate->tolerance->varied.size(), 26u);
   EXPECT_EQ(c.certificate->tolerance->scale, Rational(4));
   EXPECT_GT(c.leaves, 0u);
@@ -117,11 +137,10 @@ TEST(CertifyTolerance, FreePathLeavesMakeTheCertificateValid) {
   options.certify_scale = 4;
   options.certify_free_path = true;
   ToleranceResult result = analyze_tolerances(geneva(), options);
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   EXPECT_FALSE(c.unproven) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
   VerificationResult v = verify_through_file(*c.certificate, "hipair-tolerance-certificate-free-path-test.json");
   EXPECT_TRUE(v.valid) << v.summary;
 }
@@ -155,10 +174,7 @@ TEST(CertifyTolerance, MutatedCertificatesAreRejected) {
   const Certificate base = *result.certification->certificate;
   const std::string model_text = read(geneva());
   auto rejected = [&](const Certificate& c, const std::string& reason, const std::string& what) {
-    VerificationResult v = check_certificate_text(read_certificate(write_certificate(c)), model_text, "geneva.json");
-    EXPECT_FALSE(v.valid) << what;
-    EXPECT_FALSE(v.unproven) << what;
-    EXPECT_NE(v.reason.find(reason), std::string::npos) << what << ": " << v.reason;
+    test::expect_rejected(c, model_text, "geneva.json", reason, what);
   };
   ASSERT_TRUE(checks_pass(check_certificate_text(base, model_text, "geneva.json")));
   const ToleranceClaim& t = *base.tolerance;
@@ -249,15 +265,7 @@ TEST(CertifyTolerance, LeavesAgreeWithTheLibraryKernelsAtRandomPoints) {
   auto model = model_detail::ParametricModel::read(read(geneva()));
   const Model& m = model.nominal();
   std::size_t driver = *m.find_part(t.driver), follower = *m.find_part(t.follower);
-  auto identity = [&](std::size_t part, const FeatureReference& f) {
-    FeatureIdentity id;
-    id.part = part;
-    id.loop = f.edge.loop;
-    id.edge = f.edge.edge;
-    const Edge& e = m.parts[part].loops[f.edge.loop].edges[f.edge.edge];
-    id.kind = f.vertex ? FeatureKind::vertex : e.is_arc() ? FeatureKind::arc : FeatureKind::segment;
-    return id;
-  };
+  auto identity = [&](std::size_t part, const FeatureReference& f) { return feature_identity(m, part, f); };
   std::mt19937_64 random(12);
   std::size_t checked = 0;
   for (const ToleranceLeaf& leaf : t.leaves) {
@@ -281,16 +289,7 @@ TEST(CertifyTolerance, LeavesAgreeWithTheLibraryKernelsAtRandomPoints) {
         double lo = side.bracket.lo.get_d(), hi = side.bracket.hi.get_d();
         double flo = f(lo), fhi = f(hi);
         EXPECT_LT(flo * fhi, 0.0) << "no sign change across the bracket at driver " << d;
-        for (int i = 0; i < 80; ++i) {
-          double mid = 0.5 * (lo + hi), fm = f(mid);
-          if ((fm < 0) == (flo < 0)) {
-            lo = mid;
-            flo = fm;
-          } else {
-            hi = mid;
-          }
-        }
-        return 0.5 * (lo + hi);
+        return bisected_root(f, lo, hi, flo);
       };
       double lower = side_root(leaf.lower), upper = side_root(leaf.upper);
       // The play is at least the bisection's resolution away from 0 in every certified leaf.
@@ -359,15 +358,7 @@ std::size_t check_leaves_with_kernels(const ToleranceClaim& t, int per_leaf, std
   auto model = model_detail::ParametricModel::read(read(geneva()));
   const Model& m = model.nominal();
   std::size_t driver = *m.find_part(t.driver), follower = *m.find_part(t.follower);
-  auto identity = [&](std::size_t part, const FeatureReference& f) {
-    FeatureIdentity id;
-    id.part = part;
-    id.loop = f.edge.loop;
-    id.edge = f.edge.edge;
-    const Edge& e = m.parts[part].loops[f.edge.loop].edges[f.edge.edge];
-    id.kind = f.vertex ? FeatureKind::vertex : e.is_arc() ? FeatureKind::arc : FeatureKind::segment;
-    return id;
-  };
+  auto identity = [&](std::size_t part, const FeatureReference& f) { return feature_identity(m, part, f); };
   std::mt19937_64 random(seed);
   std::size_t checked = 0;
   for (const ToleranceLeaf& leaf : t.leaves) {
@@ -410,16 +401,7 @@ std::size_t check_leaves_with_kernels(const ToleranceClaim& t, int per_leaf, std
             if (f(y) * f_end <= 0) break;
           }
         }
-        for (int i = 0; i < 80; ++i) {
-          double mid = 0.5 * (lo + hi), fm = f(mid);
-          if ((fm < 0) == (flo < 0)) {
-            lo = mid;
-            flo = fm;
-          } else {
-            hi = mid;
-          }
-        }
-        return 0.5 * (lo + hi);
+        return bisected_root(f, lo, hi, flo);
       };
       double lower = side_root(leaf.lower), upper = side_root(leaf.upper);
       EXPECT_GT(upper - lower, 1e-12) << "the channel closes at driver " << d;
@@ -454,10 +436,9 @@ const ToleranceResult& below_threshold() {
 
 TEST(CertifyTolerance, JustBelowTheThresholdTheCertificateVerifies) {
   const ToleranceResult& result = below_threshold();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.scale, Rational(3791, 500));
   EXPECT_EQ(t.varied.size(), 26u);
@@ -676,10 +657,9 @@ const ToleranceResult& nine_tenths_of_the_threshold() {
 
 TEST(CertifyTolerance, SecondOrderLeavesCertifyTheFullRangeAtNineTenthsOfTheThreshold) {
   const ToleranceResult& result = nine_tenths_of_the_threshold();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.range.lo, Rational(11, 5));
   EXPECT_EQ(t.range.hi, Rational(23, 10));
@@ -852,11 +832,10 @@ Rational half_angle_tangent(const Rational& angle) {
 
 TEST(CertifyTolerance, EnvelopeWitnessesMakeTheFreePathCertificateValid) {
   const ToleranceResult& result = envelope_certified();
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
+  const ToleranceCertification* outcome = test::certified_outcome(result);
+  ASSERT_TRUE(outcome);
+  const ToleranceCertification& c = *outcome;
   EXPECT_FALSE(c.unproven) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
   const ToleranceClaim& t = *c.certificate->tolerance;
   EXPECT_EQ(t.scale, Rational(free_path_scale));
   EXPECT_EQ(t.varied.size(), 26u);

@@ -5,8 +5,10 @@
 // path, is split (along the driver) instead of accepted, at most CertifyRequest::witness_splits
 // times along a branch (session 67); beyond that budget the producer accepts it, and the
 // certificate is `unproven` (check 7 cannot start on a leaf without a witness path) and names it.
-// No model at hand needs more than 6 such splits, so the budget is lowered through the tests-only
-// hook tolerance_detail::certify_witness_splits(): on the escapement (the wheel driving the
+// No model at hand needs more than 6 such splits, so the budget is lowered through the request's
+// ToleranceOptions::certify_witness_splits (session 71; a tests-only global hook in session 70,
+// `hipair tolerance --certify-witness-splits N` at the CLI: tests/cli/run_tolerance_witness_budget_tests.sh):
+// on the escapement (the wheel driving the
 // anchor) every range across a drop needs at least one split there (base67's producer, which
 // never split, left the leaf over the drop without a witness at every such range it was run on).
 //
@@ -21,9 +23,8 @@
 #include <hipair/certificate.hpp>
 #include <hipair/tolerance.hpp>
 
-#include "test_paths.hpp"
 #include "test_seed.hpp"
-#include "tolerance/certificate.hpp"
+#include "tolerance_certificate_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -40,34 +41,15 @@
 namespace hipair {
 namespace {
 
-std::filesystem::path escapement() { return std::filesystem::path(HIPAIR_EXAMPLES) / "escapement.json"; }
+using test::leaves_without_witness;
 
-// The budget for the scope of one test, restored after it.
-struct WitnessSplits {
-  explicit WitnessSplits(std::size_t n) : saved(tolerance_detail::certify_witness_splits()) {
-    tolerance_detail::certify_witness_splits() = n;
-  }
-  ~WitnessSplits() { tolerance_detail::certify_witness_splits() = saved; }
-  WitnessSplits(const WitnessSplits&) = delete;
-  WitnessSplits& operator=(const WitnessSplits&) = delete;
-  std::size_t saved;
-};
+std::filesystem::path escapement() { return test::example_model("escapement.json"); }
 
-ToleranceOptions certify_over(const Rational& from, const Rational& to, const Rational& scale) {
-  ToleranceOptions options;
-  options.range = std::make_pair(from, to);
-  options.threads = 1;
-  options.relative_accuracy = 0.5;   // the certified band is not what is tested here
-  options.certify = true;
+ToleranceOptions certify_over(const Rational& from, const Rational& to, const Rational& scale, std::size_t splits) {
+  ToleranceOptions options = test::certify_over(from, to);
   options.certify_scale = scale;
+  options.certify_witness_splits = splits;
   return options;
-}
-
-std::vector<std::size_t> leaves_without_witness(const Certificate& c) {
-  std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < c.tolerance->leaves.size(); ++i)
-    if (!c.tolerance->leaves[i].witness) out.push_back(i);
-  return out;
 }
 
 // The leaf a "leaf N has no witness path for the follower" message names; -1 when none.
@@ -83,10 +65,9 @@ long named_leaf(const std::string& text) {
 // The exhausted path's outcome: a complete certificate, unproven, naming one of its leaves without
 // a witness path, on the producer's side, in the written file and in the text report.
 void expect_exhausted(const ToleranceResult& result, const std::string& file_name) {
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
+  const ToleranceCertification* certified = test::certified_outcome(result);
+  ASSERT_TRUE(certified);
+  const ToleranceCertification& c = *certified;
   const std::vector<std::size_t> missing = leaves_without_witness(*c.certificate);
   ASSERT_FALSE(missing.empty()) << "the budget was not exhausted: every leaf has a witness";
   EXPECT_TRUE(c.unproven) << "a leaf without a witness path, yet not unproven";
@@ -113,21 +94,20 @@ void expect_exhausted(const ToleranceResult& result, const std::string& file_nam
 }
 
 TEST(CertifyToleranceWitnessBudget, TheExhaustedBudgetWritesAnUnprovenCertificateNamingTheLeaf) {
-  const ToleranceOptions options = certify_over(Rational(1, 5), Rational(9, 20), Rational(1));
   {
-    WitnessSplits none(0);
     SCOPED_TRACE("budget 0");
-    expect_exhausted(analyze_tolerances(escapement(), options), "tol70-witness-budget-0.json");
+    expect_exhausted(analyze_tolerances(escapement(), certify_over(Rational(1, 5), Rational(9, 20), Rational(1), 0)),
+                     "tol70-witness-budget-0.json");
   }
   // The default budget on the same range: valid, a witness on every leaf.
-  EXPECT_EQ(tolerance_detail::certify_witness_splits(), 6u);
+  ToleranceOptions options;
+  EXPECT_EQ(options.certify_witness_splits, 6u);
+  options = certify_over(Rational(1, 5), Rational(9, 20), Rational(1), options.certify_witness_splits);
   const ToleranceResult result = analyze_tolerances(escapement(), options);
-  ASSERT_TRUE(result.certification);
-  const ToleranceCertification& c = *result.certification;
-  ASSERT_EQ(c.outcome, ToleranceCertification::Outcome::certified) << c.reason;
-  ASSERT_TRUE(c.certificate && c.certificate->tolerance);
-  EXPECT_TRUE(leaves_without_witness(*c.certificate).empty());
-  EXPECT_FALSE(c.unproven) << c.reason;
+  const ToleranceCertification* c = test::certified_outcome(result);
+  ASSERT_TRUE(c);
+  EXPECT_TRUE(leaves_without_witness(*c->certificate).empty());
+  EXPECT_FALSE(c->unproven) << c->reason;
 }
 
 TEST(CertifyToleranceWitnessBudget, GeneratedRangesAcrossDropsExhaustSmallBudgets) {
@@ -142,8 +122,7 @@ TEST(CertifyToleranceWitnessBudget, GeneratedRangesAcrossDropsExhaustSmallBudget
     const std::size_t budget = 0;
     SCOPED_TRACE("trial " + std::to_string(trial) + ": driver " + to_exact_string(from) + " .. " + to_exact_string(to) +
                  " rad, scale " + to_exact_string(scale) + ", budget " + std::to_string(budget));
-    WitnessSplits splits(budget);
-    expect_exhausted(analyze_tolerances(escapement(), certify_over(from, to, scale)),
+    expect_exhausted(analyze_tolerances(escapement(), certify_over(from, to, scale, budget)),
                      "tol70-witness-budget-" + std::to_string(trial) + ".json");
   }
 }

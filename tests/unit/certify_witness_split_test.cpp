@@ -27,8 +27,9 @@
 #include <hipair/tolerance.hpp>
 
 #include "free_path_claim.hpp"
-#include "test_paths.hpp"
+#include "certificate_test_support.hpp"
 #include "test_seed.hpp"
+#include "tolerance_certificate_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -42,23 +43,10 @@
 namespace hipair {
 namespace {
 
-std::filesystem::path escapement() { return std::filesystem::path(HIPAIR_EXAMPLES) / "escapement.json"; }
+using test::certify_over;
 
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream t;
-  t << in.rdbuf();
-  return t.str();
-}
-
-ToleranceOptions certify_over(const Rational& from, const Rational& to) {
-  ToleranceOptions options;
-  options.range = std::make_pair(from, to);
-  options.threads = 1;
-  options.relative_accuracy = 0.5;   // the certified band is not what is tested here
-  options.certify = true;
-  return options;
-}
+std::filesystem::path escapement() { return test::example_model("escapement.json"); }
+std::string read_text(const std::filesystem::path& path) { return test::slurp(path.string()); }
 
 // Every leaf of a certified no_jam certificate carries a witness path; the names of those
 // that do not.
@@ -66,10 +54,9 @@ std::string leaves_without_witness(const ToleranceCertification& c) {
   std::string out;
   if (!c.certificate || !c.certificate->tolerance) return "no certificate";
   const auto& leaves = c.certificate->tolerance->leaves;
-  for (std::size_t i = 0; i < leaves.size(); ++i)
-    if (!leaves[i].witness)
-      out += (out.empty() ? "" : ", ") + std::to_string(i) + " (driver " + std::to_string(leaves[i].driver.lo.get_d()) +
-             " .. " + std::to_string(leaves[i].driver.hi.get_d()) + ")";
+  for (std::size_t i : test::leaves_without_witness(*c.certificate))
+    out += (out.empty() ? "" : ", ") + std::to_string(i) + " (driver " + std::to_string(leaves[i].driver.lo.get_d()) +
+           " .. " + std::to_string(leaves[i].driver.hi.get_d()) + ")";
   return out;
 }
 

@@ -29,7 +29,6 @@
 namespace hipair {
 namespace {
 
-using model_detail::ParametricModel;
 using tolerance_detail::CurveSlice;
 using tolerance_detail::CurveSolver;
 using tolerance_detail::Interval;
@@ -65,17 +64,9 @@ void expect_same(const Outcome& a, const Outcome& b) {
 }
 
 TEST(ToleranceContactConstant, ArcAndItsSourceVertexSharingABoxGeometryEncloseAsFreshSolvers) {
-  auto model = std::make_shared<const ParametricModel>(
-      ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"));
+  auto model = test::geneva_parametric();
   const Model& nominal = model->nominal();
-  auto configured = [&](bool chain) {
-    CurveSolver solver(model);
-    if (chain) {   // as the assembly chains set it
-      solver.set_second_order(false);
-      solver.set_taylor_partials(true);
-    }
-    return solver;
-  };
+  auto configured = [&](bool chain) { return chain ? test::chain_solver(model) : CurveSolver(model); };
   std::mt19937_64 random(test::test_seed(69));
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t pins_certified = 0, trials = 0;
@@ -88,14 +79,8 @@ TEST(ToleranceContactConstant, ArcAndItsSourceVertexSharingABoxGeometryEncloseAs
     ++trials;
     CurveSlice pin = c.curve;
     if (trial % 4 < 2) {   // the driver over a held range about its position (the chains' slices)
-      double slope = 0;
       double v = c.v;
-      probe.sensitivities(pin, v, &slope);
-      const double t0 = pin.fixed_value.get_d();
-      const double half = std::ldexp(1.0, -6 - static_cast<int>(unit(random) * 4));
-      pin.fixed_range = Interval(std::ldexp(std::floor(std::ldexp(t0 - half, 20)), -20),
-                                 std::ldexp(std::ceil(std::ldexp(t0 + half, 20)), -20));
-      pin.fixed_spread = std::fabs(slope) * pin.fixed_range->width();
+      pin = test::held_over(probe, pin, v, std::ldexp(1.0, -6 - static_cast<int>(unit(random) * 4)));
     }
     CurveSlice vertex = pin;
     vertex.first.kind = FeatureKind::vertex;   // the source vertex of the pin's edge: the same geometry

@@ -30,18 +30,14 @@
 namespace hipair {
 namespace {
 
-using model_detail::ParametricModel;
 using tolerance_detail::CurveSlice;
 using tolerance_detail::CurveSolver;
 using tolerance_detail::Interval;
 
 TEST(ToleranceFreeSide, ProvenSideIsTheSignOfFvAtTheRootOverTheBoxAndTheHeldRange) {
-  auto model = std::make_shared<const ParametricModel>(
-      ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"));
+  auto model = test::geneva_parametric();
   const Model& nominal = model->nominal();
-  CurveSolver solver(model);
-  solver.set_second_order(false);
-  solver.set_taylor_partials(true);   // as the chains set it
+  const CurveSolver solver = test::chain_solver(model);
   std::mt19937_64 random(51);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t decided = 0, undecided = 0, points = 0, wide = 0;
@@ -51,14 +47,8 @@ TEST(ToleranceFreeSide, ProvenSideIsTheSignOfFvAtTheRootOverTheBoxAndTheHeldRang
     if (!test::generate_geneva_box_case(solver, nominal, random, c)) continue;
     // the driver over a held range T about its position, 1/512 .. 1/16 of a chart unit wide
     // (dyadic ends: exact as doubles and as rationals)
-    double slope = 0;
-    solver.sensitivities(c.curve, c.v, &slope);
-    const double t0 = c.curve.fixed_value.get_d();
     const double half = std::ldexp(1.0, -5 - static_cast<int>(unit(random) * 5));
-    CurveSlice held = c.curve;
-    held.fixed_range = Interval(std::ldexp(std::floor(std::ldexp(t0 - half, 20)), -20),
-                                std::ldexp(std::ceil(std::ldexp(t0 + half, 20)), -20));
-    held.fixed_spread = std::fabs(slope) * held.fixed_range->width();
+    const CurveSlice held = test::held_over(solver, c.curve, c.v, half);
     std::size_t boxes = 0;
     int side = 7;
     Interval y;

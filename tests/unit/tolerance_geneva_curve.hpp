@@ -1,16 +1,54 @@
 // The Geneva pair's pin / slot 1 wall R contact curve as the tolerance solver takes it (the
-// driver's chart held near pi: the pin in slot 1), shared by the solver's tests.
+// driver's chart held near pi: the pin in slot 1), shared by the solver's tests; Geneva's
+// parametric model, a solver set as the assembly chains set it and the driver held over a range
+// about its position (session 71: the set-up tolerance_free_side_test.cpp and
+// tolerance_contact_constant_test.cpp repeated).
 #pragma once
 
+#include "model/parametric/parametric.hpp"
 #include "tolerance/solver.hpp"
 
 #include <hipair/model.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <random>
 #include <vector>
 
+#include "test_paths.hpp"
+
 namespace hipair::test {
+
+/// examples/models/geneva.json's parametric model.
+inline std::shared_ptr<const model_detail::ParametricModel> geneva_parametric() {
+  return std::make_shared<const model_detail::ParametricModel>(
+      model_detail::ParametricModel::read_file(std::filesystem::path(HIPAIR_EXAMPLES) / "geneva.json"));
+}
+
+/// A solver of `model` as the assembly chains set it: first-order enclosures, Taylor-model partials.
+inline tolerance_detail::CurveSolver chain_solver(std::shared_ptr<const model_detail::ParametricModel> model) {
+  tolerance_detail::CurveSolver solver(std::move(model));
+  solver.set_second_order(false);
+  solver.set_taylor_partials(true);
+  return solver;
+}
+
+/// `curve` with the driver held over about [t0 - half, t0 + half], t0 its position, the ends
+/// rounded outwards to multiples of 2^-20 (dyadic: exact as doubles and as rationals), and the
+/// wheel's spread over it from its nominal slope there (as the chains' slices take it). `v`, the
+/// wheel's position, is refined by the solver's sensitivities as they do.
+inline tolerance_detail::CurveSlice held_over(const tolerance_detail::CurveSolver& solver,
+                                              const tolerance_detail::CurveSlice& curve, double& v, double half) {
+  double slope = 0;
+  solver.sensitivities(curve, v, &slope);
+  const double t0 = curve.fixed_value.get_d();
+  tolerance_detail::CurveSlice held = curve;
+  held.fixed_range = tolerance_detail::Interval(std::ldexp(std::floor(std::ldexp(t0 - half, 20)), -20),
+                                                std::ldexp(std::ceil(std::ldexp(t0 + half, 20)), -20));
+  held.fixed_spread = std::fabs(slope) * held.fixed_range->width();
+  return held;
+}
 
 inline tolerance_detail::CurveSlice geneva_pin_wall_curve(const Model& nominal) {
   tolerance_detail::CurveSlice curve;
