@@ -389,7 +389,9 @@ TEST(FixedAxisFrictionalImpact, NineFrictionalContactsAreRefusedWithoutAVerdict)
     }
     ++cases;
     const simulation::FrictionalSolution s = simulation::fixed_axis_frictional_impulses(G, minv, v, e, friction);
-    ASSERT_FALSE(s.solved) << trial << ": more than 8 frictional contacts are not searched";
+    // the contract, not today's limit: a solution found is fine (the plant exists); a refusal
+    // must not claim that the search was complete
+    if (s.solved) continue;
     EXPECT_FALSE(s.exhausted) << trial << ": " << m << " contacts, 9 frictional: the search was not complete";
     const std::string message =
         simulation::inconsistent_frictional_impact("0.5 s", std::size_t(m), model, {0}, s.exhausted);
