@@ -15,6 +15,7 @@
 
 #include "simulation/exact_lp.hpp"
 #include "simulation/jam.hpp"
+#include "pusher_into_wall.hpp"
 #include "simulation_planar_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
@@ -220,22 +221,8 @@ TEST(SimulationJam, AFixedAxisJamAgainstASpeedProfileDriverIsLabelledApproximate
 // at x = W, every pair plastic (with Coulomb friction mu on both pairs where mu > 0): the pusher
 // strikes the block and carries it into the wall.
 Model pusher_into_wall(double v, double x0, double wall, double mu = 0) {
-  std::ifstream in(std::filesystem::path(HIPAIR_SOURCE_DIR) / "examples/models/pusher-blocks.json");
-  nlohmann::json j = nlohmann::json::parse(in);
-  nlohmann::json parts = nlohmann::json::array();
-  for (const nlohmann::json& p : j["parts"])
-    if (p["name"] != "small") parts.push_back(p);
-  j["parts"] = parts;
-  EXPECT_EQ(j["parts"][1]["name"], "pusher");
-  EXPECT_EQ(j["parts"][2]["name"], "block");
-  j["parts"][0]["loops"][0]["start"] = {wall, -20};
-  j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
-                                                              {{"line_to", {wall + 10, 20}}},
-                                                              {{"line_to", {wall, 20}}},
-                                                              {{"line_to", {wall, -20}}, {"label", "wall face"}}});
+  nlohmann::json j = test::pusher_into_wall_json(wall);
   j["parts"][2]["initial"] = {{"x", x0}, {"y", 0}};
-  j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
-                                      {{"parts", {"wall", "block"}}, {"restitution", 0}}});
   if (mu > 0)
     for (nlohmann::json& pair : j["pairs"]) pair["friction"] = mu;
   j["simulation"]["drivers"][0]["speed"]["x"] = v;

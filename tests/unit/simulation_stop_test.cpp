@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "pusher_into_wall.hpp"
 #include "simulation_planar_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
@@ -51,25 +52,7 @@ Model cam_to_limit(const std::string& limit, double w) {
   return read_model(j.dump(), "cam-drive with a limit");
 }
 
-// pusher-blocks.json without the small block, the wall's face at x = W, both pairs plastic (the
-// jam tests' model); the drivers are the caller's
-nlohmann::json pusher_into_wall(double wall) {
-  nlohmann::json j = example("pusher-blocks.json");
-  nlohmann::json parts = nlohmann::json::array();
-  for (const nlohmann::json& p : j["parts"])
-    if (p["name"] != "small") parts.push_back(p);
-  j["parts"] = parts;
-  EXPECT_EQ(j["parts"][0]["name"], "wall");
-  EXPECT_EQ(j["parts"][2]["name"], "block");
-  j["parts"][0]["loops"][0]["start"] = {wall, -20};
-  j["parts"][0]["loops"][0]["edges"] = nlohmann::json::array({{{"line_to", {wall + 10, -20}}},
-                                                              {{"line_to", {wall + 10, 20}}},
-                                                              {{"line_to", {wall, 20}}},
-                                                              {{"line_to", {wall, -20}}, {"label", "wall face"}}});
-  j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
-                                      {{"parts", {"wall", "block"}}, {"restitution", 0}}});
-  return j;
-}
+using test::pusher_into_wall_json;
 
 // A run to `until` that stops with a SimulationJam: its time, message and verdict (no time: no jam)
 struct Jammed {
@@ -144,7 +127,7 @@ TEST(SimulationStop, APlanarJamAgainstASpeedProfileIsLabelledApproximate) {
   for (int trial = 0; trial < 3; ++trial) {
     const double v = rng.uniform(20, 400), wall = rng.uniform(50, 80);
     SCOPED_TRACE("V " + num(v) + " mm/s, wall " + num(wall) + " mm");
-    nlohmann::json j = pusher_into_wall(wall);
+    nlohmann::json j = pusher_into_wall_json(wall);
     j["simulation"]["drivers"] = nlohmann::json::array(
         {{{"part", "pusher"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", v}}}, {1000, {{"x", v}}}}}}});
     const Model model = read_model(j.dump(), "pusher into a wall, profile");
@@ -180,7 +163,7 @@ TEST(SimulationStop, APlanarJamOfAConstantAndAProfileDriverInMillisecondsTakesBo
   for (int trial = 0; trial < 3; ++trial) {
     const double v = rng.uniform(0.05, 0.4), u = v * rng.uniform(0.1, 0.8), wall = rng.uniform(50, 80);
     SCOPED_TRACE("V " + num(v) + " mm/ms, U " + num(u) + " mm/ms, wall " + num(wall) + " mm");
-    nlohmann::json j = pusher_into_wall(wall);
+    nlohmann::json j = pusher_into_wall_json(wall);
     j["parts"][0]["motion"] = {{"planar", {{"pivot", {0, 0}}}}};
     j["parts"][0]["initial"] = {{"x", 0}, {"y", 0}};
     j["simulation"]["units"]["time"] = "ms";
