@@ -45,13 +45,11 @@ Constant reduce(IntegerRow& row, bool equality, mpz_class& g) {
   return (equality ? s == 0 : s >= 0) ? Constant::holds : Constant::fails;
 }
 
-// row := f row - g pivot
+// row := f row - g pivot (a Bareiss step whose previous pivot is 1)
 void combine(IntegerRow& row, const mpz_class& f, const IntegerRow& pivot, const mpz_class& g) {
-  for (std::size_t j = 0; j < row.size(); ++j) {
-    mpz_class& e = row[j];
-    if (sgn(e) != 0) mpz_mul(e.get_mpz_t(), e.get_mpz_t(), f.get_mpz_t());
-    if (sgn(pivot[j]) != 0) mpz_submul(e.get_mpz_t(), g.get_mpz_t(), pivot[j].get_mpz_t());
-  }
+  static const mpz_class one(1);
+  thread_local mpz_class scratch;
+  fraction_free_detail::bareiss_row(row, pivot, f, g, one, 0, scratch);
 }
 
 // whether the row has an unknown left (a nonzero entry before the constant)
