@@ -15,7 +15,7 @@
 
 #include "simulation/exact_lp.hpp"
 #include "simulation/jam.hpp"
-#include "pusher_into_wall.hpp"
+#include "jam_test_support.hpp"
 #include "simulation_planar_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
@@ -103,23 +103,8 @@ TEST(SimulationJam, LockingRowsIsTheFarkasAlternativeOfAVelocityKeepingEveryRow)
   EXPECT_FALSE(simulation::locking_rows({{Rational(1)}, {Rational(-1)}}, {Rational(0), Rational(0)}).has_value());
 }
 
-struct Stopped {
-  std::optional<double> jam;   // the SimulationJam's time
-  std::string message;
-  bool exact = false;
-};
-
-// A run to `until` that stops with a SimulationJam (no jam: `jam` empty)
-template <class Sim>
-Stopped run_to_jam(Sim& sim, double until) {
-  Stopped run;
-  try {
-    sim.run_until(until);
-  } catch (const SimulationJam& jam) {
-    run = {jam.time(), jam.what(), jam.exact()};
-  }
-  return run;
-}
+using test::run_to_jam;
+using test::Stopped;
 
 // cam-drive.json's eccentric cam (e = 8 mm, R = 25 mm) at a constant w rad/s lifting the
 // flat-faced follower (its offset e sin(w t) while it rides the cam) into a fixed stop whose face

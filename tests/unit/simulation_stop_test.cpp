@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "pusher_into_wall.hpp"
+#include "jam_test_support.hpp"
 #include "simulation_planar_support.hpp"
 #include "test_paths.hpp"
 #include "test_seed.hpp"
@@ -54,22 +54,7 @@ Model cam_to_limit(const std::string& limit, double w) {
 
 using test::pusher_into_wall_json;
 
-// A run to `until` that stops with a SimulationJam: its time, message and verdict (no time: no jam)
-struct Jammed {
-  std::optional<double> time;
-  std::string message;
-  bool exact = true;
-};
-template <class Sim>
-Jammed run_to_jam(Sim& sim, double until) {
-  Jammed out;
-  try {
-    sim.run_until(until);
-  } catch (const SimulationJam& stop) {
-    out = {stop.time(), stop.what(), stop.exact()};
-  }
-  return out;
-}
+using test::run_to_jam;
 
 // Generated: limits L = 1.5 .. 6.5 mm (three decimals: printed as given), w = 20 .. 150 rad/s
 // (below the critical 187 rad/s: the follower rides the cam). The stop at t* within the jam

@@ -1,6 +1,6 @@
-// The jam and stop tests' planar model: examples/models/pusher-blocks.json without the small
-// block, the wall's face at x = W, both pairs plastic; the drivers, the block's initial state and
-// friction are the caller's.
+// The jam and stop tests' shared pieces: their planar model (examples/models/pusher-blocks.json
+// without the small block, the wall's face at x = W, both pairs plastic; the drivers, the block's
+// initial state and friction are the caller's) and a run to a jam.
 #pragma once
 
 #include "test_paths.hpp"
@@ -8,8 +8,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <hipair/simulation_stop.hpp>
+
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <string>
 
 namespace hipair::test {
 
@@ -31,6 +35,24 @@ inline nlohmann::json pusher_into_wall_json(double wall) {
   j["pairs"] = nlohmann::json::array({{{"parts", {"pusher", "block"}}, {"restitution", 0}},
                                       {{"parts", {"wall", "block"}}, {"restitution", 0}}});
   return j;
+}
+
+// A run to `until` that stops with a SimulationJam: its time, message and verdict (no jam: `jam`
+// empty).
+struct Stopped {
+  std::optional<double> jam;
+  std::string message;
+  bool exact = false;
+};
+template <class Sim>
+Stopped run_to_jam(Sim& sim, double until) {
+  Stopped run;
+  try {
+    sim.run_until(until);
+  } catch (const SimulationJam& jam) {
+    run = {jam.time(), jam.what(), jam.exact()};
+  }
+  return run;
 }
 
 }  // namespace hipair::test
