@@ -110,7 +110,7 @@ for direction in 0 -7 2 forward x; do
 done
 "$hipair" certify "$lever" --claim jam --direction +1 --out "$work/jam-forward.json" >"$work/jam.out" 2>&1 \
   || fail "--direction +1: $(cat "$work/jam.out")"
-"$verify" "$work/jam-forward.json" "$lever" | grep -q "^valid: jam: driving 'lever' forward" || fail "the forward jam does not verify"
+grep -q "^valid: jam: driving 'lever' forward" <<<"$("$verify" "$work/jam-forward.json" "$lever")" || fail "the forward jam does not verify"
 "$hipair" certify "$lever" --claim jam --direction -1 --out "$work/jam-backward.json" >"$work/jam.out" 2>&1
 code=$?
 { [ $code -eq 0 ] || [ $code -eq 1 ]; } || fail "--direction -1: exit $code: $(cat "$work/jam.out")"
@@ -123,7 +123,7 @@ code=$?
 sed 's/"limits": \[-12, 12\]/"limits": [-12, 4]/' "$source/examples/models/cam-follower.json" >"$work/cam-limited.json"
 "$hipair" certify "$work/cam-limited.json" --claim jam --out "$work/cam-jam.json" >"$work/cam-jam.out" 2>&1 \
   || fail "the cam pushing its follower onto its limit is not certified: $(cat "$work/cam-jam.out")"
-"$verify" "$work/cam-jam.json" "$work/cam-limited.json" | grep -q "^valid: jam: driving 'cam' forward from within \[0.522, 0.524\] rad" \
+grep -q "^valid: jam: driving 'cam' forward from within \[0.522, 0.524\] rad" <<<"$("$verify" "$work/cam-jam.json" "$work/cam-limited.json")" \
   || fail "the cam's jam at its follower's limit does not verify as the 1/500 rad step about pi/6"
 
 ls -a "$work" | grep -q '\.tmp' && fail "temporary files left behind"
@@ -192,7 +192,7 @@ code=$?
 [ "$(wc -l <"$work/nojam.verify")" -eq 1 ] || fail "hipair-verify (false fixture): not one line: $(head -c 300 "$work/nojam.verify")"
 grep -q "^unproven: tolerance: .*stay apart over every leaf.*; not proved: a free path for the follower across the driver range" \
   "$work/nojam.verify" || fail "hipair-verify (false fixture): $(head -c 400 "$work/nojam.verify")"
-"$verify" --help 2>&1 | grep -q "3: unproven" || fail "hipair-verify --help does not document exit status 3"
+grep -q "3: unproven" <<<"$("$verify" --help 2>&1)" || fail "hipair-verify --help does not document exit status 3"
 # The certificate is for this model: another tolerance on one parameter is rejected.
 sed '0,/"tolerance": 0.02/s//"tolerance": 0.03/' "$geneva" >"$work/geneva-other.json"
 cmp -s "$geneva" "$work/geneva-other.json" && fail "the model mutation changed nothing"
@@ -372,7 +372,7 @@ sed 's/"limits": \[-0.1, 0.1\]/"limits": [-0.1, 0.01]/' "$work/slider-lever.json
 "$hipair" certify "$work/slider-lever-stop.json" --claim jam --pair slider:lever --driver slider --direction 1 \
   --trap "0.95:1.1,-0.01:0.01" --out "$work/slider-lever-stop-jam.json" >"$work/slider-lever.out" 2>&1 \
   || fail "certify refuses the jam against the lever's limit: $(cat "$work/slider-lever.out")"
-"$verify" "$work/slider-lever-stop-jam.json" "$work/slider-lever-stop.json" | grep -q "^valid: jam" \
+grep -q "^valid: jam" <<<"$("$verify" "$work/slider-lever-stop-jam.json" "$work/slider-lever-stop.json")" \
   || fail "the jam against the lever's limit does not verify"
 
 # ------------------------------------------------------------------ --set items named whole (session 37)
