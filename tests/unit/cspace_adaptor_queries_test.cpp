@@ -46,20 +46,7 @@ CertifiedRange x_extent(const CSpace& space, const CSpaceEdge& edge) {
 
 using test::cam_and_block;
 
-// A rotating square plate under a narrow plate translating vertically: vertex–segment and
-// segment–vertex contacts whose contact configurations are rational at rational t.
-const char* square_and_plate = R"({
-  "hipair": 1, "name": "square-and-plate", "units": { "length": "mm", "angle": "rad" },
-  "parts": [
-    { "name": "square", "motion": { "rotation": { "pivot": [0, 0] } },
-      "loops": [ { "start": [-10, -10], "edges": [ { "line_to": [10, -10] }, { "line_to": [10, 10] },
-        { "line_to": [-10, 10] }, { "line_to": [-10, -10] } ] } ] },
-    { "name": "plate", "motion": { "translation": { "direction": [0, 1], "limits": [-20, 20] } },
-      "loops": [ { "start": [-5, 20], "edges": [ { "line_to": [5, 20], "label": "face" },
-        { "line_to": [5, 30] }, { "line_to": [-5, 30] }, { "line_to": [-5, 20] } ] } ] }
-  ],
-  "pairs": [ { "parts": ["square", "plate"] } ]
-})";
+using test::square_and_plate;
 
 // Exact world position of a body point of `part` at a chart point of `space`.
 Point posed(const Model& model, const CSpace& space, const std::string& part_name, const Point& p, const ChartPoint& q) {

@@ -183,19 +183,7 @@ Rational evaluate(const std::vector<std::vector<mpz_class>>& c, const Rational& 
   return sum;
 }
 
-// A rotating square under a plate translating vertically: contacts rational at rational t.
-const char* square_and_plate = R"({
-  "hipair": 1, "name": "square-and-plate", "units": { "length": "mm", "angle": "rad" },
-  "parts": [
-    { "name": "square", "motion": { "rotation": { "pivot": [0, 0] } },
-      "loops": [ { "start": [-10, -10], "edges": [ { "line_to": [10, -10] }, { "line_to": [10, 10] },
-        { "line_to": [-10, 10] }, { "line_to": [-10, -10] } ] } ] },
-    { "name": "plate", "motion": { "translation": { "direction": [0, 1], "limits": [-20, 20] } },
-      "loops": [ { "start": [-5, 20], "edges": [ { "line_to": [5, 20], "label": "face" },
-        { "line_to": [5, 30] }, { "line_to": [-5, 30] }, { "line_to": [-5, 20] } ] } ] }
-  ],
-  "pairs": [ { "parts": ["square", "plate"] } ]
-})";
+using test::square_and_plate;
 
 TEST(CSpaceDoor, CurvePolynomialsVanishExactlyAtTheContactsAndOnlyForTheTouchingPairs) {
   Model model = read_model(square_and_plate);
