@@ -608,11 +608,13 @@ class Builder {
       j = end;
     }
     struct Span {
+      std::size_t group;    // the line: its first curve
       std::size_t lo, hi;   // known points, lo before hi along the line
       std::size_t data;
       std::size_t piece;
     };
-    std::vector<std::vector<Span>> spans(line_supports_.size());
+    thread_local std::vector<Span> spans;
+    spans.clear();
     auto known_index = [&](const Point& p) {
       std::size_t found = none;
       known_.find(p.id(), [&](std::size_t i) {
@@ -625,50 +627,63 @@ class Builder {
     auto before = [&](std::size_t a, std::size_t b, bool vertical) {
       return vertical ? known_points_[a].y < known_points_[b].y : known_points_[a].x < known_points_[b].x;
     };
+    auto vertical_line = [&](std::size_t k) { return sgn(coefficient(line_supports_[k], 0, 1)) == 0; };
     for (std::size_t i = 4; i < n; ++i) {
       const std::size_t k = pieces_[i].data();
       if (k >= group.size() || group[k] == no_curve) continue;
       std::size_t a = known_index(pieces_[i].source()), b = known_index(pieces_[i].target());
       if (a == none || b == none) return;   // (every end is a known point; else the sweep decides)
-      const bool vertical = sgn(coefficient(line_supports_[k], 0, 1)) == 0;
-      if (before(b, a, vertical)) std::swap(a, b);
-      spans[group[k]].push_back(Span{a, b, k, i});
+      if (before(b, a, vertical_line(k))) std::swap(a, b);
+      spans.push_back(Span{group[k], a, b, k, i});
     }
-    std::vector<char> replaced(n, 0);
+    // by line, then along it (then by piece: a strict order)
+    std::sort(spans.begin(), spans.end(), [&](const Span& u, const Span& w) {
+      if (u.group != w.group) return u.group < w.group;
+      if (u.lo != w.lo) return before(u.lo, w.lo, vertical_line(u.group));
+      return u.piece < w.piece;
+    });
+    std::vector<char> replaced;
     std::vector<Curve> added;
-    std::vector<std::size_t> ends;
-    for (std::size_t g = 0; g < spans.size(); ++g) {
-      std::vector<Span>& list = spans[g];
-      if (list.size() < 2) continue;
-      const bool vertical = sgn(coefficient(line_supports_[g], 0, 1)) == 0;
-      std::sort(list.begin(), list.end(), [&](const Span& u, const Span& w) {
-        if (u.lo != w.lo) return before(u.lo, w.lo, vertical);
-        return u.piece < w.piece;
-      });
+    thread_local std::vector<std::size_t> ends;
+    for (std::size_t first = 0; first < spans.size();) {
+      std::size_t last = first + 1;
+      while (last < spans.size() && spans[last].group == spans[first].group) ++last;
+      const bool vertical = vertical_line(spans[first].group);
       // an overlap: a span starting before the furthest end so far
       bool overlap = false;
-      std::size_t reach = list[0].hi;
-      for (std::size_t j = 1; j < list.size(); ++j) {
-        if (before(list[j].lo, reach, vertical)) overlap = true;
-        if (before(reach, list[j].hi, vertical)) reach = list[j].hi;
+      std::size_t reach = spans[first].hi;
+      for (std::size_t j = first + 1; j < last; ++j) {
+        if (before(spans[j].lo, reach, vertical)) overlap = true;
+        if (before(reach, spans[j].hi, vertical)) reach = spans[j].hi;
       }
-      if (!overlap) continue;
-      ends.clear();
-      for (const Span& s : list) {
-        ends.push_back(s.lo);
-        ends.push_back(s.hi);
+      if (overlap) {
+        ends.clear();
+        for (std::size_t j = first; j < last; ++j) {
+          ends.push_back(spans[j].lo);
+          ends.push_back(spans[j].hi);
+        }
+        // (equal points are one known point: by_value_)
+        std::sort(ends.begin(), ends.end(), [&](std::size_t a, std::size_t b) { return a != b && before(a, b, vertical); });
+        ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+        // each span's ends as positions in `ends` (integers compared from here on)
+        auto position = [&](std::size_t point) {
+          return static_cast<std::size_t>(std::find(ends.begin(), ends.end(), point) - ends.begin());
+        };
+        for (std::size_t j = first; j < last; ++j) {
+          spans[j].lo = position(spans[j].lo);
+          spans[j].hi = position(spans[j].hi);
+        }
+        for (std::size_t e = 0; e + 1 < ends.size(); ++e) {
+          std::size_t data = no_curve;
+          for (std::size_t j = first; j < last; ++j)
+            if (spans[j].lo <= e && spans[j].hi >= e + 1) data = std::min(data, spans[j].data);
+          if (data != no_curve)
+            added.emplace_back(BaseCurve(known_points_[ends[e]].handle, known_points_[ends[e + 1]].handle), data);
+        }
+        if (replaced.empty()) replaced.assign(n, 0);
+        for (std::size_t j = first; j < last; ++j) replaced[spans[j].piece] = 1;
       }
-      // (equal points are one known point: by_value_)
-      std::sort(ends.begin(), ends.end(), [&](std::size_t a, std::size_t b) { return a != b && before(a, b, vertical); });
-      ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-      for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
-        std::size_t data = no_curve;
-        for (const Span& s : list)
-          if (!before(ends[j], s.lo, vertical) && !before(s.hi, ends[j + 1], vertical)) data = std::min(data, s.data);
-        if (data != no_curve)
-          added.emplace_back(BaseCurve(known_points_[ends[j]].handle, known_points_[ends[j + 1]].handle), data);
-      }
-      for (const Span& s : list) replaced[s.piece] = 1;
+      first = last;
     }
     if (added.empty()) return;
     std::size_t kept = 0;
