@@ -15,6 +15,7 @@
 #include "arrangement/arrangement.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "random_rationals.hpp"
+#include "segment_stage_cases.hpp"
 #include "test_seed.hpp"
 
 #include <hipair/rational.hpp>
@@ -32,34 +33,19 @@ namespace {
 using cspace::IntegerPolynomial2;
 using test_numbers::canonical;
 
-// a + b x + c y as an integer polynomial, the rationals scaled to integers by their common
-// denominator times `factor`
+// a + b x + c y as an integer polynomial, times `factor`
 IntegerPolynomial2 affine(const Rational& a, const Rational& b, const Rational& c, long factor) {
-  mpz_class lcm = 1;
-  for (const Rational* r : {&a, &b, &c}) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), r->get_den_mpz_t());
-  auto z = [&](const Rational& r) { return mpz_class(r.get_num() * (lcm / r.get_den()) * factor); };
-  IntegerPolynomial2 f;
-  f.coefficients = {{z(a), z(c)}, {z(b), mpz_class(0)}};
-  return f;
+  return test_segment_stage::integer_line(a, b, c, factor);
 }
 
 TEST(TranslatingOverlapSplit, SegmentStageEqualsCircleStageOnOverlappingCollinearPieces) {
   std::mt19937_64 random(test::test_seed(7272));
-  auto grid = [&](long range) {   // a non-dyadic grid value in [-range, range]
-    static const long dens[] = {1, 3, 7, 2};
-    const long den = dens[random() % 4];
-    return canonical(static_cast<long>(random() % static_cast<unsigned long>(2 * range * den + 1)) - range * den, den);
-  };
+  auto grid = [&](long range) { return test_segment_stage::grid_value(random, range); };
   int built = 0, split_instances = 0, shared_edges = 0;
   for (int instance = 0; instance < 80; ++instance) {
     SCOPED_TRACE("instance " + std::to_string(instance));
-    static const int exponents[] = {-300, -1, 0, 0, 1, 150, 198};
-    const int exponent = exponents[instance % 7];
-    const Rational scale = exponent >= 0 ? canonical(mpz_class(1) << exponent, 1) : canonical(1, mpz_class(1) << -exponent);
-    Rational x_lo = grid(4), y_lo = grid(4);
-    Rational x_hi = x_lo + 2 + grid(3) * grid(3), y_hi = y_lo + 2 + grid(3) * grid(3);
-    if (x_hi <= x_lo + 1) x_hi = x_lo + 3;
-    if (y_hi <= y_lo + 1) y_hi = y_lo + canonical(8, 3);
+    const Rational scale = test_segment_stage::instance_scale(instance);
+    const auto [x_lo, x_hi, y_lo, y_hi] = test_segment_stage::random_grid_box(random);
     cspace::raw::Box box{Rational(x_lo * scale), Rational(x_hi * scale), Rational(y_lo * scale), Rational(y_hi * scale)};
     std::vector<IntegerPolynomial2> curves;
     std::vector<std::vector<cspace::ValidityClause>> validity;
