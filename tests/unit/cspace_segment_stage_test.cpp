@@ -185,23 +185,11 @@ TEST(CSpaceSegmentStage, CarriedSupportsEqualCgalLinesOnGeneratedLinesAndScales)
     cgal_lines.carry_line_supports = false;
     const cspace::raw::Arrangement p = cspace::raw::build_circle_segment_arrangement(box, curves, validity, windows, carried);
     const cspace::raw::Arrangement q = cspace::raw::build_circle_segment_arrangement(box, curves, validity, windows, cgal_lines);
-    ASSERT_EQ(p.vertices.size(), q.vertices.size());
-    for (std::size_t v = 0; v < p.vertices.size(); ++v) {
-      ASSERT_EQ(cspace::algebra::compare(p.vertices[v].x, q.vertices[v].x), 0) << "vertex " << v;
-      ASSERT_EQ(cspace::algebra::compare(p.vertices[v].y, q.vertices[v].y), 0) << "vertex " << v;
-    }
-    ASSERT_EQ(p.edges.size(), q.edges.size());
+    test_segment_stage::expect_same_arrangement(p, q);
+    if (HasFatalFailure()) return;
     std::vector<int> edges_of(curves.size(), 0);
     for (std::size_t e = 0; e < p.edges.size(); ++e) {
-      const cspace::raw::Edge &a = p.edges[e], &b = q.edges[e];
-      EXPECT_EQ(a.min_vertex, b.min_vertex) << "edge " << e;
-      EXPECT_EQ(a.max_vertex, b.max_vertex) << "edge " << e;
-      EXPECT_EQ(a.vertical, b.vertical) << "edge " << e;
-      EXPECT_EQ(a.box_side, b.box_side) << "edge " << e;
-      EXPECT_EQ(a.left_face, b.left_face) << "edge " << e;
-      EXPECT_EQ(a.right_face, b.right_face) << "edge " << e;
-      ASSERT_FALSE(a.support.coefficients.empty()) << "edge " << e;
-      EXPECT_EQ(a.support.coefficients, b.support.coefficients) << "the support of edge " << e;
+      const cspace::raw::Edge& a = p.edges[e];
       if (a.support_curve != cspace::raw::none) ++edges_of.at(a.support_curve);
     }
     for (int n : edges_of) shared_lines += n >= 2;
