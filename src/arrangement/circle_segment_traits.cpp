@@ -505,12 +505,13 @@ class Builder {
         throw GeometryError("internal: a contact curve is neither a line nor a circle");
     }
     result_.times.curves_seconds = seconds_since(start);
+    result_.pieces_inserted = pieces_.size() - 4;
+    if constexpr (segments) split_overlaps();
 
     start = Clock::now();
     Arrangement_2 arrangement;
     CGAL::insert(arrangement, pieces_.begin(), pieces_.end());
     for (const auto& p : isolated_) CGAL::insert_point(arrangement, p);
-    result_.pieces_inserted = pieces_.size() - 4;
     result_.times.insertion_seconds = seconds_since(start);
 
     start = Clock::now();
@@ -550,6 +551,149 @@ class Builder {
     } else {
       return typename K::Point_2(ft_of<FT>(x), ft_of<FT>(y));
     }
+  }
+
+  // Segment flavour, before the sweep: where pieces of two or more input curves with one line
+  // (the same oriented primitive polynomial, line_supports_) overlap, those pieces are replaced
+  // by the pieces between their consecutive distinct ends that some of them cover, each carrying
+  // the smallest index of the pieces covering it: what CGAL's sweep makes of the overlapping
+  // pieces (it splits them at every end and merges an overlap's data with SmallerIndex), without
+  // its overlap construction (_create_overlapping_curve, the lazy intersections). The ends are
+  // the known points' handles (every segment end is one): no new point. Chart sides are left to
+  // the sweep. The same arrangement: the same vertices, edges, data and faces, made by the sweep
+  // in the same geometric order. (`pieces_inserted` counts the clipped pieces, as before.)
+  void split_overlaps() {
+    const std::size_t n = pieces_.size();
+    if (n < 6 || line_supports_.empty()) return;
+    // the line curves with pieces, by a hash of their oriented support
+    auto support_hash = [](const IntegerPolynomial2& f) {
+      std::size_t h = 0;
+      for (const auto& row : f.coefficients)
+        for (const mpz_class& z : row) {
+          const std::size_t limb = static_cast<std::size_t>(mpz_getlimbn(z.get_mpz_t(), 0)) ^
+                                   (static_cast<std::size_t>(mpz_size(z.get_mpz_t())) << 48);
+          h ^= (sgn(z) < 0 ? ~limb : limb) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+        }
+      return h;
+    };
+    thread_local std::vector<std::pair<std::size_t, std::size_t>> keyed;   // (hash, curve)
+    keyed.clear();
+    std::size_t previous = no_curve;
+    for (std::size_t i = 4; i < n; ++i) {
+      const std::size_t k = pieces_[i].data();
+      if (k == previous || k >= line_supports_.size() || line_supports_[k].coefficients.empty()) continue;
+      previous = k;   // (a curve's pieces are consecutive)
+      keyed.emplace_back(support_hash(line_supports_[k]), k);
+    }
+    if (keyed.size() < 2) return;
+    std::sort(keyed.begin(), keyed.end());
+    bool shared = false;
+    for (std::size_t j = 1; j < keyed.size() && !shared; ++j)
+      shared = keyed[j].first == keyed[j - 1].first && keyed[j].second != keyed[j - 1].second;
+    if (!shared) return;   // every line carries one curve: nothing can overlap
+    // line group of each curve: the first curve of its run with an equal support
+    std::vector<std::size_t> group(line_supports_.size(), no_curve);
+    for (std::size_t j = 0; j < keyed.size();) {
+      std::size_t end = j + 1;
+      while (end < keyed.size() && keyed[end].first == keyed[j].first) ++end;
+      for (std::size_t a = j; a < end; ++a) {
+        const std::size_t ka = keyed[a].second;
+        if (group[ka] != no_curve) continue;
+        group[ka] = ka;
+        for (std::size_t b = a + 1; b < end; ++b) {
+          const std::size_t kb = keyed[b].second;
+          if (group[kb] == no_curve && line_supports_[kb].coefficients == line_supports_[ka].coefficients) group[kb] = ka;
+        }
+      }
+      j = end;
+    }
+    struct Span {
+      std::size_t group;    // the line: its first curve
+      std::size_t lo, hi;   // known points, lo before hi along the line
+      std::size_t data;
+      std::size_t piece;
+    };
+    thread_local std::vector<Span> spans;
+    spans.clear();
+    auto known_index = [&](const Point& p) {
+      std::size_t found = none;
+      known_.find(p.id(), [&](std::size_t i) {
+        found = i;
+        return true;
+      });
+      return found;
+    };
+    // along a line: x, or y for a vertical line (oriented_line: y coefficient 0)
+    auto before = [&](std::size_t a, std::size_t b, bool vertical) {
+      return vertical ? known_points_[a].y < known_points_[b].y : known_points_[a].x < known_points_[b].x;
+    };
+    auto vertical_line = [&](std::size_t k) { return sgn(coefficient(line_supports_[k], 0, 1)) == 0; };
+    for (std::size_t i = 4; i < n; ++i) {
+      const std::size_t k = pieces_[i].data();
+      if (k >= group.size() || group[k] == no_curve) continue;
+      std::size_t a = known_index(pieces_[i].source()), b = known_index(pieces_[i].target());
+      if (a == none || b == none) return;   // (every end is a known point; else the sweep decides)
+      if (before(b, a, vertical_line(k))) std::swap(a, b);
+      spans.push_back(Span{group[k], a, b, k, i});
+    }
+    // by line, then along it (then by piece: a strict order)
+    std::sort(spans.begin(), spans.end(), [&](const Span& u, const Span& w) {
+      if (u.group != w.group) return u.group < w.group;
+      if (u.lo != w.lo) return before(u.lo, w.lo, vertical_line(u.group));
+      return u.piece < w.piece;
+    });
+    std::vector<char> replaced;
+    std::vector<Curve> added;
+    thread_local std::vector<std::size_t> ends;
+    for (std::size_t first = 0; first < spans.size();) {
+      std::size_t last = first + 1;
+      while (last < spans.size() && spans[last].group == spans[first].group) ++last;
+      const bool vertical = vertical_line(spans[first].group);
+      // an overlap: a span starting before the furthest end so far
+      bool overlap = false;
+      std::size_t reach = spans[first].hi;
+      for (std::size_t j = first + 1; j < last; ++j) {
+        if (before(spans[j].lo, reach, vertical)) overlap = true;
+        if (before(reach, spans[j].hi, vertical)) reach = spans[j].hi;
+      }
+      if (overlap) {
+        ends.clear();
+        for (std::size_t j = first; j < last; ++j) {
+          ends.push_back(spans[j].lo);
+          ends.push_back(spans[j].hi);
+        }
+        // (equal points are one known point: by_value_)
+        std::sort(ends.begin(), ends.end(), [&](std::size_t a, std::size_t b) { return a != b && before(a, b, vertical); });
+        ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+        // each span's ends as positions in `ends` (integers compared from here on)
+        auto position = [&](std::size_t point) {
+          return static_cast<std::size_t>(std::find(ends.begin(), ends.end(), point) - ends.begin());
+        };
+        for (std::size_t j = first; j < last; ++j) {
+          spans[j].lo = position(spans[j].lo);
+          spans[j].hi = position(spans[j].hi);
+        }
+        for (std::size_t e = 0; e + 1 < ends.size(); ++e) {
+          std::size_t data = no_curve;
+          for (std::size_t j = first; j < last; ++j)
+            if (spans[j].lo <= e && spans[j].hi >= e + 1) data = std::min(data, spans[j].data);
+          if (data != no_curve)
+            added.emplace_back(BaseCurve(known_points_[ends[e]].handle, known_points_[ends[e + 1]].handle), data);
+        }
+        if (replaced.empty()) replaced.assign(n, 0);
+        for (std::size_t j = first; j < last; ++j) replaced[spans[j].piece] = 1;
+      }
+      first = last;
+    }
+    if (added.empty()) return;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!replaced[i]) {
+        if (kept != i) pieces_[kept] = std::move(pieces_[i]);
+        ++kept;
+      }
+    pieces_.resize(kept);
+    for (Curve& c : added) pieces_.push_back(std::move(c));
   }
 
   // The kernel number of coordinate x or y (`y`) of the known point `index` (q): its exact value

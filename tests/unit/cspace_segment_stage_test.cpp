@@ -11,6 +11,7 @@
 #include "arrangement/arrangement.hpp"
 #include "arrangement/circle_segment_traits.hpp"
 #include "random_rationals.hpp"
+#include "segment_stage_cases.hpp"
 
 #include <hipair/rational.hpp>
 
@@ -141,35 +142,21 @@ TEST(CSpaceSegmentStage, RangeGuardIsTheRoundedComparisonOnGeneratedRationals) {
 TEST(CSpaceSegmentStage, CarriedSupportsEqualCgalLinesOnGeneratedLinesAndScales) {
   std::mt19937_64 random(4141);
   using cspace::IntegerPolynomial2;
-  auto grid = [&](long range) {   // a non-dyadic grid value in [-range, range]
-    static const long dens[] = {1, 3, 7, 2};
-    const long den = dens[random() % 4];
-    return canonical(static_cast<long>(random() % static_cast<unsigned long>(2 * range * den + 1)) - range * den, den);
-  };
+  auto grid = [&](long range) { return test_segment_stage::grid_value(random, range); };
   // k0 + kx x + ky y = 0 through p and q, as a primitive-free integer polynomial times a
   // random non-zero integer (any sign: the stage must orient it)
   auto line_through = [&](const Rational& px, const Rational& py, const Rational& qx, const Rational& qy) {
     Rational kx = py - qy, ky = qx - px;
     Rational k0 = -(kx * px + ky * py);
-    mpz_class lcm = 1;
-    for (const Rational* r : {&k0, &kx, &ky}) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), r->get_den_mpz_t());
     long factor = 1 + static_cast<long>(random() % 3);
     if (random() % 2) factor = -factor;
-    auto z = [&](const Rational& r) { return mpz_class(r.get_num() * (lcm / r.get_den()) * factor); };
-    IntegerPolynomial2 f;
-    f.coefficients = {{z(k0), z(ky)}, {z(kx), mpz_class(0)}};
-    return f;
+    return test_segment_stage::integer_line(k0, kx, ky, factor);
   };
   int built = 0, declined_sides = 0, shared_lines = 0;
   for (int instance = 0; instance < 60; ++instance) {
     SCOPED_TRACE("instance " + std::to_string(instance));
-    static const int exponents[] = {-300, -1, 0, 0, 1, 150, 198};
-    const int exponent = exponents[instance % 7];
-    const Rational scale = exponent >= 0 ? canonical(mpz_class(1) << exponent, 1) : canonical(1, mpz_class(1) << -exponent);
-    Rational x_lo = grid(4), y_lo = grid(4);
-    Rational x_hi = x_lo + 1 + grid(3) * grid(3), y_hi = y_lo + 1 + grid(3) * grid(3);
-    if (x_hi <= x_lo) x_hi = x_lo + 2;
-    if (y_hi <= y_lo) y_hi = y_lo + canonical(5, 3);
+    const Rational scale = test_segment_stage::instance_scale(instance);
+    const auto [x_lo, x_hi, y_lo, y_hi] = test_segment_stage::random_grid_box(random);
     cspace::raw::Box box{Rational(x_lo * scale), Rational(x_hi * scale), Rational(y_lo * scale), Rational(y_hi * scale)};
     std::vector<IntegerPolynomial2> curves;
     auto point_x = [&] { return Rational((x_lo + (x_hi - x_lo) * grid(1)) * scale); };
@@ -198,23 +185,11 @@ TEST(CSpaceSegmentStage, CarriedSupportsEqualCgalLinesOnGeneratedLinesAndScales)
     cgal_lines.carry_line_supports = false;
     const cspace::raw::Arrangement p = cspace::raw::build_circle_segment_arrangement(box, curves, validity, windows, carried);
     const cspace::raw::Arrangement q = cspace::raw::build_circle_segment_arrangement(box, curves, validity, windows, cgal_lines);
-    ASSERT_EQ(p.vertices.size(), q.vertices.size());
-    for (std::size_t v = 0; v < p.vertices.size(); ++v) {
-      ASSERT_EQ(cspace::algebra::compare(p.vertices[v].x, q.vertices[v].x), 0) << "vertex " << v;
-      ASSERT_EQ(cspace::algebra::compare(p.vertices[v].y, q.vertices[v].y), 0) << "vertex " << v;
-    }
-    ASSERT_EQ(p.edges.size(), q.edges.size());
+    test_segment_stage::expect_same_arrangement(p, q);
+    if (HasFatalFailure()) return;
     std::vector<int> edges_of(curves.size(), 0);
     for (std::size_t e = 0; e < p.edges.size(); ++e) {
-      const cspace::raw::Edge &a = p.edges[e], &b = q.edges[e];
-      EXPECT_EQ(a.min_vertex, b.min_vertex) << "edge " << e;
-      EXPECT_EQ(a.max_vertex, b.max_vertex) << "edge " << e;
-      EXPECT_EQ(a.vertical, b.vertical) << "edge " << e;
-      EXPECT_EQ(a.box_side, b.box_side) << "edge " << e;
-      EXPECT_EQ(a.left_face, b.left_face) << "edge " << e;
-      EXPECT_EQ(a.right_face, b.right_face) << "edge " << e;
-      ASSERT_FALSE(a.support.coefficients.empty()) << "edge " << e;
-      EXPECT_EQ(a.support.coefficients, b.support.coefficients) << "the support of edge " << e;
+      const cspace::raw::Edge& a = p.edges[e];
       if (a.support_curve != cspace::raw::none) ++edges_of.at(a.support_curve);
     }
     for (int n : edges_of) shared_lines += n >= 2;
