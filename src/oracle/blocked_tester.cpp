@@ -1102,28 +1102,41 @@ bool BlockedCells::enclose(const algebra::Interval& x, const algebra::Interval& 
 
 std::int32_t BlockedCells::known(int depth, long i, long j) const {
   if (dense(depth, i, j)) {
-    const std::int32_t* table = dense_[depth].get();
-    if (!table) return untested;
-    return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    const std::int32_t* entry = dense_entry(depth, i, j);
+    return entry ? *entry : untested;
   }
   const auto it = known_.find(cell_key(depth, i, j));
   return it == known_.end() ? untested : it->second;
 }
 
-std::int32_t* BlockedCells::dense_table(int depth) {
-  static_assert(untested == 0, "a zeroed table holds untested cells");
-  if (!dense_[depth]) {
-    const std::size_t cells = std::size_t{1} << (depth * dimension_);
-    auto* table = static_cast<std::int32_t*>(std::calloc(cells, sizeof(std::int32_t)));
-    if (!table) throw std::bad_alloc();
-    dense_[depth].reset(table);
+std::int32_t& BlockedCells::dense_slot(int depth, long i, long j) {
+  static_assert(untested == 0, "a zeroed block holds untested cells");
+  auto& directory = dense_[depth];
+  const int b = block_side_log2(depth);
+  if (!directory) {
+    const std::size_t blocks = std::size_t{1} << ((depth - b) * dimension_);
+    directory = std::make_unique<std::int32_t*[]>(blocks);   // value-initialized: every block absent
   }
-  return dense_[depth].get();
+  std::int32_t*& block = directory[block_of(depth, i, j)];
+  if (!block) {
+    const std::size_t cells = std::size_t{1} << (b * dimension_);
+    blocks_.push_back(std::make_unique<std::int32_t[]>(cells));   // value-initialized: untested
+    block_bytes_ += cells * sizeof(std::int32_t);
+    block = blocks_.back().get();
+  }
+  return block[place_in_block(depth, i, j)];
+}
+
+std::size_t BlockedCells::table_bytes() const {
+  std::size_t bytes = 0;
+  for (int depth = 0; depth <= dense_cells_log2; ++depth)
+    if (dense_[depth]) bytes += (std::size_t{1} << ((depth - block_side_log2(depth)) * dimension_)) * sizeof(std::int32_t*);
+  return bytes + block_bytes_;
 }
 
 void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
   if (dense(depth, i, j)) {
-    dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
+    dense_slot(depth, i, j) = entry;
     return;
   }
   known_.emplace(cell_key(depth, i, j), entry);
@@ -1144,17 +1157,12 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   std::int32_t* own = nullptr;   // the cell's entry in its depth's table (a dense cell)
   if (dense(depth, i, j)) {
     // the cell and its ancestors (their indices are in range too) read from the tables
-    own = &dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    own = &dense_slot(depth, i, j);
     if (*own != untested) return *own == is_blocked;
-    // (the tables by depth, null while a depth has none: one load per ancestor)
-    if (dimension_ == 2) {
-      for (int up = 1; up <= depth && !result; ++up)
-        if (const std::int32_t* above = dense_[depth - up].get())
-          see(above[static_cast<std::size_t>(((i >> up) << (depth - up)) | (j >> up))]);
-    } else {
-      for (int up = 1; up <= depth && !result; ++up)
-        if (const std::int32_t* above = dense_[depth - up].get()) see(above[static_cast<std::size_t>(i >> up)]);
-    }
+    // (the tables by depth; a depth or block never made holds only untested cells)
+    const long jj = dimension_ == 2 ? j : 0;
+    for (int up = 1; up <= depth && !result; ++up)
+      if (const std::int32_t* above = dense_entry(depth - up, i >> up, jj >> up)) see(*above);
   } else {
     const std::int32_t entry = known(depth, i, j);
     if (entry != untested) return entry == is_blocked;
@@ -1184,7 +1192,7 @@ bool BlockedCells::blocked(int depth, long i, long j) {
       answer = not_blocked;
     }
   }
-  // (`own` stays valid: the tables are made once per depth and never resized)
+  // (`own` stays valid: a block is made once and never moves)
   if (own) *own = answer;
   else remember(depth, i, j, answer);
   return result;

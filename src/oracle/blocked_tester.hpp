@@ -17,6 +17,7 @@
 
 #include <hipair/model.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -278,6 +279,11 @@ class BlockedCells {
   bool known_blocked(int depth, long i, long j) const { return tester_ && known(depth, i, j) == is_blocked; }
   /// Tester calls made (each cell at most once).
   std::size_t tests() const { return tests_; }
+  /// Bytes of the per-depth tables made so far (directories and blocks of the tabled depths).
+  std::size_t table_bytes() const;
+  /// The tables' blocks: 2-D squares of 2^table_block_log2 cells a side, 1-D runs of
+  /// 2^(2 table_block_log2) cells (see the private part).
+  static constexpr int table_block_log2 = 4;
   /// Candidate pairs tested over all calls (the work of the tests).
   std::size_t pairs_tested() const { return pairs_tested_; }
   /// Frees the tester's posed disks (kept for the next cells); the known cells and their
@@ -300,16 +306,42 @@ class BlockedCells {
   // (the disk sweep bucketed by cell).
   static constexpr std::int32_t untested = 0, is_blocked = 1, not_blocked = 2, first_list = 3;
   // Cells of the depths with at most 2^18 cells (2-D: to depth 9; 1-D: to depth 18) are kept
-  // in a table per depth, one entry per cell, made when a cell of that depth is first asked
-  // (a cell's and its ancestors' look-ups are plain reads; 2-D: at most 1.4 MB a grid);
-  // deeper cells (or indices outside the box) in a map keyed by (depth, i, j). The entries,
-  // hence the answers, are the same either way.
+  // in tables per depth, one entry per cell, made sparsely: the cells of a depth are cut into
+  // blocks (2-D: squares of 2^table_block_log2 x 2^table_block_log2 cells; 1-D: runs of 2^(2 table_block_log2)
+  // cells; a depth with fewer cells: one block), a block's entries made (zeroed, every cell
+  // `untested`) when a cell in it is first written, and a depth's directory of blocks when a
+  // cell of that depth is first asked (a cell's and its ancestors' look-ups are plain reads;
+  // a grid allocates only the blocks its cull touches: the dense table of session 56 was 1 MB
+  // at depth 9 for every grid, one per operating-region tile); deeper cells (or indices
+  // outside the box) in a map keyed by (depth, i, j). The entries, hence the answers, are the
+  // same either way.
   static constexpr int dense_cells_log2 = 18;
   bool dense(int depth, long i, long j) const {
     const long count = 1L << depth;
     return dimension_ >= 1 && depth * dimension_ <= dense_cells_log2 && i >= 0 && i < count &&
            (dimension_ == 2 ? j >= 0 && j < count : j == 0);
   }
+  // a dense cell's block (its index in the depth's directory) and its place in the block
+  int block_side_log2(int depth) const {
+    return dimension_ == 2 ? std::min(table_block_log2, depth) : std::min(2 * table_block_log2, depth);
+  }
+  std::size_t block_of(int depth, long i, long j) const {
+    const int b = block_side_log2(depth);
+    return static_cast<std::size_t>(dimension_ == 2 ? ((i >> b) << (depth - b)) | (j >> b) : i >> b);
+  }
+  std::size_t place_in_block(int depth, long i, long j) const {
+    const int b = block_side_log2(depth);
+    const long mask = (1L << b) - 1;
+    return static_cast<std::size_t>(dimension_ == 2 ? ((i & mask) << b) | (j & mask) : i & mask);
+  }
+  // the dense cell's entry, or null when its block was never made (the cell is untested)
+  const std::int32_t* dense_entry(int depth, long i, long j) const {
+    const std::int32_t* const* directory = dense_[depth].get();
+    if (!directory) return nullptr;
+    const std::int32_t* block = directory[block_of(depth, i, j)];
+    return block ? block + place_in_block(depth, i, j) : nullptr;
+  }
+  std::int32_t& dense_slot(int depth, long i, long j);   // made (with its block) on first use
   std::int32_t known(int depth, long i, long j) const;             // the cell's entry
   void remember(int depth, long i, long j, std::int32_t entry);   // (a cell's first answer)
   std::shared_ptr<const BlockedTester> tester_;
@@ -318,14 +350,13 @@ class BlockedCells {
   int depth_;
   algebra::Interval x_, y_;
   BlockedTester::Cache cache_;
-  // per depth (see dense()), null until a cell of that depth is asked: zeroed memory
-  // (std::calloc: every entry `untested`, which is 0; fresh pages need no filling — a grid per
-  // operating-region tile made its tables with a fill loop: 1 % of a 6 x 9 region's instructions)
-  struct FreeTable {
-    void operator()(std::int32_t* table) const noexcept { std::free(table); }
-  };
-  std::unique_ptr<std::int32_t[], FreeTable> dense_[dense_cells_log2 + 1];
-  std::int32_t* dense_table(int depth);   // depth's table, made on first use
+  // per depth (see dense()): the directory of blocks, null until a cell of that depth is
+  // asked; a block pointer null until a cell in it is written. The blocks (zeroed: every entry
+  // `untested`, which is 0) are owned by `blocks_` and never move, so an entry's address stays
+  // valid while the grid lives.
+  std::unique_ptr<std::int32_t*[]> dense_[dense_cells_log2 + 1];
+  std::vector<std::unique_ptr<std::int32_t[]>> blocks_;
+  std::size_t block_bytes_ = 0;
   std::unordered_map<long, std::int32_t> known_;   // the other cells
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   // the enclosing box's list (enclose()): the candidates of a cell with no listed ancestor
