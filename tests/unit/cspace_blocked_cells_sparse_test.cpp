@@ -50,6 +50,7 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
   cspace::BlockedCells grid(tester, x, y, dimension, grid_depth);
   ASSERT_EQ(grid.table_bytes(), 0u);
   std::map<std::tuple<int, long, long>, bool> reference;
+  std::size_t reference_tests = 0;   // cells the reference had to ask the tester (no blocked ancestor asked)
   auto expected = [&](int depth, long i, long j) {
     auto it = reference.find({depth, i, j});
     if (it != reference.end()) return it->second;
@@ -58,7 +59,10 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
       auto parent = reference.find({depth - up, i >> up, dimension == 2 ? j >> up : 0});
       result = parent != reference.end() && parent->second;
     }
-    if (!result) result = tester->blocked(x, y, grid.cell_x(depth, i), grid.cell_y(depth, j));
+    if (!result) {
+      ++reference_tests;
+      result = tester->blocked(x, y, grid.cell_x(depth, i), grid.cell_y(depth, j));
+    }
     reference.emplace(std::make_tuple(depth, i, j), result);
     return result;
   };
@@ -94,6 +98,8 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
       }
     }
   }
+  // the grid tested exactly the cells without an asked blocked ancestor (it read every ancestor)
+  EXPECT_EQ(grid.tests(), reference_tests);
   std::size_t bytes = 0;
   for (int depth : depths)   // a directory of blocks for each depth cut into blocks
     if (depth * dimension > w) bytes += (std::size_t{1} << ((depth - side_log2(depth)) * dimension)) * sizeof(std::int32_t*);
