@@ -9,6 +9,7 @@
 #include <hipair/error.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <deque>
@@ -991,6 +992,11 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
                         : algebra::Interval{0, 0}} {
   if (depth_ < 0 || depth_ > 24) throw NumericError("blocked-space grid: depth out of range");
+  whole_depth_ = dimension_ >= 1 ? whole_table_log2 / dimension_ : dense_cells_log2;
+  for (int d = 0; d <= dense_cells_log2; ++d) {
+    flat_[d] = zero_block();
+    directory_[d] = zero_directory();
+  }
   // (a pose is found by the cell's column or row index, a pure function of the box side the
   // axis's cells cut: the side is part of the pool's key with the axis)
   if (shared && tester_ && dimension_ == 2)
@@ -1081,6 +1087,28 @@ inline algebra::Interval part_of(const algebra::Interval& whole, int depth, long
 }
 }  // namespace
 
+namespace {
+// The tables' shared zeros: the block of every cell of a tabled depth not yet written, and the
+// directory of a depth with no block yet (only read, never written through: a write makes the
+// depth's own directory and the cell's block first).
+constexpr std::size_t largest_block = std::size_t{1} << BlockedCells::whole_table_log2;
+constexpr int directory_log2 = 10;   // 2-D depth 9 in 16 x 16 squares, 1-D depth 18 in runs of 256
+static_assert(BlockedCells::whole_table_log2 >= 2 * BlockedCells::table_block_log2);
+static_assert(2 * (9 - BlockedCells::block_side_log2(2, 9)) <= directory_log2 &&
+              18 - BlockedCells::block_side_log2(1, 18) <= directory_log2);
+}  // namespace
+
+const std::int32_t BlockedCells::zero_entries_[largest_block] = {};
+
+std::int32_t* const* BlockedCells::zero_directory() {
+  static const auto directory = [] {
+    std::array<std::int32_t*, std::size_t{1} << directory_log2> pointers;
+    pointers.fill(zero_block());
+    return pointers;
+  }();
+  return directory.data();
+}
+
 algebra::Interval BlockedCells::cell_x(int depth, long i) const { return part_of(x_, depth, i); }
 
 algebra::Interval BlockedCells::cell_y(int depth, long j) const {
@@ -1101,29 +1129,48 @@ bool BlockedCells::enclose(const algebra::Interval& x, const algebra::Interval& 
 }
 
 std::int32_t BlockedCells::known(int depth, long i, long j) const {
-  if (dense(depth, i, j)) {
-    const std::int32_t* table = dense_[depth].get();
-    if (!table) return untested;
-    return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
-  }
+  if (dense(depth, i, j)) return dense_entry(depth, i, j);
   const auto it = known_.find(cell_key(depth, i, j));
   return it == known_.end() ? untested : it->second;
 }
 
-std::int32_t* BlockedCells::dense_table(int depth) {
-  static_assert(untested == 0, "a zeroed table holds untested cells");
-  if (!dense_[depth]) {
-    const std::size_t cells = std::size_t{1} << (depth * dimension_);
-    auto* table = static_cast<std::int32_t*>(std::calloc(cells, sizeof(std::int32_t)));
-    if (!table) throw std::bad_alloc();
-    dense_[depth].reset(table);
+std::int32_t& BlockedCells::make_slot(int depth, long i, long j) {
+  static_assert(untested == 0, "a block of zeros holds untested cells");
+  auto make_block = [&](std::size_t cells) {
+    blocks_.push_back(std::make_unique<std::int32_t[]>(cells));   // value-initialized: untested
+    block_bytes_ += cells * sizeof(std::int32_t);
+    return blocks_.back().get();
+  };
+  if (depth <= whole_depth_) {
+    std::int32_t*& table = flat_[depth];
+    if (table == zero_block()) table = make_block(std::size_t{1} << (depth * dimension_));
+    return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
   }
-  return dense_[depth].get();
+  const int b = dimension_ == 2 ? table_block_log2 : 2 * table_block_log2;
+  auto& own = own_directory_[depth];
+  if (!own) {
+    const std::size_t blocks = std::size_t{1} << ((depth - b) * dimension_);
+    own = std::make_unique_for_overwrite<std::int32_t*[]>(blocks);
+    std::fill_n(own.get(), blocks, zero_block());
+    directory_[depth] = own.get();
+  }
+  std::int32_t*& block = own[static_cast<std::size_t>(dimension_ == 2 ? ((i >> b) << (depth - b)) | (j >> b) : i >> b)];
+  if (block == zero_block()) block = make_block(std::size_t{1} << (b * dimension_));
+  const long m = (1L << b) - 1;
+  return block[static_cast<std::size_t>(dimension_ == 2 ? ((i & m) << b) | (j & m) : i & m)];
+}
+
+std::size_t BlockedCells::table_bytes() const {
+  std::size_t bytes = block_bytes_;
+  const int b = dimension_ == 2 ? table_block_log2 : 2 * table_block_log2;
+  for (int depth = 0; depth <= dense_cells_log2; ++depth)
+    if (own_directory_[depth]) bytes += (std::size_t{1} << ((depth - b) * dimension_)) * sizeof(std::int32_t*);
+  return bytes;
 }
 
 void BlockedCells::remember(int depth, long i, long j, std::int32_t entry) {
   if (dense(depth, i, j)) {
-    dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)] = entry;
+    dense_slot(depth, i, j) = entry;
     return;
   }
   known_.emplace(cell_key(depth, i, j), entry);
@@ -1144,16 +1191,18 @@ bool BlockedCells::blocked(int depth, long i, long j) {
   std::int32_t* own = nullptr;   // the cell's entry in its depth's table (a dense cell)
   if (dense(depth, i, j)) {
     // the cell and its ancestors (their indices are in range too) read from the tables
-    own = &dense_table(depth)[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    own = &dense_slot(depth, i, j);
     if (*own != untested) return *own == is_blocked;
-    // (the tables by depth, null while a depth has none: one load per ancestor)
+    // (the tables by depth, the deep ones through their directories, then the flat ones; a depth
+    // or block never written reads the shared zeros: untested)
+    int up = 1;
     if (dimension_ == 2) {
-      for (int up = 1; up <= depth && !result; ++up)
-        if (const std::int32_t* above = dense_[depth - up].get())
-          see(above[static_cast<std::size_t>(((i >> up) << (depth - up)) | (j >> up))]);
+      for (; up <= depth && depth - up > whole_depth_ && !result; ++up) see(deep_entry_2d(depth - up, i >> up, j >> up));
+      for (; up <= depth && !result; ++up)
+        see(flat_[depth - up][static_cast<std::size_t>(((i >> up) << (depth - up)) | (j >> up))]);
     } else {
-      for (int up = 1; up <= depth && !result; ++up)
-        if (const std::int32_t* above = dense_[depth - up].get()) see(above[static_cast<std::size_t>(i >> up)]);
+      for (; up <= depth && depth - up > whole_depth_ && !result; ++up) see(deep_entry_1d(depth - up, i >> up));
+      for (; up <= depth && !result; ++up) see(flat_[depth - up][static_cast<std::size_t>(i >> up)]);
     }
   } else {
     const std::int32_t entry = known(depth, i, j);
@@ -1184,7 +1233,7 @@ bool BlockedCells::blocked(int depth, long i, long j) {
       answer = not_blocked;
     }
   }
-  // (`own` stays valid: the tables are made once per depth and never resized)
+  // (`own` stays valid: a block is made once and never moves)
   if (own) *own = answer;
   else remember(depth, i, j, answer);
   return result;

@@ -17,6 +17,7 @@
 
 #include <hipair/model.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -278,6 +279,16 @@ class BlockedCells {
   bool known_blocked(int depth, long i, long j) const { return tester_ && known(depth, i, j) == is_blocked; }
   /// Tester calls made (each cell at most once).
   std::size_t tests() const { return tests_; }
+  /// Bytes of the per-depth tables made so far (directories and blocks of the tabled depths).
+  std::size_t table_bytes() const;
+  /// The tables' blocks: a depth of at most 2^whole_table_log2 cells is one block; a deeper
+  /// one is cut into 2-D squares of 2^table_block_log2 cells a side, 1-D runs of
+  /// 2^(2 table_block_log2) cells (see the private part).
+  static constexpr int table_block_log2 = 4, whole_table_log2 = 12;
+  /// log2 of the side (2-D) or length (1-D) of a block of a tabled depth of a grid of `dimension`.
+  static constexpr int block_side_log2(int dimension, int depth) {
+    return depth * dimension <= whole_table_log2 ? depth : dimension == 2 ? table_block_log2 : 2 * table_block_log2;
+  }
   /// Candidate pairs tested over all calls (the work of the tests).
   std::size_t pairs_tested() const { return pairs_tested_; }
   /// Frees the tester's posed disks (kept for the next cells); the known cells and their
@@ -300,16 +311,65 @@ class BlockedCells {
   // (the disk sweep bucketed by cell).
   static constexpr std::int32_t untested = 0, is_blocked = 1, not_blocked = 2, first_list = 3;
   // Cells of the depths with at most 2^18 cells (2-D: to depth 9; 1-D: to depth 18) are kept
-  // in a table per depth, one entry per cell, made when a cell of that depth is first asked
-  // (a cell's and its ancestors' look-ups are plain reads; 2-D: at most 1.4 MB a grid);
-  // deeper cells (or indices outside the box) in a map keyed by (depth, i, j). The entries,
-  // hence the answers, are the same either way.
+  // in tables per depth, one entry per cell, made sparsely: a depth's cells are cut into blocks
+  // (block_side_log2: a depth of at most 2^12 cells is one block; deeper, 2-D squares of 16 x 16
+  // cells, 1-D runs of 256), a depth's directory of blocks made when a cell of that depth is
+  // first asked, its blocks pointing to one shared block of zeros (every cell `untested`, only
+  // read) until a cell in the block is first written, when the block is made (a cell's and its
+  // ancestors' look-ups are plain reads; a grid allocates only the blocks its culls touch: the
+  // dense table of session 56 was 1 MB at depth 9 for every grid, one per operating-region
+  // tile); deeper cells (or indices outside the box) in a map keyed by (depth, i, j). The
+  // entries, hence the answers, are the same either way.
   static constexpr int dense_cells_log2 = 18;
   bool dense(int depth, long i, long j) const {
     const long count = 1L << depth;
     return dimension_ >= 1 && depth * dimension_ <= dense_cells_log2 && i >= 0 && i < count &&
            (dimension_ == 2 ? j >= 0 && j < count : j == 0);
   }
+  // The tabled depths of at most 2^whole_table_log2 cells (2-D: to depth 6; 1-D: to depth 12)
+  // are one block each, flat_[depth] (index (i << depth) | j; 1-D: i); deeper ones are read
+  // through directory_[depth]: block ((i >> b) << (depth - b)) | (j >> b), place in the block
+  // ((i & m) << b) | (j & m) with b = table_block_log2, m = 2^b - 1 (1-D: block i >> 2b, place
+  // i & (2^2b - 1)). Never null: until a cell of a depth is first written, flat_ points to the
+  // shared zeros and directory_ to a shared directory of them (own_directory_ then).
+  int whole_depth_ = 0;
+  std::int32_t* flat_[dense_cells_log2 + 1];
+  std::int32_t* const* directory_[dense_cells_log2 + 1];
+  std::unique_ptr<std::int32_t*[]> own_directory_[dense_cells_log2 + 1];
+  std::int32_t deep_entry_2d(int depth, long i, long j) const {
+    constexpr int b = table_block_log2;
+    constexpr long m = (1L << b) - 1;
+    return directory_[depth][static_cast<std::size_t>(((i >> b) << (depth - b)) | (j >> b))]
+                        [static_cast<std::size_t>(((i & m) << b) | (j & m))];
+  }
+  std::int32_t deep_entry_1d(int depth, long i) const {
+    constexpr int b = 2 * table_block_log2;
+    return directory_[depth][static_cast<std::size_t>(i >> b)][static_cast<std::size_t>(i & ((1L << b) - 1))];
+  }
+  // a dense cell's entry (the shared zeros, `untested`, when its block was never written): no test
+  std::int32_t dense_entry(int depth, long i, long j) const {
+    if (depth <= whole_depth_) return flat_[depth][static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    return dimension_ == 2 ? deep_entry_2d(depth, i, j) : deep_entry_1d(depth, i);
+  }
+  // a dense cell's entry to write, made (with its depth's directory and its block) on first use
+  std::int32_t& dense_slot(int depth, long i, long j) {
+    if (depth <= whole_depth_) {
+      std::int32_t* table = flat_[depth];
+      if (table != zero_entries_) [[likely]]
+        return table[static_cast<std::size_t>(dimension_ == 2 ? (i << depth) | j : i)];
+    } else if (dimension_ == 2) {
+      constexpr int b = table_block_log2;
+      constexpr long m = (1L << b) - 1;
+      std::int32_t* block = directory_[depth][static_cast<std::size_t>(((i >> b) << (depth - b)) | (j >> b))];
+      if (block != zero_entries_) [[likely]]
+        return block[static_cast<std::size_t>(((i & m) << b) | (j & m))];
+    }
+    return make_slot(depth, i, j);
+  }
+  std::int32_t& make_slot(int depth, long i, long j);
+  static const std::int32_t zero_entries_[];              // the shared zeros (only read)
+  static std::int32_t* zero_block() { return const_cast<std::int32_t*>(zero_entries_); }
+  static std::int32_t* const* zero_directory();
   std::int32_t known(int depth, long i, long j) const;             // the cell's entry
   void remember(int depth, long i, long j, std::int32_t entry);   // (a cell's first answer)
   std::shared_ptr<const BlockedTester> tester_;
@@ -318,14 +378,10 @@ class BlockedCells {
   int depth_;
   algebra::Interval x_, y_;
   BlockedTester::Cache cache_;
-  // per depth (see dense()), null until a cell of that depth is asked: zeroed memory
-  // (std::calloc: every entry `untested`, which is 0; fresh pages need no filling — a grid per
-  // operating-region tile made its tables with a fill loop: 1 % of a 6 x 9 region's instructions)
-  struct FreeTable {
-    void operator()(std::int32_t* table) const noexcept { std::free(table); }
-  };
-  std::unique_ptr<std::int32_t[], FreeTable> dense_[dense_cells_log2 + 1];
-  std::int32_t* dense_table(int depth);   // depth's table, made on first use
+  // The blocks (zeroed: every entry `untested`, which is 0) are owned by `blocks_` and never
+  // move, so an entry's address stays valid while the grid lives.
+  std::vector<std::unique_ptr<std::int32_t[]>> blocks_;
+  std::size_t block_bytes_ = 0;
   std::unordered_map<long, std::int32_t> known_;   // the other cells
   std::vector<std::vector<BlockedTester::DiskPair>> lists_;
   // the enclosing box's list (enclose()): the candidates of a cell with no listed ancestor
