@@ -824,43 +824,53 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   // the free accelerations x0 = M^-1 Q and each force row's response D_r = M^-1 W_r^T, exact
   // (diagonal form: a0 and minv_i W_ri, as given)
   const auto force_rows = static_cast<std::size_t>(rows.W.rows());   // m + p
-  // the force rows exactly: J's, a sliding contact's G_k - sign (mu_k / s_k) T_k in rationals
-  // (session 66; rows.W is that row in doubles)
-  held_force_detail::Matrix<Rational> W(force_rows, std::vector<Rational>(n));
-  for (std::size_t r = 0; r < force_rows; ++r) {
-    for (std::size_t i = 0; i < n; ++i) W[r][i] = exact(rows.J(Eigen::Index(r), Eigen::Index(i)));
-    if (r >= m) continue;
-    const Friction& c = friction[r];
-    const int st = state[r];
-    if (!c.on || (st != slip_positive && st != slip_negative)) continue;
-    const Rational k = exact(c.mu_kinetic) / exact(c.s);
-    for (std::size_t i = 0; i < n; ++i)
-      if (c.T(Eigen::Index(i)) != 0) W[r][i] -= st * k * exact(c.T(Eigen::Index(i)));
-  }
-  std::vector<Rational> x0(n);
-  held_force_detail::Matrix<Rational> D(force_rows, std::vector<Rational>(n));
-  if (full) {
-    held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n));
-    held_force_detail::Matrix<Rational> rhs(n, std::vector<Rational>(force_rows + 1));
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
-      for (std::size_t r = 0; r < force_rows; ++r) rhs[i][r] = W[r][i];
-      rhs[i][force_rows] = exact(full->Q(Eigen::Index(i)));
+  // (session 72, speed72: formed on the first held set the interval filter below does not refuse
+  // — on the full form at once, its enclosures being those of the exact solve's)
+  held_force_detail::Matrix<Rational> W, D;
+  std::vector<Rational> x0;
+  bool prepared = false;
+  auto prepare = [&] {
+    if (prepared) return;
+    prepared = true;
+    // the force rows exactly: J's, a sliding contact's G_k - sign (mu_k / s_k) T_k in rationals
+    // (session 66; rows.W is that row in doubles)
+    W.assign(force_rows, std::vector<Rational>(n));
+    for (std::size_t r = 0; r < force_rows; ++r) {
+      for (std::size_t i = 0; i < n; ++i) W[r][i] = exact(rows.J(Eigen::Index(r), Eigen::Index(i)));
+      if (r >= m) continue;
+      const Friction& c = friction[r];
+      const int st = state[r];
+      if (!c.on || (st != slip_positive && st != slip_negative)) continue;
+      const Rational k = exact(c.mu_kinetic) / exact(c.s);
+      for (std::size_t i = 0; i < n; ++i)
+        if (c.T(Eigen::Index(i)) != 0) W[r][i] -= st * k * exact(c.T(Eigen::Index(i)));
     }
-    const auto solved = held_force_detail::solve(std::move(mass), std::move(rhs));
-    if (!solved) throw NumericError("a held contact's force problem: the mass matrix is singular");
-    for (std::size_t i = 0; i < n; ++i) {
-      x0[i] = (*solved)[i][force_rows];
-      for (std::size_t r = 0; r < force_rows; ++r) D[r][i] = (*solved)[i][r];
+    x0.assign(n, Rational(0));
+    D.assign(force_rows, std::vector<Rational>(n));
+    if (full) {
+      held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n));
+      held_force_detail::Matrix<Rational> rhs(n, std::vector<Rational>(force_rows + 1));
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
+        for (std::size_t r = 0; r < force_rows; ++r) rhs[i][r] = W[r][i];
+        rhs[i][force_rows] = exact(full->Q(Eigen::Index(i)));
+      }
+      const auto solved = held_force_detail::solve(std::move(mass), std::move(rhs));
+      if (!solved) throw NumericError("a held contact's force problem: the mass matrix is singular");
+      for (std::size_t i = 0; i < n; ++i) {
+        x0[i] = (*solved)[i][force_rows];
+        for (std::size_t r = 0; r < force_rows; ++r) D[r][i] = (*solved)[i][r];
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        x0[i] = exact(a0(static_cast<Eigen::Index>(i)));
+        const Rational mi = exact(minv(static_cast<Eigen::Index>(i)));
+        for (std::size_t r = 0; r < force_rows; ++r)
+          if (sgn(W[r][i]) != 0) D[r][i] = mi * W[r][i];
+      }
     }
-  } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      x0[i] = exact(a0(static_cast<Eigen::Index>(i)));
-      const Rational mi = exact(minv(static_cast<Eigen::Index>(i)));
-      for (std::size_t r = 0; r < force_rows; ++r)
-        if (sgn(W[r][i]) != 0) D[r][i] = mi * W[r][i];
-    }
-  }
+  };
+  if (full) prepare();
   // a row r over the coordinates as an affine function of the unknowns z = [lambda_H, f]:
   // r . x + c = (r . x0 + c) + sum_v (r . D_v) z_v. Its constant and its coefficient on every
   // force row (r . D_row) do not depend on the held set: formed once per row (contact k's gap
@@ -918,10 +928,32 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   auto interval_affine = [&](std::size_t k, bool tangent) -> const IntervalAffineRow& {
     if (x0_enclosed.empty() && n > 0) {
       x0_enclosed.resize(n);
-      D_enclosed.assign(force_rows, std::vector<Interval>(n));
-      for (std::size_t i = 0; i < n; ++i) {
-        x0_enclosed[i] = Interval::enclose(x0[i]);
-        for (std::size_t r = 0; r < force_rows; ++r) D_enclosed[r][i] = Interval::enclose(D[r][i]);
+      D_enclosed.assign(force_rows, std::vector<Interval>(n, Interval(0)));
+      if (full) {   // of the exact solve's (prepared above)
+        for (std::size_t i = 0; i < n; ++i) {
+          x0_enclosed[i] = Interval::enclose(x0[i]);
+          for (std::size_t r = 0; r < force_rows; ++r) D_enclosed[r][i] = Interval::enclose(D[r][i]);
+        }
+      } else {   // from the doubles: x0 = a0, D_ri = minv_i W_ri, W as prepare() forms it
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto c = static_cast<Eigen::Index>(i);
+          x0_enclosed[i] = Interval::point(a0(c));
+          for (std::size_t r = 0; r < force_rows; ++r) {
+            const double j = rows.J(Eigen::Index(r), c);
+            Interval w = j != 0 ? Interval::point(j) : Interval(0);
+            bool zero = j == 0;
+            if (r < m) {
+              const Friction& f = friction[r];
+              const int st = state[r];
+              if (f.on && (st == slip_positive || st == slip_negative) && f.T(c) != 0) {
+                const Interval term = Interval(st) * (Interval::point(f.mu_kinetic) / Interval::point(f.s)) * Interval::point(f.T(c));
+                w = zero ? -term : w - term;
+                zero = false;
+              }
+            }
+            if (!zero) D_enclosed[r][i] = Interval::point(minv(c)) * w;
+          }
+        }
       }
     }
     IntervalAffineRow& a = interval_rows[2 * k + (tangent ? 1 : 0)];
@@ -1004,6 +1036,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       ++assignment_interval_refused();
       return std::nullopt;
     }
+    prepare();
     ExactLinearSystem lp;
     lp.variables = vars;
     lp.nonnegative.assign(vars, false);
@@ -1112,6 +1145,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   // slip), the sticking rows are dependent, or the LCP's solution breaks a Coulomb condition,
   // nothing is decided: nullopt, as before.)
   if (m > 12) {
+    prepare();
     std::vector<std::size_t> all(m);
     for (std::size_t k = 0; k < m; ++k) all[k] = k;
     std::vector<Rational> coefficients;
