@@ -7,7 +7,9 @@
 // must give the same answer, the same solution bit for bit and the same count of systems tried.
 // Planted degenerate cases: duplicated normal rows (singular square systems), free accelerations
 // and velocity terms 0 (every condition tight at lambda = 0), a held contact's multiplier exactly
-// 0 or 2^-70 away from it (h exact: -G_k a0 shifted by 0 or +-2^-70), zero entries.
+// 0 or 2^-70 away from it (h exact: -G_k a0 shifted by 0 or +-2^-70), zero entries, and held sets
+// planted consistent (multipliers > 0, frictions up to the stick limit, the exact velocity and
+// bias terms chosen so that every condition holds, tightly or by a margin).
 #include <gtest/gtest.h>
 
 #include "simulation/friction.hpp"
@@ -38,7 +40,14 @@ struct Problem {
   std::vector<std::size_t> group;
   std::optional<simulation::FullMass> full;
   std::optional<std::vector<Rational>> h_exact, bias_exact;
+  std::vector<bool> planted;   // a held set planted consistent (empty: none)
 };
+
+Rational frac(int a, int b) {
+  Rational r(a, b);
+  r.canonicalize();
+  return r;
+}
 
 // a number of one of a few kinds: small integers, small dyadics, 0, doubles over a range
 double number(Rng& rng, double scale) {
@@ -124,6 +133,55 @@ Problem generate(Rng& rng) {
     }
     p.h_exact = he;
   }
+  if (!p.full && p.group.empty() && rng.below(2) == 0) {
+    // a planted consistent held set: multipliers lambda_k > 0 on it, sticking frictions within
+    // mu_s lambda_k / s_k, x = a0 + M^-1 (sum lambda_k W_k + sum f_k T_k), and the exact velocity
+    // and bias terms making every condition hold — tight (margin 0) or by a margin
+    p.planted.assign(static_cast<std::size_t>(m), false);
+    std::vector<Rational> lambda(static_cast<std::size_t>(m)), f(static_cast<std::size_t>(m));
+    for (int k = 0; k < m; ++k) {
+      p.planted[std::size_t(k)] = rng.below(2) == 0;
+      if (p.planted[std::size_t(k)]) lambda[std::size_t(k)] = frac(1 + rng.below(16), 8);
+      const simulation::Friction& c = p.friction[std::size_t(k)];
+      if (c.on && p.state[std::size_t(k)] == simulation::stick && p.planted[std::size_t(k)])
+        f[std::size_t(k)] = exact_value(c.mu_static) * lambda[std::size_t(k)] / exact_value(c.s) *
+                            frac(rng.below(17) - 8, 8);   // up to the limit, both ways
+    }
+    std::vector<Rational> x(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      Rational force = 0;
+      for (int k = 0; k < m; ++k) {
+        const simulation::Friction& c = p.friction[std::size_t(k)];
+        const int st = p.state[std::size_t(k)];
+        Rational w = exact_value(p.G(k, i));
+        if (c.on && (st == simulation::slip_positive || st == simulation::slip_negative))
+          w -= st * exact_value(c.mu_kinetic) / exact_value(c.s) * exact_value(c.T(i));
+        force += lambda[std::size_t(k)] * w;
+        if (c.on && st == simulation::stick) force += f[std::size_t(k)] * exact_value(c.T(i));
+      }
+      x[std::size_t(i)] = exact_value(p.a0(i)) + exact_value(p.minv(i)) * force;
+    }
+    std::vector<Rational> he(static_cast<std::size_t>(m)), be(static_cast<std::size_t>(m));
+    for (int k = 0; k < m; ++k) {
+      const simulation::Friction& c = p.friction[std::size_t(k)];
+      const int st = p.state[std::size_t(k)];
+      Rational gx = 0, tx = 0;
+      for (int i = 0; i < n; ++i) {
+        gx += exact_value(p.G(k, i)) * x[std::size_t(i)];
+        if (c.on) tx += exact_value(c.T(i)) * x[std::size_t(i)];
+      }
+      const Rational margin = rng.below(2) == 0 ? Rational(0) : frac(1 + rng.below(8), 4);
+      he[std::size_t(k)] = -gx + (p.planted[std::size_t(k)] ? Rational(0) : margin);
+      be[std::size_t(k)] = -tx;
+      if (c.on && (st == simulation::slip_positive || st == simulation::slip_negative))
+        be[std::size_t(k)] += st * (rng.below(2) == 0 ? Rational(0) : frac(1 + rng.below(8), 4));
+      p.h(k) = to_double(he[std::size_t(k)]);
+      p.friction[std::size_t(k)].bias = to_double(be[std::size_t(k)]);
+    }
+    p.h_exact = he;
+    p.bias_exact = be;
+    return p;
+  }
   if (rng.below(4) == 0) {
     std::vector<Rational> be(static_cast<std::size_t>(m));
     for (int k = 0; k < m; ++k) {
@@ -166,7 +224,7 @@ void expect_same(const std::optional<FrictionalSolution>& a, const std::optional
 TEST(SimulationAssignmentFilter, DecidesEveryHeldSetAsTheExactPath) {
   Rng rng{test::test_seed(7201)};
   const std::size_t refused_before = simulation::assignment_interval_refused();
-  int problems = 0, sets = 0, feasible = 0, enumerations_solved = 0, full_form = 0, tight_feasible = 0;
+  int problems = 0, planted = 0, sets = 0, feasible = 0, enumerations_solved = 0, full_form = 0, tight_feasible = 0;
   for (int trial = 0; trial < 700; ++trial) {
     const Problem p = generate(rng);
     ++problems;
@@ -189,6 +247,11 @@ TEST(SimulationAssignmentFilter, DecidesEveryHeldSetAsTheExactPath) {
         tight_feasible += zero && code != 0;
       }
     }
+    if (!p.planted.empty()) {   // the planted held set is consistent: both paths find a solution
+      std::size_t tried = 0;
+      ++planted;
+      EXPECT_TRUE(decide(p, &p.planted, true, true, tried).has_value()) << "trial " << trial << ": the planted held set";
+    }
     std::size_t tried_on = 0, tried_off = 0;
     const auto on = decide(p, nullptr, false, true, tried_on);
     const auto off = decide(p, nullptr, false, false, tried_off);
@@ -197,7 +260,7 @@ TEST(SimulationAssignmentFilter, DecidesEveryHeldSetAsTheExactPath) {
     enumerations_solved += off.has_value();
   }
   const std::size_t refused = simulation::assignment_interval_refused() - refused_before;
-  std::cout << problems << " problems (" << full_form << " full form), " << sets << " held sets decided alone, "
+  std::cout << problems << " problems (" << full_form << " full form, " << planted << " with a planted consistent held set), " << sets << " held sets decided alone, "
             << feasible << " with a solution (" << tight_feasible << " held with every multiplier 0), "
             << enumerations_solved << " enumerations solved; " << refused << " systems refused by the filter\n";
   // the generated cases reach both answers and the filter refuses a good share
@@ -205,6 +268,7 @@ TEST(SimulationAssignmentFilter, DecidesEveryHeldSetAsTheExactPath) {
   EXPECT_GT(sets - feasible, 1000);
   EXPECT_GT(refused, std::size_t(sets - feasible) / 2);
   EXPECT_GT(full_form, 100);
+  EXPECT_GT(planted, 150);
 }
 
 }  // namespace
