@@ -124,12 +124,28 @@ bool unknown_left(const IntervalRow& row) {
 }  // namespace
 
 bool certainly_infeasible_in_intervals(const ExactLinearSystem& system, std::size_t max_rows) {
+  IntervalLinearSystem enclosed;
+  enclosed.variables = system.variables;
+  enclosed.nonnegative = system.nonnegative;
+  enclosed.equality = system.equality;
+  enclosed.rows.reserve(system.rows.size());
+  enclosed.rhs.reserve(system.rows.size());
+  for (std::size_t i = 0; i < system.rows.size(); ++i) {
+    IntervalRow row(system.variables);
+    for (std::size_t j = 0; j < system.variables; ++j) row[j] = Interval::enclose(system.rows[i][j]);
+    enclosed.rows.push_back(std::move(row));
+    enclosed.rhs.push_back(Interval::enclose(system.rhs[i]));
+  }
+  return certainly_infeasible_in_intervals(enclosed, max_rows);
+}
+
+bool certainly_infeasible_in_intervals(const IntervalLinearSystem& system, std::size_t max_rows) {
   const std::size_t n = system.variables;
   std::vector<IntervalRow> equalities, inequalities;
   for (std::size_t i = 0; i < system.rows.size(); ++i) {
     IntervalRow row(n + 1);
-    for (std::size_t j = 0; j < n; ++j) row[j] = Interval::enclose(system.rows[i][j]);
-    row[n] = -Interval::enclose(system.rhs[i]);
+    for (std::size_t j = 0; j < n; ++j) row[j] = system.rows[i][j];
+    row[n] = -system.rhs[i];
     if (certainly_fails(row, system.equality[i])) return true;
     if (unknown_left(row)) (system.equality[i] ? equalities : inequalities).push_back(std::move(row));
   }

@@ -16,10 +16,12 @@
 #pragma once
 
 #include "core/thread_switch.hpp"
+#include "kernels/interval.hpp"
 #include "simulation/exact_lp.hpp"
 
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 namespace hipair::simulation {
 
@@ -37,8 +39,22 @@ inline std::size_t& exact_lp_interval_decided() { return thread_counter<ExactLpI
 /// Fourier–Motzkin rows would exceed `max_rows` (then the linear program decides).
 std::optional<bool> feasible_by_elimination(const ExactLinearSystem& system, std::size_t max_rows = 400);
 
+/// A linear system as ExactLinearSystem's, each number given by an interval enclosing the exact
+/// one, [0, 0] only where the exact number is 0 (session 72, speed72: friction.hpp's
+/// exact_assignment forms its held sets' systems so, from its rows' enclosures, and refuses most
+/// of them before any rational is formed).
+struct IntervalLinearSystem {
+  std::size_t variables = 0;
+  std::vector<bool> nonnegative;                      ///< per variable
+  std::vector<std::vector<kernels::Interval>> rows;   ///< each of `variables` entries
+  std::vector<kernels::Interval> rhs;
+  std::vector<bool> equality;                         ///< per row: = (true) or >= (false)
+};
+
 /// True when the elimination in intervals (see above) certainly finds no solution; false:
-/// undecided.
+/// undecided. On exact data each number is enclosed (Interval::enclose) and the interval system
+/// decided (the same answer: the enclosures are those the filter formed before session 72).
 bool certainly_infeasible_in_intervals(const ExactLinearSystem& system, std::size_t max_rows = 400);
+bool certainly_infeasible_in_intervals(const IntervalLinearSystem& system, std::size_t max_rows = 400);
 
 }  // namespace hipair::simulation

@@ -23,6 +23,7 @@
 #include "simulation/exact_elimination.hpp"
 #include "simulation/exact_lemke.hpp"
 #include "simulation/exact_lp.hpp"
+#include "simulation/exact_lp_elimination.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/lcp.hpp"
 
@@ -681,30 +682,47 @@ inline std::optional<std::vector<Rational>> reduced_feasible_point(const ExactLi
 /// required >= 0 whose enclosure is below 0) or an inequality (its row's enclosure at the
 /// solution's below the right-hand side's) — no solution, exactly. False: undecided (a pivot's
 /// enclosure holding 0, or every condition's enclosure reaching it): the exact solve decides.
-inline bool square_certainly_infeasible(const ExactLinearSystem& lp) {
+/// On an interval system (every number an enclosure of the exact one, [0, 0] only where it is 0;
+/// session 72, speed72: exact_assignment's held sets before any rational is formed): true, no
+/// solution, exactly; false, the equalities are regular and their solution's enclosure breaks
+/// nothing; nullopt, not decided here (not square, or a pivot's enclosure holding 0).
+inline std::optional<bool> square_certainly_infeasible(const IntervalLinearSystem& lp) {
   using kernels::Interval;
   const std::size_t vars = lp.variables;
   held_force_detail::Matrix<Interval> A, b;
   for (std::size_t i = 0; i < lp.rows.size(); ++i)
     if (lp.equality[i]) {
-      std::vector<Interval> row(vars);
-      for (std::size_t j = 0; j < vars; ++j) row[j] = Interval::enclose(lp.rows[i][j]);
-      A.push_back(std::move(row));
-      b.push_back({Interval::enclose(lp.rhs[i])});
+      A.push_back(lp.rows[i]);
+      b.push_back({lp.rhs[i]});
     }
-  if (A.size() != vars) return false;
+  if (A.size() != vars) return std::nullopt;
   const std::optional<held_force_detail::Matrix<Interval>> z = held_force_detail::solve(std::move(A), std::move(b));
-  if (!z) return false;
+  if (!z) return std::nullopt;
   for (std::size_t j = 0; j < vars; ++j)
     if (lp.nonnegative[j] && (*z)[j][0].hi < 0) return true;
   for (std::size_t i = 0; i < lp.rows.size(); ++i) {
     if (lp.equality[i]) continue;
     Interval sum(0);
     for (std::size_t j = 0; j < vars; ++j)
-      if (sgn(lp.rows[i][j]) != 0) sum = sum + Interval::enclose(lp.rows[i][j]) * (*z)[j][0];
-    if (sum.hi < Interval::enclose(lp.rhs[i]).lo) return true;
+      if (lp.rows[i][j].sign() != 0) sum = sum + lp.rows[i][j] * (*z)[j][0];
+    if (sum.hi < lp.rhs[i].lo) return true;
   }
   return false;
+}
+
+inline bool square_certainly_infeasible(const ExactLinearSystem& lp) {
+  using kernels::Interval;
+  IntervalLinearSystem enclosed;
+  enclosed.variables = lp.variables;
+  enclosed.nonnegative = lp.nonnegative;
+  enclosed.equality = lp.equality;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i) {
+    std::vector<Interval> row(lp.variables);
+    for (std::size_t j = 0; j < lp.variables; ++j) row[j] = Interval::enclose(lp.rows[i][j]);
+    enclosed.rows.push_back(std::move(row));
+    enclosed.rhs.push_back(Interval::enclose(lp.rhs[i]));
+  }
+  return square_certainly_infeasible(enclosed).value_or(false);
 }
 
 inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLinearSystem& lp) {
@@ -734,6 +752,14 @@ inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLin
   }
   return z;
 }
+
+// exact_assignment's interval filter on each held set (session 72, speed72; see there): the
+// switch (on by default; a test turns it off on its thread to compare with the exact path alone)
+// and how many held sets it refused on this thread.
+struct AssignmentIntervalFilterTag;
+inline bool& assignment_interval_filter() { return thread_switch<AssignmentIntervalFilterTag>(); }
+struct AssignmentIntervalRefusedTag;
+inline std::size_t& assignment_interval_refused() { return thread_counter<AssignmentIntervalRefusedTag>(); }
 
 /// One stick/slip assignment's consistency decided exactly (session 65, stick65): whether SOME
 /// force of the contact problem at these states satisfies its conditions, on the rows as the
@@ -798,43 +824,53 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   // the free accelerations x0 = M^-1 Q and each force row's response D_r = M^-1 W_r^T, exact
   // (diagonal form: a0 and minv_i W_ri, as given)
   const auto force_rows = static_cast<std::size_t>(rows.W.rows());   // m + p
-  // the force rows exactly: J's, a sliding contact's G_k - sign (mu_k / s_k) T_k in rationals
-  // (session 66; rows.W is that row in doubles)
-  held_force_detail::Matrix<Rational> W(force_rows, std::vector<Rational>(n));
-  for (std::size_t r = 0; r < force_rows; ++r) {
-    for (std::size_t i = 0; i < n; ++i) W[r][i] = exact(rows.J(Eigen::Index(r), Eigen::Index(i)));
-    if (r >= m) continue;
-    const Friction& c = friction[r];
-    const int st = state[r];
-    if (!c.on || (st != slip_positive && st != slip_negative)) continue;
-    const Rational k = exact(c.mu_kinetic) / exact(c.s);
-    for (std::size_t i = 0; i < n; ++i)
-      if (c.T(Eigen::Index(i)) != 0) W[r][i] -= st * k * exact(c.T(Eigen::Index(i)));
-  }
-  std::vector<Rational> x0(n);
-  held_force_detail::Matrix<Rational> D(force_rows, std::vector<Rational>(n));
-  if (full) {
-    held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n));
-    held_force_detail::Matrix<Rational> rhs(n, std::vector<Rational>(force_rows + 1));
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
-      for (std::size_t r = 0; r < force_rows; ++r) rhs[i][r] = W[r][i];
-      rhs[i][force_rows] = exact(full->Q(Eigen::Index(i)));
+  // (session 72, speed72: formed on the first held set the interval filter below does not refuse
+  // — on the full form at once, its enclosures being those of the exact solve's)
+  held_force_detail::Matrix<Rational> W, D;
+  std::vector<Rational> x0;
+  bool prepared = false;
+  auto prepare = [&] {
+    if (prepared) return;
+    prepared = true;
+    // the force rows exactly: J's, a sliding contact's G_k - sign (mu_k / s_k) T_k in rationals
+    // (session 66; rows.W is that row in doubles)
+    W.assign(force_rows, std::vector<Rational>(n));
+    for (std::size_t r = 0; r < force_rows; ++r) {
+      for (std::size_t i = 0; i < n; ++i) W[r][i] = exact(rows.J(Eigen::Index(r), Eigen::Index(i)));
+      if (r >= m) continue;
+      const Friction& c = friction[r];
+      const int st = state[r];
+      if (!c.on || (st != slip_positive && st != slip_negative)) continue;
+      const Rational k = exact(c.mu_kinetic) / exact(c.s);
+      for (std::size_t i = 0; i < n; ++i)
+        if (c.T(Eigen::Index(i)) != 0) W[r][i] -= st * k * exact(c.T(Eigen::Index(i)));
     }
-    const auto solved = held_force_detail::solve(std::move(mass), std::move(rhs));
-    if (!solved) throw NumericError("a held contact's force problem: the mass matrix is singular");
-    for (std::size_t i = 0; i < n; ++i) {
-      x0[i] = (*solved)[i][force_rows];
-      for (std::size_t r = 0; r < force_rows; ++r) D[r][i] = (*solved)[i][r];
+    x0.assign(n, Rational(0));
+    D.assign(force_rows, std::vector<Rational>(n));
+    if (full) {
+      held_force_detail::Matrix<Rational> mass(n, std::vector<Rational>(n));
+      held_force_detail::Matrix<Rational> rhs(n, std::vector<Rational>(force_rows + 1));
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j) mass[i][j] = exact(full->M(Eigen::Index(i), Eigen::Index(j)));
+        for (std::size_t r = 0; r < force_rows; ++r) rhs[i][r] = W[r][i];
+        rhs[i][force_rows] = exact(full->Q(Eigen::Index(i)));
+      }
+      const auto solved = held_force_detail::solve(std::move(mass), std::move(rhs));
+      if (!solved) throw NumericError("a held contact's force problem: the mass matrix is singular");
+      for (std::size_t i = 0; i < n; ++i) {
+        x0[i] = (*solved)[i][force_rows];
+        for (std::size_t r = 0; r < force_rows; ++r) D[r][i] = (*solved)[i][r];
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        x0[i] = exact(a0(static_cast<Eigen::Index>(i)));
+        const Rational mi = exact(minv(static_cast<Eigen::Index>(i)));
+        for (std::size_t r = 0; r < force_rows; ++r)
+          if (sgn(W[r][i]) != 0) D[r][i] = mi * W[r][i];
+      }
     }
-  } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      x0[i] = exact(a0(static_cast<Eigen::Index>(i)));
-      const Rational mi = exact(minv(static_cast<Eigen::Index>(i)));
-      for (std::size_t r = 0; r < force_rows; ++r)
-        if (sgn(W[r][i]) != 0) D[r][i] = mi * W[r][i];
-    }
-  }
+  };
+  if (full) prepare();
   // a row r over the coordinates as an affine function of the unknowns z = [lambda_H, f]:
   // r . x + c = (r . x0 + c) + sum_v (r . D_v) z_v. Its constant and its coefficient on every
   // force row (r . D_row) do not depend on the held set: formed once per row (contact k's gap
@@ -872,11 +908,135 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     for (std::size_t v = 0; v < held.size() + p; ++v)
       coefficients[v] = a.on[v < held.size() ? held[v] : m + (v - held.size())];
   };
+  // (session 72, speed72) The same rows in intervals, each formed once from enclosures of x0 and
+  // D (every entry Interval::enclose of the exact one; the rows' doubles are exact points): a sum
+  // or product only of terms certainly nonzero, so [0, 0] only where the exact number is 0, every
+  // other entry an enclosure of it. A held set's system formed from them is refused where the
+  // interval filters (square_certainly_infeasible, certainly_infeasible_in_intervals) find it
+  // certainly without a solution — no rational formed for it; otherwise the exact path below
+  // decides, as before. Of the escapement's 0.5 s (644 held sets) most are refused so.
+  using kernels::Interval;
+  const bool filter = assignment_interval_filter();
+  struct IntervalAffineRow {
+    bool formed = false;
+    Interval constant;
+    std::vector<Interval> on;   // by force row (m + p)
+  };
+  std::vector<IntervalAffineRow> interval_rows(filter ? 2 * m : 0);
+  std::vector<Interval> x0_enclosed;
+  held_force_detail::Matrix<Interval> D_enclosed;
+  auto interval_affine = [&](std::size_t k, bool tangent) -> const IntervalAffineRow& {
+    if (x0_enclosed.empty() && n > 0) {
+      x0_enclosed.resize(n);
+      D_enclosed.assign(force_rows, std::vector<Interval>(n, Interval(0)));
+      if (full) {   // of the exact solve's (prepared above)
+        for (std::size_t i = 0; i < n; ++i) {
+          x0_enclosed[i] = Interval::enclose(x0[i]);
+          for (std::size_t r = 0; r < force_rows; ++r) D_enclosed[r][i] = Interval::enclose(D[r][i]);
+        }
+      } else {   // from the doubles: x0 = a0, D_ri = minv_i W_ri, W as prepare() forms it
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto c = static_cast<Eigen::Index>(i);
+          x0_enclosed[i] = Interval::point(a0(c));
+          for (std::size_t r = 0; r < force_rows; ++r) {
+            const double j = rows.J(Eigen::Index(r), c);
+            Interval w = j != 0 ? Interval::point(j) : Interval(0);
+            bool zero = j == 0;
+            if (r < m) {
+              const Friction& f = friction[r];
+              const int st = state[r];
+              if (f.on && (st == slip_positive || st == slip_negative) && f.T(c) != 0) {
+                const Interval term = Interval(st) * (Interval::point(f.mu_kinetic) / Interval::point(f.s)) * Interval::point(f.T(c));
+                w = zero ? -term : w - term;
+                zero = false;
+              }
+            }
+            if (!zero) D_enclosed[r][i] = Interval::point(minv(c)) * w;
+          }
+        }
+      }
+    }
+    IntervalAffineRow& a = interval_rows[2 * k + (tangent ? 1 : 0)];
+    if (a.formed) return a;
+    const auto row_k = static_cast<Eigen::Index>(k);
+    auto coordinate = [&](std::size_t i) {
+      const auto c = static_cast<Eigen::Index>(i);
+      return tangent ? friction[k].T(c) : G(row_k, c);
+    };
+    a.constant = !tangent && h_exact    ? Interval::enclose((*h_exact)[k])
+                 : tangent && bias_exact ? Interval::enclose((*bias_exact)[k])
+                                         : Interval::point(tangent ? friction[k].bias : h(row_k));
+    for (std::size_t i = 0; i < n; ++i)
+      if (coordinate(i) != 0 && x0_enclosed[i].sign() != 0)
+        a.constant = a.constant + Interval::point(coordinate(i)) * x0_enclosed[i];
+    a.on.assign(force_rows, Interval(0));
+    for (std::size_t row = 0; row < force_rows; ++row) {
+      bool any = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (coordinate(i) == 0 || D_enclosed[row][i].sign() == 0) continue;
+        const Interval term = Interval::point(coordinate(i)) * D_enclosed[row][i];
+        a.on[row] = any ? a.on[row] + term : term;
+        any = true;
+      }
+    }
+    a.formed = true;
+    return a;
+  };
+  // true: the held set's system certainly has no solution (the filters above on its enclosure)
+  auto refused_in_intervals = [&](const std::vector<bool>& is_held, const std::vector<std::size_t>& held) {
+    const std::size_t vars = held.size() + p;
+    IntervalLinearSystem lp;
+    lp.variables = vars;
+    lp.nonnegative.assign(vars, false);
+    for (std::size_t v = 0; v < held.size(); ++v) lp.nonnegative[v] = true;
+    auto add = [&](const IntervalAffineRow& a, bool equality, int sign) {   // as try_set's add
+      std::vector<Interval> row(vars);
+      for (std::size_t v = 0; v < vars; ++v) {
+        const Interval& c = a.on[v < held.size() ? held[v] : m + (v - held.size())];
+        row[v] = sign > 0 ? c : -c;
+      }
+      lp.rows.push_back(std::move(row));
+      lp.rhs.push_back(sign > 0 ? -a.constant : a.constant);
+      lp.equality.push_back(equality);
+    };
+    for (std::size_t k = 0; k < m; ++k) add(interval_affine(k, false), is_held[k], 1);
+    for (std::size_t j = 0; j < p; ++j) {
+      const Friction& c = friction[reps[j]];
+      add(interval_affine(reps[j], true), true, 1);
+      for (int side : {1, -1}) {
+        std::vector<Interval> row(vars, Interval(0));
+        for (std::size_t v = 0; v < held.size(); ++v) {
+          const std::size_t k = held[v];
+          if (group_of(k) == group_of(reps[j]) && friction[k].on && state[k] == stick && c.mu_static != 0)
+            row[v] = Interval::point(c.mu_static) / Interval::point(friction[k].s);
+        }
+        row[held.size() + j] = Interval(-side);
+        lp.rows.push_back(std::move(row));
+        lp.rhs.push_back(Interval(0));
+        lp.equality.push_back(false);
+      }
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      const Friction& c = friction[k];
+      const int st = state[k];
+      if (!c.on || c.decided || (st != slip_positive && st != slip_negative)) continue;
+      add(interval_affine(k, true), false, st);
+    }
+    const std::optional<bool> square = square_certainly_infeasible(lp);
+    if (square) return *square;
+    return certainly_infeasible_in_intervals(lp);
+  };
   auto try_set = [&](const std::vector<bool>& is_held) -> std::optional<FrictionalSolution> {
     std::vector<std::size_t> held;
     for (std::size_t k = 0; k < m; ++k)
       if (is_held[k]) held.push_back(k);
     const std::size_t vars = held.size() + p;
+    if (filter && refused_in_intervals(is_held, held)) {
+      if (tried) ++*tried;
+      ++assignment_interval_refused();
+      return std::nullopt;
+    }
+    prepare();
     ExactLinearSystem lp;
     lp.variables = vars;
     lp.nonnegative.assign(vars, false);
@@ -985,6 +1145,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
   // slip), the sticking rows are dependent, or the LCP's solution breaks a Coulomb condition,
   // nothing is decided: nullopt, as before.)
   if (m > 12) {
+    prepare();
     std::vector<std::size_t> all(m);
     for (std::size_t k = 0; k < m; ++k) all[k] = k;
     std::vector<Rational> coefficients;
