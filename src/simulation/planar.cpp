@@ -3049,9 +3049,9 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     if (!std::isfinite(rate))
       throw NumericError(where(t) + ": the parts' point speeds before the contact are not finite in doubles "
                                     "(twice the fastest exceeds 1.8e308 mm/s)");
-    // (session 72, jam72) A pair whose chord crosses nothing in this step (certified: the path
-    // does not enter its blocked space before the step's end) may only touch at the contact's
-    // state: a part flying at its pusher's speed after a plastic impact, at gap 0 in the rationals
+    // (session 72, jam72) A pair whose chord crosses nothing up to the contact's bracket in this
+    // step (certified: the path does not enter its blocked space before its own bracket, which
+    // begins after the earliest one ends) may only touch at the contact's state: a part flying at its pusher's speed after a plastic impact, at gap 0 in the rationals
     // of the state's doubles. It joins the contact below (its features within 2 delta); it does
     // not move the contact back. Until session 72 every pair had to be exactly free, and such a
     // pair, which moves with the part, is not parted by going back in time: the back-off went on
@@ -3059,7 +3059,7 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     // the wall 2^8 delta / rate = 4.7e-9 s early (4.7e-7 mm of gap at 100 mm/s, 64 delta), where
     // a static wall's contact was found at its crossing (the rounding happened to part them).
     std::vector<bool> crossed(pairs.size(), false);
-    for (const auto& [i, c] : crossings) crossed[i] = true;
+    for (const auto& [i, c] : crossings) crossed[i] = c.u_lower <= crossings[best].second.u_upper;
     bool free_everywhere = false;
     for (int back = 0; back < 80 && !free_everywhere; ++back) {
       double s = back == 0 ? s_contact : s_contact - std::ldexp(delta / rate, back - 1);

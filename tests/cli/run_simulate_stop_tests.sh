@@ -11,7 +11,7 @@
 #     energy is not finite" — kind "numeric error", the files up to the last completed step (every
 #     number in them finite, events.json's t_end and energy that step's). Until session 70:
 #     nothing written. Not a stop (session 72, jam72): an initial state whose energy is already
-#     beyond the doubles — the ladder (10 kg) under gravity m 1e308 mm/s^2, the pin-slot cam's follower
+#     beyond the doubles — the ladder (1 kg) under gravity m 1e308 mm/s^2, the pin-slot cam's follower
 #     thrown down at m 1e160 mm/s — is bad input, exit 2 at the datum's pointer, nothing written
 #     (sessions 70-71 wrote the initial state alone with "energy": null, exit 3);
 #  3. the files are published whole: a publication made to fail at its N-th rename (N random)
@@ -91,7 +91,7 @@ m = json.load(open(sys.argv[1]))
 m["simulation"]["gravity"] = [float(sys.argv[4]), -9810]
 json.dump(m, open(sys.argv[3] + "/ladder-overflow.json", "w"))
 m["simulation"]["gravity"] = [float(sys.argv[6]), -9810]
-m["parts"][1]["dynamics"]["mass"] = 10   # (m g x = 227 g: beyond the doubles for every g >= 1e307)
+m["parts"][1]["dynamics"]["mass"] = 1   # (m g x = 22.7 g: beyond the doubles for every g >= 1e308)
 json.dump(m, open(sys.argv[3] + "/ladder-initial-overflow.json", "w"))
 p = json.load(open(sys.argv[2]))
 p["simulation"]["velocities"] = {"follower": {"slide": float(sys.argv[5])}}
