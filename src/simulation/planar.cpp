@@ -3049,17 +3049,6 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     if (!std::isfinite(rate))
       throw NumericError(where(t) + ": the parts' point speeds before the contact are not finite in doubles "
                                     "(twice the fastest exceeds 1.8e308 mm/s)");
-    // (session 72, jam72) A pair whose chord crosses nothing up to the contact's bracket in this
-    // step (certified: the path does not enter its blocked space before its own bracket, which
-    // begins after the earliest one ends) may only touch at the contact's state: a part flying at its pusher's speed after a plastic impact, at gap 0 in the rationals
-    // of the state's doubles. It joins the contact below (its features within 2 delta); it does
-    // not move the contact back. Until session 72 every pair had to be exactly free, and such a
-    // pair, which moves with the part, is not parted by going back in time: the back-off went on
-    // until the rounding parted it — the block of a pusher carrying it into a receding wall met
-    // the wall 2^8 delta / rate = 4.7e-9 s early (4.7e-7 mm of gap at 100 mm/s, 64 delta), where
-    // a static wall's contact was found at its crossing (the rounding happened to part them).
-    std::vector<bool> crossed(pairs.size(), false);
-    for (const auto& [i, c] : crossings) crossed[i] = c.u_lower <= crossings[best].second.u_upper;
     bool free_everywhere = false;
     for (int back = 0; back < 80 && !free_everywhere; ++back) {
       double s = back == 0 ? s_contact : s_contact - std::ldexp(delta / rate, back - 1);
@@ -3068,10 +3057,8 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       q_at.clear();
       for (const Kinematic& b : at) q_at.push_back(s > 0 ? configuration_of(b.x, b.y, b.theta) : q0[&b - at.data()]);
       free_everywhere = true;
-      for (std::size_t i = 0; i < pairs.size() && free_everywhere; ++i) {
-        const SlicedLocation::Kind kind = pairs[i].space.locate(relative(pairs[i], q_at)).kind;
-        free_everywhere = kind == SlicedLocation::Kind::free || (!crossed[i] && kind == SlicedLocation::Kind::contact);
-      }
+      for (const Pair& p : pairs)
+        free_everywhere = free_everywhere && p.space.locate(relative(p, q_at)).kind == SlicedLocation::Kind::free;
       if (free_everywhere) s_contact = s;
       if (s == 0) break;
     }
