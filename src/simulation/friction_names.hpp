@@ -45,6 +45,23 @@ inline std::string named_friction(const Model& model, std::vector<std::size_t> i
 /// consistent stick/slip solution was found for the impact problem of <contacts> simultaneous
 /// contacts with Coulomb friction (the search is complete only up to 12 contacts with at most 8
 /// of them frictional: this is not a proof that none exists); pairs involved: ...".
+/// The clause a refusal adds where the exact stick/slip search was not complete (session 72,
+/// jam72: one constant for the fixed-axis, pin-slot and planar refusals; review71 exact71 L4).
+inline constexpr const char* incomplete_frictional_search =
+    "the search is complete only up to 12 contacts with at most 8 of them frictional: this is not a proof that none "
+    "exists";
+
+/// The planar simulators' refusal of a frictional contact problem without a consistent stick/slip
+/// solution (session 72, jam72; review71 exact71 M1): "<problem> has no consistent solution (a
+/// Painlevé-type inconsistency of Coulomb friction)" only where the exact search was complete
+/// (`exhausted`: FrictionalSolution::exhausted); otherwise "no consistent solution was found for
+/// <problem> (<incomplete_frictional_search>)". Until session 72 the planar words were the first
+/// form with ", or more than 8 contacts" for every refusal, a verdict where nothing was decided.
+inline std::string frictional_refusal(const std::string& problem, bool exhausted) {
+  if (exhausted) return problem + " has no consistent solution (a Painlevé-type inconsistency of Coulomb friction)";
+  return "no consistent solution was found for " + problem + " (" + incomplete_frictional_search + ")";
+}
+
 inline std::string inconsistent_frictional_impact(const std::string& when, std::size_t contacts, const Model& model,
                                                   const std::vector<std::size_t>& pairs, bool exhausted) {
   std::ostringstream out;
@@ -53,8 +70,7 @@ inline std::string inconsistent_frictional_impact(const std::string& when, std::
         << " simultaneous contacts with Coulomb friction has no consistent stick/slip solution";
   else
     out << "simulation: at t = " << when << " no consistent stick/slip solution was found for the impact problem of "
-        << contacts << " simultaneous contacts with Coulomb friction (the search is complete only up to 12 contacts "
-        << "with at most 8 of them frictional: this is not a proof that none exists)";
+        << contacts << " simultaneous contacts with Coulomb friction (" << incomplete_frictional_search << ")";
   out << named_friction(model, pairs);
   return out.str();
 }

@@ -438,7 +438,7 @@ inline FrictionalSolution limited_frictional_impulses(const Eigen::MatrixXd& G, 
                                                       const std::vector<std::size_t>& group,
                                                       const std::function<void(FrictionalSolution&)>& adjust,
                                                       const std::vector<Rational>* h_exact, bool& limited,
-                                                      const std::function<void()>& unsolved = {},
+                                                      const std::function<void(const FrictionalSolution&)>& unsolved = {},
                                                       double* scale_taken = nullptr) {
   std::optional<FrictionalSolution> plastic;
   const bool no_restitution = h.isZero(0.0);
@@ -447,7 +447,7 @@ inline FrictionalSolution limited_frictional_impulses(const Eigen::MatrixXd& G, 
     const std::vector<Rational> scaled = scaled_terms(h_exact, scale);
     FrictionalSolution sol =
         frictional_impulses(G, minv, v, scale * h, friction, group, adjust, h_exact ? &scaled : nullptr);
-    if (!sol.solved && unsolved) unsolved();
+    if (!sol.solved && unsolved) unsolved(sol);   // (session 72, jam72: with it, its `exhausted`)
     if (no_restitution) plastic = sol;
     return sol;
   };

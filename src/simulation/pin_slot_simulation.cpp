@@ -46,10 +46,12 @@
 #include "simulation/frame_rate.hpp"
 #include "simulation/friction.hpp"
 #include "simulation/held_friction.hpp"
+#include "simulation/friction_names.hpp"
 #include "simulation/held_extent.hpp"
 #include "simulation/held_force_sign.hpp"
 #include "simulation/jam.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/initial_energy.hpp"
 #include "simulation/motion_datum.hpp"
 #include "simulation/relative_configuration.hpp"
 #include "simulation/units.hpp"
@@ -2051,8 +2053,7 @@ void PinSlotSimulation::Impl::impact(const Touching& touching, int limit, bool h
       else
         out << where(t) << ": no consistent solution was found for the frictional impact of '"
             << model.parts[part].name << "' on " << rows.size()
-            << " contacts (the search is complete only up to 12 contacts with at most 8 of them frictional: this is "
-            << "not a proof that none exists; " << rows.front().label << ")";
+            << " contacts (" << simulation::incomplete_frictional_search << "; " << rows.front().label << ")";
       throw NumericError(out.str());
     }
     // (session 70, exact70: the velocities after q'- + dq' with the exact change, rounded once;
@@ -2827,7 +2828,10 @@ PinSlotSimulation PinSlotSimulation::create(const Model& model, const Simulation
     s.pairs.push_back(std::move(p));
   }
   s.publish();
-  return PinSlotSimulation(std::move(impl));
+  PinSlotSimulation simulated(std::move(impl));
+  // (session 72, jam72) an initial state beyond the doubles: bad input at its datum, nothing run
+  simulation::refuse_initial_energy(model, simulated.energy());
+  return simulated;
 }
 
 void PinSlotSimulation::step(double t_limit) {

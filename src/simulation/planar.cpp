@@ -51,6 +51,7 @@
 #include "simulation/held_resolution.hpp"
 #include "simulation/jam.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/initial_energy.hpp"
 #include "simulation/motion_datum.hpp"
 #include "simulation/planar_bounds.hpp"
 #include "simulation/relative_configuration.hpp"
@@ -440,9 +441,10 @@ simulation::FrictionalSolution frictional_impact(const Eigen::MatrixXd& J, const
   // exact, and the composition in held_friction.hpp's limited_frictional_impulses)
   return simulation::limited_frictional_impulses(
       J, minv, v, h, friction, group, [&](simulation::FrictionalSolution& s) { split_collinear(s, friction, group); },
-      h_exact, limited, [&] {
-        throw NumericError(where + ": the frictional impact problem has no consistent solution (a Painlevé-type "
-                                   "inconsistency of Coulomb friction, or more than 8 contacts)" + named);
+      h_exact, limited, [&](const simulation::FrictionalSolution& unsolved) {
+        // (session 72, jam72: a verdict's words only where the exact search was complete)
+        throw NumericError(where + ": " +
+                           simulation::frictional_refusal("the frictional impact problem", unsolved.exhausted) + named);
       });
 }
 
@@ -1496,8 +1498,8 @@ bool PlanarSimulation::Impl::decide() {
     }
   }
   if (!p.solution.solved)
-    throw NumericError(where(t) + ": the contact problem of its held contacts has no consistent solution "
-                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)" +
+    throw NumericError(where(t) + ": " +
+                       simulation::frictional_refusal("the contact problem of its held contacts", p.solution.exhausted) +
                        named_pairs(held_pairs()));
   std::vector<std::size_t> pair_of;
   for (const Held& c : held) pair_of.push_back(c.pair);
@@ -1958,7 +1960,10 @@ PlanarSimulation PlanarSimulation::create(const Model& model, const SimulationOp
                                                       "': it must start apart");
   }
   s.publish();
-  return PlanarSimulation(std::move(impl));
+  PlanarSimulation simulated(std::move(impl));
+  // (session 72, jam72) an initial state beyond the doubles: bad input at its datum, nothing run
+  simulation::refuse_initial_energy(model, simulated.energy());
+  return simulated;
 }
 
 void PlanarSimulation::step(double t_limit) {
@@ -2525,8 +2530,8 @@ bool PlanarSystemSimulation::Impl::decide() {
     std::vector<std::pair<std::size_t, SlicedFeaturePair>> touching;
     for (const Held& h : held) touching.emplace_back(h.pair, h.feature);
     refuse_jam(t, contact_rows(touching));
-    throw NumericError(where(t) + ": the contact problem of the held contacts has no consistent solution "
-                                  "(a Painlevé-type inconsistency of Coulomb friction, or more than 8 contacts)" +
+    throw NumericError(where(t) + ": " +
+                       simulation::frictional_refusal("the contact problem of the held contacts", p.solution.exhausted) +
                        named_pairs(held_pairs()));
   }
   std::vector<std::size_t> pair_of;
@@ -3231,7 +3236,10 @@ PlanarSystemSimulation PlanarSystemSimulation::create(const Model& model, const 
   for (const Impl::Body& b : s.bodies) s.public_state.parts.push_back(b.part);
   s.public_state.states.resize(s.bodies.size());
   s.publish();
-  return PlanarSystemSimulation(std::move(impl));
+  PlanarSystemSimulation simulated(std::move(impl));
+  // (session 72, jam72) an initial state beyond the doubles: bad input at its datum, nothing run
+  simulation::refuse_initial_energy(model, simulated.energy());
+  return simulated;
 }
 
 void PlanarSystemSimulation::step(double t_limit) {

@@ -34,6 +34,7 @@
 #include "simulation/jam.hpp"
 #include "simulation/kept_scratch.hpp"
 #include "simulation/lcp.hpp"
+#include "simulation/initial_energy.hpp"
 #include "simulation/motion_datum.hpp"
 #include "simulation/normal_side.hpp"
 #include "simulation/nudge_check.hpp"
@@ -1916,7 +1917,11 @@ struct Simulation::Impl {
       } catch (const GeometryError&) {
         return std::nullopt;
       }
-      if (!frame || !frame->exact) continue;
+      // (session 72, jam72; review71 jam71 M1) a feature pair whose exact frame is undefined at the
+      // configuration (a vertex-vertex pair at a corner contact, a degenerate configuration: the
+      // kernels' exact frame is nullopt there) may have a normal other than the others': the row
+      // is not known exactly (session 71 skipped it and decided the row on the other feature pairs)
+      if (!frame || !frame->exact) return std::nullopt;
       const std::array<Rational, 2>& P = frame->point;
       const std::array<Rational, 2>& N = frame->normal_direction;
       std::vector<Rational> row(dofs.size(), Rational(0));
@@ -3530,7 +3535,10 @@ Simulation Simulation::create(const Model& model, const SimulationOptions& optio
     }
   }
   s.publish();
-  return Simulation(std::move(impl));
+  Simulation simulated(std::move(impl));
+  // (session 72, jam72) an initial state beyond the doubles: bad input at its datum, nothing run
+  simulation::refuse_initial_energy(model, simulated.energy());
+  return simulated;
 }
 
 void Simulation::step() {

@@ -6,11 +6,14 @@
 #     a contact): the stop at t* = asin(L / e) / w, kind "motion limit", the part and the limit
 #     named, the follower at L in the trajectory's last row. Until session 70: exit 3 "cannot be
 #     moved off its contact (a jammed contact change)", nothing written;
-#  2. numeric errors mid-run: the ladder pulled along its floor by gravity m 1e308 mm/s^2
-#     (planar): "the run's energy is not finite" — kind "numeric error", the files up to the last
-#     completed step (every number in them finite, events.json's t_end and energy that step's).
-#     Until session 70: nothing written. The pin-slot cam's follower thrown down at m 1e160 mm/s:
-#     the same stop at its initial state, whose energy is written as null;
+#  2. numeric errors mid-run: the ladder pulled along its floor by gravity m 1e200 mm/s^2
+#     (planar; its initial energy finite, its first step's m g x ~ m g^2 t^2 / 2 not): "the run's
+#     energy is not finite" — kind "numeric error", the files up to the last completed step (every
+#     number in them finite, events.json's t_end and energy that step's). Until session 70:
+#     nothing written. Not a stop (session 72, jam72): an initial state whose energy is already
+#     beyond the doubles — the ladder (1 kg) under gravity m 1e308 mm/s^2, the pin-slot cam's follower
+#     thrown down at m 1e160 mm/s — is bad input, exit 2 at the datum's pointer, nothing written
+#     (sessions 70-71 wrote the initial state alone with "energy": null, exit 3);
 #  3. the files are published whole: a publication made to fail at its N-th rename (N random)
 #     leaves an existing --out directory byte for byte as it was and no staging directory; an
 #     output directory that takes no entry (read-only, when not root) is refused before the run;
@@ -81,12 +84,15 @@ grep -q "(a motion limit, not a contact" "$work/limit-none.err" || fail "limit w
 grep -q "written" "$work/limit-none.err" && fail "limit without --out: claims a write: $(cat "$work/limit-none.err")"
 
 # 2. numeric errors mid-run: energies beyond the doubles (planar, pin-slot)
-read -r g v <<<"$(python3 -c "import random; r = random.Random($seed * 100 + 30); print(repr(r.uniform(1, 1.79) * 1e308), repr(-r.uniform(1, 9) * 1e160))")"
-python3 - "$source/examples/models/ladder.json" "$source/tests/data/simulation/pin-slot-cam.json" "$work" "$g" "$v" <<'EOF'
+read -r g g_initial v <<<"$(python3 -c "import random; r = random.Random($seed * 100 + 30); print(repr(r.uniform(1, 9) * 1e200), repr(r.uniform(1, 1.79) * 1e308), repr(-r.uniform(1, 9) * 1e160))")"
+python3 - "$source/examples/models/ladder.json" "$source/tests/data/simulation/pin-slot-cam.json" "$work" "$g" "$v" "$g_initial" <<'EOF'
 import json, sys
 m = json.load(open(sys.argv[1]))
 m["simulation"]["gravity"] = [float(sys.argv[4]), -9810]
 json.dump(m, open(sys.argv[3] + "/ladder-overflow.json", "w"))
+m["simulation"]["gravity"] = [float(sys.argv[6]), -9810]
+m["parts"][1]["dynamics"]["mass"] = 1   # (m g x = 22.7 g: beyond the doubles for every g >= 1e308)
+json.dump(m, open(sys.argv[3] + "/ladder-initial-overflow.json", "w"))
 p = json.load(open(sys.argv[2]))
 p["simulation"]["velocities"] = {"follower": {"slide": float(sys.argv[5])}}
 json.dump(p, open(sys.argv[3] + "/pin-slot-overflow.json", "w"))
@@ -95,12 +101,25 @@ EOF
   >"$work/ladder.out" 2>"$work/ladder.err"
 echo $? >"$work/ladder.code"
 check_stop ladder "$work/ladder" "numeric error" - - "the run's energy is not finite" "positions.svg velocities.svg"
-# the pin-slot follower thrown at 1e160 mm/s: its initial state's energy is already beyond the
-# doubles — a stop (numeric error) with the initial state as its results, "energy": null
-"$hipair" simulate "$work/pin-slot-overflow.json" --t-end 0.01 --max-steps 100 --no-pictures --out "$work/pinslot" \
-  >"$work/pinslot.out" 2>"$work/pinslot.err"
-echo $? >"$work/pinslot.code"
-check_stop pinslot "$work/pinslot" "numeric error" - - "the run's energy is not finite"
+# an initial state beyond the doubles (session 72, jam72): exit 2, one line beginning with the
+# datum's pointer, the term named, --out (holding one file) untouched
+initial_overflow() {   # NAME MODEL POINTER TERM ARGS...
+  local name=$1 model=$2 pointer=$3 term=$4; shift 4
+  rm -rf "$work/$name" && mkdir -p "$work/$name" && echo keep >"$work/$name/sentinel"
+  "$hipair" simulate "$model" "$@" --out "$work/$name" >"$work/$name.out" 2>"$work/$name.err"
+  local code=$?
+  [ $code -eq 2 ] || fail "$name: exit $code, not 2: $(head -c 400 "$work/$name.err")"
+  [ "$(wc -l <"$work/$name.err")" -eq 1 ] || fail "$name: not one line: $(head -c 400 "$work/$name.err")"
+  grep -qF "hipair: error: $pointer: the initial state's energy is not finite" "$work/$name.err" \
+    || fail "$name: not refused at $pointer: $(head -c 400 "$work/$name.err")"
+  grep -qF "its largest term is $term" "$work/$name.err" || fail "$name: the term is not $term: $(head -c 400 "$work/$name.err")"
+  { [ "$(ls -A "$work/$name")" = sentinel ] && [ "$(cat "$work/$name/sentinel")" = keep ]; } \
+    || fail "$name: --out changed: $(ls -A "$work/$name")"
+}
+initial_overflow ladder-initial "$work/ladder-initial-overflow.json" /simulation/gravity/0 "the work of gravity on part 'ladder'" \
+  --t-end 0.02 --max-steps 2000
+initial_overflow pinslot "$work/pin-slot-overflow.json" /simulation/velocities/follower/slide "the kinetic energy of part 'follower'" \
+  --t-end 0.01 --max-steps 100 --no-pictures
 
 # 3. published whole: a failed publication leaves an existing --out as it was, no staging left
 d="$work/existing"

@@ -255,6 +255,44 @@ simulation::Friction coulomb(const Eigen::VectorXd& T, double mu_s, double mu_k)
 // whose tangential speed after are then of the right signs.) Two such contacts on separate
 // coordinates (pairs 0 and 1): the fixed-axis composition refuses the impact, and the simulator's
 // message names both pairs.
+// (session 72, jam72; review71 exact71 M1) The planar simulators' frictional impact
+// (limited_frictional_impulses, planar.cpp's frictional_impact) on impact `p` with restitutions
+// `e`: where it finds no solution its `unsolved` callback is called with the unsolved solution,
+// whose `exhausted` must be `complete` (the exact search complete: 2 contacts; not: 9 frictional),
+// and the planar refusal's words (friction_names.hpp's frictional_refusal) a verdict only then.
+// Until session 72 the callback took no argument and the planar words were always "has no
+// consistent solution (a Painlevé-type inconsistency of Coulomb friction, or more than 8
+// contacts)". Returns whether it refused.
+bool planar_refusal(const Impact& p, const Eigen::VectorXd& e, bool complete, int trial) {
+  const Eigen::Index m = p.G.rows();
+  Eigen::VectorXd h(m);
+  const Eigen::VectorXd gv = p.G * p.v;
+  for (Eigen::Index k = 0; k < m; ++k) h(k) = (1 + e(k)) * gv(k) - gv(k);
+  const std::vector<Rational> h_exact = simulation::exact_restitution_terms(p.G, p.v, e, false);
+  std::vector<std::size_t> group(static_cast<std::size_t>(m));
+  for (std::size_t k = 0; k < group.size(); ++k) group[k] = k;
+  bool limited = false;
+  std::optional<bool> exhausted;
+  const simulation::FrictionalSolution s = simulation::limited_frictional_impulses(
+      p.G, p.minv, p.v, h, p.friction, group, {}, &h_exact, limited,
+      [&](const simulation::FrictionalSolution& unsolved) { exhausted = unsolved.exhausted; });
+  if (s.solved) {
+    EXPECT_FALSE(complete) << trial << ": the planar composition solved an impact that has no solution";
+    return false;
+  }
+  EXPECT_TRUE(exhausted.has_value()) << trial << ": no unsolved callback";
+  if (!exhausted) return true;
+  EXPECT_EQ(*exhausted, complete) << trial;
+  const std::string words = simulation::frictional_refusal("the frictional impact problem", *exhausted);
+  EXPECT_EQ(words, complete ? "the frictional impact problem has no consistent solution (a Painlevé-type inconsistency "
+                              "of Coulomb friction)"
+                            : "no consistent solution was found for the frictional impact problem (the search is "
+                              "complete only up to 12 contacts with at most 8 of them frictional: this is not a proof "
+                              "that none exists)")
+      << trial;
+  return true;
+}
+
 TEST(FixedAxisFrictionalImpact, AnInconsistentImpactIsRefusedNamingItsPairs) {
   Rng rng{test::test_seed(7001)};
   Model model;
@@ -330,6 +368,10 @@ TEST(FixedAxisFrictionalImpact, AnInconsistentImpactIsRefusedNamingItsPairs) {
               "simulation: at t = 0.25 s the impact problem of 2 simultaneous contacts with Coulomb friction has no "
               "consistent stick/slip solution; pairs involved: (wheel /parts/0, frame /parts/2) (/pairs/0, friction "
               "0.1, kinetic 3); (pawl /parts/1, frame /parts/2) (/pairs/1, friction 0.1, kinetic 3)");
+    // (session 72, jam72; review71 exact71 M1) the planar simulators' composition on the same
+    // impact (every row its restitution term, b = (1 + e) J v): its `unsolved` callback gets the
+    // unsolved solution, exhausted (2 contacts), and the planar refusal reads as a verdict
+    planar_refusal(p, e, true, trial);
   }
   std::cout << "inconsistent frictional impacts refused: " << refused << " of 400\n";
   EXPECT_GE(refused, 20);
@@ -357,7 +399,7 @@ TEST(FixedAxisFrictionalImpact, NineFrictionalContactsAreRefusedWithoutAVerdict)
   pair.pointer = "/pairs/0";
   pair.friction = Rational(1, 2);
   model.pairs.push_back(pair);
-  int cases = 0;
+  int cases = 0, planar_refusals = 0;
   for (int trial = 0; trial < 12; ++trial) {
     const Eigen::Index m = 9 + trial % 4, n = 2 * m;
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(m, n);
@@ -388,6 +430,14 @@ TEST(FixedAxisFrictionalImpact, NineFrictionalContactsAreRefusedWithoutAVerdict)
       ASSERT_FALSE(oracle_all(one).empty()) << trial << " contact " << k << ": the plant";
     }
     ++cases;
+    {   // (session 72, jam72) the planar composition on the same impact: a refusal, no verdict
+      Impact all;
+      all.G = G;
+      all.minv = minv;
+      all.v = v;
+      all.friction = friction;
+      planar_refusals += planar_refusal(all, e, false, trial);
+    }
     const simulation::FrictionalSolution s = simulation::fixed_axis_frictional_impulses(G, minv, v, e, friction);
     // the contract, not today's limit: a solution found is fine (the plant exists); a refusal
     // must not claim that the search was complete
@@ -402,6 +452,7 @@ TEST(FixedAxisFrictionalImpact, NineFrictionalContactsAreRefusedWithoutAVerdict)
         << trial;
   }
   EXPECT_EQ(cases, 12);
+  EXPECT_EQ(planar_refusals, 12);   // (nothing is tried beyond 8 frictional contacts: every one refused)
 }
 
 // Generated fixed-axis impacts (1 contact over 3 coordinates or 2 over 5, one sometimes driven;
