@@ -499,56 +499,39 @@ std::string apart_move_failure(const ApartPair& pair, const Rational from[3], co
   Rational size = reach(pair.moving_shape);
   if (sgn(size) <= 0) size = 1;
   const Rational enough = size / Rational(mpz_class(1) << 32);
-  auto overlap_at = [&](const Rational at[3]) -> std::string {
+  // the move's parameter: the changing coordinate (a move that stays: q over [0, 0])
+  MoveBisection move;
+  move.stay = axis < 0;
+  move.letter = axis >= 0 ? "qsu"[axis] : 'q';
+  move.lo = axis >= 0 ? whole.lo[axis] : Rational(0);
+  move.hi = axis >= 0 ? whole.hi[axis] : Rational(0);
+  auto piece_box = [&](const Rational& p0, const Rational& p1) {
+    ApartBox box = whole;
+    if (axis >= 0) box.lo[axis] = p0, box.hi[axis] = p1;
+    return box;
+  };
+  move.apart = [&](const Rational& p0, const Rational& p1) {
+    const ApartBox box = piece_box(p0, p1);
+    return sgn(boundary_distance_lower_bound(pair.other_shape, pair.other_over(box), pair.moving_shape, pair.moving_over(box), enough)) > 0;
+  };
+  move.overlap_at = [&](const Rational& p) -> std::string {
+    Rational at[3];
+    apart_middle(piece_box(p, p), at);
     std::string evidence = overlap_evidence(place(pair.other, pair.other_at(at[0])), place(pair.moving, pair.moving_at(at[0], at[1], at[2])));
     return evidence.empty() ? std::string()
                             : "the parts overlap at q = " + fraction_or_rounded(at[0]) + ", s = " + fraction_or_rounded(at[1]) + ", u = " +
                                   fraction_or_rounded(at[2]) + ": " + evidence;
   };
-  // the depth limit as sliced_move_failure's: 2^-(bits + 64 + k) of the move, k the bits of its
-  // length (angle coordinates as they are, a slide or an offset over the part's reach)
-  long longer = 0;
+  move.not_apart = "the parts are not certainly apart there";
+  // the move's length in units of the part: angle coordinates as they are, a slide or an offset
+  // over the part's reach
+  Rational span(0);
   if (axis >= 0) {
     const bool angle = axis == 2 || (axis == 0 && pair.other.motion.kind == Motion::Kind::rotation);
-    const Rational span = angle ? Rational(whole.hi[axis] - whole.lo[axis]) : Rational((whole.hi[axis] - whole.lo[axis]) / size);
-    const mpz_class units = span.get_num() / span.get_den();
-    longer = sgn(units) > 0 ? std::min(1024L, long(mpz_sizeinbase(units.get_mpz_t(), 2))) : 0;
+    span = angle ? Rational(whole.hi[axis] - whole.lo[axis]) : Rational((whole.hi[axis] - whole.lo[axis]) / size);
   }
-  const long max_depth = long(model_detail::working_interval_bits()) + 64 + longer;
-  struct Piece {
-    ApartBox box;
-    long depth;
-  };
-  std::vector<Piece> stack{{whole, 0}};
-  while (!stack.empty()) {
-    Piece piece = stack.back();
-    stack.pop_back();
-    const Rational lo = axis >= 0 ? piece.box.lo[axis] : Rational(0), hi = axis >= 0 ? piece.box.hi[axis] : Rational(0);
-    if (piece.depth >= max_depth)
-      return done("not proved free: its pieces reached 2^-" + std::to_string(max_depth) + " of the move near " + std::string(1, "qsu"[axis]) +
-                  " in [" + fraction_or_rounded(lo) + ", " + fraction_or_rounded(hi) + "] (the parts come too close, or touch)");
-    if (++count > budget) {
-      --count;
-      return done("not proved free within " + std::to_string(budget) + " interval pieces (stuck near " +
-                  std::string(1, axis >= 0 ? "qsu"[axis] : 'q') + " in [" + fraction_or_rounded(lo) + ", " + fraction_or_rounded(hi) +
-                  "]: the parts come too close, or touch)");
-    }
-    const Rational bound =
-        boundary_distance_lower_bound(pair.other_shape, pair.other_over(piece.box), pair.moving_shape, pair.moving_over(piece.box), enough);
-    if (sgn(bound) > 0) continue;
-    Rational middle[3];
-    apart_middle(piece.box, middle);
-    if (axis < 0 || piece.depth % 6 == 0) {
-      if (std::string overlap = overlap_at(middle); !overlap.empty()) return done(overlap);
-      if (axis < 0) return done("the parts are not certainly apart there");
-    }
-    Piece lower = piece, upper = piece;
-    lower.box.hi[axis] = upper.box.lo[axis] = middle[axis];
-    lower.depth = upper.depth = piece.depth + 1;
-    stack.push_back(upper);
-    stack.push_back(lower);
-  }
-  return done("");
+  move.max_depth = move_depth_limit(span);
+  return move_bisection_failure(move, budget, pieces);
 }
 
 bool apart_boxes_meet(const ApartBox& a, const ApartBox& b, const bool periodic[3]) {

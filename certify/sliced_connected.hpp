@@ -33,6 +33,34 @@ constexpr std::size_t sliced_move_budget = 40000;
 /// grazing moves costs hipair-verify about a minute at most (about 0.5 ms a piece on a 10 mm peg).
 constexpr std::size_t sliced_total_budget = 100000;
 
+/// One move of a sliced claim proved free by bisection (session 72: the planar claim's path
+/// moves and the pin-slot claim's steps share it). The move's parameter runs over [lo, hi]; a
+/// piece [p0, p1] of it is proved when `apart(p0, p1)` (every configuration of the piece
+/// certainly apart: the certified distance of the boundaries) holds, else halved; at a piece's
+/// middle every sixth halving (depths 0, 6, 12, ...) the exact `overlap_at` (its evidence, "" when
+/// the parts do not overlap there) refuses a blocked move early. A move that stays at one
+/// configuration (`stay`) is tested once: apart, or refused (overlapping, or `not_apart`). Refused
+/// too: a piece at depth `max_depth` (move_depth_limit) and more than `budget` pieces, the reasons
+/// naming the parameter (`letter`) and the piece.
+struct MoveBisection {
+  Rational lo, hi;
+  char letter = 'u';
+  bool stay = false;
+  long max_depth = 0;
+  std::function<bool(const Rational& p0, const Rational& p1)> apart;
+  std::function<std::string(const Rational& at)> overlap_at;
+  std::string not_apart;
+};
+/// Why `move` is not proved free ("" when it is); `pieces` (optional) receives the pieces evaluated.
+std::string move_bisection_failure(const MoveBisection& move, std::size_t budget, std::size_t* pieces = nullptr);
+/// The depth at which a move's pieces are refused: 2^-(bits + 64 + k) of the move, k the bits of
+/// `span` (the move's length in units of the part: at most 1024), bits the working interval
+/// precision. A piece narrower than 2^-(bits + 64) of the move is not enclosed tighter than its
+/// parent (the enclosures' rounding, relative to the move's size, dominates): the move is refused
+/// there, in bounded time (a grazing move otherwise halves one end's piece until the budget runs
+/// out); a move of 2^k units needs k more halvings before its pieces are short.
+long move_depth_limit(const Rational& span);
+
 /// Why the move from pose `a` to pose `b` of the planar part against the fixed part is not
 /// certainly free ("" when it is proved free): not a pure translation, rotation or chart change,
 /// the parts overlapping at an exact pose of the move, or a piece not proved apart within

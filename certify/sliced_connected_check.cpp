@@ -197,63 +197,70 @@ std::string sliced_move_failure(const Part& fixed, const Part& planar, const Pla
     return m;
   };
   const PlacedPart placed_fixed = place(fixed, ExactMap{});
-  auto overlap_at = [&](const Rational& u) -> std::string {
+  MoveBisection move;
+  move.lo = 0;
+  move.hi = 1;
+  move.stay = kind == Kind::stay;
+  move.apart = [&](const Rational& u0, const Rational& u1) {
+    return sgn(boundary_distance_lower_bound(shape_fixed, identity, shape_free, map_over(u0, u1), enough)) > 0;
+  };
+  move.overlap_at = [&](const Rational& u) -> std::string {
     const PlanarPose p = pose_at(u);
     std::string evidence = overlap_evidence(placed_fixed, place(planar, planar_pose_map(planar, p)));
     return evidence.empty() ? std::string() : "the parts overlap at u = " + fraction_or_rounded(u) + " (" + sliced_pose_words(p) + "): " + evidence;
   };
-  struct Piece {
-    Rational u0, u1;
-    long depth;
-  };
-  // a piece narrower than 2^-(bits + 64) of the move is not enclosed tighter than its parent (the
-  // enclosures' rounding, relative to the move's size, dominates): the move is refused there, in
-  // bounded time (a grazing move otherwise halves one end's piece until the budget runs out)
-  // (bits + 64 beyond the pieces the move's length needs: a translation of 2^k times the part's
-  // reach, a rotation by a tangent step of 2^k, needs k more halvings before its pieces are short)
+  move.not_apart = "the parts are not certainly apart at " + sliced_pose_words(a);
+  // the move's length in units of the part: a translation over the part's reach, a rotation's
+  // tangent step as it is
   Rational size = reach(shape_free);
   if (sgn(size) <= 0) size = 1;
-  Rational span = kind == Kind::translation ? Rational(abs(b.x - a.x) + abs(b.y - a.y)) / size
-                                            : Rational(abs(b.tangent - a.tangent));
+  move.max_depth = move_depth_limit(kind == Kind::translation ? Rational(Rational(abs(b.x - a.x) + abs(b.y - a.y)) / size)
+                                                              : Rational(abs(b.tangent - a.tangent)));
+  return move_bisection_failure(move, budget, pieces);
+}
+
+long move_depth_limit(const Rational& span) {
   const mpz_class whole = span.get_num() / span.get_den();
   // (at most 1024 more: a move longer than 2^1024 times the part is refused near its ends in
   // bounded time, before pieces of 40 000-bit rationals)
   const long longer = sgn(whole) > 0 ? std::min(1024L, long(mpz_sizeinbase(whole.get_mpz_t(), 2))) : 0;
-  const long max_depth = long(model_detail::working_interval_bits()) + 64 + longer;
-  std::vector<Piece> stack{{Rational(0), Rational(1), 0}};
+  return long(model_detail::working_interval_bits()) + 64 + longer;
+}
+
+std::string move_bisection_failure(const MoveBisection& move, std::size_t budget, std::size_t* pieces) {
+  struct Piece {
+    Rational p0, p1;
+    long depth;
+  };
   std::size_t count = 0;
+  auto done = [&](std::string why) {
+    if (pieces) *pieces = count;
+    return why;
+  };
+  auto near = [&](const Piece& piece) {
+    return std::string(1, move.letter) + " in [" + fraction_or_rounded(piece.p0) + ", " + fraction_or_rounded(piece.p1) + "]";
+  };
+  std::vector<Piece> stack{{move.lo, move.hi, 0}};
   while (!stack.empty()) {
     Piece piece = stack.back();
     stack.pop_back();
-    if (piece.depth >= max_depth) {
-      if (pieces) *pieces = count;
-      return "not proved free: its pieces reached 2^-" + std::to_string(max_depth) + " of the move near u in [" + fraction_or_rounded(piece.u0) +
-             ", " + fraction_or_rounded(piece.u1) + "] (narrower than the enclosures resolve: the parts come too close, or touch)";
+    if (piece.depth >= move.max_depth)
+      return done("not proved free: its pieces reached 2^-" + std::to_string(move.max_depth) + " of the move near " + near(piece) +
+                  " (narrower than the enclosures resolve: the parts come too close, or touch)");
+    if (count == budget)
+      return done("not proved free within " + std::to_string(budget) + " interval pieces (stuck near " + near(piece) +
+                  ": the parts come too close, or touch)");
+    ++count;
+    if (move.apart(piece.p0, piece.p1)) continue;
+    const Rational middle = (piece.p0 + piece.p1) / 2;
+    if (move.stay || piece.depth % 6 == 0) {
+      if (std::string overlap = move.overlap_at(middle); !overlap.empty()) return done(overlap);
+      if (move.stay) return done(move.not_apart);
     }
-    if (++count > budget) {
-      if (pieces) *pieces = count - 1;
-      return "not proved free within " + std::to_string(budget) + " interval pieces (stuck near u in [" + fraction_or_rounded(piece.u0) + ", " +
-             fraction_or_rounded(piece.u1) + "]: the parts come too close, or touch)";
-    }
-    Rational bound = boundary_distance_lower_bound(shape_fixed, identity, shape_free, map_over(piece.u0, piece.u1), enough);
-    if (sgn(bound) > 0) continue;
-    const Rational middle = (piece.u0 + piece.u1) / 2;
-    if (kind == Kind::stay || piece.depth % 6 == 0) {
-      std::string overlap = overlap_at(middle);
-      if (!overlap.empty()) {
-        if (pieces) *pieces = count;
-        return overlap;
-      }
-      if (kind == Kind::stay) {
-        if (pieces) *pieces = count;
-        return "the parts are not certainly apart at " + sliced_pose_words(a);
-      }
-    }
-    stack.push_back({middle, piece.u1, piece.depth + 1});
-    stack.push_back({piece.u0, middle, piece.depth + 1});
+    stack.push_back({middle, piece.p1, piece.depth + 1});
+    stack.push_back({piece.p0, middle, piece.depth + 1});
   }
-  if (pieces) *pieces = count;
-  return "";
+  return done("");
 }
 
 }  // namespace verify

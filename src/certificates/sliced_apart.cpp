@@ -46,6 +46,10 @@ class ApartSearch {
     for (int k = 0; k < 3; ++k) weights_[k] = weights[k];
     enough_ = weights[2];
     if (sgn(enough_) <= 0) enough_ = 1;
+    // (the free test needs only the sign of the bound, and its sign does not depend on the cap:
+    // a pair skipped is farther than the cap; a tiny cap skips every pair that is not close,
+    // session 72)
+    apart_cap_ = enough_ / Rational(mpz_class(1) << 32);
     evaluate(0);
   }
 
@@ -275,7 +279,7 @@ class ApartSearch {
     const verify::PlacedPart placed_other = other_moves ? verify::place(pair_.other, other_exact) : pair_.other_placed;
     // the boundaries apart over the whole box: free, or nested (blocked) at every pose
     const bool apart_over =
-        sgn(verify::boundary_distance_lower_bound(pair_.other_shape, other_map, pair_.moving_shape, map, enough_)) > 0;
+        sgn(verify::boundary_distance_lower_bound(pair_.other_shape, other_map, pair_.moving_shape, map, apart_cap_)) > 0;
     if (apart_over) {
       bool nested = false;
       for (int side = 0; side < 2 && !nested; ++side) {
@@ -286,6 +290,12 @@ class ApartSearch {
       }
       if (!nested) return Outcome{State::free, std::nullopt};
     }
+    // a blocked box's middle overlaps (each proof below shows a point strictly inside both parts
+    // there): the exact predicate at the middle first, so that a box whose middle is apart or
+    // touching is mixed without the tests below (session 72: most of the connected producer's
+    // boxes in thin free space)
+    if (part_overlap(pair_.other, placement_of(other_exact), pair_.moving, placement_of(exact)).relation != PartRelation::overlapping)
+      return Outcome{};
     // edges crossing at the middle, their crossing pieces tried over the box
     const verify::IntervalPart at_middle = verify::place_over(pair_.moving_shape, verify::to_interval_map(exact));
     const verify::IntervalPart other_middle = verify::place_over(pair_.other_shape, verify::to_interval_map(other_exact));
@@ -354,14 +364,14 @@ class ApartSearch {
       if (best && proved(point_proof(*best))) return blocked_by(point_proof(*best));
     }
     const PartOverlap overlap = part_overlap(pair_.other, placement_of(other_exact), pair_.moving, placement_of(exact), true);
-    if (overlap.relation == PartRelation::overlapping && overlap.witness && proved(point_proof(*overlap.witness)))
+    if (overlap.witness && proved(point_proof(*overlap.witness)))
       return blocked_by(point_proof(*overlap.witness));
     return Outcome{};
   }
 
   const verify::ApartPair& pair_;
   verify::ApartTree tree_;
-  Rational weights_[3], enough_;
+  Rational weights_[3], enough_, apart_cap_;
   std::vector<State> state_;
   std::unordered_map<std::size_t, SlicedApartProof> proofs_;
   std::vector<std::vector<std::size_t>> adjacent_{1};   // each leaf's neighbours (closed boxes meet)
