@@ -120,6 +120,14 @@ struct ToleranceOptions {
   /// feature pair that may hold the follower inside the box, and is unbounded where one cannot
   /// be enclosed or excluded (today: every gear mesh).
   bool chain_assume_nominal_holder = false;
+  /// Assembly chains: where a position's composition over the tolerance box cannot be
+  /// certified (a pair's root, its free side, or a hand-over candidate not decided over the
+  /// driver range its predecessors give it), the box is bisected along the parameter that spreads
+  /// the failing pair's follower most, into at most this many sub-boxes per position; beyond, the
+  /// band there is unbounded (docs/tolerance.md, sessions 42 and 72; `--chain-split-budget`).
+  /// Any partition of the box is sound: a larger budget can only bound more positions, at a cost
+  /// paid only where a composition fails. 4 (the value of sessions 42-71) at least.
+  std::size_t chain_failure_boxes = 4;
 };
 
 /// One pair of an assembly chain (ToleranceResult::chain).
@@ -320,6 +328,13 @@ struct ToleranceResult {
   /// order; the samples, regions (one per tuple of the pairs' contacts) and bands are the output's.
   std::vector<ChainStage> chain;
   std::vector<std::string> notes;
+  /// The budgets and options that bound the result, as used (tolerance.json's `budgets`,
+  /// session 72): name and value, e.g. the certified band's relative accuracy, a chain's sub-box
+  /// budgets, a certificate's leaf and witness-split budgets.
+  std::vector<std::pair<std::string, double>> budgets;
+  /// Assembly chains: held positions whose band is unbounded after the failure split used its
+  /// whole budget (`ToleranceOptions::chain_failure_boxes`): a larger budget may bound them.
+  std::size_t chain_budget_exhausted = 0;
 };
 
 /// What a "never interferes" tolerance certificate claims (docs/certify.md "Tolerance", property

@@ -48,6 +48,7 @@ struct ToleranceCliOptions {
   bool contact_changes = false;
   bool chain = false;
   bool assume_nominal_contact = false;
+  std::size_t chain_split_budget = 4;
   std::vector<std::string> vary;
   double accuracy = 0.1;
   unsigned threads = 0;
@@ -349,6 +350,9 @@ int run(const ToleranceCliOptions& options) {
   if (!options.range.empty()) analysis.range = driver_range(options.range);
   if (options.assume_nominal_contact && !options.chain) throw ModelError("", "--assume-nominal-contact is for --chain");
   analysis.chain_assume_nominal_holder = options.assume_nominal_contact;
+  if (options.given.count("--chain-split-budget") && !options.chain)
+    throw ModelError("", "--chain-split-budget is for --chain");
+  analysis.chain_failure_boxes = options.chain_split_budget;
   analysis.monte_carlo = options.monte_carlo;
   analysis.seed = options.seed;
   analysis.positions = options.positions;
@@ -444,6 +448,11 @@ void register_tolerance(CLI::App& app, Action& action) {
   command->add_flag("--assume-nominal-contact", options->assume_nominal_contact,
                     "with --chain: follow each pair's nominal touching feature pair over the whole box (no hand-over "
                     "envelope); the band is then certified only under that assumption (docs/tolerance.md \"Hand-overs\")");
+  command->add_option("--chain-split-budget", options->chain_split_budget,
+                      "with --chain: where a position's band cannot be certified over the whole tolerance box, bisect "
+                      "the box into at most this many sub-boxes there (default 4; 1 to 1024; larger bounds more hand-over "
+                      "positions at their cost; recorded in tolerance.json's budgets)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1024}));
   command->add_flag("--contact-changes", options->contact_changes,
                     "look for contacts that appear or disappear for some parameters in the tolerance box; "
                     "confirm each with an exact C-space at a witness vector");

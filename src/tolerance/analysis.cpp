@@ -2058,6 +2058,19 @@ std::string model_file_text(const std::filesystem::path& model_file) {
   return content.str();
 }
 
+// The budgets and options that bound an analysis' result (ToleranceResult::budgets, session 72;
+// a chain's own sub-box budgets are recorded by the chain, chain.cpp).
+void record_budgets(ToleranceResult& result, const ToleranceOptions& options) {
+  auto& b = result.budgets;
+  b.insert(b.begin(), {{"relative_accuracy", options.relative_accuracy}, {"absolute_accuracy", options.absolute_accuracy}});
+  if (options.monte_carlo > 0) b.emplace_back("monte_carlo_samples", static_cast<double>(options.monte_carlo));
+  if (options.certify || options.certify_free_path) {
+    b.emplace_back("certify_max_leaves", static_cast<double>(options.certify_max_leaves));
+    b.emplace_back("certify_witness_splits", static_cast<double>(options.certify_witness_splits));
+    b.emplace_back("certify_free_path", options.certify_free_path ? 1.0 : 0.0);
+  }
+}
+
 // The analysis, and with `exponents` its parameters' scale exponents (session 67:
 // model_detail::parameter_scale_exponents of the form it ran on).
 ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, std::string source_name,
@@ -2070,10 +2083,12 @@ ToleranceResult analyze(std::string_view text, const ToleranceOptions& options, 
     ToleranceResult result = tolerance_detail::analyze_chain(text, options, {}, exponents);
     if (exponents && result.length_exponent == 0)
       exponents->assign(result.parameters.size(), 0);   // all 0, as for a pair (session 68)
+    record_budgets(result, options);
     return result;
   }
   Analysis analysis(text, options, std::move(source_name));
   ToleranceResult result = analysis.run();
+  record_budgets(result, options);
   if (exponents) *exponents = model_detail::parameter_scale_exponents(analysis.model());
   return result;
 }

@@ -342,6 +342,14 @@ class ChainAnalysis {
     bar_.begin(4);
     if (options_.monte_carlo > 0 && paths_.certified_band) monte_carlo();
     result_.notes.insert(result_.notes.end(), notes_.begin(), notes_.end());
+    // the certified band's budgets (tolerance.json `budgets`, session 72)
+    result_.budgets.emplace_back("chain_failure_boxes", static_cast<double>(std::max<std::size_t>(options_.chain_failure_boxes, 1)));
+    result_.budgets.emplace_back("chain_shared_boxes", static_cast<double>(max_shared_boxes));
+    result_.budgets.emplace_back("chain_held_pieces", static_cast<double>(max_held_pieces));
+    if (envelope_on()) {   // the hand-over walks' reach
+      result_.budgets.emplace_back("handover_far_windows", static_cast<double>(handover_far_windows()));
+      result_.budgets.emplace_back("handover_driver_pieces", static_cast<double>(handover_driver_pieces()));
+    }
     bar_.finish();
     return std::move(result_);
   }
@@ -1011,7 +1019,7 @@ class ChainAnalysis {
     }
     for (std::size_t v : {options_.positions, std::size_t(options_.allow_out_of_tolerance), std::size_t(options_.fast_paths),
                           std::size_t(options_.taylor_partials), std::size_t(options_.mean_value_chain),
-                          std::size_t(options_.chain_assume_nominal_holder)})
+                          std::size_t(options_.chain_assume_nominal_holder), options_.chain_failure_boxes})
       put(out, v);
     put(out, options_.relative_accuracy);
     put(out, options_.absolute_accuracy);
@@ -1067,6 +1075,9 @@ class ChainAnalysis {
     std::vector<std::size_t> shared_boxes(positions(), 0);
     std::vector<std::size_t> failure_boxes(positions(), 0);   // sub-boxes where a composition failed and was bisected
     std::vector<char> ok(positions(), 0);
+    // positions whose last pass ran out of the failure split's budget (ToleranceOptions::chain_failure_boxes)
+    std::vector<char> exhausted(positions(), 0);
+    const std::size_t max_failure_boxes = std::max<std::size_t>(options_.chain_failure_boxes, 1);
     std::vector<HandoverNote> handover(positions());
     std::size_t n = result_.parameters.size();
     // ChainPaths::band_memo (tests only): positions whose inputs another analysis of the same run
@@ -1090,6 +1101,7 @@ class ChainAnalysis {
         if (it != memo->positions.end()) {
           const ChainBandMemo::Position& kept = it->second;
           ok[i] = kept.ok ? 1 : 0;
+          exhausted[i] = kept.exhausted ? 1 : 0;
           if (kept.ok) {
             result_.samples[i].certified = CertifiedRange{kept.lower, kept.upper};
             for (std::size_t s = 0; s < stages_.size(); ++s) per_[i][s].certified_chart = kept.charts[s];
@@ -1193,6 +1205,7 @@ class ChainAnalysis {
       };
       auto position_band = [&](int far) -> bool {
         std::size_t failure_splits = 0, shared_splits = 0;
+        exhausted[i] = 0;
         // The parameter of sub-box b whose weight times its width is largest and above `floor`
         // (n if none): where a sub-box is bisected (both halves queued, breadth first).
         auto widest = [n](const Box& b, const std::vector<double>& weight, double floor) {
@@ -1284,13 +1297,14 @@ class ChainAnalysis {
             // composed over the whole box, is too wide): bisected along the parameter that
             // spreads the failing pair's follower most, within max_failure_boxes sub-boxes; the
             // band is the hull of the halves' compositions. Otherwise unbounded.
-            if (failed < stages_.size() && used + pending.size() + 2 <= max_failure_boxes) {
+            if (failed < stages_.size()) {
               std::size_t split = widest(b, share[failed], 0);
-              if (split < n) {
+              if (split < n && used + pending.size() + 2 <= max_failure_boxes) {
                 bisect(b, split);
                 ++failure_splits;
                 continue;
               }
+              if (split < n) exhausted[i] = 1;   // a split was left for want of budget
             }
             if (!whole) return false;   // the band is unbounded
             have = false;   // the whole box's band stands
@@ -1320,6 +1334,7 @@ class ChainAnalysis {
       if (memo) {
         ChainBandMemo::Position kept;
         kept.ok = ok[i] != 0;
+        kept.exhausted = exhausted[i] != 0;
         if (kept.ok) {
           kept.lower = result_.samples[i].certified.lower;
           kept.upper = result_.samples[i].certified.upper;
@@ -1346,6 +1361,7 @@ class ChainAnalysis {
       if (!sample.contact) continue;
       if (!ok[i]) {
         ++uncertified;
+        result_.chain_budget_exhausted += exhausted[i] != 0;
         constexpr double inf = std::numeric_limits<double>::infinity();
         sample.certified = CertifiedRange{-inf, inf};
         for (PositionStage& ps : per_[i]) ps.certified_chart = Interval(-inf, inf);
@@ -1371,6 +1387,10 @@ class ChainAnalysis {
     if (uncertified > 0)
       notes_.push_back("the certified band could not be computed at " + std::to_string(uncertified) +
                        " driver position(s) (shown unbounded)");
+    if (result_.chain_budget_exhausted > 0)
+      notes_.push_back("the certified band is unbounded at " + std::to_string(result_.chain_budget_exhausted) +
+                       " position(s) where the tolerance box's bisection for a failed composition used its whole budget (" +
+                       std::to_string(max_failure_boxes) + " sub-boxes a position): a larger --chain-split-budget may bound them");
     // Hand-overs (docs/tolerance.md "Assembly chains" step 4, "Hand-overs"), said where the band is read.
     std::size_t widened = 0;
     std::map<std::string, std::size_t> reasons;
@@ -1700,8 +1720,8 @@ class ChainAnalysis {
 
   static constexpr std::size_t max_shared_boxes = 128;   // sub-boxes of the tolerance box per position
   static constexpr std::size_t max_held_pieces = 16;     // pieces of a held driver range (held_pieces)
-  // sub-boxes of the tolerance box per position where a composition fails (session 42)
-  static constexpr std::size_t max_failure_boxes = 4;
+  // (the sub-boxes of the tolerance box per position where a composition fails, session 42:
+  // ToleranceOptions::chain_failure_boxes since session 72)
 
   std::string text_;
   ToleranceOptions options_;

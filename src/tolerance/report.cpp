@@ -617,6 +617,16 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
                   {"zones", r.seconds_zones},
                   {"threshold", r.seconds_threshold}};
   j["cpu_seconds"] = {{"certified", r.cpu_seconds_certified}, {"zones", r.cpu_seconds_zones}};
+  // the budgets and options that bound the result (session 72): a whole number as one
+  ordered_json budgets = ordered_json::object();
+  for (const auto& [name, value] : r.budgets) {
+    if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 9.0e15)
+      budgets[name] = static_cast<long long>(value);
+    else
+      budgets[name] = value;
+  }
+  if (!r.chain.empty()) budgets["chain_budget_exhausted_positions"] = r.chain_budget_exhausted;
+  j["budgets"] = budgets;
   j["notes"] = r.notes;
   return j.dump(1) + "\n";
 }

@@ -137,6 +137,7 @@ struct ChainBandMemo {
     std::vector<kernels::Interval> charts;    ///< each pair's certified chart enclosure (when ok)
     std::vector<std::size_t> boxes;           ///< each pair's sub-box count at the position
     std::size_t shared_boxes = 0, failure_boxes = 0;
+    bool exhausted = false;                   ///< the failure split ran out of budget (session 72)
     bool extended = false;                    ///< a hand-over envelope widened
     std::string why;                          ///< why an envelope was not bounded
   };

@@ -13,7 +13,9 @@
 #   leaf K);
 # - the default budget (6) on 0.2 .. 0.45 rad: CERTIFIED, hipair-verify `valid`, exit 0;
 # - bad input, one message naming the option, nothing written: N = 65 (beyond 64), N = -1,
-#   N without --certify, N with --certify-interference.
+#   N without --certify, N with --certify-interference;
+# - session 72: tolerance.json's `budgets` records the witness-split budget (0, 6) and the leaf
+#   budget; `--chain-split-budget` refused without --chain, at 0 and beyond 1024.
 # usage: run_tolerance_witness_budget_tests.sh HIPAIR_BINARY HIPAIR_VERIFY_BINARY SOURCE_DIR WORK_DIR
 set -uo pipefail
 source "$(dirname "$0")/seeded_verify_test.sh" "$@"
@@ -34,6 +36,9 @@ exhausted() {
   [ -n "$leaf" ] || { fail "$name: the reason names no leaf without a witness path: $line"; return; }
   grep -qF "split at most --certify-witness-splits times along a branch" <<<"$line" \
     || fail "$name: the report does not say what the budget is: $line"
+  # the budget the result was computed with is recorded (session 72: tolerance.json's budgets)
+  grep -qE '"certify_witness_splits": 0,?$' "$dir/tolerance.json" \
+    || fail "$name: tolerance.json does not record the budget 0: $(grep -F certify_witness_splits "$dir/tolerance.json")"
   grep -qF '"verifier_verdict": "unproven"' "$dir/tolerance.json" \
     || fail "$name: tolerance.json's verdict is not unproven: $(grep -F verifier_verdict "$dir/tolerance.json")"
   [ -s "$dir/tolerance-certificate.json" ] || { fail "$name: no tolerance-certificate.json written"; return; }
@@ -66,6 +71,10 @@ dir="$work/default"
 "$hipair" tolerance "$model" --range 0.2:0.45 --certify --accuracy 0.5 --threads 1 --quiet --out "$dir" \
   >"$work/default.out" 2>&1 || fail "default budget: exit non-zero: $(tail -n 2 "$work/default.out")"
 grep -q "CERTIFIED" "$dir/report.txt" || fail "default budget: not CERTIFIED: $(grep -A1 'certificate (' "$dir/report.txt")"
+grep -qE '"certify_witness_splits": 6,?$' "$dir/tolerance.json" \
+  || fail "default budget: tolerance.json does not record the budget 6: $(grep -F certify_witness_splits "$dir/tolerance.json")"
+grep -qE '"certify_max_leaves": 20000,?$' "$dir/tolerance.json" \
+  || fail "default budget: tolerance.json does not record the leaf budget: $(grep -F certify_max_leaves "$dir/tolerance.json")"
 out=$("$verify" "$dir/tolerance-certificate.json" "$model" 2>&1) || fail "default budget: hipair-verify exit $?: $out"
 case "$out" in valid:*) ;; *) fail "default budget: hipair-verify does not answer valid: $out" ;; esac
 
@@ -85,6 +94,10 @@ refused negative "--certify-witness-splits" --range 0.2:0.45 --certify --certify
 refused alone "--certify-witness-splits is for --certify or --certify-free-path" --range 0.2:0.45 --certify-witness-splits 3
 refused interference "--certify-witness-splits is for the no-jam certificate" --certify-interference --range 0:0.1 \
   --follower-range -0.1:0.1 --certify-witness-splits 3
+# the chain's split budget (session 72): for --chain only, 1 to 1024
+refused chain_alone "--chain-split-budget is for --chain" --range 0.2:0.45 --chain-split-budget 8
+refused chain_zero "--chain-split-budget" --driver escape-wheel --chain --range 0.2:0.45 --chain-split-budget 0
+refused chain_beyond "--chain-split-budget" --driver escape-wheel --chain --range 0.2:0.45 --chain-split-budget 1025
 
 [ $failures -eq 0 ] && echo "tolerance witness-budget tests passed (seed $seed)"
 exit $((failures > 0))
