@@ -1892,13 +1892,13 @@ struct Simulation::Impl {
   // N . (J_second(P) - J_first(P)) — J the velocity of P per unit rate of a part's coordinate
   // (a rotation k x (P - pivot), a translation its direction), exact from the model's pivots and
   // directions. Which feature pair (session 71, jam71; session 70 took the first named, whatever
-  // the others): every feature pair of the row whose exact frame is defined there gives a row,
-  // and they must all be the same row up to a positive factor (one feature pair, or coincident
-  // curves of one edge), decided exactly; rows that differ (a C-space vertex, curves crossing)
-  // leave the row without an exact form, and the verdict approximate. nullopt where there is
-  // none (no feature named, no frame defined, a configuration outside every chart or beyond the
-  // doubles), or where it does not agree in orientation with `g`, the doubles' row (their dot
-  // product not positive).
+  // the others): every feature pair of the row must have an exact frame there (session 72,
+  // jam72: one without voids the row), each gives a row, and they must all be the same row up to
+  // a positive factor (one feature pair, or coincident curves of one edge), decided exactly; rows
+  // that differ (a C-space vertex, curves crossing) leave the row without an exact form, and the
+  // verdict approximate. nullopt where there is none (no feature named, a feature pair without
+  // an exact frame, a configuration outside every chart or beyond the doubles), or where it does
+  // not agree in orientation with `g`, the doubles' row (their dot product not positive).
   std::optional<std::vector<Rational>> exact_jam_row(std::size_t pair, const std::vector<FeatureId>& features, const Vec& g,
                                                      const Vec& qs) const {
     if (features.empty() || !spaces[pair]) return std::nullopt;

@@ -617,13 +617,17 @@ std::string json_report(const ToleranceResult& r, const std::vector<long>& k) {
                   {"zones", r.seconds_zones},
                   {"threshold", r.seconds_threshold}};
   j["cpu_seconds"] = {{"certified", r.cpu_seconds_certified}, {"zones", r.cpu_seconds_zones}};
-  // the budgets and options that bound the result (session 72): a whole number as one
+  // the budgets and options that bound the result (session 72), each key with one JSON type
+  // whatever its value: the accuracies numbers (1.0 stays 1.0), certify_free_path a boolean,
+  // every other key a count (an integer)
   ordered_json budgets = ordered_json::object();
   for (const auto& [name, value] : r.budgets) {
-    if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 9.0e15)
-      budgets[name] = static_cast<long long>(value);
-    else
+    if (name.ends_with("_accuracy"))
       budgets[name] = value;
+    else if (name == "certify_free_path")
+      budgets[name] = value != 0.0;
+    else
+      budgets[name] = static_cast<long long>(value);
   }
   if (!r.chain.empty()) budgets["chain_budget_exhausted_positions"] = r.chain_budget_exhausted;
   j["budgets"] = budgets;

@@ -161,7 +161,12 @@ TEST(ToleranceBudgets, GeneratedCertificateBudgetsAreRecordedInToleranceJson) {
     const nlohmann::json& b = j["budgets"];
     EXPECT_EQ(b["certify_witness_splits"].get<std::size_t>(), options.certify_witness_splits);
     EXPECT_EQ(b["certify_max_leaves"].get<std::size_t>(), options.certify_max_leaves);
-    EXPECT_EQ(b["certify_free_path"].get<long>(), 0);
+    ASSERT_TRUE(b["certify_free_path"].is_boolean());
+    EXPECT_FALSE(b["certify_free_path"].get<bool>());
+    // one JSON type per key whatever the value: an accuracy of 1.0 is a number with a fraction
+    EXPECT_TRUE(b["relative_accuracy"].is_number_float());
+    EXPECT_TRUE(b["absolute_accuracy"].is_number_float());
+    EXPECT_TRUE(b["certify_max_leaves"].is_number_integer());
     EXPECT_EQ(b["relative_accuracy"].get<double>(), options.relative_accuracy);
     EXPECT_EQ(b["absolute_accuracy"].get<double>(), options.absolute_accuracy);
     EXPECT_FALSE(b.contains("chain_failure_boxes"));   // a pair, not a chain
