@@ -686,25 +686,59 @@ inline std::optional<std::vector<Rational>> reduced_feasible_point(const ExactLi
 /// session 72, speed72: exact_assignment's held sets before any rational is formed): true, no
 /// solution, exactly; false, the equalities are regular and their solution's enclosure breaks
 /// nothing; nullopt, not decided here (not square, or a pivot's enclosure holding 0).
+/// (Session 73, speed73: the equalities' Gauss–Jordan in one flat row-major block [A | b] kept per
+/// thread and reused, the rows' order an index permutation — the same operations in the same order
+/// as held_force_detail::solve's on Matrix<Interval>, so the same bits, without a vector per row
+/// and per held set; tests/unit/simulation_square_filter_test.cpp compares it with that form.)
 inline std::optional<bool> square_certainly_infeasible(const IntervalLinearSystem& lp) {
   using kernels::Interval;
   const std::size_t vars = lp.variables;
-  held_force_detail::Matrix<Interval> A, b;
-  for (std::size_t i = 0; i < lp.rows.size(); ++i)
+  std::size_t equalities = 0;
+  for (std::size_t i = 0; i < lp.rows.size(); ++i) equalities += lp.equality[i] ? 1 : 0;
+  if (equalities != vars) return std::nullopt;
+  const std::size_t w = vars + 1;   // a row: its vars coefficients, then its right-hand side
+  thread_local std::vector<Interval> block;
+  thread_local std::vector<std::size_t> at;   // at[r]: where the r-th row of the elimination is
+  block.resize(vars * w);
+  at.resize(vars);
+  for (std::size_t i = 0, r = 0; i < lp.rows.size(); ++i)
     if (lp.equality[i]) {
-      A.push_back(lp.rows[i]);
-      b.push_back({lp.rhs[i]});
+      Interval* row = block.data() + r * w;
+      std::copy(lp.rows[i].begin(), lp.rows[i].end(), row);
+      row[vars] = lp.rhs[i];
+      at[r] = r * w;
+      ++r;
     }
-  if (A.size() != vars) return std::nullopt;
-  const std::optional<held_force_detail::Matrix<Interval>> z = held_force_detail::solve(std::move(A), std::move(b));
-  if (!z) return std::nullopt;
+  using held_force_detail::magnitude;
+  using held_force_detail::nonzero;
+  Interval* const A = block.data();
+  for (std::size_t c = 0; c < vars; ++c) {
+    std::size_t best = vars;
+    for (std::size_t r = c; r < vars; ++r)
+      if (nonzero(A[at[r] + c]) && (best == vars || magnitude(A[at[r] + c]) > magnitude(A[at[best] + c]))) best = r;
+    if (best == vars) return std::nullopt;
+    std::swap(at[c], at[best]);
+    const Interval* pivot = A + at[c];
+    for (std::size_t r = 0; r < vars; ++r) {
+      if (r == c) continue;
+      Interval* row = A + at[r];
+      const Interval f = row[c] / pivot[c];
+      for (std::size_t k = c; k < vars; ++k) row[k] = row[k] - f * pivot[k];
+      row[vars] = row[vars] - f * pivot[vars];
+    }
+  }
+  // the solution z_j = b_j / A_jj, j in the elimination's order (as solve's last loop)
+  auto z = [&](std::size_t j) { return A[at[j] + vars] / A[at[j] + j]; };
   for (std::size_t j = 0; j < vars; ++j)
-    if (lp.nonnegative[j] && (*z)[j][0].hi < 0) return true;
+    if (lp.nonnegative[j] && z(j).hi < 0) return true;
+  thread_local std::vector<Interval> solution;
+  solution.resize(vars);
+  for (std::size_t j = 0; j < vars; ++j) solution[j] = z(j);
   for (std::size_t i = 0; i < lp.rows.size(); ++i) {
     if (lp.equality[i]) continue;
     Interval sum(0);
     for (std::size_t j = 0; j < vars; ++j)
-      if (lp.rows[i][j].sign() != 0) sum = sum + lp.rows[i][j] * (*z)[j][0];
+      if (lp.rows[i][j].sign() != 0) sum = sum + lp.rows[i][j] * solution[j];
     if (sum.hi < lp.rhs[i].lo) return true;
   }
   return false;
@@ -725,12 +759,15 @@ inline bool square_certainly_infeasible(const ExactLinearSystem& lp) {
   return square_certainly_infeasible(enclosed).value_or(false);
 }
 
-inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLinearSystem& lp) {
+/// `filtered` (session 73, speed73): the caller has already put this system's interval enclosure
+/// through square_certainly_infeasible (exact_assignment's held sets): the filter on the rationals'
+/// enclosures is not run again (the exact solve below decides; the same answer either way).
+inline std::optional<std::vector<Rational>> square_feasible_point(const ExactLinearSystem& lp, bool filtered = false) {
   const std::size_t vars = lp.variables;
   std::size_t equalities = 0;
   for (bool e : lp.equality) equalities += e;
   if (equalities != vars) return reduced_feasible_point(lp);
-  if (square_certainly_infeasible(lp)) return std::nullopt;
+  if (!filtered && square_certainly_infeasible(lp)) return std::nullopt;
   held_force_detail::Matrix<Rational> A, b;
   for (std::size_t i = 0; i < lp.rows.size(); ++i)
     if (lp.equality[i]) {
@@ -982,38 +1019,50 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
     a.formed = true;
     return a;
   };
-  // true: the held set's system certainly has no solution (the filters above on its enclosure)
+  // true: the held set's system certainly has no solution (the filters above on its enclosure).
+  // (Session 73, speed73: one system reused across the held sets — every held set has the same
+  // rows, only the number of unknowns changes — its rows overwritten in place: no vector made per
+  // row and per held set.)
+  IntervalLinearSystem interval_lp;
   auto refused_in_intervals = [&](const std::vector<bool>& is_held, const std::vector<std::size_t>& held) {
     const std::size_t vars = held.size() + p;
-    IntervalLinearSystem lp;
+    IntervalLinearSystem& lp = interval_lp;
     lp.variables = vars;
     lp.nonnegative.assign(vars, false);
     for (std::size_t v = 0; v < held.size(); ++v) lp.nonnegative[v] = true;
+    std::size_t used = 0;   // rows written
+    auto next_row = [&](bool equality, const Interval& rhs) -> std::vector<Interval>& {
+      if (used == lp.rows.size()) {
+        lp.rows.emplace_back();
+        lp.rhs.emplace_back();
+        lp.equality.push_back(false);
+      }
+      lp.rhs[used] = rhs;
+      lp.equality[used] = equality;
+      std::vector<Interval>& row = lp.rows[used++];
+      row.resize(vars);
+      return row;
+    };
     auto add = [&](const IntervalAffineRow& a, bool equality, int sign) {   // as try_set's add
-      std::vector<Interval> row(vars);
+      std::vector<Interval>& row = next_row(equality, sign > 0 ? -a.constant : a.constant);
       for (std::size_t v = 0; v < vars; ++v) {
         const Interval& c = a.on[v < held.size() ? held[v] : m + (v - held.size())];
         row[v] = sign > 0 ? c : -c;
       }
-      lp.rows.push_back(std::move(row));
-      lp.rhs.push_back(sign > 0 ? -a.constant : a.constant);
-      lp.equality.push_back(equality);
     };
     for (std::size_t k = 0; k < m; ++k) add(interval_affine(k, false), is_held[k], 1);
     for (std::size_t j = 0; j < p; ++j) {
       const Friction& c = friction[reps[j]];
       add(interval_affine(reps[j], true), true, 1);
       for (int side : {1, -1}) {
-        std::vector<Interval> row(vars, Interval(0));
+        std::vector<Interval>& row = next_row(false, Interval(0));
+        std::fill(row.begin(), row.end(), Interval(0));
         for (std::size_t v = 0; v < held.size(); ++v) {
           const std::size_t k = held[v];
           if (group_of(k) == group_of(reps[j]) && friction[k].on && state[k] == stick && c.mu_static != 0)
             row[v] = Interval::point(c.mu_static) / Interval::point(friction[k].s);
         }
         row[held.size() + j] = Interval(-side);
-        lp.rows.push_back(std::move(row));
-        lp.rhs.push_back(Interval(0));
-        lp.equality.push_back(false);
       }
     }
     for (std::size_t k = 0; k < m; ++k) {
@@ -1022,6 +1071,9 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       if (!c.on || c.decided || (st != slip_positive && st != slip_negative)) continue;
       add(interval_affine(k, true), false, st);
     }
+    lp.rows.resize(used);   // (the same count for every held set: nothing freed)
+    lp.rhs.resize(used);
+    lp.equality.resize(used);
     const std::optional<bool> square = square_certainly_infeasible(lp);
     if (square) return *square;
     return certainly_infeasible_in_intervals(lp);
@@ -1079,7 +1131,7 @@ inline std::optional<FrictionalSolution> exact_assignment(const Eigen::MatrixXd&
       add(false, st);
     }
     if (tried) ++*tried;
-    const std::optional<std::vector<Rational>> z = square_feasible_point(lp);
+    const std::optional<std::vector<Rational>> z = square_feasible_point(lp, filter);
     if (!z) return std::nullopt;
     // the solution: exact multipliers and forces, accelerations and gap accelerations
     std::vector<Rational> lambda(m, Rational(0)), force(m, Rational(0));
