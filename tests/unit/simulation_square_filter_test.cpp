@@ -81,7 +81,7 @@ Interval enclosure(std::mt19937_64& random, const Rational& r) {
 }
 
 TEST(SimulationSquareFilter, FlatFormAnswersAsTheFormerAndOnlyWhereTheExactEliminationFindsNoSolution) {
-  std::mt19937_64 random(test_seed(7301));
+  std::mt19937_64 random(test::test_seed(7301));
   std::size_t decided = 0, refused = 0, undecided = 0, square = 0;
   const Rational tiny = Rational(1) / Rational(mpz_class(1) << 70);
   for (int trial = 0; trial < 4000; ++trial) {
