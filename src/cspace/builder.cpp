@@ -1820,10 +1820,15 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
     mpz_neg(num, num);
     mpz_mul(den, b->get_mpz_t(), x.get_den_mpz_t());
     root.canonicalize();
-    mpq_set_d(box_lo.get_mpq_t(), edge.box[1]);
-    mpq_set_d(box_hi.get_mpq_t(), edge.box[3]);
-    if (!(box_lo < root && root < box_hi))
-      throw NumericError("internal: contact curve root 0 is not in its certified box");
+    // strictly inside the certified box: decided by the root's certified double enclosure when
+    // it lies strictly between the box's doubles (session 73: no conversion of the box to
+    // rationals), else exactly as before
+    if (const algebra::Interval r = algebra::enclose(root); !(edge.box[1] < r.lo && r.hi < edge.box[3])) {
+      mpq_set_d(box_lo.get_mpq_t(), edge.box[1]);
+      mpq_set_d(box_hi.get_mpq_t(), edge.box[3]);
+      if (!(box_lo < root && root < box_hi))
+        throw NumericError("internal: contact curve root 0 is not in its certified box");
+    }
     return raw::exact_real(root);
   }
   algebra::Polynomial p = algebra::substitute_x(edge.support, x);
