@@ -530,6 +530,13 @@ std::pair<Points, Points> zero_clearance_slot_pair(std::mt19937_64& random) {
   return {a, b};
 }
 
+// The label tests' touching shapes by number: 1 a polygon and its shifted copy (collinear and
+// touching edges everywhere), 2 staircases (collinear steps, shared coordinates), 3 a bar exactly
+// as wide as a slot (zero clearance, random widths and depths).
+std::pair<Points, Points> touching_case_pair(std::mt19937_64& random, int which) {
+  return which == 1 ? shifted_copy_pair(random) : which == 2 ? staircase_pair(random) : zero_clearance_slot_pair(random);
+}
+
 TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGeneratedPairs) {
   std::mt19937_64 random(16031);
   int checked = 0, collinear_labels = 0;
@@ -541,14 +548,10 @@ TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGenerated
         b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
                         static_cast<double>(random() % 5) - 2, 2, 2, false);
         break;
-      case 1:   // a polygon and its shifted copy: collinear and touching edges everywhere
-        std::tie(a, b) = shifted_copy_pair(random);
-        break;
-      case 2:   // staircases: collinear steps, shared coordinates
-        std::tie(a, b) = staircase_pair(random);
-        break;
-      case 3:   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
-        std::tie(a, b) = zero_clearance_slot_pair(random);
+      case 1:
+      case 2:
+      case 3:   // touching_case_pair's shapes
+        std::tie(a, b) = touching_case_pair(random, instance % 5);
         break;
       default:   // a staircase against a star with collinear edges
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
@@ -887,13 +890,9 @@ TEST(CSpacePolygonFrontEnd, SupportGroupsAndInPlaceSamplesLabelAsTheRationalRefe
                         static_cast<double>(random() % 5) - 2, 2, 2, true);
         break;
       case 1:
-        std::tie(a, b) = shifted_copy_pair(random);
-        break;
       case 2:
-        std::tie(a, b) = staircase_pair(random);
-        break;
       case 3:
-        std::tie(a, b) = zero_clearance_slot_pair(random);
+        std::tie(a, b) = touching_case_pair(random, instance % 6);
         break;
       default: {   // a staircase and a star with collinear edges, at 10^-300 or 10^300
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
@@ -1195,13 +1194,9 @@ TEST(CSpacePolygonFrontEnd, UncarriedLineEdgeSamplesEqualTheReferenceOnBothPaths
                            Rational(static_cast<long>(random() % 5) - 2), 16);
         break;
       case 1:
-        std::tie(a, b) = shifted_copy_pair(random);
-        break;
       case 2:
-        std::tie(a, b) = staircase_pair(random);
-        break;
       case 3:
-        std::tie(a, b) = zero_clearance_slot_pair(random);
+        std::tie(a, b) = touching_case_pair(random, instance % 5);
         break;
       default:
         a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3, 97, false);
