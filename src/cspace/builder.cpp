@@ -761,6 +761,24 @@ const Rational& label_filter_width() {
   return width;
 }
 
+// A line edge's sample between the rational abscissae lo < hi of its ends, on the line
+// a x + b y + c = 0 (b != 0): sample_x the simplest rational between them
+// (algebra::rational_between of the two exact ends; written into data.sample_x in place when the
+// ends fit machine integers, else assigned) and sample_y the exact rational -(a x + c) / b
+// (edge_y_at's value, as an exact Real written into data.sample_y in place).
+void line_sample(const mpz_class& a, const mpz_class& b, const mpz_class& c, const Rational& lo, const Rational& hi,
+                 EdgeData& data) {
+  if (!(lo < hi) || !algebra::simplest_between_small(lo, hi, data.sample_x)) data.sample_x = algebra::simplest_between(lo, hi);
+  Rational y;   // -(a x + c) / b, its integers written in place
+  const mpz_ptr y_num = mpq_numref(y.get_mpq_t()), y_den = mpq_denref(y.get_mpq_t());
+  mpz_mul(y_num, a.get_mpz_t(), data.sample_x.get_num_mpz_t());
+  mpz_addmul(y_num, c.get_mpz_t(), data.sample_x.get_den_mpz_t());
+  mpz_neg(y_num, y_num);
+  mpz_mul(y_den, b.get_mpz_t(), data.sample_x.get_den_mpz_t());
+  y.canonicalize();
+  raw::exact_real_into(data.sample_y, std::move(y));   // in place, y's integers taken
+}
+
 void label_edges(ChartData& chart, bool by_support) {
   const auto& arrangement = chart.arrangement;
   chart.edges.resize(arrangement.edges.size());
@@ -829,18 +847,15 @@ void label_edges(ChartData& chart, bool by_support) {
       // exactly in rationals. (The general path, without carried supports, takes the branch
       // below: the tests compare the two.)
       s.front_end = true;
-      // written into the default sample_x in place when its ends fit machine integers (the
-      // same canonical rational as simplest_between: its own first step), else assigned
-      if (!(low.x.lower < high.x.lower) || !algebra::simplest_between_small(low.x.lower, high.x.lower, data.sample_x))
-        data.sample_x = algebra::simplest_between(low.x.lower, high.x.lower);
-      Rational y;   // -(a x + c) / b, its integers written in place
-      const mpz_ptr y_num = mpq_numref(y.get_mpq_t()), y_den = mpq_denref(y.get_mpq_t());
-      mpz_mul(y_num, a->get_mpz_t(), data.sample_x.get_num_mpz_t());
-      mpz_addmul(y_num, c->get_mpz_t(), data.sample_x.get_den_mpz_t());
-      mpz_neg(y_num, y_num);
-      mpz_mul(y_den, b->get_mpz_t(), data.sample_x.get_den_mpz_t());
-      y.canonicalize();
-      raw::exact_real_into(data.sample_y, std::move(y));   // in place, y's integers taken
+      line_sample(*a, *b, *c, low.x.lower, high.x.lower, data);
+    } else if (const mpz_class *a, *b, *c; low.x.exact && high.x.exact && line_of(edge.support, a, b, c) && sgn(*b) != 0) {
+      // A line edge between rational abscissae without a carried support (a chart side, or a
+      // line edge of the general path): the sample of the branch below in rationals —
+      // rational_between of two exact numbers is the simplest rational between them, and
+      // edge_y_at of the line a x + b y + c is the exact rational -(a x + c) / b — written in
+      // place (session 73: no Rational and Real temporaries per edge); the labels below as before.
+      line_sample(*a, *b, *c, low.x.lower, high.x.lower, data);
+      s.box = {algebra::enclose(data.sample_x), algebra::Interval{data.sample_y.lower_bound(), data.sample_y.upper_bound()}};
     } else {
       data.sample_x = algebra::rational_between(low.x, high.x);
       data.sample_y = edge_y_at(chart, e, data.sample_x);
@@ -1805,10 +1820,15 @@ algebra::Real edge_y_at(const ChartData& chart, std::size_t local_edge, const Ra
     mpz_neg(num, num);
     mpz_mul(den, b->get_mpz_t(), x.get_den_mpz_t());
     root.canonicalize();
-    mpq_set_d(box_lo.get_mpq_t(), edge.box[1]);
-    mpq_set_d(box_hi.get_mpq_t(), edge.box[3]);
-    if (!(box_lo < root && root < box_hi))
-      throw NumericError("internal: contact curve root 0 is not in its certified box");
+    // strictly inside the certified box: decided by the root's certified double enclosure when
+    // it lies strictly between the box's doubles (session 73: no conversion of the box to
+    // rationals), else exactly as before
+    if (const algebra::Interval r = algebra::enclose(root); !(edge.box[1] < r.lo && r.hi < edge.box[3])) {
+      mpq_set_d(box_lo.get_mpq_t(), edge.box[1]);
+      mpq_set_d(box_hi.get_mpq_t(), edge.box[3]);
+      if (!(box_lo < root && root < box_hi))
+        throw NumericError("internal: contact curve root 0 is not in its certified box");
+    }
     return raw::exact_real(root);
   }
   algebra::Polynomial p = algebra::substitute_x(edge.support, x);

@@ -530,6 +530,13 @@ std::pair<Points, Points> zero_clearance_slot_pair(std::mt19937_64& random) {
   return {a, b};
 }
 
+// The label tests' touching shapes by number: 1 a polygon and its shifted copy (collinear and
+// touching edges everywhere), 2 staircases (collinear steps, shared coordinates), 3 a bar exactly
+// as wide as a slot (zero clearance, random widths and depths).
+std::pair<Points, Points> touching_case_pair(std::mt19937_64& random, int which) {
+  return which == 1 ? shifted_copy_pair(random) : which == 2 ? staircase_pair(random) : zero_clearance_slot_pair(random);
+}
+
 TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGeneratedPairs) {
   std::mt19937_64 random(16031);
   int checked = 0, collinear_labels = 0;
@@ -541,14 +548,10 @@ TEST(CSpacePolygonFrontEnd, LineEdgeLabelsAndSamplesEqualTheReferenceOnGenerated
         b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
                         static_cast<double>(random() % 5) - 2, 2, 2, false);
         break;
-      case 1:   // a polygon and its shifted copy: collinear and touching edges everywhere
-        std::tie(a, b) = shifted_copy_pair(random);
-        break;
-      case 2:   // staircases: collinear steps, shared coordinates
-        std::tie(a, b) = staircase_pair(random);
-        break;
-      case 3:   // zero clearance: a bar exactly as wide as a slot (random widths and depths)
-        std::tie(a, b) = zero_clearance_slot_pair(random);
+      case 1:
+      case 2:
+      case 3:   // touching_case_pair's shapes
+        std::tie(a, b) = touching_case_pair(random, instance % 5);
         break;
       default:   // a staircase against a star with collinear edges
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
@@ -887,13 +890,9 @@ TEST(CSpacePolygonFrontEnd, SupportGroupsAndInPlaceSamplesLabelAsTheRationalRefe
                         static_cast<double>(random() % 5) - 2, 2, 2, true);
         break;
       case 1:
-        std::tie(a, b) = shifted_copy_pair(random);
-        break;
       case 2:
-        std::tie(a, b) = staircase_pair(random);
-        break;
       case 3:
-        std::tie(a, b) = zero_clearance_slot_pair(random);
+        std::tie(a, b) = touching_case_pair(random, instance % 6);
         break;
       default: {   // a staircase and a star with collinear edges, at 10^-300 or 10^300
         a = random_staircase(random, 0, 0, 2 + static_cast<int>(random() % 3));
@@ -1163,6 +1162,89 @@ TEST(CSpacePolygonFrontEnd, CoordinatesAcrossTheMachineIntegerLimitsEqualTheGene
   EXPECT_GE(compared, 16);
   EXPECT_GE(below, 4);
   EXPECT_GE(above, 4);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 73 (poly73): a line edge between rational abscissae without a carried support (the
+// chart's bottom and top sides on the front end; every line edge on the general path) is sampled
+// in rationals in place (label_edges' line_sample), and edge_y_at decides its certified-box
+// check from the root's double enclosure when that enclosure lies strictly inside the box. Both
+// against the reference (expect_reference_labels: rational_between of the ends, the support's
+// root by Sturm isolation at the sample and at two more rationals, the labels by exact algebra
+// over every chart curve), on both paths, at scales 10^-300 ... 10^400 (10^400 may be refused,
+// nothing else); the two paths field by field and the blocked region against minkowski_sum_2.
+// Cases: convex and non-convex stars (collinear edges), a star and its lattice-shifted copy
+// (collinear, touching), staircases (collinear steps), zero-clearance slots (zero-area overlaps).
+TEST(CSpacePolygonFrontEnd, UncarriedLineEdgeSamplesEqualTheReferenceOnBothPathsAtScales) {
+  std::mt19937_64 random(7373);
+  const int exponents[] = {-300, -30, 0, 40, 300, 400};
+  int compared = 0, refused = 0;
+  std::size_t chart_sides = 0, general_lines = 0;
+  for (int instance = 0; instance < 30; ++instance) {
+    Points a, b;
+    switch (instance % 5) {
+      case 0:   // convex against non-convex
+        a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3, 8, instance % 2 == 0);
+        b = circle_polygon(random, 3 + static_cast<int>(random() % 6), Rational(2), Rational(static_cast<long>(random() % 5) - 2),
+                           Rational(static_cast<long>(random() % 5) - 2), 16);
+        break;
+      case 1:
+      case 2:
+      case 3:
+        std::tie(a, b) = touching_case_pair(random, instance % 5);
+        break;
+      default:
+        a = random_star(random, 3 + static_cast<int>(random() % 8), 0, 0, 3, 97, false);
+        b = random_star(random, 3 + static_cast<int>(random() % 8), static_cast<double>(random() % 5) - 2,
+                        static_cast<double>(random() % 5) - 2, 2, 16, true);
+        break;
+    }
+    const int exponent = exponents[instance % 6];
+    a = scaled(a, power_of_ten(exponent));
+    b = scaled(b, power_of_ten(exponent));
+    SCOPED_TRACE("instance " + std::to_string(instance) + ", scale 10^" + std::to_string(exponent));
+    std::optional<Model> built_model = sliders_or_none(a, b);
+    if (!built_model) continue;
+    std::optional<Built> built;
+    try {
+      built = build_both(*built_model, instance % 4 == 0);
+    } catch (const Error&) {
+      EXPECT_GE(exponent, 400) << "only scales beyond the doubles may be refused";
+      ++refused;
+      continue;
+    }
+    ASSERT_NO_FATAL_FAILURE(expect_reference_labels(built->fast));
+    ASSERT_NO_FATAL_FAILURE(expect_reference_labels(built->general));
+    expect_same_space(built->fast, built->general);
+    expect_minkowski(built->fast, a, b);
+    // the edges that take the new branch (exact ends, a line support, no carried curve)
+    auto uncarried = [](const CSpace& space, bool sides) {
+      std::size_t n = 0;
+      for (const cspace::ChartData& chart : implementation(space).charts)
+        for (const cspace::raw::Edge& edge : chart.arrangement.edges) {
+          const auto& low = chart.arrangement.vertices[edge.min_vertex];
+          const auto& high = chart.arrangement.vertices[edge.max_vertex];
+          if (edge.vertical || edge.support_curve != cspace::raw::none || !low.x.exact || !high.x.exact) continue;
+          if (!sides || edge.box_side == 0 || edge.box_side == 2) ++n;
+        }
+      return n;
+    };
+    chart_sides += uncarried(built->fast, true);
+    general_lines += uncarried(built->general, false) - uncarried(built->general, true);
+    ++compared;
+  }
+  RecordProperty("compared", compared);
+  RecordProperty("chart_sides", static_cast<int>(chart_sides));
+  RecordProperty("general_lines", static_cast<int>(general_lines));
+  EXPECT_GE(compared, 20);
+  EXPECT_LE(refused, 5);
+  EXPECT_GE(chart_sides, 40u) << "too few chart sides sampled by the new branch";
+  EXPECT_GE(general_lines, 200u) << "too few contact line edges sampled by the new branch on the general path";
 }
 
 }  // namespace
