@@ -52,13 +52,16 @@ fi
 
 # -gline-tables-only: a report's stack names every function, file and line (inlined frames too)
 # without the full debug information, most of these objects' compile time (as OSS-Fuzz builds).
-# Through ccache when it is installed (as the project's build): with ccache's base_dir above the
-# checkout, the source paths mapped to "." and the examples' directory given to the fuzzers' own
-# sources only, the product's objects are compiled by the same command from any checkout and
-# reused from an earlier run or clone.
+# Through ccache when it is installed (as the project's build): the product's objects are compiled
+# by the same command from any checkout and reused from an earlier run or clone. The compiler runs
+# in the checkout and is given its files and include directories relative to it, the checkout
+# mapped to "." in the debug information (ccache's hash_dir then hashes "." for the working
+# directory), and the examples' directory is given to the fuzzers' own sources only. Until session
+# 73 (ci73) the compiler ran in WORK_DIR with absolute paths: every new checkout (CI's fresh clone)
+# and every build directory missed the cache, about 130 s CPU of clang with ASan per target.
 flags=(-std=c++20 -O1 -gline-tables-only -fdebug-prefix-map="$source"=. -fno-omit-frame-pointer
        -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
-       -I"$source/include" -I"$source/src" -I"$source" -I/usr/include/eigen3)
+       -Iinclude -Isrc -I. -I/usr/include/eigen3)
 fuzzer_flags=(-DHIPAIR_EXAMPLES="\"$source/examples/models\"")
 launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(ccache)
@@ -69,6 +72,7 @@ stale() {
   local object=$1 dep
   [ -f "$object" ] && [ -f "$object.d" ] || return 0
   for dep in $(sed -e 's/^[^:]*://' -e 's/\\$//' "$object.d"); do
+    [ "${dep#/}" = "$dep" ] && dep="$source/$dep"   # the checkout's own files are listed relative to it
     [ -e "$dep" ] || return 0
     [ "$dep" -nt "$object" ] && return 0
   done
@@ -85,7 +89,8 @@ compile() {
     if stale "$object"; then
       local extra=()
       [ "$file" = "$source/tests/fuzz/$(basename "$file")" ] && extra=("${fuzzer_flags[@]}")
-      "${launcher[@]}" "$clangxx" "${flags[@]}" "${extra[@]}" -MMD -MF "$object.d.tmp" -c "$file" -o "$object.tmp" &&
+      (cd "$source" && "${launcher[@]}" "$clangxx" "${flags[@]}" "${extra[@]}" -MMD -MF "$object.d.tmp" \
+         -c "${file#"$source"/}" -o "$object.tmp") &&
         mv "$object.d.tmp" "$object.d" && mv "$object.tmp" "$object" &
       pids+=($!)
       if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || return 1; pids=("${pids[@]:1}"); fi
