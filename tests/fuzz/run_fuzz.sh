@@ -56,13 +56,13 @@ fi
 # by the same command from any checkout and reused from an earlier run or clone. The compiler runs
 # in the checkout and is given its files and include directories relative to it, the checkout
 # mapped to "." in the debug information (ccache's hash_dir then hashes "." for the working
-# directory), and the examples' directory is given to the fuzzers' own sources only. Until session
+# directory); the examples' directory reaches the certificate fuzzer at run time (HIPAIR_EXAMPLES in
+# its environment), not as a macro. Until session
 # 73 (ci73) the compiler ran in WORK_DIR with absolute paths: every new checkout (CI's fresh clone)
 # and every build directory missed the cache, about 130 s CPU of clang with ASan per target.
 flags=(-std=c++20 -O1 -gline-tables-only -fdebug-prefix-map="$source"=. -fno-omit-frame-pointer
        -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
        -Iinclude -Isrc -I. -I/usr/include/eigen3)
-fuzzer_flags=(-DHIPAIR_EXAMPLES="\"$source/examples/models\"")
 launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(ccache)
 
@@ -87,9 +87,7 @@ compile() {
     object="$objects_dir/$(basename "$(dirname "$file")")-$(basename "$file" .cpp).o"
     objects+=("$object")
     if stale "$object"; then
-      local extra=()
-      [ "$file" = "$source/tests/fuzz/$(basename "$file")" ] && extra=("${fuzzer_flags[@]}")
-      (cd "$source" && "${launcher[@]}" "$clangxx" "${flags[@]}" "${extra[@]}" -MMD -MF "$object.d.tmp" \
+      (cd "$source" && "${launcher[@]}" "$clangxx" "${flags[@]}" -MMD -MF "$object.d.tmp" \
          -c "${file#"$source"/}" -o "$object.tmp") &&
         mv "$object.d.tmp" "$object.d" && mv "$object.tmp" "$object" &
       pids+=($!)
@@ -104,10 +102,10 @@ compile() {
 objects=()
 exec 9>"$objects_dir/lock"
 flock 9
-if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]} ${fuzzer_flags[*]}" ]; then
+if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then
   rm -f "$objects_dir"/*.o "$objects_dir"/*.o.d
 fi
-printf '%s' "${flags[*]} ${fuzzer_flags[*]}" >"$objects_dir/flags.txt"
+printf '%s' "${flags[*]}" >"$objects_dir/flags.txt"
 compile "${shared[@]}" || { echo "compile failed"; exit 1; }
 flock -u 9
 compile "${sources[@]}" || { echo "compile failed"; exit 1; }
@@ -117,7 +115,7 @@ compile "${sources[@]}" || { echo "compile failed"; exit 1; }
 for seed in "${seeds[@]}"; do cp "$seed" "$work/corpus/" 2>/dev/null; done
 
 cd "$work" || exit 1
-"$work/${target}_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
+HIPAIR_EXAMPLES="$source/examples/models" "$work/${target}_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
   -dict="$source/tests/fuzz/$dictionary" -artifact_prefix="$work/" -print_final_stats=1 "$work/corpus" \
   >"$work/fuzz.log" 2>&1
 status=$?
