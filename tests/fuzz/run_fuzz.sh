@@ -57,9 +57,9 @@ fi
 # in the checkout and is given its files and include directories relative to it, the checkout
 # mapped to "." in the debug information (ccache's hash_dir then hashes "." for the working
 # directory); the examples' directory reaches the certificate fuzzer at run time (HIPAIR_EXAMPLES in
-# its environment), not as a macro. Until session
-# 73 (ci73) the compiler ran in WORK_DIR with absolute paths: every new checkout (CI's fresh clone)
-# and every build directory missed the cache, about 130 s CPU of clang with ASan per target.
+# its environment), not as a macro. Until session 73 (ci73) the compiler ran in WORK_DIR with
+# absolute paths: every new checkout (CI's fresh clone) and every build directory missed the cache,
+# about 130 s CPU of clang with ASan per target.
 flags=(-std=c++20 -O1 -gline-tables-only -fdebug-prefix-map="$source"=. -fno-omit-frame-pointer
        -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
        -Iinclude -Isrc -I. -I/usr/include/eigen3)
