@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -22,12 +23,19 @@
 
 namespace {
 
-// The example models the seed certificates are about (read once).
+// The example models the seed certificates are about (read once), from the directory named by
+// HIPAIR_EXAMPLES in the environment (run_fuzz.sh sets it; a path compiled in made the object
+// differ from checkout to checkout, a ccache miss in every fresh clone).
 const std::vector<hipair::Model>& models() {
   static const std::vector<hipair::Model> list = [] {
+    const char* examples = std::getenv("HIPAIR_EXAMPLES");
+    if (examples == nullptr || *examples == '\0') {
+      std::fputs("certificate_verifier_fuzzer: set HIPAIR_EXAMPLES to examples/models (run_fuzz.sh does)\n", stderr);
+      std::exit(2);
+    }
     std::vector<hipair::Model> result;
     for (const char* name : {"lever-stop.json", "ratchet.json", "geneva.json", "cam-follower.json", "peg-in-hole.json"})
-      result.push_back(hipair::read_model_file(std::filesystem::path(HIPAIR_EXAMPLES) / name));
+      result.push_back(hipair::read_model_file(std::filesystem::path(examples) / name));
     return result;
   }();
   return list;

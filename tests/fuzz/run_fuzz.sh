@@ -52,14 +52,17 @@ fi
 
 # -gline-tables-only: a report's stack names every function, file and line (inlined frames too)
 # without the full debug information, most of these objects' compile time (as OSS-Fuzz builds).
-# Through ccache when it is installed (as the project's build): with ccache's base_dir above the
-# checkout, the source paths mapped to "." and the examples' directory given to the fuzzers' own
-# sources only, the product's objects are compiled by the same command from any checkout and
-# reused from an earlier run or clone.
+# Through ccache when it is installed (as the project's build): the product's objects are compiled
+# by the same command from any checkout and reused from an earlier run or clone. The compiler runs
+# in the checkout and is given its files and include directories relative to it, the checkout
+# mapped to "." in the debug information (ccache's hash_dir then hashes "." for the working
+# directory); the examples' directory reaches the certificate fuzzer at run time (HIPAIR_EXAMPLES in
+# its environment), not as a macro. Until session 73 (ci73) the compiler ran in WORK_DIR with
+# absolute paths: every new checkout (CI's fresh clone) and every build directory missed the cache,
+# about 130 s CPU of clang with ASan per target.
 flags=(-std=c++20 -O1 -gline-tables-only -fdebug-prefix-map="$source"=. -fno-omit-frame-pointer
        -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
-       -I"$source/include" -I"$source/src" -I"$source" -I/usr/include/eigen3)
-fuzzer_flags=(-DHIPAIR_EXAMPLES="\"$source/examples/models\"")
+       -Iinclude -Isrc -I. -I/usr/include/eigen3)
 launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(ccache)
 
@@ -69,6 +72,7 @@ stale() {
   local object=$1 dep
   [ -f "$object" ] && [ -f "$object.d" ] || return 0
   for dep in $(sed -e 's/^[^:]*://' -e 's/\\$//' "$object.d"); do
+    [ "${dep#/}" = "$dep" ] && dep="$source/$dep"   # the checkout's own files are listed relative to it
     [ -e "$dep" ] || return 0
     [ "$dep" -nt "$object" ] && return 0
   done
@@ -83,9 +87,8 @@ compile() {
     object="$objects_dir/$(basename "$(dirname "$file")")-$(basename "$file" .cpp).o"
     objects+=("$object")
     if stale "$object"; then
-      local extra=()
-      [ "$file" = "$source/tests/fuzz/$(basename "$file")" ] && extra=("${fuzzer_flags[@]}")
-      "${launcher[@]}" "$clangxx" "${flags[@]}" "${extra[@]}" -MMD -MF "$object.d.tmp" -c "$file" -o "$object.tmp" &&
+      (cd "$source" && "${launcher[@]}" "$clangxx" "${flags[@]}" -MMD -MF "$object.d.tmp" \
+         -c "${file#"$source"/}" -o "$object.tmp") &&
         mv "$object.d.tmp" "$object.d" && mv "$object.tmp" "$object" &
       pids+=($!)
       if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || return 1; pids=("${pids[@]:1}"); fi
@@ -99,10 +102,10 @@ compile() {
 objects=()
 exec 9>"$objects_dir/lock"
 flock 9
-if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]} ${fuzzer_flags[*]}" ]; then
+if [ "$(cat "$objects_dir/flags.txt" 2>/dev/null)" != "${flags[*]}" ]; then
   rm -f "$objects_dir"/*.o "$objects_dir"/*.o.d
 fi
-printf '%s' "${flags[*]} ${fuzzer_flags[*]}" >"$objects_dir/flags.txt"
+printf '%s' "${flags[*]}" >"$objects_dir/flags.txt"
 compile "${shared[@]}" || { echo "compile failed"; exit 1; }
 flock -u 9
 compile "${sources[@]}" || { echo "compile failed"; exit 1; }
@@ -112,7 +115,7 @@ compile "${sources[@]}" || { echo "compile failed"; exit 1; }
 for seed in "${seeds[@]}"; do cp "$seed" "$work/corpus/" 2>/dev/null; done
 
 cd "$work" || exit 1
-"$work/${target}_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
+HIPAIR_EXAMPLES="$source/examples/models" "$work/${target}_fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=120 -rss_limit_mb=2560 \
   -dict="$source/tests/fuzz/$dictionary" -artifact_prefix="$work/" -print_final_stats=1 "$work/corpus" \
   >"$work/fuzz.log" 2>&1
 status=$?
