@@ -1002,7 +1002,7 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
     // every tabled depth one flat table, the depths one after the other in one zeroed
     // allocation (untested is 0): the cells' look-ups are the shallow depths' plain reads
     static_assert(untested == 0, "zeroed tables hold untested cells");
-    whole_depth_ = dense_cells_log2 / dimension_;
+    whole_depth_ = whole_cells_log2 / dimension_;
     const std::size_t entries = whole_table_bytes(dimension_) / sizeof(std::int32_t);
     whole_.reset(static_cast<std::int32_t*>(std::calloc(entries, sizeof(std::int32_t))));   // zeros: untested
     if (!whole_) throw std::bad_alloc();

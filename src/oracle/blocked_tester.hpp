@@ -264,23 +264,27 @@ class BlockedCells {
   /// `tester` may be null or unusable: then no cell is blocked. `depth`: the finest depth.
   /// `shared`: the parts' poses are taken from (and left in) the pool, shared with the other
   /// grids of the same tester that have the same axis and box side for a part (2-D grids; a
-  /// 1-D grid keeps its own). `whole_tables`: every tabled depth is one flat table, made at
-  /// the grid's construction (whole_table_bytes(), zeroed; see the private part) instead of
-  /// sparse blocks made on first write. The answers are the same either way.
+  /// 1-D grid keeps its own). `whole_tables`: every depth of at most 2^whole_cells_log2 cells
+  /// is one flat table, made at the grid's construction (whole_table_bytes(), zeroed; see the
+  /// private part), the deeper tabled depths sparse blocks as without. The answers are the same
+  /// either way.
   BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y, int dimension,
                int depth, SharedPoses* shared = nullptr, bool whole_tables = false);
-  /// Bytes of the flat tables of every tabled depth of a grid of `dimension` (the tables of a
-  /// grid made with whole_tables: 2-D 1.4 MB, 1-D 2 MB).
+  /// Whole tables: the depths of at most 2^whole_cells_log2 cells (2-D to depth 8, 1-D to 16).
+  /// (Not depth 9 of a 2-D grid: its 1 MB table, touched here and there, took 460 page faults
+  /// more per Geneva build than its sparse blocks, for 0.6 M instructions fewer.)
+  static constexpr int whole_cells_log2 = 16;
+  /// Bytes of the whole tables of a grid of `dimension` (2-D 0.33 MB, 1-D 0.5 MB).
   static constexpr std::size_t whole_table_bytes(int dimension) {
     std::size_t bytes = 0;
-    for (int d = 0; d * dimension <= dense_cells_log2; ++d) bytes += (std::size_t{1} << (d * dimension)) * sizeof(std::int32_t);
+    for (int d = 0; d * dimension <= whole_cells_log2; ++d) bytes += (std::size_t{1} << (d * dimension)) * sizeof(std::int32_t);
     return bytes;
   }
   /// Whole tables suit a build of `grids` grids of `dimension` when their tables together take
-  /// at most this many bytes (a whole space's few charts: Geneva's two built grids 2.8 MB; an
-  /// operating region's hundreds of tiles keep the sparse blocks). Chosen by size only: the
-  /// entries, hence the answers, are the same either way.
-  static constexpr std::size_t whole_tables_budget = std::size_t{16} << 20;
+  /// at most this many bytes (a whole space's few charts: Geneva's four 1.3 MB; an operating
+  /// region's hundreds of tiles keep the sparse blocks). Chosen by size only: the entries,
+  /// hence the answers, are the same either way.
+  static constexpr std::size_t whole_tables_budget = std::size_t{4} << 20;
   static constexpr bool whole_tables_fit(std::size_t grids, int dimension) {
     return dimension >= 1 && grids * whole_table_bytes(dimension) <= whole_tables_budget;
   }
@@ -329,8 +333,9 @@ class BlockedCells {
   // inside it (BlockedTester::blocked with `narrowed`): the cells below test only those pairs
   // (the disk sweep bucketed by cell).
   static constexpr std::int32_t untested = 0, is_blocked = 1, not_blocked = 2, first_list = 3;
-  // (Whole tables: every tabled depth is one flat table, flat_[depth], all made at construction,
-  // so whole_depth_ is the deepest tabled depth and no directory is ever made.)
+  // (Whole tables: every depth of at most 2^whole_cells_log2 cells is one flat table,
+  // flat_[depth], all made at construction in one allocation, so whole_depth_ is the deepest of
+  // them; the deeper tabled depths (2-D depth 9, 1-D 17 and 18) are cut into blocks as below.)
   // Cells of the depths with at most 2^18 cells (2-D: to depth 9; 1-D: to depth 18) are kept
   // in tables per depth, one entry per cell, made sparsely: a depth's cells are cut into blocks
   // (block_side_log2: a depth of at most 2^12 cells is one block; deeper, 2-D squares of 16 x 16

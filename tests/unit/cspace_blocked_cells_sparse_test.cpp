@@ -5,9 +5,10 @@
 // with a reference of the same meaning on BlockedTester's plain sweep (a cell asked before gives
 // its first answer, a cell inside an asked blocked cell is blocked, any other is the tester's
 // answer), and the tables' bytes with the blocks the asked cells lie in, counted independently.
-// Session 73 (tile73): the same cells asked of a grid with whole tables (every tabled depth one
-// flat table, chosen for a whole space's few grids) in the same order: the same answers, the
-// same tester calls, its tables whole_table_bytes() from the start.
+// Session 73 (tile73): the same cells asked of a grid with whole tables (the depths of at most
+// 2^16 cells one flat table each, chosen for a whole space's few grids; deeper tabled depths
+// sparse) in the same order: the same answers, the same tester calls, its tables
+// whole_table_bytes() and the sparse blocks of its deeper tabled depths.
 #include "curves/contact_curves.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "test_paths.hpp"
@@ -111,12 +112,20 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
   // the grid tested exactly the cells without an asked blocked ancestor (it read every ancestor)
   EXPECT_EQ(grid.tests(), reference_tests);
   EXPECT_EQ(whole.tests(), reference_tests);
-  EXPECT_EQ(whole.table_bytes(), cspace::BlockedCells::whole_table_bytes(dimension));
   std::size_t bytes = 0;
   for (int depth : depths)   // a directory of blocks for each depth cut into blocks
     if (depth * dimension > w) bytes += (std::size_t{1} << ((depth - side_log2(depth)) * dimension)) * sizeof(std::int32_t*);
   for (const auto& [depth, bi, bj] : blocks) bytes += (std::size_t{1} << (side_log2(depth) * dimension)) * sizeof(std::int32_t);
   EXPECT_EQ(grid.table_bytes(), bytes) << blocks.size() << " blocks over " << depths.size() << " depths";
+  // (the whole tables, then the directories and blocks of the deeper tabled depths asked)
+  std::size_t whole_bytes = cspace::BlockedCells::whole_table_bytes(dimension);
+  for (int depth : depths)
+    if (depth * dimension > cspace::BlockedCells::whole_cells_log2 && depth * dimension > w)
+      whole_bytes += (std::size_t{1} << ((depth - side_log2(depth)) * dimension)) * sizeof(std::int32_t*);
+  for (const auto& [depth, bi, bj] : blocks)
+    if (depth * dimension > cspace::BlockedCells::whole_cells_log2)
+      whole_bytes += (std::size_t{1} << (side_log2(depth) * dimension)) * sizeof(std::int32_t);
+  EXPECT_EQ(whole.table_bytes(), whole_bytes);
   ++seen.grids;
   seen.largest_bytes = std::max(seen.largest_bytes, grid.table_bytes());
 }
@@ -170,10 +179,10 @@ TEST(BlockedCellsSparse, TablesHoldOnlyTheAskedBlocksAndAnswerAsTheSweep) {
 }
 
 // The builder's choice (by size): whole tables for a whole space's few grids, sparse blocks for an
-// operating region's many tiles; the bytes are the flat tables of depths 0 ... 9 (2-D), 0 ... 18 (1-D).
+// operating region's many tiles; the bytes are the flat tables of depths 0 ... 8 (2-D), 0 ... 16 (1-D).
 TEST(BlockedCellsSparse, WholeTablesChosenForFewGridsOnly) {
-  EXPECT_EQ(cspace::BlockedCells::whole_table_bytes(2), ((std::size_t{1} << 20) - 1) / 3 * 4);
-  EXPECT_EQ(cspace::BlockedCells::whole_table_bytes(1), ((std::size_t{1} << 19) - 1) * 4);
+  EXPECT_EQ(cspace::BlockedCells::whole_table_bytes(2), ((std::size_t{1} << 18) - 1) / 3 * 4);
+  EXPECT_EQ(cspace::BlockedCells::whole_table_bytes(1), ((std::size_t{1} << 17) - 1) * 4);
   EXPECT_TRUE(cspace::BlockedCells::whole_tables_fit(4, 2));    // Geneva's four charts
   EXPECT_TRUE(cspace::BlockedCells::whole_tables_fit(2, 1));
   EXPECT_FALSE(cspace::BlockedCells::whole_tables_fit(192, 2)); // the fewest tiles of a region
