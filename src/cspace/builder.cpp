@@ -255,6 +255,8 @@ class CurveCuller {
   // never changed once made), so a second call would return the same; the table only spares
   // the next curves of the chart the grid's hashed look-up at each node they share.
   bool blocked(int depth, long i, long j) {
+    // (a grid with whole tables reads a cell's own entry first, by one flat look-up: no table here)
+    if (grid_.whole_tables()) return grid_.blocked(depth, i, j);
     const auto d = static_cast<std::size_t>(depth);
     if (answers_.size() <= d) answers_.resize(d + 1);
     std::vector<std::uint8_t>& table = answers_[d];

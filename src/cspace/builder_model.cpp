@@ -522,6 +522,10 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   // time on this thread; the answers are those of a cache per grid)
   cspace::SharedPoses shared_poses;
   const bool share_poses = cspace::shared_chart_poses().load(std::memory_order_relaxed);
+  // a whole space's few grids keep their blocked-cell tables whole (flat per depth: the cheaper
+  // look-up), an operating region's many tiles the sparse blocks (chosen by the tables' bytes
+  // over the boxes; the answers are the same either way)
+  const bool whole_tables = BlockedCells::whole_tables_fit(boxes.size(), input.dimension);
   input.make_chart = [&](std::size_t c, PairInput& building) {
     const BoxToBuild& box = boxes[c];
     ChartInput chart;
@@ -534,7 +538,7 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
     std::shared_ptr<BlockedCells> cells;
     if (curve_options.blocked_grid)
       cells = std::make_shared<BlockedCells>(tester, chart.x, chart.y, building.dimension, grid_depth,
-                                             share_poses ? &shared_poses : nullptr);
+                                             share_poses ? &shared_poses : nullptr, whole_tables);
     // (a tile: its cells test the flood's list of a box holding it, when the box holds the grid's)
     if (cells && box.list.pairs) cells->enclose(box.list.x, box.list.y, box.list.pairs);
     std::vector<ContactCurve> curves = generator.generate(chart.x, chart.y, &building.curve_statistics, cells.get());

@@ -985,8 +985,9 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
 // ---------------------------------------------------------------- the grid of one chart box
 
 BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y,
-                           int dimension, int depth, SharedPoses* shared)
-    : tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
+                           int dimension, int depth, SharedPoses* shared, bool whole_tables)
+    : whole_tables_(whole_tables && dimension >= 1),
+      tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
       dimension_(dimension), depth_(depth),
       x_{algebra::lower_double(x.lo), algebra::upper_double(x.hi)},
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
@@ -996,6 +997,21 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
   for (int d = 0; d <= dense_cells_log2; ++d) {
     flat_[d] = zero_block();
     directory_[d] = zero_directory();
+  }
+  if (whole_tables_ && tester_) {
+    // every tabled depth one flat table, the depths one after the other in one zeroed
+    // allocation (untested is 0): the cells' look-ups are the shallow depths' plain reads
+    static_assert(untested == 0, "zeroed tables hold untested cells");
+    whole_depth_ = whole_cells_log2 / dimension_;
+    const std::size_t entries = whole_table_bytes(dimension_) / sizeof(std::int32_t);
+    whole_.reset(static_cast<std::int32_t*>(std::calloc(entries, sizeof(std::int32_t))));   // zeros: untested
+    if (!whole_) throw std::bad_alloc();
+    block_bytes_ = entries * sizeof(std::int32_t);
+    std::size_t at = 0;
+    for (int d = 0; d <= whole_depth_; ++d) {
+      flat_[d] = whole_.get() + at;
+      at += std::size_t{1} << (d * dimension_);
+    }
   }
   // (a pose is found by the cell's column or row index, a pure function of the box side the
   // axis's cells cut: the side is part of the pool's key with the axis)

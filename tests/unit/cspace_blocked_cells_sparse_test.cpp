@@ -5,6 +5,10 @@
 // with a reference of the same meaning on BlockedTester's plain sweep (a cell asked before gives
 // its first answer, a cell inside an asked blocked cell is blocked, any other is the tester's
 // answer), and the tables' bytes with the blocks the asked cells lie in, counted independently.
+// Session 73 (tile73): the same cells asked of a grid with whole tables (the depths of at most
+// 2^16 cells one flat table each, chosen for a whole space's few grids; deeper tabled depths
+// sparse) in the same order: the same answers, the same tester calls, its tables
+// whole_table_bytes() and the sparse blocks of its deeper tabled depths.
 #include "curves/contact_curves.hpp"
 #include "oracle/blocked_tester.hpp"
 #include "test_paths.hpp"
@@ -49,6 +53,11 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
                         std::mt19937_64& random, Seen& seen) {
   cspace::BlockedCells grid(tester, x, y, dimension, grid_depth);
   ASSERT_EQ(grid.table_bytes(), 0u);
+  ASSERT_FALSE(grid.whole_tables());
+  // the same grid with whole tables, asked the same cells in the same order
+  cspace::BlockedCells whole(tester, x, y, dimension, grid_depth, nullptr, true);
+  ASSERT_TRUE(whole.whole_tables());
+  ASSERT_EQ(whole.table_bytes(), cspace::BlockedCells::whole_table_bytes(dimension));
   std::map<std::tuple<int, long, long>, bool> reference;
   std::size_t reference_tests = 0;   // cells the reference had to ask the tester (no blocked ancestor asked)
   auto expected = [&](int depth, long i, long j) {
@@ -90,6 +99,8 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
       const long i = li >> (leaf_depth - depth), j = dimension == 2 ? lj >> (leaf_depth - depth) : 0;
       const bool want = expected(depth, i, j);
       ASSERT_EQ(grid.blocked(depth, i, j), want) << "cell (" << depth << ", " << i << ", " << j << ")";
+      ASSERT_EQ(whole.blocked(depth, i, j), want) << "whole tables: cell (" << depth << ", " << i << ", " << j << ")";
+      ASSERT_EQ(whole.known_blocked(depth, i, j), want) << "whole tables: cell (" << depth << ", " << i << ", " << j << ")";
       ++(want ? seen.blocked : seen.free);
       if (depth * dimension <= 18) {
         depths.insert(depth);
@@ -100,11 +111,21 @@ void expect_sparse_grid(const std::shared_ptr<const cspace::BlockedTester>& test
   }
   // the grid tested exactly the cells without an asked blocked ancestor (it read every ancestor)
   EXPECT_EQ(grid.tests(), reference_tests);
+  EXPECT_EQ(whole.tests(), reference_tests);
   std::size_t bytes = 0;
   for (int depth : depths)   // a directory of blocks for each depth cut into blocks
     if (depth * dimension > w) bytes += (std::size_t{1} << ((depth - side_log2(depth)) * dimension)) * sizeof(std::int32_t*);
   for (const auto& [depth, bi, bj] : blocks) bytes += (std::size_t{1} << (side_log2(depth) * dimension)) * sizeof(std::int32_t);
   EXPECT_EQ(grid.table_bytes(), bytes) << blocks.size() << " blocks over " << depths.size() << " depths";
+  // (the whole tables, then the directories and blocks of the deeper tabled depths asked)
+  std::size_t whole_bytes = cspace::BlockedCells::whole_table_bytes(dimension);
+  for (int depth : depths)
+    if (depth * dimension > cspace::BlockedCells::whole_cells_log2 && depth * dimension > w)
+      whole_bytes += (std::size_t{1} << ((depth - side_log2(depth)) * dimension)) * sizeof(std::int32_t*);
+  for (const auto& [depth, bi, bj] : blocks)
+    if (depth * dimension > cspace::BlockedCells::whole_cells_log2)
+      whole_bytes += (std::size_t{1} << (side_log2(depth) * dimension)) * sizeof(std::int32_t);
+  EXPECT_EQ(whole.table_bytes(), whole_bytes);
   ++seen.grids;
   seen.largest_bytes = std::max(seen.largest_bytes, grid.table_bytes());
 }
@@ -155,6 +176,18 @@ TEST(BlockedCellsSparse, TablesHoldOnlyTheAskedBlocksAndAnswerAsTheSweep) {
   EXPECT_GT(seen.blocked, 1000);
   EXPECT_GT(seen.free, 1000);
   EXPECT_LT(seen.largest_bytes, std::size_t{1} << 19);
+}
+
+// The builder's choice (by size): whole tables for a whole space's few grids, sparse blocks for an
+// operating region's many tiles; the bytes are the flat tables of depths 0 ... 8 (2-D), 0 ... 16 (1-D).
+TEST(BlockedCellsSparse, WholeTablesChosenForFewGridsOnly) {
+  EXPECT_EQ(cspace::BlockedCells::whole_table_bytes(2), ((std::size_t{1} << 18) - 1) / 3 * 4);
+  EXPECT_EQ(cspace::BlockedCells::whole_table_bytes(1), ((std::size_t{1} << 17) - 1) * 4);
+  EXPECT_TRUE(cspace::BlockedCells::whole_tables_fit(4, 2));    // Geneva's four charts
+  EXPECT_TRUE(cspace::BlockedCells::whole_tables_fit(2, 1));
+  EXPECT_FALSE(cspace::BlockedCells::whole_tables_fit(192, 2)); // the fewest tiles of a region
+  EXPECT_FALSE(cspace::BlockedCells::whole_tables_fit(768, 2));
+  EXPECT_FALSE(cspace::BlockedCells::whole_tables_fit(1, 0));
 }
 
 }  // namespace
