@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <numeric>
 #include <optional>
+#include <utility>
 
 namespace hipair {
 namespace {
@@ -189,8 +190,8 @@ std::size_t split_apart_leaf(ApartTree& tree, std::size_t n, int axis) {
     lower.depth = upper.depth = node.depth + 1;
   }
   const std::size_t first = tree.nodes.size();
-  tree.nodes.push_back(lower);
-  tree.nodes.push_back(upper);
+  tree.nodes.push_back(std::move(lower));
+  tree.nodes.push_back(std::move(upper));
   tree.nodes[n].axis = axis;
   tree.nodes[n].child = first;
   tree.nodes[n].upper = first + 1;
@@ -202,6 +203,16 @@ void parse_apart_tree(const std::string& text, ApartTree& tree, std::size_t proo
   std::size_t at = 0, leaves = 0, proof = 0;
   std::vector<std::size_t> stack{0};   // nodes still to read, next on top
   const std::string marks = tree.marks;
+  // room for every node read before the leaf or depth limit refuses the tree (each halving adds
+  // two nodes; a preorder text has at most one halving more than its leaves read, plus the depth
+  // of the boxes still to read): the nodes' rationals are copied, not moved, when the vector
+  // grows (session 73)
+  {
+    std::size_t halvings = 0;
+    for (char mark : text)
+      if (marks.find(mark) != std::string::npos && ++halvings >= apart_max_leaves + apart_max_depth + 1) break;
+    tree.nodes.reserve(tree.nodes.size() + 2 * halvings);
+  }
   while (!stack.empty()) {
     const std::size_t n = stack.back();
     stack.pop_back();

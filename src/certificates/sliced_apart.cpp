@@ -294,8 +294,9 @@ class ApartSearch {
     // there): the exact predicate at the middle first, so that a box whose middle is apart or
     // touching is mixed without the tests below (session 72: most of the connected producer's
     // boxes in thin free space)
-    if (part_overlap(pair_.other, placement_of(other_exact), pair_.moving, placement_of(exact)).relation != PartRelation::overlapping)
-      return Outcome{};
+    // (asked once, with its witness: the last resort below)
+    const PartOverlap overlap = part_overlap(pair_.other, placement_of(other_exact), pair_.moving, placement_of(exact), true);
+    if (overlap.relation != PartRelation::overlapping) return Outcome{};
     // edges crossing at the middle, their crossing pieces tried over the box
     const verify::IntervalPart at_middle = verify::place_over(pair_.moving_shape, verify::to_interval_map(exact));
     const verify::IntervalPart other_middle = verify::place_over(pair_.other_shape, verify::to_interval_map(other_exact));
@@ -363,7 +364,6 @@ class ApartSearch {
         }
       if (best && proved(point_proof(*best))) return blocked_by(point_proof(*best));
     }
-    const PartOverlap overlap = part_overlap(pair_.other, placement_of(other_exact), pair_.moving, placement_of(exact), true);
     if (overlap.witness && proved(point_proof(*overlap.witness)))
       return blocked_by(point_proof(*overlap.witness));
     return Outcome{};
