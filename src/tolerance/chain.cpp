@@ -677,6 +677,23 @@ class ChainAnalysis {
       try {
         charts[s] = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
                                                   options_.absolute_accuracy, boxes[s], &proven_side);
+        // Session 73: in the passes that compose a failed position again (a FarWalk lives), the
+        // enclosure over box x T met with the hull of T's pieces' (held_pieces: the driver lies
+        // in some piece, so the hull holds the holder's root for every vector of the box; both
+        // enclose it, so their meet does; a narrower enclosure of the same root keeps the
+        // certification's uniqueness and free side). Over the whole of a wide T the enclosure
+        // can be far wider than its pieces' hull: gear-train.json at 4.9742 rad (120 per turn),
+        // mesh G:H, T 0.130 chart units wide: Y 0.410 over the whole T, 0.115 over 2 pieces,
+        // 0.095 over 8; H:I could then not be certified over a driver range spanning gear H's
+        // tooth pitch. Only in those passes: every band bounded by the first pass is unchanged.
+        if (s > 0 && FarWalk::on() && chain_driver_piece_meet() != 0 && curve.fixed_range &&
+            curve.fixed_range->lo < curve.fixed_range->hi) {
+          Interval hull;
+          if (held_pieces(i, s, box, curve, hull, boxes[s], nullptr)) {
+            Interval met(std::max(charts[s].lo, hull.lo), std::min(charts[s].hi, hull.hi));
+            if (met.lo <= met.hi) charts[s] = met;
+          }
+        }
       } catch (const NumericError&) {
         // the driver's range too wide for one enclosure: split it (held_pieces)
         if (s == 0 || !held_pieces(i, s, box, curve, charts[s], boxes[s], &proven_side)) return false;
@@ -1026,7 +1043,7 @@ class ChainAnalysis {
     put(out, static_cast<std::size_t>(length_exponent_));
     for (int v : {chain_case_split(), chain_widened_split(), handover_monotone_driver(), handover_sub_box_anchor(),
                   handover_taylor_partials(), handover_far_windows(), handover_driver_pieces(), handover_widened_pieces(),
-                  handover_far_reuse()})
+                  handover_far_reuse(), chain_driver_piece_meet()})
       put(out, static_cast<std::size_t>(static_cast<unsigned>(v)));
     put(out, stages_.size());
     for (const StageAnalysis& stage : stages_) {
@@ -1767,6 +1784,11 @@ int& chain_case_resume() {
 std::atomic<std::size_t>& chain_cases_resumed() {
   static std::atomic<std::size_t> resumed{0};
   return resumed;
+}
+
+int& chain_driver_piece_meet() {
+  static int on = 1;
+  return on;
 }
 
 std::atomic<std::size_t>& chain_compositions_made() {

@@ -192,6 +192,12 @@ int& chain_case_split();
 /// 48): 1 (on) unless changed; 0 accepts the whole box's band as before (tests compare the two).
 int& chain_widened_split();
 
+/// Session 73: in the passes that compose a failed position again (the far walk's and the driver
+/// pieces', chain.cpp certified()), each pair's enclosure over box x T met with the hull of its
+/// driver range's pieces' (chain.cpp compose_once, held_pieces): 1 (on) unless changed; 0 keeps the
+/// whole-T enclosure alone, as before (tests compare the two).
+int& chain_driver_piece_meet();
+
 /// A position's plain compositions (no far walk, no driver pieces) of its sub-boxes kept for its
 /// later passes, the far walk's and the driver pieces' (chain.cpp certified(); session 53), whose
 /// first step per sub-box is the same plain composition: 1 (on) unless changed; 0 composes them

@@ -3,18 +3,22 @@
 // - ToleranceOptions::chain_failure_boxes (`--chain-split-budget`): where a chain's composition
 //   over the whole tolerance box cannot be certified at a position, the box is bisected into at
 //   most this many sub-boxes there (session 42's split, a constant 4 until session 72). Any
-//   partition of the box is sound, so a larger budget can only bound more positions, and every
-//   band bounded with a smaller budget must stay bounded (and no wider) with a larger one. On
+//   partition of the box is sound; a larger budget is not proved to bound more positions (the
+//   budget changes which later passes run: review72 M6), so "every band bounded with budget 1
+//   stays bounded and no wider with 4" below is a check of this window, not a property. On
 //   gear-train.json over 0..0.53 rad at 120 per turn the default budget bisects the box at 3
 //   positions; with a budget of 1 sub-box (no split) none is bisected (the later passes' far walks
 //   bound them instead, with other bands). Both runs' bands hold the exact train (the model
 //   rebuilt exactly at generated vectors and at the extreme corners of the positions whose band
 //   the budget changed, its kinematics recomputed by the exact engine over the same range and
-//   grid), the default's every Monte Carlo value.
+//   grid; each exact position allowed the rounding of the exact root to a double, 4 ulps:
+//   test_band::visit_exact_values, session 73 — was a constant 1e-10 rad), the default's every
+//   Monte Carlo value.
 // - ToleranceResult::budgets, tolerance.json's `budgets`: the accuracy, a chain's sub-box budgets
 //   and a certificate's leaf and witness-split budgets, as used (generated values).
 #include "gear_train_models.hpp"
 #include "test_paths.hpp"
+#include "tolerance_band_check.hpp"
 #include "test_seed.hpp"
 #include "tolerance_certificate_support.hpp"
 
@@ -46,7 +50,7 @@ std::string example_text(const char* name) {
   return s.str();
 }
 
-bool bounded(const VariationSample& s) { return s.contact && std::isfinite(s.certified.upper - s.certified.lower); }
+using test_band::bounded;
 
 TEST(ToleranceBudgets, TheChainSplitBudgetTakesEffectAndEveryBandHoldsTheExactTrain) {
   const std::uint64_t seed = test::test_seed(72);
@@ -115,21 +119,16 @@ TEST(ToleranceBudgets, TheChainSplitBudgetTakesEffectAndEveryBandHoldsTheExactTr
     k.reversal = false;
     k.method = SliceMethod::kernels;
     KinematicsResult exact = analyze_kinematics(model->exact_model(vectors[v]), k);
-    std::size_t output = static_cast<std::size_t>(
-        std::find(exact.followers.begin(), exact.followers.end(), "gear-I") - exact.followers.begin());
-    ASSERT_LT(output, exact.followers.size());
-    for (const ToleranceResult* r : {&small, &large})
-      for (const VariationSample& sample : r->samples) {
-        if (!bounded(sample)) continue;
-        auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
-                               [&](const KinematicSample& e) { return e.driver == sample.driver; });
-        ASSERT_NE(at, exact.samples.end()) << "driver " << sample.driver;
-        double out = at->positions.at(output);
+    for (const ToleranceResult* r : {&small, &large}) {
+      const char* budget = r == &small ? "budget 1" : "budget 4";
+      // the allowance: the exact engine's position is the exact root rounded to a double (review72 M4)
+      test_band::visit_exact_values(exact, "gear-I", r->samples, [&](std::size_t i, double out, double ulp) {
+        const VariationSample& sample = r->samples[i];
         ++checked;
-        const char* budget = r == &small ? "budget 1" : "budget 4";
-        EXPECT_GE(out, sample.certified.lower - 1e-10) << budget << ", driver " << sample.driver << " vector " << v;
-        EXPECT_LE(out, sample.certified.upper + 1e-10) << budget << ", driver " << sample.driver << " vector " << v;
-      }
+        EXPECT_GE(out, sample.certified.lower - ulp) << budget << ", driver " << sample.driver << " vector " << v;
+        EXPECT_LE(out, sample.certified.upper + ulp) << budget << ", driver " << sample.driver << " vector " << v;
+      });
+    }
   }
   EXPECT_EQ(checked, vectors.size() * (bounded_small + bounded_large));
 
