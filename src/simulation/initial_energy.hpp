@@ -180,8 +180,11 @@ inline void refuse_initial_energy(const Model& model, double energy) {
     if (l > largest_log) largest_log = l, largest = &t;
   }
   std::ostringstream text;
-  text << "the initial state's energy is not finite (beyond the doubles' range the simulator computes in), so no step "
-          "of the run can be computed";
+  // (session 73, jam73: until then "so no step of the run can be computed", which is not true of
+  // every such run — a dissipative impact may bring the energy back; but whether one will cannot
+  // be known without running, and until then no state's energy can be published or checked)
+  text << "the initial state's energy is not finite (beyond the doubles' range the simulator computes in), so the "
+          "energy the run publishes with every state and checks at every step's end cannot be computed";
   if (!largest) {
     const std::string datum = largest_motion_datum(model);
     throw ModelError(model.simulation ? model.simulation->pointer : "", text.str() + datum + "; nothing was run or written");

@@ -106,36 +106,7 @@ TEST(SimulationJam, LockingRowsIsTheFarkasAlternativeOfAVelocityKeepingEveryRow)
 using test::run_to_jam;
 using test::Stopped;
 
-// cam-drive.json's eccentric cam (e = 8 mm, R = 25 mm) at a constant w rad/s lifting the
-// flat-faced follower (its offset e sin(w t) while it rides the cam) into a fixed stop whose face
-// is h above the follower's faceplate (y = 31 + h). `profile`: the cam a speed_profile driver at
-// the same constant speed (w in the model's deg/s at both ends of the profile) instead of a
-// constant_speed one (session 71, jam71).
-Model cam_into_stop(double h, double w, bool profile = false) {
-  std::ifstream in(std::filesystem::path(HIPAIR_SOURCE_DIR) / "examples/models/cam-drive.json");
-  nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["parameters"]["eccentricity"]["nominal"], 8);
-  EXPECT_EQ(j["parameters"]["cam-radius"]["nominal"], 25);
-  j["parameters"]["cam-speed"]["nominal"] = w;
-  if (profile) {
-    EXPECT_EQ(j["units"]["angle"], "deg");
-    const double deg = w * 180 / std::numbers::pi;
-    j["simulation"]["drivers"] = nlohmann::json::array(
-        {{{"part", "cam"}, {"law", "speed_profile"}, {"profile", {{0, deg}, {1000, deg}}}}});
-  }
-  j["parts"].push_back({{"name", "stop"},
-                        {"motion", "fixed"},
-                        {"loops", nlohmann::json::array({{{"label", "stop"},
-                                                          {"start", {12, 31 + h}},
-                                                          {"edges", nlohmann::json::array({
-                                                                        {{"line_to", {18, 31 + h}}, {"label", "stop face"}},
-                                                                        {{"line_to", {18, 36 + h}}},
-                                                                        {{"line_to", {12, 36 + h}}},
-                                                                        {{"line_to", {12, 31 + h}}},
-                                                                    })}}})}});
-  j["pairs"].push_back({{"parts", {"stop", "follower"}}, {"friction", 0}, {"restitution", 0}});
-  return read_model(j.dump(), "cam-drive with a stop");
-}
+using test::cam_into_stop;
 
 // Generated: stop heights h in 1.5 .. 6.5 mm, cam speeds 20 .. 150 rad/s (below the critical
 // 187 rad/s: the follower rides the cam). Closed form: the follower's offset e sin(w t) reaches h

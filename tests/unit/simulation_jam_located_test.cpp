@@ -1,0 +1,178 @@
+// Session 73 (jam73): a driven planar part pushing a block into an obstacle — the jam located
+// where it happens, to the model's accuracy. pusher-blocks.json's pusher (driven at V along x)
+// strikes the 6 mm block (plastic) and carries it into the wall's face, which is fixed or driven
+// away at U < V: the block's right face at -29 + V t, the wall's face at W + U t, the jam at
+// t* = (W + 29) / (V - U) in the model's time unit. Until session 73 the state chosen for the
+// block's contact with the wall was backed off in time until every pair was exactly free there;
+// the pusher-block pair, touching at gap 0 since their plastic impact and moving together, is not
+// parted by going back in time, so the back-off doubled until the rounding parted it: the jam was
+// found up to 2^8 delta / rate early (46 x the tolerance below in seconds).
+#include <hipair/model.hpp>
+#include <hipair/simulation.hpp>
+#include <hipair/simulation_stop.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "jam_test_support.hpp"
+#include "simulation_planar_support.hpp"
+#include "test_seed.hpp"
+
+#include <cmath>
+#include <string>
+
+// (test::cam_into_stop, test::pusher_into_wall_json, test::run_to_jam: jam_test_support.hpp)
+
+namespace hipair {
+namespace {
+
+using planar_test::Lcg;
+using planar_test::num;
+
+// every length of the jam model times `scale` (a power of ten: exact in the file's decimals)
+void scale_lengths(nlohmann::json& j, double scale) {
+  for (nlohmann::json& part : j["parts"]) {
+    for (nlohmann::json& loop : part["loops"]) {
+      for (nlohmann::json& c : loop["start"]) c = c.get<double>() * scale;
+      for (nlohmann::json& e : loop["edges"])
+        for (nlohmann::json& c : e["line_to"]) c = c.get<double>() * scale;
+    }
+    if (part.contains("initial"))
+      for (const char* axis : {"x", "y"})
+        if (part["initial"].contains(axis)) part["initial"][axis] = part["initial"][axis].get<double>() * scale;
+    if (part["motion"].is_object() && part["motion"].contains("planar"))
+      for (nlohmann::json& c : part["motion"]["planar"]["pivot"]) c = c.get<double>() * scale;
+  }
+}
+
+// Generated: `n` runs over the wall's place W = 50 .. 80 mm, the pusher's speed, the time unit
+// (s or ms: V 20 .. 400 mm/s or 0.02 .. 0.4 mm/ms), a length scale 10^-1 .. 10^1 (every length
+// and speed) and the wall: fixed (`receding` false) or receding at U = r V (r 0.1 .. 0.8; a
+// constant speed or a speed profile, alternately). The tolerance is the model's: its accuracy
+// 1e-10 of the ~100 mm the parts travel (times the scale), over the closing speed V - U (times
+// the scale): the time in which the gap closes by that much. Returns the worst error over the
+// tolerance.
+double pusher_jams(std::uint64_t seed, int n, bool receding) {
+  Lcg rng{seed};
+  double worst = 0;
+  for (int trial = 0; trial < n; ++trial) {
+    const bool ms = trial % 2 == 1;
+    const int wall_kind = receding ? 1 + (trial / 2) % 2 : 0;   // 0 fixed, 1 a constant speed, 2 a speed profile
+    const double scale = std::pow(10.0, std::floor(rng.uniform(-1, 2)));
+    const double unit = ms ? 1e-3 : 1;   // mm per time unit per mm/s
+    const double v = rng.uniform(20, 400) * unit * scale;
+    const double u = wall_kind == 0 ? 0 : v * rng.uniform(0.1, 0.8);
+    const double wall = std::round(rng.uniform(50, 80) * 1000) / 1000;   // three decimals
+    SCOPED_TRACE("trial " + std::to_string(trial) + ": " + (ms ? "ms" : "s") + ", scale " + num(scale) + ", V " +
+                 num(v) + ", U " + num(u) + (wall_kind == 2 ? " (profile)" : "") + ", wall " + num(wall * scale));
+    nlohmann::json j = test::pusher_into_wall_json(wall);
+    scale_lengths(j, scale);
+    if (ms) j["simulation"]["units"]["time"] = "ms";
+    nlohmann::json drivers = nlohmann::json::array({{{"part", "pusher"}, {"speed", {{"x", v}}}}});
+    if (wall_kind != 0) {
+      j["parts"][0]["motion"] = {{"planar", {{"pivot", {0, 0}}}}};
+      j["parts"][0]["initial"] = {{"x", 0}, {"y", 0}};
+      if (wall_kind == 1)
+        drivers.push_back({{"part", "wall"}, {"speed", {{"x", u}}}});
+      else
+        drivers.push_back({{"part", "wall"}, {"law", "speed_profile"}, {"profile", {{0, {{"x", u}}}, {1e6, {{"x", u}}}}}});
+    }
+    j["simulation"]["drivers"] = drivers;
+    const Model model = read_model(j.dump(), "pusher carrying a block into a wall");
+    PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
+    const double expected = (wall + 29) * scale / (v - u), tol = 1e-10 * 100 * scale / (v - u);
+    const auto [jam, message, exact] = test::run_to_jam(sim, 2 * expected);
+    EXPECT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " (t = " << sim.state().time << ")";
+    if (!jam) continue;
+    EXPECT_NEAR(*jam, expected, tol);
+    worst = std::max(worst, std::abs(*jam - expected) / tol);
+    std::cout << "  " << trial << (ms ? " ms" : " s ") << " scale " << scale << " wall " << wall_kind << ": jam "
+              << num(*jam) << ", closed form " << num(expected) << ": " << (*jam - expected) / tol << " of the tolerance\n";
+    EXPECT_NE(message.find(" 'block' (a jam)"), std::string::npos) << message;   // (jams / jam: one driver or two)
+    EXPECT_EQ(exact, wall_kind != 2) << message;   // (a speed profile's velocity doubles: approximate)
+  }
+  std::cout << "  worst: " << worst << " of the tolerance\n";
+  return worst;
+}
+
+// The wall fixed: 16 generated runs (seed 7301), within the model's accuracy (seeds 7301, 1-3:
+// at most 0.38 of it).
+TEST(SimulationJamLocated, APusherCarryingABlockIntoAFixedWallJamsAtTheClosedFormTime) {
+  const std::uint64_t seed = test::test_seed(7301);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  pusher_jams(seed, 16, false);
+}
+
+// OPEN (session 73, jam73; Issue 11): the wall receding. Passes at seeds 7302, 1 and 3 (at most
+// 0.91 of the tolerance); fails at seed 2 on integ ddb3ed94: trial 10 (s, V 107.8, U 68.45 mm/s
+// (profile), wall 67.771 mm) jams 9.8e-6 s early, 38417 times the tolerance (in ms, the same
+// case 9.8e-3 ms early). Traced (prints in PlanarSystemSimulation::Impl::advance's
+// back-off): after the pusher-block plastic impact the block carries a relative rotation of
+// -1.7e-30 (half-angle tangent) at relative x = 8 exactly, so the pusher-block pair is BLOCKED
+// (a corner ~1e-29 mm inside the pusher) at every state the back-off tries; it goes back 2^18
+// delta / rate before the rounding parts the pair. Exempting that pair (its relative
+// configuration constant, or touching at both ends) is not sound: it is blocked, not touching.
+// The fix needs the carried part projected off its pusher (or the back-off made per pair); this
+// test is the reproduction, disabled until then.
+TEST(SimulationJamLocated, DISABLED_APusherCarryingABlockIntoARecedingWallJamsAtTheClosedFormTime) {
+  const std::uint64_t seed = test::test_seed(7302);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  pusher_jams(seed, 16, true);
+}
+
+// Session 73 (jam73; review72 jam72 M4): exact_jam_row's feature pairs (src/simulation/simulation.cpp)
+// — a contact of several feature pairs at the jam is exact where their rows agree. cam-drive.json's
+// cam (e = 8 mm, constant w rad/s) lifts the follower into a stop of random extent h above its
+// shoulders (y = 31 at 5 <= |x| <= 20): (0) both of the stop's corners on shoulder R (two
+// vertex-segment feature pairs), (1) the stop across the face plate's right end (x = 20: the
+// stop's corner on the shoulder and the follower's corner on the stop's face, vertex-segment and
+// segment-vertex), (2) and (3) the same on the left. Every feature pair there has its exact frame
+// and the same normal: the verdict exact, at t* = asin(h / e) / w within the cam jam test's
+// tolerance (the accuracy 1e-9 over the 33 mm reach, over the lift's rate). Mutant: exact_jam_row
+// leaving the row approximate when a second feature pair is named (the multi-feature branch
+// returning nullopt) — caught here (and by the cam jam test of simulation_jam_test.cpp, whose stop
+// has both corners on shoulder R).
+TEST(SimulationJamLocated, AStopMeetingTheFollowerAtSeveralFeaturePairsJamsExactly) {
+  const std::uint64_t seed = test::test_seed(7303);
+  SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
+  Lcg rng{seed};
+  for (int trial = 0; trial < 8; ++trial) {
+    const int kind = trial % 4;
+    const double h = std::round(rng.uniform(1.5, 6.5) * 1000) / 1000, w = rng.uniform(20, 150), e = 8;
+    double left = 0, right = 0;
+    if (kind % 2 == 0) {
+      left = std::round(rng.uniform(5.5, 12) * 100) / 100;
+      right = std::round(rng.uniform(left + 2, 19.5) * 100) / 100;
+    } else {
+      left = std::round(rng.uniform(8, 18) * 100) / 100;
+      right = std::round(rng.uniform(21, 30) * 100) / 100;
+    }
+    if (kind >= 2) {   // mirrored: the left shoulder
+      const double l = left;
+      left = -right;
+      right = -l;
+    }
+    SCOPED_TRACE("kind " + std::to_string(kind) + ", stop [" + num(left) + ", " + num(right) + "], h " + num(h) +
+                 " mm, w " + num(w) + " rad/s");
+    const Model model = test::cam_into_stop(h, w, false, left, right);
+    Simulation sim = Simulation::create(model, SimulationOptions{});
+    const double expected = std::asin(h / e) / w, tol = 1e-9 * 33 / (e * w * std::cos(w * expected));
+    const auto [jam, message, exact] = test::run_to_jam(sim, 2 * expected);
+    ASSERT_TRUE(jam.has_value()) << "no jam by " << 2 * expected << " s (t = " << sim.state().time << " s)";
+    EXPECT_NEAR(*jam, expected, tol);
+    EXPECT_TRUE(exact) << message;
+    EXPECT_NE(message.find("the constant-speed driver 'cam' jams 'follower' (a jam)"), std::string::npos) << message;
+    // (the stop's contact named by its two feature pairs, the second after " + ")
+    const std::string side = kind >= 2 ? "L" : "R";
+    EXPECT_NE(message.find("/ follower shoulder " + side + " (vertex on segment)"), std::string::npos) << message;
+    EXPECT_NE(message.find(" + stop "), std::string::npos) << message;
+    if (kind % 2 == 1)
+      EXPECT_NE(message.find("stop stop face / follower corner of "), std::string::npos) << message;
+    else
+      EXPECT_EQ(message.find("(segment on vertex)"), std::string::npos) << message;
+    std::cout << "  kind " << kind << ": " << (*jam - expected) / tol << " of the tolerance; " << message << "\n";
+  }
+}
+
+}  // namespace
+}  // namespace hipair
