@@ -34,6 +34,7 @@
 #include "core/kept_per_thread.hpp"
 #include "core/mp_values.hpp"
 #include "curves/pose.hpp"
+#include "kernels/contact_frame_rational.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/model_features.hpp"
 #include "kernels/implicit_curve.hpp"
@@ -165,8 +166,13 @@ kernels::ContactFrame<T> frame_at(const CSpace::Impl& impl, std::size_t c, const
       cspace::pair_poses<T>(*impl.model, impl.axes, chart.x_axis, chart.y_axis, x, y, convert);
   const kernels::Pose<T>& a = pair.first.part == impl.axes.first ? poses.first : poses.second;
   const kernels::Pose<T>& b = pair.second.part == impl.axes.first ? poses.first : poses.second;
-  return kernels::contact_frame(a, feature_geometry<T>(*impl.model, pair.first, convert), b,
-                                feature_geometry<T>(*impl.model, pair.second, convert));
+  if constexpr (std::is_same_v<T, Rational>) {   // exact: concentric arcs have no frame (no division by 0)
+    return kernels::contact_frame_rational(a, feature_geometry<T>(*impl.model, pair.first, convert), b,
+                                           feature_geometry<T>(*impl.model, pair.second, convert));
+  } else {
+    return kernels::contact_frame(a, feature_geometry<T>(*impl.model, pair.first, convert), b,
+                                  feature_geometry<T>(*impl.model, pair.second, convert));
+  }
 }
 
 // The contact frame of feature pair `pair` at chart values (x, y) of chart `c`, in T, from the
@@ -180,7 +186,11 @@ kernels::ContactFrame<T> frame_with(const CSpace::Impl& impl, std::size_t c, con
       cspace::pair_poses<T>(*impl.model, impl.axes, chart.x_axis, chart.y_axis, x, y, convert);
   const kernels::Pose<T>& a = pair.first.part == impl.axes.first ? poses.first : poses.second;
   const kernels::Pose<T>& b = pair.second.part == impl.axes.first ? poses.first : poses.second;
-  return kernels::contact_frame(a, first, b, second);
+  if constexpr (std::is_same_v<T, Rational>) {
+    return kernels::contact_frame_rational(a, first, b, second);
+  } else {
+    return kernels::contact_frame(a, first, b, second);
+  }
 }
 
 // frame_memo (cspace/frame_memo.hpp): per thread, per space, the enclosed body geometries of

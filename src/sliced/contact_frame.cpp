@@ -4,6 +4,7 @@
 #include <hipair/error.hpp>
 #include <hipair/sliced.hpp>
 
+#include "kernels/contact_frame_rational.hpp"
 #include "kernels/contact_geometry.hpp"
 #include "kernels/model_features.hpp"
 
@@ -43,8 +44,8 @@ SlicedContactFrame sliced_contact_frame(const Model& model, const SlicedFeatureP
   free_pose.shift = V{x, y};
   free_pose.translates = true;
   kernels::ContactFrame<Rational> frame =
-      kernels::contact_frame(kernels::fixed_pose<Rational>(), geometry_of(model, pair.fixed), free_pose,
-                             geometry_of(model, pair.free));
+      kernels::contact_frame_rational(kernels::fixed_pose<Rational>(), geometry_of(model, pair.fixed), free_pose,
+                                      geometry_of(model, pair.free));
   SlicedContactFrame out;
   out.defined = frame.defined;
   if (frame.defined) {
