@@ -689,10 +689,13 @@ class ChainAnalysis {
         if (s > 0 && FarWalk::on() && chain_driver_piece_meet() != 0 && curve.fixed_range &&
             curve.fixed_range->lo < curve.fixed_range->hi) {
           Interval hull;
-          if (held_pieces(i, s, box, curve, hull, boxes[s], nullptr)) {
-            Interval met(std::max(charts[s].lo, hull.lo), std::min(charts[s].hi, hull.hi));
-            if (met.lo <= met.hi) charts[s] = met;
-          }
+          // (taken only when the hull lies inside the whole-range enclosure, review73 H1: the
+          // pieces' certified roots then lie where the whole-range certification put the holder's
+          // root, not at another root a piece's bracket might have caught; the band narrows to
+          // the hull)
+          if (held_pieces(i, s, box, curve, hull, boxes[s], nullptr) && charts[s].lo <= hull.lo &&
+              hull.hi <= charts[s].hi)
+            charts[s] = hull;
         }
       } catch (const NumericError&) {
         // the driver's range too wide for one enclosure: split it (held_pieces)
