@@ -678,10 +678,9 @@ class ChainAnalysis {
         charts[s] = stage.solver->certified_range(curve, box, c.v, c.s_chart, options_.relative_accuracy,
                                                   options_.absolute_accuracy, boxes[s], &proven_side);
         // Session 73: in the passes that compose a failed position again (a FarWalk lives), the
-        // enclosure over box x T met with the hull of T's pieces' (held_pieces: the driver lies
-        // in some piece, so the hull holds the holder's root for every vector of the box; both
-        // enclose it, so their meet does; a narrower enclosure of the same root keeps the
-        // certification's uniqueness and free side). Over the whole of a wide T the enclosure
+        // enclosure over box x T narrowed to the hull of T's pieces' (held_pieces: the driver
+        // lies in some piece, so the hull holds the holder's root for every vector of the box; a
+        // narrower enclosure of the same root keeps the certification's uniqueness and free side). Over the whole of a wide T the enclosure
         // can be far wider than its pieces' hull: gear-train.json at 4.9742 rad (120 per turn),
         // mesh G:H, T 0.130 chart units wide: Y 0.410 over the whole T, 0.115 over 2 pieces,
         // 0.095 over 8; H:I could then not be certified over a driver range spanning gear H's

@@ -193,9 +193,10 @@ int& chain_case_split();
 int& chain_widened_split();
 
 /// Session 73: in the passes that compose a failed position again (the far walk's and the driver
-/// pieces', chain.cpp certified()), each pair's enclosure over box x T met with the hull of its
-/// driver range's pieces' (chain.cpp compose_once, held_pieces): 1 (on) unless changed; 0 keeps the
-/// whole-T enclosure alone, as before (tests compare the two).
+/// pieces', chain.cpp certified()), each pair's enclosure over box x T narrowed to the hull of its
+/// driver range's pieces' where that hull lies inside it (chain.cpp compose_once, held_pieces): 1
+/// (on) unless changed; 0 keeps the whole-T enclosure alone, as before. (No committed test reaches
+/// the narrowing yet: docs/tolerance.md, Session 73.)
 int& chain_driver_piece_meet();
 
 /// A position's plain compositions (no far walk, no driver pieces) of its sub-boxes kept for its
