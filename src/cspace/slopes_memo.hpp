@@ -13,8 +13,12 @@ namespace hipair::cspace {
 // step 4 with the same ones returns that answer (cleared when the tracker is placed on another
 // edge). The simulator asks twice at every state of its contact bisection (the watch of each
 // held contact's row, then the accelerations' rows at the same state): the second call's Newton
-// and bracket land on the same Y1, and its steps 1-3 (the bracket and the certificate) still
-// run. Every answer is the same. On by default; tests switch it off per thread to compare
+// and bracket mostly land on the same Y1 (its steps 1-3, the bracket and the certificate, still
+// run), and the memo answers. Not always: in the escapement's 0.5 s at 1e-3, 24 of 328 second
+// calls of the cut search's probes gave a row differing from the first call's (23 in h, 1 in G;
+// session 74, docs/performance.md "Session 74 (speed74)"), so the two calls cannot be merged
+// without changing outputs. The memo's answers are the same as without it either way (a pure
+// function of the bit patterns). On by default; tests switch it off per thread to compare
 // (CSpaceSlopesMemo.*).
 struct SlopesMemoTag;
 inline bool& slopes_memo() { return thread_switch<SlopesMemoTag>(); }
