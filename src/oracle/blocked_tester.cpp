@@ -986,8 +986,7 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
 
 BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y,
                            int dimension, int depth, SharedPoses* shared, bool whole_tables)
-    : whole_tables_(whole_tables && dimension >= 1),
-      tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
+    : tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
       dimension_(dimension), depth_(depth),
       x_{algebra::lower_double(x.lo), algebra::upper_double(x.hi)},
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
@@ -998,7 +997,7 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
     flat_[d] = zero_block();
     directory_[d] = zero_directory();
   }
-  if (whole_tables_ && tester_) {
+  if (whole_tables && dimension_ >= 1 && tester_) {
     // every tabled depth one flat table, the depths one after the other in one zeroed
     // allocation (untested is 0): the cells' look-ups are the shallow depths' plain reads
     static_assert(untested == 0, "zeroed tables hold untested cells");

@@ -274,8 +274,9 @@ class BlockedCells {
   /// (Not depth 9 of a 2-D grid: its 1 MB table, touched here and there, took 460 page faults
   /// more per Geneva build than its sparse blocks, for 0.6 M instructions fewer.)
   static constexpr int whole_cells_log2 = 16;
-  /// Bytes of the whole tables of a grid of `dimension` (2-D 0.33 MB, 1-D 0.5 MB).
+  /// Bytes of the whole tables of a grid of `dimension` (2-D 0.33 MB, 1-D 0.5 MB; none below 1-D).
   static constexpr std::size_t whole_table_bytes(int dimension) {
+    if (dimension < 1) return 0;
     std::size_t bytes = 0;
     for (int d = 0; d * dimension <= whole_cells_log2; ++d) bytes += (std::size_t{1} << (d * dimension)) * sizeof(std::int32_t);
     return bytes;
@@ -303,7 +304,12 @@ class BlockedCells {
   /// Tester calls made (each cell at most once).
   std::size_t tests() const { return tests_; }
   /// Bytes of the per-depth tables made so far (directories and blocks of the tabled depths).
+  /// A grid with whole tables counts them whole, as allocated (calloc'ed): only the pages its
+  /// cells touch are resident (faulted in), which may be much less.
   std::size_t table_bytes() const;
+  /// Cell (depth, ·, ·) of this grid is kept in a per-depth table (whole or sparse blocks: a
+  /// look-up by index), not in the map of the deeper cells.
+  bool tabled(int depth) const { return dimension_ >= 1 && depth * dimension_ <= dense_cells_log2; }
   /// The tables' blocks: a depth of at most 2^whole_table_log2 cells is one block; a deeper
   /// one is cut into 2-D squares of 2^table_block_log2 cells a side, 1-D runs of
   /// 2^(2 table_block_log2) cells (see the private part).
@@ -359,7 +365,6 @@ class BlockedCells {
   // i & (2^2b - 1)). Never null: until a cell of a depth is first written, flat_ points to the
   // shared zeros and directory_ to a shared directory of them (own_directory_ then).
   int whole_depth_ = 0;
-  bool whole_tables_ = false;
   // the whole tables, one zeroed allocation (calloc: fresh pages come zeroed, and only the pages
   // a grid touches are ever faulted in)
   struct FreeTables {
