@@ -1143,8 +1143,7 @@ bool BlockedCells::enclose(const algebra::Interval& x, const algebra::Interval& 
   return true;
 }
 
-std::int32_t BlockedCells::known(int depth, long i, long j) const {
-  if (dense(depth, i, j)) return dense_entry(depth, i, j);
+std::int32_t BlockedCells::known_deep(int depth, long i, long j) const {
   const auto it = known_.find(cell_key(depth, i, j));
   return it == known_.end() ? untested : it->second;
 }

@@ -408,7 +408,11 @@ class BlockedCells {
   static const std::int32_t zero_entries_[];              // the shared zeros (only read)
   static std::int32_t* zero_block() { return const_cast<std::int32_t*>(zero_entries_); }
   static std::int32_t* const* zero_directory();
-  std::int32_t known(int depth, long i, long j) const;             // the cell's entry
+  // the cell's entry (a tabled cell read in place; the deeper ones from the map)
+  std::int32_t known(int depth, long i, long j) const {
+    return dense(depth, i, j) ? dense_entry(depth, i, j) : known_deep(depth, i, j);
+  }
+  std::int32_t known_deep(int depth, long i, long j) const;
   void remember(int depth, long i, long j, std::int32_t entry);   // (a cell's first answer)
   std::shared_ptr<const BlockedTester> tester_;
   ChartAxis x_axis_, y_axis_;
