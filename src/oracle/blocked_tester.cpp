@@ -1011,6 +1011,15 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
       flat_[d] = whole_.get() + at;
       at += std::size_t{1} << (d * dimension_);
     }
+    // 2-D: the sides of the tabled depths (at most the grid's finest, whose cells the culls
+    // test), 2 x 1 023 intervals at depth 9 (32 KB)
+    const int sides_depth = dimension_ == 2 ? std::min(depth_, dense_cells_log2 / 2) : -1;
+    for (int axis = 0; axis < 2 && sides_depth >= 0; ++axis) {
+      sides_[axis].reserve((std::size_t{2} << sides_depth) - 1);
+      for (int d = 0; d <= sides_depth; ++d)
+        for (long k = 0; k < (1L << d); ++k) sides_[axis].push_back(axis == 0 ? side_x(d, k) : side_y(d, k));
+    }
+    sides_depth_ = sides_depth;
   }
   // (a pose is found by the cell's column or row index, a pure function of the box side the
   // axis's cells cut: the side is part of the pool's key with the axis)
@@ -1124,9 +1133,9 @@ std::int32_t* const* BlockedCells::zero_directory() {
   return directory.data();
 }
 
-algebra::Interval BlockedCells::cell_x(int depth, long i) const { return part_of(x_, depth, i); }
+algebra::Interval BlockedCells::side_x(int depth, long i) const { return part_of(x_, depth, i); }
 
-algebra::Interval BlockedCells::cell_y(int depth, long j) const {
+algebra::Interval BlockedCells::side_y(int depth, long j) const {
   return dimension_ == 2 ? part_of(y_, depth, j) : y_;
 }
 

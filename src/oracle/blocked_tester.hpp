@@ -295,8 +295,15 @@ class BlockedCells {
   int dimension() const { return dimension_; }
   /// False: nothing is ever blocked (no usable tester).
   bool usable() const { return tester_ != nullptr; }
-  algebra::Interval cell_x(int depth, long i) const;
-  algebra::Interval cell_y(int depth, long j) const;   ///< a point (0) for a 1-D space
+  algebra::Interval cell_x(int depth, long i) const {
+    if (depth <= sides_depth_ && i >= 0 && i < (1L << depth)) return sides_[0][(std::size_t{1} << depth) - 1 + static_cast<std::size_t>(i)];
+    return side_x(depth, i);
+  }
+  algebra::Interval cell_y(int depth, long j) const {   ///< a point (0) for a 1-D space
+    if (dimension_ != 2) return y_;
+    if (depth <= sides_depth_ && j >= 0 && j < (1L << depth)) return sides_[1][(std::size_t{1} << depth) - 1 + static_cast<std::size_t>(j)];
+    return side_y(depth, j);
+  }
   /// Every configuration of cell (depth, i, j) is certainly blocked.
   bool blocked(int depth, long i, long j);
   /// The cell was answered blocked already (no test, no look-up of its ancestors).
@@ -419,6 +426,14 @@ class BlockedCells {
   int dimension_;
   int depth_;
   algebra::Interval x_, y_;
+  // The cells' sides (cell_x, cell_y) of the depths to sides_depth_ (-1: none), tabulated at the
+  // construction of a grid with whole tables (a whole space's few grids, whose culls ask each
+  // side many times: 2^(d+1) - 1 entries to depth d, depth d's side k at 2^d - 1 + k): the
+  // values of side_x and side_y, which compute the others.
+  int sides_depth_ = -1;
+  std::vector<algebra::Interval> sides_[2];
+  algebra::Interval side_x(int depth, long i) const;
+  algebra::Interval side_y(int depth, long j) const;
   BlockedTester::Cache cache_;
   // The blocks (zeroed: every entry `untested`, which is 0) are owned by `blocks_` and never
   // move, so an entry's address stays valid while the grid lives.
