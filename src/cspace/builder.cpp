@@ -253,10 +253,14 @@ class CurveCuller {
   // The grid's answer for cell (depth, i, j), remembered in a dense table per depth (0: not
   // asked yet, 1: free, 2: blocked). BlockedCells keeps every answer it gives (an answer is
   // never changed once made), so a second call would return the same; the table only spares
-  // the next curves of the chart the grid's hashed look-up at each node they share.
+  // the next curves of the chart the grid's hashed look-up at each node they share. The table
+  // has 4^depth entries, so the culler's depths stay small (the grid's finest depth, at most 9
+  // today, plus entry_depth_).
   bool blocked(int depth, long i, long j) {
-    // (a grid with whole tables reads a cell's own entry first, by one flat look-up: no table here)
-    if (grid_.whole_tables()) return grid_.blocked(depth, i, j);
+    // (a grid with whole tables reads a cell's own entry first by index, a flat look-up or a
+    // directory's block, at every depth it tables: no table here; a deeper cell would be read
+    // from the grid's map of deeper cells, which this table spares)
+    if (grid_.whole_tables() && grid_.tabled(depth)) return grid_.blocked(depth, i, j);
     const auto d = static_cast<std::size_t>(depth);
     if (answers_.size() <= d) answers_.resize(d + 1);
     std::vector<std::uint8_t>& table = answers_[d];

@@ -986,8 +986,7 @@ bool BlockedTester::gather(const PosedSet& first, const PosedSet& second, std::v
 
 BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const ChartAxis& x, const ChartAxis& y,
                            int dimension, int depth, SharedPoses* shared, bool whole_tables)
-    : whole_tables_(whole_tables && dimension >= 1),
-      tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
+    : tester_(tester && tester->usable() ? std::move(tester) : nullptr), x_axis_(x), y_axis_(y),
       dimension_(dimension), depth_(depth),
       x_{algebra::lower_double(x.lo), algebra::upper_double(x.hi)},
       y_{dimension == 2 ? algebra::Interval{algebra::lower_double(y.lo), algebra::upper_double(y.hi)}
@@ -998,7 +997,7 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
     flat_[d] = zero_block();
     directory_[d] = zero_directory();
   }
-  if (whole_tables_ && tester_) {
+  if (whole_tables && dimension_ >= 1 && tester_) {
     // every tabled depth one flat table, the depths one after the other in one zeroed
     // allocation (untested is 0): the cells' look-ups are the shallow depths' plain reads
     static_assert(untested == 0, "zeroed tables hold untested cells");
@@ -1012,6 +1011,15 @@ BlockedCells::BlockedCells(std::shared_ptr<const BlockedTester> tester, const Ch
       flat_[d] = whole_.get() + at;
       at += std::size_t{1} << (d * dimension_);
     }
+    // 2-D: the sides of the tabled depths (at most the grid's finest, whose cells the culls
+    // test), 2 x 1 023 intervals at depth 9 (32 KB)
+    const int sides_depth = dimension_ == 2 ? std::min(depth_, dense_cells_log2 / 2) : -1;
+    for (int axis = 0; axis < 2 && sides_depth >= 0; ++axis) {
+      sides_[axis].reserve((std::size_t{2} << sides_depth) - 1);
+      for (int d = 0; d <= sides_depth; ++d)
+        for (long k = 0; k < (1L << d); ++k) sides_[axis].push_back(axis == 0 ? side_x(d, k) : side_y(d, k));
+    }
+    sides_depth_ = sides_depth;
   }
   // (a pose is found by the cell's column or row index, a pure function of the box side the
   // axis's cells cut: the side is part of the pool's key with the axis)
@@ -1125,9 +1133,9 @@ std::int32_t* const* BlockedCells::zero_directory() {
   return directory.data();
 }
 
-algebra::Interval BlockedCells::cell_x(int depth, long i) const { return part_of(x_, depth, i); }
+algebra::Interval BlockedCells::side_x(int depth, long i) const { return part_of(x_, depth, i); }
 
-algebra::Interval BlockedCells::cell_y(int depth, long j) const {
+algebra::Interval BlockedCells::side_y(int depth, long j) const {
   return dimension_ == 2 ? part_of(y_, depth, j) : y_;
 }
 
@@ -1144,8 +1152,7 @@ bool BlockedCells::enclose(const algebra::Interval& x, const algebra::Interval& 
   return true;
 }
 
-std::int32_t BlockedCells::known(int depth, long i, long j) const {
-  if (dense(depth, i, j)) return dense_entry(depth, i, j);
+std::int32_t BlockedCells::known_deep(int depth, long i, long j) const {
   const auto it = known_.find(cell_key(depth, i, j));
   return it == known_.end() ? untested : it->second;
 }

@@ -274,8 +274,9 @@ class BlockedCells {
   /// (Not depth 9 of a 2-D grid: its 1 MB table, touched here and there, took 460 page faults
   /// more per Geneva build than its sparse blocks, for 0.6 M instructions fewer.)
   static constexpr int whole_cells_log2 = 16;
-  /// Bytes of the whole tables of a grid of `dimension` (2-D 0.33 MB, 1-D 0.5 MB).
+  /// Bytes of the whole tables of a grid of `dimension` (2-D 0.33 MB, 1-D 0.5 MB; none below 1-D).
   static constexpr std::size_t whole_table_bytes(int dimension) {
+    if (dimension < 1) return 0;
     std::size_t bytes = 0;
     for (int d = 0; d * dimension <= whole_cells_log2; ++d) bytes += (std::size_t{1} << (d * dimension)) * sizeof(std::int32_t);
     return bytes;
@@ -294,8 +295,15 @@ class BlockedCells {
   int dimension() const { return dimension_; }
   /// False: nothing is ever blocked (no usable tester).
   bool usable() const { return tester_ != nullptr; }
-  algebra::Interval cell_x(int depth, long i) const;
-  algebra::Interval cell_y(int depth, long j) const;   ///< a point (0) for a 1-D space
+  algebra::Interval cell_x(int depth, long i) const {
+    if (depth <= sides_depth_ && i >= 0 && i < (1L << depth)) return sides_[0][(std::size_t{1} << depth) - 1 + static_cast<std::size_t>(i)];
+    return side_x(depth, i);
+  }
+  algebra::Interval cell_y(int depth, long j) const {   ///< a point (0) for a 1-D space
+    if (dimension_ != 2) return y_;
+    if (depth <= sides_depth_ && j >= 0 && j < (1L << depth)) return sides_[1][(std::size_t{1} << depth) - 1 + static_cast<std::size_t>(j)];
+    return side_y(depth, j);
+  }
   /// Every configuration of cell (depth, i, j) is certainly blocked.
   bool blocked(int depth, long i, long j);
   /// The cell was answered blocked already (no test, no look-up of its ancestors).
@@ -303,7 +311,12 @@ class BlockedCells {
   /// Tester calls made (each cell at most once).
   std::size_t tests() const { return tests_; }
   /// Bytes of the per-depth tables made so far (directories and blocks of the tabled depths).
+  /// A grid with whole tables counts them whole, as allocated (calloc'ed): only the pages its
+  /// cells touch are resident (faulted in), which may be much less.
   std::size_t table_bytes() const;
+  /// Cell (depth, ·, ·) of this grid is kept in a per-depth table (whole or sparse blocks: a
+  /// look-up by index), not in the map of the deeper cells.
+  bool tabled(int depth) const { return dimension_ >= 1 && depth * dimension_ <= dense_cells_log2; }
   /// The tables' blocks: a depth of at most 2^whole_table_log2 cells is one block; a deeper
   /// one is cut into 2-D squares of 2^table_block_log2 cells a side, 1-D runs of
   /// 2^(2 table_block_log2) cells (see the private part).
@@ -359,7 +372,6 @@ class BlockedCells {
   // i & (2^2b - 1)). Never null: until a cell of a depth is first written, flat_ points to the
   // shared zeros and directory_ to a shared directory of them (own_directory_ then).
   int whole_depth_ = 0;
-  bool whole_tables_ = false;
   // the whole tables, one zeroed allocation (calloc: fresh pages come zeroed, and only the pages
   // a grid touches are ever faulted in)
   struct FreeTables {
@@ -403,13 +415,25 @@ class BlockedCells {
   static const std::int32_t zero_entries_[];              // the shared zeros (only read)
   static std::int32_t* zero_block() { return const_cast<std::int32_t*>(zero_entries_); }
   static std::int32_t* const* zero_directory();
-  std::int32_t known(int depth, long i, long j) const;             // the cell's entry
+  // the cell's entry (a tabled cell read in place; the deeper ones from the map)
+  std::int32_t known(int depth, long i, long j) const {
+    return dense(depth, i, j) ? dense_entry(depth, i, j) : known_deep(depth, i, j);
+  }
+  std::int32_t known_deep(int depth, long i, long j) const;
   void remember(int depth, long i, long j, std::int32_t entry);   // (a cell's first answer)
   std::shared_ptr<const BlockedTester> tester_;
   ChartAxis x_axis_, y_axis_;
   int dimension_;
   int depth_;
   algebra::Interval x_, y_;
+  // The cells' sides (cell_x, cell_y) of the depths to sides_depth_ (-1: none), tabulated at the
+  // construction of a grid with whole tables (a whole space's few grids, whose culls ask each
+  // side many times: 2^(d+1) - 1 entries to depth d, depth d's side k at 2^d - 1 + k): the
+  // values of side_x and side_y, which compute the others.
+  int sides_depth_ = -1;
+  std::vector<algebra::Interval> sides_[2];
+  algebra::Interval side_x(int depth, long i) const;
+  algebra::Interval side_y(int depth, long j) const;
   BlockedTester::Cache cache_;
   // The blocks (zeroed: every entry `untested`, which is 0) are owned by `blocks_` and never
   // move, so an entry's address stays valid while the grid lives.
