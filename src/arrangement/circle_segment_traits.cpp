@@ -530,7 +530,12 @@ class Builder {
   // segments of a convolution, a chart corner) get the same handle, so that the kernel converts
   // the point and computes its exact value once (CGAL's sweep compares equal ends exactly).
   // The same coordinates, hence the same arrangement.
-  typename K::Point_2 point(const Rational& x, const Rational& y) {
+  // (X, Y: Rational, const or not: a new point's rationals are moved into its KnownPoint when
+  // the caller passes temporaries — gmpxx's move construction allocates one limb for the
+  // source's new denominator, a copy two, one per integer — and copied otherwise)
+  template <class X, class Y>
+  typename K::Point_2 point(X&& x, Y&& y) {
+    static_assert(std::is_same_v<std::remove_cvref_t<X>, Rational> && std::is_same_v<std::remove_cvref_t<Y>, Rational>);
     if constexpr (segments) {
       const std::size_t h = point_hash(x, y);
       std::size_t found = none;
@@ -544,7 +549,7 @@ class Builder {
       // (its coordinates' exact values are made from the rationals kept here, when asked)
       const std::size_t index = known_points_.size();
       typename K::Point_2 p(known_ft(x, index, false), known_ft(y, index, true));
-      known_points_.emplace_back(p, x, y);   // (the rationals copied in place: no moved-from temporary)
+      known_points_.emplace_back(p, std::forward<X>(x), std::forward<Y>(y));   // (built in place)
       known_.insert(p.id(), index);
       by_value_.insert(h, index);
       return p;
@@ -932,7 +937,13 @@ class Builder {
     mpz_mul(t1.get_mpz_t(), lo_num.get_mpz_t(), hi_den.get_mpz_t());
     mpz_mul(t2.get_mpz_t(), hi_num.get_mpz_t(), lo_den.get_mpz_t());
     if (!(t1 < t2)) return true;   // empty, or a single valid point: no segment (as clip_line)
-    Rational lo(lo_num, lo_den), hi(hi_num, hi_den);
+    // (the scratch integers swapped in: one allocation per rational, its new denominator's
+    // limb, which the scratch keeps; copying them in would make two)
+    Rational lo, hi;
+    mpz_swap(mpq_numref(lo.get_mpq_t()), lo_num.get_mpz_t());
+    mpz_swap(mpq_denref(lo.get_mpq_t()), lo_den.get_mpz_t());
+    mpz_swap(mpq_numref(hi.get_mpq_t()), hi_num.get_mpz_t());
+    mpz_swap(mpq_denref(hi.get_mpq_t()), hi_den.get_mpz_t());
     lo.canonicalize();
     hi.canonicalize();
     auto y_at = [&](const Rational& x) {   // -(k0 + kx x) / ky, its integers written in place
@@ -946,10 +957,14 @@ class Builder {
       return y;
     };
     Rational y_lo = y_at(lo), y_hi = y_at(hi);
-    if (vertical)   // (x = y_lo = y_hi, the parameter's ends lo < hi in y)
-      pieces_.emplace_back(BaseCurve(point(y_lo, lo), point(y_hi, hi)), current_);
-    else
-      pieces_.emplace_back(BaseCurve(point(lo, y_lo), point(hi, y_hi)), current_);
+    // (the four rationals are read here last: moved into the points' KnownPoint when new)
+    if (vertical) {   // (x = y_lo = y_hi, the parameter's ends lo < hi in y)
+      typename K::Point_2 first = point(std::move(y_lo), std::move(lo));
+      pieces_.emplace_back(BaseCurve(first, point(std::move(y_hi), std::move(hi))), current_);
+    } else {
+      typename K::Point_2 first = point(std::move(lo), std::move(y_lo));
+      pieces_.emplace_back(BaseCurve(first, point(std::move(hi), std::move(y_hi))), current_);
+    }
     return true;
   }
 
@@ -974,7 +989,7 @@ class Builder {
     }
     auto at = [&](const Rational& t) {
       if (vertical) return point(x0, t);
-      return point(t, -(line.k0 + line.kx * t) / line.ky);
+      return point(t, Rational(-(line.k0 + line.kx * t) / line.ky));
     };
     // One-atom clauses and no windows (every contact segment of a polygon pair): the set is
     // one closed interval, kept as its two ends (the same ends as the set arithmetic below).
@@ -1479,7 +1494,7 @@ class Builder {
     return out;
   }
 
-  Box box_;
+  const Box& box_;   // (the caller's, which outlives the builder: build_circle_segment_arrangement)
   Options options_;
   Traits traits_;
   std::size_t current_ = no_curve;                  // the input curve being clipped

@@ -214,12 +214,22 @@ std::optional<Point> normalising_translation(const Model& model, const std::vect
     see_vertices(box, part, true);
   }
   if (box.empty()) return std::nullopt;
-  Rational size = box.size();
+  // (the test below in this thread's scratch rationals, written in place: a pair built again and
+  // again makes no rational here; the same exact comparison as |centre| <= 2^20 size, doubled)
+  thread_local Rational width, height, sum_x, sum_y, far_x, far_y, bound;
+  mpq_sub(width.get_mpq_t(), box.x_hi->get_mpq_t(), box.x_lo->get_mpq_t());
+  mpq_sub(height.get_mpq_t(), box.y_hi->get_mpq_t(), box.y_lo->get_mpq_t());
+  const Rational& size = width < height ? height : width;   // (box.size())
   if (sgn(size) == 0) return std::nullopt;
-  Rational cx = (*box.x_lo + *box.x_hi) / 2, cy = (*box.y_lo + *box.y_hi) / 2;
-  Rational far = std::max(Rational(abs(cx)), Rational(abs(cy)));
+  mpq_add(sum_x.get_mpq_t(), box.x_lo->get_mpq_t(), box.x_hi->get_mpq_t());   // 2 cx
+  mpq_add(sum_y.get_mpq_t(), box.y_lo->get_mpq_t(), box.y_hi->get_mpq_t());   // 2 cy
+  mpq_abs(far_x.get_mpq_t(), sum_x.get_mpq_t());
+  mpq_abs(far_y.get_mpq_t(), sum_y.get_mpq_t());
+  const Rational& twice_far = far_x < far_y ? far_y : far_x;
+  mpq_mul_2exp(bound.get_mpq_t(), size.get_mpq_t(), 21);
   // |centre| <= 2^20 * size: as is (every example; the doubles keep about 30 bits of the parts)
-  if (far <= size * Rational(mpz_class(1) << 20)) return std::nullopt;
+  if (twice_far <= bound) return std::nullopt;
+  Rational cx = sum_x / 2, cy = sum_y / 2;
   const long e = binary_exponent(size);
   auto round_down = [e](const Rational& v) {   // floor(v / 2^e) * 2^e, exactly
     Rational q = v;

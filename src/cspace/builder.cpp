@@ -2258,6 +2258,15 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     chart_input.blocked_cells.reset();
     stats.seconds_culling += seconds_since(culling_start);
     stats.curves += kept.size();
+    // (the chart's list reserved to its size; the space's lists grown at most once here to hold
+    // what the kept curves can add, geometrically, so that an operating region's many tiles
+    // still move them a logarithmic number of times)
+    chart.curve_global.reserve(chart.curve_global.size() + kept.size());
+    auto room_for = [](auto& list, std::size_t extra) {
+      if (list.size() + extra > list.capacity()) list.reserve(std::max(list.size() + extra, 2 * list.capacity()));
+    };
+    room_for(pair_keys, kept.size());
+    room_for(impl->feature_pairs, kept.size());
     for (std::size_t k : kept) {
       ContactCurve& curve = chart_input.curves[k];
       auto [found, inserted] = keys.try_emplace(key_of(curve), impl->feature_pairs.size());

@@ -400,8 +400,10 @@ CSpace build_pair_as_is(const Model& model, std::size_t first, std::size_t secon
   input.length_unit_exponent = length_unit_exponent;
   input.model = model_copy(kept ? *kept : model);
   input.axes = axes;
-  std::vector<ChartAxis> y_charts = layout.y_charts;
-  if (input.dimension == 1) y_charts = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
+  // (the layout's list read in place; a 1-D space's one zero-width axis stands for it)
+  std::vector<ChartAxis> zero_axis;
+  if (input.dimension == 1) zero_axis = {ChartAxis{ChartAxis::Kind::translation, false, Rational(0), Rational(0)}};
+  const std::vector<ChartAxis>& y_charts = input.dimension == 1 ? zero_axis : layout.y_charts;
   // Translating polygon pairs: their contact curves are the segments of the parts' reduced
   // convolution once the curve generator's exact corner test has dropped every vertex–segment
   // pair whose curve lies in blocked space throughout; CGAL's circle–segment arrangement
