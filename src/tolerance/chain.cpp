@@ -685,16 +685,25 @@ class ChainAnalysis {
         // mesh G:H, T 0.130 chart units wide: Y 0.410 over the whole T, 0.115 over 2 pieces,
         // 0.095 over 8; H:I could then not be certified over a driver range spanning gear H's
         // tooth pitch. Only in those passes: every band bounded by the first pass is unchanged.
+        // Session 74: not tried where the whole-T enclosure already meets certified_range's own
+        // accuracy target (the linearised width over box x T, times 1 + the relative accuracy,
+        // plus the absolute one: review73 M3), whose pieces could narrow it little.
         if (s > 0 && FarWalk::on() && chain_driver_piece_meet() != 0 && curve.fixed_range &&
-            curve.fixed_range->lo < curve.fixed_range->hi) {
+            curve.fixed_range->lo < curve.fixed_range->hi &&
+            (chain_driver_piece_meet() == 2 || !within_linearised_target(charts[s], box, c.s_chart, curve))) {
           Interval hull;
+          std::size_t piece_boxes = 0;   // the pieces' sub-boxes, counted only when the meet is taken (review73 L1)
           // (taken only when the hull lies inside the whole-range enclosure, review73 H1: the
           // pieces' certified roots then lie where the whole-range certification put the holder's
           // root, not at another root a piece's bracket might have caught; the band narrows to
           // the hull)
-          if (held_pieces(i, s, box, curve, hull, boxes[s], nullptr) && charts[s].lo <= hull.lo &&
-              hull.hi <= charts[s].hi)
+          if (held_pieces(i, s, box, curve, hull, piece_boxes, nullptr) && charts[s].lo <= hull.lo &&
+              hull.hi <= charts[s].hi) {
+            if (hull.lo > charts[s].lo || hull.hi < charts[s].hi)
+              chain_driver_piece_meets().fetch_add(1, std::memory_order_relaxed);
             charts[s] = hull;
+            boxes[s] += piece_boxes;
+          }
         }
       } catch (const NumericError&) {
         // the driver's range too wide for one enclosure: split it (held_pieces)
@@ -839,6 +848,18 @@ class ChainAnalysis {
         return false;
     }
     return true;
+  }
+
+  // Whether enclosure `y` of a pair's follower over box x T (curve.fixed_range) is already within
+  // certified_range's accuracy target for it: the linearised width (the chart sensitivities
+  // `s_chart` times the box's widths, plus the driver's sweep over T, curve.fixed_spread) times
+  // 1 + the relative accuracy, plus the absolute accuracy.
+  bool within_linearised_target(const Interval& y, const Box& box, const std::vector<double>& s_chart,
+                                const CurveSlice& curve) const {
+    double linear = curve.fixed_spread;
+    for (std::size_t k = 0; k < s_chart.size() && k < box.lo.size(); ++k)
+      linear += std::fabs(s_chart[k]) * (box.hi[k] - box.lo[k]);
+    return y.width() <= linear * (1 + options_.relative_accuracy) + options_.absolute_accuracy;
   }
 
   // Pair s's enclosure over `box` when certified_range cannot certify it with the driver over
@@ -1791,6 +1812,11 @@ std::atomic<std::size_t>& chain_cases_resumed() {
 int& chain_driver_piece_meet() {
   static int on = 1;
   return on;
+}
+
+std::atomic<std::size_t>& chain_driver_piece_meets() {
+  static std::atomic<std::size_t> narrowed{0};
+  return narrowed;
 }
 
 std::atomic<std::size_t>& chain_compositions_made() {

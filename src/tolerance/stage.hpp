@@ -195,9 +195,14 @@ int& chain_widened_split();
 /// Session 73: in the passes that compose a failed position again (the far walk's and the driver
 /// pieces', chain.cpp certified()), each pair's enclosure over box x T narrowed to the hull of its
 /// driver range's pieces' where that hull lies inside it (chain.cpp compose_once, held_pieces): 1
-/// (on) unless changed; 0 keeps the whole-T enclosure alone, as before. (No committed test reaches
-/// the narrowing yet: docs/tolerance.md, Session 73.)
+/// (on) unless changed; 0 keeps the whole-T enclosure alone, as before; 2 tries the meet also where
+/// the whole-T enclosure already meets certified_range's accuracy target (session 74 skips it
+/// there; tests compare).
 int& chain_driver_piece_meet();
+
+/// Session 74: how many pair enclosures the driver-piece meet above has narrowed (the hull
+/// strictly inside the whole-T enclosure), over the process (tests read differences).
+std::atomic<std::size_t>& chain_driver_piece_meets();
 
 /// A position's plain compositions (no far walk, no driver pieces) of its sub-boxes kept for its
 /// later passes, the far walk's and the driver pieces' (chain.cpp certified(); session 53), whose

@@ -28,6 +28,7 @@
 // (the first, or the second): 30 values outside in the g in [-3, 1] variant (up to 0.20 / 0.50 mm),
 // which ChainWidenedSplit does not see.
 #include "gear_train_models.hpp"
+#include "test_seed.hpp"
 #include "tolerance_band_check.hpp"
 
 #include "model/parametric/parametric.hpp"
@@ -580,6 +581,86 @@ TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChai
   EXPECT_EQ(values, 2 * probes.size());
   std::printf("%zu exact values checked, %zu outside, nearest %.4g mm from an edge; Monte Carlo %zu outside\n", values, outside,
               nearest, r[1].monte_carlo->outside_certified);
+}
+
+
+// Session 74 (tol74): the driver-piece meet of the later passes (chain.cpp compose_once,
+// tolerance_detail::chain_driver_piece_meet(); review73 H1, M3): pair s's enclosure Y over
+// box x T narrowed to the hull of its enclosures over T's pieces (held_pieces) where that hull
+// lies inside Y; tried (switch 1, the default) only where Y is beyond certified_range's accuracy
+// target, or everywhere (switch 2). On generated variants of the driver-pieces chain above (seeded:
+// e's tolerance, the competitor's x, the slanted underside's start), whose positions reach the far
+// walk's and the driver pieces' passes: with the meet tried everywhere it narrows enclosures
+// (counted: tolerance_detail::chain_driver_piece_meets()), every band it gives lies inside the
+// band without it (both enclose the exact chain; the meet only narrows) and holds the exact chain
+// at the box's 4 corners, g's ends and middle and 4 random vectors; with the default (the meet
+// skipped where Y already meets the target), the bands, notes and sub-box counts are those
+// without the meet wherever it narrowed nothing (review73 L1: the pieces' sub-boxes are counted
+// only when the meet is taken). Mutants (temporary, built, run, removed): docs/tolerance.md,
+// Session 74 (tol74).
+TEST(ChainDriverPieceMeet, GeneratedChainsMeetNarrowsInsideTheWholeRangeBandAndHoldsTheExactChain) {
+  ASSERT_EQ(tolerance_detail::chain_driver_piece_meet(), 1);
+  const std::uint64_t seed = test::test_seed(74);
+  std::mt19937 rng(static_cast<std::mt19937::result_type>(seed));
+  std::uniform_int_distribution<int> e_steps(0, 2), x_steps(0, 120), y_steps(0, 5), rise_steps(0, 12);
+  const ToleranceOptions options = chain_options();
+  std::size_t meets_everywhere = 0, checked_values = 0, narrower = 0;
+  for (int k = 0; k < 3; ++k) {
+    // e in {2, 2.25, 2.5}, x in [34.8, 36] (0.01 steps), y in [35, 37.5] (0.5 steps): the ranges of
+    // ChainDriverPieces' three variants
+    const std::string e = std::to_string(2 + 0.25 * e_steps(rng)).substr(0, 4);
+    const std::string x = std::to_string(34.8 + 0.01 * x_steps(rng)).substr(0, 5);
+    const std::string y = std::to_string(35 + 0.5 * y_steps(rng)).substr(0, 4);
+    const PiecesVariant v{e.c_str(), x.c_str(), y.c_str()};
+    // the holder's flat underside slanted (its right end 0.3-1.5 mm higher): the holder's root then
+    // moves with the driver (lifter1), so the pieces of T enclose different roots
+    const std::string rise = std::to_string(50.3 + 0.1 * rise_steps(rng)).substr(0, 4);
+    std::string text = driver_pieces_chain(v);
+    const std::string flat = "{\"line_to\": [60, 50]}";
+    ASSERT_NE(text.find(flat), std::string::npos);
+    text.replace(text.find(flat), flat.size(), "{\"line_to\": [60, " + rise + "]}");
+    SCOPED_TRACE("seed " + std::to_string(seed) + ": e in [-" + e + ", " + e + "], competitor at x " + x +
+                 ", underside from y " + y + ", its right end at y " + rise);
+    ToleranceResult r[3];
+    std::size_t meets[3];
+    for (int mode : {0, 1, 2}) {
+      test_band::ScopedSwitch meet(tolerance_detail::chain_driver_piece_meet(), mode);
+      const std::size_t before = tolerance_detail::chain_driver_piece_meets().load();
+      r[mode] = analyze_tolerances_text(text, options);
+      meets[mode] = tolerance_detail::chain_driver_piece_meets().load() - before;
+    }
+    EXPECT_EQ(meets[0], 0u);
+    meets_everywhere += meets[2];
+    // the default: where the meet narrowed nothing, the analysis without it bit for bit
+    if (meets[1] == 0) expect_same_chain_result(r[0], r[1]);
+    ASSERT_EQ(r[0].samples.size(), r[2].samples.size());
+    for (std::size_t i = 0; i < r[2].samples.size(); ++i) {
+      const VariationSample &without = r[0].samples[i], &with = r[2].samples[i];
+      if (!bounded(without)) continue;
+      // both enclose the exact chain and the meet only narrows an enclosure: inside
+      EXPECT_TRUE(bounded(with)) << with.driver;
+      if (!bounded(with)) continue;
+      EXPECT_GE(with.certified.lower, without.certified.lower) << with.driver;
+      EXPECT_LE(with.certified.upper, without.certified.upper) << with.driver;
+      narrower += with.certified.lower > without.certified.lower || with.certified.upper < without.certified.upper;
+    }
+    Count c;
+    {
+      test_band::ScopedSwitch meet(tolerance_detail::chain_driver_piece_meet(), 2);
+      c = check_text(text, 1);
+    }
+    EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
+    checked_values += c.values;
+    std::printf("seed %llu, e %s, x %s, y %s, rise to %s: %zu enclosures narrowed by the meet tried everywhere, %zu by the default; "
+                "%zu of 6 positions bounded, %zu exact values checked, %zu outside (worst %.4f mm)\n",
+                static_cast<unsigned long long>(seed), e.c_str(), x.c_str(), y.c_str(), rise.c_str(), meets[2], meets[1], c.bounded,
+                c.values, c.outside, c.worst);
+  }
+  // not vacuous: the meet was reached and narrowed, and bands were checked
+  EXPECT_GT(meets_everywhere, 0u);
+  EXPECT_GT(checked_values, 0u);
+  std::printf("%zu enclosures narrowed, %zu bands narrower with the meet, %zu exact values checked\n", meets_everywhere,
+              narrower, checked_values);
 }
 
 }  // namespace
