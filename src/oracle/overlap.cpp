@@ -17,6 +17,7 @@
 //     the other part's interior: one exact point-in-region test per such loop decides.
 #include "oracle/overlap.hpp"
 #include "oracle/filter_counts.hpp"
+#include "oracle/box_grid.hpp"
 #include "curves/algebraic_overlap.hpp"
 
 #include "algebra/near_quotient.hpp"
@@ -160,6 +161,16 @@ struct Box {
     yhi = std::max(yhi, y);
   }
 };
+
+BoxGrid::Bounds bounds(const Box& box) { return BoxGrid::Bounds{box.xlo, box.xhi, box.ylo, box.yhi}; }
+
+// A grid of boxes (BoxGrid) filed in index order.
+BoxGrid grid_of(const std::vector<Box>& boxes) {
+  std::vector<BoxGrid::Bounds> filed;
+  filed.reserve(boxes.size());
+  for (const Box& box : boxes) filed.push_back(bounds(box));
+  return BoxGrid(filed);
+}
 
 // An arc's exact geometry beyond its ends (a segment has none: a segment's PlacedEdge makes no
 // rational beyond its two ends).
@@ -821,10 +832,25 @@ class OverlapAnalysis {
     PlacedPart& a = *parts_[0];
     PlacedPart& b = *parts_[1];
     const std::vector<Box>* b_blocks = lazy_placement_enabled ? b.block_boxes() : nullptr;
+    // (Session 74: with b_grid_, the grid of b's edge boxes lists the j that may meet edge i's
+    // box, ascending: the same j pass box.meets below, in the same order, without a scan of b)
+    thread_local std::vector<std::size_t> listed;
     for (std::size_t i = 0; i < a.size(); ++i) {
       if (!a.coarse(i).meets(b.total())) continue;
       const Box& box = a.box(i);
       if (!box.meets(b.total())) continue;
+      if (b_grid_) {
+        b_grid_->query(bounds(box), listed);
+        for (std::size_t j : listed) {
+          if (!box.meets(b.box(j))) continue;
+          Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
+                                                                         : filter_pair(a.interval(i), b.interval(j));
+          if (filter == Filter::disjoint) continue;
+          if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
+          if (intersect(i, j)) return Overlap::overlapping;
+        }
+        continue;
+      }
       for (std::size_t j = 0; j < b.size(); ++j) {
         // a block of b's edges whose boxes' union misses edge i's box: none of them meets it
         if (b_blocks && j % PartEnclosure::kBlock == 0 && !box.meets((*b_blocks)[j / PartEnclosure::kBlock])) {
@@ -848,6 +874,9 @@ class OverlapAnalysis {
 
   /// Exact overlap sites are needed (for a witness): no shortcut on certified crossings.
   void need_site() { need_site_ = true; }
+  /// A grid of the second part's edge boxes (box(j) of every j, as placed), to find the edges
+  /// near an edge of the first part without scanning the second.
+  void use_grid(const BoxGrid* grid) { b_grid_ = grid; }
   void exact_only() { exact_only_ = true; }
 
   const std::vector<Point>& touch_points() const { return touch_points_; }
@@ -1418,6 +1447,7 @@ class OverlapAnalysis {
   bool shared_ = false;
   bool need_site_ = false;
   bool exact_only_ = false;
+  const BoxGrid* b_grid_ = nullptr;
   Site site_;
   std::vector<Point> hints_;
   std::array<const PlacedEdge*, 2> crossing_edges_{nullptr, nullptr};
@@ -1449,8 +1479,9 @@ namespace {
 // The analysis in the second part's body frame: the first part placed by `relative`
 // (interval enclosure now, exact map on demand); `second_world` maps results to the world.
 OverlapReport analyse_placed(PlacedPart& a, PlacedPart& b, const std::function<RigidMap()>& second_world,
-                             const OverlapOptions& options) {
+                             const OverlapOptions& options, const BoxGrid* b_grid = nullptr) {
   OverlapAnalysis analysis(a, b);
+  analysis.use_grid(b_grid);
   if (options.want_witness) analysis.need_site();
   if (options.exact_only) analysis.exact_only();
   OverlapReport report;
@@ -1575,7 +1606,13 @@ Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAx
 struct PairOverlap::Data {
   std::shared_ptr<const PartEnclosure> first;
   IdentityPart second;
-  Data(const Part& a, const Part& b) : first(blocked_enclosure(a)), second(b) {}
+  // Session 74 (growth74): grids of the second part's edge boxes and block boxes at the identity
+  // (its placement's), made once: classify and certainly_overlapping find the second part's
+  // edges and blocks near a posed edge or block of the first from them, not by a scan
+  BoxGrid second_edges, second_blocks;
+  Data(const Part& a, const Part& b)
+      : first(blocked_enclosure(a)), second(b), second_edges(grid_of(second.placement.boxes)),
+        second_blocks(grid_of(second.placement.block_boxes)) {}
   // the first part's enclosure with its blocks (its placements are lazy)
   static std::shared_ptr<const PartEnclosure> blocked_enclosure(const Part& part) {
     auto enclosure = std::make_shared<PartEnclosure>(part);
@@ -1606,7 +1643,9 @@ Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const Char
                           {
                             PlacedPart a(data_->first, relative, exact_relative, false, lazy_placement_enabled);
                             PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
-                            relation = analyse_placed(a, b, second_world, OverlapOptions{}).relation;
+                            relation = analyse_placed(a, b, second_world, OverlapOptions{},
+                                                      lazy_placement_enabled ? &data_->second_edges : nullptr)
+                                           .relation;
                             if (a.lazy()) {
                               lazy_asked.fetch_add(1, std::memory_order_relaxed);
                               lazy_edges.fetch_add(a.size(), std::memory_order_relaxed);
@@ -1685,7 +1724,7 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // For the same reason an edge of a block is tested only against the second part's blocks
   // whose boxes meet the block's (`near`), not against all of them.
   const bool windowed = first.bounded && bounded_map(relative);
-  thread_local std::vector<std::size_t> near;
+  thread_local std::vector<std::size_t> near, listed;
   // crossing() over the blocks in `near`
   auto crossing_near = [&](const IntervalEdge& e, const Box& box) {
     if (!box.meets(b.total)) return false;
@@ -1705,8 +1744,10 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
     for (std::size_t k = 0; k < blocks.size() && !found; ++k) {
       if (!blocks[k].meets(b.total)) continue;
       if (windowed) {
+        // (session 74: the second part's blocks that may meet, from its grid, ascending)
+        data_->second_blocks.query(bounds(blocks[k]), listed);
         near.clear();
-        for (std::size_t block = 0; block < b.block_boxes.size(); ++block)
+        for (std::size_t block : listed)
           if (blocks[k].meets(b.block_boxes[block])) near.push_back(block);
         if (near.empty()) continue;
       }
