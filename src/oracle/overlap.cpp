@@ -832,37 +832,22 @@ class OverlapAnalysis {
     PlacedPart& a = *parts_[0];
     PlacedPart& b = *parts_[1];
     const std::vector<Box>* b_blocks = lazy_placement_enabled ? b.block_boxes() : nullptr;
-    // (Session 74: with b_grid_, the grid of b's edge boxes lists the j that may meet edge i's
-    // box, ascending: the same j pass box.meets below, in the same order, without a scan of b)
-    thread_local std::vector<std::size_t> listed;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (!a.coarse(i).meets(b.total())) continue;
-      const Box& box = a.box(i);
-      if (!box.meets(b.total())) continue;
-      if (b_grid_) {
-        b_grid_->query(bounds(box), listed);
-        for (std::size_t j : listed) {
+    if (b_grid_) {
+      if (grid_pairs()) return Overlap::overlapping;
+    } else {
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        if (!a.coarse(i).meets(b.total())) continue;
+        const Box& box = a.box(i);
+        if (!box.meets(b.total())) continue;
+        for (std::size_t j = 0; j < b.size(); ++j) {
+          // a block of b's edges whose boxes' union misses edge i's box: none of them meets it
+          if (b_blocks && j % PartEnclosure::kBlock == 0 && !box.meets((*b_blocks)[j / PartEnclosure::kBlock])) {
+            j += PartEnclosure::kBlock - 1;
+            continue;
+          }
           if (!box.meets(b.box(j))) continue;
-          Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
-                                                                         : filter_pair(a.interval(i), b.interval(j));
-          if (filter == Filter::disjoint) continue;
-          if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
-          if (intersect(i, j)) return Overlap::overlapping;
+          if (pair_overlaps(i, j)) return Overlap::overlapping;
         }
-        continue;
-      }
-      for (std::size_t j = 0; j < b.size(); ++j) {
-        // a block of b's edges whose boxes' union misses edge i's box: none of them meets it
-        if (b_blocks && j % PartEnclosure::kBlock == 0 && !box.meets((*b_blocks)[j / PartEnclosure::kBlock])) {
-          j += PartEnclosure::kBlock - 1;
-          continue;
-        }
-        if (!box.meets(b.box(j))) continue;
-        Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
-                                                                       : filter_pair(a.interval(i), b.interval(j));
-        if (filter == Filter::disjoint) continue;
-        if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
-        if (intersect(i, j)) return Overlap::overlapping;
       }
     }
     for (const Point& p : touch_points_)
@@ -870,6 +855,58 @@ class OverlapAnalysis {
     for (int side = 0; side < 2; ++side)
       if (loop_inside_other(side)) return Overlap::overlapping;
     return touch_points_.empty() && !shared_ ? Overlap::apart : Overlap::touching;
+  }
+
+  // Edge i of the first part against edge j of the second (their boxes meet): true on overlap.
+  bool pair_overlaps(std::size_t i, std::size_t j) {
+    PlacedPart& a = *parts_[0];
+    PlacedPart& b = *parts_[1];
+    Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
+                                                                   : filter_pair(a.interval(i), b.interval(j));
+    if (filter == Filter::disjoint) return false;
+    if (filter == Filter::overlapping && !need_site_) return true;
+    return intersect(i, j);
+  }
+
+  // run()'s edge pairs through the grid of the second part's edge boxes (session 74): a run of
+  // the first part's edges that share a coarse box (a lazy placement's block: its posed disk) is
+  // asked of the grid once, with the union of their coarse boxes; the second part's edges whose
+  // boxes meet it are the only partners any of them can have (an edge lies in its coarse box),
+  // and a run without one is skipped without posing its edges (before, every edge of the first
+  // part in the second part's whole box was posed: O(n) a call on an n-tooth gear pair). Each
+  // edge then meets the listed partners whose boxes meet its own box, ascending, as the scan
+  // does; a pair left out has certified disjoint enclosures (the edge's coarse box and the
+  // partner's box), where the exact test finds nothing either. True on overlap.
+  bool grid_pairs() {
+    PlacedPart& a = *parts_[0];
+    PlacedPart& b = *parts_[1];
+    thread_local std::vector<std::size_t> listed, partners;
+    const std::size_t run = a.lazy() ? PartEnclosure::kBlock : 1;
+    for (std::size_t first = 0; first < a.size(); first += run) {
+      const std::size_t last = std::min(a.size(), first + run);
+      Box window{1e300, -1e300, 1e300, -1e300};
+      bool any = false;
+      for (std::size_t i = first; i < last; ++i)
+        if (a.coarse(i).meets(b.total())) {
+          window.add(a.coarse(i).xlo, a.coarse(i).ylo);
+          window.add(a.coarse(i).xhi, a.coarse(i).yhi);
+          any = true;
+        }
+      if (!any) continue;
+      b_grid_->query(bounds(window), listed);
+      partners.clear();
+      for (std::size_t j : listed)
+        if (window.meets(b.box(j))) partners.push_back(j);
+      if (partners.empty()) continue;
+      for (std::size_t i = first; i < last; ++i) {
+        if (!a.coarse(i).meets(b.total())) continue;
+        const Box& box = a.box(i);
+        if (!box.meets(b.total())) continue;
+        for (std::size_t j : partners)
+          if (box.meets(b.box(j)) && pair_overlaps(i, j)) return true;
+      }
+    }
+    return false;
   }
 
   /// Exact overlap sites are needed (for a witness): no shortcut on certified crossings.
