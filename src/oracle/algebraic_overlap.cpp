@@ -28,6 +28,7 @@
 #include "curves/algebraic_overlap.hpp"
 #include "algebra/ordinate.hpp"
 #include "oracle/box_grid.hpp"
+#include "oracle/filter_counts.hpp"
 
 #include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
@@ -38,6 +39,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace hipair::cspace {
@@ -392,13 +394,20 @@ class CurvedRelation {
     std::vector<BoxGrid::Bounds> boxes;
     boxes.reserve(flat_[1].size());
     for (const CurvedEdge* b : flat_[1]) boxes.push_back(BoxGrid::Bounds{b->box.x.lo, b->box.x.hi, b->box.y.lo, b->box.y.hi});
-    const BoxGrid grid(boxes);
+    // (set_lazy_placement(false): every pair tested, as before; tests compare the two)
+    const bool gridded = lazy_placement();
+    const BoxGrid grid = gridded ? BoxGrid(boxes) : BoxGrid();
     near_[0].resize(flat_[0].size());
     near_[1].resize(flat_[1].size());
     std::vector<std::size_t> listed;
     for (std::size_t i = 0; i < flat_[0].size(); ++i) {
       CurvedEdge& a = *flat_[0][i];
-      grid.query(BoxGrid::Bounds{a.box.x.lo, a.box.x.hi, a.box.y.lo, a.box.y.hi}, listed);
+      if (gridded) {
+        grid.query(BoxGrid::Bounds{a.box.x.lo, a.box.x.hi, a.box.y.lo, a.box.y.hi}, listed);
+      } else {
+        listed.resize(flat_[1].size());
+        std::iota(listed.begin(), listed.end(), std::size_t{0});
+      }
       for (std::size_t j : listed) {
         CurvedEdge& b = *flat_[1][j];
         if (apart(a.box, b.box)) continue;

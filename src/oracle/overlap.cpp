@@ -32,6 +32,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 namespace hipair::cspace {
@@ -1646,10 +1647,21 @@ struct PairOverlap::Data {
   // Session 74 (growth74): grids of the second part's edge boxes and block boxes at the identity
   // (its placement's), made once: classify and certainly_overlapping find the second part's
   // edges and blocks near a posed edge or block of the first from them, not by a scan
-  BoxGrid second_edges, second_blocks;
+  // and a grid of the first part's blocks' disks in its body frame (certified boxes of them),
+  // asked with the second part's box brought into that frame
+  BoxGrid second_edges, second_blocks, first_blocks;
   Data(const Part& a, const Part& b)
       : first(blocked_enclosure(a)), second(b), second_edges(grid_of(second.placement.boxes)),
-        second_blocks(grid_of(second.placement.block_boxes)) {}
+        second_blocks(grid_of(second.placement.block_boxes)), first_blocks(disk_grid(*first)) {}
+  static BoxGrid disk_grid(const PartEnclosure& enclosure) {
+    std::vector<BoxGrid::Bounds> disks;
+    disks.reserve(enclosure.blocks.size());
+    for (const PartEnclosure::Block& block : enclosure.blocks) {
+      const Interval x = Interval::point(block.cx), y = Interval::point(block.cy), r = Interval::point(block.r);
+      disks.push_back(BoxGrid::Bounds{(x - r).lo, (x + r).hi, (y - r).lo, (y + r).hi});
+    }
+    return BoxGrid(disks);
+  }
   // the first part's enclosure with its blocks (its placements are lazy)
   static std::shared_ptr<const PartEnclosure> blocked_enclosure(const Part& part) {
     auto enclosure = std::make_shared<PartEnclosure>(part);
@@ -1704,6 +1716,8 @@ std::array<std::uint64_t, 3> lazy_placement_counts() {
 
 void set_lazy_placement(bool on) { lazy_placement_enabled = on; }
 
+bool lazy_placement() { return lazy_placement_enabled; }
+
 namespace {
 std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0}, filter_posed_edges{0};
 }
@@ -1740,9 +1754,34 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // box, so the blocks skipped hold none. (Before, every edge of the first part was posed:
   // 465 K instructions a call on the 18 x 27 gears, 10 % of their operating region.)
   thread_local std::vector<Box> blocks;
+  thread_local std::vector<std::size_t> near, listed, asked;
   // (set_lazy_placement(false): every edge posed, as before; tests compare the two)
   bool lazy = lazy_placement_enabled && !first.blocks.empty() && relative.tame();
-  if (lazy) {
+  const bool windowed = first.bounded && bounded_map(relative);
+  // Session 74 (growth74): with the window (below), only the first part's blocks whose body-frame
+  // disks meet the second part's box brought back into the first's body frame are posed (asked
+  // of the grid of the disks): every map of the relative enclosure is a rigid motion p -> R p + o
+  // with (R, o) in it, so a point p posed into the second part's box q lies in R^T (q - o),
+  // enclosed in intervals; a block whose disk misses that enclosure has no point posed into the
+  // box, so it holds no edge that crossing() accepts (the same test as the posed disk missing
+  // the box, certified the other way round). Under the window every block poses tame (bounded
+  // part, bounded map), so the blocks not posed would not have refused the lazy route either.
+  // (Before, every block of the first part was posed a call: O(n) on an n-tooth gear.)
+  bool selected = false;
+  if (lazy && windowed) {
+    const Interval qx(b.total.xlo, b.total.xhi), qy(b.total.ylo, b.total.yhi);
+    const Interval dx = qx - relative.ox, dy = qy - relative.oy;
+    const Interval px = relative.c * dx + relative.s * dy, py = relative.c * dy - relative.s * dx;
+    if (tame(px) && tame(py)) {
+      data_->first_blocks.query(BoxGrid::Bounds{px.lo, px.hi, py.lo, py.hi}, asked);
+      blocks.resize(first.blocks.size());
+      for (std::size_t k : asked) lazy = lazy && PlacedPart::posed_block(first.blocks[k], relative, blocks[k]);
+      selected = true;
+    }
+  }
+  if (lazy && !selected) {
+    asked.resize(first.blocks.size());
+    std::iota(asked.begin(), asked.end(), std::size_t{0});
     blocks.resize(first.blocks.size());
     for (std::size_t k = 0; k < first.blocks.size() && lazy; ++k)
       lazy = PlacedPart::posed_block(first.blocks[k], relative, blocks[k]);
@@ -1760,8 +1799,6 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // the operating region's classification, docs/performance.md "Session 70 (growth70)").
   // For the same reason an edge of a block is tested only against the second part's blocks
   // whose boxes meet the block's (`near`), not against all of them.
-  const bool windowed = first.bounded && bounded_map(relative);
-  thread_local std::vector<std::size_t> near, listed;
   // crossing() over the blocks in `near`
   auto crossing_near = [&](const IntervalEdge& e, const Box& box) {
     if (!box.meets(b.total)) return false;
@@ -1778,7 +1815,8 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
     const std::size_t n = first.refs.size();
     IntervalEdge e;
     Box box;
-    for (std::size_t k = 0; k < blocks.size() && !found; ++k) {
+    for (std::size_t at = 0; at < asked.size() && !found; ++at) {
+      const std::size_t k = asked[at];
       if (!blocks[k].meets(b.total)) continue;
       if (windowed) {
         // (session 74: the second part's blocks that may meet, from its grid, ascending)
