@@ -85,7 +85,8 @@ class BoxGrid {
       if (!finite(boxes[i])) continue;
       const Span s = span(boxes[i]);
       for (std::size_t r = s.r0; r <= s.r1; ++r)
-        for (std::size_t c = s.c0; c <= s.c1; ++c) filed_[next[r * columns_ + c]++] = static_cast<std::uint32_t>(i);
+        for (std::size_t c = s.c0; c <= s.c1; ++c)
+          filed_[next[r * columns_ + c]++] = static_cast<std::uint32_t>(i);
     }
   }
 
@@ -124,20 +125,20 @@ class BoxGrid {
   }
   static std::size_t cell(double v, double origin, double size, std::size_t count) {
     const double k = std::floor((v - origin) / size);
-    if (!(k > 0)) return 0;   // (also NaN: not reached, queries and items are finite)
+    if (!(k > 0)) return 0;  // (also NaN: not reached, queries and items are finite)
     if (k >= static_cast<double>(count - 1)) return count - 1;
     return static_cast<std::size_t>(k);
   }
   Span span(const Bounds& b) const {
-    return Span{cell(b[0], x0_, size_, columns_), cell(b[1], x0_, size_, columns_), cell(b[2], y0_, size_, rows_),
-                cell(b[3], y0_, size_, rows_)};
+    return Span{cell(b[0], x0_, size_, columns_), cell(b[1], x0_, size_, columns_),
+                cell(b[2], y0_, size_, rows_), cell(b[3], y0_, size_, rows_)};
   }
 
   std::size_t items_ = 0;
   double x0_ = 0, y0_ = 0, size_ = 1;
   std::size_t columns_ = 0, rows_ = 0;
-  std::vector<std::uint32_t> starts_;    // per cell, its first item in filed_ (CSR)
-  std::vector<std::uint32_t> filed_;     // the cells' items, each cell's ascending
+  std::vector<std::uint32_t> starts_;      // per cell, its first item in filed_ (CSR)
+  std::vector<std::uint32_t> filed_;       // the cells' items, each cell's ascending
   std::vector<std::uint32_t> everywhere_;  // items with a bound not finite: listed for every query
 };
 

@@ -284,6 +284,9 @@ struct PartEnclosure {
   std::vector<std::size_t> loop_begin;
   std::vector<Body> body;
   std::vector<Block> blocks;
+  // each edge's own disk (session 74; made with the blocks, empty when they are): posed, a
+  // certified box of the edge from one interval product, where posing the edge costs ~25
+  std::vector<Block> edge_disks;
   bool bounded = true;
 
   explicit PartEnclosure(const Part& source) : part(&source) {
@@ -386,6 +389,12 @@ class PlacedPart {
   const IntervalEdge& interval(std::size_t i) const {
     if (lazy_ && !placed_[i]) ensure(i);
     return placement_->intervals[i];
+  }
+  /// Lazy placements with edge disks (PartEnclosure::edge_disks): edge i's posed disk's box, a
+  /// certified box of the edge from one interval product (session 74); false otherwise (or
+  /// beyond the tame range), `out` unset.
+  bool disk_box(std::size_t i, Box& out) const {
+    return lazy_ && !enclosure_->edge_disks.empty() && posed_block(enclosure_->edge_disks[i], map_, out);
   }
   /// Eager placements: the blocks' boxes (Placement::block_boxes); nullptr when lazy.
   const std::vector<Box>* block_boxes() const { return lazy_ ? nullptr : &placement_->block_boxes; }
@@ -631,34 +640,45 @@ struct IdentityPart {
 // The blocks of `enclosure` (PartEnclosure::Block): each block's edges' boxes at the identity
 // (certified), their union's middle as the disk's centre, the distance to the farthest corner
 // rounded up as its radius. Left empty for a part beyond the tame range.
+// (Session 74: each edge's own disk too, PartEnclosure::edge_disks, made the same way from its
+// box alone.)
+bool disk_of(const Box& box, PartEnclosure::Block& block);
+
 void prepare_blocks(PartEnclosure& enclosure) {
   Placement body;
   PlacedPart::place(enclosure, IntervalMap{}, body);
   if (!body.filtered) return;
   const std::size_t n = enclosure.refs.size();
-  std::vector<PartEnclosure::Block> blocks;
+  std::vector<PartEnclosure::Block> blocks, edge_disks(n);
   for (std::size_t first = 0; first < n; first += PartEnclosure::kBlock) {
     Box box{1e300, -1e300, 1e300, -1e300};
     for (std::size_t i = first; i < std::min(n, first + PartEnclosure::kBlock); ++i) {
       box.add(body.boxes[i].xlo, body.boxes[i].ylo);
       box.add(body.boxes[i].xhi, body.boxes[i].yhi);
+      if (!disk_of(body.boxes[i], edge_disks[i])) return;
     }
     PartEnclosure::Block block;
-    block.cx = 0.5 * box.xlo + 0.5 * box.xhi;
-    block.cy = 0.5 * box.ylo + 0.5 * box.yhi;
-    // |p - c| <= r for every p of the box: the half-extents from c to the farther side, upward
-    const double hx = std::max((Interval::point(block.cx) - Interval::point(box.xlo)).hi,
-                               (Interval::point(box.xhi) - Interval::point(block.cx)).hi);
-    const double hy = std::max((Interval::point(block.cy) - Interval::point(box.ylo)).hi,
-                               (Interval::point(box.yhi) - Interval::point(block.cy)).hi);
-    const Interval hx2 = Interval::point(hx) * Interval::point(hx), hy2 = Interval::point(hy) * Interval::point(hy);
-    block.r = kernels::sqrt(hx2 + hy2).hi;
-    if (!std::isfinite(block.r) || !tame(Interval::point(block.cx)) || !tame(Interval::point(block.cy)) ||
-        !tame(Interval::point(block.r)))
-      return;
+    if (!disk_of(box, block)) return;
     blocks.push_back(block);
   }
   enclosure.blocks = std::move(blocks);
+  enclosure.edge_disks = std::move(edge_disks);
+}
+
+// A disk (PartEnclosure::Block) holding `box`: its middle as the centre, the distance to the
+// farthest corner rounded up as the radius; false beyond the tame range.
+bool disk_of(const Box& box, PartEnclosure::Block& block) {
+  block.cx = 0.5 * box.xlo + 0.5 * box.xhi;
+  block.cy = 0.5 * box.ylo + 0.5 * box.yhi;
+  // |p - c| <= r for every p of the box: the half-extents from c to the farther side, upward
+  const double hx = std::max((Interval::point(block.cx) - Interval::point(box.xlo)).hi,
+                             (Interval::point(box.xhi) - Interval::point(block.cx)).hi);
+  const double hy = std::max((Interval::point(block.cy) - Interval::point(box.ylo)).hi,
+                             (Interval::point(box.yhi) - Interval::point(block.cy)).hi);
+  const Interval hx2 = Interval::point(hx) * Interval::point(hx), hy2 = Interval::point(hy) * Interval::point(hy);
+  block.r = kernels::sqrt(hx2 + hy2).hi;
+  return std::isfinite(block.r) && tame(Interval::point(block.cx)) && tame(Interval::point(block.cy)) &&
+         tame(Interval::point(block.r));
 }
 
 // ============================================================================ interval filter
@@ -873,7 +893,8 @@ class OverlapAnalysis {
   // the first part's edges that share a coarse box (a lazy placement's block: its posed disk) is
   // asked of the grid once, with the union of their coarse boxes; the second part's edges whose
   // boxes meet it are the only partners any of them can have (an edge lies in its coarse box),
-  // and a run without one is skipped without posing its edges (before, every edge of the first
+  // and a run without one is skipped without posing its edges, as is an edge whose own posed
+  // disk (PlacedPart::disk_box) meets none of them (before, every edge of the first
   // part in the second part's whole box was posed: O(n) a call on an n-tooth gear pair). Each
   // edge then meets the listed partners whose boxes meet its own box, ascending, as the scan
   // does; a pair left out has certified disjoint enclosures (the edge's coarse box and the
@@ -901,6 +922,11 @@ class OverlapAnalysis {
       if (partners.empty()) continue;
       for (std::size_t i = first; i < last; ++i) {
         if (!a.coarse(i).meets(b.total())) continue;
+        // an edge whose own posed disk meets no partner's box has no partner (not posed)
+        Box disk;
+        if (a.disk_box(i, disk) &&
+            std::none_of(partners.begin(), partners.end(), [&](std::size_t j) { return disk.meets(b.box(j)); }))
+          continue;
         const Box& box = a.box(i);
         if (!box.meets(b.total())) continue;
         for (std::size_t j : partners)
@@ -1827,6 +1853,20 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
         if (near.empty()) continue;
       }
       for (std::size_t i = k * PartEnclosure::kBlock; i < std::min(n, (k + 1) * PartEnclosure::kBlock) && !found; ++i) {
+        // (session 74: under the window, an edge whose posed disk meets none of the near blocks'
+        // boxes is not posed — its edge lies in that disk, so crossing_near finds nothing on it;
+        // the disk poses tame there, as its block's does)
+        if (windowed && !first.edge_disks.empty()) {
+          Box disk;
+          if (!PlacedPart::posed_block(first.edge_disks[i], relative, disk)) return false;
+          bool meets = false;
+          for (std::size_t block : near)
+            if (disk.meets(b.block_boxes[block])) {
+              meets = true;
+              break;
+            }
+          if (!meets) continue;
+        }
         filter_posed_edges.fetch_add(1, std::memory_order_relaxed);
         if (!PlacedPart::posed_edge(first, i, relative, e, box)) return false;   // (as an untamed placement)
         found = windowed ? crossing_near(e, box) : crossing(e, box);
