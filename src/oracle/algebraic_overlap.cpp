@@ -27,6 +27,8 @@
 //     end of one of them on the other), else they are apart.
 #include "curves/algebraic_overlap.hpp"
 #include "algebra/ordinate.hpp"
+#include "oracle/box_grid.hpp"
+#include "oracle/filter_counts.hpp"
 
 #include "algebra/near_quotient.hpp"
 #include "algebra/polynomial.hpp"
@@ -37,6 +39,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace hipair::cspace {
@@ -379,33 +382,59 @@ class CurvedRelation {
           bound(e);
         }
     }
-    // the polynomials of every edge whose box meets one of the other part's
-    for (auto& la : loops_[0])
-      for (CurvedEdge& a : la)
-        for (auto& lb : loops_[1])
-          for (CurvedEdge& b : lb)
-            if (!apart(a.box, b.box)) {
-              pose(0, a);
-              pose(1, b);
-            }
+    // Session 74 (growth74): the pairs of edges whose boxes meet (`near_`), found through a grid
+    // of the second part's boxes (BoxGrid) instead of testing every pair: every loop below
+    // skipped the other pairs at once (interiors_meet and maybe_on_edge are 0 on apart boxes),
+    // so the same pairs are visited in the same order (the first part's edges in boundary
+    // order, each one's partners ascending), at a cost that follows the edges near the other
+    // part, not the product of the parts' sizes (n^2 per call on an n-tooth gear pair).
+    for (int side = 0; side < 2; ++side)
+      for (auto& loop : loops_[side])
+        for (CurvedEdge& e : loop) flat_[side].push_back(&e);
+    std::vector<BoxGrid::Bounds> boxes;
+    boxes.reserve(flat_[1].size());
+    for (const CurvedEdge* b : flat_[1]) boxes.push_back(BoxGrid::Bounds{b->box.x.lo, b->box.x.hi, b->box.y.lo, b->box.y.hi});
+    // (set_lazy_placement(false): every pair tested, as before; tests compare the two)
+    const bool gridded = lazy_placement();
+    const BoxGrid grid = gridded ? BoxGrid(boxes) : BoxGrid();
+    near_[0].resize(flat_[0].size());
+    near_[1].resize(flat_[1].size());
+    std::vector<std::size_t> listed;
+    for (std::size_t i = 0; i < flat_[0].size(); ++i) {
+      CurvedEdge& a = *flat_[0][i];
+      if (gridded) {
+        grid.query(BoxGrid::Bounds{a.box.x.lo, a.box.x.hi, a.box.y.lo, a.box.y.hi}, listed);
+      } else {
+        listed.resize(flat_[1].size());
+        std::iota(listed.begin(), listed.end(), std::size_t{0});
+      }
+      for (std::size_t j : listed) {
+        CurvedEdge& b = *flat_[1][j];
+        if (apart(a.box, b.box)) continue;
+        near_[0][i].push_back(j);
+        near_[1][j].push_back(i);
+        // the polynomials of every edge whose box meets one of the other part's
+        pose(0, a);
+        pose(1, b);
+      }
+    }
   }
 
   std::optional<Overlap> run() {
     // two interiors certainly crossing (the double filter alone): overlapping
-    for (const auto& la : loops_[0])
-      for (const CurvedEdge& a : la)
-        for (const auto& lb : loops_[1])
-          for (const CurvedEdge& b : lb)
-            if (interiors_meet(a, b) == 1) return Overlap::overlapping;
+    for (std::size_t i = 0; i < flat_[0].size(); ++i)
+      for (std::size_t j : near_[0][i])
+        if (interiors_meet(*flat_[0][i], *flat_[1][j]) == 1) return Overlap::overlapping;
     for (int side = 0; side < 2; ++side)
-      for (std::size_t l = 0; l < loops_[side].size(); ++l)
-        for (std::size_t k = 0; k < loops_[side][l].size(); ++k)
-          if (vertex_overlaps(side, l, k)) return Overlap::overlapping;
-    for (const auto& la : loops_[0])
-      for (const CurvedEdge& a : la)
-        for (const auto& lb : loops_[1])
-          for (const CurvedEdge& b : lb)
-            if (const int meet = interiors_meet(a, b); meet == 1 || (meet == 2 && interiors_overlap(a, b))) return Overlap::overlapping;
+      for (std::size_t l = 0, at = 0; l < loops_[side].size(); ++l)
+        for (std::size_t k = 0; k < loops_[side][l].size(); ++k, ++at)
+          if (vertex_overlaps(side, l, k, at)) return Overlap::overlapping;
+    for (std::size_t i = 0; i < flat_[0].size(); ++i)
+      for (std::size_t j : near_[0][i]) {
+        const CurvedEdge& a = *flat_[0][i];
+        const CurvedEdge& b = *flat_[1][j];
+        if (const int meet = interiors_meet(a, b); meet == 1 || (meet == 2 && interiors_overlap(a, b))) return Overlap::overlapping;
+      }
     for (int side = 0; side < 2; ++side)
       for (std::size_t l = 0; l < loops_[side].size(); ++l) {
         if (common_[side][l]) continue;
@@ -648,16 +677,20 @@ class CurvedRelation {
 
   // vertex k of loop l of part `side` (the source of edge k) on the other part's boundary:
   // do the parts overlap near it?
-  bool vertex_overlaps(int side, std::size_t l, std::size_t k) {
+  // (`at`: the edge's place in flat_[side]; the other part's edges that may hold the vertex are
+  // among those whose boxes meet its edge's, near_[side][at]: the vertex's box lies in its
+  // edge's box, and maybe_on_edge is 0 on apart boxes; they are visited in boundary order)
+  bool vertex_overlaps(int side, std::size_t l, std::size_t k, std::size_t at) {
     const std::vector<CurvedEdge>& loop = loops_[side][l];
     const V2& p = loop[k].from;
     std::vector<Germ> germs;
-    for (std::size_t m = 0; m < loops_[1 - side].size(); ++m)
-      for (const CurvedEdge& e : loops_[1 - side][m])
-        if (maybe_on_edge(loop[k].from_box, e) != 0 && on_edge(p, e, false)) {
-          edge_germs(1 - side, e, p, germs);
-          common_[1 - side][m] = true;
-        }
+    for (std::size_t j : near_[side][at]) {
+      const CurvedEdge& e = *flat_[1 - side][j];
+      if (maybe_on_edge(loop[k].from_box, e) != 0 && on_edge(p, e, false)) {
+        edge_germs(1 - side, e, p, germs);
+        common_[1 - side][e.loop] = true;
+      }
+    }
     if (germs.empty()) return false;
     common_[side][l] = true;
     touching_ = true;
@@ -794,6 +827,10 @@ class CurvedRelation {
   const SignAt& sign_;
   std::array<std::vector<bool>, 2> common_;
   bool touching_ = false;
+  // each part's edges in boundary order (pointers into loops_, which no longer changes), and per
+  // edge the other part's edges (their places in its flat_) whose boxes meet its box, ascending
+  std::array<std::vector<CurvedEdge*>, 2> flat_;
+  std::array<std::vector<std::vector<std::size_t>>, 2> near_;
 };
 
 // The part's loops, edges not yet posed (CurvedRelation poses them as needed).

@@ -11,4 +11,9 @@ namespace hipair::cspace {
 /// they stay about constant per call as the tooth count grows.
 std::uint64_t overlap_filter_posed_edges();
 
+/// set_lazy_placement's switch (oracle/overlap.hpp), read by the algebraic oracle too (session
+/// 74): off, its curved relation pairs every edge of one part with every edge of the other (the
+/// route before the grid of box pairs); tests compare the two.
+bool lazy_placement();
+
 }  // namespace hipair::cspace

@@ -17,6 +17,7 @@
 //     the other part's interior: one exact point-in-region test per such loop decides.
 #include "oracle/overlap.hpp"
 #include "oracle/filter_counts.hpp"
+#include "oracle/box_grid.hpp"
 #include "curves/algebraic_overlap.hpp"
 
 #include "algebra/near_quotient.hpp"
@@ -31,6 +32,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 
 namespace hipair::cspace {
@@ -161,6 +163,16 @@ struct Box {
   }
 };
 
+BoxGrid::Bounds bounds(const Box& box) { return BoxGrid::Bounds{box.xlo, box.xhi, box.ylo, box.yhi}; }
+
+// A grid of boxes (BoxGrid) filed in index order.
+BoxGrid grid_of(const std::vector<Box>& boxes) {
+  std::vector<BoxGrid::Bounds> filed;
+  filed.reserve(boxes.size());
+  for (const Box& box : boxes) filed.push_back(bounds(box));
+  return BoxGrid(filed);
+}
+
 // An arc's exact geometry beyond its ends (a segment has none: a segment's PlacedEdge makes no
 // rational beyond its two ends).
 struct PlacedArc {
@@ -272,6 +284,9 @@ struct PartEnclosure {
   std::vector<std::size_t> loop_begin;
   std::vector<Body> body;
   std::vector<Block> blocks;
+  // each edge's own disk (session 74; made with the blocks, empty when they are): posed, a
+  // certified box of the edge from one interval product, where posing the edge costs ~25
+  std::vector<Block> edge_disks;
   bool bounded = true;
 
   explicit PartEnclosure(const Part& source) : part(&source) {
@@ -374,6 +389,12 @@ class PlacedPart {
   const IntervalEdge& interval(std::size_t i) const {
     if (lazy_ && !placed_[i]) ensure(i);
     return placement_->intervals[i];
+  }
+  /// Lazy placements with edge disks (PartEnclosure::edge_disks): edge i's posed disk's box, a
+  /// certified box of the edge from one interval product (session 74); false otherwise (or
+  /// beyond the tame range), `out` unset.
+  bool disk_box(std::size_t i, Box& out) const {
+    return lazy_ && !enclosure_->edge_disks.empty() && posed_block(enclosure_->edge_disks[i], map_, out);
   }
   /// Eager placements: the blocks' boxes (Placement::block_boxes); nullptr when lazy.
   const std::vector<Box>* block_boxes() const { return lazy_ ? nullptr : &placement_->block_boxes; }
@@ -619,34 +640,45 @@ struct IdentityPart {
 // The blocks of `enclosure` (PartEnclosure::Block): each block's edges' boxes at the identity
 // (certified), their union's middle as the disk's centre, the distance to the farthest corner
 // rounded up as its radius. Left empty for a part beyond the tame range.
+// (Session 74: each edge's own disk too, PartEnclosure::edge_disks, made the same way from its
+// box alone.)
+bool disk_of(const Box& box, PartEnclosure::Block& block);
+
 void prepare_blocks(PartEnclosure& enclosure) {
   Placement body;
   PlacedPart::place(enclosure, IntervalMap{}, body);
   if (!body.filtered) return;
   const std::size_t n = enclosure.refs.size();
-  std::vector<PartEnclosure::Block> blocks;
+  std::vector<PartEnclosure::Block> blocks, edge_disks(n);
   for (std::size_t first = 0; first < n; first += PartEnclosure::kBlock) {
     Box box{1e300, -1e300, 1e300, -1e300};
     for (std::size_t i = first; i < std::min(n, first + PartEnclosure::kBlock); ++i) {
       box.add(body.boxes[i].xlo, body.boxes[i].ylo);
       box.add(body.boxes[i].xhi, body.boxes[i].yhi);
+      if (!disk_of(body.boxes[i], edge_disks[i])) return;
     }
     PartEnclosure::Block block;
-    block.cx = 0.5 * box.xlo + 0.5 * box.xhi;
-    block.cy = 0.5 * box.ylo + 0.5 * box.yhi;
-    // |p - c| <= r for every p of the box: the half-extents from c to the farther side, upward
-    const double hx = std::max((Interval::point(block.cx) - Interval::point(box.xlo)).hi,
-                               (Interval::point(box.xhi) - Interval::point(block.cx)).hi);
-    const double hy = std::max((Interval::point(block.cy) - Interval::point(box.ylo)).hi,
-                               (Interval::point(box.yhi) - Interval::point(block.cy)).hi);
-    const Interval hx2 = Interval::point(hx) * Interval::point(hx), hy2 = Interval::point(hy) * Interval::point(hy);
-    block.r = kernels::sqrt(hx2 + hy2).hi;
-    if (!std::isfinite(block.r) || !tame(Interval::point(block.cx)) || !tame(Interval::point(block.cy)) ||
-        !tame(Interval::point(block.r)))
-      return;
+    if (!disk_of(box, block)) return;
     blocks.push_back(block);
   }
   enclosure.blocks = std::move(blocks);
+  enclosure.edge_disks = std::move(edge_disks);
+}
+
+// A disk (PartEnclosure::Block) holding `box`: its middle as the centre, the distance to the
+// farthest corner rounded up as the radius; false beyond the tame range.
+bool disk_of(const Box& box, PartEnclosure::Block& block) {
+  block.cx = 0.5 * box.xlo + 0.5 * box.xhi;
+  block.cy = 0.5 * box.ylo + 0.5 * box.yhi;
+  // |p - c| <= r for every p of the box: the half-extents from c to the farther side, upward
+  const double hx = std::max((Interval::point(block.cx) - Interval::point(box.xlo)).hi,
+                             (Interval::point(box.xhi) - Interval::point(block.cx)).hi);
+  const double hy = std::max((Interval::point(block.cy) - Interval::point(box.ylo)).hi,
+                             (Interval::point(box.yhi) - Interval::point(block.cy)).hi);
+  const Interval hx2 = Interval::point(hx) * Interval::point(hx), hy2 = Interval::point(hy) * Interval::point(hy);
+  block.r = kernels::sqrt(hx2 + hy2).hi;
+  return std::isfinite(block.r) && tame(Interval::point(block.cx)) && tame(Interval::point(block.cy)) &&
+         tame(Interval::point(block.r));
 }
 
 // ============================================================================ interval filter
@@ -821,22 +853,22 @@ class OverlapAnalysis {
     PlacedPart& a = *parts_[0];
     PlacedPart& b = *parts_[1];
     const std::vector<Box>* b_blocks = lazy_placement_enabled ? b.block_boxes() : nullptr;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (!a.coarse(i).meets(b.total())) continue;
-      const Box& box = a.box(i);
-      if (!box.meets(b.total())) continue;
-      for (std::size_t j = 0; j < b.size(); ++j) {
-        // a block of b's edges whose boxes' union misses edge i's box: none of them meets it
-        if (b_blocks && j % PartEnclosure::kBlock == 0 && !box.meets((*b_blocks)[j / PartEnclosure::kBlock])) {
-          j += PartEnclosure::kBlock - 1;
-          continue;
+    if (b_grid_) {
+      if (grid_pairs()) return Overlap::overlapping;
+    } else {
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        if (!a.coarse(i).meets(b.total())) continue;
+        const Box& box = a.box(i);
+        if (!box.meets(b.total())) continue;
+        for (std::size_t j = 0; j < b.size(); ++j) {
+          // a block of b's edges whose boxes' union misses edge i's box: none of them meets it
+          if (b_blocks && j % PartEnclosure::kBlock == 0 && !box.meets((*b_blocks)[j / PartEnclosure::kBlock])) {
+            j += PartEnclosure::kBlock - 1;
+            continue;
+          }
+          if (!box.meets(b.box(j))) continue;
+          if (pair_overlaps(i, j)) return Overlap::overlapping;
         }
-        if (!box.meets(b.box(j))) continue;
-        Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
-                                                                       : filter_pair(a.interval(i), b.interval(j));
-        if (filter == Filter::disjoint) continue;
-        if (filter == Filter::overlapping && !need_site_) return Overlap::overlapping;
-        if (intersect(i, j)) return Overlap::overlapping;
       }
     }
     for (const Point& p : touch_points_)
@@ -846,8 +878,69 @@ class OverlapAnalysis {
     return touch_points_.empty() && !shared_ ? Overlap::apart : Overlap::touching;
   }
 
+  // Edge i of the first part against edge j of the second (their boxes meet): true on overlap.
+  bool pair_overlaps(std::size_t i, std::size_t j) {
+    PlacedPart& a = *parts_[0];
+    PlacedPart& b = *parts_[1];
+    Filter filter = exact_only_ || !a.filtered() || !b.filtered() ? Filter::unknown
+                                                                   : filter_pair(a.interval(i), b.interval(j));
+    if (filter == Filter::disjoint) return false;
+    if (filter == Filter::overlapping && !need_site_) return true;
+    return intersect(i, j);
+  }
+
+  // run()'s edge pairs through the grid of the second part's edge boxes (session 74): a run of
+  // the first part's edges that share a coarse box (a lazy placement's block: its posed disk) is
+  // asked of the grid once, with the union of their coarse boxes; the second part's edges whose
+  // boxes meet it are the only partners any of them can have (an edge lies in its coarse box),
+  // and a run without one is skipped without posing its edges, as is an edge whose own posed
+  // disk (PlacedPart::disk_box) meets none of them (before, every edge of the first
+  // part in the second part's whole box was posed: O(n) a call on an n-tooth gear pair). Each
+  // edge then meets the listed partners whose boxes meet its own box, ascending, as the scan
+  // does; a pair left out has certified disjoint enclosures (the edge's coarse box and the
+  // partner's box), where the exact test finds nothing either. True on overlap.
+  bool grid_pairs() {
+    PlacedPart& a = *parts_[0];
+    PlacedPart& b = *parts_[1];
+    thread_local std::vector<std::size_t> listed, partners;
+    const std::size_t run = a.lazy() ? PartEnclosure::kBlock : 1;
+    for (std::size_t first = 0; first < a.size(); first += run) {
+      const std::size_t last = std::min(a.size(), first + run);
+      Box window{1e300, -1e300, 1e300, -1e300};
+      bool any = false;
+      for (std::size_t i = first; i < last; ++i)
+        if (a.coarse(i).meets(b.total())) {
+          window.add(a.coarse(i).xlo, a.coarse(i).ylo);
+          window.add(a.coarse(i).xhi, a.coarse(i).yhi);
+          any = true;
+        }
+      if (!any) continue;
+      b_grid_->query(bounds(window), listed);
+      partners.clear();
+      for (std::size_t j : listed)
+        if (window.meets(b.box(j))) partners.push_back(j);
+      if (partners.empty()) continue;
+      for (std::size_t i = first; i < last; ++i) {
+        if (!a.coarse(i).meets(b.total())) continue;
+        // an edge whose own posed disk meets no partner's box has no partner (not posed)
+        Box disk;
+        if (a.disk_box(i, disk) &&
+            std::none_of(partners.begin(), partners.end(), [&](std::size_t j) { return disk.meets(b.box(j)); }))
+          continue;
+        const Box& box = a.box(i);
+        if (!box.meets(b.total())) continue;
+        for (std::size_t j : partners)
+          if (box.meets(b.box(j)) && pair_overlaps(i, j)) return true;
+      }
+    }
+    return false;
+  }
+
   /// Exact overlap sites are needed (for a witness): no shortcut on certified crossings.
   void need_site() { need_site_ = true; }
+  /// A grid of the second part's edge boxes (box(j) of every j, as placed), to find the edges
+  /// near an edge of the first part without scanning the second.
+  void use_grid(const BoxGrid* grid) { b_grid_ = grid; }
   void exact_only() { exact_only_ = true; }
 
   const std::vector<Point>& touch_points() const { return touch_points_; }
@@ -1418,6 +1511,7 @@ class OverlapAnalysis {
   bool shared_ = false;
   bool need_site_ = false;
   bool exact_only_ = false;
+  const BoxGrid* b_grid_ = nullptr;
   Site site_;
   std::vector<Point> hints_;
   std::array<const PlacedEdge*, 2> crossing_edges_{nullptr, nullptr};
@@ -1449,8 +1543,9 @@ namespace {
 // The analysis in the second part's body frame: the first part placed by `relative`
 // (interval enclosure now, exact map on demand); `second_world` maps results to the world.
 OverlapReport analyse_placed(PlacedPart& a, PlacedPart& b, const std::function<RigidMap()>& second_world,
-                             const OverlapOptions& options) {
+                             const OverlapOptions& options, const BoxGrid* b_grid = nullptr) {
   OverlapAnalysis analysis(a, b);
+  analysis.use_grid(b_grid);
   if (options.want_witness) analysis.need_site();
   if (options.exact_only) analysis.exact_only();
   OverlapReport report;
@@ -1575,7 +1670,24 @@ Overlap classify_overlap(const Model& model, const PairAxes& axes, const ChartAx
 struct PairOverlap::Data {
   std::shared_ptr<const PartEnclosure> first;
   IdentityPart second;
-  Data(const Part& a, const Part& b) : first(blocked_enclosure(a)), second(b) {}
+  // Session 74 (growth74): grids of the second part's edge boxes and block boxes at the identity
+  // (its placement's), made once: classify and certainly_overlapping find the second part's
+  // edges and blocks near a posed edge or block of the first from them, not by a scan
+  // and a grid of the first part's blocks' disks in its body frame (certified boxes of them),
+  // asked with the second part's box brought into that frame
+  BoxGrid second_edges, second_blocks, first_blocks;
+  Data(const Part& a, const Part& b)
+      : first(blocked_enclosure(a)), second(b), second_edges(grid_of(second.placement.boxes)),
+        second_blocks(grid_of(second.placement.block_boxes)), first_blocks(disk_grid(*first)) {}
+  static BoxGrid disk_grid(const PartEnclosure& enclosure) {
+    std::vector<BoxGrid::Bounds> disks;
+    disks.reserve(enclosure.blocks.size());
+    for (const PartEnclosure::Block& block : enclosure.blocks) {
+      const Interval x = Interval::point(block.cx), y = Interval::point(block.cy), r = Interval::point(block.r);
+      disks.push_back(BoxGrid::Bounds{(x - r).lo, (x + r).hi, (y - r).lo, (y + r).hi});
+    }
+    return BoxGrid(disks);
+  }
   // the first part's enclosure with its blocks (its placements are lazy)
   static std::shared_ptr<const PartEnclosure> blocked_enclosure(const Part& part) {
     auto enclosure = std::make_shared<PartEnclosure>(part);
@@ -1606,7 +1718,9 @@ Overlap PairOverlap::classify(const ChartAxis& x, const ChartAxis& y, const Char
                           {
                             PlacedPart a(data_->first, relative, exact_relative, false, lazy_placement_enabled);
                             PlacedPart b(data_->second.enclosure, data_->second.placement, data_->second.exact);
-                            relation = analyse_placed(a, b, second_world, OverlapOptions{}).relation;
+                            relation = analyse_placed(a, b, second_world, OverlapOptions{},
+                                                      lazy_placement_enabled ? &data_->second_edges : nullptr)
+                                           .relation;
                             if (a.lazy()) {
                               lazy_asked.fetch_add(1, std::memory_order_relaxed);
                               lazy_edges.fetch_add(a.size(), std::memory_order_relaxed);
@@ -1627,6 +1741,8 @@ std::array<std::uint64_t, 3> lazy_placement_counts() {
 }
 
 void set_lazy_placement(bool on) { lazy_placement_enabled = on; }
+
+bool lazy_placement() { return lazy_placement_enabled; }
 
 namespace {
 std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0}, filter_posed_edges{0};
@@ -1664,9 +1780,34 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // box, so the blocks skipped hold none. (Before, every edge of the first part was posed:
   // 465 K instructions a call on the 18 x 27 gears, 10 % of their operating region.)
   thread_local std::vector<Box> blocks;
+  thread_local std::vector<std::size_t> near, listed, asked;
   // (set_lazy_placement(false): every edge posed, as before; tests compare the two)
   bool lazy = lazy_placement_enabled && !first.blocks.empty() && relative.tame();
-  if (lazy) {
+  const bool windowed = first.bounded && bounded_map(relative);
+  // Session 74 (growth74): with the window (below), only the first part's blocks whose body-frame
+  // disks meet the second part's box brought back into the first's body frame are posed (asked
+  // of the grid of the disks): every map of the relative enclosure is a rigid motion p -> R p + o
+  // with (R, o) in it, so a point p posed into the second part's box q lies in R^T (q - o),
+  // enclosed in intervals; a block whose disk misses that enclosure has no point posed into the
+  // box, so it holds no edge that crossing() accepts (the same test as the posed disk missing
+  // the box, certified the other way round). Under the window every block poses tame (bounded
+  // part, bounded map), so the blocks not posed would not have refused the lazy route either.
+  // (Before, every block of the first part was posed a call: O(n) on an n-tooth gear.)
+  bool selected = false;
+  if (lazy && windowed) {
+    const Interval qx(b.total.xlo, b.total.xhi), qy(b.total.ylo, b.total.yhi);
+    const Interval dx = qx - relative.ox, dy = qy - relative.oy;
+    const Interval px = relative.c * dx + relative.s * dy, py = relative.c * dy - relative.s * dx;
+    if (tame(px) && tame(py)) {
+      data_->first_blocks.query(BoxGrid::Bounds{px.lo, px.hi, py.lo, py.hi}, asked);
+      blocks.resize(first.blocks.size());
+      for (std::size_t k : asked) lazy = lazy && PlacedPart::posed_block(first.blocks[k], relative, blocks[k]);
+      selected = true;
+    }
+  }
+  if (lazy && !selected) {
+    asked.resize(first.blocks.size());
+    std::iota(asked.begin(), asked.end(), std::size_t{0});
     blocks.resize(first.blocks.size());
     for (std::size_t k = 0; k < first.blocks.size() && lazy; ++k)
       lazy = PlacedPart::posed_block(first.blocks[k], relative, blocks[k]);
@@ -1684,8 +1825,6 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // the operating region's classification, docs/performance.md "Session 70 (growth70)").
   // For the same reason an edge of a block is tested only against the second part's blocks
   // whose boxes meet the block's (`near`), not against all of them.
-  const bool windowed = first.bounded && bounded_map(relative);
-  thread_local std::vector<std::size_t> near;
   // crossing() over the blocks in `near`
   auto crossing_near = [&](const IntervalEdge& e, const Box& box) {
     if (!box.meets(b.total)) return false;
@@ -1702,15 +1841,32 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
     const std::size_t n = first.refs.size();
     IntervalEdge e;
     Box box;
-    for (std::size_t k = 0; k < blocks.size() && !found; ++k) {
+    for (std::size_t at = 0; at < asked.size() && !found; ++at) {
+      const std::size_t k = asked[at];
       if (!blocks[k].meets(b.total)) continue;
       if (windowed) {
+        // (session 74: the second part's blocks that may meet, from its grid, ascending)
+        data_->second_blocks.query(bounds(blocks[k]), listed);
         near.clear();
-        for (std::size_t block = 0; block < b.block_boxes.size(); ++block)
+        for (std::size_t block : listed)
           if (blocks[k].meets(b.block_boxes[block])) near.push_back(block);
         if (near.empty()) continue;
       }
       for (std::size_t i = k * PartEnclosure::kBlock; i < std::min(n, (k + 1) * PartEnclosure::kBlock) && !found; ++i) {
+        // (session 74: under the window, an edge whose posed disk meets none of the near blocks'
+        // boxes is not posed — its edge lies in that disk, so crossing_near finds nothing on it;
+        // the disk poses tame there, as its block's does)
+        if (windowed && !first.edge_disks.empty()) {
+          Box disk;
+          if (!PlacedPart::posed_block(first.edge_disks[i], relative, disk)) return false;
+          bool meets = false;
+          for (std::size_t block : near)
+            if (disk.meets(b.block_boxes[block])) {
+              meets = true;
+              break;
+            }
+          if (!meets) continue;
+        }
         filter_posed_edges.fetch_add(1, std::memory_order_relaxed);
         if (!PlacedPart::posed_edge(first, i, relative, e, box)) return false;   // (as an untamed placement)
         found = windowed ? crossing_near(e, box) : crossing(e, box);
