@@ -3036,11 +3036,8 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
     for (std::size_t c = 1; c < crossings.size(); ++c)
       if (crossings[c].second.u_lower < crossings[best].second.u_lower) best = c;
     const double u = to_d(crossings[best].second.u_lower);
-    // the state at the contact, backed off in time until no pair overlaps there: every pair
-    // exactly free or touching (the path is within delta/2 of the chords). (Session 74, jam74:
-    // touching accepted — a block carried off plastically by its pusher moves exactly with it
-    // since the impact's velocities are the exact ones, so the pair stays touching and "free
-    // everywhere" backed off until the rounding parted it: a jam located early.)
+    // the state at the contact, backed off in time until every pair is exactly free there
+    // (the path is within delta/2 of the chords)
     std::vector<Kinematic> at;
     std::vector<SlicedConfiguration> q_at;
     double s_contact = u * end;
@@ -3064,7 +3061,7 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       for (const Kinematic& b : at) q_at.push_back(s > 0 ? configuration_of(b.x, b.y, b.theta) : q0[&b - at.data()]);
       free_everywhere = true;
       for (const Pair& p : pairs)
-        free_everywhere = free_everywhere && p.space.locate(relative(p, q_at)).kind != SlicedLocation::Kind::blocked;
+        free_everywhere = free_everywhere && p.space.locate(relative(p, q_at)).kind == SlicedLocation::Kind::free;
       if (free_everywhere) s_contact = s;
       if (s == 0) break;
     }
