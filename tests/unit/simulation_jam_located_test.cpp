@@ -116,12 +116,12 @@ TEST(SimulationJamLocated, APusherCarryingABlockIntoAFixedWallJamsAtTheClosedFor
   pusher_jams(seed, 16, false);
 }
 
-// The wall receding (session 73's reproduction, enabled in session 74): 16 generated runs (seed
-// 7302), within the model's accuracy. Fails on base74 at HIPAIR_TEST_SEED=2 (trial 10: s, V 107.8,
+// The wall receding (session 73's reproduction, enabled in session 74): 16 generated runs (seed 2;
+// was 7302), within the model's accuracy. Fails on base74 at its seed 2 (trial 10: s, V 107.8,
 // U 68.45 mm/s (profile), wall 67.771 mm: 38 417 x the tolerance early); passes at seeds 1-20 and
 // 7302 with the exact impact velocities.
 TEST(SimulationJamLocated, APusherCarryingABlockIntoARecedingWallJamsAtTheClosedFormTime) {
-  const std::uint64_t seed = test::test_seed(7302);
+  const std::uint64_t seed = test::test_seed(2);   // (session 73's reproduction: fails on base74)
   SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
   pusher_jams(seed, 16, true);
 }
