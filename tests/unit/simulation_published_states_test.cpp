@@ -1,8 +1,9 @@
 // Session 74 (jam74; Issue 11, review73 H1): no state a planar simulation publishes has two
 // parts of a model pair overlapping — decided exactly (part_overlap on the state's exact
 // configurations, published_overlap.hpp), at every step's end, every event's state and a stop's.
-// Until session 74 the pusher carried its block after their plastic impact with the block tilted
-// by ~1e-30 (a corner ~1e-29 mm inside the pusher): every state of the carry overlapped.
+// A guard (passes on base74 too): until session 74 a block carried off plastically drifted into
+// its pusher (~3e-15 mm/s, ~1e-30 rad/s; docs/simulation.md Session 74) and the back-off's trial
+// states were blocked, but the published states were free by rounding luck (relative x 8 + 3.6e-15).
 #include <hipair/model.hpp>
 #include <hipair/simulation.hpp>
 #include <hipair/simulation_stop.hpp>
