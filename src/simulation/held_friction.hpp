@@ -224,9 +224,15 @@ inline std::optional<FrictionalSolution> exact_impact_lemke(const Eigen::MatrixX
 /// on the full form (friction.hpp's FullMass: its G, M, Q and frictionless rows; minv and v
 /// unused), x = M^-1 (Q + G^T lambda) solved exactly; the pin-slot impact passes Q = 0 and in h
 /// the whole constant of w, the speed before plus its restitution term, exactly.
+///
+/// `keep_exact` (session 74, jam74): the exact solution is returned also where the doubles'
+/// agrees with it (the planar system's impacts: velocities after that are the exact ones rounded,
+/// so a part carried off plastically moves exactly with its pusher — the doubles' x left it
+/// approaching by ~1e-15 mm/s and turning by ~1e-30 rad/s, into the pusher).
 inline std::optional<FrictionalSolution> exact_impact_lcp(const Eigen::MatrixXd& G, const Eigen::VectorXd& minv,
                                                           const Eigen::VectorXd& v, const std::vector<Rational>& h,
-                                                          const LcpSolution& lcp, const FullMass* full = nullptr) {
+                                                          const LcpSolution& lcp, const FullMass* full = nullptr,
+                                                          bool keep_exact = false) {
   const auto m = static_cast<std::size_t>(G.rows());
   // (session 68, impactpin68: the doubles' held set is decided exactly for any number of contacts
   // — exact_assignment's first_only has no bound; only the enumeration over every held set, where
@@ -255,7 +261,7 @@ inline std::optional<FrictionalSolution> exact_impact_lcp(const Eigen::MatrixXd&
         same = (lcp.lambda(r) > 0) == (e->lambda(r) > 0) && (held[k] || e->w(r) > 0) &&
                std::abs(lcp.lambda(r) - e->lambda(r)) <= 0x1p-40 * scale;
       }
-      if (same) return std::nullopt;
+      if (same && !keep_exact) return std::nullopt;
       return e;
     }
   }

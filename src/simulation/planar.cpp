@@ -2786,7 +2786,14 @@ void PlanarSystemSimulation::Impl::impact(double time,
   if (!frictional) {
     simulation::LcpSolution lcp = simulation::solve_lcp(A, b);
     // (session 68, impact68: which rows get an impulse decided exactly — exact_impact_lcp)
-    const std::optional<simulation::FrictionalSolution> exact = simulation::exact_impact_lcp(J, minv, v, h_exact, lcp);
+    // (session 74, jam74: in a plastic impact — every row's restitution 0 — the exact solution's
+    // velocities are kept also where the doubles' agree: a block carried off plastically then
+    // moves exactly with its pusher, docs/simulation.md. Not for elastic rows: kept there, the
+    // pusher-blocks example's run diverged (left open, docs/simulation.md Session 74))
+    bool all_plastic = true;
+    for (Eigen::Index r = 0; r < m; ++r) all_plastic = all_plastic && restitution(r) == 0;
+    const std::optional<simulation::FrictionalSolution> exact =
+        simulation::exact_impact_lcp(J, minv, v, h_exact, lcp, nullptr, all_plastic);
     if (exact) lcp.solved = exact->solved;
     if (!lcp.solved) refuse_jam(time, contact);   // (session 69: a jam, named, where it is one)
     if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");

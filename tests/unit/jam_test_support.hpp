@@ -13,6 +13,7 @@
 #include <hipair/simulation_stop.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <numbers>
 #include <optional>
@@ -73,19 +74,24 @@ inline Model cam_into_stop(double h, double w, bool profile = false, double left
 }
 
 // A run to `until` that stops with a SimulationJam: its time, message and verdict (no jam: `jam`
-// empty).
+// empty). `each_state` (session 74): called with the simulation after every step and after the
+// stop (the states the run publishes).
 struct Stopped {
   std::optional<double> jam;
   std::string message;
   bool exact = false;
 };
 template <class Sim>
-Stopped run_to_jam(Sim& sim, double until) {
+Stopped run_to_jam(Sim& sim, double until, const std::function<void(const Sim&)>& each_state = {}) {
   Stopped run;
   try {
-    sim.run_until(until);
+    if (each_state)
+      sim.run_until(until, [&](double) { each_state(sim); });
+    else
+      sim.run_until(until);
   } catch (const SimulationJam& jam) {
     run = {jam.time(), jam.what(), jam.exact()};
+    if (each_state) each_state(sim);
   }
   return run;
 }
