@@ -114,7 +114,7 @@ std::optional<Certificate> clearance(const Model& model, const std::string& fixe
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
   Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(pair.fixed_map), verify::shape_of(b), verify::to_interval_map(pair.map), cap);
-  std::optional<Rational> claimed = claimed_clearance(bound, distance, a, pair.fixed_map, b, pair.map);
+  std::optional<Rational> claimed = claimed_clearance(bound, distance, a, pair.fixed_map, b, pair.map, cap);
   if (!claimed) return std::nullopt;
   c.distance = *claimed;
   c.statement = certificate_statement(c, model);

@@ -61,9 +61,12 @@ verify::IntervalMap interval_map(const Part& part, const RationalInterval& range
 /// The distance a clearance certificate claims: `asked` when the parts at their exact maps are at
 /// least that far apart (the MPFI `bound` first, then exactly, as the verifier decides it: a
 /// claim of exactly the distance holds at any magnitude), else nothing; without `asked`, `bound`
-/// rounded down to 6 digits (nothing when it is not positive).
+/// rounded down to 6 digits; when `bound` is not positive (parts the caller found apart exactly but
+/// closer than the enclosures resolve), `cap` (an upper bound of the distance) 2^-e for the least
+/// e that holds exactly, rounded down to 6 digits (nothing when `cap` is not positive).
 std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
-                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b);
+                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b,
+                                          const Rational& cap);
 
 /// A piece of edge e (posed at one pose: ec, over a set of poses: eo) that crosses edge g (gc,
 /// go) for every pose of the set, proved by verify::crossing_certain, or nullopt: the search of

@@ -101,12 +101,30 @@ Rational decimal_unit(const Rational& value, int digits) {
 }  // namespace
 
 std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
-                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b) {
+                                          const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b,
+                                          const Rational& cap) {
   auto exactly = [&](const Rational& d) {
     return verify::boundary_distance_at_least(verify::place(a, map_a), verify::place(b, map_b), d);
   };
   if (asked) return bound >= *asked || exactly(*asked) ? asked : std::nullopt;
-  if (sgn(bound) <= 0) return std::nullopt;
+  if (sgn(bound) <= 0) {
+    // Apart (the caller decided it exactly) but closer than the 256-bit enclosures resolve (a
+    // gap of 1e-80 mm between parts of 50 mm; until session 74 refused as "touch or overlap",
+    // hostile74 M1): cap 2^-e for the least e that holds exactly, found by doubling e and then
+    // bisecting it (about 2 log2 e exact tests), within a factor 2 of the distance.
+    if (sgn(cap) <= 0) return std::nullopt;
+    auto holds = [&](long e) { return exactly(times_power_of_two(cap, -e)); };
+    long low = 0, high = 1;   // cap 2^-low does not hold (or low = 0), cap 2^-high is tested
+    while (!holds(high)) {
+      low = high;
+      high *= 2;
+    }
+    while (high - low > 1) {
+      const long middle = low + (high - low) / 2;
+      (holds(middle) ? high : low) = middle;
+    }
+    return round_down(times_power_of_two(cap, -high), 6);
+  }
   // The bound rounded down to 6 digits; when the bound is a hair under the next 6-digit value
   // (an exact distance of 2e-300 mm enclosed as 1.99999...97e-300), that value if it holds
   // exactly: the found distance is then the same at every scale (session 62, hunt62).
@@ -306,7 +324,7 @@ std::optional<Certificate> certify_clearance(const Model& model, const std::stri
   Rational cap = abs(p.x - q.x) + abs(p.y - q.y);
   if (distance && *distance > cap) return std::nullopt;
   Rational bound = verify::boundary_distance_lower_bound(verify::shape_of(a), verify::to_interval_map(map_a), verify::shape_of(b), verify::to_interval_map(map_b), cap);
-  std::optional<Rational> claimed = claimed_clearance(bound, distance, a, map_a, b, map_b);
+  std::optional<Rational> claimed = claimed_clearance(bound, distance, a, map_a, b, map_b, cap);
   if (!claimed) return std::nullopt;
   c.distance = *claimed;
   c.statement = certificate_statement(c, model);

@@ -70,6 +70,15 @@ class BoxGrid {
     size_ = size;
     columns_ = static_cast<std::size_t>(std::min(width / size, cap)) + 1;
     rows_ = static_cast<std::size_t>(std::min(height / size, cap)) + 1;
+    // the sizing above keeps columns * rows <= 3 cap + 1; a width or height that overflows the
+    // doubles (finite boxes 1e154 apart have an infinite area, 1e308 apart an infinite side)
+    // leaves size 1 and would ask for up to (cap + 1)^2 cells: one cell then, every item in it
+    // (a superset, as promised; integrator, review74 growth74 M2)
+    if (!std::isfinite(width) || !std::isfinite(height) ||
+        static_cast<double>(columns_) * static_cast<double>(rows_) > 3.0 * cap + 1.0) {
+      size_ = 1;
+      columns_ = rows_ = 1;
+    }
     // counting sort of (cell, item) in item order: each cell's items ascending
     starts_.assign(columns_ * rows_ + 1, 0);
     for (std::size_t i = 0; i < boxes.size(); ++i) {

@@ -13,6 +13,7 @@
 // to screen ray crossings with a double bounding box and accepted some of them).
 #include "oracle/overlap.hpp"
 #include "random_rationals.hpp"
+#include "test_seed.hpp"
 
 #include <hipair/certificate.hpp>
 #include <hipair/model.hpp>
@@ -524,6 +525,31 @@ TEST(CertifyProperty, ProducerCertifiesAtEveryScale) {
     std::cout << "[ property ] producer at " << where << ": " << free->boxes.size() << " free-passage boxes, "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
   }
+}
+
+// Integrator (session 74, hostile74 M1): parts apart by less than the 256-bit enclosures resolve
+// (a gap of 1e-80 of their size) were refused a clearance certificate as "touch or overlap".
+// Generated squares 2 units wide beside a block, gap g = m 10^-k units (k = 60 .. 330, m a random
+// mantissa), at every scale: the found distance d holds (the verifier accepts it) and is within a
+// factor 2 of the gap (the search's doubling and bisection of the exponent, and 6 digits' rounding
+// down): d <= g and a claim of 2.0001 d is refused (exactly). Fails on base74: no certificate.
+TEST(CertifyProperty, ClearanceBelowTheEnclosuresResolutionIsFoundExactly) {
+  std::mt19937_64 random(test::test_seed(7403));
+  for (int exponent : scale_exponents)
+    for (int k : {60, 80, 150, 330}) {
+      const Rational scale = power_of_ten(exponent);
+      const Rational gap = Rational(1 + static_cast<long>(random() % 999), 100) * power_of_ten(-k);
+      const std::string where = "scale 1e" + std::to_string(exponent) + ", gap " + std::to_string(k);
+      PartSpec square{"a", true, pt(1, 1), {rectangle(0, 0, 2, 2)}};
+      PartSpec block{"b", false, pt(0, 0), {rectangle(2 + gap, 0, 2, 2)}};
+      Case squares = read_case({square, block}, scale);
+      std::map<std::string, ExactPosition> at_zero{{"a", ExactPosition{Rational(0), false, false, {}, {}}}};
+      std::optional<Certificate> clearance = certify_clearance(squares.model, "a", "b", at_zero);
+      ASSERT_TRUE(clearance) << where << ": no clearance certificate";
+      EXPECT_TRUE(verified(*clearance, squares.model).valid) << where;
+      EXPECT_LE(clearance->distance, gap * scale) << where;
+      EXPECT_FALSE(certify_clearance(squares.model, "a", "b", at_zero, Rational(clearance->distance * Rational(20001, 10000)))) << where;
+    }
 }
 
 // Free passage of a rotating part over random angle ranges, covered by equal boxes: never valid

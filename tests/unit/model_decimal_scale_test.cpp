@@ -173,6 +173,86 @@ TEST(FeatureSpread, EdgesBelowTheLimitOfTheirPairsExtentAreRefusedNamingThem) {
     }
 }
 
+// Integrator (session 74, hostile74 H1): a coordinate given finer than 2^-1330 of its pair's
+// extent carries as many digits into every rational as a too-small edge (the Geneva template's
+// wheel centre moved by 1e-400 mm ran for minutes in `cspace`); it is refused before work, naming
+// the part, and a uniform scale (binary or decimal) never is. Generated: a 64-unit block and a
+// 10-unit translating rectangle offset by delta = 2^-j or 10^-d units from 70 units, or a rotating
+// part's pivot offset so, at scales 2^-1000 .. 2^1000 and 10^-1000 .. 10^1000 mm; the pair's extent
+// is about 2^6.3 units, so the spread is about j + 6.3 bits (d log2 10 + 6.3): refused from 1330.
+TEST(FeatureSpread, CoordinatesFinerThanTheLimitOfTheirPairsExtentAreRefusedNamingTheirPart) {
+  auto rectangle = [](const Rational& x0, const Rational& y0, const Rational& w, const Rational& h, const std::string& pointer) {
+    Loop loop;
+    loop.pointer = pointer;
+    const Point a{x0, y0}, b{x0 + w, y0}, c{x0 + w, y0 + h}, d{x0, y0 + h};
+    const Point corners[] = {a, b, c, d};
+    for (int i = 0; i < 4; ++i) {
+      Edge edge;
+      edge.source = corners[i];
+      edge.target = corners[(i + 1) % 4];
+      edge.pointer = pointer + "/edges/" + std::to_string(i);
+      loop.edges.push_back(edge);
+    }
+    return loop;
+  };
+  auto power_of_ten = [](long e) {
+    mpz_class ten;
+    mpz_ui_pow_ui(ten.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+    return e < 0 ? Rational(mpz_class(1), ten) : Rational(ten);
+  };
+  int refusals = 0, acceptances = 0;
+  for (int decimal = 0; decimal < 2; ++decimal)
+    for (long scale : {-1000L, -300L, 0L, 400L, 1000L})
+      for (long fine : {30L, 1290L, 1350L, 1500L, 4000L})   // bits of delta below the unit
+        for (int where = 0; where < 3; ++where) {            // a vertex's x, a vertex's y, a pivot's y
+          SCOPED_TRACE(std::string(decimal ? "decimal" : "binary") + " scale " + std::to_string(scale) +
+                       ", delta 2^-" + std::to_string(fine) + " units, place " + std::to_string(where));
+          // unit = 2^scale or 10^scale mm; delta = unit 2^-fine (binary) or unit 10^-d, d = fine / log2 10
+          const Rational unit = decimal ? power_of_ten(scale) : times_power_of_two(Rational(1), scale);
+          const long digits = static_cast<long>(static_cast<double>(fine) / std::log2(10.0));
+          const Rational delta = decimal ? Rational(unit * power_of_ten(-digits)) : times_power_of_two(unit, -fine);
+          const double spread_bits = 6.3 + (decimal ? static_cast<double>(digits) * std::log2(10.0) : static_cast<double>(fine));
+          Model model;
+          Part block, other;
+          block.name = "block";
+          block.pointer = "/parts/0";
+          block.loops.push_back(rectangle(Rational(0), Rational(0), unit * 64, unit * 64, "/parts/0/loops/0"));
+          other.name = "mover";
+          other.pointer = "/parts/1";
+          Rational x0 = unit * 70, y0 = Rational(0);
+          if (where == 0) x0 += delta;
+          if (where == 1) y0 += delta;
+          other.loops.push_back(rectangle(x0, y0, unit * 10, unit * 10, "/parts/1/loops/0"));
+          if (where == 2) {
+            other.motion.kind = Motion::Kind::rotation;
+            other.motion.pivot = Point{unit * 75, delta};
+          } else {
+            other.motion.kind = Motion::Kind::translation;
+          }
+          model.parts = {block, other};
+          PairSpec pair;
+          pair.first = 0;
+          pair.second = 1;
+          model.pairs.push_back(pair);
+          const bool refused = spread_bits > static_cast<double>(max_feature_spread_bits) + 3;
+          const bool accepted = spread_bits < static_cast<double>(max_feature_spread_bits) - 3;
+          ASSERT_TRUE(refused || accepted) << "a case within the granularity's few bits of the limit";
+          try {
+            require_feature_spread(model);
+            EXPECT_TRUE(accepted) << "accepted";
+            ++acceptances;
+          } catch (const GeometryError& error) {
+            EXPECT_TRUE(refused) << error.what();
+            ++refusals;
+            const std::string message = error.what();
+            EXPECT_NE(message.find("part 'mover' (/parts/1) has a coordinate (/parts/1"), std::string::npos) << message;
+            EXPECT_NE(message.find("2^-1330"), std::string::npos) << message;
+          }
+        }
+  EXPECT_GT(refusals, 0);
+  EXPECT_GT(acceptances, 0);
+}
+
 
 // Session 54 (scale54): the tolerance analysis of a mechanism at an extreme scale evaluates its
 // parametric form divided by 10^E (ParametricModel::rescaled, model/parametric/formula.hpp

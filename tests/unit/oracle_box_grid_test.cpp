@@ -33,6 +33,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -271,6 +272,50 @@ TEST(OracleBoxGrid, GriddedOraclesAreTheExactOracleNearContactOnGearPairs) {
       "filter %zu of %zu\n",
       asked, by_relation[0], by_relation[1], by_relation[2], near_contact, algebraic, filter_true,
       filtered);
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Integrator (review74 growth74 M2): finite boxes whose spread overflows the doubles (area beyond
+// 1e308 from coordinates about 1e154, a side beyond it from coordinates about 1e308) made the grid
+// ask for (2^20 + 1)^2 cells (a bad_alloc abort); generated sets at such coordinates, with and
+// without ordinary boxes among them, list every box meeting each query, ascending, once, from a
+// grid of at most one cell per few items.
+TEST(OracleBoxGrid, BoxesWhoseSpreadOverflowsTheDoublesAreListedFromOneCell) {
+  std::mt19937_64 random(test::test_seed(7402));
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    const double far = std::ldexp(1.0, 500 + static_cast<int>(random() % 524));   // 2^500 .. 2^1023
+    std::vector<Bounds> boxes;
+    const std::size_t n = 2 + random() % 200;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = (i % 3 == 0) ? unit(random) * 10 : unit(random) * far;
+      const double y = (i % 3 == 0) ? unit(random) * 10 : unit(random) * far;
+      const double w = std::abs(unit(random)) * (i % 2 ? 1.0 : far * 1e-3);
+      const double h = std::abs(unit(random)) * (i % 2 ? 1.0 : far * 1e-3);
+      boxes.push_back({x, x + w, y, y + h});
+    }
+    boxes.push_back({-far, -far, -far, -far});
+    boxes.push_back({far, far, far, far});
+    cspace::BoxGrid grid(boxes);
+    std::vector<std::size_t> listed;
+    for (int q = 0; q < 50; ++q) {
+      const double x = unit(random) * (q % 2 ? 10.0 : far), y = unit(random) * (q % 2 ? 10.0 : far);
+      const double w = std::abs(unit(random)) * (q % 3 ? 5.0 : far);
+      const Bounds query{x, x + w, y, y + w};
+      grid.query(query, listed);
+      ASSERT_TRUE(std::is_sorted(listed.begin(), listed.end()));
+      ASSERT_TRUE(std::adjacent_find(listed.begin(), listed.end()) == listed.end());
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (meets(boxes[i], query))
+          ASSERT_TRUE(std::binary_search(listed.begin(), listed.end(), i))
+              << "trial " << trial << " query " << q << ": box " << i << " meets the query and is not listed";
+    }
+  }
 }
 
 }  // namespace
