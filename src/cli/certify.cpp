@@ -330,6 +330,9 @@ int run(const CertifyArguments& arguments) {
       if (equals == std::string::npos) throw ModelError("", "--at expects PART=VALUE, got '" + assignment + "'");
       const Part& part = part_named(model, assignment.substr(0, equals), "--at " + assignment);
       refuse_outside_pair(part, a, b, "--at " + assignment);
+      // (until session 74 a fixed part's position was taken and ignored; the verifier refuses one)
+      if (part.motion.kind == Motion::Kind::fixed)
+        throw ModelError("", "--at " + assignment + ": part '" + part.name + "' is fixed and has no position");
       positions[part.name] = position_of(part, assignment.substr(equals + 1), notes);
     }
     if (arguments.claim == "interference") {

@@ -321,7 +321,11 @@ int run(const ToleranceCliOptions& options) {
   // --vary names parameters too (until session 45 "/parameters: unknown parameter 'x' for the
   // threshold search", no option)
   std::vector<std::string> varied;
-  for (const std::string& name : options.vary) varied.push_back(name + "=");
+  OnceEach once_varied("--vary", "parameter");   // (until session 74 a repeat was taken silently)
+  for (const std::string& name : options.vary) {
+    once_varied.add(name, name);
+    varied.push_back(name + "=");
+  }
   refuse_unknown_parameters(options.model, varied, "--vary");
   if (options.certify_interference && !overrides.parameter_values.empty())
     throw ModelError("", "--certify-interference certifies the model file as written (hipair-verify checks the "

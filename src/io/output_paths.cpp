@@ -21,9 +21,25 @@ std::string quoted(const std::filesystem::path& path) {
   return out;
 }
 
+// `path` with the symbolic links of its last component followed, even when the final target does
+// not exist yet (a dangling link is written through to its target: `--svg link` with link -> the
+// --json file is that file; hostile74 L1); at most 40 links, as the kernel follows.
+std::filesystem::path through_links(std::filesystem::path path) {
+  namespace fs = std::filesystem;
+  for (int hops = 0; hops < 40; ++hops) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(path, ec)) || ec) break;
+    fs::path target = fs::read_symlink(path, ec);
+    if (ec) break;
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  return path;
+}
+
 }  // namespace
 
-bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+bool same_file(const std::filesystem::path& given_a, const std::filesystem::path& given_b) {
+  const std::filesystem::path a = through_links(given_a), b = through_links(given_b);
   namespace fs = std::filesystem;
   std::error_code ec_a, ec_b;
   // Both exist: the device and inode decide (symbolic and hard links included).
