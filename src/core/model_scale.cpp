@@ -513,32 +513,6 @@ void require_dynamics_in_double_range(const Model& model, const std::string& uni
   }
 }
 
-namespace {
-
-// log2 of the granularity of `value` = p/q (lowest terms), within a few: 2^v2 5^v5 / r with v2 and
-// v5 the powers of 2 and 5 in p over those in q and r the rest of q. A coordinate written in
-// decimal or binary at any scale (23.5e400, 47e-301, m 2^j) has a granularity near its own size
-// divided by its few significant digits; 23.5 + 1e-400 has 1e-400. Exact: GMP's valuations.
-long granularity_exponent(const Rational& value) {
-  thread_local mpz_t rest;
-  thread_local bool ready = false;
-  if (!ready) {
-    mpz_init(rest);
-    ready = true;
-  }
-  static const double log2_5 = std::log2(5.0);
-  static const mpz_class five(5);
-  const mpz_srcptr num = value.get_num_mpz_t(), den = value.get_den_mpz_t();
-  const long p2 = static_cast<long>(mpz_scan1(num, 0)), q2 = static_cast<long>(mpz_scan1(den, 0));
-  const long p5 = static_cast<long>(mpz_remove(rest, num, five.get_mpz_t()));
-  mpz_tdiv_q_2exp(rest, den, static_cast<mp_bitcnt_t>(q2));
-  const long q5 = static_cast<long>(mpz_remove(rest, rest, five.get_mpz_t()));
-  const long rest_bits = static_cast<long>(mpz_sizeinbase(rest, 2)) - 1;   // floor(log2 r), r >= 1
-  return p2 - q2 + std::lround(std::floor(static_cast<double>(p5 - q5) * log2_5)) - rest_bits;
-}
-
-}  // namespace
-
 void require_feature_spread(const Model& model, std::size_t first, std::size_t second) {
   BoundingBox box;
   // vertices only: an arc's centre may lie 10^1000 mm away from a part of a few mm
@@ -572,35 +546,6 @@ void require_feature_spread(const Model& model, std::size_t first, std::size_t s
                             " (about 1e-400) of its extent (the exact arithmetic's cost grows with the square of that "
                             "spread's exponent; a whole model may have any scale from 1e-1000 to 1e1000 mm)");
       }
-  }
-  // A coordinate given finer than 2^-max_feature_spread_bits of the extent carries as many bits
-  // into every rational as such an edge does (session 74, hostile74 H1: the Geneva template's
-  // wheel centre moved by 1e-400 mm ran for minutes in `cspace`): its vertices and pivots too.
-  auto refuse_fine = [&](const Part& part, const Rational& value, const std::string& where) {
-    if (sgn(value) == 0) return;
-    const long fine_bits = granularity_exponent(value);
-    if (extent_bits - fine_bits <= max_feature_spread_bits) return;
-    throw GeometryError("part '" + part.name + "' (" + part.pointer + ") has a coordinate (" + where +
-                        ") given to about 2^" + std::to_string(fine_bits) + " mm in a pair that spans about 2^" +
-                        std::to_string(extent_bits) + " mm: a pair's coordinates must be given to at least 2^-" +
-                        std::to_string(max_feature_spread_bits) +
-                        " (about 1e-400) of its extent (the exact arithmetic carries every digit into every rational; "
-                        "a whole model may have any scale from 1e-1000 to 1e1000 mm)");
-  };
-  for (std::size_t index : {first, second}) {
-    const Part& part = model.parts.at(index);
-    for (const auto& loop : part.loops)
-      for (const auto& edge : loop.edges) {
-        const std::string& where = edge.pointer.empty() ? loop.pointer : edge.pointer;
-        for (const Point* point : {&edge.source, &edge.target}) {
-          refuse_fine(part, point->x, where);
-          refuse_fine(part, point->y, where);
-        }
-      }
-    if (part.motion.kind != Motion::Kind::fixed && part.motion.kind != Motion::Kind::translation) {
-      refuse_fine(part, part.motion.pivot.x, part.pointer + " (its pivot)");
-      refuse_fine(part, part.motion.pivot.y, part.pointer + " (its pivot)");
-    }
   }
 }
 
