@@ -2277,6 +2277,13 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     ChartData& chart = impl->charts[c];
     chart.x_index = chart_input.x_index;
     chart.y_index = chart_input.y_index;
+    // Two rotating parts: a curve with coefficients beyond max_rotation_curve_bits is refused
+    // before the chart's culling and arrangement, naming its features (src/cspace/curve_cost.hpp:
+    // their cost grows with the coefficients' bits squared; hostile74 H1 ran for minutes).
+    if (input.dimension == 2 && chart_input.x.kind == AxisKind::rotation && chart_input.y.kind == AxisKind::rotation)
+      for (const ContactCurve& curve : chart_input.curves)
+        if (const std::size_t bits = primitive_coefficient_bits(curve.polynomial); bits > max_rotation_curve_bits)
+          throw GeometryError(too_fine_message(curve, bits, input.model.get(), part_name));
     auto culling_start = Clock::now();
     std::vector<std::size_t> kept =
         prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3,
@@ -2335,13 +2342,6 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
       ++progress_done;
       continue;
     }
-    // Two rotating parts: a curve with coefficients beyond max_rotation_curve_bits is refused
-    // before its chart's arrangement, naming its features (src/cspace/curve_cost.hpp: the
-    // arrangement's cost grows with their square; hostile74 H1 ran for minutes).
-    if (chart.x_axis.kind == AxisKind::rotation && chart.y_axis.kind == AxisKind::rotation)
-      for (std::size_t i = 0; i < kept.size(); ++i)
-        if (const std::size_t bits = primitive_coefficient_bits(chart.polynomials[i]); bits > max_rotation_curve_bits)
-          throw GeometryError(too_fine_message(chart_input.curves[kept[i]], bits, input.model.get(), part_name));
     raw::Options raw_options;
     raw_options.aggregated_insertion = options.aggregated_insertion;
     raw_options.keep_cgal = options.keep_arrangements;
