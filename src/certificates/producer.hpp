@@ -58,12 +58,19 @@ verify::ExactMap exact_map(const Part& part, const ExactPosition* position);
 /// All poses of `part` with its coordinate (rad or mm) in `range` (identity if fixed).
 verify::IntervalMap interval_map(const Part& part, const RationalInterval& range);
 
+/// The largest e for which claimed_clearance (without `asked`, closer than its bound resolves)
+/// tests cap 2^-e: 4096 + 8 S, S the bits (numerator and denominator) of both maps' entries and
+/// of each part's largest vertex coordinate (a squared distance has degree at most 8 in them);
+/// beyond it the search is refused (GeometryError) rather than carried on with ever larger numbers.
+long clearance_search_limit(const Part& a, const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b);
+
 /// The distance a clearance certificate claims: `asked` when the parts at their exact maps are at
 /// least that far apart (the MPFI `bound` first, then exactly, as the verifier decides it: a
 /// claim of exactly the distance holds at any magnitude), else nothing; without `asked`, `bound`
 /// rounded down to 6 digits; when `bound` is not positive (parts the caller found apart exactly but
 /// closer than the enclosures resolve), `cap` (an upper bound of the distance) 2^-e for the least
-/// e that holds exactly, rounded down to 6 digits (nothing when `cap` is not positive).
+/// e that holds exactly, rounded down to 6 digits (nothing when `cap` is not positive; e beyond
+/// clearance_search_limit: \throws GeometryError).
 std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
                                           const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b,
                                           const Rational& cap);

@@ -100,6 +100,23 @@ Rational decimal_unit(const Rational& value, int digits) {
 }
 }  // namespace
 
+long clearance_search_limit(const Part& a, const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b) {
+  auto bits = [](const Rational& r) {
+    return long(mpz_sizeinbase(r.get_num_mpz_t(), 2) + mpz_sizeinbase(r.get_den_mpz_t(), 2));
+  };
+  long total = 0;
+  for (const verify::ExactMap* map : {&map_a, &map_b})
+    for (const Rational* r : {&map->c, &map->s, &map->pivot.x, &map->pivot.y, &map->shift.x, &map->shift.y})
+      total += bits(*r);
+  for (const Part* part : {&a, &b}) {
+    long largest = 0;
+    for (const auto& loop : part->loops)
+      for (const auto& edge : loop.edges) largest = std::max({largest, bits(edge.source.x), bits(edge.source.y)});
+    total += largest;
+  }
+  return 4096 + 8 * total;
+}
+
 std::optional<Rational> claimed_clearance(const Rational& bound, const std::optional<Rational>& asked, const Part& a,
                                           const verify::ExactMap& map_a, const Part& b, const verify::ExactMap& map_b,
                                           const Rational& cap) {
@@ -112,12 +129,23 @@ std::optional<Rational> claimed_clearance(const Rational& bound, const std::opti
     // gap of 1e-80 mm between parts of 50 mm; until session 74 refused as "touch or overlap",
     // hostile74 M1): cap 2^-e for the least e that holds exactly, found by doubling e and then
     // bisecting it (about 2 log2 e exact tests), within a factor 2 of the distance.
+    // The doubling stops at e_max = 4096 + 8 S (clearance_search_limit): S the bits of the
+    // inputs (both maps' entries, each part's largest vertex coordinate), 8 the degree of a
+    // squared distance in them; beyond, a clear refusal (session 75: it had no bound, and a
+    // position with a huge number of digits made every exact test of the search larger).
     if (sgn(cap) <= 0) return std::nullopt;
     auto holds = [&](long e) { return exactly(times_power_of_two(cap, -e)); };
+    const long e_max = clearance_search_limit(a, map_a, b, map_b);
     long low = 0, high = 1;   // cap 2^-low does not hold (or low = 0), cap 2^-high is tested
     while (!holds(high)) {
+      if (high >= e_max)
+        throw GeometryError("cannot certify a clearance of '" + a.name + "' and '" + b.name +
+                            "': they are apart but closer than 2^-" + std::to_string(e_max) +
+                            " times the distance of two of their boundary points, the bound the search for the "
+                            "distance takes from the sizes of the positions and coordinates; claim a distance with "
+                            "--distance instead");
       low = high;
-      high *= 2;
+      high = std::min(2 * high, e_max);
     }
     while (high - low > 1) {
       const long middle = low + (high - low) / 2;

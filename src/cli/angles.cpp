@@ -1,5 +1,6 @@
 #include "cli/angles.hpp"
 
+#include "core/exact_literal.hpp"
 #include "model/interval.hpp"
 
 #include <hipair/error.hpp>
@@ -49,7 +50,20 @@ AngleLiteral parse_angle_literal(const std::string& text, bool angle, const std:
   AngleLiteral literal;
   literal.degrees = angle && text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0;
   try {
-    literal.value = parse_rational(literal.degrees ? text.substr(0, text.size() - 3) : text);
+    const std::string body = trim(literal.degrees ? text.substr(0, text.size() - 3) : text);
+    literal.value = parse_rational(body);
+    // the exponent limit of every exact literal (docs/model-format.md "Numbers"): '1e1001' is
+    // out of range here as in the model and --set (hostile74 L3: it was read, reduced modulo 2 pi)
+    bool in_range = true;
+    if (body.find_first_of("eE") != std::string::npos) try {
+        parse_exact_literal(std::string_view(body).substr(body.front() == '+' ? 1 : 0));
+      } catch (const NumericError&) {
+        in_range = false;   // (parse_rational took it: only the exponent can be wrong)
+      }
+    if (!in_range)
+      throw ModelError("", option + " " + text + ": number '" + (body.size() <= 60 ? body : body.substr(0, 60) + "...") +
+                               "' out of range: the decimal exponent is limited to " +
+                               std::to_string(exact_literal_max_exponent) + " (exact literal; angles in rad or with 'deg')");
   } catch (const NumericError& error) {
     throw ModelError("", option + " " + text + ": " + error.what() + " (exact literal; angles in rad or with 'deg')");
   }

@@ -8,6 +8,7 @@
 #include "algebra/simplest_small.hpp"
 #include "algebra/small_integers.hpp"
 #include "cspace/angle_filter.hpp"
+#include "cspace/curve_cost.hpp"
 #include "cspace/label_filter.hpp"
 #include "cspace/quadratic_root.hpp"
 #include "cspace/valid_point.hpp"
@@ -653,6 +654,32 @@ std::vector<std::size_t> prepare_chart(ChartData& chart, ChartInput& input, int 
     std::fprintf(stderr, "  culling: %zu of %zu curves kept, %zu blocked tests, %zu candidate pairs tested\n", kept.size(),
                  input.curves.size(), input.blocked_cells->tests(), input.blocked_cells->pairs_tested());
   return kept;
+}
+
+// The refusal of a contact curve of two rotating parts whose coefficients have `bits` bits,
+// more than max_rotation_curve_bits: its two features (part, JSON pointer of the edge) and what
+// to do.
+template <class PartName>
+std::string too_fine_message(const ContactCurve& curve, std::size_t bits, const Model* model, const PartName& part_name) {
+  auto feature = [&](const FeatureRef& f) {
+    std::string text = "'" + part_name(f.part) + "'";
+    if (model && f.part < model->parts.size()) {
+      const Part& part = model->parts[f.part];
+      if (f.loop < part.loops.size()) {
+        const Loop& loop = part.loops[f.loop];
+        const std::string& pointer = f.edge < loop.edges.size() && !loop.edges[f.edge].pointer.empty()
+                                         ? loop.edges[f.edge].pointer
+                                         : loop.pointer;
+        if (!pointer.empty()) text += " (" + pointer + ")";
+      }
+    }
+    return text;
+  };
+  return "the contact of " + feature(curve.first) + " with " + feature(curve.second) + " is a curve with " +
+         std::to_string(bits) + "-bit coefficients, beyond the " + std::to_string(max_rotation_curve_bits) +
+         " bits an exact C-space of two rotating parts is built with in reasonable time: their coordinates are "
+         "written too finely relative to one another (an offset of 1e-300 mm on a 100 mm part); round them (to "
+         "1e-100 mm, say), or give an offset that small as zero";
 }
 
 // Every validity clause holds at (x, y): one exact coordinate rational, the other algebraic.
@@ -2250,6 +2277,13 @@ CSpace build_cspace(PairInput input, const CSpaceBuildOptions& options) {
     ChartData& chart = impl->charts[c];
     chart.x_index = chart_input.x_index;
     chart.y_index = chart_input.y_index;
+    // Two rotating parts: a curve with coefficients beyond max_rotation_curve_bits is refused
+    // before the chart's culling and arrangement, naming its features (src/cspace/curve_cost.hpp:
+    // their cost grows with the coefficients' bits squared; hostile74 H1 ran for minutes).
+    if (input.dimension == 2 && chart_input.x.kind == AxisKind::rotation && chart_input.y.kind == AxisKind::rotation)
+      for (const ContactCurve& curve : chart_input.curves)
+        if (const std::size_t bits = primitive_coefficient_bits(curve.polynomial); bits > max_rotation_curve_bits)
+          throw GeometryError(too_fine_message(curve, bits, input.model.get(), part_name));
     auto culling_start = Clock::now();
     std::vector<std::size_t> kept =
         prepare_chart(chart, chart_input, input.dimension, options.polygon_front_end, input.complete ? 0 : 3,
