@@ -606,19 +606,20 @@ TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChai
 // Session 74 (tol74): the driver-piece meet of the later passes (chain.cpp compose_once,
 // tolerance_detail::chain_driver_piece_meet(); review73 H1, M3): pair s's enclosure Y over
 // box x T narrowed to the hull of its enclosures over T's pieces (held_pieces) where that hull
-// lies inside Y; tried (switch 1, the default) only where Y is beyond certified_range's accuracy
-// target, or everywhere (switch 2). On generated variants of the driver-pieces chain above (seeded:
-// e's tolerance, the competitor's x, the slanted underside's start), whose positions reach the far
-// walk's and the driver pieces' passes: with the meet tried everywhere it narrows enclosures
-// (counted: tolerance_detail::chain_driver_piece_meets()), every band it gives lies inside the
-// band without it (both enclose the exact chain; the meet only narrows) and holds the exact chain
-// at the box's 4 corners, g's ends and middle and 4 random vectors; with the default (the meet
-// skipped where Y already meets the target), the bands, notes and sub-box counts are those
-// without the meet wherever it narrowed nothing (review73 L1: the pieces' sub-boxes are counted
-// only when the meet is taken). Mutants (temporary, built, run, removed): docs/tolerance.md,
-// Session 74 (tol74).
+// lies inside Y; tried everywhere (switch 2, the default since session 75) or only where Y is
+// beyond certified_range's accuracy target (switch 1, session 74's default). On generated
+// variants of the driver-pieces chain above (seeded: e's tolerance, the competitor's x, the
+// slanted underside's start), whose positions reach the far walk's and the driver pieces'
+// passes: the default meet narrows enclosures (counted: tolerance_detail::chain_driver_piece_meets())
+// and bands (counted over the cases, required > 0); every band of the three modes holds the exact
+// chain at the box's 4 corners, g's ends and middle and 4 random vectors; with switch 1 the
+// bands, notes and sub-box counts are those without the meet wherever it narrowed nothing
+// (review73 L1: the pieces' sub-boxes are counted only when the meet is taken). Session 75
+// (review74 M1): the nesting of the bands (with the meet inside without) is not asserted: it is
+// not guaranteed (below). Mutants (temporary, built, run, removed): docs/tolerance.md, Session 74
+// (tol74).
 TEST(ChainDriverPieceMeet, GeneratedChainsMeetNarrowsInsideTheWholeRangeBandAndHoldsTheExactChain) {
-  ASSERT_EQ(tolerance_detail::chain_driver_piece_meet(), 1);
+  ASSERT_EQ(tolerance_detail::chain_driver_piece_meet(), 2);
   const std::uint64_t seed = test::test_seed(74);
   std::mt19937 rng(static_cast<std::mt19937::result_type>(seed));
   std::uniform_int_distribution<int> e_steps(0, 2), x_steps(0, 120), y_steps(0, 5), rise_steps(0, 12);
@@ -650,7 +651,7 @@ TEST(ChainDriverPieceMeet, GeneratedChainsMeetNarrowsInsideTheWholeRangeBandAndH
     }
     EXPECT_EQ(meets[0], 0u);
     meets_everywhere += meets[2];
-    // the default: where the meet narrowed nothing, the analysis without it bit for bit
+    // switch 1: where the meet narrowed nothing, the analysis without it bit for bit
     if (meets[1] == 0) expect_same_chain_result(r[0], r[1]);
     ASSERT_EQ(r[0].samples.size(), r[2].samples.size());
     // Session 75 (review74 M1): the meet narrows the pair's own enclosure, but a band is a hull
@@ -669,7 +670,7 @@ TEST(ChainDriverPieceMeet, GeneratedChainsMeetNarrowsInsideTheWholeRangeBandAndH
       EXPECT_EQ(counts[mode].outside, 0u) << "meet mode " << mode << ": worst " << counts[mode].worst << " mm outside";
     const Count& c = counts[2];
     checked_values += counts[0].values + counts[1].values + counts[2].values;
-    std::printf("seed %llu, e %s, x %s, y %s, rise to %s: %zu enclosures narrowed by the meet tried everywhere, %zu by the default; "
+    std::printf("seed %llu, e %s, x %s, y %s, rise to %s: %zu enclosures narrowed by the meet tried everywhere (the default), %zu by switch 1; "
                 "%zu of 6 positions bounded, %zu exact values checked, %zu outside (worst %.4f mm)\n",
                 static_cast<unsigned long long>(seed), e.c_str(), x.c_str(), y.c_str(), rise.c_str(), meets[2], meets[1], c.bounded,
                 c.values, c.outside, c.worst);
