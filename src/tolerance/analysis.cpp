@@ -521,7 +521,11 @@ class Analysis {
   }
 
   void nominal_path() {
-    KinematicsResult kinematics = kernel_path_ ? std::move(*kernel_path_) : path_kinematics(SliceMethod::cspace, {*space_});
+    // The nominal path on the pair's C-space as analyze takes it (SliceMethod::automatic): its
+    // slicer cuts across the space's x axis, so a driver that is the pair's second part (the
+    // space's y part: cam-follower's --driver follower, hostile74 M2) takes the contact kernels'
+    // exact slices, as analyze does; the samples are located in the space either way (locate()).
+    KinematicsResult kinematics = kernel_path_ ? std::move(*kernel_path_) : path_kinematics(SliceMethod::automatic, {*space_});
     auto follower_index = std::find(kinematics.followers.begin(), kinematics.followers.end(), result_.follower);
     if (follower_index == kinematics.followers.end())
       throw GeometryError("the follower '" + result_.follower + "' is not moved by the driver over the range");

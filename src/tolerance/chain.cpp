@@ -685,9 +685,11 @@ class ChainAnalysis {
         // mesh G:H, T 0.130 chart units wide: Y 0.410 over the whole T, 0.115 over 2 pieces,
         // 0.095 over 8; H:I could then not be certified over a driver range spanning gear H's
         // tooth pitch. Only in those passes: every band bounded by the first pass is unchanged.
-        // Session 74: not tried where the whole-T enclosure already meets certified_range's own
-        // accuracy target (the linearised width over box x T, times 1 + the relative accuracy,
-        // plus the absolute one: review73 M3), whose pieces could narrow it little.
+        // Session 74: with switch 1, not tried where the whole-T enclosure already meets
+        // certified_range's own accuracy target (the linearised width over box x T, times 1 + the
+        // relative accuracy, plus the absolute one: review73 M3). Session 75: the default is 2
+        // again (tried at every pair): the skip saved no measurable CPU and gave up narrower bands
+        // (docs/tolerance.md, Session 75).
         if (s > 0 && FarWalk::on() && chain_driver_piece_meet() != 0 && curve.fixed_range &&
             curve.fixed_range->lo < curve.fixed_range->hi &&
             (chain_driver_piece_meet() == 2 || !within_linearised_target(charts[s], box, c.s_chart, curve))) {
@@ -1810,7 +1812,7 @@ std::atomic<std::size_t>& chain_cases_resumed() {
 }
 
 int& chain_driver_piece_meet() {
-  static int on = 1;
+  static int on = 2;
   return on;
 }
 

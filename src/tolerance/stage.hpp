@@ -194,10 +194,11 @@ int& chain_widened_split();
 
 /// Session 73: in the passes that compose a failed position again (the far walk's and the driver
 /// pieces', chain.cpp certified()), each pair's enclosure over box x T narrowed to the hull of its
-/// driver range's pieces' where that hull lies inside it (chain.cpp compose_once, held_pieces): 1
-/// (on) unless changed; 0 keeps the whole-T enclosure alone, as before; 2 tries the meet also where
-/// the whole-T enclosure already meets certified_range's accuracy target (session 74 skips it
-/// there; tests compare).
+/// driver range's pieces' where that hull lies inside it (chain.cpp compose_once, held_pieces): 2
+/// (tried at every pair) unless changed; 0 keeps the whole-T enclosure alone, as before session 73;
+/// 1 skips it where the whole-T enclosure already meets certified_range's accuracy target (session
+/// 74's default; session 75 measured no CPU saved by the skip and bands it gave up, and made 2 the
+/// default again; tests compare the three).
 int& chain_driver_piece_meet();
 
 /// Session 74: how many pair enclosures the driver-piece meet above has narrowed (the hull

@@ -119,25 +119,24 @@ std::size_t follower_index(const KinematicsResult& result, const std::string& na
                                   result.followers.begin());
 }
 
-Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
-                 int pieces = tolerance_detail::handover_driver_pieces()) {
+// Every exact value at the probes against every bounded band of each analysis of `results` (all
+// of `text`, with chain_options()): one count per result, the exact chain computed once per probe.
+std::vector<Count> check_results(const std::string& text, const std::vector<const ToleranceResult*>& results) {
   const ToleranceOptions options = chain_options();
-  ToleranceResult r;
-  {
-    test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
-    test_band::ScopedSwitch windows(tolerance_detail::handover_far_windows(), far);
-    test_band::ScopedSwitch split(tolerance_detail::handover_driver_pieces(), pieces);
-    r = analyze_tolerances_text(text, options);
+  std::vector<Count> counts(results.size());
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const ToleranceResult& r = *results[k];
+    counts[k].notes = r.notes;
+    EXPECT_EQ(r.samples.size(), 6u);
+    for (const VariationSample& s : r.samples) {
+      EXPECT_TRUE(s.contact) << "driver " << s.driver;
+      counts[k].bounded += bounded(s) ? 1 : 0;
+    }
+    EXPECT_EQ(r.parameters.size(), 2u);
+    if (r.parameters.size() != 2u) return counts;
   }
-  Count count;
-  count.notes = r.notes;
-  EXPECT_EQ(r.samples.size(), 6u);
-  for (const VariationSample& s : r.samples) {
-    EXPECT_TRUE(s.contact) << "driver " << s.driver;
-    count.bounded += bounded(s) ? 1 : 0;
-  }
-  EXPECT_EQ(r.parameters.size(), 2u);
-  if (r.parameters.size() != 2u) return count;
+  if (results.empty()) return counts;
+  const ToleranceResult& r = *results.front();
   const std::size_t g = r.parameters[0].name == "g" ? 0 : 1, e = 1 - g;
   const Parameter& pg = r.parameters[g];
   const Parameter& pe = r.parameters[e];
@@ -161,17 +160,35 @@ Count check_text(const std::string& text, int anchor, int far = tolerance_detail
   auto model = std::make_shared<const model_detail::ParametricModel>(model_detail::ParametricModel::read(text));
   for (const std::vector<Rational>& d : probes) {
     KinematicsResult exact = exact_chain(*model, d, options);
-    test_band::visit_exact_values(exact, "lifter2", r.samples, [&](std::size_t i, double value, double ulp) {
-      const VariationSample& sample = r.samples[i];
-      ++count.values;
-      double out = std::max(sample.certified.lower - value, value - sample.certified.upper);
-      if (out > ulp) {
-        ++count.outside;
-        count.worst = std::max(count.worst, out);
-      }
-    });
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      Count& count = counts[k];
+      const std::vector<VariationSample>& samples = results[k]->samples;
+      test_band::visit_exact_values(exact, "lifter2", samples, [&](std::size_t i, double value, double ulp) {
+        const VariationSample& sample = samples[i];
+        ++count.values;
+        double out = std::max(sample.certified.lower - value, value - sample.certified.upper);
+        if (out > ulp) {
+          ++count.outside;
+          count.worst = std::max(count.worst, out);
+        }
+      });
+    }
   }
-  return count;
+  return counts;
+}
+
+// check_results() of the analysis of `text` with the anchor, the far walk's windows and the
+// driver's pieces as given.
+Count check_text(const std::string& text, int anchor, int far = tolerance_detail::handover_far_windows(),
+                 int pieces = tolerance_detail::handover_driver_pieces()) {
+  ToleranceResult r;
+  {
+    test_band::ScopedSwitch on(tolerance_detail::handover_sub_box_anchor(), anchor);
+    test_band::ScopedSwitch windows(tolerance_detail::handover_far_windows(), far);
+    test_band::ScopedSwitch split(tolerance_detail::handover_driver_pieces(), pieces);
+    r = analyze_tolerances_text(text, chain_options());
+  }
+  return check_results(text, {&r}).front();
 }
 
 Count check(const Variant& v, int anchor, int far = tolerance_detail::handover_far_windows()) {
@@ -529,10 +546,10 @@ TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChai
     ASSERT_TRUE(bounded(with));
     EXPECT_LE(with.certified.lower, with.nominal);
     EXPECT_GE(with.certified.upper, with.nominal);
-    // both enclose the output; the meet can only narrow it
+    // both enclose the output (the exact chain below); the band with the pieces' meet need not
+    // lie inside the band without it (review74 M1: a hull over downstream compositions, not
+    // monotone in the pair's enclosure), but on this fixed chain it is far narrower
     if (bounded(without)) {
-      EXPECT_GE(with.certified.lower, without.certified.lower);
-      EXPECT_LE(with.certified.upper, without.certified.upper);
       // not vacuous: the widened envelope (the second roller's take-over) is what the pieces cut
       EXPECT_LT(with.certified.upper - with.certified.lower, 0.25 * (without.certified.upper - without.certified.lower));
     }
@@ -561,24 +578,26 @@ TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChai
     KinematicsResult exact = exact_chain(*model, d, options);
     std::size_t output = follower_index(exact, "lifter3");
     ASSERT_LT(output, exact.followers.size());
-    for (const VariationSample& sample : r[1].samples) {
-      auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
-                             [&](const KinematicSample& s) { return s.driver == sample.driver; });
-      ASSERT_NE(at, exact.samples.end()) << "driver " << sample.driver;
-      const double value = at->positions.at(output);
-      ASSERT_TRUE(std::isfinite(value));
-      ++values;
-      // (the exact engine's position is the exact root rounded to a double: within an ulp)
-      const double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
-      nearest = std::min({nearest, value - sample.certified.lower, sample.certified.upper - value});
-      if (value < sample.certified.lower - ulp || value > sample.certified.upper + ulp) {
-        ++outside;
-        ADD_FAILURE() << "driver " << sample.driver << ": exact " << value << " outside [" << sample.certified.lower << ", "
-                      << sample.certified.upper << "]";
+    for (int on : {1, 0})
+      for (const VariationSample& sample : r[on].samples) {
+        if (on == 0 && !bounded(sample)) continue;
+        auto at = std::find_if(exact.samples.begin(), exact.samples.end(),
+                               [&](const KinematicSample& s) { return s.driver == sample.driver; });
+        ASSERT_NE(at, exact.samples.end()) << "driver " << sample.driver;
+        const double value = at->positions.at(output);
+        ASSERT_TRUE(std::isfinite(value));
+        ++values;
+        // (the exact engine's position is the exact root rounded to a double: within an ulp)
+        const double ulp = 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::fabs(value));
+        if (on == 1) nearest = std::min({nearest, value - sample.certified.lower, sample.certified.upper - value});
+        if (value < sample.certified.lower - ulp || value > sample.certified.upper + ulp) {
+          ++outside;
+          ADD_FAILURE() << "driver " << sample.driver << (on ? " with" : " without") << " the pieces' meet: exact " << value
+                        << " outside [" << sample.certified.lower << ", " << sample.certified.upper << "]";
+        }
       }
-    }
   }
-  EXPECT_EQ(values, 2 * probes.size());
+  EXPECT_GE(values, 2 * probes.size());
   std::printf("%zu exact values checked, %zu outside, nearest %.4g mm from an edge; Monte Carlo %zu outside\n", values, outside,
               nearest, r[1].monte_carlo->outside_certified);
 }
@@ -587,19 +606,20 @@ TEST(ChainWidenedPieces, PiecesNarrowAWidenedEnvelopeAndTheBandHoldsTheExactChai
 // Session 74 (tol74): the driver-piece meet of the later passes (chain.cpp compose_once,
 // tolerance_detail::chain_driver_piece_meet(); review73 H1, M3): pair s's enclosure Y over
 // box x T narrowed to the hull of its enclosures over T's pieces (held_pieces) where that hull
-// lies inside Y; tried (switch 1, the default) only where Y is beyond certified_range's accuracy
-// target, or everywhere (switch 2). On generated variants of the driver-pieces chain above (seeded:
-// e's tolerance, the competitor's x, the slanted underside's start), whose positions reach the far
-// walk's and the driver pieces' passes: with the meet tried everywhere it narrows enclosures
-// (counted: tolerance_detail::chain_driver_piece_meets()), every band it gives lies inside the
-// band without it (both enclose the exact chain; the meet only narrows) and holds the exact chain
-// at the box's 4 corners, g's ends and middle and 4 random vectors; with the default (the meet
-// skipped where Y already meets the target), the bands, notes and sub-box counts are those
-// without the meet wherever it narrowed nothing (review73 L1: the pieces' sub-boxes are counted
-// only when the meet is taken). Mutants (temporary, built, run, removed): docs/tolerance.md,
-// Session 74 (tol74).
+// lies inside Y; tried everywhere (switch 2, the default since session 75) or only where Y is
+// beyond certified_range's accuracy target (switch 1, session 74's default). On generated
+// variants of the driver-pieces chain above (seeded: e's tolerance, the competitor's x, the
+// slanted underside's start), whose positions reach the far walk's and the driver pieces'
+// passes: the default meet narrows enclosures (counted: tolerance_detail::chain_driver_piece_meets())
+// and bands (counted over the cases, required > 0); every band of the three modes holds the exact
+// chain at the box's 4 corners, g's ends and middle and 4 random vectors; with switch 1 the
+// bands, notes and sub-box counts are those without the meet wherever it narrowed nothing
+// (review73 L1: the pieces' sub-boxes are counted only when the meet is taken). Session 75
+// (review74 M1): the nesting of the bands (with the meet inside without) is not asserted: it is
+// not guaranteed (below). Mutants (temporary, built, run, removed): docs/tolerance.md, Session 74
+// (tol74).
 TEST(ChainDriverPieceMeet, GeneratedChainsMeetNarrowsInsideTheWholeRangeBandAndHoldsTheExactChain) {
-  ASSERT_EQ(tolerance_detail::chain_driver_piece_meet(), 1);
+  ASSERT_EQ(tolerance_detail::chain_driver_piece_meet(), 2);
   const std::uint64_t seed = test::test_seed(74);
   std::mt19937 rng(static_cast<std::mt19937::result_type>(seed));
   std::uniform_int_distribution<int> e_steps(0, 2), x_steps(0, 120), y_steps(0, 5), rise_steps(0, 12);
@@ -631,33 +651,33 @@ TEST(ChainDriverPieceMeet, GeneratedChainsMeetNarrowsInsideTheWholeRangeBandAndH
     }
     EXPECT_EQ(meets[0], 0u);
     meets_everywhere += meets[2];
-    // the default: where the meet narrowed nothing, the analysis without it bit for bit
+    // switch 1: where the meet narrowed nothing, the analysis without it bit for bit
     if (meets[1] == 0) expect_same_chain_result(r[0], r[1]);
     ASSERT_EQ(r[0].samples.size(), r[2].samples.size());
+    // Session 75 (review74 M1): the meet narrows the pair's own enclosure, but a band is a hull
+    // over compositions downstream of it (later pairs' brackets and pieces, the failure splits),
+    // which are not monotone in it: a band with the meet need not lie inside the band without it,
+    // nor be bounded where that one is. What is guaranteed is checked below (every band of the
+    // three modes holds the exact chain); the bands the meet narrowed are a statistic, required
+    // > 0 over the cases.
     for (std::size_t i = 0; i < r[2].samples.size(); ++i) {
       const VariationSample &without = r[0].samples[i], &with = r[2].samples[i];
-      if (!bounded(without)) continue;
-      // both enclose the exact chain and the meet only narrows an enclosure: inside
-      EXPECT_TRUE(bounded(with)) << with.driver;
-      if (!bounded(with)) continue;
-      EXPECT_GE(with.certified.lower, without.certified.lower) << with.driver;
-      EXPECT_LE(with.certified.upper, without.certified.upper) << with.driver;
-      narrower += with.certified.lower > without.certified.lower || with.certified.upper < without.certified.upper;
+      if (!bounded(without) || !bounded(with)) continue;
+      narrower += with.certified.upper - with.certified.lower < without.certified.upper - without.certified.lower;
     }
-    Count c;
-    {
-      test_band::ScopedSwitch meet(tolerance_detail::chain_driver_piece_meet(), 2);
-      c = check_text(text, 1);
-    }
-    EXPECT_EQ(c.outside, 0u) << "worst " << c.worst << " mm outside";
-    checked_values += c.values;
-    std::printf("seed %llu, e %s, x %s, y %s, rise to %s: %zu enclosures narrowed by the meet tried everywhere, %zu by the default; "
+    const std::vector<Count> counts = check_results(text, {&r[0], &r[1], &r[2]});
+    for (int mode : {0, 1, 2})
+      EXPECT_EQ(counts[mode].outside, 0u) << "meet mode " << mode << ": worst " << counts[mode].worst << " mm outside";
+    const Count& c = counts[2];
+    checked_values += counts[0].values + counts[1].values + counts[2].values;
+    std::printf("seed %llu, e %s, x %s, y %s, rise to %s: %zu enclosures narrowed by the meet tried everywhere (the default), %zu by switch 1; "
                 "%zu of 6 positions bounded, %zu exact values checked, %zu outside (worst %.4f mm)\n",
                 static_cast<unsigned long long>(seed), e.c_str(), x.c_str(), y.c_str(), rise.c_str(), meets[2], meets[1], c.bounded,
                 c.values, c.outside, c.worst);
   }
-  // not vacuous: the meet was reached and narrowed, and bands were checked
+  // not vacuous: the meet was reached and narrowed enclosures and bands, and bands were checked
   EXPECT_GT(meets_everywhere, 0u);
+  EXPECT_GT(narrower, 0u);
   EXPECT_GT(checked_values, 0u);
   std::printf("%zu enclosures narrowed, %zu bands narrower with the meet, %zu exact values checked\n", meets_everywhere,
               narrower, checked_values);
