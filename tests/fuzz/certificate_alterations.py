@@ -19,12 +19,12 @@ A false certificate accepted (exit 0) is a finding; so is a true one rejected wh
 still holds (for a clearance: any true one; for an interference: a true one, the point being the
 witness).  Any exit other than 0/1/3 or more than one line of output is a finding.
 usage: certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CONFIGURATIONS"""
-import decimal, json, os, random, subprocess, sys
+import copy, decimal, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from exact_planar import sgn, sign_q, posed, cross, sub, dot, in_span, locate, segments_meet, parts_apart_by, shifted
-from exact_oracle import PI, two_atan, decimal_text, claim_number, bisect, altered_numbers, judged, json_copy
+from exact_oracle import PI, two_atan, decimal_text, claim_number, bisect, altered_numbers, judged
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -208,7 +208,7 @@ def node_of(tree, path):
 
 
 def with_value(pair, cert, path, value, restate_angle=False):
-    t = json_copy(cert)
+    t = copy.deepcopy(cert)
     node_of(t[t['claim']], path)[path[-1]] = str(value)
     if restate_angle:
         pair.restated(t)
@@ -252,7 +252,7 @@ def alterations(pair, cert):
                     points.append(('point on the boundary', (a[0] + k * d[0], a[1] + k * d[1])))
                     break
         for what, q in points:
-            t = json_copy(cert)
+            t = copy.deepcopy(cert)
             t[claim]['point'] = [str(q[0]), str(q[1])]
             out.append((what, t))
     # each coordinate moved across the contact, the rest kept

@@ -2,7 +2,7 @@
 motion_certificate_alterations.py; sessions 47-48): Python fractions and 80-digit decimals, no
 code of the library or the verifier.  A decimal result is within 10^-75 of the true value; a
 comparison closer than 10^-70 is left undecided (None) by its callers."""
-import copy, decimal, json, os, subprocess
+import decimal, json, os, subprocess
 from fractions import Fraction as F
 
 decimal.getcontext().prec = 80
@@ -105,50 +105,13 @@ def altered_numbers(rng, text):
     return [(what, v) for what, v in cands if v != f]
 
 
-_JSON_ATOMS = (str, int, float, bool, type(None))
-
-
-def json_copy(value, memo=None):
-    """copy.deepcopy(value) for JSON data (dicts and lists of strings, numbers, booleans, None):
-    the same copy (a container met twice is copied once and shared, as deepcopy's memo does), in
-    a fifth of its time; anything else is handed to copy.deepcopy with the same memo.  Session 75
-    (ci75): deepcopy of each certificate before its alteration was a third of the alteration
-    tests' Python CPU."""
-    if type(value) in _JSON_ATOMS:
-        return value
-    if memo is None:
-        memo = {}
-    copied = memo.get(id(value))
-    if copied is not None:
-        return copied
-    if type(value) is dict:
-        copied = memo[id(value)] = {}
-        for key, item in value.items():
-            copied[key if type(key) is str else json_copy(key, memo)] = json_copy(item, memo)
-        return copied
-    if type(value) is list:
-        copied = memo[id(value)] = []
-        for item in value:
-            copied.append(json_copy(item, memo))
-        return copied
-    return copy.deepcopy(value, memo)
-
-
-def write_json(value, path):
-    """writes json.dump(value, open(path, 'w'))'s bytes: json.dumps gives the same text through
-    the C encoder (json.dump encodes with the pure-Python one, chunk by chunk: two fifths of the
-    alteration tests' Python CPU until session 75, ci75)"""
-    with open(path, 'w') as out:
-        out.write(json.dumps(value))
-
-
 def judged(verify, path, model, certificate, true, counts, unproven_claims=False):
     """writes the certificate to `path`, runs hipair-verify on it and counts its verdict against the
     truth (True, False or None: undecided) in `counts`; returns (problems, exit code, output): a
     false certificate accepted, or an exit other than 0/1/3 or more than one line, is a problem;
     with unproven_claims (a no_jam certificate, whose 'unproven', exit 3, still asserts checks 1-6:
     the named sides apart over every leaf, false when the oracle's channel closes) exit 3 too"""
-    write_json(certificate, path)
+    json.dump(certificate, open(path, 'w'))
     r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
     text = (r.stdout + r.stderr).strip()
     problems = []

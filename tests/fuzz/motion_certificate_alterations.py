@@ -32,11 +32,11 @@ exact distance; the direction is reversed.  The statement is restated for the al
 false certificate accepted (exit 0) is a finding; so is an exit other than 0/1/3 or more than one
 line of output.  True certificates rejected are counted (the verifier is sound, not complete).
 usage: motion_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
-import json, os, random, subprocess, sys
+import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exact_oracle import D, atan, PI, sin_cos, compare, dec, claim_number, bisect, rational_near, altered_numbers, judged_certificate, json_copy
+from exact_oracle import D, atan, PI, sin_cos, compare, dec, claim_number, bisect, rational_near, altered_numbers, judged_certificate
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -131,7 +131,7 @@ def node_of(tree, path):
 
 def with_values(cert, changes):
     """the certificate with each (path under the claim, value) changed, the statement restated"""
-    t = json_copy(cert)
+    t = copy.deepcopy(cert)
     for path, value in changes:
         node_of(t[t['claim']], path)[path[-1]] = value if isinstance(value, int) else str(value)
     t['statement'] = statement(t)

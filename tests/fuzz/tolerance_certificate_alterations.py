@@ -77,11 +77,11 @@ with s and with R: no jam iff W > 0 at theta0, s_min, R_min, r_max, a corner of 
 crossings are the driver range's start and the scale, certificates 0.002 .. 0.03 rad above the
 crossing at scale 1 (each case its own model file, the yoke's initial offset R cos theta0 - R).
 usage: tolerance_certificate_alterations.py HIPAIR HIPAIR_VERIFY REPO OUTDIR SEED N_CERTIFICATES"""
-import json, os, random, subprocess, sys
+import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exact_oracle import D, sin_cos, compare, dec, bisect, altered_numbers, judged_certificate, json_copy
+from exact_oracle import D, sin_cos, compare, dec, bisect, altered_numbers, judged_certificate
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -264,7 +264,7 @@ def moved(cert, where, value, drag):
     """the certificate with the claim's bound `where` (('range', 1), ('follower_range', 1) or
     ('scale',)) set to value; with drag, every leaf bound equal to the old one moved with it, so
     that the leaves still cover the claim; the scale's box moved with it unless drag is 'box kept'"""
-    c = json_copy(cert)
+    c = copy.deepcopy(cert)
     t = c['tolerance']
     if where == ('scale',):
         old = F(t['scale'])
@@ -298,15 +298,15 @@ def alterations(cert, truth, crossings):
     out = []
     for path in number_leaves(t):
         for what, v in altered_numbers(rng, node_of(t, path)[path[-1]]):
-            a = json_copy(cert)
+            a = copy.deepcopy(cert)
             node_of(a['tolerance'], path)[path[-1]] = str(v)
             out.append(('%s %s' % ('/'.join(map(str, path)), what), restated(a)))
     for i in range(len(t['leaves'])):
-        a = json_copy(cert)
+        a = copy.deepcopy(cert)
         del a['tolerance']['leaves'][i]
         out.append(('leaf %d dropped' % i, a))
     for i in range(len(t['varied'])):
-        a = json_copy(cert)
+        a = copy.deepcopy(cert)
         del a['tolerance']['varied'][i], a['tolerance']['box'][i]
         for leaf in a['tolerance']['leaves']:
             del leaf['parameters'][i]
@@ -350,7 +350,7 @@ def block_alterations(cert):
     out = alterations(cert, block_truth, ((('follower_range', 0), F(60)), (('scale',), F(19))))
     t = cert['tolerance']
     shift = F(rng.randrange(60, 360), 10) - F(t['follower_range'][0])
-    c = json_copy(cert)
+    c = copy.deepcopy(cert)
     c['tolerance']['follower_range'] = [str(F(v) + shift) for v in t['follower_range']]
     for leaf in c['tolerance']['leaves']:
         leaf['follower'] = [str(F(v) + shift) for v in leaf['follower']]
