@@ -11,6 +11,8 @@
 //                                        algebra::compare (/0, with its double filter) and by the
 //                                        unfiltered exact comparison it had before (/1, the peer:
 //                                        refinement of copies by 2^-20, gcd and Sturm count)
+#include "bench_paths.hpp"
+
 #include "algebra/exact_real.hpp"
 
 #include <hipair/kinematics.hpp>

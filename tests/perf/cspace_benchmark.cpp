@@ -21,6 +21,8 @@
 //                              quadratic traits (side by side: the ratio is the figure)
 // Peer comparisons: minkowski_peer_benchmark.cpp, overlap_peer_benchmark.cpp.
 // Counters: vertices, edges, cells, curves of the built space.
+#include "bench_paths.hpp"
+
 #include "arrangement/circle_segment_traits.hpp"
 #include "arrangement/quadratic_traits.hpp"
 #include "cspace/builder_impl.hpp"

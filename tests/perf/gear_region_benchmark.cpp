@@ -14,6 +14,8 @@
 //                                   pairs, 8 058 tiles); 2: `analyze --no-pictures`, 39 x 31 teeth
 //                                   at zero backlash (a full turn of the pinion).
 // CPU time of the building thread is what Google Benchmark reports for the gears (single thread).
+#include "bench_paths.hpp"
+
 #include <hipair/cspace.hpp>
 #include <hipair/model.hpp>
 

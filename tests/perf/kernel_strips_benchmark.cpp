@@ -7,6 +7,8 @@
 //                          session 12), measured in the same process
 //   BM_GearsShortAnalyze   hipair::analyze_kinematics of the gears over the driver range
 //                          0:0.005 rad (`hipair analyze --range 0:0.005`): initial_state's cost
+#include "bench_paths.hpp"
+
 #include "kinematics/slice.hpp"
 #include "peer_timing.hpp"
 

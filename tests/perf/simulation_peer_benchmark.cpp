@@ -35,6 +35,8 @@
 // flags) also DIR/simulation-peers.csv, DIR/simulation-peers.svg (closed-form error against CPU
 // time, log-log), DIR/simulation-peers-deviation.svg and DIR/geneva-peer-pieces.svg (the peers'
 // convex pieces). Results: docs/performance.md, "Simulation against Box2D and MuJoCo".
+#include "bench_paths.hpp"
+
 #include "peer_timing.hpp"
 
 #include "io/atomic_file.hpp"

@@ -14,6 +14,8 @@
 // 2 pi rad/s), and every case twice in the same run, `carried:1` (first_crossing's carried
 // double bounds, the default) and `carried:0` (the conversions from rationals as before,
 // cspace::carried_bounds() off): the same answers, so the ratio is the speed-up.
+#include "bench_paths.hpp"
+
 #include "peer_timing.hpp"
 
 #include "cspace/angle_filter.hpp"

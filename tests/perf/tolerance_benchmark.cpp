@@ -5,6 +5,8 @@
 // included) and reports the phases' CPU times as counters; `/former` takes the paths of
 // session 7 (ToleranceOptions::fast_paths = false) in the same run, for the ratio.
 // One translation unit without CGAL. Not a ctest test.
+#include "bench_paths.hpp"
+
 #include <hipair/tolerance.hpp>
 
 #include <benchmark/benchmark.h>
