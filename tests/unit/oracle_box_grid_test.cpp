@@ -25,6 +25,9 @@
 //     every gridded route says touching there, as the unfiltered exact oracle does, and the
 //     filter declines over every box holding one. Mutant caught (not by 2): the algebraic
 //     relation's second-part vertices given no candidate edges (near_[1] left empty).
+//  4. (session 75) The filter's memo of the edge pairs that certified its last crossings, along
+//     walks of small boxes through the charts: the eager filter's answer at every box. Mutant
+//     caught: a memo pair accepted on meeting boxes without its certified crossing.
 #include "algebra/exact_real.hpp"
 #include "curves/algebraic_overlap.hpp"
 #include "curves/contact_curves.hpp"
@@ -627,6 +630,82 @@ TEST(OracleBoxGrid, GriddedOraclesAreTheExactOracleAtPlantedContactsOnGearPairs)
   RecordProperty("first_part_vertex", static_cast<int>(first_vertex));
   RecordProperty("algebraic_touching", static_cast<int>(algebraic_touching));
   RecordProperty("filter_boxes", static_cast<int>(filtered));
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 75 (growth75): PairOverlap::certainly_overlapping tries the edge pairs that certified
+// its last crossings first (a memo per pair and thread). On generated gear pairs, walks of small
+// boxes through each chart (consecutive boxes near each other, as the builder's vertices of one
+// region of blocked space are; now and then a jump to a random point, so the memo holds pairs
+// that certify nothing there): the filter with its memo is the eager filter (every edge posed, no
+// memo) at every box, and where it answers the exact oracle at the box's middle says
+// overlapping. The memo must answer some calls (the route is reached) and not all.
+TEST(OracleBoxGrid, FilterMemoOfCertifiedPairsIsTheEagerFilterAlongWalks) {
+  std::mt19937_64 random(test::test_seed(7502));
+  std::size_t asked = 0, answered = 0, exact_checked = 0;
+  const auto memo_before = cspace::overlap_filter_memo_counts();
+  for (const long z : {16L, 40L}) {
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z, z + static_cast<long>(random() % 3), name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    const cspace::PairOverlap oracle(model, axes);
+    cspace::OverlapOptions exact_only;
+    exact_only.exact_only = true;
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts) {
+        cspace::ChartPoint q{between(x, random, 1 << 20), between(y, random, 1 << 20)};
+        for (int step = 0; step < 80; ++step) {
+          if (step % 16 == 15) {
+            q = cspace::ChartPoint{between(x, random, 1 << 20), between(y, random, 1 << 20)};
+          } else {
+            // a step of up to 2^-9 of the chart, kept inside it
+            auto move = [&](Rational v, const cspace::ChartAxis& axis) {
+              v += (axis.hi - axis.lo) * Rational(static_cast<long>(random() % 33) - 16, 16 * 512);
+              v = std::min(std::max(v, axis.lo), axis.hi);
+              v.canonicalize();
+              return v;
+            };
+            q = cspace::ChartPoint{move(q.x, x), move(q.y, y)};
+          }
+          const int shrink = 14 + static_cast<int>(random() % 16);
+          const Rational hx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink),
+                         hy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
+          const kernels::Interval bx(cspace::algebra::lower_double(Rational(q.x - hx)),
+                                     cspace::algebra::upper_double(Rational(q.x + hx)));
+          const kernels::Interval by(cspace::algebra::lower_double(Rational(q.y - hy)),
+                                     cspace::algebra::upper_double(Rational(q.y + hy)));
+          const bool with_memo = oracle.certainly_overlapping(x, y, bx, by);
+          bool eager;
+          {
+            LazyPlacementOff off;
+            eager = oracle.certainly_overlapping(x, y, bx, by);
+          }
+          const std::string at = "box of 2^-" + std::to_string(shrink) + " about (" + q.x.get_str() + ", " +
+                                 q.y.get_str() + ")";
+          ASSERT_EQ(with_memo, eager) << at;
+          ++asked;
+          if (with_memo && step % 4 == 0) {
+            EXPECT_EQ(cspace::analyse_overlap(model, axes, x, y, q, exact_only).relation, cspace::Overlap::overlapping)
+                << at;
+            ++exact_checked;
+          }
+        }
+      }
+  }
+  const auto memo_after = cspace::overlap_filter_memo_counts();
+  answered = memo_after[1] - memo_before[1];
+  EXPECT_GT(answered, asked / 8) << "the memo answered " << answered << " of " << asked << " calls";
+  EXPECT_LT(answered, asked);
+  EXPECT_GT(exact_checked, 20u);
+  RecordProperty("asked", static_cast<int>(asked));
+  RecordProperty("memo_answered", static_cast<int>(answered));
 }
 
 }  // namespace
