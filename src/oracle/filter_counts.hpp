@@ -2,6 +2,7 @@
 // measurements; implemented in src/oracle/overlap.cpp. Process-wide, relaxed atomics.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace hipair::cspace {
@@ -10,6 +11,10 @@ namespace hipair::cspace {
 /// (posed_edge), over the process: with the blocks windowed by the second part's block boxes
 /// they stay about constant per call as the tooth count grows.
 std::uint64_t overlap_filter_posed_edges();
+
+/// Session 75 (growth75): {edges posed, calls answered} by certainly_overlapping's memo of the
+/// edge pairs that certified its last crossings (tried before its broad phase), over the process.
+std::array<std::uint64_t, 2> overlap_filter_memo_counts();
 
 /// set_lazy_placement's switch (oracle/overlap.hpp), read by the algebraic oracle too (session
 /// 74): off, its curved relation pairs every edge of one part with every edge of the other (the

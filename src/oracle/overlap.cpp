@@ -841,6 +841,29 @@ struct Site {
   bool known = false;
 };
 
+// Session 75 (growth75): the last few edge pairs (first part's edge, second part's edge) that
+// certified a crossing of one pair's parts on one thread, most recent first:
+// PairOverlap::certainly_overlapping tries them before its broad phase (consecutive questions
+// about one region of a pair's configuration space find the same teeth overlapping). Only ever
+// a guess to test first: the answer does not depend on it (the argument where it is read).
+struct PairMemo {
+  const void* owner = nullptr;
+  std::array<std::pair<std::uint32_t, std::uint32_t>, 4> pairs{};
+  std::size_t count = 0;
+  void reset_for(const void* who) {
+    if (owner != who) owner = who, count = 0;
+  }
+  void remember(const void* who, std::size_t i, std::size_t j) {
+    reset_for(who);
+    const std::pair<std::uint32_t, std::uint32_t> pair{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)};
+    std::size_t at = 0;
+    while (at < count && pairs[at] != pair) ++at;
+    if (at == count && count < pairs.size()) ++count;
+    for (std::size_t k = std::min(at, count - 1); k > 0; --k) pairs[k] = pairs[k - 1];
+    pairs[0] = pair;
+  }
+};
+
 class OverlapAnalysis {
  public:
   OverlapAnalysis(PlacedPart& first, PlacedPart& second) : parts_{&first, &second} {
@@ -1745,7 +1768,8 @@ void set_lazy_placement(bool on) { lazy_placement_enabled = on; }
 bool lazy_placement() { return lazy_placement_enabled; }
 
 namespace {
-std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0}, filter_posed_edges{0};
+std::atomic<std::uint64_t> filter_asked{0}, filter_decided{0}, filter_posed_edges{0}, filter_memo_posed{0},
+    filter_memo_decided{0};
 }
 
 bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, const Interval& qx,
@@ -1784,6 +1808,37 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // (set_lazy_placement(false): every edge posed, as before; tests compare the two)
   bool lazy = lazy_placement_enabled && !first.blocks.empty() && relative.tame();
   const bool windowed = first.bounded && bounded_map(relative);
+  // Session 75 (growth75): the edge pairs that certified this pair's last crossings on this
+  // thread are tried first (`memo`), before any block is posed. Under the window (a bounded part
+  // under a bounded map: no block, edge disk or edge poses untamed, so the route below never
+  // returns false before its end) the route below answers true exactly when some pair it
+  // reaches is certified crossing, and it reaches every certified pair: a certified crossing
+  // point lies in both edges' certified enclosures (the posed disk of the first edge's block,
+  // the edge's own posed disk and box, the second edge's box and block box, all meeting the
+  // second part's box: the arguments below). So a pair certified here is one the route below
+  // would find: the same boolean, found after a few edges posed where consecutive calls (the
+  // vertices of one region of blocked space) share the teeth that overlap, instead of the
+  // meshing zone's blocks and edges (which grow with the tooth count). Any pair of valid
+  // indices is only a guess (a memo left by another pair's oracle at the same address is
+  // harmless); set_lazy_placement(false) bypasses it.
+  thread_local PairMemo memo;
+  std::size_t certified_first = 0, certified_second = 0;
+  if (lazy && windowed && memo.owner == this) {
+    IntervalEdge e;
+    Box box;
+    for (std::size_t m = 0; m < memo.count; ++m) {
+      const auto [i, j] = memo.pairs[m];
+      if (i >= first.refs.size() || j >= b.boxes.size()) continue;
+      filter_memo_posed.fetch_add(1, std::memory_order_relaxed);
+      if (!PlacedPart::posed_edge(first, i, relative, e, box)) break;   // (not under the window)
+      if (box.meets(b.total) && box.meets(b.boxes[j]) && filter_pair(e, b.intervals[j]) == Filter::overlapping) {
+        if (m > 0) memo.remember(this, i, j);
+        filter_memo_decided.fetch_add(1, std::memory_order_relaxed);
+        filter_decided.fetch_add(1, std::memory_order_relaxed);
+        return true;
+      }
+    }
+  }
   // Session 74 (growth74): with the window (below), only the first part's blocks whose body-frame
   // disks meet the second part's box brought back into the first's body frame are posed (asked
   // of the grid of the disks): every map of the relative enclosure is a rigid motion p -> R p + o
@@ -1825,18 +1880,21 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
   // the operating region's classification, docs/performance.md "Session 70 (growth70)").
   // For the same reason an edge of a block is tested only against the second part's blocks
   // whose boxes meet the block's (`near`), not against all of them.
-  // crossing() over the blocks in `near`
-  auto crossing_near = [&](const IntervalEdge& e, const Box& box) {
+  bool found = false;
+  // crossing() over the blocks in `near`, naming the second part's edge it found
+  auto crossing_near_at = [&](const IntervalEdge& e, const Box& box, std::size_t& at) {
     if (!box.meets(b.total)) return false;
     for (std::size_t block : near) {
       if (!box.meets(b.block_boxes[block])) continue;
       for (std::size_t j = block * PartEnclosure::kBlock;
            j < std::min(b.boxes.size(), (block + 1) * PartEnclosure::kBlock); ++j)
-        if (box.meets(b.boxes[j]) && filter_pair(e, b.intervals[j]) == Filter::overlapping) return true;
+        if (box.meets(b.boxes[j]) && filter_pair(e, b.intervals[j]) == Filter::overlapping) {
+          at = j;
+          return true;
+        }
     }
     return false;
   };
-  bool found = false;
   if (lazy) {
     const std::size_t n = first.refs.size();
     IntervalEdge e;
@@ -1869,9 +1927,15 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
         }
         filter_posed_edges.fetch_add(1, std::memory_order_relaxed);
         if (!PlacedPart::posed_edge(first, i, relative, e, box)) return false;   // (as an untamed placement)
-        found = windowed ? crossing_near(e, box) : crossing(e, box);
+        if (windowed) {
+          found = crossing_near_at(e, box, certified_second);
+          if (found) certified_first = i;
+        } else {
+          found = crossing(e, box);
+        }
       }
     }
+    if (found && windowed) memo.remember(this, certified_first, certified_second);
   } else {
     thread_local Placement a;
     PlacedPart::place(first, relative, a);
@@ -1883,6 +1947,10 @@ bool PairOverlap::certainly_overlapping(const ChartAxis& x, const ChartAxis& y, 
 }
 
 std::uint64_t overlap_filter_posed_edges() { return filter_posed_edges.load(std::memory_order_relaxed); }
+
+std::array<std::uint64_t, 2> overlap_filter_memo_counts() {
+  return {filter_memo_posed.load(std::memory_order_relaxed), filter_memo_decided.load(std::memory_order_relaxed)};
+}
 
 std::array<std::uint64_t, 2> overlap_filter_counts() {
   return {filter_asked.load(std::memory_order_relaxed), filter_decided.load(std::memory_order_relaxed)};

@@ -20,6 +20,14 @@
 //     answers, the exact oracle at the box's middle says overlapping. Mutants caught: the
 //     first part's blocks windowed by a wrong inverse map (a sign of the rotation flipped), a
 //     classify block skipped when its partners are not empty.
+//  3. (session 75) Exact touching configurations planted on gear pairs (the second gear moved
+//     along the line of the pivots into a first contact at a vertex of either gear, exactly):
+//     every gridded route says touching there, as the unfiltered exact oracle does, and the
+//     filter declines over every box holding one. Mutant caught (not by 2): the algebraic
+//     relation's second-part vertices given no candidate edges (near_[1] left empty).
+//  4. (session 75) The filter's memo of the edge pairs that certified its last crossings, along
+//     walks of small boxes through the charts: the eager filter's answer at every box. Mutant
+//     caught: a memo pair accepted on meeting boxes without its certified crossing.
 #include "algebra/exact_real.hpp"
 #include "curves/algebraic_overlap.hpp"
 #include "curves/contact_curves.hpp"
@@ -316,6 +324,388 @@ TEST(OracleBoxGrid, BoxesWhoseSpreadOverflowsTheDoublesAreListedFromOneCell) {
               << "trial " << trial << " query " << q << ": box " << i << " meets the query and is not listed";
     }
   }
+}
+
+}  // namespace
+}  // namespace hipair
+
+// Session 75 (growth75, review74 growth74 M1): exact touching configurations planted on gear
+// pairs, where the routes whose pair sets the grids changed for the touching case are reached
+// for certain — classify's touch points through grid_pairs, the algebraic relation's
+// vertex_overlaps / common_ through near_ (a vertex of either gear exactly on the other's
+// boundary), and the filter, which must decline over every box holding a touching point.
+//
+// The construction: at a rational chart point q where the gears are apart, the second gear is
+// translated towards the first along the line of the pivots (u = pivot1 - pivot2) until their
+// boundaries first meet. The translation is linear in its length s, so a vertex meeting a
+// segment does so at a rational s (solved exactly); a vertex meeting an arc at a point P chosen
+// exactly on the arc's circle (rational points of a circle with a rational point, here its end:
+// the other end of a rational chord through it) next to where the ray from the vertex meets it,
+// the translation being P - vertex. The gear moved (its loops, arc centres and pivot: posed at
+// any chart value it is the former one posed there and moved) is a model of its own, posed at q.
+// The first contact is found in doubles over every vertex–edge, arc–arc and segment–arc pair;
+// only vertex contacts are planted, and kept where the unfiltered exact oracle (analyse_overlap
+// with exact_only) says touching — that oracle is the truth the gridded routes are compared with.
+namespace hipair {
+namespace {
+
+// set_lazy_placement(false) for a scope (every route's scan), restored however the scope ends
+struct LazyPlacementOff {
+  LazyPlacementOff() { cspace::set_lazy_placement(false); }
+  ~LazyPlacementOff() { cspace::set_lazy_placement(true); }
+  LazyPlacementOff(const LazyPlacementOff&) = delete;
+  LazyPlacementOff& operator=(const LazyPlacementOff&) = delete;
+};
+
+struct D2 {
+  double x, y;
+};
+D2 to_d2(const Point& p) { return D2{p.x.get_d(), p.y.get_d()}; }
+D2 operator-(D2 a, D2 b) { return D2{a.x - b.x, a.y - b.y}; }
+D2 operator+(D2 a, D2 b) { return D2{a.x + b.x, a.y + b.y}; }
+D2 operator*(double s, D2 a) { return D2{s * a.x, s * a.y}; }
+double dot(D2 a, D2 b) { return a.x * b.x + a.y * b.y; }
+double cross(D2 a, D2 b) { return a.x * b.y - a.y * b.x; }
+
+// a posed edge in doubles (and its exact posed ends and centre)
+struct PosedEdge {
+  Edge exact;
+  D2 s, t, c;
+  double r = 0;
+};
+
+std::vector<PosedEdge> posed_edges(const Part& part, const cspace::RigidMap& map) {
+  std::vector<PosedEdge> out;
+  for (const Loop& loop : part.loops)
+    for (const Edge& edge : loop.edges) {
+      PosedEdge p;
+      p.exact = edge;
+      p.exact.source = map.apply(edge.source);
+      p.exact.target = map.apply(edge.target);
+      if (edge.is_arc()) p.exact.center = map.apply(edge.center);
+      p.s = to_d2(p.exact.source), p.t = to_d2(p.exact.target), p.c = to_d2(p.exact.center);
+      if (edge.is_arc()) p.r = std::sqrt(edge.radius_squared.get_d());
+      out.push_back(std::move(p));
+    }
+  return out;
+}
+
+// a point of an arc's circle within its span (doubles; a little slack at the ends)
+bool within_arc(const PosedEdge& e, D2 p) {
+  if (e.exact.is_full_circle()) return true;
+  const double tau = 6.283185307179586;
+  auto angle = [&](D2 q) { return std::atan2(q.y - e.c.y, q.x - e.c.x); };
+  double span = angle(e.t) - angle(e.s), at = angle(p) - angle(e.s);
+  if (!e.exact.ccw) span = -span, at = -at;
+  span = std::fmod(span + 2 * tau, tau), at = std::fmod(at + 2 * tau, tau);
+  return at <= span + 1e-12 || at >= tau - 1e-12;
+}
+
+// the smallest s > 0 at which the point v + s d lies on edge e (doubles), or infinity
+double ray_hit(D2 v, D2 d, const PosedEdge& e) {
+  double best = HUGE_VAL;
+  if (!e.exact.is_arc()) {
+    const D2 ab = e.t - e.s;
+    const double den = cross(d, ab);
+    if (den == 0) return best;
+    const double s = cross(e.s - v, ab) / den, lambda = cross(e.s - v, d) / den;
+    if (s > 0 && lambda >= 0 && lambda <= 1) best = s;
+    return best;
+  }
+  const D2 w = v - e.c;
+  const double a = dot(d, d), b = 2 * dot(d, w), c = dot(w, w) - e.r * e.r;
+  const double disc = b * b - 4 * a * c;
+  if (disc < 0) return best;
+  for (double s : {(-b - std::sqrt(disc)) / (2 * a), (-b + std::sqrt(disc)) / (2 * a)})
+    if (s > 0 && s < best && within_arc(e, v + s * d)) best = s;
+  return best;
+}
+
+// tangencies of a moving arc or segment `m` (moved by s d) with a fixed arc `f`: the smallest
+// s > 0 (doubles), or infinity
+double tangency_hit(const PosedEdge& m, D2 d, const PosedEdge& f) {
+  double best = HUGE_VAL;
+  if (!f.exact.is_arc()) return best;
+  if (m.exact.is_arc()) {
+    // |m.c + s d - f.c| = r_f + r_m or |r_f - r_m|
+    const D2 w = m.c - f.c;
+    for (double rr : {f.r + m.r, std::abs(f.r - m.r)}) {
+      const double a = dot(d, d), b = 2 * dot(d, w), c = dot(w, w) - rr * rr, disc = b * b - 4 * a * c;
+      if (disc < 0) continue;
+      for (double s : {(-b - std::sqrt(disc)) / (2 * a), (-b + std::sqrt(disc)) / (2 * a)}) {
+        if (!(s > 0) || s >= best) continue;
+        const D2 centre = m.c + s * d, between = centre - f.c;
+        const double length = std::sqrt(dot(between, between));
+        if (length == 0) continue;
+        for (double sign : {1.0, -1.0}) {
+          const D2 p = f.c + (sign * f.r / length) * between;
+          const D2 q = p - centre;
+          if (std::abs(std::sqrt(dot(q, q)) - m.r) < 1e-9 * (1 + m.r) && within_arc(f, p)) {
+            PosedEdge moved = m;
+            moved.s = m.s + s * d, moved.t = m.t + s * d, moved.c = centre;
+            if (within_arc(moved, p)) best = s;
+          }
+        }
+      }
+    }
+    return best;
+  }
+  // the segment's line at distance r_f from f.c: n . (f.c - (m.s + s d)) = +- r_f
+  const D2 ab = m.t - m.s;
+  const double length = std::sqrt(dot(ab, ab));
+  const D2 n{-ab.y / length, ab.x / length};
+  const double nd = dot(n, d);
+  if (nd == 0) return best;
+  for (double side : {1.0, -1.0}) {
+    const double s = (dot(n, f.c - m.s) - side * f.r) / nd;
+    if (!(s > 0) || s >= best) continue;
+    const D2 p = f.c + (-side * f.r) * n;   // the foot of f.c on the moved line
+    const double lambda = dot(p - (m.s + s * d), ab) / (length * length);
+    if (lambda >= 0 && lambda <= 1 && within_arc(f, p)) best = s;
+  }
+  return best;
+}
+
+// a rational point of the arc's circle next to h: the other end of the chord from one of the
+// arc's (rational) ends in the direction of h, the slope rounded to a double
+std::optional<Point> rational_point_near(const Edge& arc, D2 h) {
+  const Point& e = (dot(to_d2(arc.source) - h, to_d2(arc.source) - h) >= dot(to_d2(arc.target) - h, to_d2(arc.target) - h))
+                       ? arc.source
+                       : arc.target;
+  const D2 d = h - to_d2(e);
+  if (d.x == 0 && d.y == 0) return std::nullopt;
+  Point dir = std::abs(d.x) >= std::abs(d.y) ? Point{Rational(1), Rational(d.y / d.x)}
+                                             : Point{Rational(d.x / d.y), Rational(1)};
+  const Rational tau = Rational(-2) * ((e.x - arc.center.x) * dir.x + (e.y - arc.center.y) * dir.y) /
+                       (dir.x * dir.x + dir.y * dir.y);
+  return Point{Rational(e.x + tau * dir.x), Rational(e.y + tau * dir.y)};
+}
+
+// the model with part `moved` translated by w (its loops, arc centres and pivot)
+Model translated_part(const Model& model, std::size_t moved, const Point& w) {
+  Model out = model;
+  Part& part = out.parts.at(moved);
+  auto shift = [&](Point& p) { p = Point{Rational(p.x + w.x), Rational(p.y + w.y)}; };
+  for (Loop& loop : part.loops)
+    for (Edge& edge : loop.edges) {
+      shift(edge.source);
+      shift(edge.target);
+      if (edge.is_arc()) shift(edge.center);
+    }
+  shift(part.motion.pivot);
+  return out;
+}
+
+// The translation of the pair's second part along the line of the pivots that brings the parts
+// from apart (the second part moved back by the pivots' distance: its centre as far again) into
+// a first contact at a vertex of either part; nullopt where the first contact found is not at a
+// vertex. (At q the parts may overlap: the contact is then at a wider centre distance.)
+std::optional<Point> planted_contact(const Model& model, const cspace::PairAxes& axes, const cspace::ChartAxis& x,
+                                     const cspace::ChartAxis& y, const cspace::ChartPoint& q) {
+  const Part& first = model.parts.at(axes.first);
+  const Part& second = model.parts.at(axes.second);
+  const cspace::RigidMap first_map = cspace::world_map(first, axes.first_moves, x, q.x);
+  const cspace::RigidMap second_map =
+      cspace::world_map(second, axes.second_moves, axes.first_moves ? y : x, axes.first_moves ? q.y : q.x);
+  const std::vector<PosedEdge> a = posed_edges(first, first_map);
+  const Point u{Rational(first.motion.pivot.x - second.motion.pivot.x),
+                Rational(first.motion.pivot.y - second.motion.pivot.y)};
+  const D2 ud = to_d2(u), back{-ud.x, -ud.y};
+  // the second part moved back by u (doubles): its moves s u (s > 0) are translations (s - 1) u
+  std::vector<PosedEdge> b = posed_edges(second, second_map);
+  for (PosedEdge& e : b) e.s = e.s + back, e.t = e.t + back, e.c = e.c + back;
+  // (kind 0: a vertex of the second part on an edge of the first; 1: a vertex of the first on
+  // an edge of the second; 2: a tangency, not planted)
+  double best = HUGE_VAL;
+  int kind = 2;
+  std::size_t vertex = 0, edge = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t j = 0; j < a.size(); ++j) {
+      if (const double s = ray_hit(b[i].s, ud, a[j]); s < best) best = s, kind = 0, vertex = i, edge = j;
+      if (const double s = ray_hit(a[j].s, back, b[i]); s < best) best = s, kind = 1, vertex = j, edge = i;
+      if (const double s = tangency_hit(b[i], ud, a[j]); s < best) best = s, kind = 2;
+      if (const double s = tangency_hit(a[j], back, b[i]); s < best) best = s, kind = 2;
+    }
+  if (kind == 2 || !std::isfinite(best)) return std::nullopt;
+  // kind 0: the second part's vertex v moves by w onto the first's edge e; kind 1: the second
+  // part's edge e moves by w onto the first's vertex v (exact posed geometry, not moved back)
+  const std::vector<PosedEdge> exact_b = posed_edges(second, second_map);
+  const PosedEdge& v = kind == 0 ? exact_b[vertex] : a[vertex];
+  const PosedEdge& e = kind == 0 ? a[edge] : exact_b[edge];
+  const Point& p = v.exact.source;
+  if (!e.exact.is_arc()) {
+    // p + s u' on the line of e (u' = u, or -u for kind 1): the contact's exact translation s u
+    const Rational ex = e.exact.target.x - e.exact.source.x, ey = e.exact.target.y - e.exact.source.y;
+    const Rational den = u.x * ey - u.y * ex;
+    if (sgn(den) == 0) return std::nullopt;
+    Rational s = ((e.exact.source.x - p.x) * ey - (e.exact.source.y - p.y) * ex) / den;
+    if (kind == 1) s = -s;
+    return Point{Rational(s * u.x), Rational(s * u.y)};
+  }
+  // the contact point on e where e is unmoved (doubles), then a rational point of e's circle there
+  const D2 hit = kind == 0 ? to_d2(p) + (best - 1) * ud : to_d2(p) + best * back + ud;
+  const std::optional<Point> on = rational_point_near(e.exact, hit);
+  if (!on) return std::nullopt;
+  return kind == 0 ? Point{Rational(on->x - p.x), Rational(on->y - p.y)}
+                   : Point{Rational(p.x - on->x), Rational(p.y - on->y)};
+}
+
+TEST(OracleBoxGrid, GriddedOraclesAreTheExactOracleAtPlantedContactsOnGearPairs) {
+  std::mt19937_64 random(test::test_seed(7501));
+  std::size_t tried = 0, planted = 0, touching = 0, second_vertex = 0, first_vertex = 0, algebraic_touching = 0,
+              filtered = 0;
+  for (const long z : {12L, 24L}) {
+    const long z2 = z + static_cast<long>(random() % 5);
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z, z2, name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    ASSERT_EQ(axes.dimension(), 2);
+    cspace::OverlapOptions exact_only;
+    exact_only.exact_only = true;
+    exact_only.want_touches = true;
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts)
+        for (int k = 0, kept = 0; k < 40 && kept < 3; ++k) {
+          const cspace::ChartPoint q{between(x, random, 1 << 20), between(y, random, 1 << 20)};
+          ++tried;
+          const std::optional<Point> w = planted_contact(model, axes, x, y, q);
+          if (!w) continue;
+          ++planted;
+          const Model moved = translated_part(model, axes.second, *w);
+          const std::string at = "at (" + q.x.get_str() + ", " + q.y.get_str() + "), the second part moved by (" +
+                                 w->x.get_str() + ", " + w->y.get_str() + ")";
+          const cspace::OverlapReport exact = cspace::analyse_overlap(moved, axes, x, y, q, exact_only);
+          if (exact.relation != cspace::Overlap::touching) continue;   // (another contact first)
+          ++touching;
+          ++kept;
+          bool at_second_vertex = false, at_first_vertex = false;
+          for (const cspace::TouchPoint& touch : exact.touches) {
+            for (const cspace::TouchEdge& edge : touch.second_edges) at_second_vertex |= edge.at_source || edge.at_target;
+            for (const cspace::TouchEdge& edge : touch.first_edges) at_first_vertex |= edge.at_source || edge.at_target;
+          }
+          second_vertex += at_second_vertex;
+          first_vertex += at_first_vertex;
+          // every route at the planted contact against the exact oracle
+          const cspace::PairOverlap planted_oracle(moved, axes);
+          EXPECT_EQ(planted_oracle.classify(x, y, q), cspace::Overlap::touching) << at << ": gridded classify";
+          const auto rx = cspace::algebra::Real::from_rational(q.x), ry = cspace::algebra::Real::from_rational(q.y);
+          const std::optional<cspace::Overlap> relation = cspace::algebraic_overlap(moved, axes, x, y, rx, ry);
+          std::optional<cspace::Overlap> every_pair;
+          {
+            LazyPlacementOff off;
+            every_pair = cspace::algebraic_overlap(moved, axes, x, y, rx, ry);
+          }
+          EXPECT_EQ(relation, every_pair) << at;
+          if (relation) {
+            EXPECT_EQ(*relation, cspace::Overlap::touching) << at << ": gridded algebraic relation " << name_of(*relation);
+            algebraic_touching += *relation == cspace::Overlap::touching;
+          }
+          // the filter over boxes about q: q is not overlapping, so no box holding it is certainly
+          // overlapping (gridded and eager)
+          for (const int shrink : {12, 24, 40}) {
+            const Rational hx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink),
+                           hy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
+            const kernels::Interval bx(cspace::algebra::lower_double(Rational(q.x - hx)),
+                                       cspace::algebra::upper_double(Rational(q.x + hx)));
+            const kernels::Interval by(cspace::algebra::lower_double(Rational(q.y - hy)),
+                                       cspace::algebra::upper_double(Rational(q.y + hy)));
+            EXPECT_FALSE(planted_oracle.certainly_overlapping(x, y, bx, by)) << at << " 2^-" << shrink;
+            {
+              LazyPlacementOff off;
+              EXPECT_FALSE(planted_oracle.certainly_overlapping(x, y, bx, by)) << at << " 2^-" << shrink << " eager";
+            }
+            ++filtered;
+          }
+        }
+  }
+  // enough planted contacts of each kind reached every route (the seed is fixed per run)
+  EXPECT_GE(touching, 12u) << tried << " chart points tried, " << planted << " planted";
+  EXPECT_GE(second_vertex, 3u);
+  EXPECT_GE(first_vertex, 3u);
+  EXPECT_GE(algebraic_touching, 8u);
+  RecordProperty("planted_touching", static_cast<int>(touching));
+  RecordProperty("second_part_vertex", static_cast<int>(second_vertex));
+  RecordProperty("first_part_vertex", static_cast<int>(first_vertex));
+  RecordProperty("algebraic_touching", static_cast<int>(algebraic_touching));
+  RecordProperty("filter_boxes", static_cast<int>(filtered));
+}
+
+}  // namespace
+}  // namespace hipair
+
+namespace hipair {
+namespace {
+
+// Session 75 (growth75): PairOverlap::certainly_overlapping tries the edge pairs that certified
+// its last crossings first (a memo per pair and thread). On generated gear pairs, walks of small
+// boxes through each chart (consecutive boxes near each other, as the builder's vertices of one
+// region of blocked space are; now and then a jump to a random point, so the memo holds pairs
+// that certify nothing there): the filter with its memo is the eager filter (every edge posed, no
+// memo) at every box, and where it answers the exact oracle at the box's middle says
+// overlapping. The memo must answer some calls (the route is reached) and not all.
+TEST(OracleBoxGrid, FilterMemoOfCertifiedPairsIsTheEagerFilterAlongWalks) {
+  std::mt19937_64 random(test::test_seed(7502));
+  std::size_t asked = 0, answered = 0, exact_checked = 0;
+  const auto memo_before = cspace::overlap_filter_memo_counts();
+  for (const long z : {16L, 40L}) {
+    std::string name;
+    const Model model = test_gears::spur_gear_pair(random, z, z + static_cast<long>(random() % 3), name);
+    SCOPED_TRACE(name);
+    const cspace::PairAxes axes = cspace::pair_axes(model, 0, 1);
+    const cspace::ChartLayout layout = cspace::chart_layout(model, axes);
+    const cspace::PairOverlap oracle(model, axes);
+    cspace::OverlapOptions exact_only;
+    exact_only.exact_only = true;
+    for (const cspace::ChartAxis& x : layout.x_charts)
+      for (const cspace::ChartAxis& y : layout.y_charts) {
+        cspace::ChartPoint q{between(x, random, 1 << 20), between(y, random, 1 << 20)};
+        for (int step = 0; step < 80; ++step) {
+          if (step % 16 == 15) {
+            q = cspace::ChartPoint{between(x, random, 1 << 20), between(y, random, 1 << 20)};
+          } else {
+            // a step of up to 2^-9 of the chart, kept inside it
+            auto move = [&](Rational v, const cspace::ChartAxis& axis) {
+              v += (axis.hi - axis.lo) * Rational(static_cast<long>(random() % 33) - 16, 16 * 512);
+              v = std::min(std::max(v, axis.lo), axis.hi);
+              v.canonicalize();
+              return v;
+            };
+            q = cspace::ChartPoint{move(q.x, x), move(q.y, y)};
+          }
+          const int shrink = 14 + static_cast<int>(random() % 16);
+          const Rational hx = Rational(x.hi - x.lo) / Rational(mpz_class(1) << shrink),
+                         hy = Rational(y.hi - y.lo) / Rational(mpz_class(1) << shrink);
+          const kernels::Interval bx(cspace::algebra::lower_double(Rational(q.x - hx)),
+                                     cspace::algebra::upper_double(Rational(q.x + hx)));
+          const kernels::Interval by(cspace::algebra::lower_double(Rational(q.y - hy)),
+                                     cspace::algebra::upper_double(Rational(q.y + hy)));
+          const bool with_memo = oracle.certainly_overlapping(x, y, bx, by);
+          bool eager;
+          {
+            LazyPlacementOff off;
+            eager = oracle.certainly_overlapping(x, y, bx, by);
+          }
+          const std::string at = "box of 2^-" + std::to_string(shrink) + " about (" + q.x.get_str() + ", " +
+                                 q.y.get_str() + ")";
+          ASSERT_EQ(with_memo, eager) << at;
+          ++asked;
+          if (with_memo && step % 4 == 0) {
+            EXPECT_EQ(cspace::analyse_overlap(model, axes, x, y, q, exact_only).relation, cspace::Overlap::overlapping)
+                << at;
+            ++exact_checked;
+          }
+        }
+      }
+  }
+  const auto memo_after = cspace::overlap_filter_memo_counts();
+  answered = memo_after[1] - memo_before[1];
+  EXPECT_GT(answered, asked / 8) << "the memo answered " << answered << " of " << asked << " calls";
+  EXPECT_LT(answered, asked);
+  EXPECT_GT(exact_checked, 20u);
+  RecordProperty("asked", static_cast<int>(asked));
+  RecordProperty("memo_answered", static_cast<int>(answered));
 }
 
 }  // namespace
