@@ -788,6 +788,9 @@ struct TrackerData {
   bool terms = false;                                 // cspace::partial_terms() when the tracker was placed
   double x_min = 0, x_max = 0;   // an abscissa in (x_min, x_max) is strictly inside the edge's extent
   bool x_rotation = false, y_rotation = false;
+  // the exact support polynomial (the chart's, which outlives the tracker data: both are kept
+  // per space), for the exact signs of canonical_cell
+  const cspace::IntegerPolynomial2* support = nullptr;
 };
 
 // Certified sign of F at a double point: -1, +1, or 0 when rounding cannot decide.
@@ -818,9 +821,76 @@ std::optional<EdgeSlopes> slopes_at(const TrackerData& data, double x, const KIn
                     range_of(part.second)};
 }
 
+// Step 3b of slopes_from (session 75): the ordinate's canonical cell at x, a function of the
+// edge's data, x and the edge's root y* at x alone — not of the certified bracket [lo, hi] that
+// found y*, which depends on where the tracker came from (the Newton start of step 1, the
+// bracket's width in step 2). The cells of level j are [m 2^j, (m + 1) 2^j] (m an integer), for
+// j from E - 50 to E - 23 where E is the binary exponent of max(1, |y*|) (at the first level a
+// cell is 2 to 4 units in the last place of y*, at the last about 1e-7 of y*: the widths step
+// 2's bracket tries). The answer is y*'s cell at the first level where both of its ends have
+// certified signs of F(x, .) (certified_sign: s_lo, the sign just below y*, at its lower end and
+// -s_lo at its upper one), or nullopt. E, the cell holding y* at a level and the signs at its
+// ends are facts about y* and the grid, so the answer is the same bits for every bracket of y*.
+// Requires: [lo, hi] holds y* and no other root of F(x, .) (step 3), certified signs s_lo at lo
+// and -s_lo at hi. The cell's ends carry opposite certified signs and it holds y* (located
+// below); step 4 checks F_y on {x} x cell (then y* is its only root).
+// Exact signs (sign_at on the support polynomial) only where a certified sign is 0 at a point
+// whose side decides E or the location (rare: a bracket several cells wide whose middle lies
+// within rounding of y*, or one across a power of two).
+std::optional<KInterval> canonical_cell(const TrackerData& data, double x, double lo, double hi, int s_lo) {
+  // the sign of F(x, g), g inside (lo, hi): certified, else exact
+  auto sign = [&](double g) {
+    const int s = certified_sign(data, x, g);
+    return s != 0 ? s : cspace::algebra::sign_at(*data.support, Rational(x), Rational(g));
+  };
+  auto exponent = [](double v) { return std::ilogb(std::max(1.0, std::abs(v))); };
+  int e = exponent(lo);
+  if (const int e_hi = exponent(hi); e_hi != e) {
+    // [lo, hi] (narrower than its ends' magnitudes) meets one power of two b = +-2^k, k >= 1
+    const double b = hi > 0 ? std::ldexp(1.0, e_hi) : -std::ldexp(1.0, e);
+    const int s = sign(b);
+    e = s == 0 ? exponent(b) : s == s_lo ? e_hi : e;
+  }
+  int j = e - 50;
+  // y* lies strictly between the grid points p 2^j and q 2^j, q - p <= 2; where q - p = 2 the
+  // middle point's certified sign is 0 (y* on either side of it, or on it), so the middle point is
+  // an end of y*'s cell at this level and at every coarser one where it stays a grid point
+  double p = std::floor(std::ldexp(lo, -j)), q = std::ceil(std::ldexp(hi, -j));   // exact: scaled by a power of two
+  while (q - p > 2) {
+    const double m = std::floor(0.5 * (p + q));   // p < m < q: m 2^j strictly inside (lo, hi)
+    const int s = sign(std::ldexp(m, j));
+    if (s == 0) {   // y* is the grid point
+      p = m - 1;
+      q = m + 1;
+    } else if (s == s_lo) {
+      p = m;
+    } else {
+      q = m;
+    }
+  }
+  if (q - p == 2) {
+    const int s = certified_sign(data, x, std::ldexp(p + 1, j));
+    if (s == s_lo) p += 1;
+    else if (s == -s_lo) q -= 1;
+  }
+  for (; j <= e - 23; ++j) {
+    if (q - p == 1) {
+      const double a = std::ldexp(p, j), b = std::ldexp(q, j);
+      if (certified_sign(data, x, a) == s_lo && certified_sign(data, x, b) == -s_lo) return KInterval(a, b);
+    }
+    // the next level: the indices halve (q - p stays 1, or 2 about the same middle point while
+    // that is a grid point)
+    p = std::floor(0.5 * p);
+    q = std::ceil(0.5 * q);
+  }
+  return std::nullopt;
+}
+
 // The filter proper (track_derivatives): y, y', y'' at x from the certified point (x0, Y0) of
-// the same edge, or nullopt. `memo` (slopes_memo.hpp): step 4's last answer, taken again for the
-// same x and Y1 (bit patterns).
+// the same edge, or nullopt. The answer is a function of the edge's data and x alone wherever it
+// is not nullopt: the slopes on the canonical cell of the edge's root at x (step 3b), whatever
+// (x0, Y0) led to it. `memo` (slopes_memo.hpp): step 4's last answer, taken again for the same
+// x and cell (bit patterns).
 template <class Memo>
 std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double x0, CertifiedRange y0, Memo* memo) {
   namespace detail = kernels::interval_detail;
@@ -840,12 +910,14 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   const double scale = std::max(1.0, std::abs(y));
   KInterval y1;
   bool bracketed = false;
+  int sign_below = 0;
   for (double delta = 4e-16 * scale; delta < 1e-7 * scale && !bracketed; delta *= 8) {
     double lo = y - delta, hi = y + delta;
     int s_lo = certified_sign(data, x, lo), s_hi = certified_sign(data, x, hi);
     if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) {
       y1 = KInterval(lo, hi);
       bracketed = true;
+      sign_below = s_lo;
     }
   }
   if (!bracketed) return std::nullopt;
@@ -878,6 +950,12 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
     margin = std::max(4 * margin, 2 * reach);
   }
   if (!certified) return std::nullopt;
+  // 3b. the canonical cell of the root in Y1 (its only root there, the edge's), in place of Y1
+  {
+    const std::optional<KInterval> cell = canonical_cell(data, x, y1.lo, y1.hi, sign_below);
+    if (!cell) return std::nullopt;
+    y1 = *cell;
+  }
   // 4. the slopes on {x} x Y1
   if (!memo || !cspace::slopes_memo()) return slopes_at(data, x, y1);
   const auto bx = std::bit_cast<std::uint64_t>(x), blo = std::bit_cast<std::uint64_t>(y1.lo),
@@ -937,6 +1015,7 @@ std::shared_ptr<const TrackerData> tracker_data_of(const ChartData& chart, const
   }
   data->x_rotation = chart.x_axis.kind != cspace::ChartAxis::Kind::translation;
   data->y_rotation = chart.y_axis.kind != cspace::ChartAxis::Kind::translation;
+  data->support = &raw_edge.support;
   return data;
 }
 
@@ -962,6 +1041,7 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
   const cspace::raw::Edge& raw_edge = chart.arrangement.edges[e];
   if (raw_edge.vertical) return std::nullopt;
 
+  bool placed = false;   // the tracker's point is the exact ordinate at x
   if (tracker.space_ != &impl || tracker.edge_ != id || !tracker.data_) {
     // place the tracker: the edge's polynomial in doubles, and one exact point of the edge.
     // The polynomial's forms and the extent are the edge's alone: made once per edge on this
@@ -982,13 +1062,15 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
     tracker.y_ = exact_ordinate(space, id.index(), x);
     tracker.data_ = std::move(made);
     tracker.memo_ = EdgeTracker::Memo{};   // its answers were of the edge placed before
+    placed = true;
   }
   const TrackerData& data = *static_cast<const TrackerData*>(tracker.data_.get());
   if (!(x > data.x_min && x < data.x_max)) return std::nullopt;
   std::optional<EdgeSlopes> result = slopes_from(data, x, tracker.x_, tracker.y_, &tracker.memo_);
-  if (!result && x != tracker.x_) {
-    // a jump the a-priori box cannot bridge: one exact point of the edge at x, and the filter
-    // from there
+  if (!result && !placed) {
+    // a jump the a-priori box cannot bridge (or a start at x that a fresh tracker would not
+    // have): one exact point of the edge at x, and the filter from there, as a fresh tracker
+    // placed at x answers
     tracker.x_ = x;
     tracker.y_ = exact_ordinate(space, id.index(), x);
     result = slopes_from(data, x, x, tracker.y_, &tracker.memo_);
