@@ -834,9 +834,8 @@ std::optional<EdgeSlopes> slopes_at(const TrackerData& data, double x, const KIn
 // Requires: [lo, hi] holds y* and no other root of F(x, .) (step 3), certified signs s_lo at lo
 // and -s_lo at hi. The cell's ends carry opposite certified signs and it holds y* (located
 // below); step 4 checks F_y on {x} x cell (then y* is its only root).
-// Exact signs (sign_at on the support polynomial) only where a certified sign is 0 at a point
-// whose side decides E or the location (rare: a bracket several cells wide whose middle lies
-// within rounding of y*, or one across a power of two).
+// An exact sign (sign_at on the support polynomial) only where the bracket meets a power of two
+// whose certified sign is 0 (then it decides E).
 std::optional<KInterval> canonical_cell(const TrackerData& data, double x, double lo, double hi, int s_lo) {
   // the sign of F(x, g), g inside (lo, hi): certified, else exact
   auto sign = [&](double g) {
@@ -852,34 +851,62 @@ std::optional<KInterval> canonical_cell(const TrackerData& data, double x, doubl
     e = s == 0 ? exponent(b) : s == s_lo ? e_hi : e;
   }
   int j = e - 50;
-  // y* lies strictly between the grid points p 2^j and q 2^j, q - p <= 2; where q - p = 2 the
-  // middle point's certified sign is 0 (y* on either side of it, or on it), so the middle point is
-  // an end of y*'s cell at this level and at every coarser one where it stays a grid point
-  double p = std::floor(std::ldexp(lo, -j)), q = std::ceil(std::ldexp(hi, -j));   // exact: scaled by a power of two
-  while (q - p > 2) {
-    const double m = std::floor(0.5 * (p + q));   // p < m < q: m 2^j strictly inside (lo, hi)
-    const int s = sign(std::ldexp(m, j));
-    if (s == 0) {   // y* is the grid point
-      p = m - 1;
-      q = m + 1;
-    } else if (s == s_lo) {
+  // y* lies strictly between the grid points p 2^j and q 2^j, and every grid point strictly
+  // between them has certified sign 0: where q - p >= 2, one end of y*'s cell at this level is
+  // such a point, and the level is not valid; at the next level the indices halve and the
+  // points strictly between are some of these
+  double w = std::ldexp(1.0, j);
+  double p = std::floor(lo / w), q = std::ceil(hi / w);   // exact: w is a power of two
+  auto at = [&](double index) { return certified_sign(data, x, index * w); };
+  const int unknown = 2;
+  int sp = unknown, sq = unknown;   // the certified signs at p w and q w, where known
+  // (every point strictly between p and q lies in (lo, hi), where a certified sign s_lo puts
+  // y* above the point and -s_lo below it)
+  while (q - p > 1) {
+    const double m = std::floor(0.5 * (p + q));
+    const int s = at(m);
+    if (s == s_lo) {
       p = m;
-    } else {
+      sp = s;
+      continue;
+    }
+    if (s == -s_lo) {
       q = m;
+      sq = s;
+      continue;
     }
+    // m within rounding of y*: the nearest points with a certified sign on either side
+    double below = m - 1, above = m + 1;
+    int s_below = 0, s_above = 0;
+    while (below > p && (s_below = at(below)) == 0) --below;
+    while (above < q && (s_above = at(above)) == 0) ++above;
+    if (below > p && s_below == -s_lo) {   // y* below `below`
+      q = below;
+      sq = s_below;
+      continue;
+    }
+    if (above < q && s_above == s_lo) {    // y* above `above`
+      p = above;
+      sp = s_above;
+      continue;
+    }
+    if (below > p) sp = s_below;
+    if (above < q) sq = s_above;
+    p = below;
+    q = above;
+    break;
   }
-  if (q - p == 2) {
-    const int s = certified_sign(data, x, std::ldexp(p + 1, j));
-    if (s == s_lo) p += 1;
-    else if (s == -s_lo) q -= 1;
-  }
-  for (; j <= e - 23; ++j) {
+  for (; j <= e - 23; ++j, w *= 2) {
     if (q - p == 1) {
-      const double a = std::ldexp(p, j), b = std::ldexp(q, j);
-      if (certified_sign(data, x, a) == s_lo && certified_sign(data, x, b) == -s_lo) return KInterval(a, b);
+      if (sp == unknown) sp = at(p);
+      if (sp == s_lo) {
+        if (sq == unknown) sq = at(q);
+        if (sq == -s_lo) return KInterval(p * w, q * w);
+      }
     }
-    // the next level: the indices halve (q - p stays 1, or 2 about the same middle point while
-    // that is a grid point)
+    // the next level's indices (a point that stays a grid point keeps its sign)
+    if (2 * std::floor(0.5 * p) != p) sp = unknown;
+    if (2 * std::floor(0.5 * q) != q) sq = unknown;
     p = std::floor(0.5 * p);
     q = std::ceil(0.5 * q);
   }
@@ -1066,6 +1093,16 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
   }
   const TrackerData& data = *static_cast<const TrackerData*>(tracker.data_.get());
   if (!(x > data.x_min && x < data.x_max)) return std::nullopt;
+  // the answer at x is a function of the edge and x alone (slopes_from, step 3b): the memo's,
+  // made at the same x on this placement, without steps 1-3 again
+  if (cspace::slopes_memo() && tracker.memo_.set && tracker.memo_.x == std::bit_cast<std::uint64_t>(x)) {
+    ++cspace::slopes_memo_hits();
+    if (tracker.memo_.slopes) {
+      tracker.x_ = x;
+      tracker.y_ = tracker.memo_.slopes->y;
+    }
+    return tracker.memo_.slopes;
+  }
   std::optional<EdgeSlopes> result = slopes_from(data, x, tracker.x_, tracker.y_, &tracker.memo_);
   if (!result && !placed) {
     // a jump the a-priori box cannot bridge (or a start at x that a fresh tracker would not

@@ -33,6 +33,7 @@
 #include "simulation/held_friction.hpp"
 #include "simulation/jam.hpp"
 #include "simulation/kept_scratch.hpp"
+#include "simulation/probe_rows.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/initial_energy.hpp"
 #include "simulation/motion_datum.hpp"
@@ -2962,7 +2963,8 @@ struct Simulation::Impl {
         probe_rows.h[k] = h;
       }
       ContactForces cf;
-      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf, &probe_rows))
+      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf,
+                         simulation::probe_rows() ? &probe_rows : nullptr))
         return found(2, 0, 3 * n);   // (no contact named, as before)
       for (std::size_t k = 0; k < lambda.size(); ++k) {
         if (k < n) p.margins[n + k] = lambda[k];
