@@ -5,6 +5,7 @@
 // its pusher (~3e-15 mm/s, ~1e-30 rad/s; docs/simulation.md Session 74) and the back-off's trial
 // states were blocked, but the published states were free by rounding luck (relative x 8 + 3.6e-15).
 #include <hipair/model.hpp>
+#include <hipair/pin_slot_simulation.hpp>
 #include <hipair/simulation.hpp>
 #include <hipair/simulation_stop.hpp>
 
@@ -65,6 +66,33 @@ TEST(SimulationPublishedStates, NoPlanarExampleEverPublishesOverlappingParts) {
       check = checked_run(sim, e.t_end);
     } else {
       PlanarSystemSimulation sim = PlanarSystemSimulation::create(model, SimulationOptions{});
+      check = checked_run(sim, e.t_end);
+    }
+    EXPECT_EQ(check.bad, 0u) << check.bad << " of " << check.checked << " states overlap; the first at " << check.first_bad;
+    ::testing::Test::RecordProperty(std::string(e.name) + "_states", static_cast<int>(check.checked));
+  }
+}
+
+// Session 75 (jam75; review74 M2): the fixed-axis simulator's examples (rotating and translating
+// parts: Simulation) and the pin-slot one (film-advance: PinSlotSimulation), every step's state,
+// every model pair, exact (published_overlap.hpp: a fixed-axis state's angle placed by its
+// half-angle tangent at 300 bits; a pin-slot state by its exact pair configurations).
+TEST(SimulationPublishedStates, NoFixedAxisOrPinSlotExampleEverPublishesOverlappingParts) {
+  const Example examples[] = {{"escapement", 0.05},   {"geneva-drive", 0.2},  {"cam-drive", 0.05},
+                              {"cam-follower", 0.05}, {"cam-shim-stack", 0.05}, {"ratchet", 0.1},
+                              {"lever-stop", 0.1},    {"scotch-yoke", 0.05},  {"bouncing-bar", 0.2},
+                              {"spur-gears", 0.02},   {"two-pin-wedge", 0.1}, {"film-advance", 0.1}};
+  for (const Example& e : examples) {
+    SCOPED_TRACE(e.name);
+    const Model model = example(e.name);
+    bool pin_slot = false;
+    for (const Part& p : model.parts) pin_slot = pin_slot || p.motion.kind == Motion::Kind::pin_slot;
+    test::PublishedOverlapCheck check;
+    if (pin_slot) {
+      PinSlotSimulation sim = PinSlotSimulation::create(model, SimulationOptions{});
+      check = checked_run(sim, e.t_end);
+    } else {
+      Simulation sim = Simulation::create(model, SimulationOptions{});
       check = checked_run(sim, e.t_end);
     }
     EXPECT_EQ(check.bad, 0u) << check.bad << " of " << check.checked << " states overlap; the first at " << check.first_bad;
