@@ -10,8 +10,6 @@
 #include <hipair/simulation.hpp>
 
 #include <cstddef>
-#include <gmpxx.h>
-#include <mpfr.h>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -67,48 +65,6 @@ inline std::string pin_slot_overlapping_pairs(const Model& model, std::size_t pa
   return found;
 }
 
-// Session 75 (jam75; review74 M2): a fixed-axis simulation's state (SimulationState: one double
-// per part, an angle in rad about the part's pivot or an offset in mm along its direction). An
-// offset is placed exactly (its double is a rational); an angle through the rational half-angle
-// tangent nearest tan(angle / 2) at 300 bits (MPFR): the placement turns by the state's angle to
-// about 2^-290 rad — only a state within that of touching could be read on the wrong side.
-inline Rational half_angle_tangent(double angle) {
-  mpfr_t a;
-  mpfr_init2(a, 300);
-  mpfr_set_d(a, angle, MPFR_RNDN);
-  mpfr_div_2ui(a, a, 1, MPFR_RNDN);
-  mpfr_tan(a, a, MPFR_RNDN);
-  mpz_class mantissa;
-  const long exponent = mpfr_get_z_2exp(mantissa.get_mpz_t(), a);
-  mpfr_clear(a);
-  Rational t(mantissa);
-  if (exponent >= 0) mpq_mul_2exp(t.get_mpq_t(), t.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
-  else mpq_div_2exp(t.get_mpq_t(), t.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
-  t.canonicalize();
-  return t;
-}
-
-inline std::string fixed_axis_overlapping_pairs(const Model& model, const std::vector<double>& position) {
-  std::vector<Placement> placed(model.parts.size());
-  for (std::size_t i = 0; i < model.parts.size() && i < position.size(); ++i) {
-    const Motion& m = model.parts[i].motion;
-    if (m.kind == Motion::Kind::rotation) {
-      const Rational t = half_angle_tangent(position[i]), d = 1 + t * t;
-      placed[i] = placement_about(m.pivot, (1 - t * t) / d, 2 * t / d, Point{Rational(0), Rational(0)});
-    } else if (m.kind == Motion::Kind::translation) {
-      const Rational s(position[i]);
-      placed[i] = placement_about(Point{Rational(0), Rational(0)}, Rational(1), Rational(0),
-                                  Point{s * m.direction.x, s * m.direction.y});
-    }
-  }
-  std::string found;
-  for (const PairSpec& pair : model.pairs)
-    if (part_overlap(model.parts[pair.first], placed[pair.first], model.parts[pair.second], placed[pair.second])
-            .relation == PartRelation::overlapping)
-      found += (found.empty() ? "" : "; ") + model.parts[pair.first].name + " / " + model.parts[pair.second].name;
-  return found;
-}
-
 // The run's state checked now (call after every step and after a stop): a failure names the
 // time and the pairs; `checked` counts the states, `bad` the overlapping ones.
 struct PublishedOverlapCheck {
@@ -120,8 +76,6 @@ struct PublishedOverlapCheck {
     std::string pairs;
     if constexpr (requires { sim.state().states; })
       pairs = overlapping_pairs(sim.model(), sim.state().parts, sim.state().states);
-    else if constexpr (requires { sim.state().position; sim.spaces(); })
-      pairs = fixed_axis_overlapping_pairs(sim.model(), sim.state().position);
     else if constexpr (requires { sim.state().pair_configurations; })
       pairs = pin_slot_overlapping_pairs(sim.model(), sim.part(), sim.state().pair_configurations);
     else
