@@ -49,6 +49,7 @@
 #include "simulation/friction_names.hpp"
 #include "simulation/companion_watch.hpp"
 #include "simulation/held_resolution.hpp"
+#include "simulation/impact_energy.hpp"
 #include "simulation/jam.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/initial_energy.hpp"
@@ -2347,6 +2348,38 @@ struct PlanarSystemSimulation::Impl {
   // drivers, the jammed parts and the contacts of that combination, the state published at the
   // jam; returns where there is none.
   void refuse_jam(double time, const Rows& rows);
+  // (session 75, jam75; Issue 11, review74 H1) A frictionless impact whose exact solution gives
+  // the free parts more kinetic energy than the drivers' work through the contacts
+  // (simulation/impact_energy.hpp, decided exactly on the exact solution of the impact's held set,
+  // the rows with a positive `published` multiplier): refused before its velocities are set or
+  // published — a NumericError naming the time, the pairs, the restitutions and the energies.
+  // Nothing where that balance cannot be formed exactly (dependent held rows).
+  void refuse_energy_gain(double time, const Rows& rows, const Eigen::MatrixXd& J, const Eigen::VectorXd& minv,
+                          const Eigen::VectorXd& v, const Eigen::VectorXd& restitution,
+                          const std::vector<Rational>& h_exact, const Eigen::VectorXd& published) const {
+    const std::optional<simulation::ImpactEnergy> energy = simulation::impact_energy(J, minv, v, h_exact, published);
+    if (!energy || sgn(energy->excess()) <= 0) return;
+    std::ostringstream out;
+    out.precision(12);
+    out << where(time) << ": the impact at";
+    std::vector<std::size_t> named;
+    for (std::size_t r = 0; r < rows.pair.size(); ++r) {
+      if (std::find(named.begin(), named.end(), rows.pair[r]) != named.end()) continue;
+      named.push_back(rows.pair[r]);
+      const Pair& p = pairs[rows.pair[r]];
+      out << (named.size() > 1 ? ", " : " ") << "'" << model.parts[p.first].name << "' / '"
+          << model.parts[p.second].name << "' (restitution " << restitution(static_cast<Eigen::Index>(r)) << ")";
+    }
+    const double unit = force_scale;   // (energies in the model's force x length units, as energy())
+    out << " would create kinetic energy: " << to_double(energy->excess()) / unit
+        << " beyond the drivers' work (kinetic " << to_double(energy->kinetic_before) / unit << " before, "
+        << to_double(energy->kinetic_after) / unit << " after, the drivers' work "
+        << to_double(energy->driver_work) / unit
+        << "; decided exactly on the impact's exact solution) — Newton's restitution at simultaneous contacts of "
+           "different restitutions can do that where a contact separating before the impact is given an impulse; "
+           "refused (docs/simulation.md, Session 75)";
+    throw NumericError(out.str());
+  }
   bool advance(double span);
 };
 
@@ -2789,7 +2822,11 @@ void PlanarSystemSimulation::Impl::impact(double time,
     // (session 74, jam74: in a plastic impact — every row's restitution 0 — the exact solution's
     // velocities are kept also where the doubles' agree: a block carried off plastically then
     // moves exactly with its pusher, docs/simulation.md. Not for elastic rows: kept there, the
-    // pusher-blocks example's run diverged (left open, docs/simulation.md Session 74))
+    // pusher-blocks example's run diverged — session 75 (jam75) found why: the exact symmetric
+    // motion keeps the blocks in line, the pusher squeezes them into the wall, and at the closing
+    // instant the chain is locked but for the rows' ~1e-25 rad rounding, so the exact LCP answers
+    // with 1.4e47 N s impulses: the pusher's work, no impact gains energy (docs/simulation.md
+    // Session 75))
     bool all_plastic = true;
     for (Eigen::Index r = 0; r < m; ++r) all_plastic = all_plastic && restitution(r) == 0;
     const std::optional<simulation::FrictionalSolution> exact =
@@ -2797,6 +2834,9 @@ void PlanarSystemSimulation::Impl::impact(double time,
     if (exact) lcp.solved = exact->solved;
     if (!lcp.solved) refuse_jam(time, contact);   // (session 69: a jam, named, where it is one)
     if (!lcp.solved) throw NumericError(where(time) + ": the impact problem has no solution");
+    // (session 75, jam75) the exact energy balance on the held set decided exactly (the doubles'
+    // where exact_impact_lcp kept them: the same rows have impulses)
+    refuse_energy_gain(time, contact, J, minv, v, restitution, h_exact, exact ? exact->lambda : lcp.lambda);
     lambda = exact ? exact->lambda : lcp.lambda;
     after_v = exact ? exact->x : Eigen::VectorXd(v + minv.asDiagonal() * (J.transpose() * lcp.lambda));
   } else {   // Coulomb-limited tangential impulses, as the single planar part's impacts
@@ -3026,6 +3066,20 @@ bool PlanarSystemSimulation::Impl::advance(double span) {
       if (c.status == CrossingStatus::crossing) crossings.emplace_back(i, std::move(c));
     }
     if (crossings.empty()) {
+      // (session 75, jam75; Issue 11, review74 M1) the pairs with held contacts: the sweep ignores
+      // their held feature pairs, and the check above sees only each held vertex against its own
+      // segment's line. The whole pair located exactly at the step's end (SlicedSpace::locate on
+      // the exact configurations the step publishes): a step that leaves one blocked is not
+      // accepted but halved (as the far and chord caps above), so no accepted state has a held
+      // pair overlapping — by construction, not by the tested cases. One locate per held pair
+      // per accepted step (docs/simulation.md, Session 75)
+      bool blocked = false;
+      for (std::size_t i = 0; i < pairs.size() && !blocked; ++i)
+        blocked = !ignored[i].empty() && pairs[i].space.locate(rel1[i]).kind == SlicedLocation::Kind::blocked;
+      if (blocked) {
+        h = step_guess = 0.5 * end;
+        continue;
+      }
       ++stats.advancement_steps;
       t += end;
       k = k1;

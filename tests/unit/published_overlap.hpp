@@ -46,6 +46,25 @@ inline std::string overlapping_pairs(const Model& model, const std::vector<std::
   return found;
 }
 
+// Session 75 (jam75; review74 M2): the model pairs of the pin-slot part `part` that overlap at a
+// pin-slot simulation's exact pair configurations (PinSlotState::pair_configurations: the part
+// relative to the pair's other part, about the part's own pivot, one per model pair of the part in
+// model order), the other part at its zero configuration. Same format as overlapping_pairs.
+inline std::string pin_slot_overlapping_pairs(const Model& model, std::size_t part,
+                                              const std::vector<SlicedConfiguration>& configurations) {
+  std::string found;
+  std::size_t k = 0;
+  for (const PairSpec& pair : model.pairs) {
+    if (pair.first != part && pair.second != part) continue;
+    if (k == configurations.size()) return found + (found.empty() ? "" : "; ") + "(a pair without a configuration)";
+    const std::size_t other = pair.first == part ? pair.second : pair.first;
+    const Placement placed = planar_placement(model.parts[part].motion.pivot, configurations[k++]);
+    if (part_overlap(model.parts[other], Placement{}, model.parts[part], placed).relation == PartRelation::overlapping)
+      found += (found.empty() ? "" : "; ") + model.parts[pair.first].name + " / " + model.parts[pair.second].name;
+  }
+  return found;
+}
+
 // The run's state checked now (call after every step and after a stop): a failure names the
 // time and the pairs; `checked` counts the states, `bad` the overlapping ones.
 struct PublishedOverlapCheck {
@@ -57,6 +76,8 @@ struct PublishedOverlapCheck {
     std::string pairs;
     if constexpr (requires { sim.state().states; })
       pairs = overlapping_pairs(sim.model(), sim.state().parts, sim.state().states);
+    else if constexpr (requires { sim.state().pair_configurations; })
+      pairs = pin_slot_overlapping_pairs(sim.model(), sim.part(), sim.state().pair_configurations);
     else
       pairs = overlapping_pairs(sim.model(), {sim.part()}, {sim.state()});
     if (pairs.empty()) return;

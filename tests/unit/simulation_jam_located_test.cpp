@@ -55,10 +55,13 @@ void scale_lengths(nlohmann::json& j, double scale) {
 // (s or ms: V 20 .. 400 mm/s or 0.02 .. 0.4 mm/ms), a length scale 10^-1 .. 10^1 (every length
 // and speed) and the wall: fixed (`receding` false) or receding at U = r V (r 0.1 .. 0.8; a
 // constant speed or a speed profile, alternately). The tolerance is the model's: its accuracy
-// 1e-10 of the ~100 mm the parts travel (times the scale), over the closing speed V - U (times
-// the scale): the time in which the gap closes by that much. Returns the worst error over the
-// tolerance.
-double pusher_jams(std::uint64_t seed, int n, bool receding) {
+// 1e-10 of the distance the block's face closes, (W + 29) mm (times the scale), over the closing
+// speed V - U (times the scale): the time in which the gap closes by that much (session 74,
+// review73 M3; this comment corrected in session 75, review74 L1). Returns the worst error over
+// the tolerance.
+// `friction` (session 75, jam75; review74 M3): the pusher/block pair's Coulomb friction mu_s (mu_k
+// = mu_s); > 0 takes the frictional impact branch, whose velocities are the doubles' solution.
+double pusher_jams(std::uint64_t seed, int n, bool receding, double friction = 0) {
   Lcg rng{seed};
   double worst = 0;
   for (int trial = 0; trial < n; ++trial) {
@@ -72,6 +75,7 @@ double pusher_jams(std::uint64_t seed, int n, bool receding) {
     SCOPED_TRACE("trial " + std::to_string(trial) + ": " + (ms ? "ms" : "s") + ", scale " + num(scale) + ", V " +
                  num(v) + ", U " + num(u) + (wall_kind == 2 ? " (profile)" : "") + ", wall " + num(wall * scale));
     nlohmann::json j = test::pusher_into_wall_json(wall);
+    if (friction > 0) j["pairs"][0]["friction"] = friction;
     scale_lengths(j, scale);
     if (ms) j["simulation"]["units"]["time"] = "ms";
     nlohmann::json drivers = nlohmann::json::array({{{"part", "pusher"}, {"speed", {{"x", v}}}}});
@@ -124,6 +128,18 @@ TEST(SimulationJamLocated, APusherCarryingABlockIntoARecedingWallJamsAtTheClosed
   const std::uint64_t seed = test::test_seed(2);   // (session 73's reproduction: fails on base74)
   SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed));
   pusher_jams(seed, 16, true);
+}
+
+// Session 75 (jam75; review74 M3): the pusher carrying the block with friction at their contact
+// (mu 0.5): the frictional impact branch keeps the doubles' velocities (no exact rule); 16
+// generated runs each of the fixed and the receding wall (seeds 7501, 7502) — the jam within the
+// model's accuracy and every published state free, exactly: the exact rule is not needed there.
+TEST(SimulationJamLocated, APusherWithFrictionCarryingABlockJamsAtTheClosedFormTime) {
+  for (const bool receding : {false, true}) {
+    const std::uint64_t seed = test::test_seed(receding ? 7502 : 7501);
+    SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed) + (receding ? " (receding)" : " (fixed)"));
+    pusher_jams(seed, 16, receding, 0.5);
+  }
 }
 
 // Session 73 (jam73; review72 jam72 M4): exact_jam_row's feature pairs (src/simulation/simulation.cpp)

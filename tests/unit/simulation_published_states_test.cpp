@@ -5,10 +5,12 @@
 // its pusher (~3e-15 mm/s, ~1e-30 rad/s; docs/simulation.md Session 74) and the back-off's trial
 // states were blocked, but the published states were free by rounding luck (relative x 8 + 3.6e-15).
 #include <hipair/model.hpp>
+#include <hipair/pin_slot_simulation.hpp>
 #include <hipair/simulation.hpp>
 #include <hipair/simulation_stop.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "published_overlap.hpp"
 #include "test_paths.hpp"
@@ -70,6 +72,26 @@ TEST(SimulationPublishedStates, NoPlanarExampleEverPublishesOverlappingParts) {
     EXPECT_EQ(check.bad, 0u) << check.bad << " of " << check.checked << " states overlap; the first at " << check.first_bad;
     ::testing::Test::RecordProperty(std::string(e.name) + "_states", static_cast<int>(check.checked));
   }
+}
+
+// Session 75 (jam75; review74 M2): the pin-slot simulator's example (film-advance:
+// PinSlotSimulation), every step's state, every model pair of the pin-slot part, exact (its exact
+// pair configurations, PinSlotState::pair_configurations, published_overlap.hpp).
+TEST(SimulationPublishedStates, NoPinSlotExampleEverPublishesOverlappingParts) {
+  // (film-advance.json has no simulation section: its cam made a constant-speed driver, 6 rad/s,
+  // the follower given a mass 0.01 kg and moment of inertia 1 kg mm^2, the film a mass 0.01 kg)
+  const std::filesystem::path path = std::filesystem::path(HIPAIR_SOURCE_DIR) / "examples/models/film-advance.json";
+  std::ifstream in(path);
+  nlohmann::json j = nlohmann::json::parse(in);
+  j["simulation"]["drivers"] = nlohmann::json::array({{{"part", "cam"}, {"law", "constant_speed"}, {"speed", "6 rad"}}});
+  j["parts"][1]["dynamics"] = {{"mass", 0.01}, {"moment_of_inertia", 1}};
+  j["parts"][3]["dynamics"] = {{"mass", 0.01}};
+  const Model model = read_model(j.dump(), path.string());
+  PinSlotSimulation sim = PinSlotSimulation::create(model, SimulationOptions{});
+  const test::PublishedOverlapCheck check = checked_run(sim, 0.01);
+  EXPECT_EQ(check.bad, 0u) << check.bad << " of " << check.checked << " states overlap; the first at " << check.first_bad;
+  EXPECT_GT(check.checked, 1u);
+  ::testing::Test::RecordProperty("film-advance_states", static_cast<int>(check.checked));
 }
 
 }  // namespace
