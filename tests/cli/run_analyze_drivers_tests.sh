@@ -17,24 +17,22 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 hipair_python=$(python3 -c 'import sys; print(sys.executable)') && python3() { "$hipair_python" "$@"; }
 
-# the model's part names, one a line; "PIN_SLOT" first when a pin-slot part is paired with a
-# rotating part (the work cycle: analyze's has_pin_slot_part)
-parts_of() {
-  python3 - "$1" <<'PY'
+# "FILE CYCLE PART" a line for every example model: first PART "-" (the default driver), then each
+# part; CYCLE 1 when a pin-slot part is paired with a rotating part (the work cycle: analyze's
+# has_pin_slot_part). One python for all models (a python a model cost a second of the run).
+runs_of() {
+  python3 - "$@" <<'PY'
 import json, sys
-m = json.load(open(sys.argv[1]))
-parts = m.get("parts", [])
-def kind(name):
+for path in sys.argv[1:]:
+    m = json.load(open(path))
+    parts = m.get("parts", [])
+    kinds = {}
     for p in parts:
-        if p["name"] == name:
-            mo = p.get("motion")
-            return next(iter(mo)) if isinstance(mo, dict) else str(mo)
-    return "?"
-cycle = any({kind(a), kind(b)} == {"pin_slot", "rotation"} for a, b in (q["parts"] for q in m.get("pairs", [])))
-if cycle:
-    print("PIN_SLOT")
-for p in parts:
-    print(p["name"])
+        mo = p.get("motion")
+        kinds[p["name"]] = next(iter(mo)) if isinstance(mo, dict) else str(mo)
+    cycle = any({kinds.get(a), kinds.get(b)} == {"pin_slot", "rotation"} for a, b in (q["parts"] for q in m.get("pairs", [])))
+    for name in ["-"] + [p["name"] for p in parts]:
+        print(path, int(cycle), name)
 PY
 }
 
@@ -68,25 +66,23 @@ check() {   # MODEL_NAME DRIVER(or "") OUT ERR STATUS
   esac
 }
 
-models=0
-for file in "$source"/examples/models/*.json; do
+plan=$(runs_of "$source"/examples/models/*.json) || fail "the example models are not read"
+models=$(grep -c ' -$' <<<"$plan")
+while read -r file cycle part; do
+  [ -n "$part" ] || continue
   model=$(basename "$file" .json)
-  names=$(parts_of "$file") || { fail "$model: not read"; continue; }
-  models=$((models + 1))
   options=(--quiet --steps 16 --cycles 1/360)
-  if [ "$(head -n 1 <<<"$names")" = PIN_SLOT ]; then
-    options=(--steps 16)   # (--quiet leaves out the cycle's report; stderr is no terminal)
-    names=$(tail -n +2 <<<"$names")
-  fi
-  "$hipair" analyze "$file" "${options[@]}" >"$work/$model.out" 2>"$work/$model.err"
-  check "$model" "" "$work/$model.out" "$work/$model.err" $?
-  while read -r part; do
-    [ -n "$part" ] || continue
+  [ "$cycle" = 1 ] && options=(--steps 16)   # (--quiet leaves out the cycle's report; stderr is no terminal)
+  if [ "$part" = - ]; then
+    out=$work/$model.out
+    "$hipair" analyze "$file" "${options[@]}" >"$out" 2>"$out.err"
+    check "$model" "" "$out" "$out.err" $?
+  else
     out=$work/$model-$part.out
     "$hipair" analyze "$file" --driver "$part" "${options[@]}" >"$out" 2>"$out.err"
     check "$model" "$part" "$out" "$out.err" $?
-  done <<<"$names"
-done
+  fi
+done <<<"$plan"
 
 # the film advance driven by its film (run above): refused naming --driver and the part that can
 # drive; its cam still drives the work cycle
