@@ -274,6 +274,19 @@ int run_analyze(const AnalyzeOptions& options) {
   }
   // which part is driven decides the units of --range
   std::size_t driver_index = choose_driver(model, options.driver);
+  // a driver named by --driver whose chain of pairs reaches no moving part: refused naming the
+  // option (session 75, drive75: the analysis said "/pairs: part 'bar' drives no other part",
+  // as it still does for the part it chooses itself)
+  if (!options.driver.empty()) {
+    bool moves_another = false;
+    for (std::size_t p : driven_pairs(model, driver_index))
+      for (std::size_t k : {model.pairs[p].first, model.pairs[p].second})
+        moves_another = moves_another || (k != driver_index && model.parts[k].motion.kind != Motion::Kind::fixed);
+    if (!moves_another)
+      throw ModelError("", "--driver " + shown_name(options.driver) + ": part '" + shown_name(options.driver) +
+                               "' drives no other part (its pairs are with fixed parts only; where a fixed part "
+                               "stops it is shown by 'hipair cspace' and 'hipair certify')");
+  }
   // a pattern no contact label of the driven pairs contains matches nothing: every contact
   // would be reported as unintended (session 45: `--expect nobody` was taken silently; session
   // 46: a pattern of a pair the driver does not move, such as a second mechanism's, likewise)

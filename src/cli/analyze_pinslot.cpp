@@ -5,15 +5,19 @@
 #include "io/atomic_file.hpp"
 
 #include <hipair/error.hpp>
+#include <hipair/motion_words.hpp>
 #include <hipair/pin_slot.hpp>
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <set>
 #include <unistd.h>
+#include <utility>
+#include <vector>
 
 namespace hipair::cli {
 
@@ -30,6 +34,49 @@ bool has_pin_slot_part(const Model& model) {
 }
 
 namespace {
+
+// The parts that can drive the work cycle: the rotating parts paired with a pin-in-slot part (in
+// the order of the pairs).
+std::vector<std::string> cycle_drivers(const Model& model) {
+  std::vector<std::string> names;
+  for (const PairSpec& pair : model.pairs)
+    for (auto [driver, follower] : {std::pair(pair.first, pair.second), std::pair(pair.second, pair.first)}) {
+      const Part& part = model.parts[driver];
+      if (part.motion.kind == Motion::Kind::rotation && model.parts[follower].motion.kind == Motion::Kind::pin_slot &&
+          std::find(names.begin(), names.end(), part.name) == names.end())
+        names.push_back(part.name);
+    }
+  return names;
+}
+
+// `--driver` for the work cycle: a rotating part paired with the pin-in-slot part, else refused
+// naming the option, exit 2 (session 75, drive75: any other part went on into the cycle, which
+// stopped with "pin-slot cycle: the driver 'film' does not rotate", exit 3, or named no option).
+// A driven film (or claw) is no kinematic question the cycle answers: the film touches the claw
+// only during its pull-down stroke and fixes at most one of the claw's two coordinates (swing
+// about the pin, slide along it), the claw's cam another only while it touches, so a film
+// position leaves the claw and the cam undetermined; the cycle is the cam's turn, as in the paper.
+void check_cycle_driver(const Model& model, const std::string& requested) {
+  if (requested.empty()) return;
+  std::string list;
+  for (const std::string& name : cycle_drivers(model)) list += (list.empty() ? "'" : ", '") + shown_name(name) + "'";
+  const std::string hint = "a model with a pin-in-slot part is analysed as its work cycle, one turn of a rotating "
+                           "part paired with the pin-in-slot part (parts that can drive: " + list + ")";
+  auto index = model.find_part(requested);
+  if (!index) throw ModelError("", "--driver: no part named '" + shown_name(requested) + "' (" + hint + ")");
+  const Part& part = model.parts[*index];
+  const std::vector<std::string> drivers = cycle_drivers(model);
+  if (std::find(drivers.begin(), drivers.end(), part.name) != drivers.end()) return;
+  std::string why = part.motion.kind == Motion::Kind::rotation
+                        ? "rotating but not paired with a pin-in-slot part"
+                        : std::string(motion_adjective(part.motion.kind));
+  if (part.motion.kind == Motion::Kind::translation)
+    why += " (driven, it fixes at most one of the pin-in-slot part's two coordinates, swing and slide, and those "
+           "not the driver's angle: no single motion to follow)";
+  else if (part.motion.kind == Motion::Kind::pin_slot)
+    why += " (two coordinates, swing and slide: a driver moves along one)";
+  throw ModelError("", "--driver: part '" + shown_name(requested) + "' is " + why + "; " + hint);
+}
 
 // A key of cycle.json holding a length in mm ("advance_mm"), or in units of 10^E mm when the
 // cycle ran on the model divided by 10^E ("advance_1e400mm"; length_display_exponent()).
@@ -51,6 +98,7 @@ std::string exact_mm(const Rational& value) {
 }  // namespace
 
 int run_pin_slot_cycle(const Model& model, const PinSlotCycleRequest& request) {
+  check_cycle_driver(model, request.driver);
   PinSlotCycleOptions options;
   options.driver = request.driver;
   options.steps = request.steps;

@@ -12,6 +12,7 @@
 #include <hipair/error.hpp>
 #include <hipair/kinematics.hpp>
 #include <hipair/model.hpp>
+#include <hipair/motion_words.hpp>
 #include <hipair/sliced_apart.hpp>
 #include <hipair/sliced_certificate.hpp>
 
@@ -291,6 +292,25 @@ int run(const CertifyArguments& arguments) {
     }
     return connected_written(certify_sliced_connected(model, fixed.name, from, to, context), arguments);
   }
+  // a claim the pair's kinds of motion have no certificate for: refused naming --claim and the
+  // pair, exit 2, as connected/apart above (session 75, drive75: two planar parts, or a planar
+  // or pin-slot part in a jam or free claim, stopped in the certificate with exit 3, "planar
+  // certificate: part 'block' must be fixed", "part 'peg' is not a fixed-axis part")
+  if (arguments.claim == "interference" || arguments.claim == "clearance") {
+    const Part* moving = planar ? planar : pin_slot;
+    const Part& other = moving == &a ? b : a;
+    if (moving && (planar ? other.motion.kind != Motion::Kind::fixed
+                          : other.motion.kind == Motion::Kind::pin_slot || other.motion.kind == Motion::Kind::planar))
+      throw ModelError("", "--claim " + arguments.claim + ": the pair " + a.name + ":" + b.name + " has no " +
+                               arguments.claim + " certificate: a part free in the plane (motion \"planar\") is certified "
+                               "against a fixed part, a pin-in-slot part against a fixed, rotating or translating part ('" +
+                               other.name + "' is " + motion_adjective(other.motion.kind) + "; --pair chooses the pair)");
+  }
+  if ((arguments.claim == "jam" || arguments.claim == "free") && (planar || pin_slot))
+    throw ModelError("", "--claim " + arguments.claim + ": the pair " + a.name + ":" + b.name + " has a " +
+                             motion_adjective((planar ? planar : pin_slot)->motion.kind) + " part ('" +
+                             (planar ? planar : pin_slot)->name + "'); " + arguments.claim +
+                             " claims cover fixed, rotating and translating parts (--pair chooses the pair)");
   if (planar && (arguments.claim == "interference" || arguments.claim == "clearance")) {
     // a part free in the plane: its pose (x, y, angle) from the model's initial configuration
     // or --at PART=X,Y,ANGLE; the angle is rounded to an exact half-angle tangent (exact at
