@@ -24,7 +24,7 @@ from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from exact_planar import sgn, sign_q, posed, cross, sub, dot, in_span, locate, segments_meet, parts_apart_by, shifted
-from exact_oracle import PI, two_atan, decimal_text, claim_number, bisect, altered_numbers, judged
+from exact_oracle import PI, two_atan, decimal_text, claim_number, bisect, altered_numbers, verdict_problems, BatchVerifier
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -268,6 +268,7 @@ def alterations(pair, cert):
     return out
 
 
+batch = BatchVerifier(verify)   # one hipair-verify --list per 250 altered certificates (session 75)
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
 pairs = [Lever(), Peg(), Film()]
 for case in range(n):
@@ -296,14 +297,20 @@ for case in range(n):
         findings += 1
     for what, altered in alterations(pair, cert):
         true = truth(pair, altered)
-        problems, code, text = judged(verify, os.path.join(outdir, 'c%d.json' % case), model, altered, true, counts)
-        if code != 0 and true:
-            # a true claim the verifier cannot prove (its witness within its margins): reported
-            print('note: case %d (%s %s) %s: true, rejected: %s' % (case, pair.model, kind, what, text[:200]), flush=True)
-        if os.environ.get('ALTERATIONS_VERBOSE'):
-            print('  %s %s: %s -> exit %d' % (kind, what, true, code))
-        if problems:
-            findings += 1
-            print('case %d (%s %s, %s) %s: %s: %s' % (case, pair.model, kind, ' '.join(at), what, problems, text[:200]), flush=True)
+
+        def then(code, text, case=case, pair=pair, kind=kind, at=at, what=what, true=true):
+            problems = verdict_problems(code, text, true, counts)
+            if code != 0 and true:
+                # a true claim the verifier cannot prove (its witness within its margins): reported
+                print('note: case %d (%s %s) %s: true, rejected: %s' % (case, pair.model, kind, what, text[:200]), flush=True)
+            if os.environ.get('ALTERATIONS_VERBOSE'):
+                print('  %s %s: %s -> exit %d' % (kind, what, true, code))
+            if problems:
+                batch.findings += 1
+                print('case %d (%s %s, %s) %s: %s: %s' % (case, pair.model, kind, ' '.join(at), what, problems, text[:200]), flush=True)
+            return bool(problems)
+        batch.add(os.path.join(outdir, 'c%d' % case), model, altered, then)
+batch.flush()
+findings += batch.findings
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)

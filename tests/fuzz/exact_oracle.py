@@ -105,37 +105,107 @@ def altered_numbers(rng, text):
     return [(what, v) for what, v in cands if v != f]
 
 
-def judged(verify, path, model, certificate, true, counts, unproven_claims=False):
-    """writes the certificate to `path`, runs hipair-verify on it and counts its verdict against the
-    truth (True, False or None: undecided) in `counts`; returns (problems, exit code, output): a
-    false certificate accepted, or an exit other than 0/1/3 or more than one line, is a problem;
-    with unproven_claims (a no_jam certificate, whose 'unproven', exit 3, still asserts checks 1-6:
-    the named sides apart over every leaf, false when the oracle's channel closes) exit 3 too"""
-    json.dump(certificate, open(path, 'w'))
-    r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
-    text = (r.stdout + r.stderr).strip()
+def verdict_problems(code, text, true, counts, unproven_claims=False):
+    """counts one verdict (exit code of a single run, its output) against the truth (True, False or
+    None: undecided) in `counts`; returns the problems: a false certificate accepted, or an exit
+    other than 0/1/3 or more than one line; with unproven_claims (a no_jam certificate, whose
+    'unproven', exit 3, still asserts checks 1-6: the named sides apart over every leaf, false when
+    the oracle's channel closes) exit 3 too"""
     problems = []
-    if r.returncode not in (0, 1, 3) or len(text.splitlines()) != 1:
-        problems.append('exit %d, %d lines' % (r.returncode, len(text.splitlines())))
+    if code not in (0, 1, 3) or len(text.splitlines()) != 1:
+        problems.append('exit %d, %d lines' % (code, len(text.splitlines())))
     if true is None:
         counts['undecided'] += 1
-    elif r.returncode == 0 and not true:
+    elif code == 0 and not true:
         problems.append('a FALSE certificate accepted')
-    elif r.returncode == 3 and not true and unproven_claims:
+    elif code == 3 and not true and unproven_claims:
         problems.append("a FALSE certificate's checks 1-6 passed (unproven)")
-    elif r.returncode != 0 and true:
+    elif code != 0 and true:
         counts['true rejected'] += 1
     elif true:
         counts['true accepted'] += 1
     else:
         counts['false rejected'] += 1
-    return problems, r.returncode, text
+    return problems
+
+
+def judged(verify, path, model, certificate, true, counts, unproven_claims=False):
+    """writes the certificate to `path`, runs hipair-verify on it and counts its verdict against the
+    truth (verdict_problems); returns (problems, exit code, output)"""
+    json.dump(certificate, open(path, 'w'))
+    r = subprocess.run([verify, path, model], capture_output=True, text=True, timeout=120)
+    text = (r.stdout + r.stderr).strip()
+    return verdict_problems(r.returncode, text, true, counts, unproven_claims), r.returncode, text
+
+
+VERDICT_CODES = {'valid': 0, 'invalid': 1, 'unproven': 3}
+
+
+class BatchVerifier:
+    """Session 75 (verify75): checks queued certificates with one `hipair-verify --list` process per
+    `size` of them instead of one process each (half of a single check's cost is the process's
+    start).  add() writes the certificate to a file of its own (PREFIX-N.json) and queues it;
+    flush() runs the verifier on the queue and hands each check its verdict as a single run would
+    give it: then(exit code, verdict line), which returns whether to keep the file (a case with a
+    problem; the others' files are removed).  The batch's output must be one line per certificate,
+    in order, "PATH: valid|invalid|unproven: ...", and its exit status the worst verdict's (1 if any
+    invalid, else 3 if any unproven, else 0; a finding otherwise); a missing or malformed line is
+    passed on as exit -1 with the batch's output, so that the check reports it as a problem naming
+    its case.  With VERIFY_BOTH_WAYS set (run_verify_batch_tests.sh) every certificate is also
+    checked by a run of its own, whose exit status and output must be the batch's verdict."""
+
+    def __init__(self, verify, size=250):
+        self.verify, self.size, self.queue, self.findings, self.added = verify, size, [], 0, 0
+        self.both_ways = bool(os.environ.get('VERIFY_BOTH_WAYS'))
+
+    def add(self, prefix, model, certificate, then):
+        path = '%s-%d.json' % (prefix, self.added)
+        self.added += 1
+        json.dump(certificate, open(path, 'w'))
+        self.queue.append((path, model, then))
+        if len(self.queue) >= self.size:
+            self.flush()
+
+    def flush(self):
+        if not self.queue:
+            return
+        queue, self.queue = self.queue, []
+        listing = queue[0][0] + '.list'
+        with open(listing, 'w') as f:
+            f.writelines('%s\t%s\n' % (path, model) for path, model, _ in queue)
+        r = subprocess.run([self.verify, '--list', listing], capture_output=True, text=True, timeout=120 * len(queue))
+        lines = r.stdout.split('\n')
+        if lines and lines[-1] == '':
+            lines.pop()
+        codes = []
+        for i, (path, model, then) in enumerate(queue):
+            code, text = -1, 'batch exit %d, %d lines for %d certificates, stderr %r' % (
+                r.returncode, len(lines), len(queue), r.stderr.strip()[:200])
+            if len(lines) == len(queue) and lines[i].startswith(path + ': '):
+                text = lines[i][len(path) + 2:]
+                code = VERDICT_CODES.get(text.split(':', 1)[0], -1)
+            codes.append(code)
+            if self.both_ways:
+                one = subprocess.run([self.verify, path, model], capture_output=True, text=True, timeout=120)
+                if (one.returncode, (one.stdout + one.stderr).strip()) != (code, text):
+                    print('%s: a single run says exit %d %r, the batch exit %d %r' % (
+                        path, one.returncode, (one.stdout + one.stderr).strip()[:200], code, text[:200]), flush=True)
+                    self.findings += 1
+            if not then(code, text):
+                os.remove(path)
+        worst = 1 if 1 in codes else 3 if 3 in codes else 0
+        if -1 not in codes and r.returncode != worst:
+            print('hipair-verify --list %s: exit %d, the verdicts say %d' % (listing, r.returncode, worst), flush=True)
+            self.findings += 1
+        os.remove(listing)
 
 
 def judged_certificate(verify, path, model, cert, label, truth, statement, alterations, counts, unproven_claims=False):
-    """counts one produced certificate (true by the oracle, its statement restated alike) and every
-    alteration of it judged by judged(); prints each finding (prefixed with label) and, with
-    ALTERATIONS_VERBOSE set, every verdict; returns the number of findings"""
+    """counts one produced certificate (true by the oracle, its statement restated alike) and queues
+    every alteration of it on `verify` (a BatchVerifier), judged at its flush by verdict_problems;
+    prints each finding (prefixed with label) and, with ALTERATIONS_VERBOSE set, every verdict;
+    returns the number of findings found now (those of the alterations are added to
+    verify.findings at the flush)"""
     findings = 0
     counts['base'] += 1
     if truth(cert) is not True:
@@ -146,10 +216,14 @@ def judged_certificate(verify, path, model, cert, label, truth, statement, alter
         findings += 1
     for what, altered in alterations(cert):
         true = truth(altered)
-        problems, code, text = judged(verify, path, model, altered, true, counts, unproven_claims)
-        if os.environ.get('ALTERATIONS_VERBOSE'):
-            print('  %s: %s -> exit %d %s' % (what, true, code, text[:150]))
-        if problems:
-            findings += 1
-            print('%s %s: %s: %s' % (label, what, problems, text[:200]), flush=True)
+
+        def then(code, text, what=what, true=true):
+            problems = verdict_problems(code, text, true, counts, unproven_claims)
+            if os.environ.get('ALTERATIONS_VERBOSE'):
+                print('  %s: %s -> exit %d %s' % (what, true, code, text[:150]))
+            if problems:
+                verify.findings += 1
+                print('%s %s: %s: %s' % (label, what, problems, text[:200]), flush=True)
+            return bool(problems)
+        verify.add(path[:-len('.json')] if path.endswith('.json') else path, model, altered, then)
     return findings

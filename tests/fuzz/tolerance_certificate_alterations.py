@@ -81,7 +81,7 @@ import copy, json, os, random, subprocess, sys
 from fractions import Fraction as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exact_oracle import D, sin_cos, compare, dec, bisect, altered_numbers, judged_certificate
+from exact_oracle import D, sin_cos, compare, dec, bisect, altered_numbers, judged_certificate, BatchVerifier
 
 hipair, verify, repo, outdir, seed, n = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]), int(sys.argv[6])
 rng = random.Random(seed)
@@ -435,6 +435,7 @@ def generated():
             return ['--certify-scale', str(scale), '--range', '%s:%s' % (t0, t1), '--follower-range', '%s:%s' % (u0, u1)]
 
 
+batch = BatchVerifier(verify)   # one hipair-verify --list per 250 altered certificates (session 75)
 findings, counts = 0, {'true accepted': 0, 'true rejected': 0, 'false rejected': 0, 'undecided': 0, 'base': 0}
 # kind: (model, pair, certify option, certificate file, generator, truth, alterations)
 KINDS = {'stop': (model, 'lever:stop', '--certify-interference', 'interference-certificate.json', generated, truth, stop_alterations),
@@ -461,8 +462,10 @@ for case in range(n):
         findings += 1
         continue
     cert = json.load(open(os.path.join(out, name)))
-    findings += judged_certificate(verify, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
+    findings += judged_certificate(batch, os.path.join(outdir, 'c%d.json' % case), pair_model, cert,
                                    'case %d (%s, %s)' % (case, kind, ' '.join(args)), pair_truth, statement, pair_alterations, counts,
                                    option == '--certify')
+batch.flush()
+findings += batch.findings
 print('%s, %d findings' % (counts, findings))
 sys.exit(1 if findings else 0)
