@@ -1221,6 +1221,67 @@ struct Simulation::Impl {
     return G;
   }
 
+  // A crossing of a 1-D pair decided from its exact C-space along the motion (docs/simulation.md,
+  // "Session 75 (graze75)"): free or touching on both sides of the vertex (a corner the motion
+  // only grazes, a flush edge it slides along) is a graze, left out of the impact problem;
+  // blocked ahead is an impact, and where the front feature pair's row does not approach (a
+  // corner meeting a corner: that pair's normal, at its edge's end, is not the blocked side's),
+  // the row is the crossing's feature pair whose normal approaches fastest at the configuration.
+  void line_row(ContactRow& r, const MotionCrossing& c, const MotionPath& path) {
+    const simulation::VertexPass pass = simulation::line_pass(*spaces[r.pair], c, path);
+    if (pass == simulation::VertexPass::graze) {
+      r.graze = true;
+      return;
+    }
+    if (pass == simulation::VertexPass::slides) {
+      // no impulse can act there, but the pair would stay in contact space along the touching
+      // cell, which the stepping (a free start for every query) does not follow: refused
+      // rather than struck (before: an impact that threw the part back)
+      std::ostringstream out;
+      out << "simulation: at t = " << published_time(t) << " " << time_unit << " " << pair_name(r.pair)
+          << " enters a touching cell of its C-space (the parts slide flush at zero clearance, no impulse acts): "
+             "the simulator cannot follow a motion along contact space without a contact force";
+      publish();   // the state there
+      throw NumericError(out.str());
+    }
+    if (pass != simulation::VertexPass::enters) return;
+    r.graze = false;
+    auto speed = [&](const Vec& G) {
+      double s = 0;
+      for (std::size_t i = 0; i < dofs.size(); ++i) s += G[i] * v[i];
+      return s;
+    };
+    if (speed(r.g) < 0) return;
+    const CSpace& space = *spaces[r.pair];
+    const int d = part_dof[*model.find_part(space.x_part())];
+    const PartCoordinate x = coordinate(d, q);
+    double best = 0;
+    for (FeatureId f : c.features) {
+      std::optional<Contact> frame;
+      try {
+        frame = space.contact_frame(f, x);
+      } catch (const GeometryError&) {
+        continue;
+      }
+      if (!frame) continue;
+      MotionCrossing one = c;
+      one.features = {f};
+      one.point = frame->point_range;
+      one.normal = frame->normal;
+      const Vec G = physical_row(r.pair, one, q);
+      const double s = speed(G);
+      if (s < best) {
+        best = s;
+        r.g = G;
+        r.hit.point = one.point;
+        r.hit.normal = one.normal;
+        r.hit.features = {f};
+        r.hit.features.insert(r.hit.features.end(), c.features.begin(), c.features.end());
+        r.hit.features.erase(std::find(r.hit.features.begin() + 1, r.hit.features.end(), f));
+      }
+    }
+  }
+
   std::vector<std::string> labels(std::size_t pair, const std::vector<FeatureId>& features) const {
     std::vector<std::string> out;
     for (FeatureId f : features) out.push_back(spaces[pair]->feature_pair(f).label);
@@ -3116,6 +3177,7 @@ struct Simulation::Impl {
         r.features = c.features;
         r.graze = c.grazing && simulation::vertex_pass(*spaces[pair], c, step_motions_[pair]) ==
                                    simulation::VertexPass::graze;
+        if (spaces[pair]->dimension() == 1) line_row(r, c, step_motions_[pair]);
         rows.push_back(r);
       }
       project_active();

@@ -436,6 +436,63 @@ static VertexPass vertex_pass_algebraic(const CSpace& space, const MotionCrossin
   return VertexPass::unknown;
 }
 
+// Session 75 (graze75): a 1-D space. The crossing's vertex alone in a window around the query's
+// chart point; the path's chart velocity there of certified sign s; the cell ahead located
+// exactly at a rational point between the vertex and the window's end on side s (no other vertex
+// there), the cell behind likewise on side -s.
+VertexPass line_pass(const CSpace& space, const MotionCrossing& crossing, const MotionPath& path) {
+  if (space.dimension() != 1 || crossing.status != CrossingStatus::crossing) return VertexPass::unknown;
+  if (crossing.chart >= space.charts().size()) return VertexPass::unknown;
+  const CSpaceChart& chart = space.charts()[crossing.chart];
+  Span bx;
+  if (!span_of(crossing.chart_point[0], bx)) return VertexPass::unknown;
+  Rational reach = 2 * (bx.hi - bx.lo);
+  if (reach == 0) reach = 1;
+  std::optional<VertexEnclosure> found;
+  // the window shrinks (by 4) while it holds more than one vertex, each refined to it
+  for (int attempt = 0; attempt < 40 && !found; ++attempt, reach /= 4) {
+    const Span w{bx.lo - reach, bx.hi + reach};
+    std::size_t near = 0;
+    std::optional<VertexEnclosure> one;
+    bool undecided = false;
+    for (std::size_t i = 0; i < space.vertices().size(); ++i) {
+      if (space.vertices()[i].chart != crossing.chart) continue;
+      VertexEnclosure at(space, i);
+      if (!at.ok()) return VertexPass::unknown;
+      for (int k = 0; k < 16 && meets(at.x(), w) && !(at.x().lo > w.lo && at.x().hi < w.hi); ++k)
+        if (!at.refine(4)) return VertexPass::unknown;
+      if (!meets(at.x(), w)) continue;
+      if (!(at.x().lo > w.lo && at.x().hi < w.hi)) undecided = true;
+      ++near;
+      one.emplace(at);
+    }
+    if (near == 0) return VertexPass::unknown;
+    if (near == 1 && !undecided) {
+      found.emplace(*one);
+      const Span& x = found->x();
+      const Span u{crossing.u_lower, crossing.u_upper};
+      int s = 0;
+      for (int stage = 0; stage < 5 && s == 0; ++stage) {
+        if (stage > 0 && !found->refine(16)) return VertexPass::unknown;
+        const std::optional<Span> dx = chart_velocity(path.x, chart.x_kind, chart.x_half_turn, u, found->x());
+        if (!dx) return VertexPass::unknown;
+        s = sign_of(*dx);
+      }
+      if (s == 0) return VertexPass::unknown;
+      // the motion comes from the query's starting free cell (certified before u_lower); the
+      // cell ahead decides
+      Rational ahead = s > 0 ? (x.hi + w.hi) / 2 : (x.lo + w.lo) / 2;
+      ahead.canonicalize();
+      const Location a = space.locate(ChartPoint{crossing.chart, ahead, 0});
+      if (a.kind == Location::Kind::blocked) return VertexPass::enters;
+      if (a.kind == Location::Kind::free) return VertexPass::graze;
+      if (a.kind == Location::Kind::touching) return VertexPass::slides;
+      return VertexPass::unknown;
+    }
+  }
+  return VertexPass::unknown;
+}
+
 VertexPass vertex_pass(const CSpace& space, const MotionCrossing& crossing, const MotionPath& path) {
   if (space.dimension() != 2 || crossing.status != CrossingStatus::crossing || !crossing.grazing) return VertexPass::unknown;
   const VertexPass exact = vertex_pass_rational(space, crossing, path);

@@ -13,7 +13,8 @@ namespace hipair::simulation {
 enum class VertexPass {
   unknown,   // not decided here: the old rule
   graze,     // the motion passes through the vertex from a free sector into a free sector
-  enters     // the motion's direction at the vertex points into a blocked sector
+  enters,    // the motion's direction at the vertex points into a blocked sector
+  slides     // 1-D (line_pass): the motion enters a touching cell (flush at zero clearance)
 };
 
 // Decided for a grazing crossing (`crossing.grazing`) of a 2-D space, at the one vertex of the
@@ -30,5 +31,13 @@ enum class VertexPass {
 // A direction along an edge (the motion slides on it), tangent edges, a vertical tangent, a
 // vertex on a chart boundary, several or no vertices near: unknown (the old rule).
 VertexPass vertex_pass(const CSpace& space, const MotionCrossing& crossing, const MotionPath& path);
+
+// Session 75 (graze75): a crossing of a 1-D space (grazing or not), at the one vertex near the
+// query's chart point, exactly: the path's chart velocity of certified sign there, the cells on
+// ahead of the vertex by exact point location at a rational point with no other vertex between
+// (the motion comes from the query's free starting cell). Ahead blocked: `enters` (an impact);
+// free: `graze`; a touching cell (the parts touch along the motion, no normal along it): `slides`;
+// else (outside the chart, undecided) unknown.
+VertexPass line_pass(const CSpace& space, const MotionCrossing& crossing, const MotionPath& path);
 
 }  // namespace hipair::simulation
