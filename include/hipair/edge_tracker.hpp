@@ -52,9 +52,7 @@ class EdgeTracker {
 };
 
 /// y, y', y'' of the non-vertical edge `edge` at the double abscissa `x` (chart coordinates),
-/// certified enclosures in doubles; moves `tracker` to x. An answer is a function of the edge
-/// and x alone, the same bits whatever the tracker's history (session 75: the enclosures on the
-/// canonical grid cell of the edge's ordinate at x; CSpaceEdgeTrackerHistory.*). nullopt when the filter cannot
+/// certified enclosures in doubles; moves `tracker` to x. nullopt when the filter cannot
 /// certify them (then use CSpace::derivatives at the rational x, which decides exactly and
 /// throws where the derivatives do not exist).
 std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId edge, double x, EdgeTracker& tracker);

@@ -788,9 +788,6 @@ struct TrackerData {
   bool terms = false;                                 // cspace::partial_terms() when the tracker was placed
   double x_min = 0, x_max = 0;   // an abscissa in (x_min, x_max) is strictly inside the edge's extent
   bool x_rotation = false, y_rotation = false;
-  // the exact support polynomial (the chart's, which outlives the tracker data: both are kept
-  // per space), for the exact signs of canonical_cell
-  const cspace::IntegerPolynomial2* support = nullptr;
 };
 
 // Certified sign of F at a double point: -1, +1, or 0 when rounding cannot decide.
@@ -821,103 +818,9 @@ std::optional<EdgeSlopes> slopes_at(const TrackerData& data, double x, const KIn
                     range_of(part.second)};
 }
 
-// Step 3b of slopes_from (session 75): the ordinate's canonical cell at x, a function of the
-// edge's data, x and the edge's root y* at x alone — not of the certified bracket [lo, hi] that
-// found y*, which depends on where the tracker came from (the Newton start of step 1, the
-// bracket's width in step 2). The cells of level j are [m 2^j, (m + 1) 2^j] (m an integer), for
-// j from E - 50 to E - 23 where E is the binary exponent of max(1, |y*|) (at the first level a
-// cell is 2 to 4 units in the last place of y*, at the last about 1e-7 of y*: the widths step
-// 2's bracket tries). The answer is y*'s cell at the first level where both of its ends have
-// certified signs of F(x, .) (certified_sign: s_lo, the sign just below y*, at its lower end and
-// -s_lo at its upper one), or nullopt. E, the cell holding y* at a level and the signs at its
-// ends are facts about y* and the grid, so the answer is the same bits for every bracket of y*.
-// Requires: [lo, hi] holds y* and no other root of F(x, .) (step 3), certified signs s_lo at lo
-// and -s_lo at hi. The cell's ends carry opposite certified signs and it holds y* (located
-// below); step 4 checks F_y on {x} x cell (then y* is its only root).
-// An exact sign (sign_at on the support polynomial) only where the bracket meets a power of two
-// whose certified sign is 0 (then it decides E).
-std::optional<KInterval> canonical_cell(const TrackerData& data, double x, double lo, double hi, int s_lo) {
-  // the sign of F(x, g), g inside (lo, hi): certified, else exact
-  auto sign = [&](double g) {
-    const int s = certified_sign(data, x, g);
-    return s != 0 ? s : cspace::algebra::sign_at(*data.support, Rational(x), Rational(g));
-  };
-  auto exponent = [](double v) { return std::ilogb(std::max(1.0, std::abs(v))); };
-  int e = exponent(lo);
-  if (const int e_hi = exponent(hi); e_hi != e) {
-    // [lo, hi] (narrower than its ends' magnitudes) meets one power of two b = +-2^k, k >= 1
-    const double b = hi > 0 ? std::ldexp(1.0, e_hi) : -std::ldexp(1.0, e);
-    const int s = sign(b);
-    e = s == 0 ? exponent(b) : s == s_lo ? e_hi : e;
-  }
-  int j = e - 50;
-  // y* lies strictly between the grid points p 2^j and q 2^j, and every grid point strictly
-  // between them has certified sign 0: where q - p >= 2, one end of y*'s cell at this level is
-  // such a point, and the level is not valid; at the next level the indices halve and the
-  // points strictly between are some of these
-  double w = std::ldexp(1.0, j);
-  double p = std::floor(lo / w), q = std::ceil(hi / w);   // exact: w is a power of two
-  auto at = [&](double index) { return certified_sign(data, x, index * w); };
-  const int unknown = 2;
-  int sp = unknown, sq = unknown;   // the certified signs at p w and q w, where known
-  // (every point strictly between p and q lies in (lo, hi), where a certified sign s_lo puts
-  // y* above the point and -s_lo below it)
-  while (q - p > 1) {
-    const double m = std::floor(0.5 * (p + q));
-    const int s = at(m);
-    if (s == s_lo) {
-      p = m;
-      sp = s;
-      continue;
-    }
-    if (s == -s_lo) {
-      q = m;
-      sq = s;
-      continue;
-    }
-    // m within rounding of y*: the nearest points with a certified sign on either side
-    double below = m - 1, above = m + 1;
-    int s_below = 0, s_above = 0;
-    while (below > p && (s_below = at(below)) == 0) --below;
-    while (above < q && (s_above = at(above)) == 0) ++above;
-    if (below > p && s_below == -s_lo) {   // y* below `below`
-      q = below;
-      sq = s_below;
-      continue;
-    }
-    if (above < q && s_above == s_lo) {    // y* above `above`
-      p = above;
-      sp = s_above;
-      continue;
-    }
-    if (below > p) sp = s_below;
-    if (above < q) sq = s_above;
-    p = below;
-    q = above;
-    break;
-  }
-  for (; j <= e - 23; ++j, w *= 2) {
-    if (q - p == 1) {
-      if (sp == unknown) sp = at(p);
-      if (sp == s_lo) {
-        if (sq == unknown) sq = at(q);
-        if (sq == -s_lo) return KInterval(p * w, q * w);
-      }
-    }
-    // the next level's indices (a point that stays a grid point keeps its sign)
-    if (2 * std::floor(0.5 * p) != p) sp = unknown;
-    if (2 * std::floor(0.5 * q) != q) sq = unknown;
-    p = std::floor(0.5 * p);
-    q = std::ceil(0.5 * q);
-  }
-  return std::nullopt;
-}
-
 // The filter proper (track_derivatives): y, y', y'' at x from the certified point (x0, Y0) of
-// the same edge, or nullopt. The answer is a function of the edge's data and x alone wherever it
-// is not nullopt: the slopes on the canonical cell of the edge's root at x (step 3b), whatever
-// (x0, Y0) led to it. `memo` (slopes_memo.hpp): step 4's last answer, taken again for the same
-// x and cell (bit patterns).
+// the same edge, or nullopt. `memo` (slopes_memo.hpp): step 4's last answer, taken again for the
+// same x and Y1 (bit patterns).
 template <class Memo>
 std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double x0, CertifiedRange y0, Memo* memo) {
   namespace detail = kernels::interval_detail;
@@ -937,14 +840,12 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
   const double scale = std::max(1.0, std::abs(y));
   KInterval y1;
   bool bracketed = false;
-  int sign_below = 0;
   for (double delta = 4e-16 * scale; delta < 1e-7 * scale && !bracketed; delta *= 8) {
     double lo = y - delta, hi = y + delta;
     int s_lo = certified_sign(data, x, lo), s_hi = certified_sign(data, x, hi);
     if (s_lo != 0 && s_hi != 0 && s_lo != s_hi) {
       y1 = KInterval(lo, hi);
       bracketed = true;
-      sign_below = s_lo;
     }
   }
   if (!bracketed) return std::nullopt;
@@ -977,12 +878,6 @@ std::optional<EdgeSlopes> slopes_from(const TrackerData& data, double x, double 
     margin = std::max(4 * margin, 2 * reach);
   }
   if (!certified) return std::nullopt;
-  // 3b. the canonical cell of the root in Y1 (its only root there, the edge's), in place of Y1
-  {
-    const std::optional<KInterval> cell = canonical_cell(data, x, y1.lo, y1.hi, sign_below);
-    if (!cell) return std::nullopt;
-    y1 = *cell;
-  }
   // 4. the slopes on {x} x Y1
   if (!memo || !cspace::slopes_memo()) return slopes_at(data, x, y1);
   const auto bx = std::bit_cast<std::uint64_t>(x), blo = std::bit_cast<std::uint64_t>(y1.lo),
@@ -1042,7 +937,6 @@ std::shared_ptr<const TrackerData> tracker_data_of(const ChartData& chart, const
   }
   data->x_rotation = chart.x_axis.kind != cspace::ChartAxis::Kind::translation;
   data->y_rotation = chart.y_axis.kind != cspace::ChartAxis::Kind::translation;
-  data->support = &raw_edge.support;
   return data;
 }
 
@@ -1068,7 +962,6 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
   const cspace::raw::Edge& raw_edge = chart.arrangement.edges[e];
   if (raw_edge.vertical) return std::nullopt;
 
-  bool placed = false;   // the tracker's point is the exact ordinate at x
   if (tracker.space_ != &impl || tracker.edge_ != id || !tracker.data_) {
     // place the tracker: the edge's polynomial in doubles, and one exact point of the edge.
     // The polynomial's forms and the extent are the edge's alone: made once per edge on this
@@ -1089,25 +982,13 @@ std::optional<EdgeSlopes> track_derivatives(const CSpace& space, EdgeId id, doub
     tracker.y_ = exact_ordinate(space, id.index(), x);
     tracker.data_ = std::move(made);
     tracker.memo_ = EdgeTracker::Memo{};   // its answers were of the edge placed before
-    placed = true;
   }
   const TrackerData& data = *static_cast<const TrackerData*>(tracker.data_.get());
   if (!(x > data.x_min && x < data.x_max)) return std::nullopt;
-  // the answer at x is a function of the edge and x alone (slopes_from, step 3b): the memo's,
-  // made at the same x on this placement, without steps 1-3 again
-  if (cspace::slopes_memo() && tracker.memo_.set && tracker.memo_.x == std::bit_cast<std::uint64_t>(x)) {
-    ++cspace::slopes_memo_hits();
-    if (tracker.memo_.slopes) {
-      tracker.x_ = x;
-      tracker.y_ = tracker.memo_.slopes->y;
-    }
-    return tracker.memo_.slopes;
-  }
   std::optional<EdgeSlopes> result = slopes_from(data, x, tracker.x_, tracker.y_, &tracker.memo_);
-  if (!result && !placed) {
-    // a jump the a-priori box cannot bridge (or a start at x that a fresh tracker would not
-    // have): one exact point of the edge at x, and the filter from there, as a fresh tracker
-    // placed at x answers
+  if (!result && x != tracker.x_) {
+    // a jump the a-priori box cannot bridge: one exact point of the edge at x, and the filter
+    // from there
     tracker.x_ = x;
     tracker.y_ = exact_ordinate(space, id.index(), x);
     result = slopes_from(data, x, x, tracker.y_, &tracker.memo_);

@@ -33,7 +33,6 @@
 #include "simulation/held_friction.hpp"
 #include "simulation/jam.hpp"
 #include "simulation/kept_scratch.hpp"
-#include "simulation/probe_rows.hpp"
 #include "simulation/lcp.hpp"
 #include "simulation/initial_energy.hpp"
 #include "simulation/motion_datum.hpp"
@@ -765,16 +764,8 @@ struct Simulation::Impl {
   // src/simulation/lcp.hpp); the contacts whose force is zero and whose normal acceleration is
   // positive (they would separate) are listed in `lifting`, and the accelerations are those of
   // the LCP's solution.
-  // `rows` (the cut search's probes): the held contacts' rows at (qs, vs), row() k's gradient in
-  // rows->G[k n .. k n + n) and its bias in rows->h[k], made by the caller at this state; row()
-  // is a function of the contact and the state alone (track_derivatives answers the same bits
-  // whatever its tracker's history: session 75), so they are the rows made here otherwise.
-  struct HeldRows {
-    Vec G, h;
-  };
   bool accelerations(double time, const Vec& qs, const Vec& vs, Vec& acc, Vec& lambda,
-                     std::vector<std::size_t>* lifting = nullptr, ContactForces* out = nullptr,
-                     const HeldRows* rows = nullptr) const {
+                     std::vector<std::size_t>* lifting = nullptr, ContactForces* out = nullptr) const {
     std::optional<Scratch> fresh;   // (made only with the switch off: its destructor is not free)
     Scratch& w = simulation::kept_scratch() ? scratch_ : fresh.emplace();
     Vec& Q = w.Q;
@@ -797,11 +788,6 @@ struct Simulation::Impl {
     h.resize(static_cast<Eigen::Index>(m));
     Vec& row_k = w.row;
     for (std::size_t k = 0; k < m; ++k) {
-      if (rows) {
-        for (std::size_t i = 0; i < n; ++i) G(k, i) = rows->G[k * n + i];
-        h(k) = rows->h[k];
-        continue;
-      }
       double hk, gk;
       if (!row(active[k], qs, vs, row_k, hk, gk)) return false;
       for (std::size_t i = 0; i < n; ++i) G(k, i) = row_k[i];
@@ -2982,7 +2968,6 @@ struct Simulation::Impl {
     // (bilateral) forces can differ by round-off where a contact is at its limit, and a change
     // present at u = 0 would cut every step there)
     std::vector<bool> coulomb_ignored;
-    HeldRows probe_rows;   // a probe's held rows, handed to its accelerations (the same rows)
     // (each probe also gives every held condition's continuous indicator — each edge's room,
     // each multiplier, each Coulomb condition's slack — which only proposes the cut search's
     // next probe; the returned kind decides. Indicator k: contact k's room; n + k: its
@@ -3007,9 +2992,6 @@ struct Simulation::Impl {
           double ad;
           driver_law(dofs[i], path.t0 + u * path.h, qs[i], vs[i], ad);
         }
-      const std::size_t dof_count = dofs.size();
-      probe_rows.G.resize(n * dof_count);
-      probe_rows.h.resize(n);
       for (std::size_t k = 0; k < n; ++k) {
         Vec G;
         double h, gval;
@@ -3020,12 +3002,9 @@ struct Simulation::Impl {
           return found(2, k, k);
         }
         p.margins[k] = room;
-        std::copy(G.begin(), G.end(), probe_rows.G.begin() + static_cast<std::ptrdiff_t>(k * dof_count));
-        probe_rows.h[k] = h;
       }
       ContactForces cf;
-      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf,
-                         simulation::probe_rows() ? &probe_rows : nullptr))
+      if (!accelerations(path.t0 + u * path.h, qs, vs, acc, lambda, nullptr, &cf))
         return found(2, 0, 3 * n);   // (no contact named, as before)
       for (std::size_t k = 0; k < lambda.size(); ++k) {
         if (k < n) p.margins[n + k] = lambda[k];
