@@ -1679,14 +1679,24 @@ class QuadraticBuilder {
 
   // ---------------------------------------------------------------- export
 
-  // Certified y bounds isolating the point's y among the roots of its curve's fibre.
+  /// Finest x width (2^-bits) tried by y_bounds before the chart is left to CGAL's traits.
+  static constexpr int y_bounds_max_bits = 16384;
+
+  // Certified y bounds isolating the point's y among the roots of its curve's fibre: double
+  // intervals while x's refinement still narrows its double enclosure, then multiple
+  // precision (hostile75 H1: two branches 1e-80 apart are never disjoint in doubles, whose
+  // width is about 2^-52 of |y|; the chart then fell to CGAL's algebraic traits, 100x slower).
   void y_bounds(const Point& p, int branches, Rational& lower, Rational& upper, int bits) const {
     const PointRep& r = *p.rep;
-    for (;; bits *= 2) {
-      if (bits > 1600) throw NotApplicable{"y bounds"};
+    Interval previous{1, 0};
+    for (; bits <= 1600; bits *= 2) {
       Real x = r.entry->x;
       algebra::refine_dyadically(x, Rational(1, mpz_class(1) << bits));
       Interval xi = enclose(x);
+      // the double enclosure of y depends on x only through xi: once refining x leaves xi
+      // unchanged, every finer level fails as this one did
+      if (xi.lo == previous.lo && xi.hi == previous.hi) break;
+      previous = xi;
       Interval yi = traits_.y_interval(r.y, xi);
       if (!std::isfinite(yi.lo) || !std::isfinite(yi.hi)) continue;
       if (branches == 2) {
@@ -1697,6 +1707,34 @@ class QuadraticBuilder {
       upper = Rational(yi.hi);
       return;
     }
+    mp_y_bounds(r, branches, lower, upper, bits);
+  }
+
+  // y_bounds in multiple precision: x refined to 2^-bits, arithmetic at bits + 64 bits,
+  // doubling until the branch's enclosure is disjoint from the other branch's (the gap
+  // sqrt(disc(x)) / |a(x)| > 0 is met at a finite level); NotApplicable past the limit.
+  void mp_y_bounds(const PointRep& r, int branches, Rational& lower, Rational& upper, int bits) const {
+    for (; bits <= y_bounds_max_bits; bits *= 2) {
+      const mpfr_prec_t prec = bits + 64;
+      Real x = r.entry->x;
+      algebra::refine_dyadically(x, Rational(1, mpz_class(1) << bits));
+      Mp xi(prec), yi(prec);
+      if (x.exact)
+        mpfi_set_q(xi.get(), x.lower.get_mpq_t());
+      else
+        mpfi_interv_q(xi.get(), x.lower.get_mpq_t(), x.upper.get_mpq_t());
+      if (!traits_.mp_y(r.y, xi.get(), prec, yi.get())) continue;
+      if (branches == 2) {
+        Mp other(prec);
+        if (!traits_.mp_y(YExpr{r.y.support, 0, -r.y.s}, xi.get(), prec, other.get())) continue;
+        if (mpfr_cmp(&yi.get()->right, &other.get()->left) >= 0 && mpfr_cmp(&other.get()->right, &yi.get()->left) >= 0)
+          continue;
+      }
+      mpfr_get_q(lower.get_mpq_t(), &yi.get()->left);
+      mpfr_get_q(upper.get_mpq_t(), &yi.get()->right);
+      return;
+    }
+    throw NotApplicable{"y bounds"};
   }
 
   void fill_vertex(const Point& p, Vertex& out) const {
@@ -1731,7 +1769,7 @@ class QuadraticBuilder {
     Vertex& a = result_.vertices[low_id];
     Vertex& b = result_.vertices[high_id];
     for (int bits = 104; !(a.y_upper < b.y_lower); bits *= 2) {
-      if (bits > 1600) throw NotApplicable{"y bounds"};
+      if (bits > y_bounds_max_bits) throw NotApplicable{"y bounds"};
       for (auto [point, vertex] : {std::pair{&low, &a}, std::pair{&high, &b}}) {
         Rational lower, upper;
         if (vertex->y_exact) {
