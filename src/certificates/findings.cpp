@@ -23,7 +23,7 @@ Rational rational_of(double value) {
 }
 
 // The piece tests (certify_detail::certify_found_jam_within) a jam's trap search may make.
-constexpr std::size_t jam_search_tests = 4000;
+constexpr std::size_t jam_search_tests = 2000;
 
 bool moves(const Part& part) { return part.motion.kind != Motion::Kind::fixed; }
 bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
