@@ -22,6 +22,9 @@ Rational rational_of(double value) {
   return parse_rational(text);
 }
 
+// The piece tests (certify_detail::certify_found_jam_within) a jam's trap search may make.
+constexpr std::size_t jam_search_tests = 2000;
+
 bool moves(const Part& part) { return part.motion.kind != Motion::Kind::fixed; }
 bool rotates(const Part& part) { return part.motion.kind == Motion::Kind::rotation; }
 
@@ -164,10 +167,39 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
     const Part& driver = model.parts.at(*model.find_part(result.driver));
     double margin = rotates(driver) ? 0.02 : 0.2;
     double at = result.direction > 0 ? jam.at.coordinate.lower : jam.at.coordinate.upper;
-    double from = result.direction > 0 ? std::max(result.start, at - margin) : std::min(result.start, at + margin);
-    Rational start = rational_of(from), step = rational_of(margin / 20);
+    // The search starts at a configuration the analysis sampled (the last sample at least `margin`
+    // before the jam: its driver and follower positions belong together), else at the range's
+    // start, and its driver grid puts the located jam half a step past a grid point. Until
+    // session 75 it started `margin` before the jam with steps of margin / 20: a grid point on the
+    // jam itself, so the trap's cut was the closing, where the parts barely overlap, and its cover
+    // took pieces of 1e-6 rad, hundreds of thousands of them (hostile75 M2: > 110 s where the
+    // analysis takes 0.2 s); and the follower's position was the sample's before the start, which
+    // a fast-driven follower had left (the parts overlapped at the start).
+    double from = result.start;
+    for (const KinematicSample& sample : result.samples)
+      if ((sample.driver - result.start) * result.direction >= 0 && (at - sample.driver) * result.direction >= margin)
+        from = sample.driver;
+    const double span = (at - from) * result.direction, grid = margin / 20;
+    Rational start = rational_of(from), step = rational_of(grid), travel = Rational(3) * rational_of(margin);
+    if (span > 0) {
+      step = rational_of(span / (std::max(0.0, std::round(span / grid - 0.5)) + 0.5));
+      travel = rational_of(span + 2 * margin);
+    }
+    // The covers of the traps found are bounded together: jam_search_tests piece tests (about a
+    // millisecond each), where a certified jam takes tens to a few thousand (the cut of a trap at
+    // the closing itself took over 10^5, session 75)
+    std::size_t tests = jam_search_tests;
+    // The follower's free range closes (a zero-backlash mesh): its channel is too narrow for the
+    // search's follower grid, and the analysis's samples put the search's start into the parts
+    // (session 53). A trap around the closing, from the last samples before it where the
+    // follower has play (the middle of its free interval, checked exactly as the start), is tried
+    // first since session 75 (its own bound: 300 marches): the grid search's trap cost 13 s of
+    // CPU on 18 x 16 zero-backlash gears driven backwards (2000 piece tests of many features
+    // each) where the closing's took 0.5 s.
+    if (jam.part != driver.name) finding.certificate = certify_closing(model, result, jam, driver, context);
     // Candidate pairs: the driver with the jammed follower, or (driver jammed) with a fixed part.
     for (const PairSpec& pair : model.pairs) {
+      if (finding.certificate) break;
       const Part &a = model.parts[pair.first], &b = model.parts[pair.second];
       if (a.name != driver.name && b.name != driver.name) continue;
       const Part& other = a.name == driver.name ? b : a;
@@ -177,8 +209,15 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
       if (!position) continue;
       try {
         auto query = find_jam(model, a.name, b.name, driver.name, start, rational_of(*position), result.direction, step,
-                              Rational(3) * rational_of(margin));
-        if (query) finding.certificate = certify_found_jam(model, a.name, b.name, *query, step, context);
+                              travel);
+        if (query) {
+          finding.certificate = certify_detail::certify_found_jam_within(model, a.name, b.name, *query, step, context, tests);
+          if (!finding.certificate && tests == 0)
+            finding.note = "the trap the jam search found (driver " + to_decimal_string(query->trap.driver.lo) + " .. " +
+                           to_decimal_string(query->trap.driver.hi) + (rotates(driver) ? " rad" : " mm") +
+                           ") was not covered within " + std::to_string(jam_search_tests) +
+                           " piece tests, the bound of the search";
+        }
       } catch (const std::bad_alloc&) {
         throw;
       } catch (const std::exception& error) {
@@ -193,13 +232,6 @@ std::vector<CertifiedFinding> certify_kinematic_findings(const Model& model, con
                        " (from the analysis's samples, not the initial configuration): " + error.what();
       }
       if (finding.certificate) break;
-    }
-    // The follower's free range closes (a zero-backlash mesh): its channel is too narrow for the
-    // search's follower grid, and the analysis's samples put the search's start into the parts
-    // (session 53). A trap around the closing instead, from the last samples before it where the
-    // follower has play (the middle of its free interval, checked exactly as the start).
-    if (!finding.certificate && jam.part != driver.name) {
-      if ((finding.certificate = certify_closing(model, result, jam, driver, context))) finding.note.clear();
     }
     if (!finding.certificate && finding.note.empty())
       finding.note = "no pair geometrically traps the motion near the jam: the stop comes from the quasi-static "

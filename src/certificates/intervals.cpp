@@ -272,11 +272,16 @@ std::optional<CrossingWitness> blocking_crossing(const PairRoles& r, const Ratio
 // `blocked(piece)` gives the piece's witness (its range is set here).
 bool cover(const RationalInterval& range, std::vector<BlockedPiece>& pieces, std::size_t max_pieces,
            const std::function<std::optional<BlockedPiece>(const RationalInterval&)>& blocked,
-           const std::function<bool(const Rational&)>& free_at) {
+           const std::function<bool(const Rational&)>& free_at, std::size_t* tests = nullptr) {
   std::vector<RationalInterval> stack{range};
   while (!stack.empty()) {
     RationalInterval piece = stack.back();
     stack.pop_back();
+    // `tests`: the piece tests left to the whole search (certify_detail::certify_found_jam_within)
+    if (tests) {
+      if (*tests == 0) return false;
+      --*tests;
+    }
     if (auto witness = blocked(piece)) {
       witness->range = piece;
       pieces.push_back(std::move(*witness));
@@ -691,7 +696,8 @@ using FreeConfigurations = std::vector<std::pair<Rational, Rational>>;   // (dri
 // certify_jam's work on a pair at the origin; `march`: cover the cut and walls with MarchCover
 // (certify_closing_jam) instead of cover() with blocking_crossing; `seen`: free configurations
 // met so far (cover()'s), read and added to; `points`: pieces a crossing does not prove may be
-// proved by a point inside both parts (format version 2; certify_trap_with_points).
+// proved by a point inside both parts (format version 2; certify_trap_with_points). Without
+// `march`, `budget` (when given) bounds the piece tests of the covers (cover()'s `tests`).
 std::optional<Certificate> certify_trap(const Model& model, const std::string& first, const std::string& second,
                                         const JamQuery& query, const CertifyContext& context,
                                         const IntervalSearchOptions& options, const Shapes* march = nullptr,
@@ -749,7 +755,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                     Rational(1, 1000000000))
                  : !cover(band, c.cut, options.max_boxes,
                           [&](const RationalInterval& piece) { return blocking_piece(r, cut_at, piece, points); },
-                          [&](const Rational& y) { return free_at(far, y); }))
+                          [&](const Rational& y) { return free_at(far, y); }, budget))
       return std::nullopt;
     for (int upper = 0; upper < 2; ++upper) {
       Rational at = upper ? band.hi : band.lo;
@@ -762,7 +768,7 @@ std::optional<Certificate> certify_trap(const Model& model, const std::string& f
                                       Rational(1, 100000))
                    : !cover(c.trap.driver, wall, options.max_boxes,
                             [&](const RationalInterval& piece) { return blocking_piece(r, piece, wall_at, points); },
-                            [&](const Rational& x) { return free_at(x, at); }))
+                            [&](const Rational& x) { return free_at(x, at); }, budget))
         return std::nullopt;
     }
   }
@@ -807,9 +813,10 @@ namespace {
 // (version 2) appear only where they are needed — flush faces, whose boundaries never cross.
 std::optional<Certificate> certify_trap_with_points(const Model& model, const std::string& first, const std::string& second,
                                                     const JamQuery& query, const CertifyContext& context,
-                                                    const IntervalSearchOptions& options, FreeConfigurations* seen) {
-  if (auto c = certify_trap(model, first, second, query, context, options, nullptr, nullptr, seen)) return c;
-  return certify_trap(model, first, second, query, context, options, nullptr, nullptr, seen, true);
+                                                    const IntervalSearchOptions& options, FreeConfigurations* seen,
+                                                    std::size_t* tests = nullptr) {
+  if (auto c = certify_trap(model, first, second, query, context, options, nullptr, tests, seen)) return c;
+  return certify_trap(model, first, second, query, context, options, nullptr, tests, seen, true);
 }
 
 // A jam certificate produced on the pair moved to the origin (pair_moved_to_origin): its pieces'
@@ -838,30 +845,45 @@ namespace {
 // certify_jam, sharing the free configurations its covers meet with the next call (`seen`)
 std::optional<Certificate> certify_jam_seeing(const Model& model, const std::string& first, const std::string& second,
                                               const JamQuery& query, const CertifyContext& context,
-                                              const IntervalSearchOptions& options, FreeConfigurations& seen) {
+                                              const IntervalSearchOptions& options, FreeConfigurations& seen,
+                                              std::size_t* tests) {
   // (the copy moved to the origin is the same at every call: its configurations are the model's)
   if (std::optional<Model> moved = pair_moved_to_origin(model, first, second))
     return checked_as_given(
-        points_moved_back(certify_jam_seeing(*moved, first, second, query, context, options, seen), model, first, second), model);
-  return certify_trap_with_points(model, first, second, query, context, options, &seen);
+        points_moved_back(certify_jam_seeing(*moved, first, second, query, context, options, seen, tests), model, first, second),
+        model);
+  return certify_trap_with_points(model, first, second, query, context, options, &seen, tests);
+}
+
+std::optional<Certificate> found_jam(const Model& model, const std::string& first, const std::string& second,
+                                     const JamQuery& query, const Rational& step, const CertifyContext& context,
+                                     const IntervalSearchOptions& options, std::size_t* tests) {
+  // The traps share the follower range and reach further each time: a free configuration that
+  // made one trap's wall fail lies on the next ones' walls too (a closing channel that find_jam's
+  // grid missed crosses them: 16 x 15 spur gears at zero backlash, session 54).
+  FreeConfigurations seen;
+  if (auto certificate = certify_jam_seeing(model, first, second, query, context, options, seen, tests)) return certificate;
+  for (int further : {1, 2, 4, 8}) {
+    JamQuery longer = query;
+    Rational& far = query.direction > 0 ? longer.trap.driver.hi : longer.trap.driver.lo;
+    far += query.direction * further * step;
+    if (auto certificate = certify_jam_seeing(model, first, second, longer, context, options, seen, tests)) return certificate;
+  }
+  return std::nullopt;
 }
 }  // namespace
 
 std::optional<Certificate> certify_found_jam(const Model& model, const std::string& first, const std::string& second,
                                              const JamQuery& query, const Rational& step, const CertifyContext& context,
                                              const IntervalSearchOptions& options) {
-  // The traps share the follower range and reach further each time: a free configuration that
-  // made one trap's wall fail lies on the next ones' walls too (a closing channel that find_jam's
-  // grid missed crosses them: 16 x 15 spur gears at zero backlash, session 54).
-  FreeConfigurations seen;
-  if (auto certificate = certify_jam_seeing(model, first, second, query, context, options, seen)) return certificate;
-  for (int further : {1, 2, 4, 8}) {
-    JamQuery longer = query;
-    Rational& far = query.direction > 0 ? longer.trap.driver.hi : longer.trap.driver.lo;
-    far += query.direction * further * step;
-    if (auto certificate = certify_jam_seeing(model, first, second, longer, context, options, seen)) return certificate;
-  }
-  return std::nullopt;
+  return found_jam(model, first, second, query, step, context, options, nullptr);
+}
+
+std::optional<Certificate> certify_detail::certify_found_jam_within(const Model& model, const std::string& first,
+                                                                    const std::string& second, const JamQuery& query,
+                                                                    const Rational& step, const CertifyContext& context,
+                                                                    std::size_t& tests) {
+  return found_jam(model, first, second, query, step, context, IntervalSearchOptions{}, &tests);
 }
 
 std::optional<Certificate> certify_detail::certify_closing_jam(

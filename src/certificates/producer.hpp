@@ -51,6 +51,13 @@ std::optional<Certificate> certify_closing_jam(const Model& model, const std::st
                                                const Rational& closing_follower, const std::vector<ClosingStart>& starts,
                                                const CertifyContext& context, std::size_t max_pieces = 2000);
 
+/// certify_found_jam with at most `tests` piece tests (one blocking crossing or point sought for
+/// one piece of a cut or wall) over all its traps, `tests` counting down (0: the budget ran out,
+/// the search gave up). `hipair analyze` uses it: its jam search is bounded, whatever the trap.
+std::optional<Certificate> certify_found_jam_within(const Model& model, const std::string& first, const std::string& second,
+                                                    const JamQuery& query, const Rational& step, const CertifyContext& context,
+                                                    std::size_t& tests);
+
 /// The exact world map of `part` at `position` (identity for a fixed part).
 /// \throws GeometryError for parts that are neither fixed, rotating nor translating.
 verify::ExactMap exact_map(const Part& part, const ExactPosition* position);
