@@ -1398,6 +1398,16 @@ int run(const SimulateOptions& options) {
   auto rounding = rounding_scope(options.rounding);
   check_times(options);
   io::refuse_unusable_output_directory(options.out, "--out");   // before any run (hours, for a long one)
+  // refused before the run when a file every run writes is the model, as analyze and tolerance do
+  // (session 75, hostile75 L1: the whole run or sweep was made and printed, then refused); the
+  // whole list of the run's files is checked again before anything is written
+  if (!options.out.empty()) {
+    const std::vector<std::string> always = options.sweep.empty()
+                                                ? std::vector<std::string>{"trajectory.csv", "events.json", "events.txt"}
+                                                : std::vector<std::string>{"sweep.json"};
+    for (const std::string& name : always)
+      io::refuse_overwriting_input(std::filesystem::path(options.out) / name, "--out", options.model);
+  }
   // options that do not apply (session 63, hunt63; until then taken and ignored, against the
   // rule of session 45): --jobs without a sweep, the animation's playback where no animation.svg
   // is written (a sweep writes sweep.json only)

@@ -59,6 +59,26 @@ code=$?
 grep -q -- "--vary: parameter 'pin-radius' is given twice" "$work/vary.out" || fail "vary: message: $(head -c 300 "$work/vary.out")"
 [ -e "$work/vary.dir" ] && fail "vary: wrote output"
 
+# hostile75 L1 (session 75, integrator): simulate --out DIR whose DIR holds the model under a name
+# every run writes is refused before the run (base75 made the whole run, printed it, then refused)
+for name in trajectory.csv events.json events.txt; do
+  mkdir -p "$work/io-$name"
+  cp "$models/bouncing-bar.json" "$work/io-$name/$name"
+  "$hipair" simulate "$work/io-$name/$name" --t-end 200 --out "$work/io-$name" --no-pictures --quiet >"$work/io.stdout" 2>"$work/io.stderr"
+  code=$?
+  [ $code -eq 3 ] || fail "simulate io $name: exit $code, want 3"
+  [ -s "$work/io.stdout" ] && fail "simulate io $name: printed a run before refusing: $(head -c 200 "$work/io.stdout")"
+  grep -q "is the input file" "$work/io.stderr" || fail "simulate io $name: message: $(head -c 300 "$work/io.stderr")"
+  cmp -s "$models/bouncing-bar.json" "$work/io-$name/$name" || fail "simulate io $name: the model was changed"
+done
+mkdir -p "$work/io-sweep"
+cp "$models/bouncing-bar.json" "$work/io-sweep/sweep.json"
+"$hipair" simulate "$work/io-sweep/sweep.json" --sweep speed=1:2:2 --allow-out-of-tolerance --t-end 1 --out "$work/io-sweep" --quiet >"$work/io.stdout" 2>"$work/io.stderr"
+code=$?
+[ $code -eq 3 ] || fail "simulate io sweep: exit $code, want 3"
+[ -s "$work/io.stdout" ] && fail "simulate io sweep: printed a sweep before refusing: $(head -c 200 "$work/io.stdout")"
+grep -q "is the input file" "$work/io.stderr" || fail "simulate io sweep: message: $(head -c 300 "$work/io.stderr")"
+
 if [ $failures -ne 0 ]; then
   echo "$failures failure(s)"
   exit 1
